@@ -1,0 +1,6 @@
+// prt bake: placeholder until the verb is implemented.
+#include "cli.hpp"
+
+namespace prt::cli {
+void addBakeCommand(CLI::App& root) { (void)root; }
+}  // namespace prt::cli

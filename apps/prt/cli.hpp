@@ -1,0 +1,36 @@
+#pragma once
+// Shared pieces of the prt command line. Each verb lives in its own file (light.cpp, bake.cpp,
+// ...) and exposes one function `void addXxxCommand(CLI::App& root)` that registers a
+// subcommand whose callback does the work; errors are thrown as prt::Error and printed by main
+// as "prt VERB: error: MESSAGE".
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "prt/core/progress.hpp"
+
+namespace prt::cli {
+
+/// Global options, parsed before any verb runs.
+struct Globals {
+  int threads = 0;      ///< -j/--threads, 0 = all cores
+  bool quiet = false;   ///< -q
+  bool verbose = false; ///< -v
+};
+Globals& globals();
+
+/// A progress callback drawing "label [#####     ] 42%" on stderr when stderr is a terminal
+/// (and not quiet); returns false (cancel) after Ctrl-C.
+ProgressFn progressBar(const std::string& label);
+/// Prints a line of chatter on stderr unless quiet.
+void info(const std::string& line);
+/// Prints "prt: warning: ..." on stderr (even when quiet).
+void warn(const std::string& line);
+
+// The verbs.
+void addLightCommand(CLI::App& root);
+void addBakeCommand(CLI::App& root);
+void addExportCommand(CLI::App& root);
+void addInfoCommand(CLI::App& root);
+
+}  // namespace prt::cli

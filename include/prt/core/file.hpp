@@ -1,0 +1,25 @@
+#pragma once
+// Writing outputs safely: everything goes to a temporary file beside the destination and is
+// renamed into place only when complete, so a failure never leaves a half-written result.
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace prt {
+
+/// Calls write(stream) on a temporary file beside `path`, then renames it to `path`.
+/// On any exception the temporary is removed and the exception rethrown.
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+/// Same for a byte buffer.
+void writeFileAtomically(const std::string& path, std::string_view bytes);
+/// Reads a whole file; throws Error("path: cannot open ...") on failure.
+std::vector<unsigned char> readFileBytes(const std::string& path);
+/// Throws Error naming `path` if its directory does not exist or is not writable.
+void checkWritable(const std::string& path);
+/// Lower-case extension without the dot ("hdr", "exr", "gz"); "" if none.
+std::string fileExtension(const std::string& path);
+
+}  // namespace prt

@@ -1,0 +1,47 @@
+#pragma once
+// Ray queries against a scene: the one virtual interface of the library, since implementations
+// really differ (Embree here; a GPU tracer or a test double elsewhere). Built once per scene,
+// const and safe to share between threads.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "prt/geometry/mesh.hpp"
+
+namespace prt {
+
+struct Ray {
+  Vec3f origin;
+  Vec3f dir;      ///< unit
+  float tnear = 0;
+  float tfar = 3.4e38f;
+};
+
+struct Hit {
+  bool hit = false;
+  std::uint32_t triangle = 0;  ///< index into Mesh::triangles
+  float u = 0, v = 0;          ///< barycentrics: p = (1-u-v) p0 + u p1 + v p2
+  float t = 0;
+};
+
+class Occluder {
+ public:
+  virtual ~Occluder() = default;
+  /// True if anything lies on the ray within (tnear, tfar).
+  virtual bool occluded(const Ray& ray) const = 0;
+  /// Batched occlusion: out[k] = occluded(rays[k]) (1 or 0). Implementations may use packets or
+  /// streams; results equal the single-ray query.
+  virtual void occluded(std::span<const Ray> rays, std::span<std::uint8_t> out) const;
+  /// Closest hit.
+  virtual Hit intersect(const Ray& ray) const = 0;
+  /// Offset along the normal that moves a ray origin off the surface at `p` robustly: scaled to
+  /// the magnitude of p and the scene extent (floating-point error of the hit), not a constant.
+  virtual float rayOffset(const Vec3f& p) const = 0;
+};
+
+/// An Embree 3 BVH over the mesh's triangles (the mesh must outlive nothing: data is copied
+/// into Embree's buffers). Throws prt::Error on Embree failures.
+std::unique_ptr<Occluder> makeEmbreeOccluder(const Mesh& mesh);
+
+}  // namespace prt
