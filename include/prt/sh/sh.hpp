@@ -30,20 +30,30 @@ namespace prt::sh {
 /// Largest band count the library accepts anywhere.
 inline constexpr int kMaxBands = 32;
 
-constexpr int coeffCount(int bands) { return bands * bands; }
-constexpr int index(int l, int m) { return l * (l + 1) + m; }
+constexpr int coeffCount(int bands) {
+  return bands * bands;
+}
+constexpr int index(int l, int m) {
+  return l * (l + 1) + m;
+}
 
 /// Throws prt::Error("bands must be in 1..32, got B") when out of range.
 void checkBands(int bands);
 
-/// All B² values Y_i(dir) into out[0..B²). Float path accurate to 1e-6 relative.
+/// All B² values Y_i(dir) into out[0..B²) by Sloan's polynomial recurrence (see sh_fixed.hpp;
+/// bands 1..16 are compile-time specialised, 17..32 use the same recurrence in a loop).
+/// Float path: |eval − reference| ≤ 1e-6 · max_m |Y_lm(dir)| per band l (tested at every B).
+/// `dir` must be unit length; not checked (hot path). Throws prt::Error on bands out of range.
 void eval(int bands, const Vec3f& dir, float* out);
 void eval(int bands, const Vec3d& dir, double* out);
-/// dirs.size() rows of B² values each, row-major, into out.
+/// dirs.size() rows of B² values each, row-major, into out (dispatches on B once).
 void evalBatch(int bands, std::span<const Vec3f> dirs, float* out);
+void evalBatch(int bands, std::span<const Vec3d> dirs, double* out);
 
-/// Slow, simple double-precision reference (associated Legendre recurrence and trig), used by
-/// tests to check the fast paths.
+/// Slow, simple double-precision reference: θ = acos z, φ = atan2(y, x), the unnormalised
+/// associated-Legendre recurrence with the (-1)^m phase, K_lm from factorial ratios, cos/sin(mφ)
+/// by std::cos/std::sin. Independent of the fast path; used by tests and as the bench baseline.
+/// Normalises `dir` first.
 void evalReference(int bands, const Vec3d& dir, double* out);
 
 /// Scalar SH coefficients of one function.
