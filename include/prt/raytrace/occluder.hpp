@@ -3,6 +3,7 @@
 // really differ (Embree here; a GPU tracer or a test double elsewhere). Built once per scene,
 // const and safe to share between threads.
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -13,7 +14,7 @@ namespace prt {
 
 struct Ray {
   Vec3f origin;
-  Vec3f dir;      ///< unit
+  Vec3f dir;  ///< unit
   float tnear = 0;
   float tfar = 3.4e38f;
 };
@@ -38,10 +39,14 @@ class Occluder {
   /// Offset along the normal that moves a ray origin off the surface at `p` robustly: scaled to
   /// the magnitude of p and the scene extent (floating-point error of the hit), not a constant.
   virtual float rayOffset(const Vec3f& p) const = 0;
+  /// Bytes held by the acceleration structure and its copy of the geometry (0 if unknown).
+  virtual std::size_t memoryBytes() const { return 0; }
 };
 
-/// An Embree 3 BVH over the mesh's triangles (the mesh must outlive nothing: data is copied
-/// into Embree's buffers). Throws prt::Error on Embree failures.
+/// An Embree 3 BVH over the mesh's triangles (the mesh need not outlive it: positions and
+/// indices are copied into Embree's buffers, 12 bytes per vertex and per triangle). Triangle ids
+/// in Hit are indices into mesh.triangles. Throws prt::Error (naming mesh.source) for an empty
+/// mesh, out-of-range indices, non-finite positions and Embree failures.
 std::unique_ptr<Occluder> makeEmbreeOccluder(const Mesh& mesh);
 
 }  // namespace prt
