@@ -1,0 +1,55 @@
+#pragma once
+// Reading and writing images.
+//
+// Formats, chosen by the (case-insensitive) extension:
+//  * .hdr  Radiance RGBE (stb_image), linear.
+//  * .exr  OpenEXR, linear: tinyexr first; files tinyexr cannot decode (e.g. DWAA/DWAB
+//          compression, as in Blender's bundled Poly Haven maps) go through the OpenEXR library.
+//          RGB(A) or single-channel Y; other channels are ignored.
+//  * .png, .jpg/.jpeg: 8-bit (or 16-bit PNG) decoded from sRGB to linear by default, or by the
+//          course's (v/255)^2.2 with LdrDecode::Gamma22. Alpha is ignored; grey expands to RGB.
+// Writing: .png (exposure, tone map, sRGB encode, 8-bit), .exr (32-bit float, ZIP), .hdr (RGBE).
+//
+// Pixel policy (never propagate NaN): a non-finite channel (NaN or ±Inf) becomes 0 and a negative
+// channel is clamped to 0. The reader counts the pixels touched by each rule in ReadStats, so
+// callers can warn; the pixels themselves are always finite and non-negative afterwards.
+// Errors: prt::Error("FILE: what is wrong") for unreadable, truncated or unknown files.
+
+#include <cstddef>
+#include <string>
+
+#include "prt/image/color.hpp"
+#include "prt/image/image.hpp"
+
+namespace prt::image {
+
+enum class LdrDecode { Srgb, Gamma22 };
+
+struct ReadOptions {
+  LdrDecode ldrDecode = LdrDecode::Srgb;
+};
+
+/// What the reader had to repair (pixel counts; a pixel counts once per rule).
+struct ReadStats {
+  std::size_t nonFinitePixels = 0;  ///< had a NaN or ±Inf channel (set to 0)
+  std::size_t negativePixels = 0;   ///< had a negative finite channel (clamped to 0)
+  bool ldr = false;                 ///< decoded from an 8/16-bit format
+};
+
+/// True for the extensions readImage understands (hdr, exr, png, jpg, jpeg).
+bool isReadableImageExtension(const std::string& ext);
+/// Reads an image; throws prt::Error("PATH: ...") on failure.
+Image readImage(const std::string& path, const ReadOptions& options = {}, ReadStats* stats = nullptr);
+
+/// Applies the pixel policy in place and returns the counts (used by the readers; exposed for
+/// images built in memory).
+ReadStats sanitize(Image& img);
+
+struct WriteOptions {
+  ToneMap toneMap = ToneMap::Aces;  ///< PNG only
+  float exposureStops = 0.0f;       ///< PNG only: multiply by 2^exposure before tone mapping
+};
+/// Writes by extension (png, exr, hdr) atomically; throws prt::Error("PATH: ...") on failure.
+void writeImage(const std::string& path, const Image& img, const WriteOptions& options = {});
+
+}  // namespace prt::image

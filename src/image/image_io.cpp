@@ -1,0 +1,294 @@
+#include "prt/image/image_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <ostream>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <tinyexr.h>
+
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+
+namespace prt::image {
+
+namespace {
+
+// stb reads through callbacks so we notice truncation: stb_image pads a short file with zeros
+// instead of failing for some formats (Radiance RGBE, baseline JPEG), so a read asked for after
+// the last byte means the file ended before the decoder was done.
+struct MemoryReader {
+  const unsigned char* data;
+  std::size_t size;
+  std::size_t pos = 0;
+  bool readPastEnd = false;
+};
+
+int readCallback(void* user, char* out, int n) {
+  auto* r = static_cast<MemoryReader*>(user);
+  const std::size_t left = r->size - r->pos;
+  const std::size_t k = std::min<std::size_t>(left, static_cast<std::size_t>(std::max(n, 0)));
+  if (k == 0 && n > 0) r->readPastEnd = true;
+  std::memcpy(out, r->data + r->pos, k);
+  r->pos += k;
+  return static_cast<int>(k);
+}
+void skipCallback(void* user, int n) {
+  auto* r = static_cast<MemoryReader*>(user);
+  if (n < 0) {
+    r->pos -= std::min<std::size_t>(r->pos, static_cast<std::size_t>(-n));
+  } else {
+    r->pos = std::min(r->size, r->pos + static_cast<std::size_t>(n));
+  }
+}
+int eofCallback(void* user) {
+  auto* r = static_cast<MemoryReader*>(user);
+  return r->pos >= r->size ? 1 : 0;
+}
+const stbi_io_callbacks kCallbacks{readCallback, skipCallback, eofCallback};
+
+std::string stbReason() {
+  const char* why = stbi_failure_reason();
+  return why ? why : "unknown reason";
+}
+
+Image readStbHdr(const std::string& path, const std::vector<unsigned char>& bytes) {
+  MemoryReader reader{bytes.data(), bytes.size()};
+  int w = 0, h = 0, n = 0;
+  std::unique_ptr<float, void (*)(void*)> data(stbi_loadf_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3),
+                                               stbi_image_free);
+  if (!data) throw Error(path, "cannot decode Radiance HDR (" + stbReason() + ")");
+  if (reader.readPastEnd) throw Error(path, "truncated Radiance HDR file");
+  Image img(w, h);
+  for (std::size_t i = 0; i < img.size(); ++i)
+    img.pixels[i] = {data.get()[3 * i], data.get()[3 * i + 1], data.get()[3 * i + 2]};
+  return img;
+}
+
+// JPEG streams end with an EOI marker (FF D9); stb_image decodes a cut-off JPEG without error.
+bool jpegComplete(const std::vector<unsigned char>& b) {
+  std::size_t end = b.size();
+  while (end > 2 && b[end - 1] == 0) --end;  // some writers pad after EOI
+  return end >= 4 && b[end - 2] == 0xFF && b[end - 1] == 0xD9;
+}
+
+Image readStbLdr(const std::string& path, const std::vector<unsigned char>& bytes, LdrDecode decode,
+                 bool jpeg) {
+  if (jpeg && !jpegComplete(bytes)) throw Error(path, "truncated JPEG file (no end-of-image marker)");
+  MemoryReader reader{bytes.data(), bytes.size()};
+  const bool sixteen = !jpeg && stbi_is_16_bit_from_memory(bytes.data(), static_cast<int>(bytes.size()));
+  int w = 0, h = 0, n = 0;
+  Image img;
+  if (sixteen) {
+    std::unique_ptr<stbi_us, void (*)(void*)> data(
+        stbi_load_16_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3), stbi_image_free);
+    if (!data) throw Error(path, "cannot decode image (" + stbReason() + ")");
+    img = Image(w, h);
+    for (std::size_t i = 0; i < 3 * img.size(); ++i) {
+      const float v = static_cast<float>(data.get()[i]) / 65535.0f;
+      (&img.pixels[i / 3].x)[i % 3] =
+          decode == LdrDecode::Srgb ? srgbToLinear(v) : static_cast<float>(std::pow(double(v), double(2.2f)));
+    }
+  } else {
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3),
+                                                   stbi_image_free);
+    if (!data) throw Error(path, "cannot decode image (" + stbReason() + ")");
+    img = Image(w, h);
+    for (std::size_t i = 0; i < 3 * img.size(); ++i) {
+      const std::uint8_t v = data.get()[i];
+      (&img.pixels[i / 3].x)[i % 3] = decode == LdrDecode::Srgb ? srgb8ToLinear(v) : gamma22ToLinear(v);
+    }
+  }
+  if (reader.readPastEnd) throw Error(path, "truncated image file");
+  return img;
+}
+
+// The OpenEXR library: every compression (DWAA/DWAB included), tiled or scan-line files.
+Image readOpenExr(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+    if (w <= 0 || h <= 0) throw Error(path, "empty OpenEXR data window");
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool rgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    const bool grey = !rgb && channels.findChannel("Y");
+    if (!rgb && !grey) throw Error(path, "OpenEXR file has neither R, G, B nor Y channels");
+    std::vector<float> planes(static_cast<std::size_t>(w) * h * 3, 0.0f);
+    Imf::FrameBuffer fb;
+    const std::size_t xs = sizeof(float) * 3, ys = xs * static_cast<std::size_t>(w);
+    // The slice base points at pixel (0, 0) of the data window's coordinate system.
+    char* base = reinterpret_cast<char*>(planes.data()) -
+                 (static_cast<std::ptrdiff_t>(dw.min.x) * xs + static_cast<std::ptrdiff_t>(dw.min.y) * ys);
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c)
+      fb.insert(grey ? "Y" : names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1, 0.0));
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    Image img(w, h);
+    for (std::size_t i = 0; i < img.size(); ++i) img.pixels[i] = {planes[3 * i], planes[3 * i + 1], planes[3 * i + 2]};
+    return img;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::string what = e.what();
+    if (auto nl = what.find('\n'); nl != std::string::npos) what.resize(nl);
+    throw Error(path, "cannot read OpenEXR file (" + what + ")");
+  }
+}
+
+Image readExr(const std::string& path, const std::vector<unsigned char>& bytes) {
+  if (bytes.size() < 4 || !(bytes[0] == 0x76 && bytes[1] == 0x2f && bytes[2] == 0x31 && bytes[3] == 0x01))
+    throw Error(path, "not an OpenEXR file (bad magic number)");
+  float* rgba = nullptr;
+  int w = 0, h = 0;
+  const char* err = nullptr;
+  const int ret = LoadEXRFromMemory(&rgba, &w, &h, bytes.data(), bytes.size(), &err);
+  if (ret == TINYEXR_SUCCESS) {
+    Image img(w, h);
+    for (std::size_t i = 0; i < img.size(); ++i) img.pixels[i] = {rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]};
+    std::free(rgba);
+    return img;
+  }
+  if (err) FreeEXRErrorMessage(err);
+  // tinyexr supports a subset of compressions; the reference library reads the rest and gives
+  // the definitive error for broken files.
+  return readOpenExr(path);
+}
+
+}  // namespace
+
+bool isReadableImageExtension(const std::string& ext) {
+  return ext == "hdr" || ext == "exr" || ext == "png" || ext == "jpg" || ext == "jpeg";
+}
+
+ReadStats sanitize(Image& img) {
+  ReadStats s;
+  for (Rgb& p : img.pixels) {
+    bool nonFinite = false, negative = false;
+    for (int c = 0; c < 3; ++c) {
+      float& v = (&p.x)[c];
+      if (!std::isfinite(v)) {
+        v = 0.0f;
+        nonFinite = true;
+      } else if (v < 0.0f) {
+        v = 0.0f;
+        negative = true;
+      }
+    }
+    s.nonFinitePixels += nonFinite;
+    s.negativePixels += negative;
+  }
+  return s;
+}
+
+Image readImage(const std::string& path, const ReadOptions& options, ReadStats* stats) {
+  const std::string ext = fileExtension(path);
+  if (!isReadableImageExtension(ext))
+    throw Error(path, ext.empty() ? "no file extension (expected .hdr, .exr, .png, .jpg)"
+                                  : "unknown image extension '." + ext + "' (expected .hdr, .exr, .png, .jpg)");
+  const std::vector<unsigned char> bytes = readFileBytes(path);
+  if (bytes.empty()) throw Error(path, "empty file");
+  Image img;
+  bool ldr = false;
+  if (ext == "hdr") {
+    img = readStbHdr(path, bytes);
+  } else if (ext == "exr") {
+    img = readExr(path, bytes);
+  } else {
+    img = readStbLdr(path, bytes, options.ldrDecode, ext != "png");
+    ldr = true;
+  }
+  if (img.width <= 0 || img.height <= 0) throw Error(path, "image has no pixels");
+  ReadStats s = sanitize(img);
+  s.ldr = ldr;
+  if (stats) *stats = s;
+  return img;
+}
+
+namespace {
+
+void stbWriteToStream(void* context, void* data, int size) {
+  static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size);
+}
+
+std::string exrBytes(const std::string& path, const Image& img) {
+  // tinyexr wants planar channels in B, G, R order (the order EXR readers expect on disk).
+  const std::size_t n = img.size();
+  std::vector<float> planes[3];
+  for (int c = 0; c < 3; ++c) {
+    planes[c].resize(n);
+    for (std::size_t i = 0; i < n; ++i) planes[c][i] = (&img.pixels[i].x)[2 - c];
+  }
+  float* ptrs[3] = {planes[0].data(), planes[1].data(), planes[2].data()};
+  EXRHeader header;
+  InitEXRHeader(&header);
+  EXRImage image;
+  InitEXRImage(&image);
+  image.num_channels = 3;
+  image.images = reinterpret_cast<unsigned char**>(ptrs);
+  image.width = img.width;
+  image.height = img.height;
+  EXRChannelInfo channels[3];
+  std::memset(channels, 0, sizeof(channels));
+  const char* names[3] = {"B", "G", "R"};
+  int pixelTypes[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+  for (int c = 0; c < 3; ++c) std::strncpy(channels[c].name, names[c], 255);
+  header.num_channels = 3;
+  header.channels = channels;
+  header.pixel_types = pixelTypes;
+  header.requested_pixel_types = pixelTypes;
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+  unsigned char* memory = nullptr;
+  const char* err = nullptr;
+  const std::size_t size = SaveEXRImageToMemory(&image, &header, &memory, &err);
+  if (size == 0) {
+    std::string why = err ? err : "unknown reason";
+    if (err) FreeEXRErrorMessage(err);
+    throw Error(path, "cannot encode OpenEXR (" + why + ")");
+  }
+  std::string out(reinterpret_cast<char*>(memory), size);
+  std::free(memory);
+  return out;
+}
+
+}  // namespace
+
+void writeImage(const std::string& path, const Image& img, const WriteOptions& options) {
+  const std::string ext = fileExtension(path);
+  if (img.empty()) throw Error(path, "refusing to write an empty image");
+  if (ext == "png") {
+    std::vector<std::uint8_t> bytes(img.size() * 3);
+    for (std::size_t i = 0; i < img.size(); ++i) {
+      const Rgb t = toneMap(img.pixels[i], options.toneMap, options.exposureStops);
+      for (int c = 0; c < 3; ++c)
+        bytes[3 * i + c] = static_cast<std::uint8_t>(std::lround(linearToSrgb((&t.x)[c]) * 255.0f));
+    }
+    writeFileAtomically(path, [&](std::ostream& os) {
+      if (!stbi_write_png_to_func(stbWriteToStream, &os, img.width, img.height, 3, bytes.data(), img.width * 3))
+        throw Error(path, "cannot encode PNG");
+    });
+  } else if (ext == "hdr") {
+    std::vector<float> data(img.size() * 3);
+    for (std::size_t i = 0; i < img.size(); ++i)
+      for (int c = 0; c < 3; ++c) data[3 * i + c] = (&img.pixels[i].x)[c];
+    writeFileAtomically(path, [&](std::ostream& os) {
+      if (!stbi_write_hdr_to_func(stbWriteToStream, &os, img.width, img.height, 3, data.data()))
+        throw Error(path, "cannot encode Radiance HDR");
+    });
+  } else if (ext == "exr") {
+    writeFileAtomically(path, exrBytes(path, img));
+  } else {
+    throw Error(path, "cannot write images with extension '." + ext + "' (expected .png, .exr or .hdr)");
+  }
+}
+
+}  // namespace prt::image
