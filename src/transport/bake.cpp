@@ -1,0 +1,493 @@
+#include "prt/transport/bake.hpp"
+
+// Diffuse PRT baking (Sloan, Kautz & Snyder 2002, §5). See docs/transport.md for the
+// derivation of each estimator and of the error estimates reported in BakeStats.
+//
+// Structure: one "pass" per transport order. Pass 0 (direct) gathers Y_i(ω)·V(ω) over
+// cosine-distributed directions; pass k ≥ 1 gathers ρ(h)·Tᵏ⁻¹(h) at the closest front-facing hit
+// h. Each vertex draws its own, independent sample set per pass from
+// (seed, pass, global vertex index) — the same scrambled Sobol' points shared by all vertices,
+// Owen-scrambled with per-vertex seeds — so results never depend on threads or on the range.
+//
+// Memory: the direct and shadowed modes keep nothing per sample: per worker only B² (×3)
+// accumulators and a batch of 64 rays. Inter-reflection needs the previous order Tᵏ⁻¹ for the
+// whole mesh (hits land anywhere), so it holds two full-mesh working buffers (Tᵏ⁻¹ and Tᵏ) beside
+// the output; for K = 1 bounce the working Tᵏ is added straight into the output.
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <string>
+
+#include "prt/core/error.hpp"
+#include "prt/core/parallel.hpp"
+#include "prt/core/sampling.hpp"
+#include "prt/sh/sh.hpp"
+#include "prt/sh/sh_fixed.hpp"
+
+namespace prt {
+
+const char* toString(Sampling sampling) {
+  switch (sampling) {
+    case Sampling::CosineSobol:
+      return "cosine-sobol";
+    case Sampling::UniformRandom:
+      return "uniform-random";
+  }
+  return "?";
+}
+
+Sampling parseSampling(const std::string& s) {
+  if (s == "sobol" || s == "cosine-sobol") return Sampling::CosineSobol;
+  if (s == "uniform" || s == "uniform-random") return Sampling::UniformRandom;
+  throw Error("unknown sampling '" + s + "' (expected cosine-sobol or uniform-random)");
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kBatch = 64;            // rays traced per batch
+constexpr int kFlushEvery = 4 * kBatch;       // samples summed in float before going to double
+constexpr std::size_t kVertexGrain = 4;       // vertices per parallel task
+constexpr double kY00 = 0.28209479177387814;  // 1/√(4π)
+
+using EvalFn = void (*)(const Vec3f&, float*);
+
+template <int B>
+void evalFixedFn(const Vec3f& d, float* out) {
+  sh::evalFixed<B>(d, out);
+}
+
+template <int... B>
+EvalFn pickEval(int bands, std::integer_sequence<int, B...>) {
+  EvalFn fn = nullptr;
+  ((bands == B + 1 ? (fn = &evalFixedFn<B + 1>, 0) : 0), ...);
+  return fn;
+}
+
+/// The unrolled evaluator for small band counts (the hot path), else the general one.
+struct ShEval {
+  int bands;
+  EvalFn fixed;
+  explicit ShEval(int b) : bands(b), fixed(pickEval(b, std::make_integer_sequence<int, 10>{})) {}
+  void operator()(const Vec3f& d, float* out) const {
+    if (fixed)
+      fixed(d, out);
+    else
+      sh::eval(bands, d, out);
+  }
+};
+
+/// Albedo used for the bounces: uniform or per vertex, interpolated at hits.
+struct Albedo {
+  bool perVertex = false;
+  bool grey = true;
+  Rgb uniform{1.0f};
+  const std::vector<Rgb>* values = nullptr;
+
+  Rgb at(const std::array<std::uint32_t, 3>& tri, float u, float v) const {
+    if (!perVertex) return uniform;
+    const auto& a = *values;
+    return a[tri[0]] * (1.0f - u - v) + a[tri[1]] * u + a[tri[2]] * v;
+  }
+};
+
+/// Sample directions of one vertex in one pass: sample s has direction dir and weight w such
+/// that T ≈ (1/N) Σ_s w_s f(dir_s) with f the integrand without the (1/π) cos factor.
+class VertexSampler {
+ public:
+  VertexSampler(const BakeSettings& s, const OwenSobol2D* sobol, std::size_t vertex, int pass,
+                const Vec3f& n)
+      : sobol_(sobol), n_(n), rng_(0) {
+    const std::uint64_t key = deriveSeed(deriveSeed(s.seed, static_cast<std::uint64_t>(pass)),
+                                         static_cast<std::uint64_t>(vertex));
+    seed0_ = static_cast<std::uint32_t>(key);
+    seed1_ = static_cast<std::uint32_t>(key >> 32);
+    if (sobol_)
+      orthonormalBasis(n_, t_, b_);
+    else
+      rng_ = Pcg32(key);
+  }
+  /// Next sample. w == 0: below the horizon (uniform sampling only), cast no ray.
+  void next(Vec3f& dir, float& w) {
+    if (sobol_) {
+      // Cosine-weighted: (1/π) Y V cos / (cos/π) = Y V, weight 1.
+      const Point2 u = sobol_->point(index_++, seed0_, seed1_);
+      const Vec3f l = cosineHemisphere(u.x, u.y);
+      dir = t_ * l.x + b_ * l.y + n_ * l.z;
+      w = 1.0f;
+    } else {
+      // Uniform sphere, pdf 1/(4π): (1/π) Y V max(cos,0) · 4π = 4 max(cos,0) Y V.
+      const float u1 = rng_.uniform(), u2 = rng_.uniform();
+      dir = uniformSphere(u1, u2);
+      const float c = dot(n_, dir);
+      w = c > 0.0f ? 4.0f * c : 0.0f;
+    }
+  }
+
+ private:
+  const OwenSobol2D* sobol_;
+  Vec3f n_, t_, b_;
+  std::uint32_t seed0_ = 0, seed1_ = 0, index_ = 0;
+  Pcg32 rng_;
+};
+
+/// Running sum and sum of squares of one scalar estimator, for its i.i.d. standard error.
+struct Moments {
+  double s1 = 0, s2 = 0;
+  void add(double x) {
+    s1 += x;
+    s2 += x * x;
+  }
+  /// Estimated variance of the mean of n samples (unbiased sample variance / n).
+  double varianceOfMean(int n) const {
+    if (n < 2) return 0;
+    const double mean = s1 / n;
+    const double var = std::max(0.0, (s2 - n * mean * mean) / (n - 1));
+    return var / n;
+  }
+};
+
+struct Context {
+  const Mesh& mesh;
+  const Occluder& occluder;
+  const BakeSettings& settings;
+  int nc;  // B²
+  ShEval eval;
+  std::unique_ptr<OwenSobol2D> sobol;
+  Albedo albedo;
+  std::atomic<std::uint64_t> rays{0};
+};
+
+/// Float partial sums over a few batches, then double: accurate to ~1e-7 relative even at
+/// 2^24 samples, and in a fixed order.
+struct Accumulator {
+  std::vector<float> part;
+  std::vector<double> total;
+  explicit Accumulator(std::size_t n) : part(n, 0.0f), total(n, 0.0) {}
+  void flush() {
+    for (std::size_t i = 0; i < part.size(); ++i) {
+      total[i] += part[i];
+      part[i] = 0.0f;
+    }
+  }
+  void reset() {
+    std::fill(part.begin(), part.end(), 0.0f);
+    std::fill(total.begin(), total.end(), 0.0);
+  }
+};
+
+/// Pass 0: T⁰_i(v) = (1/N) Σ w Y_i(ω) V(ω), written to out[0..B²). Returns Var(T⁰₀).
+double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
+                    std::vector<float>& y) {
+  const Mesh& mesh = ctx.mesh;
+  const int n = ctx.settings.samples;
+  const bool shadowed = ctx.settings.mode != TransferMode::Unshadowed;
+  const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
+  const Vec3f origin = shadowed ? p + nrm * ctx.occluder.rayOffset(p) : p;
+  VertexSampler sampler(ctx.settings, ctx.sobol.get(), v, 0, nrm);
+
+  std::array<Ray, kBatch> rays;
+  std::array<float, kBatch> w;
+  std::array<std::uint8_t, kBatch> blocked;
+  Moments m;
+  std::uint64_t cast = 0;
+  acc.reset();
+  const int nc = ctx.nc;
+  float* part = acc.part.data();
+  for (int base = 0; base < n; base += static_cast<int>(kBatch)) {
+    const int count = std::min<int>(kBatch, n - base);
+    std::size_t nr = 0;
+    for (int j = 0; j < count; ++j) {
+      Vec3f d;
+      float wt;
+      sampler.next(d, wt);
+      if (wt <= 0.0f) continue;
+      rays[nr] = Ray{origin, d, 0.0f, std::numeric_limits<float>::infinity()};
+      w[nr++] = wt;
+    }
+    if (shadowed && nr > 0) {
+      ctx.occluder.occluded(std::span<const Ray>(rays.data(), nr),
+                            std::span<std::uint8_t>(blocked.data(), nr));
+      cast += nr;
+    } else {
+      std::fill_n(blocked.begin(), nr, std::uint8_t(0));
+    }
+    for (std::size_t j = 0; j < nr; ++j) {
+      if (blocked[j]) continue;
+      ctx.eval(rays[j].dir, y.data());
+      const float wj = w[j];
+      for (int i = 0; i < nc; ++i) part[i] += wj * y[i];
+      m.add(wj);
+    }
+    if ((base + static_cast<int>(kBatch)) % kFlushEvery == 0) acc.flush();
+  }
+  acc.flush();
+  for (int i = 0; i < nc; ++i) out[i] = static_cast<float>(acc.total[i] / n);
+  ctx.rays.fetch_add(cast, std::memory_order_relaxed);
+  // T⁰₀ = Y00 · mean(w V): its variance is Y00² Var(mean(w V)).
+  return kY00 * kY00 * m.varianceOfMean(n);
+}
+
+/// Pass k ≥ 1: Tᵏ(v) = (1/N) Σ w ρ(h) ⊙ Tᵏ⁻¹(h) over samples whose closest hit h is a front face
+/// (the light a diffuse surface sends toward v leaves its front side only; a back face blocks
+/// the direction and contributes nothing). prev: the whole mesh, prevChannels per coefficient;
+/// out gets B² × outChannels values (added to when accumulate). Returns Var(Tᵏ₀, channel 0).
+double bounceVertex(Context& ctx, std::size_t v, int pass, const float* prev, int prevChannels,
+                    float* out, int outChannels, bool accumulate, Accumulator& acc,
+                    std::vector<float>& t) {
+  const Mesh& mesh = ctx.mesh;
+  const int n = ctx.settings.samples;
+  const int nc = ctx.nc;
+  const std::size_t prevStride = static_cast<std::size_t>(nc) * prevChannels;
+  const int width = nc * outChannels;
+  const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
+  const Vec3f origin = p + nrm * ctx.occluder.rayOffset(p);
+  VertexSampler sampler(ctx.settings, ctx.sobol.get(), v, pass, nrm);
+
+  Moments m;
+  std::uint64_t cast = 0;
+  acc.reset();
+  float* part = acc.part.data();
+  for (int s = 0; s < n; ++s) {
+    Vec3f d;
+    float wt;
+    sampler.next(d, wt);
+    if (wt > 0.0f) {
+      ++cast;
+      const Hit h =
+          ctx.occluder.intersect(Ray{origin, d, 0.0f, std::numeric_limits<float>::infinity()});
+      if (h.hit) {
+        const auto& tri = mesh.triangles[h.triangle];
+        const Vec3f p0 = mesh.positions[tri[0]];
+        const Vec3f ng = cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
+        if (dot(ng, d) < 0.0f) {
+          const float b0 = 1.0f - h.u - h.v;
+          const float* r0 = prev + tri[0] * prevStride;
+          const float* r1 = prev + tri[1] * prevStride;
+          const float* r2 = prev + tri[2] * prevStride;
+          for (std::size_t i = 0; i < prevStride; ++i)
+            t[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
+          const Rgb rho = ctx.albedo.at(tri, h.u, h.v) * wt;
+          if (outChannels == 1) {
+            for (int i = 0; i < nc; ++i) part[i] += rho.x * t[i];
+          } else if (prevChannels == 1) {
+            for (int i = 0; i < nc; ++i) {
+              part[3 * i + 0] += rho.x * t[i];
+              part[3 * i + 1] += rho.y * t[i];
+              part[3 * i + 2] += rho.z * t[i];
+            }
+          } else {
+            for (int i = 0; i < nc; ++i) {
+              part[3 * i + 0] += rho.x * t[3 * i + 0];
+              part[3 * i + 1] += rho.y * t[3 * i + 1];
+              part[3 * i + 2] += rho.z * t[3 * i + 2];
+            }
+          }
+          m.add(double(rho.x) * t[0]);
+        }
+      }
+    }
+    if ((s + 1) % kFlushEvery == 0) acc.flush();
+  }
+  acc.flush();
+  for (int i = 0; i < width; ++i) {
+    const float value = static_cast<float>(acc.total[i] / n);
+    out[i] = accumulate ? out[i] + value : value;
+  }
+  ctx.rays.fetch_add(cast, std::memory_order_relaxed);
+  return m.varianceOfMean(n);
+}
+
+void validate(const Mesh& mesh, const BakeSettings& s) {
+  const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
+  if (mesh.vertexCount() == 0 || mesh.triangleCount() == 0)
+    throw Error(name, "cannot bake an empty mesh (" + std::to_string(mesh.vertexCount()) +
+                          " vertices, " + std::to_string(mesh.triangleCount()) + " triangles)");
+  if (mesh.normals.size() != mesh.vertexCount())
+    throw Error(name, "has " + std::to_string(mesh.normals.size()) + " normals for " +
+                          std::to_string(mesh.vertexCount()) + " vertices");
+  if (mesh.hasAlbedo() && mesh.albedo.size() != mesh.vertexCount())
+    throw Error(name, "has " + std::to_string(mesh.albedo.size()) + " albedo values for " +
+                          std::to_string(mesh.vertexCount()) + " vertices");
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    for (std::uint32_t i : mesh.triangles[t])
+      if (i >= mesh.vertexCount())
+        throw Error(name, "triangle " + std::to_string(t) + " references vertex " +
+                              std::to_string(i) + " (mesh has " +
+                              std::to_string(mesh.vertexCount()) + ")");
+  sh::checkBands(s.bands);
+  if (s.samples < 1 || s.samples > kMaxBakeSamples)
+    throw Error("samples must be in 1.." + std::to_string(kMaxBakeSamples) + ", got " +
+                std::to_string(s.samples));
+  if (s.bounces < 0 || s.bounces > kMaxBounces)
+    throw Error("bounces must be in 0.." + std::to_string(kMaxBounces) + ", got " +
+                std::to_string(s.bounces));
+  if (s.albedo &&
+      !(isFinite(*s.albedo) && s.albedo->x >= 0 && s.albedo->y >= 0 && s.albedo->z >= 0))
+    throw Error("albedo must be finite and non-negative");
+  if (s.firstVertex >= mesh.vertexCount() || s.vertexCount > mesh.vertexCount() - s.firstVertex)
+    throw Error(name, "vertex range [" + std::to_string(s.firstVertex) + ", " +
+                          std::to_string(s.firstVertex + s.vertexCount) +
+                          ") is outside the mesh (" + std::to_string(mesh.vertexCount()) +
+                          " vertices)");
+}
+
+Albedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s) {
+  Albedo a;
+  if (s.albedo) {
+    a.uniform = *s.albedo;
+    a.grey = a.uniform.x == a.uniform.y && a.uniform.y == a.uniform.z;
+  } else if (mesh.hasAlbedo()) {
+    a.perVertex = true;
+    a.values = &mesh.albedo;
+    a.grey = std::all_of(mesh.albedo.begin(), mesh.albedo.end(),
+                         [](const Rgb& c) { return c.x == c.y && c.y == c.z; });
+  }
+  return a;
+}
+
+double seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+}  // namespace
+
+TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+                   BakeStats* stats, const ProgressFn& progressFn) {
+  validate(mesh, settings);
+  const auto start = Clock::now();
+  const std::size_t n = mesh.vertexCount();
+  const std::size_t first = settings.firstVertex;
+  const std::size_t count = settings.vertexCount ? settings.vertexCount : n - first;
+  const bool inter = settings.mode == TransferMode::Interreflected && settings.bounces > 0;
+  const int bounces = inter ? settings.bounces : 0;
+
+  Context ctx{mesh,
+              occluder,
+              settings,
+              settings.bands * settings.bands,
+              ShEval(settings.bands),
+              nullptr,
+              resolveAlbedo(mesh, settings)};
+  if (settings.sampling == Sampling::CosineSobol)
+    ctx.sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(settings.samples));
+  const int nc = ctx.nc;
+  const int channels = inter && !ctx.albedo.grey ? 3 : 1;
+
+  TransferField out;
+  out.bands = settings.bands;
+  out.channels = channels;
+  out.vertexCount = count;
+  out.data.assign(count * out.stride(), 0.0f);
+
+  // Work: the direct pass and all but the last bounce cover the whole mesh when inter-reflecting
+  // (hit points fall anywhere); the last pass covers the range only.
+  const std::size_t work = inter ? n * bounces + count : count;
+  Progress progress(progressFn, work);
+  std::vector<double> variance(count, 0.0);  // Var(T₀) summed over passes, per range vertex
+
+  BakeStats st;
+  st.threads = maxThreads();
+  st.vertices = count;
+
+  // Runs fn(v, accumulator, scratch) over vertices [lo, hi) in parallel.
+  auto run = [&](std::size_t lo, std::size_t hi, std::size_t scratch, auto&& fn) {
+    parallelFor(hi - lo, kVertexGrain, [&](std::size_t b, std::size_t e) {
+      progress.check();
+      Accumulator acc(static_cast<std::size_t>(nc) * 3);
+      std::vector<float> tmp(scratch);
+      for (std::size_t k = b; k < e; ++k) fn(lo + k, acc, tmp);
+      progress.advance(e - b);
+    });
+  };
+  auto recordVariance = [&](std::size_t v, double var) {
+    if (v >= first && v < first + count) variance[v - first] += var;
+  };
+
+  // Pass 0.
+  const auto t0 = Clock::now();
+  std::vector<float> prev;  // Tᵏ⁻¹ over the whole mesh (inter-reflection only)
+  if (!inter) {
+    run(first, first + count, static_cast<std::size_t>(nc),
+        [&](std::size_t v, Accumulator& acc, std::vector<float>& y) {
+          variance[v - first] = directVertex(ctx, v, out.vertex(v - first), acc, y);
+        });
+  } else {
+    prev.assign(n * nc, 0.0f);
+    run(0, n, static_cast<std::size_t>(nc),
+        [&](std::size_t v, Accumulator& acc, std::vector<float>& y) {
+          recordVariance(v, directVertex(ctx, v, prev.data() + v * nc, acc, y));
+        });
+    // Output starts as T⁰ (broadcast to every channel of an RGB transfer).
+    for (std::size_t r = 0; r < count; ++r)
+      for (int i = 0; i < nc; ++i)
+        for (int c = 0; c < channels; ++c)
+          out.vertex(r)[i * channels + c] = prev[(first + r) * nc + i];
+  }
+  st.secondsDirect = seconds(t0);
+  const std::uint64_t directRays = ctx.rays.load();
+
+  // Passes 1..K.
+  int prevChannels = 1;
+  std::vector<float> cur;
+  for (int k = 1; k <= bounces; ++k) {
+    const auto tb = Clock::now();
+    const std::uint64_t raysBefore = ctx.rays.load();
+    const std::size_t scratch = static_cast<std::size_t>(nc) * 3;
+    if (k == bounces) {
+      run(first, first + count, scratch,
+          [&](std::size_t v, Accumulator& acc, std::vector<float>& t) {
+            variance[v - first] += bounceVertex(ctx, v, k, prev.data(), prevChannels,
+                                                out.vertex(v - first), channels, true, acc, t);
+          });
+    } else {
+      cur.assign(n * static_cast<std::size_t>(nc) * channels, 0.0f);
+      run(0, n, scratch, [&](std::size_t v, Accumulator& acc, std::vector<float>& t) {
+        recordVariance(v, bounceVertex(ctx, v, k, prev.data(), prevChannels,
+                                       cur.data() + v * nc * channels, channels, false, acc, t));
+      });
+      const std::size_t stride = static_cast<std::size_t>(nc) * channels;
+      for (std::size_t r = 0; r < count; ++r) {
+        float* o = out.vertex(r);
+        const float* c = cur.data() + (first + r) * stride;
+        for (std::size_t i = 0; i < stride; ++i) o[i] += c[i];
+      }
+      prev.swap(cur);
+      prevChannels = channels;
+    }
+    st.secondsBounce.push_back(seconds(tb));
+    st.raysBounce.push_back(ctx.rays.load() - raysBefore);
+  }
+
+  if (stats) {
+    st.rays = ctx.rays.load();
+    st.secondsTotal = seconds(start);
+    const double traceSeconds = (directRays > 0 ? st.secondsDirect : 0.0) + [&] {
+      double s = 0;
+      for (double b : st.secondsBounce) s += b;
+      return s;
+    }();
+    st.raysPerSecond = traceSeconds > 0 ? double(st.rays) / traceSeconds : 0.0;
+    double sumT0 = 0, maxT0 = 0;
+    for (double var : variance) {
+      const double se = std::sqrt(var);
+      sumT0 += se;
+      maxT0 = std::max(maxT0, se);
+    }
+    const double scale = std::sqrt(4.0 * kPi);  // T·L for L = 1 is √(4π) T₀
+    st.stdErrT0Mean = count ? sumT0 / double(count) : 0.0;
+    st.stdErrT0Max = maxT0;
+    st.stdErrConstMean = st.stdErrT0Mean * scale;
+    st.stdErrConstMax = st.stdErrT0Max * scale;
+    *stats = std::move(st);
+  }
+  return out;
+}
+
+}  // namespace prt
