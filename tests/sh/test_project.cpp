@@ -43,7 +43,9 @@ TEST(ShProject, AnalyticFunctions) {
   EXPECT_NEAR(p.c[0], a, 1e-6);
   EXPECT_NEAR(p.c[index(2, 0)], b, 1e-6);
   for (int i = 0; i < 16; ++i)
-    if (i != 0 && i != index(2, 0)) EXPECT_NEAR(p.c[i], 0, 1e-6) << i;
+    if (i != 0 && i != index(2, 0)) {
+      EXPECT_NEAR(p.c[i], 0, 1e-6) << i;
+    }
   // A constant c has the single coefficient c·sqrt(4π).
   const RgbSh k = projectFunctionRgb(3, [](const Vec3d&) { return Rgbd(1, 2, 3); });
   EXPECT_NEAR(k.c[0].y, 2 * std::sqrt(4 * kPi), 1e-5);

@@ -3,7 +3,9 @@
 // along d moves to R d. Each band l transforms by its own (2l+1)×(2l+1) orthogonal matrix,
 // built from R by the recurrence of Ivanic & Ruedenberg, "Rotation Matrices for Real Spherical
 // Harmonics. Direct Determination by Recursion", J. Phys. Chem. 100 (1996), with the errata of
-// J. Phys. Chem. A 102 (1998).
+// J. Phys. Chem. A 102 (1998). The recurrence is run in IR's basis (real SH without the
+// Condon–Shortley phase, band 1 ∝ (y, z, x)); our basis differs by (-1)^m per function, so our
+// block is D M_IR D with D = diag((-1)^m) (see rotate.cpp).
 
 #include <vector>
 
@@ -31,9 +33,12 @@ class Rotation {
   RgbSh apply(const RgbSh& in) const;
 
  private:
+  /// Offset of band l's (2l+1)×(2l+1) row-major block: Σ_{k<l} (2k+1)² = l(4l²−1)/3.
+  static constexpr int blockOffset(int l) { return l * (4 * l * l - 1) / 3; }
+
   int bands_;
-  std::vector<double> blocks_;   // band l's (2l+1)² block at offset l(4l²-1)/3... see rotate.cpp
-  std::vector<float> blocksF_;   // float copy for the float paths
+  std::vector<double> blocks_;  // all bands' blocks, row-major, at blockOffset(l)
+  std::vector<float> blocksF_;  // float copy for the float paths
 };
 
 /// Fast rotation about +Z by `angle` radians (each band mixes only m and -m).
