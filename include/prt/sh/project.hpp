@@ -24,9 +24,11 @@ struct SphereQuadrature {
 SphereQuadrature gaussLegendreSphere(int n);
 
 /// Projects a scalar function. `quadratureN` = 0 picks n = bands + 8 nodes in cos θ.
-ShCoeffs projectFunction(int bands, const std::function<double(const Vec3d&)>& f, int quadratureN = 0);
+ShCoeffs projectFunction(int bands, const std::function<double(const Vec3d&)>& f,
+                         int quadratureN = 0);
 /// Projects an RGB function.
-RgbSh projectFunctionRgb(int bands, const std::function<Rgbd(const Vec3d&)>& f, int quadratureN = 0);
+RgbSh projectFunctionRgb(int bands, const std::function<Rgbd(const Vec3d&)>& f,
+                         int quadratureN = 0);
 
 /// Projects weighted samples (dirs unit, weights in steradians or 1/(pdf·N)). Accumulates in
 /// double in a fixed order, so the result is deterministic.
