@@ -6,6 +6,10 @@
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 namespace prt::relight {
 
 std::string RelightInfo::warning() const {
@@ -50,14 +54,13 @@ PreparedLight prepareLight(const sh::RgbSh& light, int transferBands, const sh::
   }
   PreparedLight p;
   p.bands = bands;
-  p.rgb0.resize(static_cast<std::size_t>(n) * 4);
+  p.splat.resize(static_cast<std::size_t>(n) * 12);
   p.interleaved.resize(static_cast<std::size_t>(n) * 3);
   for (int i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
-      p.rgb0[4 * i + c] = coeffs[i][c];
+      for (int k = 0; k < 4; ++k) p.splat[12 * i + 4 * c + k] = coeffs[i][c];
       p.interleaved[3 * i + c] = coeffs[i][c];
     }
-    p.rgb0[4 * i + 3] = 0.0f;
   }
   return p;
 }
@@ -71,27 +74,76 @@ struct Albedo {
   Rgb at(std::size_t v) const { return perVertex ? perVertex[v] : uniform; }
 };
 
-// Scalar transfer. For each coefficient the transfer value multiplies the light's (r, g, b, 0)
-// quadruple: a 4-wide multiply-add the SLP vectoriser maps to one SIMD register, with the light
-// (≤ 81 × 16 bytes) resident in L1. N > 0 is the compile-time coefficient count (fully
-// unrolled); N = 0 reads it from `n`.
+// Scalar transfer, one vertex at a time (portable; also the last 0..3 vertices of a range).
+// `splat` holds B² × 3 × 4 floats: L_i,c repeated four times at splat[12 i + 4 c ..].
 template <int N>
-void scalarRange(const float* transfer, std::size_t stride, const float* light4, int n,
-                 const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
+void scalarOne(const float* transfer, std::size_t stride, const float* splat, int n,
+               const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
   const int count = N > 0 ? N : n;
   for (std::size_t v = begin; v < end; ++v) {
     const float* t = transfer + v * stride;
-    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-#pragma GCC unroll 16
-    for (int i = 0; i < count; ++i) {
-      const float ti = t[i];
-      const float* l = light4 + 4 * i;
-      for (int c = 0; c < 4; ++c) acc[c] += ti * l[c];
-    }
+    float acc[3] = {0.0f, 0.0f, 0.0f};
+    for (int i = 0; i < count; ++i)
+      for (int c = 0; c < 3; ++c) acc[c] += t[i] * splat[12 * i + 4 * c];
     const Rgb a = albedo.at(v);
     out[v] = Rgb(acc[0] * a.x, acc[1] * a.y, acc[2] * a.z);
   }
 }
+
+#if defined(__SSE2__)
+// Scalar transfer, fast path: four vertices at a time in structure-of-arrays form. Each group
+// of four coefficients of the four vertices (a 4×4 block of the transfer array) is transposed in
+// registers (8 shuffles), after which coefficient i of all four vertices sits in one register and
+// is multiplied by the broadcast light L_i,c (pre-splatted in `splat`) into three independent
+// accumulators (r, g, b of four vertices): ~1.5 arithmetic ops per transfer float. (The naive
+// per-vertex form is one dependent chain of N adds per vertex, latency-bound at ~4x slower.)
+template <int N>
+void scalarBlock(const float* transfer, std::size_t stride, const float* splat, int n,
+                 const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
+  const int count = N > 0 ? N : n;
+  const int groups = count / 4;
+  std::size_t v = begin;
+  for (; v + 4 <= end; v += 4) {
+    const float* t0 = transfer + v * stride;
+    const float* t1 = t0 + stride;
+    const float* t2 = t1 + stride;
+    const float* t3 = t2 + stride;
+    __m128 r = _mm_setzero_ps(), g = _mm_setzero_ps(), b = _mm_setzero_ps();
+    auto madd = [&](__m128 x, int i) {
+      const float* l = splat + 12 * i;
+      r = _mm_add_ps(r, _mm_mul_ps(x, _mm_loadu_ps(l)));
+      g = _mm_add_ps(g, _mm_mul_ps(x, _mm_loadu_ps(l + 4)));
+      b = _mm_add_ps(b, _mm_mul_ps(x, _mm_loadu_ps(l + 8)));
+    };
+#pragma GCC unroll 32
+    for (int q = 0; q < groups; ++q) {
+      __m128 a0 = _mm_loadu_ps(t0 + 4 * q), a1 = _mm_loadu_ps(t1 + 4 * q);
+      __m128 a2 = _mm_loadu_ps(t2 + 4 * q), a3 = _mm_loadu_ps(t3 + 4 * q);
+      _MM_TRANSPOSE4_PS(a0, a1, a2, a3);  // now a_k = coefficient 4q+k of vertices v..v+3
+      madd(a0, 4 * q);
+      madd(a1, 4 * q + 1);
+      madd(a2, 4 * q + 2);
+      madd(a3, 4 * q + 3);
+    }
+    for (int i = 4 * groups; i < count; ++i) madd(_mm_setr_ps(t0[i], t1[i], t2[i], t3[i]), i);
+    alignas(16) float rs[4], gs[4], bs[4];
+    _mm_store_ps(rs, r);
+    _mm_store_ps(gs, g);
+    _mm_store_ps(bs, b);
+    for (int k = 0; k < 4; ++k) {
+      const Rgb a = albedo.at(v + k);
+      out[v + k] = Rgb(rs[k] * a.x, gs[k] * a.y, bs[k] * a.z);
+    }
+  }
+  scalarOne<N>(transfer, stride, splat, n, albedo, out, v, end);  // the last 0..3 vertices
+}
+#else
+template <int N>
+void scalarBlock(const float* transfer, std::size_t stride, const float* splat, int n,
+                 const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
+  scalarOne<N>(transfer, stride, splat, n, albedo, out, begin, end);
+}
+#endif
 
 // RGB transfer: the vertex's 3·N floats and the interleaved light are two contiguous arrays of
 // the same layout, so their element-wise products vectorise without shuffles. We accumulate
@@ -123,9 +175,9 @@ using RangeFn = void (*)(const float*, std::size_t, const float*, int, const Alb
 template <int B>
 RangeFn pick(int bands, bool rgb) {
   if constexpr (B == 0) {
-    return rgb ? &rgbRange<0> : &scalarRange<0>;
+    return rgb ? &rgbRange<0> : &scalarBlock<0>;
   } else {
-    if (bands == B) return rgb ? &rgbRange<B * B> : &scalarRange<B * B>;
+    if (bands == B) return rgb ? &rgbRange<B * B> : &scalarBlock<B * B>;
     return pick<B - 1>(bands, rgb);
   }
 }
@@ -158,7 +210,7 @@ void relight(const TransferField& transfer, const PreparedLight& light, std::spa
   }
   const bool rgb = transfer.channels == 3;
   const RangeFn fn = pick<10>(light.bands, rgb);
-  const float* lightData = rgb ? light.interleaved.data() : light.rgb0.data();
+  const float* lightData = rgb ? light.interleaved.data() : light.splat.data();
   const int n = light.bands * light.bands;
   const std::size_t stride = transfer.stride();
   const float* t = transfer.data.data();

@@ -43,7 +43,7 @@ struct RelightInfo {
 /// Lighting laid out for the relighting kernels: rotated, cut to `bands`, in two layouts.
 struct PreparedLight {
   int bands = 0;
-  std::vector<float> rgb0;         ///< B² × 4: (r, g, b, 0) per coefficient (scalar transfer)
+  std::vector<float> splat;        ///< B² × 3 × 4: L_i,c four times at [12 i + 4 c] (scalar)
   std::vector<float> interleaved;  ///< B² × 3: (r, g, b) per coefficient (RGB transfer)
 };
 

@@ -1,0 +1,141 @@
+// Relighting throughput against the memory system. Relighting reads each vertex's transfer once
+// and does a few flops per float, so its ceiling is a streaming read of the same bytes; the
+// baseline here is exactly that (a vectorised sum of the transfer array, split over the same
+// threads and chunks) measured in the same run. Each relight benchmark reports
+//   vs_stream = (stream time) / (relight time)  for the same transfer bytes,
+// i.e. the fraction of streaming bandwidth relighting achieves (target ≥ 0.7).
+// Results: docs/perf/relight.md.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <memory>
+#include <random>
+
+#include "prt/core/parallel.hpp"
+#include "prt/relight/relight.hpp"
+
+namespace {
+
+constexpr std::size_t kVertices = 1 << 20;
+
+struct Data {
+  prt::TransferField transfer;
+  prt::sh::RgbSh light;
+  std::vector<prt::Rgb> out;
+  std::vector<prt::Rgb> albedo;
+};
+
+// One data set per (bands, channels), built on first use and kept (up to ~1 GB for 9-band RGB).
+Data& data(int bands, int channels) {
+  static std::map<std::pair<int, int>, std::unique_ptr<Data>> cache;
+  auto& slot = cache[{bands, channels}];
+  if (!slot) {
+    // Release the previous data set first: the 9-band RGB one is large.
+    for (auto& [key, d] : cache)
+      if (d && &d != &slot) d.reset();
+    slot = std::make_unique<Data>();
+    Data& d = *slot;
+    d.transfer.bands = bands;
+    d.transfer.channels = channels;
+    d.transfer.vertexCount = kVertices;
+    d.transfer.data.resize(kVertices * d.transfer.stride());
+    prt::parallelFor(d.transfer.data.size(), 1 << 16, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+        d.transfer.data[i] = float((i * 2654435761u) % 1000) * 1e-3f;
+    });
+    d.light = prt::sh::RgbSh(bands);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (auto& c : d.light.c) c = prt::Rgb(u(rng), u(rng), u(rng));
+    d.out.assign(kVertices, prt::Rgb(0.0f));
+    d.albedo.assign(kVertices, prt::Rgb(0.5f));
+  }
+  return *slot;
+}
+
+// The streaming-read baseline: sum every float of the transfer, 16 independent accumulators so
+// the loop is vectorised without reassociation flags, vertex chunks as relighting uses.
+float streamSum(const prt::TransferField& t) {
+  const std::size_t stride = t.stride();
+  const std::size_t grain = std::max<std::size_t>(256, 65536 / (stride * sizeof(float)) * 4);
+  const std::size_t chunks = (t.vertexCount + grain - 1) / grain;
+  std::vector<float> partial(chunks, 0.0f);
+  prt::parallelFor(chunks, 1, [&](std::size_t cb, std::size_t ce) {
+    for (std::size_t c = cb; c < ce; ++c) {
+      const std::size_t lo = c * grain * stride;
+      const std::size_t hi = std::min(t.vertexCount, (c + 1) * grain) * stride;
+      const float* p = t.data.data();
+      float acc[16] = {};
+      std::size_t i = lo;
+      for (; i + 16 <= hi; i += 16)
+        for (int k = 0; k < 16; ++k) acc[k] += p[i + k];
+      for (; i < hi; ++i) acc[0] += p[i];
+      float s = 0;
+      for (float a : acc) s += a;
+      partial[c] = s;
+    }
+  });
+  float total = 0;
+  for (float p : partial) total += p;
+  return total;
+}
+
+double secondsOf(const std::function<void()>& fn, int reps) {
+  double best = 1e30;
+  for (int r = 0; r < reps; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    fn();
+    best = std::min(best,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return best;
+}
+
+void BM_StreamSum(benchmark::State& state) {
+  Data& d = data(int(state.range(0)), int(state.range(1)));
+  for (auto _ : state) benchmark::DoNotOptimize(streamSum(d.transfer));
+  state.SetBytesProcessed(std::int64_t(state.iterations()) *
+                          std::int64_t(d.transfer.data.size() * 4));
+}
+
+// range(2): 0 = no albedo (white), 1 = per-vertex albedo (12 more bytes read per vertex).
+void BM_Relight(benchmark::State& state) {
+  Data& d = data(int(state.range(0)), int(state.range(1)));
+  const auto light = prt::relight::prepareLight(d.light, d.transfer.bands);
+  std::span<const prt::Rgb> albedo;
+  if (state.range(2)) albedo = d.albedo;
+  auto run = [&] { prt::relight::relight(d.transfer, light, albedo, d.out); };
+  run();  // warm
+  // Best-of-5 of each, interleaved in the same run, for the ratio.
+  const double stream = secondsOf([&] { benchmark::DoNotOptimize(streamSum(d.transfer)); }, 5);
+  const double relit = secondsOf(run, 5);
+  for (auto _ : state) {
+    run();
+    benchmark::ClobberMemory();
+  }
+  state.SetBytesProcessed(std::int64_t(state.iterations()) *
+                          std::int64_t(d.transfer.data.size() * 4));
+  state.counters["vs_stream"] = stream / relit;
+  state.counters["stream_GBps"] = double(d.transfer.data.size() * 4) / stream * 1e-9;
+}
+
+void args(benchmark::internal::Benchmark* b, bool albedo) {
+  for (int channels : {1, 3})
+    for (int bands : {3, 5, 9}) {
+      if (albedo)
+        b->Args({bands, channels, 0})->Args({bands, channels, 1});
+      else
+        b->Args({bands, channels});
+    }
+  b->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+BENCHMARK(BM_StreamSum)->Apply([](auto* b) { args(b, false); });
+BENCHMARK(BM_Relight)->Apply([](auto* b) { args(b, true); });
+
+}  // namespace
+
+BENCHMARK_MAIN();
