@@ -11,8 +11,7 @@ Image crop(const Image& src, int x0, int y0, int w, int h) {
   PRT_CHECK(x0 >= 0 && y0 >= 0 && w >= 0 && h >= 0 && x0 + w <= src.width && y0 + h <= src.height,
             "crop outside the image");
   Image out(w, h);
-  for (int y = 0; y < h; ++y)
-    std::copy_n(&src.at(x0, y0 + y), w, &out.at(0, y));
+  for (int y = 0; y < h; ++y) std::copy_n(&src.at(x0, y0 + y), w, &out.at(0, y));
   return out;
 }
 

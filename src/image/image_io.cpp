@@ -63,8 +63,8 @@ std::string stbReason() {
 Image readStbHdr(const std::string& path, const std::vector<unsigned char>& bytes) {
   MemoryReader reader{bytes.data(), bytes.size()};
   int w = 0, h = 0, n = 0;
-  std::unique_ptr<float, void (*)(void*)> data(stbi_loadf_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3),
-                                               stbi_image_free);
+  std::unique_ptr<float, void (*)(void*)> data(
+      stbi_loadf_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3), stbi_image_free);
   if (!data) throw Error(path, "cannot decode Radiance HDR (" + stbReason() + ")");
   if (reader.readPastEnd) throw Error(path, "truncated Radiance HDR file");
   Image img(w, h);
@@ -82,9 +82,11 @@ bool jpegComplete(const std::vector<unsigned char>& b) {
 
 Image readStbLdr(const std::string& path, const std::vector<unsigned char>& bytes, LdrDecode decode,
                  bool jpeg) {
-  if (jpeg && !jpegComplete(bytes)) throw Error(path, "truncated JPEG file (no end-of-image marker)");
+  if (jpeg && !jpegComplete(bytes))
+    throw Error(path, "truncated JPEG file (no end-of-image marker)");
   MemoryReader reader{bytes.data(), bytes.size()};
-  const bool sixteen = !jpeg && stbi_is_16_bit_from_memory(bytes.data(), static_cast<int>(bytes.size()));
+  const bool sixteen =
+      !jpeg && stbi_is_16_bit_from_memory(bytes.data(), static_cast<int>(bytes.size()));
   int w = 0, h = 0, n = 0;
   Image img;
   if (sixteen) {
@@ -94,17 +96,19 @@ Image readStbLdr(const std::string& path, const std::vector<unsigned char>& byte
     img = Image(w, h);
     for (std::size_t i = 0; i < 3 * img.size(); ++i) {
       const float v = static_cast<float>(data.get()[i]) / 65535.0f;
-      (&img.pixels[i / 3].x)[i % 3] =
-          decode == LdrDecode::Srgb ? srgbToLinear(v) : static_cast<float>(std::pow(double(v), double(2.2f)));
+      (&img.pixels[i / 3].x)[i % 3] = decode == LdrDecode::Srgb
+                                          ? srgbToLinear(v)
+                                          : static_cast<float>(std::pow(double(v), double(2.2f)));
     }
   } else {
-    std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3),
-                                                   stbi_image_free);
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(
+        stbi_load_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3), stbi_image_free);
     if (!data) throw Error(path, "cannot decode image (" + stbReason() + ")");
     img = Image(w, h);
     for (std::size_t i = 0; i < 3 * img.size(); ++i) {
       const std::uint8_t v = data.get()[i];
-      (&img.pixels[i / 3].x)[i % 3] = decode == LdrDecode::Srgb ? srgb8ToLinear(v) : gamma22ToLinear(v);
+      (&img.pixels[i / 3].x)[i % 3] =
+          decode == LdrDecode::Srgb ? srgb8ToLinear(v) : gamma22ToLinear(v);
     }
   }
   if (reader.readPastEnd) throw Error(path, "truncated image file");
@@ -119,22 +123,26 @@ Image readOpenExr(const std::string& path) {
     const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
     if (w <= 0 || h <= 0) throw Error(path, "empty OpenEXR data window");
     const Imf::ChannelList& channels = file.header().channels();
-    const bool rgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    const bool rgb =
+        channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
     const bool grey = !rgb && channels.findChannel("Y");
     if (!rgb && !grey) throw Error(path, "OpenEXR file has neither R, G, B nor Y channels");
     std::vector<float> planes(static_cast<std::size_t>(w) * h * 3, 0.0f);
     Imf::FrameBuffer fb;
     const std::size_t xs = sizeof(float) * 3, ys = xs * static_cast<std::size_t>(w);
     // The slice base points at pixel (0, 0) of the data window's coordinate system.
-    char* base = reinterpret_cast<char*>(planes.data()) -
-                 (static_cast<std::ptrdiff_t>(dw.min.x) * xs + static_cast<std::ptrdiff_t>(dw.min.y) * ys);
+    char* base =
+        reinterpret_cast<char*>(planes.data()) -
+        (static_cast<std::ptrdiff_t>(dw.min.x) * xs + static_cast<std::ptrdiff_t>(dw.min.y) * ys);
     const char* names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
-      fb.insert(grey ? "Y" : names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1, 0.0));
+      fb.insert(grey ? "Y" : names[c],
+                Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1, 0.0));
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     Image img(w, h);
-    for (std::size_t i = 0; i < img.size(); ++i) img.pixels[i] = {planes[3 * i], planes[3 * i + 1], planes[3 * i + 2]};
+    for (std::size_t i = 0; i < img.size(); ++i)
+      img.pixels[i] = {planes[3 * i], planes[3 * i + 1], planes[3 * i + 2]};
     return img;
   } catch (const Error&) {
     throw;
@@ -146,7 +154,8 @@ Image readOpenExr(const std::string& path) {
 }
 
 Image readExr(const std::string& path, const std::vector<unsigned char>& bytes) {
-  if (bytes.size() < 4 || !(bytes[0] == 0x76 && bytes[1] == 0x2f && bytes[2] == 0x31 && bytes[3] == 0x01))
+  if (bytes.size() < 4 ||
+      !(bytes[0] == 0x76 && bytes[1] == 0x2f && bytes[2] == 0x31 && bytes[3] == 0x01))
     throw Error(path, "not an OpenEXR file (bad magic number)");
   float* rgba = nullptr;
   int w = 0, h = 0;
@@ -154,7 +163,8 @@ Image readExr(const std::string& path, const std::vector<unsigned char>& bytes) 
   const int ret = LoadEXRFromMemory(&rgba, &w, &h, bytes.data(), bytes.size(), &err);
   if (ret == TINYEXR_SUCCESS) {
     Image img(w, h);
-    for (std::size_t i = 0; i < img.size(); ++i) img.pixels[i] = {rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]};
+    for (std::size_t i = 0; i < img.size(); ++i)
+      img.pixels[i] = {rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]};
     std::free(rgba);
     return img;
   }
@@ -194,7 +204,8 @@ Image readImage(const std::string& path, const ReadOptions& options, ReadStats* 
   const std::string ext = fileExtension(path);
   if (!isReadableImageExtension(ext))
     throw Error(path, ext.empty() ? "no file extension (expected .hdr, .exr, .png, .jpg)"
-                                  : "unknown image extension '." + ext + "' (expected .hdr, .exr, .png, .jpg)");
+                                  : "unknown image extension '." + ext +
+                                        "' (expected .hdr, .exr, .png, .jpg)");
   const std::vector<unsigned char> bytes = readFileBytes(path);
   if (bytes.empty()) throw Error(path, "empty file");
   Image img;
@@ -273,7 +284,8 @@ void writeImage(const std::string& path, const Image& img, const WriteOptions& o
         bytes[3 * i + c] = static_cast<std::uint8_t>(std::lround(linearToSrgb((&t.x)[c]) * 255.0f));
     }
     writeFileAtomically(path, [&](std::ostream& os) {
-      if (!stbi_write_png_to_func(stbWriteToStream, &os, img.width, img.height, 3, bytes.data(), img.width * 3))
+      if (!stbi_write_png_to_func(stbWriteToStream, &os, img.width, img.height, 3, bytes.data(),
+                                  img.width * 3))
         throw Error(path, "cannot encode PNG");
     });
   } else if (ext == "hdr") {
@@ -287,7 +299,8 @@ void writeImage(const std::string& path, const Image& img, const WriteOptions& o
   } else if (ext == "exr") {
     writeFileAtomically(path, exrBytes(path, img));
   } else {
-    throw Error(path, "cannot write images with extension '." + ext + "' (expected .png, .exr or .hdr)");
+    throw Error(path,
+                "cannot write images with extension '." + ext + "' (expected .png, .exr or .hdr)");
   }
 }
 

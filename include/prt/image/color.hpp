@@ -26,7 +26,9 @@ float srgb8ToLinear(std::uint8_t v);
 /// (float(pow(float(v/255.0f), 2.2f))).
 float gamma22ToLinear(std::uint8_t v);
 /// Rec. 709 / sRGB relative luminance: 0.2126 R + 0.7152 G + 0.0722 B.
-inline float luminance(const Rgb& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+inline float luminance(const Rgb& c) {
+  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
 
 enum class ToneMap { Clamp, Reinhard, Aces };
 /// "clamp" | "linear", "reinhard", "aces"; throws prt::Error otherwise.

@@ -17,7 +17,9 @@ struct Image {
 
   Image() = default;
   Image(int w, int h, Rgb fill = Rgb(0.0f))
-      : width(w), height(h), pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill) {}
+      : width(w),
+        height(h),
+        pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill) {}
 
   bool empty() const { return pixels.empty(); }
   std::size_t size() const { return pixels.size(); }

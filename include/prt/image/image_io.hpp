@@ -39,7 +39,8 @@ struct ReadStats {
 /// True for the extensions readImage understands (hdr, exr, png, jpg, jpeg).
 bool isReadableImageExtension(const std::string& ext);
 /// Reads an image; throws prt::Error("PATH: ...") on failure.
-Image readImage(const std::string& path, const ReadOptions& options = {}, ReadStats* stats = nullptr);
+Image readImage(const std::string& path, const ReadOptions& options = {},
+                ReadStats* stats = nullptr);
 
 /// Applies the pixel policy in place and returns the counts (used by the readers; exposed for
 /// images built in memory).

@@ -1,0 +1,42 @@
+#pragma once
+// Loading an environment from what a user names: an image file (lat-long, probe, cross), a folder
+// of six cube faces (posx negx posy negy posz negz with any readable extension, e.g. the GAMES202
+// course's Skybox/posx.jpg), or builtin:NAME. The layout is detected from the aspect ratio
+// (2:1 lat-long, 1:1 probe, 3:4 vertical cross, 4:3 horizontal cross) or from the folder, unless
+// given explicitly.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "prt/envmap/environment.hpp"
+#include "prt/image/image_io.hpp"
+
+namespace prt::envmap {
+
+struct LoadOptions {
+  std::optional<Layout> layout;  ///< override; detected when empty
+  image::LdrDecode ldrDecode = image::LdrDecode::Srgb;
+  int builtinTexelWidth = 512;
+};
+
+struct LoadedEnvironment {
+  Environment env;
+  std::string layout;                   ///< "latlong" … "faces", or "builtin"
+  std::vector<std::string> files;       ///< the files read (one, six, or none for builtins)
+  std::vector<image::ReadStats> stats;  ///< per file: what the pixel policy repaired
+};
+
+/// Reads the six faces of a folder in the order given by `names` (e.g. kFaceNames or the
+/// course's order); checks they exist, are square and share one size.
+std::array<image::Image, 6> readFaceFolder(const std::string& dir,
+                                           const std::array<const char*, 6>& names,
+                                           image::LdrDecode decode,
+                                           std::vector<std::string>* files = nullptr,
+                                           std::vector<image::ReadStats>* stats = nullptr);
+
+/// Loads an image file, a face folder or builtin:NAME. Throws prt::Error naming the file.
+LoadedEnvironment loadEnvironment(const std::string& input, const LoadOptions& options = {});
+
+}  // namespace prt::envmap

@@ -1,0 +1,106 @@
+#include "prt/envmap/load.hpp"
+
+#include <filesystem>
+
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/envmap/builtin.hpp"
+
+namespace prt::envmap {
+
+namespace fs = std::filesystem;
+
+std::array<image::Image, 6> readFaceFolder(const std::string& dir,
+                                           const std::array<const char*, 6>& names,
+                                           image::LdrDecode decode, std::vector<std::string>* files,
+                                           std::vector<image::ReadStats>* stats) {
+  std::array<image::Image, 6> faces;
+  std::string first;
+  for (int i = 0; i < 6; ++i) {
+    std::string found;
+    for (const char* ext :
+         {"hdr", "exr", "png", "jpg", "jpeg", "HDR", "EXR", "PNG", "JPG", "JPEG"}) {
+      const fs::path p = fs::path(dir) / (std::string(names[i]) + "." + ext);
+      std::error_code ec;
+      if (fs::exists(p, ec)) {
+        found = p.string();
+        break;
+      }
+    }
+    if (found.empty())
+      throw Error(dir, std::string("missing cube face '") + names[i] +
+                           "' (expected posx negx posy negy posz negz .hdr/.exr/.png/.jpg)");
+    image::ReadStats s;
+    faces[i] = image::readImage(found, {decode}, &s);
+    if (faces[i].width != faces[i].height)
+      throw Error(found, "cube face is " + std::to_string(faces[i].width) + "x" +
+                             std::to_string(faces[i].height) + ", faces must be square");
+    if (i > 0 && faces[i].width != faces[0].width)
+      throw Error(found, "cube face is " + std::to_string(faces[i].width) + "x" +
+                             std::to_string(faces[i].height) + " but " +
+                             fs::path(first).filename().string() + " is " +
+                             std::to_string(faces[0].width) + "x" +
+                             std::to_string(faces[0].height));
+    if (i == 0) first = found;
+    if (files) files->push_back(found);
+    if (stats) stats->push_back(s);
+  }
+  return faces;
+}
+
+LoadedEnvironment loadEnvironment(const std::string& input, const LoadOptions& options) {
+  LoadedEnvironment out;
+  if (isBuiltin(input)) {
+    if (options.layout) throw Error(input, "--layout does not apply to builtin environments");
+    out.env = builtinEnvironment(input, options.builtinTexelWidth);
+    out.layout = "builtin";
+    return out;
+  }
+  std::error_code ec;
+  if (fs::is_directory(input, ec)) {
+    if (options.layout && *options.layout != Layout::Faces)
+      throw Error(input, std::string("is a folder, which only the 'faces' layout reads (got '") +
+                             layoutName(*options.layout) + "')");
+    std::array<image::Image, 6> faces =
+        readFaceFolder(input, kFaceNames, options.ldrDecode, &out.files, &out.stats);
+    out.env = Environment::cube(std::move(faces));
+    out.layout = layoutName(Layout::Faces);
+    return out;
+  }
+  if (!fs::exists(input, ec)) throw Error(input, "no such file or folder");
+  image::ReadStats s;
+  image::Image img = image::readImage(input, {options.ldrDecode}, &s);
+  out.files.push_back(input);
+  out.stats.push_back(s);
+  const Layout layout =
+      options.layout ? *options.layout : detectLayout(img.width, img.height, input);
+  const std::string dims = std::to_string(img.width) + "x" + std::to_string(img.height);
+  switch (layout) {
+    case Layout::LatLong:
+      if (img.width != 2 * img.height)
+        throw Error(input, "is " + dims + ", a lat-long image must be 2:1");
+      out.env = Environment::latLong(std::move(img));
+      break;
+    case Layout::Probe:
+      if (img.width != img.height)
+        throw Error(input, "is " + dims + ", a light probe must be square");
+      out.env = Environment::probe(std::move(img));
+      break;
+    case Layout::VCross:
+      if (4 * img.width != 3 * img.height || img.width % 3 != 0)
+        throw Error(input, "is " + dims + ", a vertical cross must be 3N x 4N");
+      out.env = Environment::cross(img, layout);
+      break;
+    case Layout::HCross:
+      if (3 * img.width != 4 * img.height || img.width % 4 != 0)
+        throw Error(input, "is " + dims + ", a horizontal cross must be 4N x 3N");
+      out.env = Environment::cross(img, layout);
+      break;
+    case Layout::Faces:
+      throw Error(input, "the 'faces' layout needs a folder of six images");
+  }
+  out.layout = layoutName(layout);
+  return out;
+}
+
+}  // namespace prt::envmap
