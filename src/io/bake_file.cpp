@@ -1,0 +1,745 @@
+#include "prt/io/bake_file.hpp"
+
+// The bake file, written and read with tinygltf (GLB container, JSON, buffers) while every
+// size, bound and type is checked here, so that a truncated or hand-edited file gives one clear
+// line instead of a crash. Layout: docs/formats-bake.md.
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+
+namespace prt {
+
+namespace {
+
+using tinygltf::Value;
+
+constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+constexpr int kUint = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+constexpr int kMaxBands = 32;  // sanity bound on files; bakes use far fewer
+
+// ---------------------------------------------------------------------------------------------
+// JSON values (tinygltf::Value holds 32-bit ints only: larger integers are written as doubles,
+// exact below 2^53, and seeds beyond that as decimal strings).
+
+Value num(double x) {
+  return Value(x);
+}
+Value count(std::uint64_t n) {
+  return n <= static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+             ? Value(static_cast<int>(n))
+             : Value(static_cast<double>(n));
+}
+Value seedValue(std::uint64_t s) {
+  return s < (std::uint64_t(1) << 53) ? count(s) : Value(std::to_string(s));
+}
+Value str(const std::string& s) {
+  return Value(s);
+}
+
+struct Reader {
+  const std::string& name;
+  [[noreturn]] void fail(const std::string& msg) const { throw Error(name, msg); }
+
+  const Value& member(const Value& obj, const std::string& key, const std::string& where) const {
+    if (!obj.IsObject() || !obj.Has(key)) fail(where + " lacks '" + key + "'");
+    return obj.Get(key);
+  }
+  double number(const Value& obj, const std::string& key, const std::string& where) const {
+    const Value& v = member(obj, key, where);
+    if (!v.IsNumber()) fail(where + "." + key + " is not a number");
+    return v.GetNumberAsDouble();
+  }
+  double numberOr(const Value& obj, const std::string& key, double fallback,
+                  const std::string& where) const {
+    return obj.IsObject() && obj.Has(key) ? number(obj, key, where) : fallback;
+  }
+  std::uint64_t integer(const Value& obj, const std::string& key, const std::string& where,
+                        double lo = 0, double hi = 9007199254740992.0) const {
+    const Value& v = member(obj, key, where);
+    if (v.IsString()) {  // large seeds
+      const std::string& s = v.Get<std::string>();
+      if (s.empty() || s.size() > 20 ||
+          !std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); }))
+        fail(where + "." + key + " is not an integer");
+      return std::stoull(s);
+    }
+    const double x = number(obj, key, where);
+    if (!(x == std::floor(x)) || x < lo || x > hi)
+      fail(where + "." + key + " = " + std::to_string(x) + " is not an integer in range");
+    return static_cast<std::uint64_t>(x);
+  }
+  std::string string(const Value& obj, const std::string& key, const std::string& where) const {
+    const Value& v = member(obj, key, where);
+    if (!v.IsString()) fail(where + "." + key + " is not a string");
+    return v.Get<std::string>();
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Writing.
+
+struct BufferBuilder {
+  tinygltf::Model& model;
+  std::vector<unsigned char>& bytes;
+
+  /// Appends `size` bytes as a new bufferView (16-byte aligned) and returns its index.
+  int view(const void* data, std::size_t size, int stride, int target, const std::string& name) {
+    while (bytes.size() % 16) bytes.push_back(0);
+    tinygltf::BufferView v;
+    v.buffer = 0;
+    v.byteOffset = bytes.size();
+    v.byteLength = size;
+    v.byteStride = static_cast<size_t>(stride);
+    v.target = target;
+    v.name = name;
+    const auto* p = static_cast<const unsigned char*>(data);
+    bytes.insert(bytes.end(), p, p + size);
+    model.bufferViews.push_back(std::move(v));
+    return static_cast<int>(model.bufferViews.size() - 1);
+  }
+
+  int accessor(int view, std::size_t byteOffset, std::size_t n, int type, int componentType) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.byteOffset = byteOffset;
+    a.count = n;
+    a.type = type;
+    a.componentType = componentType;
+    model.accessors.push_back(std::move(a));
+    return static_cast<int>(model.accessors.size() - 1);
+  }
+};
+
+std::vector<MeshPart> partsOf(const Mesh& mesh) {
+  if (!mesh.parts.empty()) return mesh.parts;
+  MeshPart p;
+  p.name = "mesh";
+  p.vertexCount = static_cast<std::uint32_t>(mesh.vertexCount());
+  p.triangleCount = static_cast<std::uint32_t>(mesh.triangleCount());
+  return {p};
+}
+
+void validateForWriting(const BakeFile& bake, const std::vector<MeshPart>& parts) {
+  const Mesh& m = bake.mesh;
+  const std::size_t V = m.vertexCount(), T = m.triangleCount();
+  if (V == 0 || T == 0) throw Error("bake file: the mesh is empty (no vertices or no triangles)");
+  if (V > std::numeric_limits<std::uint32_t>::max()) throw Error("bake file: too many vertices");
+  if (m.normals.size() != V) throw Error("bake file: mesh has no normal per vertex");
+  if (!m.albedo.empty() && m.albedo.size() != V)
+    throw Error("bake file: mesh albedo is not per vertex");
+  if (!m.uvs.empty() && m.uvs.size() != V) throw Error("bake file: mesh uvs are not per vertex");
+  std::uint32_t nextV = 0, nextT = 0;
+  for (const MeshPart& p : parts) {
+    if (p.firstVertex != nextV || p.firstTriangle != nextT || p.vertexCount == 0 ||
+        p.triangleCount == 0)
+      throw Error("bake file: mesh part '" + p.name +
+                  "' does not continue the previous part or is empty");
+    nextV += p.vertexCount;
+    nextT += p.triangleCount;
+    if (nextV > V || nextT > T)
+      throw Error("bake file: mesh part '" + p.name + "' overruns the mesh");
+    for (std::uint32_t t = p.firstTriangle; t < nextT; ++t)
+      for (std::uint32_t i : m.triangles[t])
+        if (i < p.firstVertex || i >= nextV)
+          throw Error("bake file: triangle " + std::to_string(t) + " of part '" + p.name +
+                      "' uses a vertex outside the part");
+  }
+  if (nextV != V || nextT != T) throw Error("bake file: mesh parts do not cover the mesh");
+  if (bake.vertexCount == 0 || bake.firstVertex + bake.vertexCount > V)
+    throw Error("bake file: vertex range " + std::to_string(bake.firstVertex) + "+" +
+                std::to_string(bake.vertexCount) + " is outside the mesh (" + std::to_string(V) +
+                " vertices)");
+  for (std::size_t i = 0; i < bake.transfers.size(); ++i) {
+    const auto& t = bake.transfers[i];
+    const TransferField& f = t.field;
+    for (std::size_t j = 0; j < i; ++j)
+      if (bake.transfers[j].settings.mode == t.settings.mode)
+        throw Error(std::string("bake file: two transfers of mode ") + toString(t.settings.mode));
+    if (f.bands < 1 || f.bands > kMaxBands || (f.channels != 1 && f.channels != 3))
+      throw Error("bake file: transfer has " + std::to_string(f.bands) + " bands and " +
+                  std::to_string(f.channels) + " channels");
+    if (f.vertexCount != bake.vertexCount || f.data.size() != f.vertexCount * f.stride())
+      throw Error("bake file: transfer rows do not match the vertex range");
+  }
+}
+
+Value settingsJson(const BakedTransfer& t) {
+  const BakeSettings& s = t.settings;
+  Value::Object o;
+  o["mode"] = str(toString(s.mode));
+  o["bands"] = Value(t.field.bands);
+  o["channels"] = Value(t.field.channels);
+  o["samples"] = Value(s.samples);
+  o["bounces"] = Value(s.bounces);
+  o["seed"] = seedValue(s.seed);
+  o["sampling"] = str(toString(s.sampling));
+  if (s.albedo)
+    o["albedo"] = Value(Value::Array{num(s.albedo->x), num(s.albedo->y), num(s.albedo->z)});
+  return Value(std::move(o));
+}
+
+Value statsJson(const BakeStats& s) {
+  Value::Object o;
+  o["rays"] = count(s.rays);
+  o["raysPerSecond"] = num(s.raysPerSecond);
+  o["secondsTotal"] = num(s.secondsTotal);
+  o["secondsDirect"] = num(s.secondsDirect);
+  Value::Array sb, rb;
+  for (double x : s.secondsBounce) sb.push_back(num(x));
+  for (auto r : s.raysBounce) rb.push_back(count(r));
+  if (!sb.empty()) o["secondsBounce"] = Value(std::move(sb));
+  if (!rb.empty()) o["raysBounce"] = Value(std::move(rb));
+  o["threads"] = Value(s.threads);
+  o["vertices"] = count(s.vertices);
+  o["stdErrT0Mean"] = num(s.stdErrT0Mean);
+  o["stdErrT0Max"] = num(s.stdErrT0Max);
+  o["stdErrConstMean"] = num(s.stdErrConstMean);
+  o["stdErrConstMax"] = num(s.stdErrConstMax);
+  return Value(std::move(o));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading.
+
+/// Checks the GLB container (header, chunk table) before tinygltf sees it, so that truncation
+/// is reported as such.
+void checkGlbContainer(std::span<const unsigned char> b, const Reader& r) {
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t x;
+    std::memcpy(&x, b.data() + at, 4);
+    return x;  // GLB is little-endian, as is every platform we build for
+  };
+  if (b.size() < 12 || std::memcmp(b.data(), "glTF", 4) != 0)
+    r.fail("not a glTF binary (.glb) file (bad magic)");
+  if (u32(4) != 2)
+    r.fail("glTF binary container version " + std::to_string(u32(4)) + ", expected 2");
+  const std::uint64_t length = u32(8);
+  if (length > b.size())
+    r.fail("truncated: the header says " + std::to_string(length) + " bytes, the file has " +
+           std::to_string(b.size()));
+  if (length < 20) r.fail("truncated: no JSON chunk");
+  const std::uint64_t jsonLen = u32(12);
+  if (u32(16) != 0x4E4F534Au) r.fail("first chunk is not JSON");
+  if (20 + jsonLen > length) r.fail("truncated: the JSON chunk runs past the end of the file");
+  const std::uint64_t binAt = 20 + jsonLen;
+  if (binAt < length) {
+    if (binAt + 8 > length) r.fail("truncated: incomplete binary chunk header");
+    if (binAt + 8 + u32(binAt) > length) r.fail("truncated: the binary chunk runs past the end");
+  }
+}
+
+/// Reads `n` elements of `comps` components of type `componentType` from accessor `index`,
+/// checking every reference and bound.
+template <typename T>
+std::vector<T> readAccessor(const tinygltf::Model& m, int index, int type, int comps,
+                            int componentType, std::size_t n, const std::string& what,
+                            const Reader& r) {
+  if (index < 0 || static_cast<std::size_t>(index) >= m.accessors.size())
+    r.fail(what + ": accessor " + std::to_string(index) + " does not exist");
+  const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(index)];
+  if (a.sparse.isSparse) r.fail(what + ": sparse accessors are not supported");
+  if (a.type != type || a.componentType != componentType || a.normalized)
+    r.fail(what + ": accessor " + std::to_string(index) + " has the wrong type");
+  if (a.count != n)
+    r.fail(what + ": accessor " + std::to_string(index) + " has " + std::to_string(a.count) +
+           " elements, expected " + std::to_string(n));
+  if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= m.bufferViews.size())
+    r.fail(what + ": accessor " + std::to_string(index) + " has no valid bufferView");
+  const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
+  if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size())
+    r.fail(what + ": bufferView " + std::to_string(a.bufferView) + " has no valid buffer");
+  const auto& data = m.buffers[static_cast<std::size_t>(v.buffer)].data;
+  const std::size_t elem = sizeof(T) * static_cast<std::size_t>(comps);
+  const std::size_t stride = v.byteStride ? v.byteStride : elem;
+  if (stride < elem || v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)
+    r.fail(what + ": bufferView " + std::to_string(a.bufferView) + " lies outside its buffer");
+  if (n > 0 && (a.byteOffset > v.byteLength || (n - 1) > (v.byteLength - a.byteOffset) / stride ||
+                a.byteOffset + (n - 1) * stride + elem > v.byteLength))
+    r.fail(what + ": accessor " + std::to_string(index) + " runs past its bufferView");
+  std::vector<T> out(n * static_cast<std::size_t>(comps));
+  const unsigned char* base = data.data() + v.byteOffset + a.byteOffset;
+  for (std::size_t i = 0; i < n; ++i) std::memcpy(out.data() + i * comps, base + i * stride, elem);
+  return out;
+}
+
+void requireFinite(const std::vector<float>& x, const std::string& what, const Reader& r) {
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isfinite(x[i]))
+      r.fail(what + " holds a non-finite value at element " + std::to_string(i));
+}
+
+BakeSettings parseSettings(const Value& o, const std::string& where, const Reader& r) {
+  BakeSettings s;
+  try {
+    s.mode = parseTransferMode(r.string(o, "mode", where));
+    s.sampling = parseSampling(r.string(o, "sampling", where));
+  } catch (const Error& e) {
+    if (std::string(e.what()).rfind(r.name, 0) == 0) throw;
+    r.fail(where + ": " + e.what());
+  }
+  s.samples = static_cast<int>(r.integer(o, "samples", where, 0, 2147483647.0));
+  s.bounces = static_cast<int>(r.integer(o, "bounces", where, 0, 2147483647.0));
+  s.seed = r.integer(o, "seed", where);
+  if (o.Has("albedo")) {
+    const Value& a = o.Get("albedo");
+    if (!a.IsArray() || a.ArrayLen() != 3 || !a.Get(0).IsNumber() || !a.Get(1).IsNumber() ||
+        !a.Get(2).IsNumber())
+      r.fail(where + ".albedo is not three numbers");
+    s.albedo = Rgb(static_cast<float>(a.Get(0).GetNumberAsDouble()),
+                   static_cast<float>(a.Get(1).GetNumberAsDouble()),
+                   static_cast<float>(a.Get(2).GetNumberAsDouble()));
+  }
+  return s;
+}
+
+BakeStats parseStats(const Value& o, const std::string& where, const Reader& r) {
+  BakeStats s;
+  if (!o.IsObject()) return s;  // statistics are informative: absent means unknown
+  s.rays = o.Has("rays") ? r.integer(o, "rays", where) : 0;
+  s.raysPerSecond = r.numberOr(o, "raysPerSecond", 0, where);
+  s.secondsTotal = r.numberOr(o, "secondsTotal", 0, where);
+  s.secondsDirect = r.numberOr(o, "secondsDirect", 0, where);
+  if (o.Has("secondsBounce") && o.Get("secondsBounce").IsArray())
+    for (std::size_t i = 0; i < o.Get("secondsBounce").ArrayLen(); ++i)
+      s.secondsBounce.push_back(
+          o.Get("secondsBounce").Get(static_cast<int>(i)).GetNumberAsDouble());
+  if (o.Has("raysBounce") && o.Get("raysBounce").IsArray())
+    for (std::size_t i = 0; i < o.Get("raysBounce").ArrayLen(); ++i)
+      s.raysBounce.push_back(static_cast<std::uint64_t>(
+          o.Get("raysBounce").Get(static_cast<int>(i)).GetNumberAsDouble()));
+  s.threads = static_cast<int>(r.numberOr(o, "threads", 0, where));
+  s.vertices = o.Has("vertices") ? r.integer(o, "vertices", where) : 0;
+  s.stdErrT0Mean = r.numberOr(o, "stdErrT0Mean", 0, where);
+  s.stdErrT0Max = r.numberOr(o, "stdErrT0Max", 0, where);
+  s.stdErrConstMean = r.numberOr(o, "stdErrConstMean", 0, where);
+  s.stdErrConstMax = r.numberOr(o, "stdErrConstMax", 0, where);
+  return s;
+}
+
+}  // namespace
+
+std::string transferAttributePrefix(TransferMode mode) {
+  std::string m = toString(mode);
+  for (char& c : m) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return "_PRT_" + m + "_T";
+}
+
+const BakedTransfer* BakeFile::find(TransferMode mode) const {
+  for (const auto& t : transfers)
+    if (t.settings.mode == mode) return &t;
+  return nullptr;
+}
+
+std::string encodeBake(const BakeFile& bake) {
+  const std::vector<MeshPart> parts = partsOf(bake.mesh);
+  validateForWriting(bake, parts);
+  const Mesh& mesh = bake.mesh;
+  const std::size_t V = mesh.vertexCount();
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = bake.generator;
+  model.buffers.resize(1);
+  std::vector<unsigned char>& bytes = model.buffers[0].data;
+  BufferBuilder bb{model, bytes};
+
+  // Shared vertex data in the scene's global order (parts view slices of it).
+  const int posView =
+      bb.view(mesh.positions.data(), V * 12, 12, TINYGLTF_TARGET_ARRAY_BUFFER, "positions");
+  const int nrmView =
+      bb.view(mesh.normals.data(), V * 12, 12, TINYGLTF_TARGET_ARRAY_BUFFER, "normals");
+  const int uvView = mesh.uvs.empty() ? -1
+                                      : bb.view(mesh.uvs.data(), V * 8, 8,
+                                                TINYGLTF_TARGET_ARRAY_BUFFER, "texcoords");
+  const int colView = mesh.albedo.empty() ? -1
+                                          : bb.view(mesh.albedo.data(), V * 12, 12,
+                                                    TINYGLTF_TARGET_ARRAY_BUFFER, "albedo");
+  // Indices, local to each part (each part's attributes start at its first vertex).
+  std::vector<std::uint32_t> local(mesh.triangleCount() * 3);
+  for (const MeshPart& p : parts)
+    for (std::uint32_t t = p.firstTriangle; t < p.firstTriangle + p.triangleCount; ++t)
+      for (int k = 0; k < 3; ++k) local[t * 3 + k] = mesh.triangles[t][k] - p.firstVertex;
+  const int idxView =
+      bb.view(local.data(), local.size() * 4, 0, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, "indices");
+
+  // Transfer: K = ceil(B²C/4) VEC4 columns per mode, each its own tightly packed view over the
+  // vertex range; column k of vertex v = row floats 4k..4k+3, zero-padded.
+  struct Columns {
+    std::vector<int> views, rangeAccessors;
+  };
+  std::vector<Columns> columns(bake.transfers.size());
+  for (std::size_t ti = 0; ti < bake.transfers.size(); ++ti) {
+    const TransferField& f = bake.transfers[ti].field;
+    const std::size_t S = f.stride(), K = (S + 3) / 4, n = f.vertexCount;
+    const std::string prefix = transferAttributePrefix(bake.transfers[ti].settings.mode);
+    std::vector<float> col(n * 4);
+    for (std::size_t k = 0; k < K; ++k) {
+      std::fill(col.begin(), col.end(), 0.0f);
+      for (std::size_t v = 0; v < n; ++v)
+        for (std::size_t j = 0; j < 4 && 4 * k + j < S; ++j)
+          col[v * 4 + j] = f.vertex(v)[4 * k + j];
+      columns[ti].views.push_back(bb.view(col.data(), col.size() * 4, 16,
+                                          TINYGLTF_TARGET_ARRAY_BUFFER,
+                                          prefix + std::to_string(k)));
+      columns[ti].rangeAccessors.push_back(
+          bb.accessor(columns[ti].views.back(), 0, n, TINYGLTF_TYPE_VEC4, kFloat));
+      model.accessors.back().name = prefix + std::to_string(k) + " (vertex range)";
+    }
+  }
+
+  tinygltf::Material mat;
+  mat.name = "prtkit default";
+  const BakedTransfer* withAlbedo = nullptr;
+  for (const auto& t : bake.transfers)
+    if (t.settings.albedo) withAlbedo = &t;
+  if (withAlbedo && mesh.albedo.empty()) {
+    const Rgb a = *withAlbedo->settings.albedo;
+    mat.pbrMetallicRoughness.baseColorFactor = {a.x, a.y, a.z, 1.0};
+  }
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+  model.materials.push_back(mat);
+
+  tinygltf::Scene scene;
+  scene.name = mesh.source;
+  for (const MeshPart& p : parts) {
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.material = 0;
+    const std::size_t n = p.vertexCount;
+    prim.attributes["POSITION"] =
+        bb.accessor(posView, p.firstVertex * 12u, n, TINYGLTF_TYPE_VEC3, kFloat);
+    Vec3f lo = mesh.positions[p.firstVertex], hi = lo;
+    for (std::size_t v = p.firstVertex; v < p.firstVertex + n; ++v) {
+      lo = min(lo, mesh.positions[v]);
+      hi = max(hi, mesh.positions[v]);
+    }
+    model.accessors.back().minValues = {lo.x, lo.y, lo.z};
+    model.accessors.back().maxValues = {hi.x, hi.y, hi.z};
+    prim.attributes["NORMAL"] =
+        bb.accessor(nrmView, p.firstVertex * 12u, n, TINYGLTF_TYPE_VEC3, kFloat);
+    if (uvView >= 0)
+      prim.attributes["TEXCOORD_0"] =
+          bb.accessor(uvView, p.firstVertex * 8u, n, TINYGLTF_TYPE_VEC2, kFloat);
+    if (colView >= 0)
+      prim.attributes["COLOR_0"] =
+          bb.accessor(colView, p.firstVertex * 12u, n, TINYGLTF_TYPE_VEC3, kFloat);
+    if (bake.complete())
+      for (std::size_t ti = 0; ti < bake.transfers.size(); ++ti) {
+        const std::string prefix = transferAttributePrefix(bake.transfers[ti].settings.mode);
+        for (std::size_t k = 0; k < columns[ti].views.size(); ++k)
+          prim.attributes[prefix + std::to_string(k)] =
+              bb.accessor(columns[ti].views[k], p.firstVertex * 16u, n, TINYGLTF_TYPE_VEC4, kFloat);
+      }
+    prim.indices = bb.accessor(idxView, p.firstTriangle * 12u, p.triangleCount * 3u,
+                               TINYGLTF_TYPE_SCALAR, kUint);
+    tinygltf::Mesh gm;
+    gm.name = p.name;
+    gm.primitives.push_back(std::move(prim));
+    model.meshes.push_back(std::move(gm));
+    tinygltf::Node node;
+    node.name = p.name;
+    node.mesh = static_cast<int>(model.meshes.size() - 1);
+    model.nodes.push_back(std::move(node));
+    scene.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
+  }
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  while (bytes.size() % 4) bytes.push_back(0);
+
+  // extras.prtkit
+  Value::Object prt;
+  prt["formatVersion"] = Value(kBakeFormatVersion);
+  prt["generator"] = str(bake.generator);
+  prt["source"] = str(mesh.source);
+  prt["vertexCount"] = count(V);
+  prt["triangleCount"] = count(mesh.triangleCount());
+  prt["vertexRange"] =
+      Value(Value::Object{{"first", count(bake.firstVertex)}, {"count", count(bake.vertexCount)}});
+  Value::Array transfers;
+  for (std::size_t ti = 0; ti < bake.transfers.size(); ++ti) {
+    const BakedTransfer& t = bake.transfers[ti];
+    Value::Object o;
+    o["settings"] = settingsJson(t);
+    o["stats"] = statsJson(t.stats);
+    o["attributePrefix"] = str(transferAttributePrefix(t.settings.mode));
+    Value::Array acc;
+    for (int a : columns[ti].rangeAccessors) acc.push_back(Value(a));
+    o["accessors"] = Value(std::move(acc));
+    transfers.push_back(Value(std::move(o)));
+  }
+  if (!transfers.empty()) prt["transfers"] = Value(std::move(transfers));
+  model.extras = Value(Value::Object{{"prtkit", Value(std::move(prt))}});
+
+  std::ostringstream out;
+  tinygltf::TinyGLTF gltf;
+  if (!gltf.WriteGltfSceneToStream(&model, out, false, true))
+    throw Error("bake file: glTF serialisation failed");
+  return out.str();
+}
+
+void writeBake(const std::string& path, const BakeFile& bake) {
+  std::string bytes;
+  try {
+    bytes = encodeBake(bake);
+  } catch (const Error& e) {
+    throw Error(path, e.what());
+  }
+  writeFileAtomically(path, bytes);
+}
+
+BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& name) {
+  const Reader r{name};
+  checkGlbContainer(bytes, r);
+  tinygltf::Model model;
+  {
+    tinygltf::TinyGLTF gltf;
+    std::string err, warn;
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) r.fail("file too large (> 4 GiB)");
+    if (!gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                   static_cast<unsigned int>(bytes.size()))) {
+      std::string first = err.substr(0, err.find('\n'));
+      r.fail("invalid glTF: " + (first.empty() ? std::string("parse error") : first));
+    }
+  }
+  if (!model.extras.IsObject() || !model.extras.Has("prtkit") ||
+      !model.extras.Get("prtkit").IsObject())
+    r.fail("not a prtkit bake file (a glTF without extras.prtkit)");
+  const Value& prt = model.extras.Get("prtkit");
+  const std::string where = "extras.prtkit";
+  const auto version = r.integer(prt, "formatVersion", where, 0, 1e9);
+  if (version > static_cast<std::uint64_t>(kBakeFormatVersion))
+    r.fail("bake format version " + std::to_string(version) +
+           " is newer than this prtkit understands (" + std::to_string(kBakeFormatVersion) + ")");
+  if (version < 1) r.fail("bake format version " + std::to_string(version) + " is invalid");
+
+  BakeFile bake;
+  bake.formatVersion = static_cast<int>(version);
+  bake.generator = prt.Has("generator") && prt.Get("generator").IsString()
+                       ? prt.Get("generator").Get<std::string>()
+                       : model.asset.generator;
+  Mesh& mesh = bake.mesh;
+  mesh.source = prt.Has("source") && prt.Get("source").IsString()
+                    ? prt.Get("source").Get<std::string>()
+                    : name;
+  const std::size_t V = r.integer(prt, "vertexCount", where, 1, 4294967295.0);
+  const std::size_t T = r.integer(prt, "triangleCount", where, 1, 4294967295.0);
+  if (model.meshes.empty()) r.fail("holds no mesh");
+
+  // The parts: glTF meshes in order, one triangle primitive each, concatenated.
+  bool anyUv = false, anyColor = false;
+  for (std::size_t mi = 0; mi < model.meshes.size(); ++mi) {
+    const tinygltf::Mesh& gm = model.meshes[mi];
+    const std::string what = "mesh " + std::to_string(mi) + " ('" + gm.name + "')";
+    if (gm.primitives.size() != 1)
+      r.fail(what + " has " + std::to_string(gm.primitives.size()) + " primitives, expected 1");
+    const tinygltf::Primitive& p = gm.primitives[0];
+    if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) r.fail(what + " is not a triangle list");
+    auto attr = [&](const char* key) {
+      auto it = p.attributes.find(key);
+      return it == p.attributes.end() ? -1 : it->second;
+    };
+    const int pa = attr("POSITION");
+    if (pa < 0 || static_cast<std::size_t>(pa) >= model.accessors.size())
+      r.fail(what + " has no POSITION");
+    const std::size_t n = model.accessors[static_cast<std::size_t>(pa)].count;
+    if (n == 0 || mesh.positions.size() + n > V)
+      r.fail(what + " has more vertices than extras.prtkit.vertexCount");
+    MeshPart part;
+    part.name = gm.name;
+    part.firstVertex = static_cast<std::uint32_t>(mesh.positions.size());
+    part.vertexCount = static_cast<std::uint32_t>(n);
+    part.firstTriangle = static_cast<std::uint32_t>(mesh.triangles.size());
+
+    auto pos =
+        readAccessor<float>(model, pa, TINYGLTF_TYPE_VEC3, 3, kFloat, n, what + " POSITION", r);
+    auto nrm = readAccessor<float>(model, attr("NORMAL"), TINYGLTF_TYPE_VEC3, 3, kFloat, n,
+                                   what + " NORMAL", r);
+    requireFinite(pos, what + " POSITION", r);
+    requireFinite(nrm, what + " NORMAL", r);
+    for (std::size_t v = 0; v < n; ++v) {
+      mesh.positions.emplace_back(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+      mesh.normals.emplace_back(nrm[3 * v], nrm[3 * v + 1], nrm[3 * v + 2]);
+    }
+    const bool hasUv = attr("TEXCOORD_0") >= 0, hasColor = attr("COLOR_0") >= 0;
+    if (mi > 0 && (hasUv != anyUv || hasColor != anyColor))
+      r.fail(what + " differs from the first part in TEXCOORD_0/COLOR_0");
+    anyUv = hasUv;
+    anyColor = hasColor;
+    if (hasUv) {
+      auto uv = readAccessor<float>(model, attr("TEXCOORD_0"), TINYGLTF_TYPE_VEC2, 2, kFloat, n,
+                                    what + " TEXCOORD_0", r);
+      for (std::size_t v = 0; v < n; ++v) mesh.uvs.push_back({uv[2 * v], uv[2 * v + 1]});
+    }
+    if (hasColor) {
+      auto c = readAccessor<float>(model, attr("COLOR_0"), TINYGLTF_TYPE_VEC3, 3, kFloat, n,
+                                   what + " COLOR_0", r);
+      requireFinite(c, what + " COLOR_0", r);
+      for (std::size_t v = 0; v < n; ++v)
+        mesh.albedo.emplace_back(c[3 * v], c[3 * v + 1], c[3 * v + 2]);
+    }
+    if (p.indices < 0 || static_cast<std::size_t>(p.indices) >= model.accessors.size())
+      r.fail(what + " has no indices");
+    const std::size_t ni = model.accessors[static_cast<std::size_t>(p.indices)].count;
+    if (ni == 0 || ni % 3 != 0)
+      r.fail(what + ": index count " + std::to_string(ni) + " is not a positive multiple of 3");
+    if (mesh.triangles.size() + ni / 3 > T)
+      r.fail(what + " has more triangles than extras.prtkit.triangleCount");
+    auto idx = readAccessor<std::uint32_t>(model, p.indices, TINYGLTF_TYPE_SCALAR, 1, kUint, ni,
+                                           what + " indices", r);
+    for (std::size_t t = 0; t < ni / 3; ++t) {
+      std::array<std::uint32_t, 3> tri;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t i = idx[3 * t + k];
+        if (i >= n)
+          r.fail(what + ": triangle " + std::to_string(t) + " references vertex " +
+                 std::to_string(i) + " (part has " + std::to_string(n) + ")");
+        tri[k] = i + part.firstVertex;
+      }
+      mesh.triangles.push_back(tri);
+    }
+    part.triangleCount = static_cast<std::uint32_t>(ni / 3);
+    mesh.parts.push_back(part);
+  }
+  if (mesh.positions.size() != V || mesh.triangles.size() != T)
+    r.fail("the meshes hold " + std::to_string(mesh.positions.size()) + " vertices and " +
+           std::to_string(mesh.triangles.size()) + " triangles, extras.prtkit says " +
+           std::to_string(V) + " and " + std::to_string(T));
+
+  const Value& range = r.member(prt, "vertexRange", where);
+  bake.firstVertex = r.integer(range, "first", where + ".vertexRange", 0, 4294967295.0);
+  bake.vertexCount = r.integer(range, "count", where + ".vertexRange", 1, 4294967295.0);
+  if (bake.firstVertex + bake.vertexCount > V)
+    r.fail("vertex range " + std::to_string(bake.firstVertex) + "+" +
+           std::to_string(bake.vertexCount) + " is outside the mesh (" + std::to_string(V) +
+           " vertices)");
+
+  if (prt.Has("transfers")) {
+    const Value& ts = prt.Get("transfers");
+    if (!ts.IsArray()) r.fail(where + ".transfers is not an array");
+    for (std::size_t ti = 0; ti < ts.ArrayLen(); ++ti) {
+      const std::string tw = where + ".transfers[" + std::to_string(ti) + "]";
+      const Value& t = ts.Get(static_cast<int>(ti));
+      const Value& so = r.member(t, "settings", tw);
+      BakedTransfer bt;
+      bt.settings = parseSettings(so, tw + ".settings", r);
+      bt.settings.firstVertex = bake.firstVertex;
+      bt.settings.vertexCount = bake.vertexCount;
+      if (bake.find(bt.settings.mode))
+        r.fail(std::string("two transfers of mode ") + toString(bt.settings.mode));
+      const auto bands = r.integer(so, "bands", tw + ".settings", 1, kMaxBands);
+      const auto channels = r.integer(so, "channels", tw + ".settings", 1, 3);
+      if (channels == 2) r.fail(tw + ".settings.channels must be 1 or 3");
+      bt.settings.bands = static_cast<int>(bands);
+      bt.stats = t.Has("stats") ? parseStats(t.Get("stats"), tw + ".stats", r) : BakeStats{};
+      TransferField& f = bt.field;
+      f.bands = static_cast<int>(bands);
+      f.channels = static_cast<int>(channels);
+      f.vertexCount = bake.vertexCount;
+      const std::size_t S = f.stride(), K = (S + 3) / 4;
+      const Value& acc = r.member(t, "accessors", tw);
+      if (!acc.IsArray() || acc.ArrayLen() != K)
+        r.fail(tw + ".accessors must list " + std::to_string(K) + " accessors for " +
+               std::to_string(bands) + " bands x " + std::to_string(channels) + " channels");
+      f.data.assign(f.vertexCount * S, 0.0f);
+      for (std::size_t k = 0; k < K; ++k) {
+        const Value& a = acc.Get(static_cast<int>(k));
+        if (!a.IsInt()) r.fail(tw + ".accessors[" + std::to_string(k) + "] is not an index");
+        auto col = readAccessor<float>(
+            model, a.Get<int>(), TINYGLTF_TYPE_VEC4, 4, kFloat, f.vertexCount,
+            std::string(toString(bt.settings.mode)) + " transfer column " + std::to_string(k), r);
+        requireFinite(col, std::string(toString(bt.settings.mode)) + " transfer", r);
+        for (std::size_t v = 0; v < f.vertexCount; ++v)
+          for (std::size_t j = 0; j < 4 && 4 * k + j < S; ++j)
+            f.vertex(v)[4 * k + j] = col[v * 4 + j];
+      }
+      bake.transfers.push_back(std::move(bt));
+    }
+  }
+  return bake;
+}
+
+BakeFile readBake(const std::string& path) {
+  const std::vector<unsigned char> bytes = readFileBytes(path);
+  return decodeBake(bytes, path);
+}
+
+BakeFile mergeBakes(std::vector<BakeFile> pieces) {
+  if (pieces.empty()) throw Error("merge: no bake files");
+  std::sort(pieces.begin(), pieces.end(),
+            [](const BakeFile& a, const BakeFile& b) { return a.firstVertex < b.firstVertex; });
+  BakeFile out = pieces.front();
+  const Mesh& m0 = out.mesh;
+  for (std::size_t i = 1; i < pieces.size(); ++i) {
+    const BakeFile& p = pieces[i];
+    const std::string who = "merge: the piece starting at vertex " + std::to_string(p.firstVertex);
+    const Mesh& m = p.mesh;
+    if (m.positions != m0.positions || m.normals != m0.normals || m.triangles != m0.triangles ||
+        m.albedo != m0.albedo)
+      throw Error(who + " was baked from a different mesh");
+    const std::size_t end = out.firstVertex + out.vertexCount;
+    if (p.firstVertex < end)
+      throw Error(who + " overlaps the previous range (which ends at " + std::to_string(end) + ")");
+    if (p.firstVertex > end)
+      throw Error(who + " leaves a gap: vertices " + std::to_string(end) + ".." +
+                  std::to_string(p.firstVertex - 1) + " are missing");
+    if (p.transfers.size() != out.transfers.size()) throw Error(who + " holds different modes");
+    for (std::size_t t = 0; t < out.transfers.size(); ++t) {
+      BakedTransfer& a = out.transfers[t];
+      const BakedTransfer* b = p.find(a.settings.mode);
+      if (!b)
+        throw Error(who + std::string(" lacks the ") + toString(a.settings.mode) + " transfer");
+      const BakeSettings &sa = a.settings, &sb = b->settings;
+      if (sa.bands != sb.bands || sa.samples != sb.samples || sa.bounces != sb.bounces ||
+          sa.seed != sb.seed || sa.sampling != sb.sampling || sa.albedo != sb.albedo ||
+          a.field.bands != b->field.bands || a.field.channels != b->field.channels)
+        throw Error(who + " was baked with different settings (" + toString(sa.mode) + ")");
+      a.field.data.insert(a.field.data.end(), b->field.data.begin(), b->field.data.end());
+      a.field.vertexCount += b->field.vertexCount;
+      // Statistics: sums, vertex-weighted means, maxima.
+      BakeStats& x = a.stats;
+      const BakeStats& y = b->stats;
+      const double wx = static_cast<double>(out.vertexCount),
+                   wy = static_cast<double>(p.vertexCount);
+      auto mean = [&](double u, double v) { return (u * wx + v * wy) / (wx + wy); };
+      x.stdErrT0Mean = mean(x.stdErrT0Mean, y.stdErrT0Mean);
+      x.stdErrConstMean = mean(x.stdErrConstMean, y.stdErrConstMean);
+      x.stdErrT0Max = std::max(x.stdErrT0Max, y.stdErrT0Max);
+      x.stdErrConstMax = std::max(x.stdErrConstMax, y.stdErrConstMax);
+      const double raySeconds = (x.raysPerSecond > 0 ? x.rays / x.raysPerSecond : 0) +
+                                (y.raysPerSecond > 0 ? y.rays / y.raysPerSecond : 0);
+      x.rays += y.rays;
+      x.raysPerSecond = raySeconds > 0 ? x.rays / raySeconds : 0;
+      x.secondsTotal += y.secondsTotal;
+      x.secondsDirect += y.secondsDirect;
+      for (std::size_t k = 0; k < y.secondsBounce.size(); ++k) {
+        if (x.secondsBounce.size() <= k) x.secondsBounce.push_back(0);
+        x.secondsBounce[k] += y.secondsBounce[k];
+      }
+      for (std::size_t k = 0; k < y.raysBounce.size(); ++k) {
+        if (x.raysBounce.size() <= k) x.raysBounce.push_back(0);
+        x.raysBounce[k] += y.raysBounce[k];
+      }
+      x.vertices += y.vertices;
+      x.threads = std::max(x.threads, y.threads);
+    }
+    out.vertexCount += p.vertexCount;
+  }
+  for (auto& t : out.transfers) {
+    t.settings.firstVertex = out.firstVertex;
+    t.settings.vertexCount = out.vertexCount;
+  }
+  return out;
+}
+
+}  // namespace prt

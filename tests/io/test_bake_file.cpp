@@ -1,0 +1,448 @@
+// The bake file: exact round trip, partial ranges and merging, version and corruption handling,
+// and the glTF rules a viewer relies on, checked on the raw JSON independently of our reader.
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <random>
+
+#include "prt/core/error.hpp"
+#include "prt/io/bake_file.hpp"
+
+namespace prt {
+namespace {
+
+// Two parts: a quad (4 vertices, 2 triangles) and a tetrahedron-like fan (5 vertices, 3 tris).
+Mesh twoPartMesh() {
+  Mesh m;
+  m.source = "test-mesh";
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1},           {2, 1, 2},
+                 {3, 1, 2}, {3, 2, 2}, {2, 2, 3}, {2.5f, 1.5f, -1e-3f}};
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    m.normals.push_back(normalize(Vec3f(0.1f * float(i), 1.0f, -0.2f * float(i))));
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    m.albedo.push_back(Rgb(0.1f * float(i), 0.5f, 0.9f - 0.05f * float(i)));
+    m.uvs.push_back({0.125f * float(i), 1.0f - 0.1f * float(i)});
+  }
+  m.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {4, 7, 8}};
+  m.parts = {{"quad", 0, 4, 0, 2}, {"fan", 4, 5, 2, 3}};
+  return m;
+}
+
+TransferField randomField(int bands, int channels, std::size_t n, unsigned seed) {
+  TransferField f;
+  f.bands = bands;
+  f.channels = channels;
+  f.vertexCount = n;
+  f.data.resize(n * f.stride());
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+  for (float& x : f.data) x = u(rng);
+  // Values that a lossy text path would alter.
+  f.data[0] = 1.0f / 3.0f;
+  if (f.data.size() > 2) f.data[1] = -0.0f, f.data[2] = 1e-40f;  // negative zero, subnormal
+  return f;
+}
+
+BakedTransfer transfer(TransferMode mode, int bands, int channels, std::size_t first, std::size_t n,
+                       unsigned seed) {
+  BakedTransfer t;
+  t.settings.mode = mode;
+  t.settings.bands = bands;
+  t.settings.samples = 4096;
+  t.settings.bounces = mode == TransferMode::Interreflected ? 2 : 0;
+  t.settings.seed = (std::uint64_t(1) << 60) + 12345;  // beyond 2^53: stored as a string
+  t.settings.sampling = Sampling::UniformRandom;
+  t.settings.albedo = Rgb(0.25f, 0.5f, 0.75f);
+  t.settings.firstVertex = first;
+  t.settings.vertexCount = n;
+  t.stats.rays = (std::uint64_t(1) << 40) + 7;  // beyond 32 bits
+  t.stats.raysPerSecond = 1.5e8;
+  t.stats.secondsTotal = 12.5;
+  t.stats.secondsDirect = 3.25;
+  t.stats.secondsBounce = {4.0, 5.25};
+  t.stats.raysBounce = {100, 200};
+  t.stats.threads = 2;
+  t.stats.vertices = n;
+  t.stats.stdErrT0Mean = 1e-3;
+  t.stats.stdErrT0Max = 4e-3;
+  t.stats.stdErrConstMean = 2e-3;
+  t.stats.stdErrConstMax = 8e-3;
+  t.field = randomField(bands, channels, n, seed);
+  return t;
+}
+
+BakeFile sampleBake() {
+  BakeFile b;
+  b.mesh = twoPartMesh();
+  b.firstVertex = 0;
+  b.vertexCount = b.mesh.vertexCount();
+  b.generator = "prtkit test";
+  // Scalar 3 bands (9 floats: 3 VEC4 columns, the last padded), RGB 4 bands (48: 12 columns).
+  b.transfers.push_back(transfer(TransferMode::Shadowed, 3, 1, 0, b.vertexCount, 1));
+  b.transfers.push_back(transfer(TransferMode::Interreflected, 4, 3, 0, b.vertexCount, 2));
+  return b;
+}
+
+std::span<const unsigned char> asBytes(const std::string& s) {
+  return {reinterpret_cast<const unsigned char*>(s.data()), s.size()};
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+void expectSameBake(const BakeFile& a, const BakeFile& b) {
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.normals, b.mesh.normals);
+  EXPECT_EQ(a.mesh.albedo, b.mesh.albedo);
+  ASSERT_EQ(a.mesh.uvs.size(), b.mesh.uvs.size());
+  for (std::size_t i = 0; i < a.mesh.uvs.size(); ++i) {
+    EXPECT_EQ(a.mesh.uvs[i].x, b.mesh.uvs[i].x);
+    EXPECT_EQ(a.mesh.uvs[i].y, b.mesh.uvs[i].y);
+  }
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  ASSERT_EQ(a.mesh.parts.size(), b.mesh.parts.size());
+  for (std::size_t i = 0; i < a.mesh.parts.size(); ++i) {
+    EXPECT_EQ(a.mesh.parts[i].name, b.mesh.parts[i].name);
+    EXPECT_EQ(a.mesh.parts[i].firstVertex, b.mesh.parts[i].firstVertex);
+    EXPECT_EQ(a.mesh.parts[i].vertexCount, b.mesh.parts[i].vertexCount);
+    EXPECT_EQ(a.mesh.parts[i].firstTriangle, b.mesh.parts[i].firstTriangle);
+    EXPECT_EQ(a.mesh.parts[i].triangleCount, b.mesh.parts[i].triangleCount);
+  }
+  EXPECT_EQ(a.firstVertex, b.firstVertex);
+  EXPECT_EQ(a.vertexCount, b.vertexCount);
+  ASSERT_EQ(a.transfers.size(), b.transfers.size());
+  for (std::size_t i = 0; i < a.transfers.size(); ++i) {
+    const auto &x = a.transfers[i], &y = b.transfers[i];
+    EXPECT_EQ(x.settings.mode, y.settings.mode);
+    EXPECT_EQ(x.settings.bands, y.settings.bands);
+    EXPECT_EQ(x.settings.samples, y.settings.samples);
+    EXPECT_EQ(x.settings.bounces, y.settings.bounces);
+    EXPECT_EQ(x.settings.seed, y.settings.seed);
+    EXPECT_EQ(x.settings.sampling, y.settings.sampling);
+    EXPECT_EQ(x.settings.albedo, y.settings.albedo);
+    EXPECT_EQ(x.settings.firstVertex, y.settings.firstVertex);
+    EXPECT_EQ(x.settings.vertexCount, y.settings.vertexCount);
+    EXPECT_EQ(x.stats.rays, y.stats.rays);
+    EXPECT_EQ(x.stats.raysPerSecond, y.stats.raysPerSecond);
+    EXPECT_EQ(x.stats.secondsTotal, y.stats.secondsTotal);
+    EXPECT_EQ(x.stats.secondsBounce, y.stats.secondsBounce);
+    EXPECT_EQ(x.stats.raysBounce, y.stats.raysBounce);
+    EXPECT_EQ(x.stats.stdErrT0Mean, y.stats.stdErrT0Mean);
+    EXPECT_EQ(x.stats.stdErrConstMax, y.stats.stdErrConstMax);
+    EXPECT_EQ(x.field.bands, y.field.bands);
+    EXPECT_EQ(x.field.channels, y.field.channels);
+    EXPECT_EQ(x.field.vertexCount, y.field.vertexCount);
+    EXPECT_TRUE(sameBits(x.field.data, y.field.data)) << "transfer " << i << " floats differ";
+  }
+}
+
+// Splits GLB bytes into its JSON and the BIN chunk payload.
+struct Glb {
+  nlohmann::json json;
+  std::string bin;
+};
+Glb splitGlb(const std::string& bytes) {
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t x;
+    std::memcpy(&x, bytes.data() + at, 4);
+    return x;
+  };
+  Glb g;
+  const std::uint32_t jsonLen = u32(12);
+  g.json = nlohmann::json::parse(bytes.substr(20, jsonLen));
+  const std::size_t binAt = 20 + jsonLen;
+  if (binAt < bytes.size()) g.bin = bytes.substr(binAt + 8, u32(binAt));
+  return g;
+}
+
+TEST(BakeFile, RoundTripIsBitExact) {
+  const BakeFile b = sampleBake();
+  const std::string bytes = encodeBake(b);
+  const BakeFile r = decodeBake(asBytes(bytes), "mem.glb");
+  EXPECT_EQ(r.formatVersion, kBakeFormatVersion);
+  EXPECT_EQ(r.generator, "prtkit test");
+  EXPECT_EQ(r.mesh.source, "test-mesh");
+  EXPECT_TRUE(r.complete());
+  expectSameBake(b, r);
+  // Encoding is a pure function of the bake: the same bytes again.
+  EXPECT_EQ(encodeBake(r), bytes);
+}
+
+TEST(BakeFile, WriteAndReadThroughDisk) {
+  const auto dir = std::filesystem::temp_directory_path() / "prt_test_bake_file";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "b.glb").string();
+  const BakeFile b = sampleBake();
+  writeBake(path, b);
+  expectSameBake(b, readBake(path));
+  // A failed write leaves nothing behind.
+  BakeFile bad = b;
+  bad.transfers[0].field.data.pop_back();
+  const std::string badPath = (dir / "bad.glb").string();
+  EXPECT_THROW(writeBake(badPath, bad), Error);
+  EXPECT_FALSE(std::filesystem::exists(badPath));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(BakeFile, GltfRulesHold) {
+  const BakeFile b = sampleBake();
+  const std::string bytes = encodeBake(b);
+  // GLB container: 12-byte header with the total length, 4-byte aligned chunks.
+  std::uint32_t length;
+  std::memcpy(&length, bytes.data() + 8, 4);
+  EXPECT_EQ(length, bytes.size());
+  EXPECT_EQ(bytes.size() % 4, 0u);
+  const Glb g = splitGlb(bytes);
+  const auto& j = g.json;
+  EXPECT_EQ(j["asset"]["version"], "2.0");
+  EXPECT_EQ(j["extras"]["prtkit"]["formatVersion"], 1);
+  ASSERT_EQ(j["buffers"].size(), 1u);
+  EXPECT_FALSE(j["buffers"][0].contains("uri"));
+  const std::size_t bufLen = j["buffers"][0]["byteLength"];
+  EXPECT_LE(bufLen, g.bin.size());
+  EXPECT_GE(bufLen + 3, g.bin.size());  // the chunk pads to 4 bytes at most
+
+  // Which accessors are vertex attributes, and how many use each bufferView.
+  std::map<int, int> attributeUsers;
+  for (const auto& mesh : j["meshes"])
+    for (const auto& prim : mesh["primitives"]) {
+      std::size_t count = 0;
+      for (auto it = prim["attributes"].begin(); it != prim["attributes"].end(); ++it) {
+        const std::string name = it.key();
+        const auto& acc = j["accessors"][it.value().get<int>()];
+        if (count == 0) count = acc["count"];
+        EXPECT_EQ(acc["count"], count) << name << ": attributes of a primitive differ in count";
+        const bool standard =
+            name == "POSITION" || name == "NORMAL" || name == "TEXCOORD_0" || name == "COLOR_0";
+        EXPECT_TRUE(standard || name.rfind("_PRT_", 0) == 0) << name;
+        EXPECT_EQ(acc["componentType"], 5126) << name;  // float (never unsigned int for _ attrs)
+        attributeUsers[acc["bufferView"]]++;
+      }
+      // POSITION carries exact min/max (required by the spec).
+      const auto& pos = j["accessors"][prim["attributes"]["POSITION"].get<int>()];
+      ASSERT_TRUE(pos.contains("min") && pos.contains("max"));
+      const int first = pos.value("byteOffset", 0) / 12;
+      const int n = pos["count"];
+      for (int c = 0; c < 3; ++c) {
+        float lo = 1e30f, hi = -1e30f;
+        for (int v = first; v < first + n; ++v) {
+          lo = std::min(lo, b.mesh.positions[v][c]);
+          hi = std::max(hi, b.mesh.positions[v][c]);
+        }
+        EXPECT_EQ(pos["min"][c].get<double>(), lo);
+        EXPECT_EQ(pos["max"][c].get<double>(), hi);
+      }
+      EXPECT_EQ(prim.value("mode", 4), 4);
+      EXPECT_EQ(j["accessors"][prim["indices"].get<int>()]["componentType"], 5125);
+    }
+  for (std::size_t v = 0; v < j["bufferViews"].size(); ++v) {
+    const auto& bv = j["bufferViews"][v];
+    const std::size_t off = bv.value("byteOffset", 0), len = bv["byteLength"];
+    EXPECT_EQ(off % 4, 0u);
+    EXPECT_LE(off + len, bufLen);
+    if (bv.contains("byteStride")) {
+      const int s = bv["byteStride"];
+      EXPECT_TRUE(s >= 4 && s <= 252 && s % 4 == 0) << "byteStride " << s;
+      EXPECT_NE(bv.value("target", 0), 34963) << "index views must not have a stride";
+    }
+    if (attributeUsers[static_cast<int>(v)] > 1) {
+      EXPECT_TRUE(bv.contains("byteStride")) << "shared vertex view " << v << " needs byteStride";
+    }
+  }
+  for (const auto& acc : j["accessors"]) {
+    const std::size_t off = acc.value("byteOffset", 0);
+    EXPECT_EQ(off % 4, 0u);
+  }
+}
+
+// Reads a primitive's _PRT attributes through tinygltf alone (not our reader) and compares them
+// with the transfer rows: the packing documented in docs/formats-bake.md.
+TEST(BakeFile, AttributePackingMatchesDocumentation) {
+  const BakeFile b = sampleBake();
+  const std::string bytes = encodeBake(b);
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                          reinterpret_cast<const unsigned char*>(bytes.data()),
+                                          static_cast<unsigned>(bytes.size())))
+      << err;
+  ASSERT_EQ(model.meshes.size(), 2u);
+  for (const auto& t : b.transfers) {
+    const std::size_t S = t.field.stride(), K = (S + 3) / 4;
+    const std::string prefix = transferAttributePrefix(t.settings.mode);
+    for (std::size_t part = 0; part < 2; ++part) {
+      const auto& prim = model.meshes[part].primitives[0];
+      const MeshPart& mp = b.mesh.parts[part];
+      EXPECT_EQ(prim.attributes.count(prefix + std::to_string(K)), 0u);
+      for (std::size_t k = 0; k < K; ++k) {
+        const auto it = prim.attributes.find(prefix + std::to_string(k));
+        ASSERT_NE(it, prim.attributes.end()) << prefix << k;
+        const auto& acc = model.accessors[it->second];
+        const auto& view = model.bufferViews[acc.bufferView];
+        const int stride = acc.ByteStride(view);
+        ASSERT_EQ(acc.count, mp.vertexCount);
+        for (std::size_t v = 0; v < mp.vertexCount; ++v) {
+          float q[4];
+          std::memcpy(
+              q, model.buffers[0].data.data() + view.byteOffset + acc.byteOffset + v * stride, 16);
+          for (std::size_t c = 0; c < 4; ++c) {
+            const std::size_t idx = 4 * k + c;
+            const float expect = idx < S ? t.field.vertex(mp.firstVertex + v)[idx] : 0.0f;
+            ASSERT_EQ(std::memcmp(&q[c], &expect, 4), 0) << "vertex " << v << " float " << idx;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(transferAttributePrefix(TransferMode::Unshadowed), "_PRT_UNSHADOWED_T");
+}
+
+TEST(BakeFile, PartialRangesMergeExactly) {
+  const BakeFile full = sampleBake();
+  const std::size_t V = full.mesh.vertexCount();
+  auto piece = [&](std::size_t first, std::size_t n) {
+    BakeFile p = full;
+    p.firstVertex = first;
+    p.vertexCount = n;
+    for (auto& t : p.transfers) {
+      const std::size_t S = t.field.stride();
+      t.field.vertexCount = n;
+      t.field.data.assign(full.find(t.settings.mode)->field.data.begin() + first * S,
+                          full.find(t.settings.mode)->field.data.begin() + (first + n) * S);
+      t.settings.firstVertex = first;
+      t.settings.vertexCount = n;
+      t.stats.vertices = n;
+    }
+    // Through the file format: a partial file has no per-primitive transfer attributes.
+    const std::string bytes = encodeBake(p);
+    for (const auto& mesh : splitGlb(bytes).json["meshes"])
+      for (auto it = mesh["primitives"][0]["attributes"].begin();
+           it != mesh["primitives"][0]["attributes"].end(); ++it)
+        EXPECT_NE(it.key().rfind("_PRT", 0), 0u) << it.key();
+    BakeFile r = decodeBake(asBytes(bytes), "piece.glb");
+    EXPECT_FALSE(r.complete());
+    return r;
+  };
+  std::vector<BakeFile> pieces = {piece(6, 3), piece(0, 2), piece(2, 4)};
+  const BakeFile merged = mergeBakes(pieces);
+  EXPECT_TRUE(merged.complete());
+  for (const auto& t : full.transfers) {
+    const BakedTransfer* m = merged.find(t.settings.mode);
+    ASSERT_NE(m, nullptr);
+    EXPECT_TRUE(sameBits(m->field.data, t.field.data));
+    EXPECT_EQ(m->stats.rays, 3 * t.stats.rays);
+    EXPECT_EQ(m->stats.vertices, V);
+    EXPECT_DOUBLE_EQ(m->stats.stdErrT0Mean, t.stats.stdErrT0Mean);  // equal means stay equal
+    EXPECT_DOUBLE_EQ(m->stats.secondsTotal, 3 * t.stats.secondsTotal);
+  }
+  // And the merged file is a complete bake that round-trips.
+  expectSameBake(merged, decodeBake(asBytes(encodeBake(merged)), "merged.glb"));
+
+  EXPECT_THROW(mergeBakes({piece(0, 2), piece(3, 6)}), Error);  // gap at vertex 2
+  EXPECT_THROW(mergeBakes({piece(0, 3), piece(2, 7)}), Error);  // overlap
+  BakeFile otherSeed = piece(2, 7);
+  otherSeed.transfers[0].settings.seed = 1;
+  EXPECT_THROW(mergeBakes({piece(0, 2), otherSeed}), Error);
+  BakeFile otherMesh = piece(2, 7);
+  otherMesh.mesh.positions[0].x += 1.0f;
+  EXPECT_THROW(mergeBakes({piece(0, 2), otherMesh}), Error);
+}
+
+TEST(BakeFile, NewerFormatVersionIsRejectedWithOneLine) {
+  std::string bytes = encodeBake(sampleBake());
+  const std::string key = "\"formatVersion\":1";
+  const auto at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + key.size() - 1] = '2';  // same length: the container stays valid
+  try {
+    decodeBake(asBytes(bytes), "new.glb");
+    FAIL() << "accepted a newer format";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "new.glb: bake format version 2 is newer than this prtkit understands (1)");
+  }
+}
+
+TEST(BakeFile, ForeignGltfIsRejected) {
+  std::string bytes = encodeBake(sampleBake());
+  const auto at = bytes.find("\"prtkit\":{");
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 6] = 'X';
+  try {
+    decodeBake(asBytes(bytes), "other.glb");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a prtkit bake file"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BakeFile, InconsistentMetadataIsRejected) {
+  // Claim 4 bands where 3 are stored: the accessor list no longer matches B²·C.
+  std::string bytes = encodeBake(sampleBake());
+  const auto at = bytes.find("\"bands\":3");
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 8] = '4';
+  EXPECT_THROW(decodeBake(asBytes(bytes), "x.glb"), Error);
+  // Claim one more vertex than the meshes hold.
+  bytes = encodeBake(sampleBake());
+  const auto at2 = bytes.find("\"vertexCount\":9");
+  ASSERT_NE(at2, std::string::npos);
+  bytes[at2 + 14] = '8';
+  EXPECT_THROW(decodeBake(asBytes(bytes), "x.glb"), Error);
+}
+
+TEST(BakeFile, TruncatedOrCorruptFilesThrowNeverCrash) {
+  const std::string bytes = encodeBake(sampleBake());
+  // Every truncation must be reported (the GLB length field no longer matches).
+  for (std::size_t n = 0; n < bytes.size(); n += (n < 64 ? 1 : 7)) {
+    const std::string cut = bytes.substr(0, n);
+    EXPECT_THROW(decodeBake(asBytes(cut), "cut.glb"), Error) << "length " << n;
+  }
+  // Random byte corruption anywhere: either a clean Error or a successfully parsed bake.
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::string bad = bytes;
+    const int flips = 1 + static_cast<int>(rng() % 4);
+    for (int f = 0; f < flips; ++f) bad[rng() % bad.size()] = static_cast<char>(rng());
+    try {
+      const BakeFile r = decodeBake(asBytes(bad), "bad.glb");
+      for (const auto& t : r.transfers)
+        EXPECT_EQ(t.field.data.size(), r.vertexCount * t.field.stride());
+    } catch (const Error&) {
+    }
+  }
+  EXPECT_THROW(decodeBake(asBytes(std::string("not a glb at all")), "t.glb"), Error);
+}
+
+TEST(BakeFile, WriterRejectsInconsistentBakes) {
+  BakeFile b = sampleBake();
+  b.transfers.push_back(b.transfers[0]);  // duplicate mode
+  EXPECT_THROW(encodeBake(b), Error);
+  b = sampleBake();
+  b.mesh.parts[1].firstVertex = 3;  // parts overlap
+  EXPECT_THROW(encodeBake(b), Error);
+  b = sampleBake();
+  b.vertexCount = 100;
+  EXPECT_THROW(encodeBake(b), Error);
+  b = sampleBake();
+  b.mesh.triangles.clear();
+  b.mesh.parts.clear();
+  EXPECT_THROW(encodeBake(b), Error);
+  // A mesh without parts is written as one part.
+  b = sampleBake();
+  b.mesh.parts.clear();
+  const BakeFile r = decodeBake(asBytes(encodeBake(b)), "one.glb");
+  ASSERT_EQ(r.mesh.parts.size(), 1u);
+  EXPECT_EQ(r.mesh.parts[0].vertexCount, b.mesh.vertexCount());
+  EXPECT_EQ(r.mesh.triangles, b.mesh.triangles);
+}
+
+}  // namespace
+}  // namespace prt
