@@ -22,13 +22,13 @@ struct MeshPart {
 };
 
 struct Mesh {
-  std::vector<Vec3f> positions;                      ///< world space (scene transforms applied)
-  std::vector<Vec3f> normals;                        ///< unit, one per vertex
-  std::vector<Rgb> albedo;                           ///< linear diffuse albedo per vertex (empty: uniform)
-  std::vector<Vec2f> uvs;                            ///< optional texture coordinates
+  std::vector<Vec3f> positions;  ///< world space (scene transforms applied)
+  std::vector<Vec3f> normals;    ///< unit, one per vertex
+  std::vector<Rgb> albedo;       ///< linear diffuse albedo per vertex (empty: uniform)
+  std::vector<Vec2f> uvs;        ///< optional texture coordinates
   std::vector<std::array<std::uint32_t, 3>> triangles;  ///< counter-clockwise = front
-  std::vector<MeshPart> parts;                       ///< at least one part when loaded
-  std::string source;                                ///< file name or builtin:NAME, for messages
+  std::vector<MeshPart> parts;                          ///< at least one part when loaded
+  std::string source;                                   ///< file name or builtin:NAME, for messages
 
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return triangles.size(); }

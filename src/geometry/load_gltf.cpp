@@ -1,0 +1,469 @@
+// glTF 2.0 (.gltf with external or embedded buffers, .glb) through tinygltf.
+//
+// Every primitive of mode TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN reachable from the default
+// scene (scene 0 if none is marked; every mesh untransformed if the file has no scenes) is
+// appended in scene-graph order (depth first, children in order), one MeshPart per node that
+// holds a mesh. Vertices keep the file's order within each primitive; nothing is welded.
+//
+// Transforms: a node's world matrix is its parent's times its local matrix, the local matrix
+// being `matrix` or T·R·S (glTF 2.0 §3.5.2). Positions take the world matrix M; normals the
+// inverse transpose of its upper 3×3 (then renormalised); a mirroring matrix (det < 0) reverses
+// the triangles' winding so counter-clockwise stays front.
+//
+// Albedo (§3.9.2): baseColorFactor (linear) × baseColorTexture (sRGB-encoded, decoded to linear,
+// sampled bilinearly at the vertex's TEXCOORD_n with repeat wrapping; (0,0) is the image's top
+// left corner) × COLOR_0 (linear). Primitives without a material use the default material
+// (white). A file whose primitives have neither materials nor COLOR_0 leaves the albedo empty.
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <map>
+
+#include "loaders.hpp"
+#include "prt/core/error.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image_io.hpp"
+
+namespace prt::detail {
+
+namespace {
+
+/// Column-major 4x4 matrix, as glTF stores it: m[c * 4 + r].
+struct Mat4 {
+  std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  Mat4 operator*(const Mat4& o) const {
+    Mat4 r;
+    for (int c = 0; c < 4; ++c)
+      for (int row = 0; row < 4; ++row) {
+        double s = 0;
+        for (int k = 0; k < 4; ++k) s += m[k * 4 + row] * o.m[c * 4 + k];
+        r.m[c * 4 + row] = s;
+      }
+    return r;
+  }
+  Vec3d point(const Vec3d& p) const {
+    return {m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12],
+            m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13],
+            m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14]};
+  }
+  Mat3d upper() const {
+    Mat3d r;
+    for (int row = 0; row < 3; ++row)
+      for (int c = 0; c < 3; ++c) r.m[row][c] = m[c * 4 + row];
+    return r;
+  }
+};
+
+double det(const Mat3d& a) {
+  const auto& m = a.m;
+  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+         m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+/// Inverse transpose by cofactors (the adjugate's transpose is the cofactor matrix; the 1/det
+/// scale does not matter for normals, except its sign, which we keep).
+Mat3d normalMatrix(const Mat3d& a) {
+  const auto& m = a.m;
+  Mat3d c;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) {
+      const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      c.m[r][k] = m[r1][k1] * m[r2][k2] - m[r1][k2] * m[r2][k1];
+    }
+  const double d = det(a);
+  if (d < 0)
+    for (auto& row : c.m)
+      for (double& x : row) x = -x;
+  return c;
+}
+
+Mat4 localMatrix(const tinygltf::Node& n) {
+  Mat4 out;
+  if (n.matrix.size() == 16) {
+    for (int k = 0; k < 16; ++k) out.m[k] = n.matrix[k];
+    return out;
+  }
+  Mat4 t, r, s;
+  if (n.translation.size() == 3)
+    for (int k = 0; k < 3; ++k) t.m[12 + k] = n.translation[k];
+  if (n.rotation.size() == 4) {
+    double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+    const double len = std::sqrt(x * x + y * y + z * z + w * w);
+    if (len > 0) x /= len, y /= len, z /= len, w /= len;
+    // Unit quaternion to rotation matrix, column-major.
+    r.m = {1 - 2 * (y * y + z * z),
+           2 * (x * y + z * w),
+           2 * (x * z - y * w),
+           0,
+           2 * (x * y - z * w),
+           1 - 2 * (x * x + z * z),
+           2 * (y * z + x * w),
+           0,
+           2 * (x * z + y * w),
+           2 * (y * z - x * w),
+           1 - 2 * (x * x + y * y),
+           0,
+           0,
+           0,
+           0,
+           1};
+  }
+  if (n.scale.size() == 3)
+    for (int k = 0; k < 3; ++k) s.m[k * 5] = n.scale[k];
+  return t * r * s;
+}
+
+class Reader {
+ public:
+  Reader(const std::string& label, const tinygltf::Model& model, LoadReport& report)
+      : label_(label), model_(model), report_(report) {}
+
+  /// Accessor `index` as `count` × `comps` floats (normalised integers mapped per §3.6.2.4).
+  std::vector<float> floats(int index, int wantComps, const char* what) {
+    const tinygltf::Accessor& a = accessor(index, what);
+    const int comps = tinygltf::GetNumComponentsInType(a.type);
+    if (comps != wantComps && !(wantComps == 3 && comps == 4 && std::string(what) == "COLOR_0"))
+      fail(std::string(what) + " has " + std::to_string(comps) + " components, expected " +
+           std::to_string(wantComps));
+    std::vector<float> out(a.count * comps);
+    const auto [data, stride] = span(a, comps, what);
+    for (std::size_t i = 0; i < a.count; ++i)
+      for (int c = 0; c < comps; ++c) {
+        const unsigned char* p =
+            data + i * stride + c * tinygltf::GetComponentSizeInBytes(a.componentType);
+        out[i * comps + c] = component(
+            p, a.componentType,
+            a.normalized || a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ? true : false);
+      }
+    return out;
+  }
+
+  std::vector<std::uint32_t> indices(int index) {
+    const tinygltf::Accessor& a = accessor(index, "indices");
+    if (a.type != TINYGLTF_TYPE_SCALAR) fail("indices accessor is not scalar");
+    const auto [data, stride] = span(a, 1, "indices");
+    std::vector<std::uint32_t> out(a.count);
+    for (std::size_t i = 0; i < a.count; ++i) {
+      const unsigned char* p = data + i * stride;
+      switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          out[i] = p[0];
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+          std::uint16_t x;
+          std::memcpy(&x, p, 2);
+          out[i] = x;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+          std::uint32_t x;
+          std::memcpy(&x, p, 4);
+          out[i] = x;
+          break;
+        }
+        default:
+          fail("indices have a non-integer component type");
+      }
+    }
+    return out;
+  }
+
+  std::size_t count(int index, const char* what) { return accessor(index, what).count; }
+
+  /// The base colour texture of image `img`, linear, decoded once.
+  const image::Image* texture(int tex, const std::filesystem::path& dir) {
+    if (tex < 0 || tex >= int(model_.textures.size())) return nullptr;
+    const int src = model_.textures[tex].source;
+    if (src < 0 || src >= int(model_.images.size())) return nullptr;
+    auto it = images_.find(src);
+    if (it != images_.end()) return it->second.empty() ? nullptr : &it->second;
+    image::Image& out = images_[src];
+    const tinygltf::Image& im = model_.images[src];
+    if (!im.image.empty() && im.width > 0 && im.height > 0 && im.component >= 1 &&
+        (im.bits == 8 || im.bits == 16) &&
+        im.image.size() >= std::size_t(im.width) * im.height * im.component * (im.bits / 8)) {
+      out = image::Image(im.width, im.height);
+      for (std::size_t i = 0; i < out.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+          const int ch = std::min(c, im.component >= 3 ? 2 : 0);
+          const std::size_t at = i * im.component + ch;
+          float v;
+          if (im.bits == 8) {
+            v = image::srgb8ToLinear(im.image[at]);
+          } else {
+            std::uint16_t x;
+            std::memcpy(&x, &im.image[2 * at], 2);
+            v = image::srgbToLinear(x / 65535.0f);
+          }
+          out.pixels[i][c] = v;
+        }
+    } else if (!im.uri.empty() && im.uri.rfind("data:", 0) != 0) {
+      try {
+        out = image::readImage((dir / im.uri).string());
+      } catch (const Error& e) {
+        report_.warnings.push_back(label_ + ": base colour texture not used: " + e.what());
+      }
+    } else {
+      report_.warnings.push_back(label_ + ": image " + std::to_string(src) +
+                                 " could not be decoded; base colour texture not used");
+    }
+    return out.empty() ? nullptr : &out;
+  }
+
+  [[noreturn]] void fail(const std::string& msg) const { throw Error(label_, msg); }
+
+ private:
+  const tinygltf::Accessor& accessor(int index, const char* what) {
+    if (index < 0 || index >= int(model_.accessors.size()))
+      fail(std::string(what) + " refers to accessor " + std::to_string(index) + " (file has " +
+           std::to_string(model_.accessors.size()) + ")");
+    const tinygltf::Accessor& a = model_.accessors[index];
+    if (a.sparse.isSparse) fail(std::string(what) + ": sparse accessors are not supported");
+    return a;
+  }
+
+  /// Start of the accessor's data and its stride, bounds-checked against the buffer.
+  std::pair<const unsigned char*, std::size_t> span(const tinygltf::Accessor& a, int comps,
+                                                    const char* what) {
+    if (a.bufferView < 0 || a.bufferView >= int(model_.bufferViews.size()))
+      fail(std::string(what) + " has no buffer view");
+    const tinygltf::BufferView& bv = model_.bufferViews[a.bufferView];
+    if (bv.buffer < 0 || bv.buffer >= int(model_.buffers.size()))
+      fail(std::string(what) + ": buffer view refers to a missing buffer");
+    const auto& buf = model_.buffers[bv.buffer].data;
+    const int csize = tinygltf::GetComponentSizeInBytes(a.componentType);
+    if (csize <= 0) fail(std::string(what) + " has an invalid component type");
+    const std::size_t elem = std::size_t(csize) * comps;
+    const std::size_t stride = bv.byteStride ? bv.byteStride : elem;
+    const std::size_t start = bv.byteOffset + a.byteOffset;
+    const std::size_t need = a.count == 0 ? 0 : stride * (a.count - 1) + elem;
+    if (start > buf.size() || need > buf.size() - start || a.byteOffset + need > bv.byteLength)
+      fail(std::string(what) + ": accessor runs past the end of its buffer (truncated file?)");
+    return {buf.data() + start, stride};
+  }
+
+  static float component(const unsigned char* p, int type, bool normalise) {
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float x;
+        std::memcpy(&x, p, 4);
+        return x;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalise ? p[0] / 255.0f : p[0];
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        std::int8_t x;
+        std::memcpy(&x, p, 1);
+        return normalise ? std::max(x / 127.0f, -1.0f) : x;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t x;
+        std::memcpy(&x, p, 2);
+        return normalise ? x / 65535.0f : x;
+      }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        std::int16_t x;
+        std::memcpy(&x, p, 2);
+        return normalise ? std::max(x / 32767.0f, -1.0f) : x;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        std::uint32_t x;
+        std::memcpy(&x, p, 4);
+        return float(x);
+      }
+    }
+    return 0;
+  }
+
+  const std::string& label_;
+  const tinygltf::Model& model_;
+  LoadReport& report_;
+  std::map<int, image::Image> images_;
+};
+
+}  // namespace
+
+Mesh readGltf(const std::string& path, LoadReport& report) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  const bool binary = ext == ".glb" || ext == ".GLB";
+  {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+      throw Error(path, "cannot open (does it exist and is it readable?)");
+  }
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
+    if (const auto nl = err.find('\n'); nl != std::string::npos) err.resize(nl);
+    throw Error(path, err.empty() ? "cannot parse glTF" : err);
+  }
+  Reader rd(path, model, report);
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  Mesh mesh;
+  bool anyAlbedo = false, anyNormals = false;
+  std::vector<Rgb> albedo;
+
+  const auto addMesh = [&](int meshIndex, const Mat4& world, const std::string& partName) {
+    if (meshIndex < 0 || meshIndex >= int(model.meshes.size()))
+      rd.fail("node refers to mesh " + std::to_string(meshIndex) + " (file has " +
+              std::to_string(model.meshes.size()) + ")");
+    const tinygltf::Mesh& gm = model.meshes[meshIndex];
+    MeshPart part;
+    part.name = partName.empty() ? (gm.name.empty() ? "mesh " + std::to_string(meshIndex) : gm.name)
+                                 : partName;
+    part.firstVertex = std::uint32_t(mesh.positions.size());
+    part.firstTriangle = std::uint32_t(mesh.triangles.size());
+    const Mat3d lin = world.upper();
+    const Mat3d nm = normalMatrix(lin);
+    const bool mirror = det(lin) < 0;
+    for (std::size_t pi = 0; pi < gm.primitives.size(); ++pi) {
+      const tinygltf::Primitive& prim = gm.primitives[pi];
+      const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        report.warnings.push_back(path + ": mesh '" + gm.name + "' primitive " +
+                                  std::to_string(pi) + " is points or lines; skipped");
+        continue;
+      }
+      const auto attr = [&](const char* name) {
+        const auto it = prim.attributes.find(name);
+        return it == prim.attributes.end() ? -1 : it->second;
+      };
+      const int posAcc = attr("POSITION");
+      if (posAcc < 0)
+        rd.fail("mesh '" + gm.name + "' primitive " + std::to_string(pi) + " has no POSITION");
+      const std::vector<float> pos = rd.floats(posAcc, 3, "POSITION");
+      const std::size_t n = pos.size() / 3;
+      const std::uint32_t base = std::uint32_t(mesh.positions.size());
+      std::vector<float> nrm, col, uv;
+      if (attr("NORMAL") >= 0) {
+        nrm = rd.floats(attr("NORMAL"), 3, "NORMAL");
+        anyNormals = true;
+      }
+      const int colAcc = attr("COLOR_0");
+      int colComps = 0;
+      if (colAcc >= 0) {
+        col = rd.floats(colAcc, 3, "COLOR_0");
+        colComps = int(col.size() / std::max<std::size_t>(1, rd.count(colAcc, "COLOR_0")));
+      }
+      const tinygltf::Material* mat =
+          prim.material >= 0 && prim.material < int(model.materials.size())
+              ? &model.materials[prim.material]
+              : nullptr;
+      Rgb factor(1.0f);
+      const image::Image* tex = nullptr;
+      if (mat) {
+        const auto& f = mat->pbrMetallicRoughness.baseColorFactor;
+        if (f.size() >= 3) factor = Rgb{float(f[0]), float(f[1]), float(f[2])};
+        const auto& bt = mat->pbrMetallicRoughness.baseColorTexture;
+        if (bt.index >= 0) {
+          const std::string set = "TEXCOORD_" + std::to_string(std::max(0, bt.texCoord));
+          if (attr(set.c_str()) >= 0) {
+            tex = rd.texture(bt.index, dir);
+            if (tex) uv = rd.floats(attr(set.c_str()), 2, set.c_str());
+          }
+        }
+      }
+      std::vector<float> uv0;
+      if (attr("TEXCOORD_0") >= 0) uv0 = rd.floats(attr("TEXCOORD_0"), 2, "TEXCOORD_0");
+      if ((!nrm.empty() && nrm.size() != pos.size()) || (!uv.empty() && uv.size() != 2 * n) ||
+          (!uv0.empty() && uv0.size() != 2 * n) || (!col.empty() && col.size() != n * colComps))
+        rd.fail("mesh '" + gm.name + "' primitive " + std::to_string(pi) +
+                ": attributes have different counts");
+      const bool primAlbedo = mat || !col.empty();
+      if (primAlbedo && !anyAlbedo) {
+        anyAlbedo = true;
+        albedo.assign(mesh.positions.size(), Rgb(1.0f));  // earlier primitives: default material
+      }
+      if (!uv0.empty() && mesh.uvs.size() < mesh.positions.size())
+        mesh.uvs.resize(mesh.positions.size());
+      for (std::size_t i = 0; i < n; ++i) {
+        mesh.positions.push_back(Vec3f(world.point({pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]})));
+        if (nrm.empty()) {
+          mesh.normals.push_back(Vec3f(0.0f));  // marks "compute"
+        } else {
+          const Vec3d nn = nm * Vec3d{nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]};
+          const double len = length(nn);
+          mesh.normals.push_back(len > 0 ? Vec3f(nn / len) : Vec3f(0.0f));
+        }
+        if (!uv0.empty())
+          mesh.uvs.push_back({uv0[2 * i], uv0[2 * i + 1]});
+        else if (!mesh.uvs.empty())
+          mesh.uvs.push_back({});
+        if (anyAlbedo) {
+          Rgb a = factor;
+          if (tex) a *= sampleTexture(*tex, {uv[2 * i], uv[2 * i + 1]}, false);
+          if (!col.empty())
+            a *= Rgb{col[colComps * i], col[colComps * i + 1], col[colComps * i + 2]};
+          albedo.push_back(a);
+        }
+      }
+      std::vector<std::uint32_t> idx;
+      if (prim.indices >= 0) {
+        idx = rd.indices(prim.indices);
+      } else {
+        idx.resize(n);
+        for (std::size_t i = 0; i < n; ++i) idx[i] = std::uint32_t(i);
+      }
+      for (std::size_t k = 0; k < idx.size(); ++k)
+        if (idx[k] >= n) throwBadIndex(path, k / 3, idx[k], n);
+      const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        if (mirror) std::swap(b, c);
+        mesh.triangles.push_back({base + a, base + b, base + c});
+      };
+      if (mode == TINYGLTF_MODE_TRIANGLES) {
+        for (std::size_t k = 0; k + 2 < idx.size(); k += 3) add(idx[k], idx[k + 1], idx[k + 2]);
+      } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (std::size_t k = 0; k + 2 < idx.size(); ++k)
+          k % 2 == 0 ? add(idx[k], idx[k + 1], idx[k + 2]) : add(idx[k + 1], idx[k], idx[k + 2]);
+      } else {
+        for (std::size_t k = 1; k + 1 < idx.size(); ++k) add(idx[0], idx[k], idx[k + 1]);
+      }
+    }
+    part.vertexCount = std::uint32_t(mesh.positions.size()) - part.firstVertex;
+    part.triangleCount = std::uint32_t(mesh.triangles.size()) - part.firstTriangle;
+    if (part.vertexCount) mesh.parts.push_back(part);
+  };
+
+  if (model.scenes.empty()) {
+    for (int m = 0; m < int(model.meshes.size()); ++m) addMesh(m, Mat4{}, "");
+  } else {
+    const int s = model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size())
+                      ? model.defaultScene
+                      : 0;
+    std::vector<int> visiting;
+    std::function<void(int, const Mat4&)> visit = [&](int node, const Mat4& parent) {
+      if (node < 0 || node >= int(model.nodes.size()))
+        rd.fail("scene refers to node " + std::to_string(node) + " (file has " +
+                std::to_string(model.nodes.size()) + ")");
+      if (std::find(visiting.begin(), visiting.end(), node) != visiting.end())
+        rd.fail("node " + std::to_string(node) + " is its own ancestor (cycle in the scene graph)");
+      visiting.push_back(node);
+      const tinygltf::Node& nd = model.nodes[node];
+      const Mat4 world = parent * localMatrix(nd);
+      if (nd.mesh >= 0) addMesh(nd.mesh, world, nd.name);
+      for (int c : nd.children) visit(c, world);
+      visiting.pop_back();
+    };
+    for (int root : model.scenes[s].nodes) visit(root, Mat4{});
+  }
+  if (mesh.positions.empty()) throw Error(path, "has no triangle meshes in its scene");
+  if (anyAlbedo) mesh.albedo = std::move(albedo);
+  if (!anyNormals) mesh.normals.clear();  // all computed, no warning
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
+    mesh.uvs.resize(mesh.positions.size());
+  return mesh;
+}
+
+}  // namespace prt::detail

@@ -1,0 +1,190 @@
+// Wavefront OBJ through tinyobjloader, with our own vertex numbering.
+//
+// Vertex order (relied on by the GAMES202 course's transport.txt, whose rows are per vertex):
+// one vertex per distinct (position, texcoord, normal) index triple, numbered in order of first
+// appearance as the faces are read in file order, each face's corners in order. This is what the
+// course's Nori-based OBJ loader does (an unordered_map from the triple to its index, filled while
+// walking the faces). Triples are compared by index, never by value: only exact duplicates are
+// welded, so a position used with two normals or two UVs stays two vertices. Polygons are
+// fan-triangulated (0,1,2), (0,2,3), ..., which does not change the order of first appearance.
+//
+// Albedo: the face's material Kd, multiplied by map_Kd sampled at the vertex's UV (decoded from
+// sRGB by the image module), as the MTL specification states. A vertex takes the material of the
+// first face that uses it. A file without materials leaves the albedo empty (uniform).
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <unordered_map>
+
+#include "loaders.hpp"
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/image/image_io.hpp"
+
+namespace prt::detail {
+
+namespace {
+
+/// tinyobjloader silently reads a malformed number ("nan", "1e999") as 0 or inf; scan the "v"
+/// lines ourselves so such a file is rejected with its line number.
+void checkVertexLines(const std::string& path) {
+  const std::vector<unsigned char> bytes = readFileBytes(path);
+  const char* s = reinterpret_cast<const char*>(bytes.data());
+  const char* end = s + bytes.size();
+  std::size_t line = 1;
+  while (s < end) {
+    const char* eol = static_cast<const char*>(std::memchr(s, '\n', end - s));
+    if (!eol) eol = end;
+    const char* p = s;
+    while (p < eol && (*p == ' ' || *p == '\t')) ++p;
+    if (eol - p > 2 && p[0] == 'v' && (p[1] == ' ' || p[1] == '\t')) {
+      p += 2;
+      for (int k = 0; k < 3; ++k) {
+        while (p < eol && (*p == ' ' || *p == '\t')) ++p;
+        const char* tok = p;
+        while (p < eol && *p != ' ' && *p != '\t' && *p != '\r') ++p;
+        double x = 0;
+        const char* num = (tok < p && *tok == '+') ? tok + 1 : tok;  // from_chars rejects '+'
+        const auto [ptr, ec] = std::from_chars(num, p, x);
+        if (tok == p)
+          throw Error(path,
+                      "line " + std::to_string(line) + ": vertex has fewer than 3 coordinates");
+        if (ec != std::errc() || ptr != p || !std::isfinite(x) || std::fabs(x) > 3.4e38)
+          throw Error(path, "line " + std::to_string(line) + ": vertex coordinate '" +
+                                std::string(tok, p) + "' is not a finite number");
+      }
+    }
+    s = eol + 1;
+    ++line;
+  }
+}
+
+struct TripleHash {
+  std::size_t operator()(const std::array<int, 3>& t) const {
+    std::size_t h = static_cast<std::size_t>(t[0]) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<std::size_t>(t[1]) + 0x7F4A7C15ull + (h << 6) + (h >> 2);
+    h ^= static_cast<std::size_t>(t[2]) + 0x85EBCA6Bull + (h << 6) + (h >> 2);
+    return h;
+  }
+};
+
+}  // namespace
+
+Mesh readObj(const std::string& path, LoadReport& report) {
+  checkVertexLines(path);
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // we fan-triangulate, keeping the corner order
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    std::string msg = reader.Error();
+    while (!msg.empty() && (msg.back() == '\n' || msg.back() == '\r')) msg.pop_back();
+    if (const auto nl = msg.find('\n'); nl != std::string::npos) msg.resize(nl);
+    throw Error(path, msg.empty() ? "cannot parse OBJ" : msg);
+  }
+  if (!reader.Warning().empty()) {
+    std::string w = reader.Warning();
+    std::size_t pos = 0;
+    while (pos < w.size()) {
+      auto nl = w.find('\n', pos);
+      if (nl == std::string::npos) nl = w.size();
+      if (nl > pos) report.warnings.push_back(path + ": " + w.substr(pos, nl - pos));
+      pos = nl + 1;
+    }
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const auto& shapes = reader.GetShapes();
+  const auto& materials = reader.GetMaterials();
+  const std::size_t np = attrib.vertices.size() / 3, nt = attrib.texcoords.size() / 2,
+                    nn = attrib.normals.size() / 3;
+
+  // Textures, decoded once per material.
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  std::vector<image::Image> textures(materials.size());
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    std::string name = materials[m].diffuse_texname;
+    if (name.empty()) continue;
+    std::replace(name.begin(), name.end(), '\\', '/');
+    const std::string file = (dir / name).string();
+    try {
+      textures[m] = image::readImage(file);
+    } catch (const Error& e) {
+      report.warnings.push_back(path + ": material '" + materials[m].name +
+                                "': texture not used: " + e.what());
+    }
+  }
+
+  Mesh mesh;
+  std::unordered_map<std::array<int, 3>, std::uint32_t, TripleHash> index;
+  std::vector<int> vertexMaterial;  // material of the first face using each vertex
+  bool anyNormal = false, anyUv = false;
+  std::vector<std::array<int, 3>> triples;
+  std::size_t face = 0;
+  std::vector<std::uint32_t> corners;
+  for (const auto& shape : shapes) {
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face) {
+      const std::size_t n = shape.mesh.num_face_vertices[f];
+      const int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+      corners.clear();
+      for (std::size_t k = 0; k < n; ++k) {
+        const tinyobj::index_t& id = shape.mesh.indices[offset + k];
+        // Messages number faces and indices from 1, as the OBJ file does.
+        if (id.vertex_index < 0 || std::size_t(id.vertex_index) >= np)
+          throwBadIndex(path, face + 1, id.vertex_index + 1LL, np);
+        if (id.texcoord_index >= 0 && std::size_t(id.texcoord_index) >= nt)
+          throwBadIndex(path, face + 1, id.texcoord_index + 1LL, nt, "texture coordinate");
+        if (id.normal_index >= 0 && std::size_t(id.normal_index) >= nn)
+          throwBadIndex(path, face + 1, id.normal_index + 1LL, nn, "normal");
+        const std::array<int, 3> key{id.vertex_index, id.texcoord_index, id.normal_index};
+        auto [it, inserted] = index.try_emplace(key, static_cast<std::uint32_t>(triples.size()));
+        if (inserted) {
+          triples.push_back(key);
+          vertexMaterial.push_back(material);
+          anyNormal |= key[2] >= 0;
+          anyUv |= key[1] >= 0;
+        }
+        corners.push_back(it->second);
+      }
+      offset += n;
+      if (n < 3) continue;  // points and lines carry no surface
+      if (n > 3) ++report.polygonsTriangulated;
+      for (std::size_t k = 1; k + 1 < n; ++k)
+        mesh.triangles.push_back({corners[0], corners[k], corners[k + 1]});
+    }
+  }
+  if (triples.empty() && np > 0)
+    throw Error(path, "has no faces (" + std::to_string(np) +
+                          " vertices but no triangles; a point cloud cannot be baked)");
+
+  const std::size_t nv = triples.size();
+  mesh.positions.resize(nv);
+  if (anyNormal) mesh.normals.assign(nv, Vec3f(0.0f));  // zero marks "no normal" for repair
+  if (anyUv) mesh.uvs.assign(nv, Vec2f{});
+  if (!materials.empty()) mesh.albedo.assign(nv, Rgb(kDefaultAlbedo));
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto& [pi, ti, ni] = triples[v];
+    mesh.positions[v] = {attrib.vertices[3 * pi], attrib.vertices[3 * pi + 1],
+                         attrib.vertices[3 * pi + 2]};
+    if (ni >= 0)
+      mesh.normals[v] = {attrib.normals[3 * ni], attrib.normals[3 * ni + 1],
+                         attrib.normals[3 * ni + 2]};
+    if (ti >= 0) mesh.uvs[v] = {attrib.texcoords[2 * ti], attrib.texcoords[2 * ti + 1]};
+    const int m = vertexMaterial[v];
+    if (m >= 0 && std::size_t(m) < materials.size()) {
+      const auto& d = materials[m].diffuse;
+      Rgb a{float(d[0]), float(d[1]), float(d[2])};
+      if (!textures[m].empty() && ti >= 0) a *= sampleTexture(textures[m], mesh.uvs[v], true);
+      mesh.albedo[v] = a;
+    }
+  }
+  return mesh;
+}
+
+}  // namespace prt::detail

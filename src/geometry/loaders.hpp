@@ -1,0 +1,34 @@
+#pragma once
+// Internal: the per-format readers behind loadMesh. Each returns the raw mesh as the file holds
+// it (positions, normals where the file has them — a zero normal marks "none for this vertex",
+// albedo, uvs, triangles with indices already checked against the vertex count); loadMesh then
+// validates and cleans it up in one place (finishMesh).
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "prt/geometry/load.hpp"
+#include "prt/geometry/mesh.hpp"
+#include "prt/image/image.hpp"
+
+namespace prt::detail {
+
+Mesh readObj(const std::string& path, LoadReport& report);
+Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, LoadReport& report);
+Mesh readOff(const std::string& label, std::string_view text, LoadReport& report);
+Mesh readGltf(const std::string& path, LoadReport& report);
+
+/// Inflates gzip (or zlib) data; throws Error(label, ...) on corrupt or truncated input.
+std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsigned char> bytes);
+
+/// Bilinear lookup at texture coordinates (u, v) with repeat wrapping; v = 0 is the image's
+/// bottom row when `vUp` (OBJ), its top row otherwise (glTF).
+Rgb sampleTexture(const image::Image& img, Vec2f uv, bool vUp);
+
+/// "face 12 references vertex 900 (mesh has 512)" as an Error naming `label`.
+[[noreturn]] void throwBadIndex(const std::string& label, std::size_t face, long long index,
+                                std::size_t count, const char* what = "vertex");
+
+}  // namespace prt::detail
