@@ -1,0 +1,152 @@
+#pragma once
+// The brute-force Monte Carlo reference: an estimate of the same per-vertex exit radiance that
+// PRT computes, with no spherical harmonics anywhere, so that a comparison measures the SH
+// truncation and the bake's noise rather than shared mistakes.
+//
+// What is integrated. The environment is taken AS ITS TEXELS: L(ω) is the radiance of the texel
+// whose (exact) footprint on the sphere contains ω — a piecewise-constant function, the same
+// one whose texel-midpoint projection envmap::projectEnvironment computes. For an analytic
+// environment (Environment::analytic) that is its lat-long texel sampling, in which the caps
+// (the sun) are present by their covered fraction. The sampled radiance and the looked-up
+// radiance are therefore one function, as multiple importance sampling requires. With the
+// environment rotated by R (a feature at d appears at R d), L'(ω) = L(Rᵀ ω). Then
+//
+//   R(p) = ρ(p)/π ∫ L_in(p, ω) max(n·ω, 0) dω,
+//   L_in(p, ω) = L'(ω)                   if the ray (p, ω) escapes,
+//              = ρ(h)/π ∫ L_in(h, ω') max(n_h·ω', 0) dω'   at its closest hit h if h is a front
+//                                        face and bounces remain (recursively, one bounce less),
+//              = 0                       otherwise (back faces block and send nothing),
+//
+// matching transport::bake's conventions (docs/transport.md): unshadowed mode drops V; the
+// offset origin p + n·rayOffset(p); bounce albedo = BakeSettings::albedo, else the mesh's
+// per-vertex albedo interpolated at the hit, else 1; the shading normal at a hit is the
+// barycentric interpolation of the vertex normals. (The bake interpolates the *transfer* of the
+// hit triangle's vertices instead of integrating at the hit: that discretisation is part of what
+// a validation measures.)
+//
+// Estimator. Every sample combines two strategies by multiple importance sampling (Veach &
+// Guibas, "Optimally Combining Sampling Techniques for Monte Carlo Rendering", SIGGRAPH 1995):
+//  (a) the environment: a texel k drawn with probability P_k ∝ lum(L_k)·ΔΩ_k from a CDF built
+//      once (ΔΩ_k the texel's exact solid angle), then a direction within the texel uniformly in
+//      its parametrisation, so p_env(ω) = P_k · q_k(ω) with q_k the density within the texel
+//      (1/ΔΩ_k for lat-long texels, where sampling is uniform in φ and cos θ);
+//  (b) the cosine-weighted hemisphere, p_cos(ω) = max(n·ω, 0)/π.
+// One direction of each per sample, weighted by the balance heuristic w_a = p_a/(p_a + p_b) or
+// the power heuristic w_a = p_a²/(p_a² + p_b²). The cosine direction also carries the path on:
+// at a front-facing hit the estimate recurses (next-event estimation at every vertex of the
+// path). Each vertex draws independent PCG32 streams from (seed, vertex index), so results do
+// not depend on the thread count, and the per-vertex standard error
+// sqrt(sample variance / N) per channel is an honest i.i.d. error bar.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "prt/core/progress.hpp"
+#include "prt/core/sampling.hpp"
+#include "prt/core/vec.hpp"
+#include "prt/envmap/environment.hpp"
+#include "prt/geometry/mesh.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/transport/transfer.hpp"
+
+namespace prt::render {
+
+/// The environment as a piecewise-constant function over its texels, with a
+/// luminance-proportional sampling distribution over them.
+class EnvironmentSampler {
+ public:
+  explicit EnvironmentSampler(const envmap::Environment& env);
+
+  /// Radiance of the texel containing unit direction `dir` (environment frame).
+  Rgb radiance(const Vec3f& dir) const;
+  /// Density (per steradian) with which sample() produces `dir`.
+  double pdf(const Vec3f& dir) const;
+  /// Draws a direction: u0 picks the texel, (u1, u2) the point within it. Returns false for a
+  /// null sample (a probe texel point outside the disc, or an all-black environment).
+  bool sample(double u0, float u1, float u2, Vec3f& dir, double& pdf, Rgb& radiance) const;
+  /// False when the environment carries no positive luminance (nothing to sample).
+  bool canSample() const { return total_ > 0; }
+  /// Σ_k L_k ΔΩ_k max(n·ω_k, 0) over texel centres ω_k (rotated by `rotation`): the clamped
+  /// cosine integral of the piecewise-constant environment by texel quadrature, i.e. the exact
+  /// irradiance up to the curvature of the cosine within a texel.
+  Rgb irradianceQuadrature(const Vec3f& n, const Mat3d& rotation = Mat3d::identity()) const;
+
+  const envmap::Environment& environment() const { return env_; }
+
+ private:
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  std::size_t texelOf(const Vec3f& dir) const;
+  double densityWithin(std::size_t k, const Vec3f& dir) const;
+
+  envmap::Environment env_;
+  std::vector<Rgb> radiance_;
+  std::vector<Vec3f> direction_;
+  std::vector<float> solidAngle_;
+  std::vector<double> cdf_;  ///< inclusive prefix sums of P_k, cdf_.back() == 1
+  double total_ = 0;         ///< Σ lum_k ΔΩ_k
+};
+
+enum class MisHeuristic { Balance, Power };
+
+struct ReferenceSettings {
+  int samples = 1024;  ///< samples per vertex (each: one environment and one cosine direction)
+  TransferMode mode = TransferMode::Shadowed;
+  int bounces = 0;                  ///< Interreflected only
+  std::optional<Rgb> bounceAlbedo;  ///< as BakeSettings::albedo
+  std::uint64_t seed = 0;
+  Mat3d rotation = Mat3d::identity();  ///< environment rotation (a feature at d moves to R d)
+  MisHeuristic heuristic = MisHeuristic::Power;
+  /// The vertices to estimate (global indices); empty: every vertex.
+  std::vector<std::uint32_t> vertices;
+};
+
+/// One estimate: the mean and its standard error sqrt(s²/N), per channel.
+struct Estimate {
+  Rgb mean;
+  Rgb stdError;
+};
+
+struct ReferenceResult {
+  std::vector<std::uint32_t> vertices;  ///< the vertices estimated (global indices)
+  std::vector<Rgb> radiance;            ///< exit radiance R(p), one per entry of `vertices`
+  std::vector<Rgb> stdError;            ///< its standard error, per channel
+  std::uint64_t rays = 0;
+  double seconds = 0;
+};
+
+/// The path-tracing estimator over one scene, environment and settings. Thread-safe (const).
+class ReferenceIntegrator {
+ public:
+  /// `mesh` (whose triangles `occluder` was built from) and `sampler` must outlive it.
+  ReferenceIntegrator(const Mesh& mesh, const Occluder& occluder, const EnvironmentSampler& sampler,
+                      const ReferenceSettings& settings);
+
+  /// R at point p with unit normal n and albedo ρ: ρ/π ∫ L_in max(n·ω,0) dω from `samples`
+  /// samples of the random stream `seed`. `rays` (if given) is incremented by the rays cast.
+  Estimate estimate(const Vec3f& p, const Vec3f& n, const Rgb& albedo, int samples,
+                    std::uint64_t seed, std::uint64_t* rays = nullptr) const;
+
+ private:
+  Rgb incoming(const Vec3f& p, const Vec3f& n, int bouncesLeft, Pcg32& rng,
+               std::uint64_t& rays) const;
+  double misWeight(double pa, double pb) const;
+  Rgb hitAlbedo(std::uint32_t tri, float u, float v) const;
+
+  const Mesh& mesh_;
+  const Occluder& occluder_;
+  const EnvironmentSampler& sampler_;
+  ReferenceSettings settings_;
+  Mat3d rotT_;  ///< Rᵀ: world → environment frame
+};
+
+/// Per-vertex reference radiance. Vertex albedo: the mesh's, else 1 (as relight::relight with the
+/// mesh albedo). Parallel over vertices, progress per vertex; throws prt::Error on bad settings
+/// (samples < 1 or > 2^24, bounces out of 0..16, vertex index out of range) and prt::Cancelled.
+ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder,
+                                const envmap::Environment& env, const ReferenceSettings& settings,
+                                const ProgressFn& progress = {});
+
+}  // namespace prt::render

@@ -1,0 +1,42 @@
+#pragma once
+// The offline PRT image renderer: per-vertex exit radiance (relight::relight) interpolated
+// across each triangle with the hit's barycentrics, R(p) = (1−u−v) R_0 + u R_1 + v R_2 —
+// exactly what a GPU's Gouraud shading of the relit mesh shows — over the environment (or its
+// SH reconstruction, or a colour) seen through the camera, with stratified anti-aliasing
+// (primary.hpp). Tone mapping and file writing belong to the image module (image_io.hpp).
+
+#include <span>
+#include <string>
+
+#include "prt/envmap/environment.hpp"
+#include "prt/render/primary.hpp"
+#include "prt/sh/sh.hpp"
+
+namespace prt::render {
+
+/// What is seen where camera rays miss the scene.
+enum class Background { Env, Sh, None, Colour };
+/// "env" | "sh" | "none" | a colour "r,g,b" (linear) or "#rrggbb" (sRGB); throws prt::Error.
+Background parseBackground(const std::string& spec, Rgb* colour);
+
+/// The environment as seen along `dir` after rotating it by R (a feature at d appears at R d):
+/// L'(ω) = L(Rᵀ ω).
+BackgroundFn environmentBackground(const envmap::Environment& env, const Mat3d& rotation);
+/// The SH reconstruction of `light` rotated by R, clamped at zero (ringing can go negative).
+BackgroundFn shBackground(const sh::RgbSh& light, const Mat3d& rotation);
+BackgroundFn colourBackground(const Rgb& colour);
+
+/// Shades a hit by barycentric interpolation of per-vertex radiance.
+ShadeFn vertexRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance);
+
+/// Renders the relit mesh. `radiance` holds one value per mesh vertex (throws otherwise).
+image::Image renderRelit(const Mesh& mesh, const Occluder& occluder, std::span<const Rgb> radiance,
+                         const Camera& camera, const FrameSettings& settings,
+                         const BackgroundFn& background, const ProgressFn& progress = {});
+
+/// Tiles equally sized frames into a grid `columns` wide (0: about square), row by row, with a
+/// `gap`-pixel border of `gapColour` between and around them.
+image::Image contactSheet(std::span<const image::Image> frames, int columns = 0, int gap = 2,
+                          const Rgb& gapColour = Rgb(0.0f));
+
+}  // namespace prt::render
