@@ -26,6 +26,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
+#include "prt/sh/convolve.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/sh/sh_fixed.hpp"
 
@@ -161,6 +162,7 @@ struct Context {
   ShEval eval;
   std::unique_ptr<OwenSobol2D> sobol;
   Albedo albedo;
+  std::vector<double> lobe;  ///< A_l/π of the clamped cosine, l = 0..B-1
   std::atomic<std::uint64_t> rays{0};
 };
 
@@ -169,7 +171,8 @@ struct Context {
 struct Accumulator {
   std::vector<float> part;
   std::vector<double> total;
-  explicit Accumulator(std::size_t n) : part(n, 0.0f), total(n, 0.0) {}
+  std::vector<double> lobe;  ///< the vertex's unshadowed transfer (A_l/π) Y_lm(n)
+  explicit Accumulator(std::size_t n) : part(n, 0.0f), total(n, 0.0), lobe(n, 0.0) {}
   void flush() {
     for (std::size_t i = 0; i < part.size(); ++i) {
       total[i] += part[i];
@@ -182,13 +185,35 @@ struct Accumulator {
   }
 };
 
-/// Pass 0: T⁰_i(v) = (1/N) Σ w Y_i(ω) V(ω), written to out[0..B²). Returns Var(T⁰₀).
+/// Pass 0: T⁰_i(v) = (1/π) ∫ Y_i V max(n·ω,0) dω, written to out[0..B²). Returns Var(T⁰₀).
+///
+/// Cosine-Sobol' uses the unshadowed transfer as a control variate: V = 1 − (1 − V), and the
+/// unshadowed part is known in closed form, U_lm(n) = (A_l/π) Y_lm(n) (the clamped-cosine lobe,
+/// Ramamoorthi & Hanrahan 2001), so
+///   T⁰_i ≈ U_i(n) − (1/N) Σ_s Y_i(ω_s) [ω_s blocked].
+/// Unbiased (E[(1/N) Σ Y_i] = U_i), and with scrambled Sobol' points its error equals that of the
+/// plain estimator (1/N) Σ Y_i V up to the QMC error of the smooth integral (1/N) Σ Y_i ≈ U_i
+/// (≤ 1e-3 per coefficient at 1024 samples, typically far less; tests/transport). SH is then
+/// evaluated for blocked rays only, and unshadowed transfer and unoccluded vertices come out
+/// exact. Uniform random sampling keeps the course's plain
+/// estimator (1/N) Σ 4 max(n·ω,0) Y_i V.
 double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
                     std::vector<float>& y) {
   const Mesh& mesh = ctx.mesh;
   const int n = ctx.settings.samples;
+  const int nc = ctx.nc;
   const bool shadowed = ctx.settings.mode != TransferMode::Unshadowed;
+  const bool controlVariate = ctx.sobol != nullptr;
   const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
+  if (controlVariate) {
+    sh::eval(ctx.settings.bands, Vec3d(nrm), acc.lobe.data());
+    for (int l = 0; l < ctx.settings.bands; ++l)
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i) acc.lobe[i] *= ctx.lobe[l];
+    if (!shadowed) {
+      for (int i = 0; i < nc; ++i) out[i] = static_cast<float>(acc.lobe[i]);
+      return 0.0;
+    }
+  }
   const Vec3f origin = shadowed ? p + nrm * ctx.occluder.rayOffset(p) : p;
   VertexSampler sampler(ctx.settings, ctx.sobol.get(), v, 0, nrm);
 
@@ -198,8 +223,9 @@ double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
   Moments m;
   std::uint64_t cast = 0;
   acc.reset();
-  const int nc = ctx.nc;
   float* part = acc.part.data();
+  // Samples that contribute: blocked ones for the control variate, visible ones otherwise.
+  const std::uint8_t counted = controlVariate ? 1 : 0;
   for (int base = 0; base < n; base += static_cast<int>(kBatch)) {
     const int count = std::min<int>(kBatch, n - base);
     std::size_t nr = 0;
@@ -219,7 +245,7 @@ double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
       std::fill_n(blocked.begin(), nr, std::uint8_t(0));
     }
     for (std::size_t j = 0; j < nr; ++j) {
-      if (blocked[j]) continue;
+      if (blocked[j] != counted) continue;
       ctx.eval(rays[j].dir, y.data());
       const float wj = w[j];
       for (int i = 0; i < nc; ++i) part[i] += wj * y[i];
@@ -228,9 +254,10 @@ double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
     if ((base + static_cast<int>(kBatch)) % kFlushEvery == 0) acc.flush();
   }
   acc.flush();
-  for (int i = 0; i < nc; ++i) out[i] = static_cast<float>(acc.total[i] / n);
+  for (int i = 0; i < nc; ++i)
+    out[i] = static_cast<float>(controlVariate ? acc.lobe[i] - acc.total[i] / n : acc.total[i] / n);
   ctx.rays.fetch_add(cast, std::memory_order_relaxed);
-  // T⁰₀ = Y00 · mean(w V): its variance is Y00² Var(mean(w V)).
+  // T⁰₀ = Y00 · (U-part or 0 − or +) mean(w [counted]): variance Y00² Var(mean).
   return kY00 * kY00 * m.varianceOfMean(n);
 }
 
@@ -374,7 +401,9 @@ TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSetting
               settings.bands * settings.bands,
               ShEval(settings.bands),
               nullptr,
-              resolveAlbedo(mesh, settings)};
+              resolveAlbedo(mesh, settings),
+              {}};
+  for (double a : sh::clampedCosineKernel(settings.bands)) ctx.lobe.push_back(a / kPi);
   if (settings.sampling == Sampling::CosineSobol)
     ctx.sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(settings.samples));
   const int nc = ctx.nc;
