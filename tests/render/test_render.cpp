@@ -1,6 +1,6 @@
 // The offline renderer: camera framing, primary rays, anti-aliased coverage against the
 // analytic silhouette of a sphere, barycentric interpolation, determinism, a golden image with
-// an update mode (PRT_UPDATE_GOLDEN=1, see docs/testing.md), and the lit side of a relit sphere.
+// an update mode (PRT_UPDATE_GOLDEN=1, see docs/render.md), and the lit side of a relit sphere.
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,251 @@
+// prt render: relight a bake under an environment and render it to an image (CPU, Embree).
+//
+//   prt render bunny.glb --light builtin:sky --rotate 0,90,0 --size 800x600 -o bunny.png
+//   prt render bunny.glb --light studio.exr --turntable 12 --contact-sheet sheet.png -o frame.png
+//
+// The light is an environment (image, face folder or builtin:NAME), projected to the bake's
+// bands. --rotate turns the environment (X, then Y, then Z, degrees) by rotating its SH
+// coefficients; the background rotates with it.
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "cli.hpp"
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/envmap/load.hpp"
+#include "prt/envmap/project.hpp"
+#include "prt/image/image_io.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/render/camera.hpp"
+#include "prt/render/render.hpp"
+#if __has_include("prt/io/light_file.hpp")
+#include "prt/io/light_file.hpp"
+#define PRT_HAVE_LIGHT_FILE 1
+#endif
+
+namespace prt::cli {
+
+namespace {
+
+struct RenderOptions {
+  std::string bake;
+  std::string light = "builtin:sky";
+  std::string rotate;
+  std::string camera;
+  std::string size = "640x480";
+  int spp = 4;
+  float exposure = 0.0f;
+  std::string tonemap = "aces";
+  std::string mode;
+  int bands = 0;
+  std::string background = "env";
+  int turntable = 0;
+  std::string contactSheet;
+  unsigned seed = 0;
+  std::string output;
+};
+
+void parseSize(const std::string& s, int& w, int& h) {
+  char x = 0;
+  std::istringstream in(s);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof())
+    throw Error("--size '" + s + "' is not WIDTHxHEIGHT");
+  if (w <= 0 || h <= 0) throw Error("--size " + s + ": width and height must be positive");
+}
+
+Mat3d parseRotation(const std::string& s) {
+  if (s.empty()) return Mat3d::identity();
+  double a[3];
+  char c1 = 0, c2 = 0;
+  std::istringstream in(s);
+  if (!(in >> a[0] >> c1 >> a[1] >> c2 >> a[2]) || c1 != ',' || c2 != ',' ||
+      !(in >> std::ws).eof() || !std::isfinite(a[0] + a[1] + a[2]))
+    throw Error("--rotate '" + s + "' is not three angles X,Y,Z in degrees");
+  return rotationEulerXYZ(a[0], a[1], a[2]);
+}
+
+void checkOutput(const std::string& path, const char* what) {
+  const std::string ext = fileExtension(path);
+  if (ext != "png" && ext != "exr" && ext != "hdr")
+    throw Error(path + ": " + what + " must be .png, .exr or .hdr");
+  checkWritable(path);
+}
+
+// "frame.png" -> "frame_007.png".
+std::string framePath(const std::string& out, int k) {
+  const std::filesystem::path p(out);
+  const std::string name = fmt::format("{}_{:03d}{}", p.stem().string(), k, p.extension().string());
+  return (p.parent_path() / name).string();
+}
+
+const BakedTransfer& pickTransfer(const BakeFile& bake, const std::string& mode,
+                                  const std::string& file) {
+  if (bake.transfers.empty()) throw Error(file, "the bake holds no transfer");
+  if (!mode.empty()) {
+    const TransferMode m = parseTransferMode(mode);
+    if (const BakedTransfer* t = bake.find(m)) return *t;
+    std::string have;
+    for (const auto& t : bake.transfers)
+      have += std::string(have.empty() ? "" : ", ") + toString(t.settings.mode);
+    throw Error(file,
+                std::string("no ") + toString(m) + " transfer in the bake (it has " + have + ")");
+  }
+  for (TransferMode m :
+       {TransferMode::Interreflected, TransferMode::Shadowed, TransferMode::Unshadowed})
+    if (const BakedTransfer* t = bake.find(m)) return *t;
+  return bake.transfers.front();
+}
+
+void run(const RenderOptions& o) {
+  // Validate everything cheap before any work, so errors come at once and nothing is written.
+  render::FrameSettings frame;
+  parseSize(o.size, frame.width, frame.height);
+  frame.spp = o.spp;
+  frame.seed = o.seed;
+  render::checkFrameSettings(frame);
+  const Mat3d userRotation = parseRotation(o.rotate);
+  Rgb bgColour;
+  const render::Background bgKind = render::parseBackground(o.background, &bgColour);
+  image::WriteOptions write;
+  write.toneMap = image::parseToneMap(o.tonemap);
+  write.exposureStops = o.exposure;
+  if (o.turntable < 0) throw Error("--turntable must be a positive frame count");
+  checkOutput(o.output, "the output");
+  if (!o.contactSheet.empty()) {
+    if (o.turntable == 0) throw Error("--contact-sheet needs --turntable N");
+    checkOutput(o.contactSheet, "the contact sheet");
+  }
+  if (o.bands < 0 || o.bands > sh::kMaxBands)
+    throw Error(fmt::format("--bands must be 1..{}", sh::kMaxBands));
+
+  const BakeFile bake = readBake(o.bake);
+  if (!bake.complete())
+    throw Error(o.bake,
+                fmt::format("holds transfer for vertices {}..{} of {} only (merge the pieces "
+                            "with prt merge first)",
+                            bake.firstVertex, bake.firstVertex + bake.vertexCount,
+                            bake.mesh.vertexCount()));
+  const BakedTransfer& baked = pickTransfer(bake, o.mode, o.bake);
+  TransferField transfer = baked.field;
+  if (o.bands > 0 && o.bands < transfer.bands) transfer = transfer.truncated(o.bands);
+  if (o.bands > transfer.bands)
+    warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands, transfer.bands,
+                     transfer.bands));
+
+  // The light: an SH light file, or an environment projected to the transfer's bands.
+  sh::RgbSh light;
+  std::optional<envmap::Environment> env;
+  const std::string lext = fileExtension(o.light);
+  if (lext == "json" || lext == "txt") {
+#ifdef PRT_HAVE_LIGHT_FILE
+    light = readLightFile(o.light).coefficients;
+#else
+    throw Error(o.light, "SH light files are not supported by this build");
+#endif
+  } else {
+    envmap::LoadedEnvironment loaded = envmap::loadEnvironment(o.light);
+    for (std::size_t k = 0; k < loaded.stats.size(); ++k)
+      if (loaded.stats[k].nonFinitePixels + loaded.stats[k].negativePixels > 0)
+        warn(fmt::format("{}: {} non-finite and {} negative pixels set to 0", loaded.files[k],
+                         loaded.stats[k].nonFinitePixels, loaded.stats[k].negativePixels));
+    env = std::move(loaded.env);
+    light = envmap::projectEnvironment(*env, transfer.bands, progressBar("projecting"));
+  }
+
+  const auto occluder = makeEmbreeOccluder(bake.mesh);
+  render::Camera camera = render::frameMesh(bake.mesh, frame.width, frame.height);
+  if (!o.camera.empty()) camera = render::parseCamera(o.camera, camera);
+  if (render::eyeInsideMesh(bake.mesh, *occluder, camera.eye))
+    warn("the camera is inside the mesh; the image will show its inside");
+
+  render::Background kind = bgKind;
+  if (kind == render::Background::Env && !env) kind = render::Background::Sh;  // light file
+
+  const int frames = o.turntable > 0 ? o.turntable : 1;
+  std::vector<image::Image> sheet;
+  std::vector<Rgb> radiance(transfer.vertexCount);
+  bool warned = false;
+  for (int k = 0; k < frames; ++k) {
+    // Turntable: the environment turns about +Y after the user's rotation.
+    const Mat3d rotation = o.turntable > 0
+                               ? rotationAxisAngle({0, 1, 0}, 2 * kPi * k / frames) * userRotation
+                               : userRotation;
+    const relight::RelightInfo relit =
+        relight::relight(transfer, light, bake.mesh.albedo, radiance, rotation);
+    if (!warned && !relit.warning().empty()) warn(relit.warning()), warned = true;
+    render::BackgroundFn bg;
+    switch (kind) {
+      case render::Background::Env:
+        bg = render::environmentBackground(*env, rotation);
+        break;
+      case render::Background::Sh:
+        bg = render::shBackground(light, rotation);
+        break;
+      case render::Background::Colour:
+        bg = render::colourBackground(bgColour);
+        break;
+      case render::Background::None:
+        break;
+    }
+    const std::string label = frames > 1 ? fmt::format("frame {}/{}", k + 1, frames) : "rendering";
+    image::Image img =
+        render::renderRelit(bake.mesh, *occluder, radiance, camera, frame, bg, progressBar(label));
+    const std::string path = o.turntable > 0 ? framePath(o.output, k) : o.output;
+    image::writeImage(path, img, write);
+    if (!o.contactSheet.empty()) sheet.push_back(std::move(img));
+    info(fmt::format("wrote {} ({}x{}, {} spp, {} bands, {} transfer)", path, frame.width,
+                     frame.height, frame.spp, relit.bands, toString(baked.settings.mode)));
+  }
+  if (!o.contactSheet.empty()) {
+    image::writeImage(o.contactSheet, render::contactSheet(sheet), write);
+    info("wrote " + o.contactSheet);
+  }
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& root) {
+  auto opts = std::make_shared<RenderOptions>();
+  CLI::App* cmd = root.add_subcommand("render", "Relight a bake and render an image (CPU)");
+  cmd->add_option("bake", opts->bake, "Bake file (.glb)")->required();
+  cmd->add_option("--light", opts->light,
+                  "Environment image, face folder, builtin:NAME, or SH light (.json/.txt)")
+      ->capture_default_str();
+  cmd->add_option("--rotate", opts->rotate,
+                  "Rotate the environment: X,Y,Z degrees (X, then Y, then Z)");
+  cmd->add_option("--camera", opts->camera,
+                  "Camera: 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (default: frame the bounding "
+                  "sphere from above-front)");
+  cmd->add_option("--size", opts->size, "Image size WxH")->capture_default_str();
+  cmd->add_option("--spp", opts->spp, "Stratified samples per pixel")->capture_default_str();
+  cmd->add_option("--exposure", opts->exposure, "Exposure in stops (PNG)")->capture_default_str();
+  cmd->add_option("--tonemap", opts->tonemap, "Tone map for PNG: aces, reinhard, clamp")
+      ->capture_default_str();
+  cmd->add_option("--mode", opts->mode,
+                  "Transfer to use: unshadowed, shadowed, interreflected (default: the richest in "
+                  "the bake)");
+  cmd->add_option("--bands", opts->bands, "Use at most this many SH bands");
+  cmd->add_option("--background", opts->background,
+                  "What rays that miss show: env, sh (the light's SH reconstruction), none, a "
+                  "linear colour r,g,b, or #rrggbb")
+      ->capture_default_str();
+  cmd->add_option("--turntable", opts->turntable,
+                  "Render N frames with the light turning once about +Y (OUT_000.png ...)");
+  cmd->add_option("--contact-sheet", opts->contactSheet,
+                  "With --turntable: also a grid of all frames");
+  cmd->add_option("--seed", opts->seed, "Seed of the sub-pixel jitter")->capture_default_str();
+  cmd->add_option("-o,--output", opts->output,
+                  "Output image (.png tone-mapped sRGB, .exr/.hdr linear)")
+      ->required();
+  cmd->callback([opts] { run(*opts); });
+}
+
+}  // namespace prt::cli
