@@ -32,5 +32,6 @@ void addLightCommand(CLI::App& root);
 void addBakeCommand(CLI::App& root);
 void addExportCommand(CLI::App& root);
 void addInfoCommand(CLI::App& root);
+void addRenderCommand(CLI::App& root);
 
 }  // namespace prt::cli

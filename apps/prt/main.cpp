@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
   addBakeCommand(app);
   addExportCommand(app);
   addInfoCommand(app);
+  addRenderCommand(app);
 
   std::signal(SIGINT, onSigint);
   std::unique_ptr<prt::ThreadLimit> limit;
