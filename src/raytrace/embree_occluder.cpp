@@ -10,8 +10,8 @@
 //
 // Memory: Embree keeps its own copy of the vertices (12 bytes each, plus 4 bytes of padding at
 // the end) and triangle indices (12 bytes each), so the Mesh may be destroyed after
-// construction; on top of that the BVH (about 60–90 bytes per triangle at high build quality,
-// see docs/perf/raytrace.md and memoryBytes()).
+// construction; on top of that the BVH. memoryBytes() reports what Embree holds after the build
+// (measured through its memory monitor; see docs/perf/raytrace.md for bytes per triangle).
 
 #include <embree3/rtcore.h>
 
@@ -133,7 +133,12 @@ class EmbreeOccluder final : public Occluder {
     return kOffsetScale * m;
   }
 
-  std::size_t memoryBytes() const override { return peakBytes_.load(); }
+  std::size_t memoryBytes() const override {
+    const std::int64_t b = bytes_.load();
+    return b > 0 ? std::size_t(b) : 0;
+  }
+  /// The peak during the build (temporary build memory included).
+  std::size_t peakBytes() const { return peakBytes_.load(); }
 
  private:
   static RTCRay toRtc(const Ray& ray) {
