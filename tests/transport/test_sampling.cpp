@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -93,6 +94,22 @@ TEST(Owen, ScrambledPointIsUniformOverSeeds) {
   }
   EXPECT_LT(cx, 37.7);
   EXPECT_LT(cy, 37.7);
+}
+
+TEST(Directions, SinCos2PiMatchesLibm) {
+  double worst = 0;
+  for (int i = 0; i < (1 << 20); ++i) {
+    const float u = float(i) * 0x1p-20f;
+    float s, c;
+    sinCos2Pi(u, s, c);
+    worst = std::max(
+        {worst, std::abs(s - std::sin(2 * kPi * u)), std::abs(c - std::cos(2 * kPi * u))});
+  }
+  EXPECT_LT(worst, 4e-7);
+  float s, c;
+  sinCos2Pi(0.25f, s, c);
+  EXPECT_NEAR(s, 1.0f, 1e-7f);
+  EXPECT_NEAR(c, 0.0f, 1e-7f);
 }
 
 TEST(Directions, CosineHemisphereMomentsMatchAnalytic) {
