@@ -12,8 +12,8 @@
 #include <embree3/rtcore.h>
 
 #include <cmath>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <random>
@@ -56,11 +56,11 @@ void prepare(const std::string& name, const std::string& input) {
   rtcSetSceneBuildQuality(d->scene, RTC_BUILD_QUALITY_HIGH);
   RTCGeometry g = rtcNewGeometry(d->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        12, d->mesh.vertexCount()));
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, d->mesh.vertexCount()));
   std::memcpy(v, d->mesh.positions.data(), 12 * d->mesh.vertexCount());
-  auto* ix = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                            12, d->mesh.triangleCount()));
+  auto* ix = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, d->mesh.triangleCount()));
   std::memcpy(ix, d->mesh.triangles.data(), 12 * d->mesh.triangleCount());
   rtcCommitGeometry(g);
   rtcAttachGeometry(d->scene, g);
@@ -78,7 +78,8 @@ void prepare(const std::string& name, const std::string& input) {
     orthonormalBasis(n, t, b);
     const float r = std::sqrt(u(rng)), phi = 2 * kPif * u(rng);
     const float z = std::sqrt(std::max(0.0f, 1 - r * r));
-    d->rays[k] = Ray{p + n * d->occ->rayOffset(p), normalize(t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * z)};
+    d->rays[k] = Ray{p + n * d->occ->rayOffset(p),
+                     normalize(t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * z)};
   }
   scenes().push_back(std::move(d));
 }
@@ -131,7 +132,8 @@ std::size_t trace(const SceneData& d, Mode mode, std::size_t b, std::size_t e) {
           // packets of 8, pass it through a RTCRay8 view built the same way.
           p.org_x[j] = r.origin.x, p.org_y[j] = r.origin.y, p.org_z[j] = r.origin.z;
           p.dir_x[j] = r.dir.x, p.dir_y[j] = r.dir.y, p.dir_z[j] = r.dir.z;
-          p.tnear[j] = r.tnear, p.tfar[j] = r.tfar, p.time[j] = 0, p.mask[j] = ~0u, p.id[j] = 0, p.flags[j] = 0;
+          p.tnear[j] = r.tnear, p.tfar[j] = r.tfar, p.time[j] = 0, p.mask[j] = ~0u, p.id[j] = 0,
+          p.flags[j] = 0;
         }
         if (w == 16) {
           rtcOccluded16(valid, d.scene, &ctx, &p);
@@ -157,7 +159,8 @@ std::size_t trace(const SceneData& d, Mode mode, std::size_t b, std::size_t e) {
       std::uint8_t out[256];
       for (std::size_t k = b; k < e; k += 256) {
         const std::size_t m = std::min<std::size_t>(256, e - k);
-        d.occ->occluded(std::span<const Ray>(d.rays).subspan(k, m), std::span<std::uint8_t>(out, m));
+        d.occ->occluded(std::span<const Ray>(d.rays).subspan(k, m),
+                        std::span<std::uint8_t>(out, m));
         for (std::size_t j = 0; j < m; ++j) hits += out[j];
       }
       break;
@@ -174,15 +177,17 @@ void BM_Occlusion(benchmark::State& state) {
   for (auto _ : state) {
     if (threaded) {
       hits = parallelReduce<std::size_t>(
-          d.rays.size(), 4096, 0, [&](std::size_t b, std::size_t e, std::size_t& acc) { acc += trace(d, mode, b, e); },
+          d.rays.size(), 4096, 0,
+          [&](std::size_t b, std::size_t e, std::size_t& acc) { acc += trace(d, mode, b, e); },
           [](std::size_t& a, std::size_t x) { a += x; });
     } else {
       hits = trace(d, mode, 0, d.rays.size());
     }
     benchmark::DoNotOptimize(hits);
   }
-  static const char* names[] = {"rtcOccluded1", "rtcOccluded1M", "rtcOccluded8", "rtcOccluded16",
-                                "Occluder::occluded(ray)", "Occluder::occluded(span)"};
+  static const char* names[] = {
+      "rtcOccluded1",  "rtcOccluded1M",           "rtcOccluded8",
+      "rtcOccluded16", "Occluder::occluded(ray)", "Occluder::occluded(span)"};
   state.SetLabel(d.name + " " + names[mode] + (threaded ? " all-threads" : " 1-thread"));
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(d.rays.size()));
   state.counters["occluded"] = double(hits) / double(d.rays.size());
@@ -197,7 +202,9 @@ int main(int argc, char** argv) {
   if (std::filesystem::exists(kBunny))
     prepare("bunny", kBunny);
   else
-    std::fprintf(stderr, "bench_raytrace: %s not found (apt install glmark2-data); skipping the bunny\n", kBunny);
+    std::fprintf(stderr,
+                 "bench_raytrace: %s not found (apt install glmark2-data); skipping the bunny\n",
+                 kBunny);
   for (int s = 0; s < int(scenes().size()); ++s)
     for (int mode = 0; mode <= kPrtBatched; ++mode)
       for (int threaded = 0; threaded <= 1; ++threaded)
