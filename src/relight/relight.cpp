@@ -54,11 +54,15 @@ PreparedLight prepareLight(const sh::RgbSh& light, int transferBands, const sh::
   }
   PreparedLight p;
   p.bands = bands;
-  p.splat.resize(static_cast<std::size_t>(n) * 12);
+  const int pad = (n + 3) & ~3;
+  // Scalar layouts, one after the other: three planes, then each value splatted four times.
+  p.planar.assign(static_cast<std::size_t>(pad) * 3 + static_cast<std::size_t>(n) * 12, 0.0f);
+  float* splat = p.planar.data() + 3 * pad;
   p.interleaved.resize(static_cast<std::size_t>(n) * 3);
   for (int i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
-      for (int k = 0; k < 4; ++k) p.splat[12 * i + 4 * c + k] = coeffs[i][c];
+      p.planar[c * pad + i] = coeffs[i][c];
+      for (int k = 0; k < 4; ++k) splat[12 * i + 4 * c + k] = coeffs[i][c];
       p.interleaved[3 * i + c] = coeffs[i][c];
     }
   }
@@ -74,32 +78,35 @@ struct Albedo {
   Rgb at(std::size_t v) const { return perVertex ? perVertex[v] : uniform; }
 };
 
-// Scalar transfer, one vertex at a time (portable; also the last 0..3 vertices of a range).
-// `splat` holds B² × 3 × 4 floats: L_i,c repeated four times at splat[12 i + 4 c ..].
+// Scalar transfer. `planar` holds the light as three planes (r, g, b) of `pad` floats each
+// (pad = B² rounded up to a multiple of 4, zero-filled), so plane c starts at planar + c·pad.
+//
+// Portable form, one vertex at a time (also the last vertices of a range on SSE machines).
 template <int N>
-void scalarOne(const float* transfer, std::size_t stride, const float* splat, int n,
+void scalarOne(const float* transfer, std::size_t stride, const float* planar, int n,
                const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
   const int count = N > 0 ? N : n;
+  const int pad = (count + 3) & ~3;
   for (std::size_t v = begin; v < end; ++v) {
     const float* t = transfer + v * stride;
     float acc[3] = {0.0f, 0.0f, 0.0f};
-    for (int i = 0; i < count; ++i)
-      for (int c = 0; c < 3; ++c) acc[c] += t[i] * splat[12 * i + 4 * c];
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < count; ++i) acc[c] += t[i] * planar[c * pad + i];
     const Rgb a = albedo.at(v);
     out[v] = Rgb(acc[0] * a.x, acc[1] * a.y, acc[2] * a.z);
   }
 }
 
 #if defined(__SSE2__)
-// Scalar transfer, fast path: four vertices at a time in structure-of-arrays form. Each group
-// of four coefficients of the four vertices (a 4×4 block of the transfer array) is transposed in
-// registers (8 shuffles), after which coefficient i of all four vertices sits in one register and
-// is multiplied by the broadcast light L_i,c (pre-splatted in `splat`) into three independent
+// Scalar transfer, fast path for B ≤ 5: four vertices at a time in structure-of-arrays form. Each
+// group of four coefficients of the four vertices (a 4×4 block of the transfer array) is transposed
+// in registers (8 shuffles), after which coefficient i of all four vertices sits in one register
+// and is multiplied by the broadcast light L_i,c (pre-splatted in `splat`) into three independent
 // accumulators (r, g, b of four vertices): ~1.5 arithmetic ops per transfer float. (The naive
 // per-vertex form is one dependent chain of N adds per vertex, latency-bound at ~4x slower.)
 template <int N>
-void scalarBlock(const float* transfer, std::size_t stride, const float* splat, int n,
-                 const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
+void scalarBlock4(const float* transfer, std::size_t stride, const float* splat, int n,
+                  const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
   const int count = N > 0 ? N : n;
   const int groups = count / 4;
   std::size_t v = begin;
@@ -135,13 +142,62 @@ void scalarBlock(const float* transfer, std::size_t stride, const float* splat, 
       out[v + k] = Rgb(rs[k] * a.x, gs[k] * a.y, bs[k] * a.z);
     }
   }
-  scalarOne<N>(transfer, stride, splat, n, albedo, out, v, end);  // the last 0..3 vertices
+  for (; v < end; ++v) {  // the last 0..3 vertices
+    const float* t = transfer + v * stride;
+    float acc[3] = {0.0f, 0.0f, 0.0f};
+    for (int i = 0; i < count; ++i)
+      for (int c = 0; c < 3; ++c) acc[c] += t[i] * splat[12 * i + 4 * c];
+    const Rgb a = albedo.at(v);
+    out[v] = Rgb(acc[0] * a.x, acc[1] * a.y, acc[2] * a.z);
+  }
+}
+// (At B ≤ 5 the four-vertex form wins: no per-vertex horizontal sum. At larger B its
+// loop-invariant light registers no longer fit, GCC spills them and the per-vertex form below
+// is ~3x faster; see docs/perf/relight.md.)
+// Fast path: the vertex's coefficients four at a time against the three light planes (aligned,
+// so the light loads fold into the multiplies): 1 load, 3 multiplies and 3 adds per 4 transfer
+// floats, no shuffles in the loop. The three accumulators are reduced once per vertex with one
+// 4×4 transpose; the 0..3 coefficients past the last multiple of 4 are added in scalar code.
+// Successive vertices are independent, so out-of-order execution overlaps their add chains.
+// (A per-coefficient broadcast form is one dependent chain of B² adds per vertex and ran ~4x
+// slower; a 4-vertex transposed form needed ~4.4 instructions per float against ~2 here.)
+template <int N>
+void scalarBlock(const float* transfer, std::size_t stride, const float* planar, int n,
+                 const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
+  const int count = N > 0 ? N : n;
+  const int pad = (count + 3) & ~3;
+  const int groups = count / 4;
+  const float* lr = planar;
+  const float* lg = planar + pad;
+  const float* lb = planar + 2 * pad;
+  for (std::size_t v = begin; v < end; ++v) {
+    const float* t = transfer + v * stride;
+    __m128 r = _mm_setzero_ps(), g = r, b = r;
+#pragma GCC unroll 32
+    for (int q = 0; q < groups; ++q) {
+      const __m128 x = _mm_loadu_ps(t + 4 * q);
+      r = _mm_add_ps(r, _mm_mul_ps(x, _mm_load_ps(lr + 4 * q)));
+      g = _mm_add_ps(g, _mm_mul_ps(x, _mm_load_ps(lg + 4 * q)));
+      b = _mm_add_ps(b, _mm_mul_ps(x, _mm_load_ps(lb + 4 * q)));
+    }
+    __m128 z = _mm_setzero_ps();
+    _MM_TRANSPOSE4_PS(r, g, b, z);
+    alignas(16) float s[4];
+    _mm_store_ps(s, _mm_add_ps(_mm_add_ps(r, g), _mm_add_ps(b, z)));  // (Σr, Σg, Σb, 0)
+    for (int i = 4 * groups; i < count; ++i) {
+      s[0] += t[i] * lr[i];
+      s[1] += t[i] * lg[i];
+      s[2] += t[i] * lb[i];
+    }
+    const Rgb a = albedo.at(v);
+    out[v] = Rgb(s[0] * a.x, s[1] * a.y, s[2] * a.z);
+  }
 }
 #else
 template <int N>
-void scalarBlock(const float* transfer, std::size_t stride, const float* splat, int n,
+void scalarBlock(const float* transfer, std::size_t stride, const float* planar, int n,
                  const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
-  scalarOne<N>(transfer, stride, splat, n, albedo, out, begin, end);
+  scalarOne<N>(transfer, stride, planar, n, albedo, out, begin, end);
 }
 #endif
 
@@ -172,12 +228,32 @@ void rgbRange(const float* transfer, std::size_t stride, const float* light3, in
 using RangeFn = void (*)(const float*, std::size_t, const float*, int, const Albedo&, Rgb*,
                          std::size_t, std::size_t);
 
+#if defined(__SSE2__)
+// Scalar kernels take both light layouts through one pointer: planar first, then splat.
+template <int N>
+void scalarKernel(const float* transfer, std::size_t stride, const float* light, int n,
+                  const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
+  const int count = N > 0 ? N : n;
+  const float* splat = light + 3 * ((count + 3) & ~3);
+  if (N > 0 && N <= 25)
+    scalarBlock4<N>(transfer, stride, splat, n, albedo, out, begin, end);
+  else
+    scalarBlock<N>(transfer, stride, light, n, albedo, out, begin, end);
+}
+#else
+template <int N>
+void scalarKernel(const float* transfer, std::size_t stride, const float* light, int n,
+                  const Albedo& albedo, Rgb* out, std::size_t begin, std::size_t end) {
+  scalarBlock<N>(transfer, stride, light, n, albedo, out, begin, end);
+}
+#endif
+
 template <int B>
 RangeFn pick(int bands, bool rgb) {
   if constexpr (B == 0) {
-    return rgb ? &rgbRange<0> : &scalarBlock<0>;
+    return rgb ? &rgbRange<0> : &scalarKernel<0>;
   } else {
-    if (bands == B) return rgb ? &rgbRange<B * B> : &scalarBlock<B * B>;
+    if (bands == B) return rgb ? &rgbRange<B * B> : &scalarKernel<B * B>;
     return pick<B - 1>(bands, rgb);
   }
 }
@@ -210,7 +286,7 @@ void relight(const TransferField& transfer, const PreparedLight& light, std::spa
   }
   const bool rgb = transfer.channels == 3;
   const RangeFn fn = pick<10>(light.bands, rgb);
-  const float* lightData = rgb ? light.interleaved.data() : light.splat.data();
+  const float* lightData = rgb ? light.interleaved.data() : light.planar.data();
   const int n = light.bands * light.bands;
   const std::size_t stride = transfer.stride();
   const float* t = transfer.data.data();

@@ -43,7 +43,9 @@ struct RelightInfo {
 /// Lighting laid out for the relighting kernels: rotated, cut to `bands`, in two layouts.
 struct PreparedLight {
   int bands = 0;
-  std::vector<float> splat;        ///< B² × 3 × 4: L_i,c four times at [12 i + 4 c] (scalar)
+  /// Scalar-transfer layouts: 3 planes (r, g, b) of B² floats padded to a multiple of 4 (P),
+  /// then B² × 3 × 4 floats with L_i,c four times at P + 12 i + 4 c.
+  std::vector<float> planar;
   std::vector<float> interleaved;  ///< B² × 3: (r, g, b) per coefficient (RGB transfer)
 };
 
