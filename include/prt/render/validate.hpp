@@ -1,0 +1,69 @@
+#pragma once
+// Validation of a bake against the Monte Carlo reference (reference.hpp): per band count b, the
+// PRT radiance R_b(p) = ρ(p) ⊙ T_b(p)·L_b (the first b² coefficients of one bake and of the
+// light: TransferField::truncated) against the reference R_ref(p), over a set of vertices.
+//
+// Per vertex, with channels c and ε = 10⁻² · (mean reference value)² (scale-free, so dark
+// vertices do not dominate; cf. Rousselle et al. 2011's relMSE):
+//   e(p) = sqrt( Σ_c (R_b,c − R_ref,c)² / Σ_c (R_ref,c² + ε) )           (relative error)
+// Columns of the table (one row per b):
+//   rel RMSE         render::relativeRmse over all vertices and channels (the same ε)
+//   mean / max       mean and maximum of e(p)
+//   truncation floor relative RMSE, over the same vertices, of the clamped-cosine irradiance of
+//                    the b-band light (Λ_l L_lm, Ramamoorthi & Hanrahan 2001) against the
+//                    irradiance of the environment by quadrature over its texels — the error a
+//                    perfect unshadowed transfer would still have at b bands
+//   ref std err      mean over vertices of the reference's relative standard error
+//                    sqrt(Σ_c se_c²) / sqrt(Σ_c (R_ref,c² + ε))
+// A PRT error near the floor is SH truncation; one near the reference's standard error is below
+// what this comparison can resolve.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "prt/render/reference.hpp"
+#include "prt/sh/sh.hpp"
+#include "prt/transport/bake.hpp"
+
+namespace prt::render {
+
+struct ValidateSettings {
+  ReferenceSettings reference;  ///< samples, seed, rotation, heuristic (mode/bounces: the bake's)
+  std::vector<int> bandsList;   ///< band counts to tabulate; empty: 1..B
+  std::size_t maxVertices = 0;  ///< 0: every vertex; else a deterministic random subset
+};
+
+struct BandRow {
+  int bands = 0;
+  double relRmse = 0, meanRel = 0, maxRel = 0, floor = 0, refStdErr = 0;
+};
+
+struct ValidationReport {
+  TransferMode mode = TransferMode::Shadowed;
+  int bounces = 0;
+  int transferBands = 0, lightBands = 0, bands = 0;  ///< bands = min(transfer, light)
+  std::vector<std::string> warnings;
+  ReferenceResult reference;       ///< over the validated vertices
+  std::vector<BandRow> rows;       ///< one per band count, ascending
+  std::vector<float> vertexError;  ///< e(p) at the last row's band count, per validated vertex
+};
+
+/// A deterministic random subset of `count` of [0, n) (all when count is 0 or ≥ n), sorted.
+std::vector<std::uint32_t> vertexSubset(std::size_t n, std::size_t count, std::uint64_t seed);
+
+/// Validates `transfer` (every vertex of `mesh`, baked with `bake` settings) lit by `light` (the
+/// projection of `env`) against the reference. Band counts beyond min(transfer, light) are
+/// dropped with a warning. Throws prt::Error on mismatched sizes or bad settings.
+ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const TransferField& transfer,
+                          const BakeSettings& bake, const envmap::Environment& env,
+                          const sh::RgbSh& light, const ValidateSettings& settings,
+                          const ProgressFn& progress = {});
+
+/// The table as text: a header and one line per band count.
+std::string formatTable(const ValidationReport& report);
+/// The report as JSON (settings, rows, timing).
+std::string reportJson(const ValidationReport& report, int indent = 2);
+
+}  // namespace prt::render

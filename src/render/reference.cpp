@@ -1,0 +1,377 @@
+#include "prt/render/reference.hpp"
+
+// Brute-force Monte Carlo reference for PRT (see the header for the integral and the
+// estimator). Multiple importance sampling: Veach & Guibas, SIGGRAPH 1995; Veach's thesis
+// (1997) §9.2 for the balance and power heuristics.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "prt/core/error.hpp"
+#include "prt/core/parallel.hpp"
+#include "prt/envmap/layout.hpp"
+#include "prt/image/color.hpp"
+
+namespace prt::render {
+
+using envmap::Environment;
+
+// ---------------------------------------------------------------------------------------------
+// EnvironmentSampler
+
+EnvironmentSampler::EnvironmentSampler(const Environment& env) : env_(env) {
+  const std::size_t n = env.texelCount();
+  if (n == 0) throw Error("environment has no texels");
+  radiance_.resize(n);
+  direction_.resize(n);
+  solidAngle_.resize(n);
+  cdf_.resize(n);
+  double sum = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const envmap::Texel t = env.texel(k);
+    radiance_[k] = t.radiance;
+    direction_[k] = t.direction;
+    solidAngle_[k] = t.solidAngle;
+    const double w = std::max(0.0f, image::luminance(t.radiance)) * env.texelSolidAngle(k);
+    sum += std::isfinite(w) ? w : 0.0;
+    cdf_[k] = sum;
+  }
+  total_ = sum;
+  if (total_ > 0)
+    for (double& c : cdf_) c /= total_;
+}
+
+std::size_t EnvironmentSampler::texelOf(const Vec3f& dir) const {
+  const auto& imgs = env_.images();
+  switch (env_.kind()) {
+    case Environment::Kind::LatLong:
+    case Environment::Kind::Analytic: {
+      const int w = imgs[0].width, h = imgs[0].height;
+      float px, py;
+      envmap::latLongPixel(dir, w, h, px, py);
+      const int x = std::clamp(static_cast<int>(std::floor(px)), 0, w - 1);
+      const int y = std::clamp(static_cast<int>(std::floor(py)), 0, h - 1);
+      return static_cast<std::size_t>(y) * w + x;
+    }
+    case Environment::Kind::Cube: {
+      const int n = imgs[0].width;
+      float s, t;
+      const int face = envmap::cubeFaceCoords(dir, s, t);
+      const int x = std::clamp(static_cast<int>(std::floor((s + 1) * 0.5f * n)), 0, n - 1);
+      const int y = std::clamp(static_cast<int>(std::floor((t + 1) * 0.5f * n)), 0, n - 1);
+      return static_cast<std::size_t>(face) * n * n + static_cast<std::size_t>(y) * n + x;
+    }
+    case Environment::Kind::Probe: {
+      // Inverse of the angular map (layout.hpp): r = angle to −Z / π, (a, b) = r (x, y)/|(x, y)|.
+      const int w = imgs[0].width, h = imgs[0].height;
+      const double len = length(Vec3d(dir));
+      const double dx = dir.x / len, dy = dir.y / len, dz = dir.z / len;
+      const double rho = std::sqrt(dx * dx + dy * dy);
+      const double r = std::acos(std::clamp(-dz, -1.0, 1.0)) / kPi;
+      const double a = rho > 0 ? dx * r / rho : 0, b = rho > 0 ? dy * r / rho : 0;
+      const int x = std::clamp(static_cast<int>(std::floor((a + 1) * 0.5 * w)), 0, w - 1);
+      const int y = std::clamp(static_cast<int>(std::floor((1 - b) * 0.5 * h)), 0, h - 1);
+      return static_cast<std::size_t>(y) * w + x;
+    }
+  }
+  return npos;
+}
+
+// Density (per steradian) of a point drawn uniformly in texel k's parametrisation:
+//  * lat-long: uniform in φ and in cos θ, which is uniform in solid angle: 1/ΔΩ_k;
+//  * cube: uniform in (s, t) over a texel of area (2/N)²; at unit distance the face point
+//    (s, t) subtends dω = dA / (1 + s² + t²)^{3/2}, so q = (1 + s² + t²)^{3/2} / (2/N)²;
+//  * probe: uniform in (a, b) over a texel of area (2/W)(2/H); dω = π sin(πr)/r dA, so
+//    q = r / (π sin(πr)) / ((2/W)(2/H)).
+double EnvironmentSampler::densityWithin(std::size_t k, const Vec3f& dir) const {
+  const auto& imgs = env_.images();
+  switch (env_.kind()) {
+    case Environment::Kind::LatLong:
+    case Environment::Kind::Analytic:
+      return 1.0 / env_.texelSolidAngle(k);
+    case Environment::Kind::Cube: {
+      const double n = imgs[0].width;
+      float s, t;
+      envmap::cubeFaceCoords(dir, s, t);
+      const double q = 1.0 + double(s) * s + double(t) * t;
+      return q * std::sqrt(q) * (n * n / 4.0);
+    }
+    case Environment::Kind::Probe: {
+      const double w = imgs[0].width, h = imgs[0].height;
+      const double len = length(Vec3d(dir));
+      const double r = std::acos(std::clamp(-double(dir.z) / len, -1.0, 1.0)) / kPi;
+      const double sinPr = std::sin(kPi * r);
+      const double jac = r < 1e-6 ? 1.0 / (kPi * kPi) : (sinPr > 0 ? r / (kPi * sinPr) : 0.0);
+      return jac * (w * h / 4.0);
+    }
+  }
+  return 0;
+}
+
+Rgb EnvironmentSampler::radiance(const Vec3f& dir) const {
+  const std::size_t k = texelOf(dir);
+  return k == npos ? Rgb(0.0f) : radiance_[k];
+}
+
+double EnvironmentSampler::pdf(const Vec3f& dir) const {
+  if (total_ <= 0) return 0;
+  const std::size_t k = texelOf(dir);
+  if (k == npos) return 0;
+  const double pk = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0);
+  return pk > 0 ? pk * densityWithin(k, dir) : 0.0;
+}
+
+bool EnvironmentSampler::sample(double u0, float u1, float u2, Vec3f& dir, double& pdf,
+                                Rgb& radiance) const {
+  if (total_ <= 0) return false;
+  // First k with cdf_[k] > u0 (texels of zero probability are never chosen).
+  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u0);
+  const std::size_t k = std::min(static_cast<std::size_t>(it - cdf_.begin()), cdf_.size() - 1);
+  const auto& imgs = env_.images();
+  switch (env_.kind()) {
+    case Environment::Kind::LatLong:
+    case Environment::Kind::Analytic: {
+      const int w = imgs[0].width, h = imgs[0].height;
+      const std::size_t y = k / w, x = k % w;
+      const double phi = 2 * kPi * ((x + double(u1)) / w - 0.5);
+      const double c0 = std::cos(kPi * y / h), c1 = std::cos(kPi * (y + 1) / h);
+      const double ct = c0 + (c1 - c0) * u2, st = std::sqrt(std::max(0.0, 1 - ct * ct));
+      dir = Vec3f(Vec3d(st * std::cos(phi), ct, st * std::sin(phi)));
+      break;
+    }
+    case Environment::Kind::Cube: {
+      const int n = imgs[0].width;
+      const int face = static_cast<int>(k / (static_cast<std::size_t>(n) * n));
+      const std::size_t r = k % (static_cast<std::size_t>(n) * n);
+      const double s = 2.0 * (r % n + double(u1)) / n - 1, t = 2.0 * (r / n + double(u2)) / n - 1;
+      dir = Vec3f(normalize(envmap::cubeFaceDirection(face, s, t)));
+      break;
+    }
+    case Environment::Kind::Probe: {
+      const int w = imgs[0].width, h = imgs[0].height;
+      const double a = 2.0 * (k % w + double(u1)) / w - 1, b = 1 - 2.0 * (k / w + double(u2)) / h;
+      bool inside = false;
+      const Vec3d d = envmap::probeDirection(a, b, &inside);
+      if (!inside) return false;
+      dir = Vec3f(normalize(d));
+      break;
+    }
+  }
+  // The point may fall in a neighbour by rounding: evaluate pdf and radiance where it landed,
+  // so sample and lookup stay one function.
+  const std::size_t at = texelOf(dir);
+  radiance = radiance_[at];
+  const double pk = cdf_[at] - (at > 0 ? cdf_[at - 1] : 0.0);
+  pdf = pk * densityWithin(at, dir);
+  return pdf > 0;
+}
+
+Rgb EnvironmentSampler::irradianceQuadrature(const Vec3f& n, const Mat3d& rotation) const {
+  // n · (R ω) = (Rᵀ n) · ω.
+  const Vec3f m = Vec3f(rotation.transposed() * Vec3d(n));
+  double r = 0, g = 0, b = 0;
+  for (std::size_t k = 0; k < radiance_.size(); ++k) {
+    const float c = dot(m, direction_[k]);
+    if (c <= 0) continue;
+    const double w = double(c) * solidAngle_[k];
+    r += w * radiance_[k].x;
+    g += w * radiance_[k].y;
+    b += w * radiance_[k].z;
+  }
+  return Rgb(Vec3d(r, g, b));
+}
+
+// ---------------------------------------------------------------------------------------------
+// ReferenceIntegrator
+
+ReferenceIntegrator::ReferenceIntegrator(const Mesh& mesh, const Occluder& occluder,
+                                         const EnvironmentSampler& sampler,
+                                         const ReferenceSettings& settings)
+    : mesh_(mesh),
+      occluder_(occluder),
+      sampler_(sampler),
+      settings_(settings),
+      rotT_(settings.rotation.transposed()) {
+  settings_.vertices.clear();
+}
+
+double ReferenceIntegrator::misWeight(double pa, double pb) const {
+  if (settings_.heuristic == MisHeuristic::Balance) return pa / (pa + pb);
+  return pa * pa / (pa * pa + pb * pb);
+}
+
+Rgb ReferenceIntegrator::hitAlbedo(std::uint32_t tri, float u, float v) const {
+  if (settings_.bounceAlbedo) return *settings_.bounceAlbedo;
+  if (!mesh_.hasAlbedo()) return Rgb(1.0f);
+  const auto& t = mesh_.triangles[tri];
+  return mesh_.albedo[t[0]] * (1.0f - u - v) + mesh_.albedo[t[1]] * u + mesh_.albedo[t[2]] * v;
+}
+
+namespace {
+
+/// A double in [0, 1) from 53 random bits, so texels of tiny probability are reachable.
+double uniform53(Pcg32& rng) {
+  const std::uint64_t hi = rng.next() >> 5, lo = rng.next() >> 6;  // 27 + 26 bits
+  return double((hi << 26) | lo) * 0x1p-53;
+}
+
+}  // namespace
+
+// One sample of (1/π) ∫ L_in(p, ω) max(n·ω, 0) dω: one environment direction and one cosine
+// direction, MIS-weighted; the cosine direction continues the path at a front-facing hit.
+//   environment sample ω_e ~ p_env:  w_e(ω_e) · L(ω_e) V(ω_e) (n·ω_e)/π / p_env(ω_e)
+//   cosine sample ω_c ~ cos/π:       w_c(ω_c) · L(ω_c) V(ω_c)            (f cos / p_cos = 1)
+//                                    + ρ(h) ⊙ L_in-estimate at h        (if ω_c hits a front face)
+// The emitted term is counted only once, by the two MIS-weighted strategies; the reflected term
+// by the cosine strategy alone (weight 1), as the environment strategy cannot reach surfaces.
+Rgb ReferenceIntegrator::incoming(const Vec3f& p, const Vec3f& n, int bouncesLeft, Pcg32& rng,
+                                  std::uint64_t& rays) const {
+  const bool shadowed = settings_.mode != TransferMode::Unshadowed;
+  const Vec3f origin = shadowed ? p + n * occluder_.rayOffset(p) : p;
+  const float inf = std::numeric_limits<float>::infinity();
+  Rgb result(0.0f);
+
+  // (a) Environment sample.
+  {
+    const double u0 = uniform53(rng);
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    Vec3f d;
+    double pe;
+    Rgb le;
+    if (sampler_.sample(u0, u1, u2, d, pe, le)) {
+      const Vec3f w = Vec3f(settings_.rotation * Vec3d(d));
+      const double c = dot(n, w);
+      if (c > 0) {
+        bool blocked = false;
+        if (shadowed) {
+          ++rays;
+          blocked = occluder_.occluded(Ray{origin, w, 0.0f, inf});
+        }
+        if (!blocked) {
+          const double pc = c / kPi;
+          const double f = misWeight(pe, pc) * (c / kPi) / pe;
+          result += le * static_cast<float>(f);
+        }
+      }
+    }
+  }
+
+  // (b) Cosine sample.
+  {
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    Vec3f t, b;
+    orthonormalBasis(n, t, b);
+    const Vec3f l = cosineHemisphere(u1, u2);
+    const Vec3f w = normalize(t * l.x + b * l.y + n * l.z);
+    const double c = dot(n, w);
+    if (c > 0) {
+      Hit h;
+      if (shadowed) {
+        ++rays;
+        h = occluder_.intersect(Ray{origin, w, 0.0f, inf});
+      }
+      if (!h.hit) {
+        const Vec3f de = Vec3f(rotT_ * Vec3d(w));
+        const double pe = sampler_.pdf(de);
+        result += sampler_.radiance(de) * static_cast<float>(misWeight(c / kPi, pe));
+      } else if (bouncesLeft > 0) {
+        const auto& tri = mesh_.triangles[h.triangle];
+        const Vec3f p0 = mesh_.positions[tri[0]], p1 = mesh_.positions[tri[1]],
+                    p2 = mesh_.positions[tri[2]];
+        const Vec3f ng = cross(p1 - p0, p2 - p0);
+        if (dot(ng, w) < 0.0f) {  // front face: it reflects toward p
+          const float b0 = 1.0f - h.u - h.v;
+          const Vec3f q = p0 * b0 + p1 * h.u + p2 * h.v;
+          Vec3f nq = mesh_.normals[tri[0]] * b0 + mesh_.normals[tri[1]] * h.u +
+                     mesh_.normals[tri[2]] * h.v;
+          const float len = length(nq);
+          nq = len > 0 ? nq / len : normalize(ng);
+          const Rgb rho = hitAlbedo(h.triangle, h.u, h.v);
+          if (rho.x > 0 || rho.y > 0 || rho.z > 0)
+            result += rho * incoming(q, nq, bouncesLeft - 1, rng, rays);
+        }
+      }
+    }
+  }
+  return result;
+}
+
+Estimate ReferenceIntegrator::estimate(const Vec3f& p, const Vec3f& n, const Rgb& albedo,
+                                       int samples, std::uint64_t seed, std::uint64_t* rays) const {
+  const int bounces = settings_.mode == TransferMode::Interreflected ? settings_.bounces : 0;
+  Pcg32 rng(seed);
+  std::uint64_t cast = 0;
+  // Welford's running mean and variance, per channel, in double.
+  Vec3d mean(0.0), m2(0.0);
+  for (int s = 0; s < samples; ++s) {
+    const Vec3d x(incoming(p, n, bounces, rng, cast));
+    const Vec3d delta = x - mean;
+    mean += delta / double(s + 1);
+    m2 += delta * (x - mean);
+  }
+  if (rays) *rays += cast;
+  Estimate e;
+  const Vec3d var = samples > 1 ? m2 / double(samples - 1) : Vec3d(0.0);
+  const Vec3d se(std::sqrt(var.x / samples), std::sqrt(var.y / samples),
+                 std::sqrt(var.z / samples));
+  e.mean = albedo * Rgb(mean);
+  e.stdError = albedo * Rgb(se);
+  return e;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, const Environment& env,
+                                const ReferenceSettings& settings, const ProgressFn& progress) {
+  if (settings.samples < 1 || settings.samples > (1 << 24))
+    throw Error("reference samples must be in 1..16777216 (got " +
+                std::to_string(settings.samples) + ")");
+  if (settings.bounces < 0 || settings.bounces > 16)
+    throw Error("reference bounces must be in 0..16 (got " + std::to_string(settings.bounces) +
+                ")");
+  const std::size_t nv = mesh.vertexCount();
+  if (mesh.normals.size() != nv) throw Error(mesh.source, "has no per-vertex normals");
+  if (mesh.hasAlbedo() && mesh.albedo.size() != nv)
+    throw Error(mesh.source, "albedo count differs from vertex count");
+
+  ReferenceResult out;
+  if (settings.vertices.empty()) {
+    out.vertices.resize(nv);
+    for (std::size_t v = 0; v < nv; ++v) out.vertices[v] = static_cast<std::uint32_t>(v);
+  } else {
+    out.vertices = settings.vertices;
+    for (std::uint32_t v : out.vertices)
+      if (v >= nv)
+        throw Error("reference vertex " + std::to_string(v) + " out of range (mesh has " +
+                    std::to_string(nv) + ")");
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const EnvironmentSampler sampler(env);
+  const ReferenceIntegrator integrator(mesh, occluder, sampler, settings);
+  const std::size_t count = out.vertices.size();
+  out.radiance.assign(count, Rgb(0.0f));
+  out.stdError.assign(count, Rgb(0.0f));
+  std::vector<std::uint64_t> rays(count, 0);
+  Progress prog(progress, count);
+  parallelFor(count, 1, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      prog.check();
+      const std::uint32_t v = out.vertices[i];
+      const Rgb albedo = mesh.hasAlbedo() ? mesh.albedo[v] : Rgb(1.0f);
+      const Estimate est =
+          integrator.estimate(mesh.positions[v], mesh.normals[v], albedo, settings.samples,
+                              deriveSeed(settings.seed, v), &rays[i]);
+      out.radiance[i] = est.mean;
+      out.stdError[i] = est.stdError;
+      prog.advance(1);
+    }
+  });
+  for (std::uint64_t r : rays) out.rays += r;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace prt::render

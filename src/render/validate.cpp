@@ -1,0 +1,245 @@
+#include "prt/render/validate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <sstream>
+
+#include "prt/core/error.hpp"
+#include "prt/core/parallel.hpp"
+#include "prt/core/sampling.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/render/metrics.hpp"
+#include "prt/sh/convolve.hpp"
+#include "prt/sh/rotate.hpp"
+
+namespace prt::render {
+
+std::vector<std::uint32_t> vertexSubset(std::size_t n, std::size_t count, std::uint64_t seed) {
+  std::vector<std::uint32_t> all(n);
+  std::iota(all.begin(), all.end(), 0u);
+  if (count == 0 || count >= n) return all;
+  // Partial Fisher–Yates shuffle with a PCG32 stream of `seed`: the first `count` entries are a
+  // uniformly random subset.
+  Pcg32 rng(deriveSeed(seed, 0x5eb5e7ull));
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t j = i + static_cast<std::size_t>(rng.next() % (n - i));
+    std::swap(all[i], all[j]);
+  }
+  all.resize(count);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+namespace {
+
+/// Per-vertex values as a one-row image, so render::metrics applies unchanged.
+image::Image row(const std::vector<Rgb>& v) {
+  image::Image img(static_cast<int>(v.size()), 1);
+  std::copy(v.begin(), v.end(), img.pixels.begin());
+  return img;
+}
+
+double sumSq(const Rgb& c) {
+  return double(c.x) * c.x + double(c.y) * c.y + double(c.z) * c.z;
+}
+
+}  // namespace
+
+ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const TransferField& transfer,
+                          const BakeSettings& bake, const envmap::Environment& env,
+                          const sh::RgbSh& light, const ValidateSettings& settings,
+                          const ProgressFn& progress) {
+  const std::size_t nv = mesh.vertexCount();
+  if (transfer.vertexCount != nv)
+    throw Error(mesh.source, "transfer has " + std::to_string(transfer.vertexCount) +
+                                 " vertices, mesh has " + std::to_string(nv) +
+                                 " (validation needs a complete bake)");
+  if (light.bands < 1 || transfer.bands < 1) throw Error("light or transfer has no bands");
+
+  ValidationReport rep;
+  rep.mode = bake.mode;
+  rep.bounces = bake.mode == TransferMode::Interreflected ? bake.bounces : 0;
+  rep.transferBands = transfer.bands;
+  rep.lightBands = light.bands;
+  rep.bands = std::min(transfer.bands, light.bands);
+  if (light.bands != transfer.bands)
+    rep.warnings.push_back("light has " + std::to_string(light.bands) + " bands, transfer " +
+                           std::to_string(transfer.bands) + ": validating up to " +
+                           std::to_string(rep.bands) + " bands");
+
+  std::vector<int> bands = settings.bandsList;
+  if (bands.empty())
+    for (int b = 1; b <= rep.bands; ++b) bands.push_back(b);
+  std::vector<int> kept;
+  for (int b : bands) {
+    if (b < 1) throw Error("band count " + std::to_string(b) + " must be at least 1");
+    if (b > rep.bands)
+      rep.warnings.push_back("skipping " + std::to_string(b) + " bands (only " +
+                             std::to_string(rep.bands) + " available)");
+    else
+      kept.push_back(b);
+  }
+  std::sort(kept.begin(), kept.end());
+  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  if (kept.empty()) throw Error("no band count to validate");
+
+  // The reference, with the bake's transport.
+  ReferenceSettings rs = settings.reference;
+  rs.mode = bake.mode;
+  rs.bounces = rep.bounces;
+  rs.bounceAlbedo = bake.albedo;
+  rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
+  rep.reference = renderReference(mesh, occluder, env, rs, progress);
+  const auto& verts = rep.reference.vertices;
+  const std::size_t n = verts.size();
+  const std::vector<Rgb>& ref = rep.reference.radiance;
+
+  double meanRef = 0;
+  for (const Rgb& c : ref) meanRef += (double(c.x) + c.y + c.z) / 3.0;
+  meanRef /= std::max<std::size_t>(n, 1);
+  const double eps = 1e-2 * meanRef * meanRef + 1e-30;
+
+  double refStd = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    refStd += std::sqrt(sumSq(rep.reference.stdError[i]) / (sumSq(ref[i]) + 3 * eps));
+  refStd /= std::max<std::size_t>(n, 1);
+
+  // The irradiance of the piecewise-constant environment at each validated normal, by texel
+  // quadrature (the expensive part of the floor: O(texels) per vertex).
+  const EnvironmentSampler sampler(env);
+  std::vector<Rgb> exact(n);
+  parallelFor(n, 4, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const Vec3f nrm = mesh.normals[verts[i]];
+      exact[i] = sampler.irradianceQuadrature(nrm, rs.rotation) * static_cast<float>(1.0 / kPi);
+    }
+  });
+  const sh::RgbSh rotatedLight = sh::Rotation(light.bands, rs.rotation).apply(light);
+  const std::vector<double> lambda = sh::clampedCosineKernel(rep.bands);
+
+  std::vector<Rgb> albedo;
+  if (mesh.hasAlbedo()) albedo = mesh.albedo;
+  std::vector<Rgb> prt(n), floorTest(n), floorRef(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Rgb a = mesh.hasAlbedo() ? mesh.albedo[verts[i]] : Rgb(1.0f);
+    floorRef[i] = a * exact[i];
+  }
+  std::vector<float> y(static_cast<std::size_t>(rep.bands) * rep.bands);
+  for (int b : kept) {
+    // PRT radiance at b bands (relight rotates the light itself).
+    const std::vector<Rgb> all =
+        relight::relight(transfer.truncated(b), light.truncated(b), albedo, rs.rotation);
+    // Unshadowed band-limited irradiance E_b(n) = Σ_{l<b} Λ_l L_lm Y_lm(n), radiance ρ E_b / π.
+    for (std::size_t i = 0; i < n; ++i) {
+      prt[i] = all[verts[i]];
+      const Vec3f nrm = mesh.normals[verts[i]];
+      sh::eval(b, nrm, y.data());
+      Vec3d e(0.0);
+      for (int l = 0; l < b; ++l)
+        for (int m = -l; m <= l; ++m) {
+          const int k = l * (l + 1) + m;
+          e += Vec3d(rotatedLight.c[k]) * (lambda[l] * y[k]);
+        }
+      const Rgb a = mesh.hasAlbedo() ? mesh.albedo[verts[i]] : Rgb(1.0f);
+      floorTest[i] = a * Rgb(e * (1.0 / kPi));
+    }
+    BandRow r;
+    r.bands = b;
+    r.relRmse = relativeRmse(row(prt), row(ref), eps);
+    r.floor = relativeRmse(row(floorTest), row(floorRef), eps);
+    r.refStdErr = refStd;
+    std::vector<float> err(n);
+    double sum = 0, mx = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double e = std::sqrt(sumSq(prt[i] - ref[i]) / (sumSq(ref[i]) + 3 * eps));
+      err[i] = static_cast<float>(e);
+      sum += e;
+      mx = std::max(mx, e);
+    }
+    r.meanRel = sum / std::max<std::size_t>(n, 1);
+    r.maxRel = mx;
+    rep.rows.push_back(r);
+    rep.vertexError = std::move(err);
+  }
+  return rep;
+}
+
+std::string formatTable(const ValidationReport& rep) {
+  std::ostringstream os;
+  char line[160];
+  std::snprintf(line, sizeof line, "%5s | %9s | %12s | %11s | %16s | %11s\n", "bands", "rel RMSE",
+                "mean rel err", "max rel err", "truncation floor", "ref std err");
+  os << line;
+  os << "------+-----------+--------------+-------------+------------------+------------\n";
+  for (const BandRow& r : rep.rows) {
+    std::snprintf(line, sizeof line, "%5d | %8.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%%\n",
+                  r.bands, 100 * r.relRmse, 100 * r.meanRel, 100 * r.maxRel, 100 * r.floor,
+                  100 * r.refStdErr);
+    os << line;
+  }
+  return os.str();
+}
+
+namespace {
+
+std::string jsonString(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      o += '\\';
+      o += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      o += buf;
+    } else {
+      o += c;
+    }
+  }
+  return o + "\"";
+}
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string reportJson(const ValidationReport& rep, int indent) {
+  const std::string i1(indent, ' '), i2(2 * indent, ' '), i3(3 * indent, ' ');
+  const char* nl = indent > 0 ? "\n" : "";
+  std::ostringstream os;
+  os << "{" << nl;
+  os << i1 << "\"mode\": " << jsonString(toString(rep.mode)) << "," << nl;
+  os << i1 << "\"bounces\": " << rep.bounces << "," << nl;
+  os << i1 << "\"transferBands\": " << rep.transferBands << "," << nl;
+  os << i1 << "\"lightBands\": " << rep.lightBands << "," << nl;
+  os << i1 << "\"vertices\": " << rep.reference.vertices.size() << "," << nl;
+  os << i1 << "\"referenceRays\": " << rep.reference.rays << "," << nl;
+  os << i1 << "\"referenceSeconds\": " << num(rep.reference.seconds) << "," << nl;
+  os << i1 << "\"warnings\": [";
+  for (std::size_t k = 0; k < rep.warnings.size(); ++k)
+    os << (k ? ", " : "") << jsonString(rep.warnings[k]);
+  os << "]," << nl;
+  os << i1 << "\"rows\": [" << nl;
+  for (std::size_t k = 0; k < rep.rows.size(); ++k) {
+    const BandRow& r = rep.rows[k];
+    os << i2 << "{" << nl;
+    os << i3 << "\"bands\": " << r.bands << "," << nl;
+    os << i3 << "\"relRmse\": " << num(r.relRmse) << "," << nl;
+    os << i3 << "\"meanRelErr\": " << num(r.meanRel) << "," << nl;
+    os << i3 << "\"maxRelErr\": " << num(r.maxRel) << "," << nl;
+    os << i3 << "\"truncationFloor\": " << num(r.floor) << "," << nl;
+    os << i3 << "\"refStdErr\": " << num(r.refStdErr) << nl;
+    os << i2 << "}" << (k + 1 < rep.rows.size() ? "," : "") << nl;
+  }
+  os << i1 << "]" << nl << "}" << nl;
+  return os.str();
+}
+
+}  // namespace prt::render
