@@ -26,10 +26,6 @@
 #include "prt/relight/relight.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/render.hpp"
-#if __has_include("prt/io/light_file.hpp")
-#include "prt/io/light_file.hpp"
-#define PRT_HAVE_LIGHT_FILE 1
-#endif
 
 namespace prt::cli {
 
@@ -145,11 +141,10 @@ void run(const RenderOptions& o) {
   std::optional<envmap::Environment> env;
   const std::string lext = fileExtension(o.light);
   if (lext == "json" || lext == "txt") {
-#ifdef PRT_HAVE_LIGHT_FILE
-    light = readLightFile(o.light).coefficients;
-#else
-    throw Error(o.light, "SH light files are not supported by this build");
-#endif
+    // TODO(io): read SH light files with prt/io/light_file.hpp once it exists.
+    throw Error(o.light,
+                "SH light files (.json/.txt) are not supported by prt render yet; pass "
+                "an environment image or builtin:NAME");
   } else {
     envmap::LoadedEnvironment loaded = envmap::loadEnvironment(o.light);
     for (std::size_t k = 0; k < loaded.stats.size(); ++k)
