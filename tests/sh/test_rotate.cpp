@@ -1,7 +1,10 @@
 // SH rotation: g(ω) = f(R⁻¹ω), checked against projection of the rotated function.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <random>
 #include <vector>
 
@@ -11,6 +14,22 @@
 
 using namespace prt;
 using namespace prt::sh;
+
+// Counts every allocation in this test program, so a test can check that a code path makes none.
+namespace {
+std::atomic<long> gAllocations{0};
+}
+void* operator new(std::size_t n) {
+  ++gAllocations;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
 
 namespace {
 
@@ -155,4 +174,120 @@ TEST(ShRotate, RgbApplyAndErrors) {
   }
   EXPECT_THROW(rot.apply(RgbSh(3)), Error);
   EXPECT_THROW(Rotation(0), Error);
+}
+
+// ---- The zxzxz fast path against the dense Ivanic–Ruedenberg reference ----
+
+namespace {
+
+// Rotations that exercise every branch of set(): generic; identity; pure z (β = 0, δ undefined);
+// β = π (σ undefined); β within 1e-9 of 0 and of π (ill-conditioned δ or σ); and half-turns
+// about x, y, z (each Shepperd branch: 1 + tr, R00, R11, R22 largest).
+std::vector<Mat3d> testRotations(std::mt19937& rng) {
+  const Vec3d ex(1, 0, 0), ey(0, 1, 0), ez(0, 0, 1);
+  std::vector<Mat3d> rs = {
+      Mat3d::identity(),
+      rotationAxisAngle(ez, 0.7),
+      rotationAxisAngle(ex, kPi),
+      rotationAxisAngle(ey, kPi),
+      rotationAxisAngle(ez, kPi),
+      rotationAxisAngle(ez, 0.3) * rotationAxisAngle(ey, 1e-9) * rotationAxisAngle(ez, -1.1),
+      rotationAxisAngle(ez, 0.3) * rotationAxisAngle(ey, kPi - 1e-9) * rotationAxisAngle(ez, 2.0),
+      rotationAxisAngle(ex, kPi / 2)};
+  for (int k = 0; k < 4; ++k) rs.push_back(randomRotation(rng));
+  return rs;
+}
+
+}  // namespace
+
+// Each band count 1..32 (the compile-time specialised kernels for bands 2..15, the runtime-size
+// kernel beyond), double, float and RGB apply, against the dense reference blocks times the
+// vector (computed in long double).
+TEST(ShRotate, FastPathMatchesDenseReference) {
+  std::mt19937 rng(10);
+  const auto rs = testRotations(rng);
+  for (int bands = 1; bands <= kMaxBands; ++bands) {
+    std::vector<double> blocks(detail::rotationBlockOffset(bands));
+    Rotation rot(bands);
+    for (std::size_t ri = 0; ri < rs.size(); ++ri) {
+      const Mat3d& r = rs[ri];
+      detail::rotationBlocksReference(bands, r, blocks.data());
+      rot.set(r);  // re-targeting the same object, as in an animation loop
+      const auto f = randomCoeffs(bands, rng);
+      std::vector<double> expect(bands * bands);
+      for (int l = 0; l < bands; ++l) {
+        const double* b = blocks.data() + detail::rotationBlockOffset(l);
+        const int w = 2 * l + 1, o = l * l;
+        for (int i = 0; i < w; ++i) {
+          long double s = 0;
+          for (int j = 0; j < w; ++j) s += (long double)b[i * w + j] * f[o + j];
+          expect[o + i] = double(s);
+        }
+      }
+      std::vector<double> gd(bands * bands);
+      rot.apply(f.data(), gd.data());
+      std::vector<float> ff(f.begin(), f.end()), gf(bands * bands);
+      rot.apply(ff.data(), gf.data());
+      std::vector<Rgb> fr(bands * bands), gr(bands * bands);
+      for (int i = 0; i < bands * bands; ++i) fr[i] = Rgb(ff[i], -2 * ff[i], 0.5f * ff[i]);
+      rot.apply(fr.data(), gr.data());
+      double ed = 0, ef = 0, er = 0;
+      for (int i = 0; i < bands * bands; ++i) {
+        ed = std::fmax(ed, std::fabs(gd[i] - expect[i]));
+        ef = std::fmax(ef, std::fabs(gf[i] - expect[i]));
+        er = std::fmax(er, std::fabs(gr[i].x - expect[i]));
+        er = std::fmax(er, std::fabs(gr[i].y + 2 * expect[i]) / 2);
+        er = std::fmax(er, std::fabs(gr[i].z - 0.5 * expect[i]) * 2);
+      }
+      // |f_i| ≤ 1: round-off grows ~ with l (five factors, 2l+1-term sums).
+      EXPECT_LT(ed, 1e-13 * bands) << "bands=" << bands << " rotation " << ri;
+      EXPECT_LT(ef, 1e-6 * bands) << "bands=" << bands << " rotation " << ri;
+      EXPECT_LT(er, 1e-6 * bands) << "bands=" << bands << " rotation " << ri;
+    }
+  }
+}
+
+// at() (O(l) per element from the factors) equals the dense reference element by element.
+TEST(ShRotate, ElementsMatchDenseReference) {
+  std::mt19937 rng(11);
+  const auto rs = testRotations(rng);
+  for (int bands : {3, 7, 20}) {
+    std::vector<double> blocks(detail::rotationBlockOffset(bands));
+    for (std::size_t ri = 0; ri < rs.size(); ++ri) {
+      detail::rotationBlocksReference(bands, rs[ri], blocks.data());
+      const Rotation rot(bands, rs[ri]);
+      double worst = 0;
+      for (int l = 0; l < bands; ++l)
+        for (int m = -l; m <= l; ++m)
+          for (int n = -l; n <= l; ++n) {
+            const double ref =
+                blocks[detail::rotationBlockOffset(l) + (m + l) * (2 * l + 1) + (n + l)];
+            worst = std::fmax(worst, std::fabs(rot.at(l, m, n) - ref));
+          }
+      EXPECT_LT(worst, 1e-13) << "bands=" << bands << " rotation " << ri;
+    }
+  }
+  EXPECT_THROW(Rotation(3).at(3, 0, 0), Error);
+  EXPECT_THROW(Rotation(3).at(2, -3, 0), Error);
+}
+
+// The hot paths never allocate: construction, set() and every apply() overload except the
+// RgbSh-returning convenience one.
+TEST(ShRotate, SetAndApplyDoNotAllocate) {
+  std::mt19937 rng(12);
+  for (int bands : {6, 9, 24}) {
+    const Mat3d r1 = randomRotation(rng), r2 = randomRotation(rng);
+    std::vector<float> f(bands * bands, 0.25f), g(bands * bands);
+    std::vector<double> fd(bands * bands, 0.25), gd(bands * bands);
+    std::vector<Rgb> fr(bands * bands, Rgb(0.25f)), gr(bands * bands);
+    Rotation(bands, r1).apply(f.data(), g.data());  // first use tabulates J (allocates once)
+    const long before = gAllocations.load();
+    Rotation rot(bands, r1);
+    rot.set(r2);
+    rot.apply(f.data(), g.data());
+    rot.apply(fd.data(), gd.data());
+    rot.apply(fr.data(), gr.data());
+    EXPECT_EQ(gAllocations.load(), before) << "bands=" << bands;
+    EXPECT_NE(g[4], 0.25f);  // and it did rotate something
+  }
 }
