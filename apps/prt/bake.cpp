@@ -29,7 +29,7 @@ struct BakeArgs {
   std::vector<std::string> inputs;
   std::vector<std::string> modes;
   int bands = 3;
-  int samples = 1024;
+  long long samples = 1024;  // wide, so absurd counts get our message, not a parse error
   int bounces = 1;
   std::uint64_t seed = 0;
   std::string sampling = "cosine";
@@ -121,7 +121,7 @@ void runBake(const BakeArgs& a) {
     BakeSettings& s = t.settings;
     s.mode = mode;
     s.bands = a.bands;
-    s.samples = a.samples;
+    s.samples = static_cast<int>(a.samples);
     s.bounces = mode == TransferMode::Interreflected ? a.bounces : 0;
     s.seed = a.seed;
     s.sampling = sampling;

@@ -1,0 +1,231 @@
+// prt bake / export / info through the real binary: the happy path (outputs parse and hold the
+// right counts), and bad input (one error line, non-zero exit, nothing left behind).
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "prt/io/bake_file.hpp"
+#include "prt/io/games202_transport.hpp"
+
+namespace fs = std::filesystem;
+
+namespace prt {
+namespace {
+
+struct Result {
+  int rc = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class BakeCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("prt_test_bake_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "out");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// Runs `prt ARGS` in the test directory.
+  Result prt(const std::string& args, const std::string& prefix = "") {
+    const std::string cmd = "cd '" + dir_.string() + "' && " + prefix + "'" + PRT_CLI_PATH + "' " +
+                            args + " > stdout.txt 2> stderr.txt";
+    Result r;
+    const int status = std::system(cmd.c_str());
+    r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir_ / "stdout.txt");
+    r.err = slurp(dir_ / "stderr.txt");
+    return r;
+  }
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  /// A failing command: non-zero exit, exactly one stderr line naming the verb and the problem,
+  /// no file left in out/.
+  void expectCleanFailure(const std::string& args, const std::string& mention) {
+    SCOPED_TRACE(args);
+    const Result r = prt("-q " + args);
+    EXPECT_NE(r.rc, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos)
+        << "expected '" << mention << "' in: " << r.err;
+    EXPECT_TRUE(fs::is_empty(dir_ / "out")) << "output left behind";
+  }
+
+  fs::path dir_;
+};
+
+// One vertex per distinct v/vt/vn triple: 5 positions, 10 course vertices, 4 triangles.
+const char* kSharedObj = R"(v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+vn 0 0 1
+vn 0 0 -1
+vn 1 0 0
+f 1/1/1 2/2/1 3/3/1
+f 1/1/1 3/3/1 4/4/1
+f 1/1/2 3/3/2 2/2/2
+f 2/1/3 3/4/3 5/2/3
+)";
+
+TEST_F(BakeCli, BakeInfoExportSphere) {
+  // subdiv 2: an icosahedron subdivided twice, 10·4² + 2 = 162 vertices, 20·4² = 320 triangles.
+  Result r =
+      prt("bake builtin:sphere?subdiv=2 --mode shadowed --mode unshadowed --bands 3 "
+          "--samples 64 --seed 7 -o out/s.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("rays"), std::string::npos) << "summary on stderr: " << r.err;
+  EXPECT_TRUE(r.out.empty()) << "bake prints nothing on stdout";
+  const BakeFile b = readBake(path("out/s.glb"));
+  EXPECT_EQ(b.mesh.vertexCount(), 162u);
+  EXPECT_EQ(b.mesh.triangleCount(), 320u);
+  ASSERT_EQ(b.transfers.size(), 2u);
+  const BakedTransfer* sh = b.find(TransferMode::Shadowed);
+  ASSERT_NE(sh, nullptr);
+  EXPECT_EQ(sh->field.bands, 3);
+  EXPECT_EQ(sh->settings.samples, 64);
+  EXPECT_EQ(sh->settings.seed, 7u);
+  EXPECT_EQ(sh->stats.rays, 162u * 64u);  // one ray per sample per vertex (a convex sphere)
+
+  r = prt("info out/s.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("162"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("320"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("shadowed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("unshadowed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("format version 1"), std::string::npos) << r.out;
+
+  // Several modes: export must be told which.
+  r = prt("-q export out/s.glb --format games202 -o out/t.txt");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.err.find("--mode"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out/t.txt"));
+
+  r = prt("export out/s.glb --format games202 --mode shadowed -o out/t.txt");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Games202Transport t = readGames202Transport(path("out/t.txt"));
+  EXPECT_EQ(t.vertexCount, 162u);
+  EXPECT_EQ(t.layout, Games202Layout::Faces);
+  EXPECT_EQ(t.rowCount, 3u * 320u);
+  EXPECT_EQ(t.bands, 3);
+  r = prt("export out/s.glb --mode shadowed --layout vertices -o out/v.txt");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Games202Transport v = readGames202Transport(path("out/v.txt"));
+  ASSERT_EQ(v.rows.size(), sh->field.data.size());
+  EXPECT_EQ(std::memcmp(v.rows.data(), sh->field.data.data(), v.rows.size() * 4), 0)
+      << "text export must round-trip the floats exactly";
+
+  r = prt("info out/t.txt");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("960 lines"), std::string::npos) << r.out;
+}
+
+TEST_F(BakeCli, ObjExportHasTheCourseVertexCount) {
+  write("shared.obj", kSharedObj);
+  Result r = prt("-q bake shared.obj --mode unshadowed --samples 16 -o out/o.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q export out/o.glb -o out/transport.txt");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string text = slurp(dir_ / "out/transport.txt");
+  EXPECT_EQ(text.substr(0, text.find('\n')), "10");
+  const Games202Transport t = readGames202Transport(path("out/transport.txt"));
+  EXPECT_EQ(t.rowCount, 12u);  // 4 triangles × 3 corners
+}
+
+TEST_F(BakeCli, PartialRangeBake) {
+  Result r =
+      prt("-q bake builtin:sphere?subdiv=2 --mode shadowed --samples 16 --range 100: -o out/p.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const BakeFile p = readBake(path("out/p.glb"));
+  EXPECT_FALSE(p.complete());
+  EXPECT_EQ(p.firstVertex, 100u);
+  EXPECT_EQ(p.vertexCount, 62u);
+  r = prt(
+      "-q bake builtin:sphere?subdiv=2 --mode shadowed --samples 16 --range 0:100 -o out/q.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q bake builtin:sphere?subdiv=2 --mode shadowed --samples 16 -o out/full.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  // Split bakes merge into exactly the full bake.
+  const BakeFile merged = mergeBakes({p, readBake(path("out/q.glb"))});
+  const BakeFile full = readBake(path("out/full.glb"));
+  ASSERT_TRUE(merged.complete());
+  EXPECT_EQ(merged.transfers[0].field.data, full.transfers[0].field.data);
+  // A partial bake cannot be exported.
+  r = prt("-q export out/p.glb -o out/t.txt");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.err.find("partial"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out/t.txt"));
+}
+
+TEST_F(BakeCli, BadInputFailsCleanly) {
+  write("garbage.obj", "v 1 2\nf 1 2 x\nthis is not an obj\n");
+  write("past.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  write("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write("empty.obj", "# nothing here\n");
+  write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string ok = " --mode shadowed --samples 16 -o out/x.glb";
+  expectCleanFailure("bake missing.obj" + ok, "missing.obj");
+  expectCleanFailure("bake garbage.obj" + ok, "garbage.obj");
+  expectCleanFailure("bake past.obj" + ok, "past.obj");
+  expectCleanFailure("bake nan.obj" + ok, "nan.obj");
+  expectCleanFailure("bake empty.obj" + ok, "empty.obj");
+  expectCleanFailure("bake builtin:nosuchscene" + ok, "nosuchscene");
+  expectCleanFailure("bake tri.obj --mode shadowed --samples 0 -o out/x.glb", "--samples");
+  expectCleanFailure("bake tri.obj --mode shadowed --samples 1000000000000 -o out/x.glb",
+                     "samples");
+  expectCleanFailure("bake tri.obj --mode shadowed --bands 0 -o out/x.glb", "--bands");
+  expectCleanFailure("bake tri.obj --mode shadowed --bands 40 -o out/x.glb", "--bands");
+  expectCleanFailure("bake tri.obj --mode sideways -o out/x.glb", "sideways");
+  expectCleanFailure("bake tri.obj --mode shadowed --albedo 2,0,0 -o out/x.glb", "--albedo");
+  expectCleanFailure("bake tri.obj --mode shadowed --range 5:9 -o out/x.glb", "--range");
+  expectCleanFailure("bake tri.obj --mode shadowed -o out/x.txt", ".glb");
+  expectCleanFailure("bake tri.obj --mode shadowed -o no/such/dir/x.glb", "no/such/dir");
+
+  // Bad bake files for export and info.
+  ASSERT_EQ(prt("-q bake tri.obj --mode shadowed --samples 16 -o good.glb").rc, 0);
+  const std::string good = slurp(dir_ / "good.glb");
+  write("cut.glb", good.substr(0, good.size() / 2));
+  expectCleanFailure("export cut.glb -o out/t.txt", "truncated");
+  expectCleanFailure("info cut.glb", "truncated");
+  expectCleanFailure("export tri.obj -o out/t.txt", "tri.obj");
+  expectCleanFailure("export good.glb --format unity -o out/t.txt", "unity");
+  expectCleanFailure("export good.glb -o no/such/dir/t.txt", "no/such/dir");
+  write("bad.txt", "3\n1 2 3\n");
+  expectCleanFailure("info bad.txt", "bad.txt");
+}
+
+TEST_F(BakeCli, CtrlCCancelsWithoutOutput) {
+  // ~1.7·10⁸ rays (tens of seconds): far longer than the second before SIGINT arrives.
+  const Result r = prt("bake builtin:sphere --mode shadowed --samples 16384 -o out/c.glb",
+                       "timeout -k 20 -s INT 1 ");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.err.find("cancelled"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(dir_ / "out"));
+}
+
+}  // namespace
+}  // namespace prt
