@@ -114,6 +114,21 @@ class VertexSampler {
     else
       rng_ = Pcg32(key);
   }
+  /// The next `count` (<= 64) samples' directions and weights; w == 0: below the horizon
+  /// (uniform sampling only), cast no ray. Same values as `count` calls of next().
+  void batch(int count, Vec3f* dir, float* w) {
+    if (!sobol_) {
+      for (int j = 0; j < count; ++j) next(dir[j], w[j]);
+      return;
+    }
+    float x[64], y[64], z[64];
+    sobol_->cosineBatch(index_, static_cast<std::uint32_t>(count), seed0_, seed1_, x, y, z);
+    index_ += static_cast<std::uint32_t>(count);
+    for (int j = 0; j < count; ++j) {
+      dir[j] = t_ * x[j] + b_ * y[j] + n_ * z[j];
+      w[j] = 1.0f;
+    }
+  }
   /// Next sample. w == 0: below the horizon (uniform sampling only), cast no ray.
   void next(Vec3f& dir, float& w) {
     if (sobol_) {
@@ -218,7 +233,8 @@ double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
   VertexSampler sampler(ctx.settings, ctx.sobol.get(), v, 0, nrm);
 
   std::array<Ray, kBatch> rays;
-  std::array<float, kBatch> w;
+  std::array<float, kBatch> w, ws;
+  std::array<Vec3f, kBatch> dirs;
   std::array<std::uint8_t, kBatch> blocked;
   Moments m;
   std::uint64_t cast = 0;
@@ -229,13 +245,11 @@ double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
   for (int base = 0; base < n; base += static_cast<int>(kBatch)) {
     const int count = std::min<int>(kBatch, n - base);
     std::size_t nr = 0;
+    sampler.batch(count, dirs.data(), ws.data());
     for (int j = 0; j < count; ++j) {
-      Vec3f d;
-      float wt;
-      sampler.next(d, wt);
-      if (wt <= 0.0f) continue;
-      rays[nr] = Ray{origin, d, 0.0f, std::numeric_limits<float>::infinity()};
-      w[nr++] = wt;
+      if (ws[j] <= 0.0f) continue;
+      rays[nr] = Ray{origin, dirs[j], 0.0f, std::numeric_limits<float>::infinity()};
+      w[nr++] = ws[j];
     }
     if (shadowed && nr > 0) {
       ctx.occluder.occluded(std::span<const Ray>(rays.data(), nr),

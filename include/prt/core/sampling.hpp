@@ -100,6 +100,11 @@ class OwenSobol2D {
  public:
   explicit OwenSobol2D(std::uint32_t n);
   std::uint32_t size() const { return static_cast<std::uint32_t>(rev1_.size()); }
+  /// Cosine-weighted local directions (about +Z) of points [first, first + count), count <= 64:
+  /// bit for bit cosineHemisphere(point(i, seed0, seed1)), written as branch-free loops over
+  /// arrays (the per-ray cost of a bake; one call per 64 rays).
+  void cosineBatch(std::uint32_t first, std::uint32_t count, std::uint32_t seed0,
+                   std::uint32_t seed1, float* x, float* y, float* z) const;
   Point2 point(std::uint32_t i, std::uint32_t seed0, std::uint32_t seed1) const {
     // Dimension 0 reversed is the index itself.
     return {toUnitFloat(reverseBits(laineKarrasPermutation(i, seed0))),
@@ -140,7 +145,7 @@ class Pcg32 {
 /// sincosf and branch-free, which matters in the per-ray loop of a bake.
 inline void sinCos2Pi(float u, float& s, float& c) {
   const float t = 4.0f * u;
-  const float k = std::floor(t + 0.5f);
+  const float k = static_cast<float>(static_cast<int>(t + 0.5f));  // floor: t + 0.5 > 0
   const float a = (t - k) * (0.5f * kPif);
   const float a2 = a * a;
   const float sa = a * (1.0f + a2 * (-1.0f / 6 + a2 * (1.0f / 120 + a2 * (-1.0f / 5040))));
