@@ -219,6 +219,18 @@ Mesh makeSpherePlane(Params& p, const std::string& full) {
   return scene;
 }
 
+Mesh makePlane(Params& p) {
+  const double y = p.get("y", 0.0, -1e6, 1e6);
+  const double size = p.get("size", 4.0, 1e-6, 1e6);
+  const int n = p.getInt("grid", 96, 1, 2000);
+  const double a = p.get("albedo", 0.8, 0.0, 1.0);
+  p.finish();
+  Mesh scene;
+  const float s = float(size), h = float(y);
+  append(scene, grid({-s, h, s}, {2 * s, 0, 0}, {0, 0, -2 * s}, n, Rgb(float(a))), "plane");
+  return scene;
+}
+
 Mesh makeCornell(Params& p) {
   const int n = p.getInt("grid", 40, 1, 400);
   p.finish();
@@ -239,7 +251,7 @@ Mesh makeCornell(Params& p) {
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-  return {"sphere", "sphere-plane", "cornell"};
+  return {"sphere", "sphere-plane", "plane", "cornell"};
 }
 
 bool isBuiltinScene(const std::string& path) {
@@ -255,6 +267,8 @@ Mesh builtinScene(const std::string& full) {
     m = makeSphere(p);
   else if (name == "sphere-plane")
     m = makeSpherePlane(p, label);
+  else if (name == "plane")
+    m = makePlane(p);
   else if (name == "cornell")
     m = makeCornell(p);
   else {

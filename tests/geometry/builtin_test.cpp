@@ -92,6 +92,21 @@ TEST(Builtin, SpherePlaneFollowsItsParameters) {
   }
 }
 
+TEST(Builtin, PlaneFollowsItsParameters) {
+  const Mesh m = builtinScene("builtin:plane?y=-0.5&size=2&grid=4&albedo=0.3");
+  expectValid(m);
+  ASSERT_EQ(m.parts.size(), 1u);
+  EXPECT_EQ(m.triangleCount(), 32u);
+  EXPECT_EQ(m.vertexCount(), 25u);
+  for (std::size_t v = 0; v < m.vertexCount(); ++v) {
+    EXPECT_EQ(m.positions[v].y, -0.5f);
+    EXPECT_LE(std::fabs(m.positions[v].z), 2.0f);
+    EXPECT_EQ(m.normals[v], (Vec3f{0, 1, 0}));
+    EXPECT_EQ(m.albedo[v], Rgb(0.3f));
+  }
+  EXPECT_THROW(builtinScene("builtin:plane?size=0"), Error);
+}
+
 TEST(Builtin, CornellWallsFaceInwardAndAreColoured) {
   const Mesh m = builtinScene("cornell");
   std::map<std::string, MeshPart> parts;

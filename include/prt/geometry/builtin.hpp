@@ -11,6 +11,9 @@
 //                 Parameters: r, h, size, grid, subdiv (default 4), albedo (default 0.8). The
 //                 shadow of a distant light from +Y is a disc of radius r under the sphere;
 //                 the gap between sphere and plane is h - r (h > r required).
+//   plane         a ground plane y = `y` (default 0) facing +Y, half-size `size` (default 4),
+//                 `grid` x `grid` quads (default 96), albedo (default 0.8): put it under a mesh
+//                 ("bunny.obj builtin:plane?y=-1&size=3") so the object casts a shadow.
 //   cornell       a Cornell-like box for colour bleeding and self-shadowing: floor, ceiling and
 //                 back wall white (0.73), left wall (x = -1) red (0.63, 0.065, 0.05), right wall
 //                 (x = +1) green (0.14, 0.45, 0.091), open toward +Z (the camera side); the box
