@@ -33,5 +33,7 @@ void addBakeCommand(CLI::App& root);
 void addExportCommand(CLI::App& root);
 void addInfoCommand(CLI::App& root);
 void addRenderCommand(CLI::App& root);
+void addValidateCommand(CLI::App& root);
+void addReferenceCommand(CLI::App& root);
 
 }  // namespace prt::cli

@@ -70,6 +70,8 @@ int main(int argc, char** argv) {
   addExportCommand(app);
   addInfoCommand(app);
   addRenderCommand(app);
+  addValidateCommand(app);
+  addReferenceCommand(app);
 
   std::signal(SIGINT, onSigint);
   std::unique_ptr<prt::ThreadLimit> limit;

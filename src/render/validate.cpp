@@ -83,7 +83,9 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   }
   std::sort(kept.begin(), kept.end());
   kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
-  if (kept.empty()) throw Error("no band count to validate");
+  if (kept.empty())
+    throw Error("no band count to validate: asked for more than the " + std::to_string(rep.bands) +
+                " bands available");
 
   // The reference, with the bake's transport.
   ReferenceSettings rs = settings.reference;

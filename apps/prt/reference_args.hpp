@@ -1,0 +1,71 @@
+#pragma once
+// Argument parsing shared by `prt reference` and `prt validate` (header-only, internal to the
+// command line).
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "prt/core/error.hpp"
+#include "prt/core/vec.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/render/reference.hpp"
+
+namespace prt::cli::refargs {
+
+/// "1,2,5" -> {1, 2, 5}; throws naming `option` on anything else.
+inline std::vector<double> parseNumberList(const std::string& s, const char* option) {
+  std::vector<double> out;
+  std::istringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::istringstream is(item);
+    double v;
+    if (!(is >> v) || !(is >> std::ws).eof() || !std::isfinite(v))
+      throw Error(std::string(option) + " '" + s + "' is not a comma-separated list of numbers");
+    out.push_back(v);
+  }
+  if (out.empty()) throw Error(std::string(option) + " is empty");
+  return out;
+}
+
+/// "X,Y,Z" Euler degrees (about X, then Y, then Z) -> rotation; "" -> identity.
+inline Mat3d parseRotation(const std::string& s) {
+  if (s.empty()) return Mat3d::identity();
+  const std::vector<double> a = parseNumberList(s, "--rotate");
+  if (a.size() != 3) throw Error("--rotate '" + s + "' is not three angles X,Y,Z in degrees");
+  return rotationEulerXYZ(a[0], a[1], a[2]);
+}
+
+/// "WxH" -> (w, h), both positive.
+inline void parseSize(const std::string& s, int& w, int& h) {
+  char x = 0;
+  std::istringstream in(s);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof() || w <= 0 ||
+      h <= 0 || w > 16384 || h > 16384)
+    throw Error("size '" + s + "' is not WIDTHxHEIGHT (1..16384)");
+}
+
+inline render::MisHeuristic parseMis(const std::string& s) {
+  if (s == "power") return render::MisHeuristic::Power;
+  if (s == "balance") return render::MisHeuristic::Balance;
+  throw Error("--mis '" + s + "': expected power or balance");
+}
+
+/// The transfer of `mode` ("" picks interreflected, else shadowed, else unshadowed).
+inline const BakedTransfer& pickTransfer(const BakeFile& bake, const std::string& mode,
+                                         const std::string& file) {
+  if (bake.transfers.empty()) throw Error(file, "the bake holds no transfer");
+  if (!mode.empty()) {
+    const TransferMode m = parseTransferMode(mode);
+    if (const BakedTransfer* t = bake.find(m)) return *t;
+    throw Error(file, std::string("no ") + toString(m) + " transfer in the bake");
+  }
+  for (TransferMode m :
+       {TransferMode::Interreflected, TransferMode::Shadowed, TransferMode::Unshadowed})
+    if (const BakedTransfer* t = bake.find(m)) return *t;
+  return bake.transfers.front();
+}
+
+}  // namespace prt::cli::refargs
