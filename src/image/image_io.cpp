@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
@@ -60,16 +61,72 @@ std::string stbReason() {
   return why ? why : "unknown reason";
 }
 
-Image readStbHdr(const std::string& path, const std::vector<unsigned char>& bytes) {
-  MemoryReader reader{bytes.data(), bytes.size()};
-  int w = 0, h = 0, n = 0;
-  std::unique_ptr<float, void (*)(void*)> data(
-      stbi_loadf_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3), stbi_image_free);
-  if (!data) throw Error(path, "cannot decode Radiance HDR (" + stbReason() + ")");
-  if (reader.readPastEnd) throw Error(path, "truncated Radiance HDR file");
+// Radiance RGBE (Ward, "Real Pixels", Graphics Gems II, 1991), decoded here with bounds checks
+// on every byte: stb_image loops forever on some truncated run-length scan lines.
+// Supports the "-Y H +X W" orientation (what every writer emits), flat and new-style RLE scan
+// lines. Decoding follows Radiance's colr_color: (m + 0.5) · 2^(e − 136), 0 when e = 0.
+Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>& b) {
+  std::size_t pos = 0;
+  auto line = [&]() -> std::string {
+    std::string out;
+    while (pos < b.size() && b[pos] != '\n') out += static_cast<char>(b[pos++]);
+    if (pos >= b.size()) throw Error(path, "truncated Radiance HDR header");
+    ++pos;
+    return out;
+  };
+  const std::string magic = line();
+  if (magic != "#?RADIANCE" && magic != "#?RGBE") throw Error(path, "not a Radiance HDR file (bad signature)");
+  for (std::string l = line(); !l.empty(); l = line())
+    if (l.rfind("FORMAT=", 0) == 0 && l != "FORMAT=32-bit_rle_rgbe")
+      throw Error(path, "unsupported Radiance pixel format '" + l.substr(7) + "'");
+  const std::string res = line();
+  int w = 0, h = 0;
+  char ya[3] = {}, xa[3] = {};
+  if (std::sscanf(res.c_str(), "%2s %d %2s %d", ya, &h, xa, &w) != 4 || std::string(ya) != "-Y" ||
+      std::string(xa) != "+X" || w <= 0 || h <= 0 || w > (1 << 16) || h > (1 << 16))
+    throw Error(path, "unsupported Radiance resolution line '" + res + "' (expected -Y H +X W)");
   Image img(w, h);
-  for (std::size_t i = 0; i < img.size(); ++i)
-    img.pixels[i] = {data.get()[3 * i], data.get()[3 * i + 1], data.get()[3 * i + 2]};
+  std::vector<unsigned char> scan(static_cast<std::size_t>(w) * 4);
+  auto need = [&](std::size_t n) {
+    if (pos + n > b.size()) throw Error(path, "truncated Radiance HDR file (pixel data ends early)");
+  };
+  for (int y = 0; y < h; ++y) {
+    need(4);
+    const bool rle = w >= 8 && w < 32768 && b[pos] == 2 && b[pos + 1] == 2 && ((b[pos + 2] << 8) | b[pos + 3]) == w;
+    if (rle) {
+      pos += 4;
+      for (int c = 0; c < 4; ++c) {
+        for (int x = 0; x < w;) {
+          need(1);
+          int count = b[pos++];
+          if (count > 128) {
+            count -= 128;
+            need(1);
+            if (x + count > w) throw Error(path, "corrupt Radiance run length");
+            const unsigned char v = b[pos++];
+            for (int i = 0; i < count; ++i) scan[4 * (x++) + c] = v;
+          } else {
+            if (count == 0 || x + count > w) throw Error(path, "corrupt Radiance run length");
+            need(count);
+            for (int i = 0; i < count; ++i) scan[4 * (x++) + c] = b[pos++];
+          }
+        }
+      }
+    } else {
+      need(static_cast<std::size_t>(w) * 4);
+      std::copy_n(b.begin() + static_cast<std::ptrdiff_t>(pos), w * 4, scan.begin());
+      pos += static_cast<std::size_t>(w) * 4;
+    }
+    for (int x = 0; x < w; ++x) {
+      const unsigned char* p = &scan[4 * x];
+      if (p[3] == 0) {
+        img.at(x, y) = Rgb(0.0f);
+      } else {
+        const float f = std::ldexp(1.0f, static_cast<int>(p[3]) - 136);
+        img.at(x, y) = {(p[0] + 0.5f) * f, (p[1] + 0.5f) * f, (p[2] + 0.5f) * f};
+      }
+    }
+  }
   return img;
 }
 
@@ -211,7 +268,7 @@ Image readImage(const std::string& path, const ReadOptions& options, ReadStats* 
   Image img;
   bool ldr = false;
   if (ext == "hdr") {
-    img = readStbHdr(path, bytes);
+    img = readRadianceHdr(path, bytes);
   } else if (ext == "exr") {
     img = readExr(path, bytes);
   } else {

@@ -2,7 +2,7 @@
 // Reading and writing images.
 //
 // Formats, chosen by the (case-insensitive) extension:
-//  * .hdr  Radiance RGBE (stb_image), linear.
+//  * .hdr  Radiance RGBE (our bounds-checked decoder), linear.
 //  * .exr  OpenEXR, linear: tinyexr first; files tinyexr cannot decode (e.g. DWAA/DWAB
 //          compression, as in Blender's bundled Poly Haven maps) go through the OpenEXR library.
 //          RGB(A) or single-channel Y; other channels are ignored.
