@@ -469,25 +469,39 @@ void applyAll(int bands, const Rotation::Factors<T>& fa, const Rotation::ZFactor
   }
 }
 
-// Z factors for k < bands, three angles at once (independent chains, so they overlap in the
-// pipeline): cos kθ and (−1)^k sin kθ by angle addition, in double, float, and float × 4 lanes.
-// Entries ≥ bands keep their earlier finite values (zero from construction); they only ever
-// multiply zero slots.
-void zFactors(int bands, const double (&c1)[3], const double (&s1)[3],
-              Rotation::ZFactor<double>* d[3], Rotation::ZFactor<float>* f[3],
-              Rotation::ZFactor4* r) {
-  double c[3] = {1, 1, 1}, s[3] = {0, 0, 0};
-  for (int k = 0; k < bands; ++k) {
-    const double sign = (k & 1) ? -1.0 : 1.0;
+// Z factors for k < bands, three angles at once: cos kθ and (−1)^k sin kθ, in double, float and
+// float × 4 lanes. Even and odd k run as separate angle-addition chains stepping by 2θ (six
+// independent chains, so the multiply–add latency overlaps). Entries past `bands` (at most one,
+// written by the last odd step) and those never written keep finite values (zero from
+// construction); they only ever multiply zero slots.
+struct ZOut {
+  Rotation::ZFactor<double>& d;
+  Rotation::ZFactor<float>& f;
+  Rotation::ZFactor4& r;
+};
+[[gnu::always_inline]] inline void zPut(const ZOut& o, int k, double c, double s) {
+  o.d.c[k] = c, o.d.s[k] = s;
+  const float cf = float(c), sf = float(s);
+  o.f.c[k] = cf, o.f.s[k] = sf;
+  const F4 cv = {cf, cf, cf, cf}, sv = {sf, sf, sf, sf};
+  __builtin_memcpy(o.r.c[k], &cv, sizeof cv);
+  __builtin_memcpy(o.r.s[k], &sv, sizeof sv);
+}
+void zFactors(int bands, const double (&c1)[3], const double (&s1)[3], const ZOut (&out)[3]) {
+  double c2[3], s2[3], ce[3], se[3], co[3], so[3];
+  for (int i = 0; i < 3; ++i) {
+    c2[i] = c1[i] * c1[i] - s1[i] * s1[i], s2[i] = 2 * s1[i] * c1[i];
+    ce[i] = 1, se[i] = 0, co[i] = c1[i], so[i] = s1[i];
+  }
+  for (int k = 0; k < bands; k += 2) {
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) {
-      const double st = sign * s[i];
-      d[i]->c[k] = c[i], d[i]->s[k] = st;
-      const float cf = float(c[i]), sf = float(st);
-      f[i]->c[k] = cf, f[i]->s[k] = sf;
-      for (int j = 0; j < 4; ++j) r[i].c[k][j] = cf, r[i].s[k][j] = sf;
-      const double cn = c[i] * c1[i] - s[i] * s1[i];
-      s[i] = s[i] * c1[i] + c[i] * s1[i];
-      c[i] = cn;
+      zPut(out[i], k, ce[i], se[i]);
+      zPut(out[i], k + 1, co[i], -so[i]);
+      double t = ce[i] * c2[i] - se[i] * s2[i];
+      se[i] = se[i] * c2[i] + ce[i] * s2[i], ce[i] = t;
+      t = co[i] * c2[i] - so[i] * s2[i];
+      so[i] = so[i] * c2[i] + co[i] * s2[i], co[i] = t;
     }
   }
 }
@@ -541,9 +555,8 @@ void Rotation::set(const Mat3d& r) {
   // α = σ + δ, β, γ = σ − δ.
   const double c1[3] = {sigC * delC - sigS * delS, (cc - ss) / n2, sigC * delC + sigS * delS};
   const double s1[3] = {sigS * delC + sigC * delS, 2 * hc * hs / n2, sigS * delC - sigC * delS};
-  ZFactor<double>* d[3] = {&d_.a, &d_.b, &d_.g};
-  ZFactor<float>* f[3] = {&f_.a, &f_.b, &f_.g};
-  zFactors(bands_, c1, s1, d, f, rgb_);
+  const ZOut out[3] = {{d_.a, f_.a, rgb_[0]}, {d_.b, f_.b, rgb_[1]}, {d_.g, f_.g, rgb_[2]}};
+  zFactors(bands_, c1, s1, out);
 }
 
 // (Z(α) Jᵀ Z(β) J Z(γ))_mn in O(l): column n of Z(γ) has cos kγ at row n and sgn(n) sin kγ at
