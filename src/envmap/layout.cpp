@@ -155,15 +155,23 @@ double edgeFlux(double x0, double y0, double x1, double y1) {
   for (int i = 0; i + 1 < nc; ++i) {
     const double lo = cuts[i], hi = cuts[i + 1], half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
     if (half <= 0) continue;
+    const double mx = x0 + mid * dx, my = y0 + mid * dy;
+    if (mx * mx + my * my >= 1) {
+      // Outside the disc G = 2 and (x dy − y dx)/r² = dθ: the piece is exactly 2 Δθ (a
+      // quadrature of 1/r² would leave ~1e-6 on long edges).
+      const double ax = x0 + lo * dx, ay = y0 + lo * dy, bx = x0 + hi * dx, by = y0 + hi * dy;
+      sum += 2 * std::atan2(ax * by - ay * bx, ax * bx + ay * by);
+      continue;
+    }
     double piece = 0;
     for (int k = 0; k < 8; ++k) {
       const double tau = mid + half * gx[k];
       const double px = x0 + tau * dx, py = y0 + tau * dy;
       piece += gw[k] * g(px * px + py * py);
     }
-    sum += piece * half;
+    sum += piece * half * cr;
   }
-  return sum * cr;
+  return sum;
 }
 
 }  // namespace
@@ -193,7 +201,11 @@ std::vector<double> probeTexelSolidAngles(int width, int height) {
       const double top = horiz[static_cast<std::size_t>(y) * width + x];
       const double right = vert[static_cast<std::size_t>(y) * (width + 1) + x + 1];
       const double left = vert[static_cast<std::size_t>(y) * (width + 1) + x];
-      out[static_cast<std::size_t>(y) * width + x] = bottom + right - top - left;
+      // A texel wholly outside the disc sees nothing: exactly 0, not the rounding residue of
+      // its four fluxes.
+      const double nx = std::clamp(0.0, ax(x), ax(x + 1)), ny = std::clamp(0.0, by(y + 1), by(y));
+      out[static_cast<std::size_t>(y) * width + x] =
+          nx * nx + ny * ny >= 1 ? 0.0 : bottom + right - top - left;
     }
   return out;
 }
