@@ -1,0 +1,35 @@
+#pragma once
+// Light files: SH lighting coefficients on disk.
+//
+// JSON (ours):
+//   {"bands": B, "coefficients": [[r, g, b], … B² rows, index l(l+1)+m],
+//    "source": "studio.exr", "layout": "latlong", "window": "none",
+//    "rotation": [x, y, z] (Euler degrees, R = Rz Ry Rx), "prtkit_version": "0.1.0"}
+// GAMES202 light.txt (the course's homework 2): B² lines "r g b", nothing else; B = sqrt(lines).
+// Readers validate everything and throw prt::Error("FILE: line N: what is wrong") on one line.
+
+#include <array>
+#include <string>
+
+#include "prt/sh/sh.hpp"
+
+namespace prt::io {
+
+struct LightFile {
+  sh::RgbSh coefficients;
+  std::string source;
+  std::string layout;
+  std::string window = "none";
+  std::array<double, 3> rotationDeg = {0, 0, 0};
+  std::string prtkitVersion;
+};
+
+void writeLightJson(const std::string& path, const LightFile& light);
+LightFile readLightJson(const std::string& path);
+/// Coefficients printed with 9 significant digits (exact float round trip).
+void writeLightGames202(const std::string& path, const sh::RgbSh& coefficients);
+sh::RgbSh readLightGames202(const std::string& path);
+/// By extension: .json → JSON, anything else (.txt) → the course format.
+LightFile readLight(const std::string& path);
+
+}  // namespace prt::io

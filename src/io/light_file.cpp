@@ -1,0 +1,133 @@
+#include "prt/io/light_file.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+
+namespace prt::io {
+
+namespace {
+
+std::string formatFloat(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.9g", static_cast<double>(v));
+  return buf;
+}
+
+int bandsFromCount(const std::string& path, std::size_t count) {
+  const int b = static_cast<int>(std::lround(std::sqrt(static_cast<double>(count))));
+  if (count == 0 || static_cast<std::size_t>(b) * b != count)
+    throw Error(path, std::to_string(count) + " coefficients is not a square number B² of bands");
+  if (b > sh::kMaxBands) throw Error(path, std::to_string(b) + " bands is more than the 32 supported");
+  return b;
+}
+
+}  // namespace
+
+void writeLightJson(const std::string& path, const LightFile& light) {
+  const sh::RgbSh& c = light.coefficients;
+  PRT_CHECK(c.c.size() == static_cast<std::size_t>(c.bands) * c.bands, "coefficient count");
+  // Written by hand so every float keeps 9 significant digits and rows stay one per line.
+  std::ostringstream os;
+  os << "{\n  \"bands\": " << c.bands << ",\n  \"coefficients\": [\n";
+  for (std::size_t i = 0; i < c.c.size(); ++i)
+    os << "    [" << formatFloat(c.c[i].x) << ", " << formatFloat(c.c[i].y) << ", " << formatFloat(c.c[i].z) << "]"
+       << (i + 1 < c.c.size() ? ",\n" : "\n");
+  os << "  ],\n  \"source\": " << nlohmann::json(light.source).dump()
+     << ",\n  \"layout\": " << nlohmann::json(light.layout).dump()
+     << ",\n  \"window\": " << nlohmann::json(light.window).dump() << ",\n  \"rotation\": ["
+     << light.rotationDeg[0] << ", " << light.rotationDeg[1] << ", " << light.rotationDeg[2]
+     << "],\n  \"prtkit_version\": " << nlohmann::json(light.prtkitVersion).dump() << "\n}\n";
+  writeFileAtomically(path, os.str());
+}
+
+LightFile readLightJson(const std::string& path) {
+  const std::vector<unsigned char> bytes = readFileBytes(path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(bytes.begin(), bytes.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(path, "invalid JSON at byte " + std::to_string(e.byte));
+  }
+  if (!j.is_object()) throw Error(path, "expected a JSON object");
+  if (!j.contains("coefficients") || !j["coefficients"].is_array())
+    throw Error(path, "missing \"coefficients\" array");
+  const auto& rows = j["coefficients"];
+  const int bands = bandsFromCount(path, rows.size());
+  if (j.contains("bands") && (!j["bands"].is_number_integer() || j["bands"].get<int>() != bands))
+    throw Error(path, "\"bands\" says " + j["bands"].dump() + " but there are " + std::to_string(rows.size()) +
+                          " coefficients");
+  LightFile out;
+  out.coefficients = sh::RgbSh(bands);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    if (!r.is_array() || r.size() != 3 || !r[0].is_number() || !r[1].is_number() || !r[2].is_number())
+      throw Error(path, "coefficient " + std::to_string(i) + " is not [r, g, b]");
+    const Rgb v(r[0].get<float>(), r[1].get<float>(), r[2].get<float>());
+    if (!isFinite(v)) throw Error(path, "coefficient " + std::to_string(i) + " is not finite");
+    out.coefficients.c[i] = v;
+  }
+  auto str = [&](const char* key, std::string& dst) {
+    if (!j.contains(key)) return;
+    if (!j[key].is_string()) throw Error(path, std::string("\"") + key + "\" must be a string");
+    dst = j[key].get<std::string>();
+  };
+  str("source", out.source);
+  str("layout", out.layout);
+  str("window", out.window);
+  str("prtkit_version", out.prtkitVersion);
+  if (j.contains("rotation")) {
+    const auto& r = j["rotation"];
+    if (!r.is_array() || r.size() != 3 || !r[0].is_number() || !r[1].is_number() || !r[2].is_number())
+      throw Error(path, "\"rotation\" must be [x, y, z] in degrees");
+    for (int k = 0; k < 3; ++k) out.rotationDeg[k] = r[k].get<double>();
+  }
+  return out;
+}
+
+void writeLightGames202(const std::string& path, const sh::RgbSh& c) {
+  std::string text;
+  for (const Rgb& v : c.c) text += formatFloat(v.x) + " " + formatFloat(v.y) + " " + formatFloat(v.z) + "\n";
+  writeFileAtomically(path, text);
+}
+
+sh::RgbSh readLightGames202(const std::string& path) {
+  const std::vector<unsigned char> bytes = readFileBytes(path);
+  std::istringstream is(std::string(bytes.begin(), bytes.end()));
+  std::vector<Rgb> rows;
+  std::string line;
+  int lineNo = 0;
+  while (std::getline(is, line)) {
+    ++lineNo;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    std::istringstream ls(line);
+    float r, g, b;
+    std::string extra;
+    if (!(ls >> r >> g >> b) || (ls >> extra))
+      throw Error(path, "line " + std::to_string(lineNo) + ": expected three numbers \"r g b\"");
+    const Rgb v(r, g, b);
+    if (!isFinite(v)) throw Error(path, "line " + std::to_string(lineNo) + ": value is not finite");
+    rows.push_back(v);
+  }
+  const int bands = bandsFromCount(path, rows.size());
+  sh::RgbSh out(bands);
+  out.c = std::move(rows);
+  return out;
+}
+
+LightFile readLight(const std::string& path) {
+  if (fileExtension(path) == "json") return readLightJson(path);
+  LightFile out;
+  out.coefficients = readLightGames202(path);
+  out.source = path;
+  return out;
+}
+
+}  // namespace prt::io
