@@ -35,5 +35,6 @@ void addInfoCommand(CLI::App& root);
 void addRenderCommand(CLI::App& root);
 void addValidateCommand(CLI::App& root);
 void addReferenceCommand(CLI::App& root);
+void addMergeCommand(CLI::App& root);
 
 }  // namespace prt::cli

@@ -22,6 +22,7 @@
 #include "prt/envmap/project.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/light_file.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/camera.hpp"
@@ -141,10 +142,9 @@ void run(const RenderOptions& o) {
   std::optional<envmap::Environment> env;
   const std::string lext = fileExtension(o.light);
   if (lext == "json" || lext == "txt") {
-    // TODO(io): read SH light files with prt/io/light_file.hpp once it exists.
-    throw Error(o.light,
-                "SH light files (.json/.txt) are not supported by prt render yet; pass "
-                "an environment image or builtin:NAME");
+    // An SH light file: no environment image, so the background is its SH reconstruction.
+    // relight() reconciles its bands with the transfer's (and says so when they differ).
+    light = io::readLight(o.light).coefficients;
   } else {
     envmap::LoadedEnvironment loaded = envmap::loadEnvironment(o.light);
     for (std::size_t k = 0; k < loaded.stats.size(); ++k)
