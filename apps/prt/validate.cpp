@@ -9,13 +9,11 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
-#include <limits>
 #include <sstream>
 
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
-#include "prt/core/parallel.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/image/image_io.hpp"
@@ -95,38 +93,9 @@ void runValidate(const ValidateArgs& a) {
 
   if (!a.image.empty()) {
     // Per-vertex relative error at the largest band count, through the false-colour ramp,
-    // scaled to its 99th percentile. With a --vertices subset, every other vertex shows the
-    // error of the nearest validated vertex facing the same way (a Voronoi fill).
-    std::vector<float> sorted = rep.vertexError;
-    std::sort(sorted.begin(), sorted.end());
-    const float scale =
-        sorted.empty() ? 1.0f : std::max(1e-6f, sorted[(sorted.size() - 1) * 99 / 100]);
-    const Mesh& mesh = file.mesh;
-    const auto& verts = rep.reference.vertices;
-    std::vector<float> error(mesh.vertexCount(), 0.0f);
-    for (std::size_t i = 0; i < verts.size(); ++i) error[verts[i]] = rep.vertexError[i];
-    if (verts.size() < mesh.vertexCount()) {
-      std::vector<char> known(mesh.vertexCount(), 0);
-      for (std::uint32_t v : verts) known[v] = 1;
-      parallelFor(mesh.vertexCount(), 64, [&](std::size_t b, std::size_t e) {
-        for (std::size_t v = b; v < e; ++v) {
-          if (known[v]) continue;
-          float best = std::numeric_limits<float>::infinity();
-          for (std::size_t i = 0; i < verts.size(); ++i) {
-            const Vec3f d = mesh.positions[verts[i]] - mesh.positions[v];
-            float dist = dot(d, d);
-            if (dot(mesh.normals[verts[i]], mesh.normals[v]) < 0.5f) dist += 1e6f;
-            if (dist < best) {
-              best = dist;
-              error[v] = rep.vertexError[i];
-            }
-          }
-        }
-      });
-    }
-    std::vector<Rgb> colour(mesh.vertexCount());
-    for (std::size_t v = 0; v < colour.size(); ++v)
-      colour[v] = render::falseColour(std::min(1.0f, error[v] / scale));
+    // scaled to its 99th percentile (a Voronoi fill between the vertices of a --vertices subset).
+    float scale = 1.0f;
+    const std::vector<Rgb> colour = render::vertexErrorColours(file.mesh, rep, &scale);
     render::FrameSettings fs;
     fs.width = iw;
     fs.height = ih;

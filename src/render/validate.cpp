@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -242,6 +243,47 @@ std::string reportJson(const ValidationReport& rep, int indent) {
   }
   os << i1 << "]" << nl << "}" << nl;
   return os.str();
+}
+
+std::vector<Rgb> vertexErrorColours(const Mesh& mesh, const ValidationReport& report,
+                                    float* scaleOut) {
+  const auto& verts = report.reference.vertices;
+  if (report.vertexError.size() != verts.size())
+    throw Error("vertexErrorColours: the report's errors and vertices differ in number");
+  std::vector<float> sorted = report.vertexError;
+  std::sort(sorted.begin(), sorted.end());
+  const float scale =
+      sorted.empty() ? 1.0f : std::max(1e-6f, sorted[(sorted.size() - 1) * 99 / 100]);
+  if (scaleOut) *scaleOut = scale;
+  std::vector<float> error(mesh.vertexCount(), 0.0f);
+  std::vector<char> known(mesh.vertexCount(), 0);
+  for (std::size_t i = 0; i < verts.size(); ++i) {
+    if (verts[i] >= mesh.vertexCount())
+      throw Error("vertexErrorColours: the report names a vertex past the mesh");
+    error[verts[i]] = report.vertexError[i];
+    known[verts[i]] = 1;
+  }
+  if (!verts.empty() && verts.size() < mesh.vertexCount()) {
+    parallelFor(mesh.vertexCount(), 64, [&](std::size_t b, std::size_t e) {
+      for (std::size_t v = b; v < e; ++v) {
+        if (known[v]) continue;
+        float best = std::numeric_limits<float>::infinity();
+        for (std::size_t i = 0; i < verts.size(); ++i) {
+          const Vec3f d = mesh.positions[verts[i]] - mesh.positions[v];
+          float dist = dot(d, d);
+          if (dot(mesh.normals[verts[i]], mesh.normals[v]) < 0.5f) dist += 1e6f;
+          if (dist < best) {
+            best = dist;
+            error[v] = report.vertexError[i];
+          }
+        }
+      }
+    });
+  }
+  std::vector<Rgb> colour(mesh.vertexCount());
+  for (std::size_t v = 0; v < colour.size(); ++v)
+    colour[v] = falseColour(std::min(1.0f, error[v] / scale));
+  return colour;
 }
 
 }  // namespace prt::render

@@ -61,6 +61,13 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
                           const sh::RgbSh& light, const ValidateSettings& settings,
                           const ProgressFn& progress = {});
 
+/// The per-vertex error e(p) of `report` (its last row's band count) as false colours for every
+/// vertex of `mesh`, black 0 .. white `*scale` (the 99th percentile of e, written to `scale`).
+/// When the report covers a vertex subset, every other vertex shows the error of the nearest
+/// validated vertex facing within 60° of it (a Voronoi fill), so the image reads as a field.
+std::vector<Rgb> vertexErrorColours(const Mesh& mesh, const ValidationReport& report,
+                                    float* scale = nullptr);
+
 /// The table as text: a header and one line per band count.
 std::string formatTable(const ValidationReport& report);
 /// The report as JSON (settings, rows, timing).
