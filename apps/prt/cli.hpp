@@ -35,6 +35,7 @@ void addInfoCommand(CLI::App& root);
 void addRenderCommand(CLI::App& root);
 void addValidateCommand(CLI::App& root);
 void addReferenceCommand(CLI::App& root);
+void addViewCommand(CLI::App& root);
 void addMergeCommand(CLI::App& root);
 
 }  // namespace prt::cli

@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   addRenderCommand(app);
   addValidateCommand(app);
   addReferenceCommand(app);
+  addViewCommand(app);
   addMergeCommand(app);
 
   std::signal(SIGINT, onSigint);

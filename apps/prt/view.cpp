@@ -1,0 +1,106 @@
+// prt view: the real-time viewer (apps/viewer/, docs/viewer.md).
+//
+//   prt view bunny.glb --env studio.exr --env builtin:sky
+//   prt view bunny.glb --headless --size 160x120 --rotate 0,90,0 --screenshot frame.png
+//
+// Built only when GLFW, libepoxy, EGL and Dear ImGui were found at configure time
+// (PRT_HAVE_VIEWER); otherwise the verb exists and says so.
+
+#include <array>
+#include <cstdio>
+
+#include "cli.hpp"
+#include "prt/core/error.hpp"
+
+#ifdef PRT_HAVE_VIEWER
+#include "viewer.hpp"
+#endif
+
+namespace prt::cli {
+
+namespace {
+
+struct ViewArgs {
+  std::string bake;
+  std::vector<std::string> envs;
+  std::string size = "640x480";
+  std::vector<double> rotate;
+  std::string camera, mode, background = "env", toneMap = "aces", screenshot;
+  int bands = 0, frames = 1;
+  float exposure = 0.0f;
+  bool autoRotate = false, headless = false, stats = false;
+  double spin = 30.0;
+};
+
+#ifdef PRT_HAVE_VIEWER
+void runView(const ViewArgs& a) {
+  viewer::Options o;
+  o.bake = a.bake;
+  o.environments = a.envs;
+  char x = 0, tail = 0;
+  if (std::sscanf(a.size.c_str(), "%d%c%d%c", &o.width, &x, &o.height, &tail) != 3 ||
+      (x != 'x' && x != 'X'))
+    throw Error("--size '" + a.size + "' is not WIDTHxHEIGHT");
+  if (!a.rotate.empty()) {
+    if (a.rotate.size() != 3) throw Error("--rotate needs three angles X,Y,Z in degrees");
+    o.rotateDeg = std::array<double, 3>{a.rotate[0], a.rotate[1], a.rotate[2]};
+  }
+  o.camera = a.camera;
+  o.mode = a.mode;
+  o.bands = a.bands;
+  o.background = a.background;
+  o.exposure = a.exposure;
+  o.toneMap = a.toneMap;
+  o.autoRotate = a.autoRotate;
+  o.spinDegreesPerSecond = a.spin;
+  o.headless = a.headless;
+  o.frames = a.frames;
+  o.screenshot = a.screenshot;
+  o.stats = a.stats;
+  viewer::Output out{[](const std::string& s) { info(s); }, [](const std::string& s) { warn(s); }};
+  viewer::run(o, out);
+}
+#else
+void runView(const ViewArgs&) {
+  throw Error("this build has no viewer (GLFW/OpenGL not found at configure time)");
+}
+#endif
+
+}  // namespace
+
+void addViewCommand(CLI::App& root) {
+  auto a = std::make_shared<ViewArgs>();
+  CLI::App* cmd = root.add_subcommand("view", "Real-time viewer: relight a bake on the GPU");
+  cmd->add_option("bake", a->bake, "Bake file (.glb)")->required();
+  cmd->add_option("--env,--light", a->envs,
+                  "Environment image, face folder or builtin:NAME (repeat to switch between "
+                  "several; default builtin:sky)");
+  cmd->add_option("--size", a->size, "Window or frame size WxH")->capture_default_str();
+  cmd->add_option("--rotate", a->rotate,
+                  "Rotate the environment: X,Y,Z degrees (X, then Y, then Z; as prt render)")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--camera", a->camera,
+                  "Camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (default: prt render's "
+                  "framing)");
+  cmd->add_option("--mode", a->mode, "Transfer mode to start with (default: the richest)");
+  cmd->add_option("--bands", a->bands, "Start with at most this many SH bands");
+  cmd->add_option("--background", a->background,
+                  "env (the image), sh (its SH reconstruction) or none")
+      ->capture_default_str();
+  cmd->add_option("--exposure", a->exposure, "Exposure in stops")->capture_default_str();
+  cmd->add_option("--tonemap", a->toneMap, "aces, reinhard or clamp")->capture_default_str();
+  cmd->add_flag("--auto-rotate", a->autoRotate, "Turn the light about +Y");
+  cmd->add_option("--spin", a->spin, "Auto-rotation speed, degrees per second")
+      ->capture_default_str();
+  cmd->add_flag("--headless", a->headless,
+                "Render offscreen (EGL, no display needed) instead of opening a window");
+  cmd->add_option("--frames", a->frames, "Headless: frames to render (1/60 s apart)")
+      ->capture_default_str();
+  cmd->add_option("--screenshot", a->screenshot,
+                  "Headless: write the last frame (.png as shown, .exr/.hdr linear)");
+  cmd->add_flag("--stats", a->stats, "Headless: print frame and upload timings on stdout");
+  cmd->callback([a] { runView(*a); });
+}
+
+}  // namespace prt::cli

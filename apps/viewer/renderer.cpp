@@ -1,0 +1,470 @@
+#include "renderer.hpp"
+
+#include <epoxy/gl.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "prt/core/error.hpp"
+
+namespace prt::viewer {
+
+namespace {
+
+// ---- shaders --------------------------------------------------------------------------------
+
+constexpr const char* kMeshVs = R"(#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aAlbedo;
+uniform mat4 uViewProj;
+uniform samplerBuffer uTransfer;  // GL_RGBA32F, layout in renderer.hpp
+uniform int uTexelsPerVertex;     // scalar: roundUp4(B²)/4; RGB: B²
+uniform int uCount;               // scalar: texels to read = roundUp4(b²)/4; RGB: b²
+uniform bool uRgb;
+layout(std140) uniform Light { vec4 uL[1024]; };  // D(R) L, (r, g, b, -) per coefficient
+out vec3 vRadiance;
+void main() {
+  int base = gl_VertexID * uTexelsPerVertex;
+  vec3 r = vec3(0.0);
+  if (uRgb) {
+    for (int i = 0; i < uCount; ++i) r += texelFetch(uTransfer, base + i).rgb * uL[i].rgb;
+  } else {
+    for (int k = 0; k < uCount; ++k) {
+      vec4 t = texelFetch(uTransfer, base + k);
+      int i = 4 * k;
+      r += t.x * uL[i].rgb + t.y * uL[i + 1].rgb + t.z * uL[i + 2].rgb + t.w * uL[i + 3].rgb;
+    }
+  }
+  vRadiance = aAlbedo * r;  // R(v) = albedo(v) ⊙ Σ_i T_i(v) L'_i
+  gl_Position = uViewProj * vec4(aPosition, 1.0);
+}
+)";
+
+constexpr const char* kMeshFs = R"(#version 330 core
+in vec3 vRadiance;
+out vec4 fragColour;
+void main() { fragColour = vec4(vRadiance, 1.0); }
+)";
+
+// A triangle covering the viewport: vertices (-1,-1), (3,-1), (-1,3).
+constexpr const char* kFullscreenVs = R"(#version 330 core
+void main() {
+  vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+  gl_Position = vec4(p, 1.0, 1.0);
+}
+)";
+
+// Camera ray of a pixel as in render::RayGenerator: ndc = (2 px / w − 1, 1 − 2 py / h) with py
+// from the top, i.e. (2 x / w − 1, 2 y / h − 1) in GL's bottom-up window coordinates;
+// d ∝ forward + ndc.x tanX right + ndc.y tanY up. Lat-long lookup (envmap/layout.hpp): for the
+// unrotated direction e = Rᵀ d, θ = acos e.y, φ = atan2(e.z, e.x), u = φ / 2π + 1/2, v = θ / π.
+constexpr const char* kBackgroundFs = R"(#version 330 core
+uniform vec2 uViewport;
+uniform vec3 uForward, uRightTan, uUpTan;
+uniform mat3 uRotationT;
+uniform sampler2D uLatLong;
+out vec4 fragColour;
+const float kPi = 3.14159265358979;
+void main() {
+  vec2 ndc = 2.0 * gl_FragCoord.xy / uViewport - 1.0;
+  vec3 d = normalize(uForward + ndc.x * uRightTan + ndc.y * uUpTan);
+  vec3 e = uRotationT * d;
+  float theta = acos(clamp(e.y, -1.0, 1.0));
+  float phi = atan(e.z, e.x);
+  vec2 uv = vec2(phi / (2.0 * kPi) + 0.5, theta / kPi);
+  fragColour = vec4(max(texture(uLatLong, uv).rgb, vec3(0.0)), 1.0);
+}
+)";
+
+// image::toneMap then image::linearToSrgb (prt/image/color.hpp), per channel.
+constexpr const char* kToneFs = R"(#version 330 core
+uniform sampler2D uHdr;
+uniform float uScale;  // 2^exposure
+uniform int uToneMap;  // 0 clamp, 1 reinhard, 2 aces
+out vec4 fragColour;
+float tone(float v) {
+  v = max(v * uScale, 0.0);
+  if (uToneMap == 0) return min(v, 1.0);
+  if (uToneMap == 1) return v / (1.0 + v);
+  return clamp(v * (2.51 * v + 0.03) / (v * (2.43 * v + 0.59) + 0.14), 0.0, 1.0);
+}
+float srgb(float v) {
+  v = clamp(v, 0.0, 1.0);
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+void main() {
+  vec3 c = texelFetch(uHdr, ivec2(gl_FragCoord.xy), 0).rgb;
+  fragColour = vec4(srgb(tone(c.r)), srgb(tone(c.g)), srgb(tone(c.b)), 1.0);
+}
+)";
+
+GLuint compile(GLenum type, const char* src, const char* name) {
+  const GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &src, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    std::string line(log);
+    std::replace(line.begin(), line.end(), '\n', ' ');
+    glDeleteShader(s);
+    throw Error(fmt::format("viewer shader '{}' does not compile: {}", name, line));
+  }
+  return s;
+}
+
+GLuint link(const char* vs, const char* fs, const char* name) {
+  const GLuint v = compile(GL_VERTEX_SHADER, vs, name), f = compile(GL_FRAGMENT_SHADER, fs, name);
+  const GLuint p = glCreateProgram();
+  glAttachShader(p, v);
+  glAttachShader(p, f);
+  glLinkProgram(p);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    glDeleteProgram(p);
+    throw Error(fmt::format("viewer shader '{}' does not link: {}", name, log));
+  }
+  return p;
+}
+
+GLint loc(GLuint program, const char* name) {
+  return glGetUniformLocation(program, name);
+}
+
+void uniform3(GLuint program, const char* name, const Vec3f& v) {
+  glUniform3f(loc(program, name), v.x, v.y, v.z);
+}
+
+/// An RGB32F lat-long texture: wraps in u (azimuth), clamps in v (poles), bilinear.
+void uploadLatLong(GLuint& texture, const image::Image& img) {
+  if (!texture) glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, img.width, img.height, 0, GL_RGB, GL_FLOAT,
+               img.pixels.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+/// Reads the bound read framebuffer's colour attachment into a top-row-first image.
+image::Image readPixels(int w, int h, GLenum type) {
+  image::Image img;
+  img.width = w, img.height = h;
+  img.pixels.resize(std::size_t(w) * h);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (type == GL_FLOAT) {
+    std::vector<float> rows(std::size_t(w) * h * 3);
+    glReadPixels(0, 0, w, h, GL_RGB, GL_FLOAT, rows.data());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float* p = &rows[(std::size_t(h - 1 - y) * w + x) * 3];
+        img.pixels[std::size_t(y) * w + x] = {p[0], p[1], p[2]};
+      }
+  } else {
+    std::vector<unsigned char> rows(std::size_t(w) * h * 3);
+    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const unsigned char* p = &rows[(std::size_t(h - 1 - y) * w + x) * 3];
+        img.pixels[std::size_t(y) * w + x] = {p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f};
+      }
+  }
+  return img;
+}
+
+}  // namespace
+
+// ---- OffscreenTarget ------------------------------------------------------------------------
+
+OffscreenTarget::OffscreenTarget(int width, int height) : width_(width), height_(height) {
+  glGenTextures(1, &colour_);
+  glBindTexture(GL_TEXTURE_2D, colour_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glGenFramebuffers(1, &fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_, 0);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error(fmt::format("cannot create a {}x{} offscreen framebuffer", width, height));
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+OffscreenTarget::~OffscreenTarget() {
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteTextures(1, &colour_);
+}
+
+image::Image OffscreenTarget::readEncoded() const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  image::Image img = readPixels(width_, height_, GL_UNSIGNED_BYTE);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return img;
+}
+
+// ---- Renderer -------------------------------------------------------------------------------
+
+Renderer::Renderer() {
+  meshProgram_ = link(kMeshVs, kMeshFs, "mesh");
+  backgroundProgram_ = link(kFullscreenVs, kBackgroundFs, "background");
+  toneProgram_ = link(kFullscreenVs, kToneFs, "tone map");
+  glUniformBlockBinding(meshProgram_, glGetUniformBlockIndex(meshProgram_, "Light"), 0);
+  glGenVertexArrays(1, &vao_);
+  glGenVertexArrays(1, &emptyVao_);
+  glGenBuffers(1, &lightUbo_);
+  glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
+  glBufferData(GL_UNIFORM_BUFFER, sizeof(float) * 4 * kMaxViewerCoeffs, nullptr, GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  // A black 1×1 image until the caller sets real ones.
+  image::Image black;
+  black.width = black.height = 1;
+  black.pixels = {Rgb(0.0f)};
+  setEnvironmentImage(black);
+  setShImage(black);
+}
+
+Renderer::~Renderer() {
+  const GLuint programs[] = {meshProgram_, backgroundProgram_, toneProgram_};
+  for (GLuint p : programs) glDeleteProgram(p);
+  const GLuint buffers[] = {positions_, albedo_, indices_, transferBuffer_, lightUbo_};
+  glDeleteBuffers(5, buffers);
+  const GLuint textures[] = {transferTexture_, envTexture_, shTexture_, msColour_, resolveColour_};
+  glDeleteTextures(5, textures);
+  glDeleteRenderbuffers(1, &msDepth_);
+  const GLuint fbos[] = {msFbo_, resolveFbo_};
+  glDeleteFramebuffers(2, fbos);
+  const GLuint vaos[] = {vao_, emptyVao_};
+  glDeleteVertexArrays(2, vaos);
+}
+
+void Renderer::setMesh(const Mesh& mesh) {
+  glBindVertexArray(vao_);
+  if (!positions_) glGenBuffers(1, &positions_);
+  glBindBuffer(GL_ARRAY_BUFFER, positions_);
+  glBufferData(GL_ARRAY_BUFFER, sizeof(Vec3f) * mesh.positions.size(), mesh.positions.data(),
+               GL_STATIC_DRAW);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+  glEnableVertexAttribArray(0);
+  hasAlbedo_ = mesh.albedo.size() == mesh.positions.size() && !mesh.albedo.empty();
+  if (hasAlbedo_) {
+    if (!albedo_) glGenBuffers(1, &albedo_);
+    glBindBuffer(GL_ARRAY_BUFFER, albedo_);
+    glBufferData(GL_ARRAY_BUFFER, sizeof(Rgb) * mesh.albedo.size(), mesh.albedo.data(),
+                 GL_STATIC_DRAW);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Rgb), nullptr);
+    glEnableVertexAttribArray(1);
+  } else {
+    // relight's rule: a single albedo applies to all vertices, none means white.
+    const Rgb a = mesh.albedo.size() == 1 ? mesh.albedo[0] : Rgb(1.0f);
+    glDisableVertexAttribArray(1);
+    glVertexAttrib3f(1, a.x, a.y, a.z);
+  }
+  if (!indices_) glGenBuffers(1, &indices_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(mesh.triangles[0]) * mesh.triangles.size(),
+               mesh.triangles.data(), GL_STATIC_DRAW);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  triangles_ = mesh.triangleCount();
+  vertices_ = mesh.vertexCount();
+  const Bounds b = computeBounds(mesh);
+  centre_ = b.centre();
+  radius_ = std::max(b.radius(), 1e-6f);
+}
+
+void Renderer::setTransfer(const TransferField& t) {
+  if (t.bands < 1 || t.bands > kMaxViewerBands)
+    throw Error(
+        fmt::format("the transfer has {} bands; the viewer draws 1..{}", t.bands, kMaxViewerBands));
+  if (t.channels != 1 && t.channels != 3)
+    throw Error(fmt::format("the transfer has {} channels (1 or 3 expected)", t.channels));
+  const int n = t.coeffs();
+  const int texelsPerVertex = t.channels == 1 ? paddedCoeffs(t.bands) / 4 : n;
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  const double texels = double(texelsPerVertex) * double(t.vertexCount);
+  if (texels > double(maxTexels))
+    throw Error(
+        fmt::format("the transfer needs {:.0f} texels, more than this OpenGL's texture "
+                    "buffer limit of {} (use fewer bands)",
+                    texels, maxTexels));
+  std::vector<float> packed(std::size_t(texelsPerVertex) * 4 * t.vertexCount, 0.0f);
+  for (std::size_t v = 0; v < t.vertexCount; ++v) {
+    const float* src = t.vertex(v);
+    float* dst = packed.data() + v * texelsPerVertex * 4;
+    if (t.channels == 1)
+      std::copy(src, src + n, dst);
+    else
+      for (int i = 0; i < n; ++i) std::copy(src + 3 * i, src + 3 * i + 3, dst + 4 * i);
+  }
+  if (!transferBuffer_) glGenBuffers(1, &transferBuffer_);
+  glBindBuffer(GL_TEXTURE_BUFFER, transferBuffer_);
+  glBufferData(GL_TEXTURE_BUFFER, sizeof(float) * packed.size(), packed.data(), GL_STATIC_DRAW);
+  if (!transferTexture_) glGenTextures(1, &transferTexture_);
+  glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transferBuffer_);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  transferBands_ = t.bands;
+  transferChannels_ = t.channels;
+  transferStride_ = texelsPerVertex;
+}
+
+void Renderer::setEnvironmentImage(const image::Image& img) {
+  uploadLatLong(envTexture_, img);
+}
+void Renderer::setShImage(const image::Image& img) {
+  uploadLatLong(shTexture_, img);
+}
+
+void Renderer::resize(int w, int h) {
+  if (w == fbWidth_ && h == fbHeight_) return;
+  if (!msFbo_) {
+    glGenFramebuffers(1, &msFbo_);
+    glGenFramebuffers(1, &resolveFbo_);
+    glGenTextures(1, &msColour_);
+    glGenTextures(1, &resolveColour_);
+    glGenRenderbuffers(1, &msDepth_);
+  }
+  GLint maxSamples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  const int samples = std::min(4, int(maxSamples));
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, msColour_);
+  glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, GL_RGBA32F, w, h, GL_TRUE);
+  glBindRenderbuffer(GL_RENDERBUFFER, msDepth_);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, w, h);
+  glBindFramebuffer(GL_FRAMEBUFFER, msFbo_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D_MULTISAMPLE, msColour_,
+                         0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msDepth_);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error(fmt::format("cannot create a {}x{} multisampled float framebuffer", w, h));
+  glBindTexture(GL_TEXTURE_2D, resolveColour_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, resolveColour_, 0);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error(fmt::format("cannot create a {}x{} float framebuffer", w, h));
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  fbWidth_ = w, fbHeight_ = h;
+}
+
+void Renderer::draw(const FrameParams& f, unsigned target) {
+  PRT_CHECK(f.light != nullptr, "FrameParams.light is null");
+  const int w = f.width, h = f.height;
+  resize(w, h);
+
+  // Camera frame exactly as render::RayGenerator builds it.
+  const render::Camera& c = f.camera;
+  const Vec3f forward = normalize(c.target - c.eye);
+  const Vec3f right = normalize(cross(forward, c.up));
+  const Vec3f up = cross(right, forward);
+  const float tanY = std::tan(0.5f * c.fovY * kPif / 180.0f);
+  const float tanX = tanY * float(w) / float(h);
+  // Clip planes around the bounding sphere: depth d of its centre, everything within d ± r.
+  const float d = dot(centre_ - c.eye, forward);
+  const float farZ = std::max(d + 1.01f * radius_, 1e-3f * radius_);
+  const float nearZ = std::max(d - 1.01f * radius_, 1e-4f * farZ);
+  // Row-major view-projection: x_clip = (p−eye)·right / tanX, y_clip = (p−eye)·up / tanY,
+  // w_clip = z = (p−eye)·forward, z_clip = A z + B with A = (f+n)/(f−n), B = −2fn/(f−n), so
+  // ndc = project() of RayGenerator and depth −1..1 between the planes.
+  const float A = (farZ + nearZ) / (farZ - nearZ), B = -2.0f * farZ * nearZ / (farZ - nearZ);
+  const Vec3f rows[4] = {right / tanX, up / tanY, forward * A, forward};
+  const float offs[4] = {-dot(right, c.eye) / tanX, -dot(up, c.eye) / tanY,
+                         -A * dot(forward, c.eye) + B, -dot(forward, c.eye)};
+  float viewProj[16];  // column-major for GL
+  for (int r = 0; r < 4; ++r) {
+    viewProj[0 + r] = rows[r].x, viewProj[4 + r] = rows[r].y, viewProj[8 + r] = rows[r].z;
+    viewProj[12 + r] = offs[r];
+  }
+
+  glBindFramebuffer(GL_FRAMEBUFFER, msFbo_);
+  glViewport(0, 0, w, h);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+  // (a) background.
+  if (f.background != BackgroundMode::None) {
+    glUseProgram(backgroundProgram_);
+    glUniform2f(loc(backgroundProgram_, "uViewport"), float(w), float(h));
+    uniform3(backgroundProgram_, "uForward", forward);
+    uniform3(backgroundProgram_, "uRightTan", right * tanX);
+    uniform3(backgroundProgram_, "uUpTan", up * tanY);
+    // GLSL mat3 is column-major: uploading R's rows as columns gives Rᵀ.
+    float rt[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) rt[3 * i + j] = float(f.lightRotation.m[i][j]);
+    glUniformMatrix3fv(loc(backgroundProgram_, "uRotationT"), 1, GL_FALSE, rt);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, f.background == BackgroundMode::Env ? envTexture_ : shTexture_);
+    glUniform1i(loc(backgroundProgram_, "uLatLong"), 0);
+    glBindVertexArray(emptyVao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+
+  // (b) the relit mesh.
+  if (triangles_ > 0 && transferTexture_) {
+    const auto t0 = std::chrono::steady_clock::now();
+    glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(f.light->bytes()), f.light->data());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, lightUbo_);
+    uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const int b = std::min(f.light->bands(), transferBands_);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(meshProgram_);
+    glUniformMatrix4fv(loc(meshProgram_, "uViewProj"), 1, GL_FALSE, viewProj);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
+    glUniform1i(loc(meshProgram_, "uTransfer"), 1);
+    glUniform1i(loc(meshProgram_, "uTexelsPerVertex"), transferStride_);
+    glUniform1i(loc(meshProgram_, "uRgb"), transferChannels_ == 3);
+    glUniform1i(loc(meshProgram_, "uCount"), transferChannels_ == 3 ? b * b : paddedCoeffs(b) / 4);
+    glBindVertexArray(vao_);
+    glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_DEPTH_TEST);
+  }
+
+  // (2) resolve, (3) tone map into the target.
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, msFbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolveFbo_);
+  glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target);
+  glViewport(0, 0, w, h);
+  glUseProgram(toneProgram_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, resolveColour_);
+  glUniform1i(loc(toneProgram_, "uHdr"), 0);
+  glUniform1f(loc(toneProgram_, "uScale"), std::exp2(f.exposureStops));
+  glUniform1i(loc(toneProgram_, "uToneMap"), f.toneMap == image::ToneMap::Clamp      ? 0
+                                             : f.toneMap == image::ToneMap::Reinhard ? 1
+                                                                                     : 2);
+  glBindVertexArray(emptyVao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+image::Image Renderer::readLinear() const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolveFbo_);
+  image::Image img = readPixels(fbWidth_, fbHeight_, GL_FLOAT);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return img;
+}
+
+}  // namespace prt::viewer

@@ -1,0 +1,108 @@
+#pragma once
+// The viewer's OpenGL renderer: the relit mesh over the environment, one frame in three passes.
+//
+//  1. Into a 4× multisampled RGBA32F framebuffer (linear, scene-referred radiance):
+//     a. the background, a full-screen triangle whose fragment shader turns its pixel into the
+//        camera ray d (the same mapping as render::RayGenerator) and looks up the lat-long image
+//        of the environment, or of its SH reconstruction, at Rᵀ d (the environment rotated by R:
+//        L'(ω) = L(Rᵀ ω), as render::environmentBackground);
+//     b. the mesh, whose vertex shader relights each vertex (vertex v = gl_VertexID)
+//          R(v) = albedo(v) ⊙ Σ_{i < b²} T_i(v) L'_i
+//        from the transfer in a texture buffer and the rotated light L' = D(R) L in a uniform
+//        block (LightPacker); the rasteriser interpolates R perspective-correctly across each
+//        triangle — the barycentric interpolation prt render does on ray hits.
+//  2. The samples are resolved (box filter, like render's stratified spp average).
+//  3. A full-screen pass applies exposure 2^stops, the tone map and the sRGB encode
+//     (image::toneMap, image::linearToSrgb: the same formulas in GLSL) into the target.
+//
+// Transfer layout in the texture buffer (GL_RGBA32F texels):
+//   scalar: vertex v's B² coefficients zero-padded to P = roundUp4(B²), texels v·P/4 .. ;
+//           the shader dots four coefficients per fetch with four light vec4s;
+//   RGB:    one texel (r, g, b, 0) per coefficient, texels v·B² + i.
+// Truncating to b < B bands only shortens the shader's loop: nothing is re-uploaded.
+
+#include <cstdint>
+#include <vector>
+
+#include "light_packer.hpp"
+#include "prt/core/vec.hpp"
+#include "prt/geometry/mesh.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image.hpp"
+#include "prt/render/camera.hpp"
+#include "prt/transport/transfer.hpp"
+
+namespace prt::viewer {
+
+enum class BackgroundMode { Env, Sh, None };
+
+struct FrameParams {
+  render::Camera camera;
+  int width = 640, height = 480;
+  Mat3d lightRotation = Mat3d::identity();  ///< R: the environment as drawn behind the mesh
+  const LightPacker* light = nullptr;       ///< packed D(R) L at the bands to draw with
+  BackgroundMode background = BackgroundMode::Env;
+  float exposureStops = 0.0f;
+  image::ToneMap toneMap = image::ToneMap::Aces;
+};
+
+/// An RGBA8 colour framebuffer object for offscreen display output (headless mode).
+class OffscreenTarget {
+ public:
+  OffscreenTarget(int width, int height);
+  ~OffscreenTarget();
+  OffscreenTarget(const OffscreenTarget&) = delete;
+  OffscreenTarget& operator=(const OffscreenTarget&) = delete;
+  unsigned fbo() const { return fbo_; }
+  /// The tone-mapped sRGB pixels as an image of codes / 255 (top row first).
+  image::Image readEncoded() const;
+
+ private:
+  int width_, height_;
+  unsigned fbo_ = 0, colour_ = 0;
+};
+
+class Renderer {
+ public:
+  /// Compiles the shaders; needs a current OpenGL 3.3 core context. Throws prt::Error.
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Uploads positions, albedo (white when the mesh has none) and triangles.
+  void setMesh(const Mesh& mesh);
+  /// Uploads a transfer with one row per mesh vertex. Throws prt::Error when it does not fit
+  /// the driver's texture-buffer limit or its bands exceed kMaxViewerBands.
+  void setTransfer(const TransferField& transfer);
+  /// The lat-long images behind BackgroundMode::Env and ::Sh (linear RGB).
+  void setEnvironmentImage(const image::Image& latLong);
+  void setShImage(const image::Image& latLong);
+
+  /// Draws one frame into framebuffer `target` (0: the window), viewport width × height.
+  void draw(const FrameParams& frame, unsigned target);
+  /// The last frame's resolved linear radiance (top row first).
+  image::Image readLinear() const;
+
+  /// Seconds the last draw spent uploading the light block (CPU side of the copy).
+  double lastUploadSeconds() const { return uploadSeconds_; }
+  std::size_t triangleCount() const { return triangles_; }
+
+ private:
+  void resize(int width, int height);
+
+  unsigned meshProgram_ = 0, backgroundProgram_ = 0, toneProgram_ = 0;
+  unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0;
+  unsigned transferBuffer_ = 0, transferTexture_ = 0, lightUbo_ = 0;
+  unsigned envTexture_ = 0, shTexture_ = 0;
+  unsigned msFbo_ = 0, msColour_ = 0, msDepth_ = 0, resolveFbo_ = 0, resolveColour_ = 0;
+  int fbWidth_ = 0, fbHeight_ = 0;
+  bool hasAlbedo_ = false;
+  int transferBands_ = 0, transferChannels_ = 1, transferStride_ = 0;
+  std::size_t triangles_ = 0, vertices_ = 0;
+  Vec3f centre_{0.0f};
+  float radius_ = 1.0f;
+  double uploadSeconds_ = 0.0;
+};
+
+}  // namespace prt::viewer

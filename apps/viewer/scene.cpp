@@ -1,0 +1,236 @@
+#include "scene.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/envmap/load.hpp"
+#include "prt/envmap/preview.hpp"
+#include "prt/envmap/project.hpp"
+
+namespace prt::viewer {
+
+namespace {
+
+/// Lat-long width for the background of a tabulated or analytic environment: an image already
+/// lat-long is used as it is; others are resampled at about their own resolution.
+int latLongWidth(const envmap::Environment& env) {
+  const auto& imgs = env.images();
+  const int n = imgs.empty() ? 512 : imgs.front().width;
+  switch (env.kind()) {
+    case envmap::Environment::Kind::Cube:
+      return std::clamp(4 * n, 512, 4096);
+    case envmap::Environment::Kind::Probe:
+      return std::clamp(2 * n, 512, 4096);
+    default:  // analytic: sharp sun discs deserve more texels than the projection's
+      return 2048;
+  }
+}
+
+/// The modes from the richest to the plainest, as prt render picks its default.
+int richness(TransferMode m) {
+  switch (m) {
+    case TransferMode::Interreflected:
+      return 0;
+    case TransferMode::Shadowed:
+      return 1;
+    case TransferMode::Unshadowed:
+      return 2;
+  }
+  return 3;
+}
+
+}  // namespace
+
+// ---- OrbitCamera ------------------------------------------------------------------------------
+
+OrbitCamera::OrbitCamera(const render::Camera& start) : start_(start) {
+  target_ = Vec3d(start.target);
+  const Vec3d d = Vec3d(start.eye) - target_;
+  distance_ = std::max(length(d), 1e-9);
+  const Vec3d u = d / distance_;
+  elevation_ = std::asin(std::clamp(u.y, -1.0, 1.0));
+  azimuth_ = std::atan2(u.x, u.z);
+}
+
+render::Camera OrbitCamera::camera() const {
+  if (!moved_) return start_;
+  // Direction from target to eye: azimuth about +Y from +Z, elevation above the XZ plane.
+  const Vec3d dir{std::cos(elevation_) * std::sin(azimuth_), std::sin(elevation_),
+                  std::cos(elevation_) * std::cos(azimuth_)};
+  render::Camera c = start_;
+  c.target = Vec3f(target_);
+  c.eye = Vec3f(target_ + dir * distance_);
+  c.up = {0.0f, 1.0f, 0.0f};
+  return c;
+}
+
+void OrbitCamera::orbit(double dAz, double dEl) {
+  moved_ = true;
+  azimuth_ += dAz;
+  const double limit = 89.0 * kPi / 180.0;
+  elevation_ = std::clamp(elevation_ + dEl, -limit, limit);
+}
+
+void OrbitCamera::pan(double dx, double dy) {
+  const render::Camera c = camera();
+  moved_ = true;
+  const Vec3d forward = normalize(Vec3d(c.target - c.eye));
+  const Vec3d right = normalize(cross(forward, Vec3d(c.up)));
+  const Vec3d up = cross(right, forward);
+  // The view is 2 d tan(fovY/2) tall at the target.
+  const double height = 2.0 * distance_ * std::tan(0.5 * c.fovY * kPi / 180.0);
+  target_ += (right * -dx + up * dy) * height;
+}
+
+void OrbitCamera::zoom(double factor) {
+  moved_ = true;
+  distance_ = std::max(distance_ * factor, 1e-6);
+}
+
+// ---- Scene --------------------------------------------------------------------------------------
+
+BakeFile Scene::readCheckedBake(const std::string& path) {
+  BakeFile bake = readBake(path);
+  if (bake.transfers.empty())
+    throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
+  if (!bake.complete())
+    throw Error(path, fmt::format("holds transfer for vertices {}..{} of {} only (merge the "
+                                  "pieces first)",
+                                  bake.firstVertex, bake.firstVertex + bake.vertexCount,
+                                  bake.mesh.vertexCount()));
+  for (const BakedTransfer& t : bake.transfers) {
+    if (t.field.bands < 1 || t.field.bands > kMaxViewerBands)
+      throw Error(path, fmt::format("the {} transfer has {} bands; the viewer draws 1..{}",
+                                    toString(t.settings.mode), t.field.bands, kMaxViewerBands));
+    if (t.field.bands != bake.transfers.front().field.bands)
+      throw Error(path, fmt::format("its transfers have different band counts ({} {}, {} {})",
+                                    toString(bake.transfers.front().settings.mode),
+                                    bake.transfers.front().field.bands, toString(t.settings.mode),
+                                    t.field.bands));
+  }
+  return bake;
+}
+
+EnvironmentEntry Scene::loadEnvironment(const std::string& spec, int bands) {
+  envmap::LoadedEnvironment loaded = envmap::loadEnvironment(spec);
+  EnvironmentEntry e;
+  e.name = spec;
+  e.env = std::move(loaded.env);
+  if (e.env.kind() == envmap::Environment::Kind::LatLong)
+    e.latLong = e.env.images().front();
+  else
+    e.latLong = envmap::renderEnvironment(e.env, latLongWidth(e.env));
+  e.light = envmap::projectEnvironment(e.env, bands);
+  return e;
+}
+
+void Scene::setBake(BakeFile bake, const std::string& name, int width, int height) {
+  PRT_CHECK(!bake.transfers.empty(), "setBake needs a transfer");
+  const int bands = bake.transfers.front().field.bands;
+  if (bands != bakeBands_)
+    for (EnvironmentEntry& e : envs_) e.light = envmap::projectEnvironment(e.env, bands);
+  std::stable_sort(bake.transfers.begin(), bake.transfers.end(),
+                   [](const BakedTransfer& a, const BakedTransfer& b) {
+                     return richness(a.settings.mode) < richness(b.settings.mode);
+                   });
+  bake_ = std::move(bake);
+  bakeName_ = name;
+  bakeBands_ = bands_ = bands;
+  transfer_ = 0;
+  orbit = OrbitCamera(render::frameMesh(bake_.mesh, width, height));
+  ++meshVersion, ++transferVersion, ++shVersion;
+}
+
+void Scene::addEnvironment(EnvironmentEntry entry) {
+  envs_.push_back(std::move(entry));
+  selectEnvironment(int(envs_.size()) - 1);
+}
+
+std::string Scene::loadDropped(const std::string& path, int width, int height) {
+  try {
+    if (fileExtension(path) == "glb") {
+      BakeFile b = readCheckedBake(path);
+      setBake(std::move(b), path, width, height);
+    } else {
+      addEnvironment(loadEnvironment(path, bakeBands_));
+    }
+    return "";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+void Scene::selectTransfer(int k) {
+  k = std::clamp(k, 0, int(bake_.transfers.size()) - 1);
+  if (k != transfer_) transfer_ = k, ++transferVersion;
+}
+
+void Scene::selectEnvironment(int k) {
+  if (envs_.empty()) return;
+  env_ = std::clamp(k, 0, int(envs_.size()) - 1);
+  ++envVersion, ++shVersion;
+}
+
+void Scene::setBands(int b) {
+  b = std::clamp(b, 1, std::max(bakeBands_, 1));
+  if (b != bands_) bands_ = b, ++shVersion;
+}
+
+Mat3d Scene::lightRotation() const {
+  return rotationAxisAngle({0, 1, 0}, spinRad_) * userRotation_;
+}
+
+void Scene::dragLight(double dx, double dy) {
+  const double k = kDragDegreesPerPixel * kPi / 180.0;
+  const render::Camera c = orbit.camera();
+  const Vec3d forward = normalize(Vec3d(c.target - c.eye));
+  const Vec3d right = normalize(cross(forward, Vec3d(c.up)));
+  userRotation_ =
+      rotationAxisAngle({0, 1, 0}, dx * k) * rotationAxisAngle(right, dy * k) * userRotation_;
+}
+
+void Scene::advanceSpin(double seconds) {
+  if (autoRotate)
+    spinRad_ = std::fmod(spinRad_ + seconds * spinDegreesPerSecond * kPi / 180.0, 2.0 * kPi);
+}
+
+image::Image Scene::shBackground() const {
+  if (envs_.empty()) return image::Image(1, 1);
+  return envmap::renderSh(envs_[env_].light.truncated(bands_), 512);
+}
+
+FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
+  if (mesh_ != scene.meshVersion) renderer_.setMesh(scene.bake().mesh), mesh_ = scene.meshVersion;
+  if (transfer_ != scene.transferVersion)
+    renderer_.setTransfer(scene.transfer().field), transfer_ = scene.transferVersion;
+  const auto& envs = scene.environments();
+  if (env_ != scene.envVersion && !envs.empty()) {
+    const EnvironmentEntry& e = envs[scene.environmentIndex()];
+    renderer_.setEnvironmentImage(e.latLong);
+    packer_.setLight(e.light);
+    env_ = scene.envVersion;
+  }
+  if (sh_ != scene.shVersion) {
+    if (!envs.empty()) packer_.setLight(envs[scene.environmentIndex()].light);
+    if (scene.background == BackgroundMode::Sh) {
+      renderer_.setShImage(scene.shBackground());
+      sh_ = scene.shVersion;
+    }
+  }
+  FrameParams f;
+  f.width = width, f.height = height;
+  f.camera = scene.orbit.camera();
+  f.lightRotation = scene.lightRotation();
+  packer_.pack(f.lightRotation, scene.bands());
+  f.light = &packer_;
+  f.background = scene.background;
+  f.exposureStops = scene.exposureStops;
+  f.toneMap = scene.toneMap;
+  return f;
+}
+
+}  // namespace prt::viewer

@@ -1,0 +1,136 @@
+#pragma once
+// What the viewer shows, without any OpenGL: the bake and its transfers, the environments (each
+// with its lat-long background image and its SH projection at the bake's bands), the light's
+// rotation, the orbit camera and the display settings. The window and the headless runner both
+// drive a Scene; tests drive it directly.
+//
+// The light's rotation is R = Ry(spin) · R_user: the user's rotation (--rotate, or dragging),
+// then the auto-rotation about +Y (as prt render --turntable turns it). Dragging horizontally by
+// Δx pixels turns the environment about world +Y by Δx · kDragDegreesPerPixel; vertically, about
+// the camera's right axis.
+
+#include <string>
+#include <vector>
+
+#include "light_packer.hpp"
+#include "prt/envmap/environment.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/render/camera.hpp"
+#include "renderer.hpp"
+
+namespace prt::viewer {
+
+inline constexpr double kDragDegreesPerPixel = 0.25;
+
+struct EnvironmentEntry {
+  std::string name;  ///< as given (path or builtin:NAME)
+  envmap::Environment env;
+  image::Image latLong;  ///< the environment as a lat-long image, for the background
+  sh::RgbSh light;       ///< projected at the bake's bands
+};
+
+/// Orbit camera about a target, +Y up. Until moved it returns its starting camera unchanged (so
+/// the default view equals prt render's framing bit for bit).
+class OrbitCamera {
+ public:
+  OrbitCamera() = default;
+  explicit OrbitCamera(const render::Camera& start);
+  render::Camera camera() const;
+  void orbit(double dAzimuthRad, double dElevationRad);
+  /// Moves the target in the image plane by (dx, dy) × the view height at the target.
+  void pan(double dx, double dy);
+  /// Distance *= factor.
+  void zoom(double factor);
+  void reset() { *this = OrbitCamera(start_); }
+
+ private:
+  render::Camera start_;
+  bool moved_ = false;
+  Vec3d target_;
+  double distance_ = 1, azimuth_ = 0, elevation_ = 0;
+};
+
+class Scene {
+ public:
+  /// Reads and checks a bake: complete, holds a transfer, bands within the viewer's limit.
+  /// Throws prt::Error("FILE: problem").
+  static BakeFile readCheckedBake(const std::string& path);
+  /// Loads an environment (image, face folder, builtin:NAME) and projects it to `bands`.
+  static EnvironmentEntry loadEnvironment(const std::string& spec, int bands);
+
+  /// Replaces the bake (environments are re-projected when the band count changes), picks the
+  /// richest transfer mode and the full band count, resets the camera to the default framing of
+  /// a width × height view.
+  void setBake(BakeFile bake, const std::string& name, int width, int height);
+  void addEnvironment(EnvironmentEntry entry);
+
+  /// Loads a file dropped on the window: a .glb replaces the bake, anything else is added as an
+  /// environment and selected. Returns "" on success, else the error line; the scene is
+  /// unchanged on failure.
+  std::string loadDropped(const std::string& path, int width, int height);
+
+  const BakeFile& bake() const { return bake_; }
+  const std::string& bakeName() const { return bakeName_; }
+  const std::vector<EnvironmentEntry>& environments() const { return envs_; }
+  const BakedTransfer& transfer() const { return bake_.transfers[transfer_]; }
+  int transferIndex() const { return transfer_; }
+  int environmentIndex() const { return env_; }
+  int bakeBands() const { return bakeBands_; }
+  int bands() const { return bands_; }
+
+  void selectTransfer(int k);
+  void selectEnvironment(int k);
+  /// Clamps to 1..bake bands.
+  void setBands(int b);
+
+  // Light rotation.
+  Mat3d lightRotation() const;
+  void setUserRotation(const Mat3d& r) { userRotation_ = r; }
+  void dragLight(double dxPixels, double dyPixels);
+  void advanceSpin(double seconds);
+  void resetLight() { userRotation_ = Mat3d::identity(), spinRad_ = 0; }
+
+  /// The SH reconstruction of the current environment at the current bands (unrotated,
+  /// clamped at 0) as a lat-long image: the background for BackgroundMode::Sh.
+  image::Image shBackground() const;
+
+  OrbitCamera orbit;
+  BackgroundMode background = BackgroundMode::Env;
+  float exposureStops = 0.0f;
+  image::ToneMap toneMap = image::ToneMap::Aces;
+  bool autoRotate = false;
+  double spinDegreesPerSecond = 30.0;
+
+  /// Bumped whenever the mesh/transfer, the environment image or the SH background change, so a
+  /// renderer knows what to re-upload.
+  int meshVersion = 0, transferVersion = 0, envVersion = 0, shVersion = 0;
+
+ private:
+  BakeFile bake_;
+  std::string bakeName_;
+  std::vector<EnvironmentEntry> envs_;
+  int transfer_ = 0, env_ = 0, bakeBands_ = 0, bands_ = 0;
+  Mat3d userRotation_ = Mat3d::identity();
+  double spinRad_ = 0;
+};
+
+/// Keeps a Renderer and a LightPacker in step with a Scene: uploads what changed (by the
+/// scene's version counters), then packs the light for this frame. Needs a current context.
+class SceneView {
+ public:
+  SceneView() = default;
+  /// Uploads what changed since the last call and returns this frame's parameters (the light
+  /// rotated and packed: the per-frame CPU work).
+  FrameParams prepare(const Scene& scene, int width, int height);
+  Renderer& renderer() { return renderer_; }
+  const LightPacker& packer() const { return packer_; }
+
+ private:
+  Renderer renderer_;
+  LightPacker packer_;
+  int mesh_ = -1, transfer_ = -1, env_ = -1, sh_ = -1;
+};
+
+}  // namespace prt::viewer

@@ -1,0 +1,44 @@
+#pragma once
+// prt view: the real-time viewer's entry point, called by apps/prt/view.cpp. See docs/viewer.md.
+//
+//   prt view bunny.glb --env studio.exr --env builtin:sky
+//   prt view bunny.glb --headless --frames 10 --screenshot frame.png --rotate 0,90,0 --stats
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace prt::viewer {
+
+struct Options {
+  std::string bake;
+  std::vector<std::string> environments;  ///< empty: builtin:sky
+  int width = 640, height = 480;
+  std::optional<std::array<double, 3>> rotateDeg;  ///< X, Y, Z as prt render --rotate
+  std::string camera;                              ///< as prt render --camera
+  std::string mode;                                ///< transfer mode; "" = richest
+  int bands = 0;                                   ///< 0 = all the bake has
+  std::string background = "env";                  ///< env | sh | none
+  float exposure = 0.0f;
+  std::string toneMap = "aces";
+  bool autoRotate = false;
+  double spinDegreesPerSecond = 30.0;
+  // Headless.
+  bool headless = false;
+  int frames = 1;
+  std::string screenshot;  ///< .png (what the window shows) or .exr/.hdr (linear)
+  bool stats = false;      ///< print timings to stdout
+};
+
+/// Chatter and warnings go through these (the CLI's quiet flag applies to `info`).
+struct Output {
+  std::function<void(const std::string&)> info, warn;
+};
+
+/// Validates the options (throws prt::Error with one line), loads the bake and environments,
+/// then runs the window loop, or renders `frames` frames offscreen and writes the screenshot.
+void run(const Options& options, const Output& out);
+
+}  // namespace prt::viewer

@@ -1,0 +1,212 @@
+#include "window.hpp"
+
+#include <epoxy/gl.h>
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <utility>
+
+#include "context.hpp"
+#include "prt/core/error.hpp"
+
+namespace prt::viewer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr double kOrbitRadPerPixel = 0.3 * kPi / 180.0;
+
+/// Files dropped since the last frame (GLFW calls back from glfwPollEvents).
+std::vector<std::string>& droppedFiles() {
+  static std::vector<std::string> files;
+  return files;
+}
+extern "C" void onDrop(GLFWwindow*, int count, const char** paths) {
+  for (int i = 0; i < count; ++i) droppedFiles().emplace_back(paths[i]);
+}
+
+struct Message {
+  std::string text;
+  bool error = false;
+};
+
+/// The panel and its transient state.
+struct Ui {
+  std::deque<Message> messages;
+  double frameMs = 0.0, cpuMs = 0.0;  // exponentially smoothed
+  std::string renderer;
+
+  void post(const std::string& text, bool error, const Output& out) {
+    (error ? out.warn : out.info)(text);
+    messages.push_back({text, error});
+    while (messages.size() > 6) messages.pop_front();
+  }
+
+  void panel(Scene& scene, const Output& out) {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    ImGui::Begin("prt view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    const Mesh& mesh = scene.bake().mesh;
+    ImGui::TextUnformatted(scene.bakeName().c_str());
+    ImGui::Text("%zu triangles, %zu vertices", mesh.triangleCount(), mesh.vertexCount());
+    ImGui::Text("frame %.2f ms (%.0f fps), light CPU %.3f ms", frameMs,
+                frameMs > 0 ? 1000.0 / frameMs : 0.0, cpuMs);
+    ImGui::TextDisabled("%s", renderer.c_str());
+    ImGui::Separator();
+
+    const auto& transfers = scene.bake().transfers;
+    if (ImGui::BeginCombo("transfer", toString(scene.transfer().settings.mode))) {
+      for (int k = 0; k < int(transfers.size()); ++k) {
+        const auto& t = transfers[k];
+        const std::string label = fmt::format("{} ({})", toString(t.settings.mode),
+                                              t.field.channels == 3 ? "RGB" : "scalar");
+        if (ImGui::Selectable(label.c_str(), k == scene.transferIndex())) scene.selectTransfer(k);
+      }
+      ImGui::EndCombo();
+    }
+    int bands = scene.bands();
+    if (ImGui::SliderInt("bands", &bands, 1, scene.bakeBands())) scene.setBands(bands);
+    const auto& envs = scene.environments();
+    if (ImGui::BeginCombo("environment", envs[scene.environmentIndex()].name.c_str())) {
+      for (int k = 0; k < int(envs.size()); ++k)
+        if (ImGui::Selectable(envs[k].name.c_str(), k == scene.environmentIndex()))
+          scene.selectEnvironment(k);
+      ImGui::EndCombo();
+    }
+    int bg = int(scene.background);
+    const char* bgNames[] = {"environment", "SH reconstruction", "black"};
+    if (ImGui::Combo("background", &bg, bgNames, 3)) {
+      scene.background = BackgroundMode(bg);
+      ++scene.shVersion;  // the SH image is made on demand
+    }
+    ImGui::SliderFloat("exposure", &scene.exposureStops, -8.0f, 8.0f, "%.1f stops");
+    int tm = int(scene.toneMap);
+    const char* tmNames[] = {"clamp", "reinhard", "aces"};
+    if (ImGui::Combo("tone map", &tm, tmNames, 3)) scene.toneMap = image::ToneMap(tm);
+    ImGui::Checkbox("auto-rotate light", &scene.autoRotate);
+    float speed = float(scene.spinDegreesPerSecond);
+    if (ImGui::SliderFloat("speed", &speed, -180.0f, 180.0f, "%.0f deg/s"))
+      scene.spinDegreesPerSecond = speed;
+    if (ImGui::Button("reset light")) scene.resetLight();
+    ImGui::SameLine();
+    if (ImGui::Button("reset camera")) scene.orbit.reset();
+    ImGui::Separator();
+    ImGui::TextDisabled("left drag: orbit   right/shift drag: rotate light");
+    ImGui::TextDisabled("middle/ctrl drag: pan   wheel: zoom   space: auto-rotate");
+    ImGui::TextDisabled("B: background   [ ]: bands   Tab: next environment");
+    ImGui::TextDisabled("drop an image, face folder or .glb to load it");
+    for (const Message& m : messages)
+      ImGui::TextColored(m.error ? ImVec4(1, 0.4f, 0.4f, 1) : ImVec4(0.7f, 1, 0.7f, 1), "%s",
+                         m.text.c_str());
+    ImGui::End();
+    (void)out;
+  }
+};
+
+/// Mouse and keys the panel did not take.
+void handleInput(Scene& scene, int height) {
+  ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureMouse) {
+    const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;
+    const bool left = io.MouseDown[0], right = io.MouseDown[1], middle = io.MouseDown[2];
+    if ((right || (left && io.KeyShift)) && (dx != 0 || dy != 0))
+      scene.dragLight(dx, dy);
+    else if ((middle || (left && io.KeyCtrl)) && (dx != 0 || dy != 0))
+      scene.orbit.pan(dx / height, dy / height);
+    else if (left && (dx != 0 || dy != 0))
+      scene.orbit.orbit(-dx * kOrbitRadPerPixel, dy * kOrbitRadPerPixel);
+    if (io.MouseWheel != 0) scene.orbit.zoom(std::pow(0.9, double(io.MouseWheel)));
+  }
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) scene.autoRotate = !scene.autoRotate;
+    if (ImGui::IsKeyPressed(GLFW_KEY_B, false)) {
+      scene.background = BackgroundMode((int(scene.background) + 1) % 3);
+      ++scene.shVersion;
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT_BRACKET)) scene.setBands(scene.bands() - 1);
+    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT_BRACKET)) scene.setBands(scene.bands() + 1);
+    if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false))
+      scene.selectEnvironment((scene.environmentIndex() + 1) % int(scene.environments().size()));
+  }
+}
+
+}  // namespace
+
+void runWindow(Scene& scene, const Options& o, const Output& out) {
+  Window window(o.width, o.height, "prt view - " + o.bake);
+  GLFWwindow* w = window.handle();
+  glfwSetDropCallback(w, onDrop);
+  SceneView view;
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // leave no imgui.ini behind
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(w, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  struct ImGuiGuard {
+    ~ImGuiGuard() {
+      ImGui_ImplOpenGL3_Shutdown();
+      ImGui_ImplGlfw_Shutdown();
+      ImGui::DestroyContext();
+    }
+  } guard;
+
+  Ui ui;
+  ui.renderer = window.renderer();
+  out.info("prt view: " + ui.renderer);
+  auto last = Clock::now();
+  while (!glfwWindowShouldClose(w)) {
+    glfwPollEvents();
+    const auto now = Clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    ui.frameMs = ui.frameMs == 0 ? dt * 1e3 : 0.9 * ui.frameMs + 0.1 * dt * 1e3;
+
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(w, &fbw, &fbh);
+    for (const std::string& path : std::exchange(droppedFiles(), {})) {
+      const std::string error = scene.loadDropped(path, std::max(fbw, 1), std::max(fbh, 1));
+      ui.post(error.empty() ? "loaded " + path : error, !error.empty(), out);
+    }
+    scene.advanceSpin(dt);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(w, GLFW_TRUE);
+    handleInput(scene, std::max(fbh, 1));
+    ui.panel(scene, out);
+    ImGui::Render();
+
+    if (fbw > 0 && fbh > 0) {
+      try {
+        const auto t0 = Clock::now();
+        const FrameParams f = view.prepare(scene, fbw, fbh);
+        const double cpu = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        ui.cpuMs = ui.cpuMs == 0 ? cpu : 0.9 * ui.cpuMs + 0.1 * cpu;
+        view.renderer().draw(f, 0);
+      } catch (const Error& e) {
+        // A transfer the GPU cannot hold: say so and go back to the first one.
+        ui.post(e.what(), true, out);
+        if (scene.transferIndex() != 0)
+          scene.selectTransfer(0);
+        else
+          throw;
+      }
+    }
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    glfwSwapBuffers(w);
+  }
+}
+
+}  // namespace prt::viewer

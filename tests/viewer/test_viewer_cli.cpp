@@ -1,0 +1,159 @@
+// prt view through the real binary: a headless frame equals prt render's image of the same view
+// and light (same tone mapping) within a small RMSE, for scalar and RGB transfer, rotated
+// lights, the SH background, truncated bands and other tone maps; and it fails cleanly (one
+// line, non-zero exit) without a display or with bad files.
+//
+// Why the thresholds hold: both renderers interpolate the same per-vertex radiance
+// R = albedo ⊙ T·D(R)L perspective-correctly across triangles, average 4 samples per pixel in
+// linear light and apply the same tone map; they differ only in sample positions (the MSAA
+// pattern against Sobol' points), float round-off and 8-bit rounding. Inside surfaces that
+// leaves one or two codes (the 90th-percentile pixel error is below 2.5/255); on silhouettes
+// and creases a pixel can differ by most of its range when the two sample sets fall on
+// different sides of an edge, which is what the RMSE (≈ 0.012 for the Cornell box at 320×240,
+// measured; 0.008 at 640×480, 0.02 at 160×120) is made of. Each test also checks that a wrong
+// answer (another light rotation) is far above the threshold, so the comparison can fail.
+
+#include <unistd.h>
+
+#include <algorithm>
+
+#include "prt/geometry/builtin.hpp"
+#include "prt/io/bake_file.hpp"
+#include "viewer_test_util.hpp"
+
+namespace prt::viewer::test {
+namespace {
+
+constexpr double kMatch = 0.016;           // displayed RMSE of a matching pair at kSize
+constexpr double kInterior = 2.5 / 255.0;  // 90th-percentile pixel error of a matching pair
+constexpr const char* kSize = "--size 320x240";
+
+/// Renders `bake` with prt render and prt view (same extra arguments) and returns the RMSE.
+double compareWithRender(const std::string& bake, const std::string& args,
+                         const std::string& viewArgs = "") {
+  const Result r = prt("-q render '" + bake + "' " + kSize + " " + args + " -o render.png");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  const Result v = prt("-q view '" + bake + "' --headless " + kSize + " " + args + " " + viewArgs +
+                       " --screenshot view.png");
+  EXPECT_EQ(v.rc, 0) << v.err;
+  if (r.rc != 0 || v.rc != 0) return 1.0;
+  EXPECT_LT(displayedErrorQuantile(path("view.png"), path("render.png"), 0.9), kInterior) << args;
+  return displayedRmse(path("view.png"), path("render.png"));
+}
+
+TEST(ViewCli, HeadlessFrameMatchesRenderRgbTransfer) {
+  PRT_REQUIRE_HEADLESS_GL();
+  const double e = compareWithRender(cornellBake(), "--mode interreflected");
+  EXPECT_LT(e, kMatch);
+  // The comparison can fail: the same view under a turned light is far off.
+  const Result v = prt("-q view '" + cornellBake() + "' --headless " + std::string(kSize) +
+                       " --mode interreflected --rotate 0,120,0 --screenshot turned.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_GT(displayedRmse(path("turned.png"), path("render.png")), 4 * kMatch);
+}
+
+TEST(ViewCli, HeadlessFrameMatchesRenderScalarTransfer) {
+  PRT_REQUIRE_HEADLESS_GL();
+  EXPECT_LT(compareWithRender(cornellBake(), "--mode shadowed"), kMatch);
+  EXPECT_LT(compareWithRender(spherePlaneBake(), ""), kMatch);
+}
+
+TEST(ViewCli, RotatedLightMatchesRenderRotate) {
+  PRT_REQUIRE_HEADLESS_GL();
+  EXPECT_LT(compareWithRender(spherePlaneBake(), "--rotate 0,90,0"), kMatch);
+  EXPECT_LT(compareWithRender(cornellBake(), "--rotate 30,60,10"), kMatch);
+  // Unrotated against rotated: far apart.
+  const Result v = prt("-q view '" + cornellBake() + "' --headless " + std::string(kSize) +
+                       " --screenshot plain.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_GT(displayedRmse(path("plain.png"), path("render.png")), 4 * kMatch);
+}
+
+TEST(ViewCli, ShBackgroundTruncatedBandsAndToneMapsMatch) {
+  PRT_REQUIRE_HEADLESS_GL();
+  EXPECT_LT(compareWithRender(cornellBake(), "--background sh --rotate 0,45,0"), kMatch);
+  EXPECT_LT(compareWithRender(cornellBake(), "--bands 2"), kMatch);
+  EXPECT_LT(compareWithRender(cornellBake(), "--tonemap reinhard --exposure 1.5"), kMatch);
+  EXPECT_LT(compareWithRender(cornellBake(), "--light builtin:studio --background none"), kMatch);
+}
+
+TEST(ViewCli, ViewerLightEnvFlagIsItsEnvironment) {
+  PRT_REQUIRE_HEADLESS_GL();
+  // prt view names the environment --env (several allowed; the first is shown first).
+  const Result r = prt("-q render '" + cornellBake() + "' " + std::string(kSize) +
+                       " --light builtin:studio -o render.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Result v = prt("-q view '" + cornellBake() + "' --headless " + std::string(kSize) +
+                       " --env builtin:studio --env builtin:sky --screenshot view.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_LT(displayedRmse(path("view.png"), path("render.png")), kMatch);
+}
+
+TEST(ViewCli, StatsAndLinearScreenshot) {
+  PRT_REQUIRE_HEADLESS_GL();
+  const Result v = prt("-q view '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
+                       " --frames 3 --auto-rotate --stats --screenshot frame.exr");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_NE(v.out.find("frame time"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("light upload"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("triangles"), std::string::npos) << v.out;
+  const image::Image img = image::readImage(path("frame.exr"));
+  EXPECT_EQ(img.width, 320);
+  EXPECT_EQ(img.height, 240);
+}
+
+/// One stderr line "prt view: error: ... MENTION ...", non-zero exit.
+void expectCleanFailure(const std::string& args, const std::string& mention,
+                        const std::string& prefix = "") {
+  SCOPED_TRACE(args);
+  const Result r = prt("view " + args, prefix);
+  EXPECT_NE(r.rc, 0);
+  EXPECT_LT(r.rc, 128) << "crashed";
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("prt view: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(mention), std::string::npos) << "expected '" << mention << "' in " << r.err;
+}
+
+TEST(ViewCli, NoDisplayFailsCleanly) {
+  // No skip: this needs no OpenGL at all.
+  expectCleanFailure("'" + spherePlaneBake() + "'", "no display",
+                     "env -u DISPLAY -u WAYLAND_DISPLAY ");
+  // An unreachable display is an error too, not a crash.
+  expectCleanFailure("'" + spherePlaneBake() + "'", "display",
+                     "env -u WAYLAND_DISPLAY DISPLAY=:97 ");
+}
+
+TEST(ViewCli, BadFilesAtStartupFailCleanly) {
+  expectCleanFailure("missing.glb --headless", "missing.glb: ");
+  // A bake file without transfer.
+  BakeFile empty;
+  empty.mesh = builtinScene("builtin:sphere?subdiv=1");
+  empty.vertexCount = empty.mesh.vertexCount();
+  writeBake(path("notransfer.glb"), empty);
+  expectCleanFailure("notransfer.glb --headless", "notransfer.glb: the bake holds no transfer");
+  // Not a bake at all.
+  std::ofstream(scratch() / "garbage.glb") << "not a glb";
+  expectCleanFailure("garbage.glb --headless", "garbage.glb: ");
+  // Unreadable environments.
+  std::ofstream(scratch() / "broken.png") << "not a png";
+  expectCleanFailure("'" + spherePlaneBake() + "' --headless --env broken.png", "broken.png: ");
+  expectCleanFailure("'" + spherePlaneBake() + "' --headless --env nothere.exr", "nothere.exr");
+  // Bad requests.
+  expectCleanFailure("'" + spherePlaneBake() + "' --headless --mode interreflected",
+                     "no interreflected transfer");
+  expectCleanFailure("'" + spherePlaneBake() + "' --headless --bands 40", "--bands");
+  expectCleanFailure("'" + spherePlaneBake() + "' --headless --screenshot out.jpg", "out.jpg");
+  expectCleanFailure("'" + spherePlaneBake() + "' --screenshot out.png", "--headless");
+  expectCleanFailure("'" + spherePlaneBake() + "' --headless --size 0x10", "--size");
+}
+
+TEST(ViewCli, MoreBandsThanTheBakeWarnsAndRuns) {
+  PRT_REQUIRE_HEADLESS_GL();
+  const Result v = prt("view '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
+                       " --bands 9 --screenshot many.png");
+  EXPECT_EQ(v.rc, 0) << v.err;
+  EXPECT_NE(v.err.find("the bake has only 3 bands"), std::string::npos) << v.err;
+}
+
+}  // namespace
+}  // namespace prt::viewer::test

@@ -1,0 +1,156 @@
+// The viewer's pieces in-process: the per-frame light packing against the library's relighting
+// layout, the light drag as a rotation by a known angle (and its frame against prt render
+// --rotate), band truncation, and dropped files that fail leaving the scene as it was.
+
+#include <epoxy/gl.h>
+
+#include <random>
+
+#include "light_packer.hpp"
+#include "prt/envmap/builtin.hpp"
+#include "prt/geometry/builtin.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/relight/relight.hpp"
+#include "scene.hpp"
+#include "viewer_test_util.hpp"
+
+namespace prt::viewer::test {
+namespace {
+
+sh::RgbSh randomLight(int bands, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  sh::RgbSh l(bands);
+  for (Rgb& c : l.c) c = {u(rng), u(rng), u(rng)};
+  return l;
+}
+
+TEST(LightPacker, MatchesRelightPreparedLight) {
+  // relight::prepareLight is the CPU relighting's rotated light: the shader must see the same.
+  const Mat3d r = rotationEulerXYZ(23, -71, 140);
+  for (int bands : {1, 3, 9, 16}) {
+    SCOPED_TRACE(bands);
+    const sh::RgbSh light = randomLight(bands, 7u + bands);
+    LightPacker p;
+    p.setLight(light);
+    p.pack(r, bands);
+    const sh::Rotation rot(bands, r);
+    const relight::PreparedLight ref = relight::prepareLight(light, bands, &rot);
+    for (int i = 0; i < bands * bands; ++i)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(p.coefficient(i)[c], ref.interleaved[3 * i + c], 2e-6f) << i;
+    // Padding up to a multiple of four coefficients is zero (the shader reads it).
+    for (int i = bands * bands; i < paddedCoeffs(bands); ++i)
+      EXPECT_EQ(p.coefficient(i), Rgb(0.0f));
+    EXPECT_EQ(p.bytes(), 16u * paddedCoeffs(bands));
+  }
+}
+
+TEST(LightPacker, TruncationEqualsRotatingTheTruncatedLight) {
+  const Mat3d r = rotationEulerXYZ(-40, 15, 75);
+  const sh::RgbSh light = randomLight(9, 3);
+  LightPacker full, cut;
+  full.setLight(light);
+  cut.setLight(light.truncated(4));
+  full.pack(r, 4);  // 4 of 9 bands
+  cut.pack(r, 4);
+  for (int i = 0; i < 16; ++i) EXPECT_EQ(full.coefficient(i), cut.coefficient(i));
+  // And a wrong rotation gives a different answer (the check can fail).
+  cut.pack(rotationEulerXYZ(-40, 16, 75), 4);
+  double diff = 0;
+  for (int i = 1; i < 16; ++i) diff += length(full.coefficient(i) - cut.coefficient(i));
+  EXPECT_GT(diff, 1e-3);
+}
+
+Scene smallScene(int width, int height) {
+  Scene s;
+  s.setBake(Scene::readCheckedBake(spherePlaneBake()), spherePlaneBake(), width, height);
+  s.addEnvironment(Scene::loadEnvironment("builtin:sky", s.bakeBands()));
+  return s;
+}
+
+TEST(Scene, DragByKnownPixelsIsAKnownRotation) {
+  Scene s = smallScene(160, 120);
+  const double pixels = 90.0 / kDragDegreesPerPixel;  // a quarter turn about +Y
+  s.dragLight(pixels, 0.0);
+  const Mat3d want = rotationEulerXYZ(0, 90, 0), got = s.lightRotation();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(got.m[i][j], want.m[i][j], 1e-12);
+  s.resetLight();
+  EXPECT_NEAR(s.lightRotation().m[0][0], 1.0, 0.0);
+  // Auto-rotation is about +Y at the set speed.
+  s.autoRotate = true;
+  s.spinDegreesPerSecond = 45.0;
+  s.advanceSpin(2.0);
+  const Mat3d spun = s.lightRotation();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(spun.m[i][j], want.m[i][j], 1e-12);
+}
+
+TEST(Scene, DraggedLightFrameMatchesRenderRotate) {
+  PRT_REQUIRE_HEADLESS_GL();
+  const Result r =
+      prt("-q render '" + spherePlaneBake() + "' --size 160x120 --rotate 0,90,0 -o rotated.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Result r0 = prt("-q render '" + spherePlaneBake() + "' --size 160x120 -o plain.png");
+  ASSERT_EQ(r0.rc, 0) << r0.err;
+
+  Scene s = smallScene(160, 120);
+  s.dragLight(90.0 / kDragDegreesPerPixel, 0.0);
+  HeadlessContext context;
+  SceneView view;
+  OffscreenTarget target(160, 120);
+  view.renderer().draw(view.prepare(s, 160, 120), target.fbo());
+  ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  image::Image shown = target.readEncoded();
+  const double e = render::rmse(shown, readDisplayed(path("rotated.png")));
+  EXPECT_LT(e, 0.012);
+  EXPECT_GT(render::rmse(shown, readDisplayed(path("plain.png"))), 4 * 0.012);
+}
+
+TEST(Scene, BandsClampAndTruncateLive) {
+  Scene s = smallScene(160, 120);
+  EXPECT_EQ(s.bands(), 3);
+  s.setBands(9);
+  EXPECT_EQ(s.bands(), 3);
+  s.setBands(0);
+  EXPECT_EQ(s.bands(), 1);
+  const int v = s.shVersion;
+  s.setBands(2);
+  EXPECT_GT(s.shVersion, v);  // the SH background is rebuilt for the new band count
+}
+
+TEST(Scene, FailedDropsLeaveTheSceneAsItWas) {
+  Scene s = smallScene(160, 120);
+  const std::size_t envs = s.environments().size();
+  const std::size_t verts = s.bake().mesh.vertexCount();
+
+  std::string e = s.loadDropped(path("nothere.exr"), 160, 120);
+  EXPECT_NE(e.find("nothere.exr"), std::string::npos) << e;
+  std::ofstream(scratch() / "dropped_broken.png") << "not a png";
+  e = s.loadDropped(path("dropped_broken.png"), 160, 120);
+  EXPECT_NE(e.find("dropped_broken.png"), std::string::npos) << e;
+  BakeFile empty;
+  empty.mesh = builtinScene("builtin:sphere?subdiv=1");
+  empty.vertexCount = empty.mesh.vertexCount();
+  writeBake(path("dropped_empty.glb"), empty);
+  e = s.loadDropped(path("dropped_empty.glb"), 160, 120);
+  EXPECT_NE(e.find("holds no transfer"), std::string::npos) << e;
+  EXPECT_EQ(s.environments().size(), envs);
+  EXPECT_EQ(s.bake().mesh.vertexCount(), verts);
+
+  // A good drop is added and shown.
+  e = s.loadDropped("builtin:studio", 160, 120);
+  EXPECT_EQ(e, "");
+  EXPECT_EQ(s.environments().size(), envs + 1);
+  EXPECT_EQ(s.environmentIndex(), int(envs));
+  // A dropped bake with other bands re-projects the environments to its bands.
+  e = s.loadDropped(cornellBake(), 160, 120);
+  EXPECT_EQ(e, "");
+  EXPECT_EQ(s.bakeBands(), 4);
+  for (const EnvironmentEntry& env : s.environments()) EXPECT_EQ(env.light.bands, 4);
+  EXPECT_EQ(s.transfer().settings.mode, TransferMode::Interreflected);  // the richest first
+}
+
+}  // namespace
+}  // namespace prt::viewer::test

@@ -1,0 +1,134 @@
+#pragma once
+// Shared pieces of the viewer tests: running the prt binary, fixtures baked once per program,
+// and comparing PNGs as displayed (sRGB codes / 255).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "context.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image_io.hpp"
+#include "prt/render/metrics.hpp"
+
+namespace prt::viewer::test {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int rc = -1;
+  std::string out, err;
+};
+
+inline std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A per-program scratch folder holding the fixtures below.
+inline const fs::path& scratch() {
+  static const fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / ("prt_test_viewer_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+/// Removes the scratch folder when the program's tests are done.
+struct ScratchCleanup : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(scratch(), ec);
+  }
+};
+inline const bool kScratchCleanupRegistered =
+    (::testing::AddGlobalTestEnvironment(new ScratchCleanup), true);
+
+/// Runs `[prefix] prt ARGS` in the scratch folder.
+inline Result prt(const std::string& args, const std::string& prefix = "") {
+  const std::string cmd = "cd '" + scratch().string() + "' && " + prefix + "'" + PRT_CLI_PATH +
+                          "' " + args + " > stdout.txt 2> stderr.txt";
+  Result r;
+  const int status = std::system(cmd.c_str());
+  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(scratch() / "stdout.txt");
+  r.err = slurp(scratch() / "stderr.txt");
+  return r;
+}
+
+inline std::string path(const std::string& name) {
+  return (scratch() / name).string();
+}
+
+/// Fixtures, baked once: a Cornell box with RGB (inter-reflected) and scalar (shadowed)
+/// transfer at 4 bands, and a sphere over a plane, shadowed, 3 bands.
+inline const std::string& cornellBake() {
+  static const std::string p = [] {
+    const Result r =
+        prt("-q bake 'builtin:cornell?grid=12' --mode interreflected --mode shadowed "
+            "--bands 4 --samples 64 -o cornell.glb");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return path("cornell.glb");
+  }();
+  return p;
+}
+inline const std::string& spherePlaneBake() {
+  static const std::string p = [] {
+    const Result r =
+        prt("-q bake 'builtin:sphere-plane?size=1.5&grid=40&subdiv=3' --mode "
+            "shadowed --bands 3 --samples 64 -o sphere.glb");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return path("sphere.glb");
+  }();
+  return p;
+}
+
+/// A PNG as displayed: sRGB-encoded values in [0, 1].
+inline image::Image readDisplayed(const std::string& file) {
+  image::Image img = image::readImage(file);
+  for (Rgb& p : img.pixels)
+    p = {image::linearToSrgb(p.x), image::linearToSrgb(p.y), image::linearToSrgb(p.z)};
+  return img;
+}
+
+/// RMSE of two PNGs as displayed (0 = identical, 1 = black against white).
+inline double displayedRmse(const std::string& a, const std::string& b) {
+  return render::rmse(readDisplayed(a), readDisplayed(b));
+}
+
+/// The q-quantile (0..1) of the per-pixel displayed error sqrt(Σ_c (a_c − b_c)² / 3).
+inline double displayedErrorQuantile(const std::string& a, const std::string& b, double q) {
+  const image::Image x = readDisplayed(a), y = readDisplayed(b);
+  EXPECT_EQ(x.pixels.size(), y.pixels.size());
+  std::vector<double> e;
+  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) {
+    const Rgb d = x.pixels[i] - y.pixels[i];
+    e.push_back(std::sqrt(dot(d, d) / 3.0));
+  }
+  if (e.empty()) return 1.0;
+  std::sort(e.begin(), e.end());
+  return e[std::min(e.size() - 1, std::size_t(q * e.size()))];
+}
+
+}  // namespace prt::viewer::test
+
+/// Skips the current test when no offscreen OpenGL context can be created here.
+#define PRT_REQUIRE_HEADLESS_GL()                                                 \
+  do {                                                                            \
+    static std::string why_;                                                      \
+    static const bool ok_ = ::prt::viewer::headlessAvailable(&why_);              \
+    if (!ok_) GTEST_SKIP() << "no headless OpenGL (EGL/llvmpipe) here: " << why_; \
+  } while (0)
