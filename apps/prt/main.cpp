@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   using namespace prt::cli;
   CLI::App app{"prtkit: precomputed radiance transfer — bake, relight, render, validate", "prt"};
   app.require_subcommand(1);
+  app.fallthrough();  // -j, -q, -v also after the verb: prt bake ... -q
   app.set_version_flag("--version", std::string("prt ") + PRT_VERSION);
   auto& g = globals();
   app.add_option("-j,--threads", g.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
@@ -74,6 +75,7 @@ int main(int argc, char** argv) {
   addReferenceCommand(app);
   addViewCommand(app);
   addMergeCommand(app);
+  addDemoCommand(app);
 
   std::signal(SIGINT, onSigint);
   std::unique_ptr<prt::ThreadLimit> limit;
@@ -82,7 +84,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // One line, like every other error: "prt VERB: error: what (see prt VERB --help)".
+    std::string verb = "prt";
+    for (auto* sub : app.get_subcommands()) verb += " " + sub->get_name();
+    std::cerr << verb << ": error: " << e.what() << " (see " << verb << " --help)\n";
+    return e.get_exit_code();
   } catch (const prt::Cancelled&) {
     std::cerr << "\nprt: cancelled\n";
     return 130;
