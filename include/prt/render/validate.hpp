@@ -9,10 +9,11 @@
 // Columns of the table (one row per b):
 //   rel RMSE         render::relativeRmse over all vertices and channels (the same ε)
 //   mean / max       mean and maximum of e(p)
-//   truncation floor relative RMSE, over the same vertices, of the clamped-cosine irradiance of
-//                    the b-band light (Λ_l L_lm, Ramamoorthi & Hanrahan 2001) against the
-//                    irradiance of the environment by quadrature over its texels — the error a
-//                    perfect unshadowed transfer would still have at b bands
+//   truncation floor relative RMSE of the clamped-cosine irradiance of the b-band light
+//                    (Λ_l L_lm, Ramamoorthi & Hanrahan 2001) against the irradiance of the
+//                    environment by quadrature over its texels — the error a perfect unshadowed
+//                    transfer would still have at b bands; over an even stride of at most 4096
+//                    of the validated vertices (the quadrature costs O(texels) per vertex)
 //   ref std err      mean over vertices of the reference's relative standard error
 //                    sqrt(Σ_c se_c²) / sqrt(Σ_c (R_ref,c² + ε))
 // A PRT error near the floor is SH truncation; one near the reference's standard error is below
