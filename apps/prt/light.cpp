@@ -141,8 +141,7 @@ void runLight(const LightOptions& o) {
   // The preview first (it is the one that can still fail on encoding), then the light.
   if (!o.preview.empty()) {
     const image::Image panels = envmap::previewPanels(loaded.env, f, o.previewWidth, rotation);
-    const image::Image source = image::crop(panels, 0, 0, panels.width, panels.width / 2);
-    image::WriteOptions wo{tone, o.exposure ? *o.exposure : envmap::autoExposure(source)};
+    image::WriteOptions wo{tone, o.exposure ? *o.exposure : envmap::previewExposure(panels)};
     image::writeImage(o.preview, panels, wo);
   }
   if (format == "games202") {

@@ -54,4 +54,9 @@ float autoExposure(const image::Image& img) {
   return static_cast<float>(std::log2(0.18 / avg));
 }
 
+float previewExposure(const image::Image& panels) {
+  const int h = panels.height / 3;
+  return autoExposure(image::crop(panels, 0, 2 * h, panels.width, panels.height - 2 * h));
+}
+
 }  // namespace prt::envmap

@@ -22,5 +22,10 @@ image::Image previewPanels(const Environment& env, const sh::RgbSh& sh, int widt
                            const Mat3d& rotation = Mat3d::identity());
 /// Exposure (stops) mapping the log-average luminance of `img` to middle grey 0.18.
 float autoExposure(const image::Image& img);
+/// The exposure for a previewPanels() image: autoExposure of its irradiance panel (the bottom
+/// third: smooth, and what a white object under the light looks like). The source's log-average
+/// would do for the source alone, but it sits far below the arithmetic mean under a sun, while
+/// the SH panels carry the mean (Λ₀/π = 1), so they would be shown blown out.
+float previewExposure(const image::Image& panels);
 
 }  // namespace prt::envmap
