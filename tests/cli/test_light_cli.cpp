@@ -13,6 +13,7 @@
 #include <limits>
 #include <sstream>
 
+#include "cli_harness.hpp"
 #include "prt/core/file.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
@@ -24,42 +25,19 @@ using namespace prt;
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string err;
-};
+using prt::testing::Result;
 
-class LightCli : public ::testing::Test {
+class LightCli : public prt::testing::CliTest {
  protected:
-  fs::path dir;
-  void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("prt_light_cli_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  std::string p(const std::string& name) const { return (dir / name).string(); }
-
-  Result run(const std::string& args) const {
-    const std::string errFile = p("stderr.txt");
-    const std::string cmd = std::string(PRT_CLI_PATH) + " light " + args + " 2> '" + errFile + "' > /dev/null";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream is(errFile);
-    std::stringstream ss;
-    ss << is.rdbuf();
-    r.err = ss.str();
-    return r;
-  }
+  std::string p(const std::string& name) const { return path(name); }
+  Result run(const std::string& args) const { return prt("light " + args); }
 
   // Expects failure with one line mentioning every `needle`, and neither output nor preview.
   void expectFailure(const std::string& args, const std::vector<std::string>& needles) const {
     fs::remove(p("out.json"));
     fs::remove(p("prev.png"));
     const Result r = run(args + " -o '" + p("out.json") + "' --preview '" + p("prev.png") + "'");
-    EXPECT_NE(r.code, 0) << args;
+    EXPECT_NE(r.rc, 0) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(r.err.rfind("prt light: error: ", 0), 0u) << r.err;
     for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "'" << n << "' not in: " << r.err;
@@ -78,7 +56,7 @@ class LightCli : public ::testing::Test {
 
 TEST_F(LightCli, DefaultIsTheBuiltinSky) {
   const Result r = run("-o '" + p("sky.json") + "'");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.rc, 0) << r.err;
   const io::LightFile lf = io::readLightJson(p("sky.json"));
   EXPECT_EQ(lf.coefficients.bands, 3);
   EXPECT_EQ(lf.source, "builtin:sky");
@@ -90,7 +68,7 @@ TEST_F(LightCli, DefaultIsTheBuiltinSky) {
 TEST_F(LightCli, ConstantLatLongGivesTheDcTermAndAPreview) {
   image::writeImage(p("white.exr"), image::Image(64, 32, Rgb(1.0f)));
   const Result r = run("'" + p("white.exr") + "' --bands 4 -o '" + p("w.json") + "' --preview '" + p("w.png") + "'");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.rc, 0) << r.err;
   const io::LightFile lf = io::readLightJson(p("w.json"));
   ASSERT_EQ(lf.coefficients.bands, 4);
   EXPECT_EQ(lf.layout, "latlong");
@@ -100,7 +78,7 @@ TEST_F(LightCli, ConstantLatLongGivesTheDcTermAndAPreview) {
   EXPECT_EQ(prev.width, 512);
   EXPECT_EQ(prev.height, 3 * 256);  // source, radiance, irradiance
   // Games202 text output: B² lines of "r g b".
-  ASSERT_EQ(run("'" + p("white.exr") + "' --bands 2 -o '" + p("l.txt") + "'").code, 0);
+  ASSERT_EQ(run("'" + p("white.exr") + "' --bands 2 -o '" + p("l.txt") + "'").rc, 0);
   EXPECT_EQ(io::readLightGames202(p("l.txt")).bands, 2);
 }
 
@@ -122,7 +100,7 @@ TEST_F(LightCli, Games202CompatMatchesTheCourseRecipe) {
     image::writeImage(p(std::string("sky/") + order[f] + ".png"), img, {image::ToneMap::Clamp, 0.0f});
   }
   const Result r = run("'" + p("sky") + "' --compat games202 --bands 3 -o '" + p("light.txt") + "'");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.rc, 0) << r.err;
   const sh::RgbSh got = io::readLightGames202(p("light.txt"));
   ASSERT_EQ(got.bands, bands);
 
@@ -164,7 +142,7 @@ TEST_F(LightCli, PixelRepairsAreWarnedWithCounts) {
   img.at(3, 1).z = -2.0f;
   image::writeImage(p("bad.exr"), img);
   const Result r = run("'" + p("bad.exr") + "' -o '" + p("o.json") + "'");
-  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("2 pixels with NaN/Inf"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("1 pixels with negative"), std::string::npos) << r.err;
@@ -205,18 +183,18 @@ TEST_F(LightCli, BadInputsFailCleanly) {
   expectFailure("'" + p("ok.png") + "' --compat games202", {"ok.png", "folder"});
   // An unwritable output directory is found before any work.
   const Result r = run("'" + p("ok.png") + "' -o '" + p("no/such/dir/out.json") + "'");
-  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.rc, 0);
 }
 
 TEST_F(LightCli, FaceFoldersAndRotation) {
   writeFaces("cube", 16, "hdr");
-  ASSERT_EQ(run("'" + p("cube") + "' -o '" + p("c.json") + "'").code, 0);
+  ASSERT_EQ(run("'" + p("cube") + "' -o '" + p("c.json") + "'").rc, 0);
   const io::LightFile lf = io::readLightJson(p("c.json"));
   EXPECT_EQ(lf.layout, "faces");
   // RGBE keeps 8 mantissa bits, decoded at the bin centre (Radiance: (m + 0.5)·2^(e−136)).
   EXPECT_NEAR(lf.coefficients.c[0].x, 0.5 * std::sqrt(4 * kPi), 0.5 * std::sqrt(4 * kPi) * 2.0 / 256);
   // Rotation about +Y by 90° moves a lobe along +X to −Z (right-handed).
-  ASSERT_EQ(run("'builtin:sky?elevation=0&azimuth=90&sky=0.01' --rotate 0,90,0 -o '" + p("r.json") + "'").code, 0);
+  ASSERT_EQ(run("'builtin:sky?elevation=0&azimuth=90&sky=0.01' --rotate 0,90,0 -o '" + p("r.json") + "'").rc, 0);
   const io::LightFile rl = io::readLightJson(p("r.json"));
   const Vec3d lobe = normalize(Vec3d(-rl.coefficients.c[3].x, -rl.coefficients.c[1].x, rl.coefficients.c[2].x));
   EXPECT_LT(lobe.z, -0.9) << lobe.x << " " << lobe.y << " " << lobe.z;

@@ -1,0 +1,76 @@
+#pragma once
+// Running the real `prt` binary from tests: a fresh scratch directory per test, the command's
+// exit code, stdout and stderr, and the check every failure path must pass (one line naming the
+// problem, non-zero exit, nothing left in out/).
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace prt::testing {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int rc = -1;
+  std::string out, err;
+};
+
+inline std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("prt_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "out");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// Runs `PREFIX prt ARGS` in the test directory.
+  Result prt(const std::string& args, const std::string& prefix = "") const {
+    const std::string cmd = "cd '" + dir_.string() + "' && " + prefix + "'" + PRT_CLI_PATH +
+                            "' " + args + " > stdout.txt 2> stderr.txt";
+    Result r;
+    const int status = std::system(cmd.c_str());
+    r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir_ / "stdout.txt");
+    r.err = slurp(dir_ / "stderr.txt");
+    return r;
+  }
+  void write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  /// A failing command: non-zero exit, exactly one stderr line naming the verb and the problem,
+  /// no file left in out/.
+  void expectCleanFailure(const std::string& args, const std::string& mention) const {
+    SCOPED_TRACE(args);
+    const Result r = prt("-q " + args);
+    EXPECT_NE(r.rc, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos)
+        << "expected '" << mention << "' in: " << r.err;
+    EXPECT_TRUE(fs::is_empty(dir_ / "out")) << "output left behind";
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace prt::testing
