@@ -37,5 +37,6 @@ void addValidateCommand(CLI::App& root);
 void addReferenceCommand(CLI::App& root);
 void addViewCommand(CLI::App& root);
 void addMergeCommand(CLI::App& root);
+void addDemoCommand(CLI::App& root);
 
 }  // namespace prt::cli

@@ -1,0 +1,484 @@
+// prt demo: the whole pipeline on a default scene, into a folder a person wants to open.
+//
+//   prt demo -o demo-out
+//   prt demo --mesh bunny.obj --env studio.exr --env builtin:sky -o out
+//
+// The scene is the Stanford bunny on a ground plane when Debian's glmark2-data is installed,
+// else the builtin Cornell box. It is baked once with all three transfer modes (unshadowed,
+// shadowed, inter-reflected), then for each environment (the builtin sky, and a CC0 Poly Haven
+// map from Debian's blender-data when installed) every mode is relit and rendered, the brute-force
+// Monte Carlo reference (no SH) is computed at every vertex and rendered the same way, and the
+// per-vertex error is shown in false colour beside the per-band validation table. A turntable of
+// the light rotating about +Y closes each environment. index.html shows it all with the numbers.
+//
+// Everything the demo writes comes from the library calls the verbs use (bake, relight,
+// renderRelit, validate), so the pictures are exactly what `prt bake/render/validate` give.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "cli.hpp"
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/envmap/builtin.hpp"
+#include "prt/envmap/load.hpp"
+#include "prt/envmap/preview.hpp"
+#include "prt/envmap/project.hpp"
+#include "prt/geometry/builtin.hpp"
+#include "prt/geometry/load.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image_io.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/io/light_file.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/render/camera.hpp"
+#include "prt/render/render.hpp"
+#include "prt/render/validate.hpp"
+#include "prt/transport/bake.hpp"
+#include "reference_args.hpp"
+
+#ifndef PRT_VERSION
+#define PRT_VERSION "dev"
+#endif
+
+namespace prt::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
+constexpr const char* kPolyHavenDir = "/usr/share/blender/datafiles/studiolights/world";
+
+struct DemoArgs {
+  std::string output = "demo-out";
+  std::string mesh = "auto";
+  std::vector<std::string> envs;
+  int bands = 5;
+  int samples = 512;
+  int referenceSamples = 512;
+  int bounces = 1;
+  std::string size = "480x360";
+  int frames = 12;
+};
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// The demo scene: what was asked, or the bunny on a plane, or the Cornell box; and the sphere
+/// the camera frames (the object, not the whole ground plane).
+struct Scene {
+  Mesh mesh;
+  std::string description;
+  Vec3f centre{0.0f};
+  float radius = 1;
+};
+
+Scene makeScene(const std::string& spec) {
+  Scene s;
+  std::string path = spec;
+  if (spec == "auto") path = fs::exists(kBunny) ? kBunny : "builtin:cornell";
+  LoadReport report;
+  Mesh object = loadMesh(path, &report);
+  for (const auto& w : report.warnings) warn(w);
+  const Bounds b = computeBounds(object);
+  s.centre = b.centre();
+  s.radius = b.radius();
+  if (isBuiltinScene(path) && path.rfind("builtin:cornell", 0) == 0) {
+    s.mesh = std::move(object);
+    s.description = "the builtin Cornell box (install glmark2-data for the Stanford bunny)";
+    return s;
+  }
+  // A ground plane under the object, three times its size, so it casts a shadow.
+  const float size = 3 * std::max({b.hi.x - b.lo.x, b.hi.z - b.lo.z}) / 2;
+  const std::string plane =
+      fmt::format("builtin:plane?y={:.6g}&size={:.6g}&grid=64", b.lo.y, size);
+  s.mesh = std::move(object);
+  appendMesh(s.mesh, loadMesh(plane));
+  s.mesh.source = path + "+" + plane;
+  s.description = (path == kBunny ? "the Stanford bunny (Debian's glmark2-data)" : path) +
+                  std::string(" on a ground plane");
+  return s;
+}
+
+/// The environments: the builtin sky, plus a Poly Haven map from blender-data when installed.
+std::vector<std::string> defaultEnvironments() {
+  std::vector<std::string> envs = {envmap::kDefaultEnvironment};
+  for (const char* name : {"courtyard.exr", "forest.exr", "city.exr"}) {
+    const fs::path p = fs::path(kPolyHavenDir) / name;
+    if (fs::exists(p)) {
+      envs.push_back(p.string());
+      break;
+    }
+  }
+  return envs;
+}
+
+/// A file-name-safe short name: "builtin:sky?x=1" → "sky", "/a/courtyard.exr" → "courtyard".
+std::string shortName(const std::string& spec) {
+  std::string s = spec;
+  if (s.rfind("builtin:", 0) == 0) s = s.substr(8);
+  s = fs::path(s.substr(0, s.find('?'))).stem().string();
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return s.empty() ? "env" : s;
+}
+
+std::string htmlEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+/// Exposure (stops) that puts the median luminance of the relit vertices at 0.3 after exposure
+/// (a white object under the sky or a real environment then reads as light grey to white, with
+/// the tone map's shoulder left for the brightest parts).
+float objectExposure(std::span<const Rgb> radiance) {
+  std::vector<float> lum;
+  lum.reserve(radiance.size());
+  for (const Rgb& c : radiance) lum.push_back(image::luminance(c));
+  if (lum.empty()) return 0;
+  const auto mid = lum.begin() + static_cast<std::ptrdiff_t>(lum.size() / 2);
+  std::nth_element(lum.begin(), mid, lum.end());
+  return *mid > 0 ? std::log2(0.3f / *mid) : 0.0f;
+}
+
+/// The image as the PNG will show it, still linear: tone mapped (with exposure) and clamped, so
+/// pictures with different tone maps can share one contact sheet written with ToneMap::Clamp.
+image::Image displayed(image::Image img, const image::WriteOptions& wo) {
+  for (Rgb& p : img.pixels) p = image::toneMap(p, wo.toneMap, wo.exposureStops);
+  return img;
+}
+
+struct ModeResult {
+  TransferMode mode;
+  render::ValidationReport report;
+  float errorScale = 0;
+  std::string prtImage, refImage, errImage;
+};
+
+struct LightResult {
+  std::string spec, name, preview, turntable, comparison;
+  std::vector<std::string> frames;
+  float exposure = 0;
+  std::vector<ModeResult> modes;
+  double seconds = 0;
+};
+
+void writeIndex(const std::string& path, const Scene& scene, const BakeFile& bake,
+                const std::vector<LightResult>& lights, const DemoArgs& a, double bakeSeconds,
+                double totalSeconds) {
+  std::ostringstream h;
+  h << R"(<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>prtkit demo</title>
+<style>
+body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1500px;color:#222;background:#fafafa}
+h1,h2,h3{font-weight:600} table{border-collapse:collapse;margin:.5em 0}
+td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right;font-variant-numeric:tabular-nums}
+th{background:#eee} .imgs{display:flex;gap:.6em;flex-wrap:wrap} figure{margin:0}
+figcaption{font-size:.85em;color:#555} img{display:block;max-width:100%} code{background:#eee;padding:0 .2em}
+.mode{border-top:1px solid #ddd;padding-top:.5em;margin-top:1em}
+</style></head><body>
+<h1>prtkit demo</h1>
+)";
+  h << "<p>Scene: " << htmlEscape(scene.description) << ", " << bake.mesh.vertexCount()
+    << " vertices, " << bake.mesh.triangleCount() << " triangles. Baked with " << a.bands
+    << " SH bands (" << a.bands * a.bands << " coefficients), " << a.samples
+    << " cosine-weighted Sobol' directions per vertex, " << a.bounces
+    << " inter-reflection bounce(s), in " << fmt::format("{:.1f}", bakeSeconds)
+    << " s. Reference: " << a.referenceSamples
+    << " Monte Carlo samples per vertex (environment importance sampling and cosine sampling "
+       "combined by MIS), no spherical harmonics anywhere. Total "
+    << fmt::format("{:.0f}", totalSeconds) << " s.</p>\n";
+  h << "<table><tr><th>mode</th><th>rays</th><th>time</th><th>Mrays/s</th><th>std. error of "
+       "T<sub>00</sub> (mean)</th></tr>\n";
+  for (const BakedTransfer& t : bake.transfers)
+    h << fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{:.2f} s</td><td>{:.1f}</td><td>{:.2e}</td></tr>\n",
+        toString(t.settings.mode), t.stats.rays, t.stats.secondsTotal, t.stats.raysPerSecond / 1e6,
+        t.stats.stdErrT0Mean);
+  h << "</table>\n<p>Files: <code>scene.glb</code> (the bake; any glTF viewer opens it as a mesh), "
+       "<code>lights/*.json</code> (SH lighting), <code>validation/*.json</code>. Try "
+       "<code>prt render scene.glb --light lights/"
+    << (lights.empty() ? "sky" : lights.front().name) << ".json -o mine.png</code>.</p>\n";
+
+  for (const LightResult& L : lights) {
+    h << "<h2>" << htmlEscape(L.spec) << "</h2>\n<figure><img src=\"" << L.preview
+      << "\" width=\"512\"><figcaption>The environment (top), its " << a.bands
+      << "-band SH reconstruction, and the irradiance/π it gives a white surface.</figcaption>"
+         "</figure>\n";
+    for (const ModeResult& m : L.modes) {
+      const render::ValidationReport& r = m.report;
+      h << "<div class=\"mode\"><h3>" << toString(m.mode) << "</h3><div class=\"imgs\">";
+      h << "<figure><img src=\"" << m.prtImage << "\"><figcaption>PRT, " << r.bands
+        << " bands</figcaption></figure>";
+      h << "<figure><img src=\"" << m.refImage
+        << "\"><figcaption>Monte Carlo reference (no SH)</figcaption></figure>";
+      h << "<figure><img src=\"" << m.errImage
+        << fmt::format("\"><figcaption>relative error per vertex: black 0 … white {:.1f}%",
+                       100 * m.errorScale)
+        << "</figcaption></figure></div>\n";
+      h << "<table><tr><th>bands</th><th>rel. RMSE</th><th>mean rel. error</th><th>max rel. "
+           "error</th><th>truncation floor</th><th>reference std. error</th></tr>\n";
+      for (const render::BandRow& row : r.rows)
+        h << fmt::format(
+            "<tr><td>{}</td><td>{:.2f}%</td><td>{:.2f}%</td><td>{:.1f}%</td><td>{:.2f}%</td>"
+            "<td>{:.2f}%</td></tr>\n",
+            row.bands, 100 * row.relRmse, 100 * row.meanRel, 100 * row.maxRel, 100 * row.floor,
+            100 * row.refStdErr);
+      h << "</table></div>\n";
+    }
+    h << "<p><a href=\"" << L.comparison
+      << "\">All modes in one picture</a> (rows: unshadowed, shadowed, inter-reflected; "
+         "columns: PRT, reference, error).</p>\n";
+    if (!L.frames.empty()) {
+      h << "<h3>The light turning about +Y (inter-reflected, SH rotation)</h3>\n<img id=\"turn_"
+        << L.name << "\" src=\"" << L.frames.front() << "\"><p><a href=\"" << L.turntable
+        << "\">contact sheet</a></p>\n<script>(function(){const f=[";
+      for (std::size_t k = 0; k < L.frames.size(); ++k) h << (k ? "," : "") << '"' << L.frames[k] << '"';
+      h << "];let i=0;const im=document.getElementById(\"turn_" << L.name
+        << "\");setInterval(()=>{i=(i+1)%f.length;im.src=f[i];},150);})();</script>\n";
+    }
+  }
+  h << "<p>Made by <code>prt demo</code> (prtkit " << PRT_VERSION
+    << "). Relative error per vertex: sqrt(Σ<sub>c</sub>(R<sub>PRT</sub>−R<sub>ref</sub>)² / "
+       "Σ<sub>c</sub>(R<sub>ref</sub>² + ε)); the truncation floor is the error a perfect "
+       "unshadowed transfer would still have at that band count (see docs/render.md).</p>\n"
+       "</body></html>\n";
+  writeFileAtomically(path, h.str());
+}
+
+void runDemo(const DemoArgs& a) {
+  const auto t0 = Clock::now();
+  if (a.bands < 1 || a.bands > 16) throw Error(fmt::format("--bands {}: must be 1..16", a.bands));
+  if (a.samples < 1 || a.samples > kMaxBakeSamples)
+    throw Error(fmt::format("--samples {}: must be 1..{}", a.samples, kMaxBakeSamples));
+  if (a.referenceSamples < 1) throw Error("--reference-samples must be at least 1");
+  if (a.bounces < 1 || a.bounces > kMaxBounces)
+    throw Error(fmt::format("--bounces {}: must be 1..{}", a.bounces, kMaxBounces));
+  if (a.frames < 0 || a.frames > 360) throw Error("--frames must be 0..360");
+  render::FrameSettings frame;
+  refargs::parseSize(a.size, frame.width, frame.height);
+  const std::vector<std::string> envSpecs = a.envs.empty() ? defaultEnvironments() : a.envs;
+
+  // Inputs first: a bad mesh or environment fails before anything is written.
+  const Scene scene = makeScene(a.mesh);
+  std::vector<envmap::LoadedEnvironment> envs;
+  for (const std::string& spec : envSpecs) {
+    envs.push_back(envmap::loadEnvironment(spec));
+    const envmap::LoadedEnvironment& e = envs.back();
+    for (std::size_t k = 0; k < e.stats.size(); ++k)
+      if (e.stats[k].nonFinitePixels + e.stats[k].negativePixels > 0)
+        info(fmt::format("{}: {} non-finite and {} negative pixels set to 0", e.files[k],
+                         e.stats[k].nonFinitePixels, e.stats[k].negativePixels));
+  }
+
+  // The output folder is built beside its final name and renamed into place at the end, so a
+  // failed or cancelled demo leaves no half-made folder (an earlier complete one is replaced
+  // only once the new one is complete).
+  const fs::path out = fs::absolute(a.output);
+  const fs::path tmp = out.parent_path() / (out.filename().string() + ".partial");
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  if (!fs::create_directories(tmp / "img", ec) || !fs::create_directories(tmp / "lights", ec) ||
+      !fs::create_directories(tmp / "validation", ec))
+    throw Error(out.string(), "cannot create the output folder (" + ec.message() + ")");
+  struct Cleanup {
+    fs::path dir;
+    bool keep = false;
+    ~Cleanup() {
+      std::error_code e;
+      if (!keep) fs::remove_all(dir, e);
+    }
+  } cleanup{tmp};
+  const auto file = [&](const std::string& rel) { return (tmp / rel).string(); };
+
+  info(fmt::format("demo: {} ({} vertices, {} triangles)", scene.description,
+                   scene.mesh.vertexCount(), scene.mesh.triangleCount()));
+
+  // Bake the three modes into one file.
+  const auto tb = Clock::now();
+  BakeFile bake;
+  bake.mesh = scene.mesh;
+  bake.generator = std::string("prtkit ") + PRT_VERSION;
+  bake.vertexCount = bake.mesh.vertexCount();
+  const auto occluder = makeEmbreeOccluder(bake.mesh);
+  for (TransferMode mode :
+       {TransferMode::Unshadowed, TransferMode::Shadowed, TransferMode::Interreflected}) {
+    BakedTransfer t;
+    t.settings.mode = mode;
+    t.settings.bands = a.bands;
+    t.settings.samples = a.samples;
+    t.settings.bounces = mode == TransferMode::Interreflected ? a.bounces : 0;
+    t.settings.vertexCount = bake.vertexCount;
+    t.field = prt::bake(bake.mesh, *occluder, t.settings, &t.stats,
+                        progressBar(std::string("bake ") + toString(mode)));
+    info(fmt::format("demo: baked {} in {:.2f} s ({} rays)", toString(mode), t.stats.secondsTotal,
+                     t.stats.rays));
+    bake.transfers.push_back(std::move(t));
+  }
+  writeBake(file("scene.glb"), bake);
+  const double bakeSeconds = since(tb);
+
+  render::Camera camera = render::frameSphere(scene.centre, scene.radius, frame.width,
+                                              frame.height);
+  std::vector<LightResult> lights;
+  for (std::size_t li = 0; li < envs.size(); ++li) {
+    const auto tl = Clock::now();
+    const envmap::Environment& env = envs[li].env;
+    LightResult L;
+    L.spec = envSpecs[li];
+    L.name = shortName(L.spec);
+    for (const LightResult& other : lights)
+      if (other.name == L.name) L.name += "_" + std::to_string(li);
+    const sh::RgbSh light = envmap::projectEnvironment(env, a.bands);
+    io::LightFile lf;
+    lf.coefficients = light;
+    lf.source = L.spec;
+    lf.layout = envs[li].layout;
+    lf.prtkitVersion = PRT_VERSION;
+    io::writeLightJson(file("lights/" + L.name + ".json"), lf);
+    const image::Image panels = envmap::previewPanels(env, light, 512);
+    L.preview = "lights/" + L.name + "_preview.png";
+    image::writeImage(file(L.preview), panels,
+                      {image::ToneMap::Aces, envmap::previewExposure(panels)});
+
+    const render::BackgroundFn background = render::environmentBackground(env, Mat3d::identity());
+    std::vector<image::Image> panels3;  // per mode: PRT, reference, error (display values)
+    for (const BakedTransfer& bt : bake.transfers) {
+      const auto tm = Clock::now();
+      ModeResult m;
+      m.mode = bt.settings.mode;
+      render::ValidateSettings vs;
+      vs.reference.samples = a.referenceSamples;
+      m.report = render::validate(bake.mesh, *occluder, bt.field, bt.settings, env, light, vs,
+                                  progressBar(fmt::format("reference {} {}", L.name,
+                                                          toString(m.mode))));
+      writeFileAtomically(file(fmt::format("validation/{}_{}.json", L.name, toString(m.mode))),
+                          render::reportJson(m.report));
+      const std::vector<Rgb> relit = relight::relight(bt.field, light, bake.mesh.albedo);
+      // One exposure per environment, from its unshadowed (brightest) relighting, so every picture
+      // under it compares directly.
+      if (m.mode == TransferMode::Unshadowed) L.exposure = objectExposure(relit);
+      const image::WriteOptions wo{image::ToneMap::Aces, L.exposure};
+      const std::string base = fmt::format("img/{}_{}", L.name, toString(m.mode));
+      const auto save = [&](const std::string& name, const image::Image& img,
+                            const image::WriteOptions& opts) {
+        panels3.push_back(displayed(img, opts));
+        image::writeImage(file(name), panels3.back(), {image::ToneMap::Clamp, 0.0f});
+        return name;
+      };
+      m.prtImage = save(base + "_prt.png",
+                        render::renderRelit(bake.mesh, *occluder, relit, camera, frame, background),
+                        wo);
+      std::vector<Rgb> reference(bake.mesh.vertexCount());
+      for (std::size_t i = 0; i < m.report.reference.vertices.size(); ++i)
+        reference[m.report.reference.vertices[i]] = m.report.reference.radiance[i];
+      m.refImage = save(
+          base + "_ref.png",
+          render::renderRelit(bake.mesh, *occluder, reference, camera, frame, background), wo);
+      const std::vector<Rgb> colours =
+          render::vertexErrorColours(bake.mesh, m.report, &m.errorScale);
+      m.errImage = save(base + "_err.png",
+                        render::renderRelit(bake.mesh, *occluder, colours, camera, frame,
+                                            render::colourBackground(Rgb(0.0f))),
+                        {image::ToneMap::Clamp, 0.0f});
+      const render::BandRow& last = m.report.rows.back();
+      info(fmt::format("demo: {} {}: rel. RMSE {:.2f}% at {} bands (floor {:.2f}%, reference "
+                       "std. error {:.2f}%; reference {:.1f} s, all {:.1f} s)",
+                       L.name, toString(m.mode), 100 * last.relRmse, last.bands, 100 * last.floor,
+                       100 * last.refStdErr, m.report.reference.seconds, since(tm)));
+      L.modes.push_back(std::move(m));
+    }
+
+    L.comparison = "img/" + L.name + "_comparison.png";
+    image::writeImage(file(L.comparison), render::contactSheet(panels3, 3, 4, Rgb(1.0f)),
+                      {image::ToneMap::Clamp, 0.0f});
+
+    // The light turning once about +Y: SH rotation of the light, the background with it.
+    if (a.frames > 0) {
+      const BakedTransfer& bt = *bake.find(TransferMode::Interreflected);
+      render::FrameSettings small = frame;
+      small.width = frame.width * 2 / 3;
+      small.height = frame.height * 2 / 3;
+      const render::Camera cam =
+          render::frameSphere(scene.centre, scene.radius, small.width, small.height);
+      std::vector<image::Image> sheet;
+      std::vector<Rgb> relit(bake.mesh.vertexCount());
+      for (int k = 0; k < a.frames; ++k) {
+        const Mat3d rot = rotationAxisAngle({0, 1, 0}, 2 * kPi * k / a.frames);
+        relight::relight(bt.field, light, bake.mesh.albedo, relit, rot);
+        image::Image img = render::renderRelit(bake.mesh, *occluder, relit, cam, small,
+                                               render::environmentBackground(env, rot));
+        const std::string name = fmt::format("img/{}_turn_{:02d}.png", L.name, k);
+        image::writeImage(file(name), img, {image::ToneMap::Aces, L.exposure});
+        L.frames.push_back(name);
+        sheet.push_back(std::move(img));
+      }
+      L.turntable = "img/" + L.name + "_turntable.png";
+      image::writeImage(file(L.turntable), render::contactSheet(sheet, 4),
+                        {image::ToneMap::Aces, L.exposure});
+    }
+    L.seconds = since(tl);
+    info(fmt::format("demo: {} done in {:.1f} s", L.name, L.seconds));
+    lights.push_back(std::move(L));
+  }
+
+  writeIndex(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0));
+
+  // Into place: replace an earlier demo folder only now that the new one is complete.
+  if (fs::exists(out)) {
+    if (!fs::exists(out / "index.html"))
+      throw Error(out.string(), "exists and is not a prt demo folder; not replacing it");
+    fs::remove_all(out, ec);
+    if (ec) throw Error(out.string(), "cannot replace the earlier demo (" + ec.message() + ")");
+  }
+  fs::rename(tmp, out, ec);
+  if (ec) throw Error(out.string(), "cannot move the demo into place (" + ec.message() + ")");
+  cleanup.keep = true;
+  info(fmt::format("demo: finished in {:.0f} s; open {}", since(t0), (out / "index.html").string()));
+}
+
+}  // namespace
+
+void addDemoCommand(CLI::App& root) {
+  auto a = std::make_shared<DemoArgs>();
+  auto* cmd = root.add_subcommand(
+      "demo", "Bake, relight, render and validate a default scene into a folder with index.html");
+  cmd->add_option("-o,--output", a->output, "Output folder")->capture_default_str();
+  cmd->add_option("--mesh", a->mesh,
+                  "Mesh file or builtin:NAME (auto: the Stanford bunny from glmark2-data on a "
+                  "plane, else builtin:cornell)")
+      ->capture_default_str();
+  cmd->add_option("--env", a->envs,
+                  "Environment (repeatable; default builtin:sky and a Poly Haven map from "
+                  "blender-data when installed)");
+  cmd->add_option("--bands", a->bands, "SH bands")->capture_default_str();
+  cmd->add_option("--samples", a->samples, "Bake directions per vertex")->capture_default_str();
+  cmd->add_option("--reference-samples", a->referenceSamples,
+                  "Reference Monte Carlo samples per vertex")
+      ->capture_default_str();
+  cmd->add_option("--bounces", a->bounces, "Inter-reflection bounces")->capture_default_str();
+  cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
+  cmd->add_option("--frames", a->frames, "Turntable frames per environment (0: none)")
+      ->capture_default_str();
+  cmd->callback([a] { runDemo(*a); });
+}
+
+}  // namespace prt::cli

@@ -1,0 +1,161 @@
+// prt render / merge / demo through the real binary: SH light files relight exactly like the
+// environment they came from, split bakes merge into the full bake, the demo produces its folder
+// (and nothing at all when it fails), bad input fails cleanly.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "cli_harness.hpp"
+#include "prt/image/image_io.hpp"
+#include "prt/io/bake_file.hpp"
+
+namespace prt {
+namespace {
+
+using namespace prt::testing;
+using RenderCli = CliTest;
+
+// A small shadowed scene, quick to bake (sphere over a plane, 3 bands).
+constexpr const char* kScene = "'builtin:sphere-plane?grid=12&subdiv=2'";
+
+double maxRelativeDifference(const image::Image& a, const image::Image& b) {
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  double worst = 0, peak = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, double(std::abs(a.pixels[i][c] - b.pixels[i][c])));
+      peak = std::max(peak, double(std::abs(a.pixels[i][c])));
+    }
+  }
+  return worst / std::max(peak, 1e-30);
+}
+
+TEST_F(RenderCli, LightFilesRelightLikeTheirEnvironment) {
+  ASSERT_EQ(prt(std::string("-q bake ") + kScene + " --mode shadowed --samples 64 -o s.glb").rc, 0);
+  ASSERT_EQ(prt("-q light builtin:sky --bands 3 -o sky.json").rc, 0);
+  ASSERT_EQ(prt("-q light builtin:sky --bands 3 --format games202 -o sky.txt").rc, 0);
+  const std::string common = " --background none --size 64x48 --spp 1 ";
+  Result r = prt("-q render s.glb --light builtin:sky" + common + "-o env.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render s.glb --light sky.json" + common + "-o json.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render s.glb --light sky.txt" + common + "-o txt.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const image::Image env = image::readImage(path("env.exr"));
+  // The files hold the same projection to 9 significant digits; EXR keeps the floats.
+  EXPECT_LT(maxRelativeDifference(env, image::readImage(path("json.exr"))), 1e-5);
+  EXPECT_LT(maxRelativeDifference(env, image::readImage(path("txt.exr"))), 1e-5);
+
+  // A rotated light is not the same picture (the test above can fail).
+  r = prt("-q render s.glb --light sky.json --rotate 0,120,0" + common + "-o rot.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_GT(maxRelativeDifference(env, image::readImage(path("rot.exr"))), 1e-2);
+
+  // Fewer light bands than the bake: used as is, with a warning, not an error.
+  ASSERT_EQ(prt("-q light builtin:sky --bands 2 -o sky2.json").rc, 0);
+  r = prt("render s.glb --light sky2.json" + common + "-o two.png");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+
+  write("bad.json", "{\"bands\": 2, \"coefficients\": [[1, 2, 3]]}");
+  expectCleanFailure("render s.glb --light bad.json -o out/x.png", "bad.json");
+  write("bad.txt", "1 2 3\n4 5\n");
+  expectCleanFailure("render s.glb --light bad.txt -o out/x.png", "bad.txt");
+  expectCleanFailure("render s.glb --size 0x10 -o out/x.png", "size");
+  expectCleanFailure("render s.glb -o out/x.bmp", ".png");
+  expectCleanFailure("render s.glb -o no/such/dir/x.png", "no/such/dir");
+  expectCleanFailure("render missing.glb -o out/x.png", "missing.glb");
+}
+
+TEST_F(RenderCli, MergeJoinsSplitBakesExactly) {
+  const std::string bake = std::string("-q bake ") + kScene + " --mode shadowed --samples 32 ";
+  ASSERT_EQ(prt(bake + "-o full.glb").rc, 0);
+  const BakeFile full = readBake(path("full.glb"));
+  const std::size_t n = full.mesh.vertexCount(), cut = n / 3;
+  ASSERT_EQ(prt(bake + "--range " + std::to_string(cut) + ": -o b.glb").rc, 0);
+  ASSERT_EQ(prt(bake + "--range 0:" + std::to_string(cut) + " -o a.glb").rc, 0);
+  Result r = prt("merge b.glb a.glb -o out/m.glb");  // any order
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const BakeFile merged = readBake(path("out/m.glb"));
+  EXPECT_TRUE(merged.complete());
+  ASSERT_EQ(merged.transfers.size(), 1u);
+  EXPECT_EQ(merged.transfers[0].field.data, full.transfers[0].field.data);
+  std::filesystem::remove(path("out/m.glb"));
+
+  // Gaps, overlaps, other meshes, other settings, bad arguments.
+  ASSERT_EQ(prt(bake + "--range 1:" + std::to_string(cut + 1) + " -o shifted.glb").rc, 0);
+  expectCleanFailure("merge a.glb shifted.glb -o out/m.glb", "overlaps");
+  ASSERT_EQ(prt(bake + "--range " + std::to_string(cut + 1) + ": -o late.glb").rc, 0);
+  expectCleanFailure("merge a.glb late.glb -o out/m.glb", "gap");
+  ASSERT_EQ(prt("-q bake 'builtin:sphere?subdiv=2' --mode shadowed --samples 32 --range 5: "
+                "-o other.glb")
+                .rc,
+            0);
+  expectCleanFailure("merge a.glb other.glb -o out/m.glb", "different mesh");
+  ASSERT_EQ(prt(std::string("-q bake ") + kScene + " --mode shadowed --samples 16 --range " +
+                std::to_string(cut) + ": -o fewer.glb")
+                .rc,
+            0);
+  expectCleanFailure("merge a.glb fewer.glb -o out/m.glb", "different settings");
+  expectCleanFailure("merge a.glb -o out/m.glb", "at least two");
+  expectCleanFailure("merge a.glb b.glb -o out/m.txt", ".glb");
+  expectCleanFailure("merge a.glb missing.glb -o out/m.glb", "missing.glb");
+}
+
+TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
+  const std::string tiny =
+      "demo --mesh 'builtin:sphere-plane?grid=8&subdiv=1' --env builtin:sky --env "
+      "'builtin:constant?value=0.5' --samples 16 --reference-samples 16 --frames 2 ";
+  const std::string small = tiny + "--bands 3 --size 48x36 ";
+  Result r = prt("-q " + small + "-o out/demo");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::filesystem::path d = dir_ / "out/demo";
+  const std::string html = slurp(d / "index.html");
+  for (const char* needle : {"unshadowed", "shadowed", "interreflected", "builtin:sky",
+                             "builtin:constant?value=0.5", "truncation floor"})
+    EXPECT_NE(html.find(needle), std::string::npos) << needle;
+  for (const char* file :
+       {"scene.glb", "lights/sky.json", "lights/constant.json", "img/sky_shadowed_prt.png",
+        "img/sky_shadowed_ref.png", "img/sky_shadowed_err.png", "img/sky_comparison.png",
+        "img/constant_turn_01.png", "img/constant_turntable.png",
+        "validation/sky_interreflected.json"})
+    EXPECT_TRUE(std::filesystem::exists(d / file)) << file;
+  const BakeFile bake = readBake((d / "scene.glb").string());
+  EXPECT_EQ(bake.transfers.size(), 3u);
+  // Every image the HTML names exists.
+  for (std::size_t at = html.find("src=\""); at != std::string::npos;
+       at = html.find("src=\"", at + 1)) {
+    const std::size_t end = html.find('"', at + 5);
+    EXPECT_TRUE(std::filesystem::exists(d / html.substr(at + 5, end - at - 5)))
+        << html.substr(at + 5, end - at - 5);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out/demo.partial"));
+
+  // A second run replaces the folder; a failing run leaves the old one and no partial folder.
+  r = prt("-q " + small + "--env missing.exr -o out/demo");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.err.find("missing.exr"), std::string::npos) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(d / "index.html"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out/demo.partial"));
+  std::filesystem::remove_all(d);
+  expectCleanFailure(tiny + "--bands 0 -o out/demo", "--bands");
+  expectCleanFailure(tiny + "--size 0x0 -o out/demo", "size");
+  expectCleanFailure(tiny + "--frames many -o out/demo", "--frames");
+  expectCleanFailure("demo --mesh nothing.obj -o out/demo", "nothing.obj");
+  // A folder that is not an earlier demo is never replaced.
+  std::filesystem::create_directories(dir_ / "out/mine");
+  write("out/mine/keep.txt", "precious");
+  r = prt("-q " + small + "-o out/mine");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.err.find("not a prt demo folder"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir_ / "out/mine/keep.txt"), "precious");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out/mine.partial"));
+}
+
+}  // namespace
+}  // namespace prt
