@@ -26,7 +26,7 @@ struct ViewArgs {
   std::string size = "640x480";
   std::vector<double> rotate;
   std::string camera, mode, background = "env", toneMap = "aces", screenshot;
-  int bands = 0, frames = 1;
+  int bands = 0, frames = 0;
   float exposure = 0.0f;
   bool autoRotate = false, headless = false, stats = false;
   double spin = 30.0;
@@ -95,11 +95,13 @@ void addViewCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_flag("--headless", a->headless,
                 "Render offscreen (EGL, no display needed) instead of opening a window");
-  cmd->add_option("--frames", a->frames, "Headless: frames to render (1/60 s apart)")
-      ->capture_default_str();
+  cmd->add_option("--frames", a->frames,
+                  "Draw N frames, then exit (headless default 1, 1/60 s apart; window: until "
+                  "closed)");
   cmd->add_option("--screenshot", a->screenshot,
-                  "Headless: write the last frame (.png as shown, .exr/.hdr linear)");
-  cmd->add_flag("--stats", a->stats, "Headless: print frame and upload timings on stdout");
+                  "After the last frame write it: .png as shown (the window's with its panel), "
+                  ".exr/.hdr linear radiance");
+  cmd->add_flag("--stats", a->stats, "Print frame, CPU and upload timings on stdout at exit");
   cmd->callback([a] { runView(*a); });
 }
 

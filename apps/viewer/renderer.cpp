@@ -207,10 +207,7 @@ OffscreenTarget::~OffscreenTarget() {
 }
 
 image::Image OffscreenTarget::readEncoded() const {
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-  image::Image img = readPixels(width_, height_, GL_UNSIGNED_BYTE);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  return img;
+  return readFramebufferEncoded(fbo_, width_, height_);
 }
 
 // ---- Renderer -------------------------------------------------------------------------------
@@ -458,6 +455,14 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
   glUseProgram(0);
+}
+
+image::Image readFramebufferEncoded(unsigned fbo, int width, int height) {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  if (fbo == 0) glReadBuffer(GL_BACK);
+  image::Image img = readPixels(width, height, GL_UNSIGNED_BYTE);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return img;
 }
 
 image::Image Renderer::readLinear() const {

@@ -62,6 +62,9 @@ class OffscreenTarget {
   unsigned fbo_ = 0, colour_ = 0;
 };
 
+/// Reads an 8-bit framebuffer (0: the window's back buffer) as codes / 255, top row first.
+image::Image readFramebufferEncoded(unsigned fbo, int width, int height);
+
 class Renderer {
  public:
   /// Compiles the shaders; needs a current OpenGL 3.3 core context. Throws prt::Error.

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "prt/core/error.hpp"
@@ -10,6 +11,7 @@
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
+#include "prt/io/light_file.hpp"
 
 namespace prt::viewer {
 
@@ -115,10 +117,32 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   return bake;
 }
 
+namespace {
+
+/// An SH light file's coefficients at the bake's bands: cut when it has more (exact: bands are
+/// orthogonal), refused when it has fewer.
+sh::RgbSh fitShLight(const std::string& name, const sh::RgbSh& source, int bands) {
+  if (source.bands < bands)
+    throw Error(name, fmt::format("the light has {} bands but the bake {}; the transfer's upper "
+                                  "bands would see no light (write it with prt light --bands {})",
+                                  source.bands, bands, bands));
+  return source.truncated(bands);
+}
+
+}  // namespace
+
 EnvironmentEntry Scene::loadEnvironment(const std::string& spec, int bands) {
-  envmap::LoadedEnvironment loaded = envmap::loadEnvironment(spec);
   EnvironmentEntry e;
   e.name = spec;
+  const std::string ext = fileExtension(spec);
+  if (ext == "json" || ext == "txt") {
+    e.isShFile = true;
+    e.source = io::readLight(spec).coefficients;
+    e.light = fitShLight(spec, e.source, bands);
+    e.latLong = envmap::renderSh(e.source, 512);
+    return e;
+  }
+  envmap::LoadedEnvironment loaded = envmap::loadEnvironment(spec);
   e.env = std::move(loaded.env);
   if (e.env.kind() == envmap::Environment::Kind::LatLong)
     e.latLong = e.env.images().front();
@@ -131,8 +155,14 @@ EnvironmentEntry Scene::loadEnvironment(const std::string& spec, int bands) {
 void Scene::setBake(BakeFile bake, const std::string& name, int width, int height) {
   PRT_CHECK(!bake.transfers.empty(), "setBake needs a transfer");
   const int bands = bake.transfers.front().field.bands;
-  if (bands != bakeBands_)
-    for (EnvironmentEntry& e : envs_) e.light = envmap::projectEnvironment(e.env, bands);
+  if (bands != bakeBands_) {
+    // All or nothing: an SH light file with too few bands for the new bake refuses the bake.
+    std::vector<sh::RgbSh> lights;
+    for (const EnvironmentEntry& e : envs_)
+      lights.push_back(e.isShFile ? fitShLight(e.name, e.source, bands)
+                                  : envmap::projectEnvironment(e.env, bands));
+    for (std::size_t k = 0; k < envs_.size(); ++k) envs_[k].light = std::move(lights[k]);
+  }
   std::stable_sort(bake.transfers.begin(), bake.transfers.end(),
                    [](const BakedTransfer& a, const BakedTransfer& b) {
                      return richness(a.settings.mode) < richness(b.settings.mode);
@@ -214,18 +244,22 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
     packer_.setLight(e.light);
     env_ = scene.envVersion;
   }
-  if (sh_ != scene.shVersion) {
-    if (!envs.empty()) packer_.setLight(envs[scene.environmentIndex()].light);
-    if (scene.background == BackgroundMode::Sh) {
-      renderer_.setShImage(scene.shBackground());
-      sh_ = scene.shVersion;
-    }
+  if (light_ != scene.shVersion && !envs.empty()) {
+    packer_.setLight(envs[scene.environmentIndex()].light);
+    light_ = scene.shVersion;
+  }
+  // The SH background image is made only while it is shown.
+  if (sh_ != scene.shVersion && scene.background == BackgroundMode::Sh) {
+    renderer_.setShImage(scene.shBackground());
+    sh_ = scene.shVersion;
   }
   FrameParams f;
   f.width = width, f.height = height;
   f.camera = scene.orbit.camera();
+  const auto t0 = std::chrono::steady_clock::now();
   f.lightRotation = scene.lightRotation();
   packer_.pack(f.lightRotation, scene.bands());
+  lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   f.light = &packer_;
   f.background = scene.background;
   f.exposureStops = scene.exposureStops;

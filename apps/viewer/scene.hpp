@@ -24,11 +24,15 @@ namespace prt::viewer {
 
 inline constexpr double kDragDegreesPerPixel = 0.25;
 
+/// One light to choose from: an environment (image, face folder, builtin), or an SH light file
+/// (.json, or the course's light.txt), whose "image" is its SH reconstruction.
 struct EnvironmentEntry {
-  std::string name;  ///< as given (path or builtin:NAME)
-  envmap::Environment env;
-  image::Image latLong;  ///< the environment as a lat-long image, for the background
-  sh::RgbSh light;       ///< projected at the bake's bands
+  std::string name;         ///< as given (path or builtin:NAME)
+  bool isShFile = false;    ///< an SH light file: no image, `source` holds its coefficients
+  envmap::Environment env;  ///< (environments only)
+  sh::RgbSh source;         ///< (SH files only) the coefficients as read
+  image::Image latLong;     ///< the background: the environment, or the SH file's reconstruction
+  sh::RgbSh light;          ///< at the bake's bands: projected, or the file's cut to them
 };
 
 /// Orbit camera about a target, +Y up. Until moved it returns its starting camera unchanged (so
@@ -57,7 +61,10 @@ class Scene {
   /// Reads and checks a bake: complete, holds a transfer, bands within the viewer's limit.
   /// Throws prt::Error("FILE: problem").
   static BakeFile readCheckedBake(const std::string& path);
-  /// Loads an environment (image, face folder, builtin:NAME) and projects it to `bands`.
+  /// Loads an environment (image, face folder, builtin:NAME) and projects it to `bands`, or
+  /// reads an SH light file (.json, .txt) and cuts it to `bands`. Throws prt::Error("FILE: ...")
+  /// when unreadable, or when an SH light has fewer bands than `bands` (the transfer's upper
+  /// bands would see no light: project the environment at the bake's bands instead).
   static EnvironmentEntry loadEnvironment(const std::string& spec, int bands);
 
   /// Replaces the bake (environments are re-projected when the band count changes), picks the
@@ -126,11 +133,14 @@ class SceneView {
   FrameParams prepare(const Scene& scene, int width, int height);
   Renderer& renderer() { return renderer_; }
   const LightPacker& packer() const { return packer_; }
+  /// Seconds the last prepare spent on the per-frame light work (rotation + packing).
+  double lastLightSeconds() const { return lightSeconds_; }
 
  private:
   Renderer renderer_;
   LightPacker packer_;
-  int mesh_ = -1, transfer_ = -1, env_ = -1, sh_ = -1;
+  int mesh_ = -1, transfer_ = -1, env_ = -1, light_ = -1, sh_ = -1;
+  double lightSeconds_ = 0;
 };
 
 }  // namespace prt::viewer

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "capture.hpp"
 #include "context.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -37,11 +38,11 @@ BackgroundMode parseBackgroundMode(const std::string& s) {
 void checkOptions(const Options& o) {
   if (o.width <= 0 || o.height <= 0 || o.width > 16384 || o.height > 16384)
     throw Error(fmt::format("--size {}x{}: width and height must be 1..16384", o.width, o.height));
-  if (o.frames < 1) throw Error("--frames must be at least 1");
+  if (o.frames < 0) throw Error("--frames must be positive (0: until the window is closed)");
   if (o.bands < 0 || o.bands > kMaxViewerBands)
     throw Error(fmt::format("--bands must be 1..{}", kMaxViewerBands));
-  if (!o.headless && (!o.screenshot.empty() || o.frames != 1))
-    throw Error("--screenshot and --frames need --headless");
+  if (!o.headless && !o.screenshot.empty() && o.frames == 0)
+    throw Error("--screenshot in a window needs --frames N (or --headless)");
   if (!o.screenshot.empty()) {
     const std::string ext = fileExtension(o.screenshot);
     if (ext != "png" && ext != "exr" && ext != "hdr")
@@ -51,12 +52,6 @@ void checkOptions(const Options& o) {
   if (o.rotateDeg)
     for (double a : *o.rotateDeg)
       if (!std::isfinite(a)) throw Error("--rotate: angles must be finite");
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 /// Loads everything named on the command line into a scene (errors name the file).
@@ -106,53 +101,24 @@ void runHeadless(Scene& scene, const Options& o, const Output& out) {
   HeadlessContext context;
   SceneView view;
   OffscreenTarget target(o.width, o.height);
-  std::vector<double> frameMs, cpuMs, uploadUs;
-  for (int k = 0; k < o.frames; ++k) {
+  FrameStats stats;
+  for (int k = 0; k < std::max(o.frames, 1); ++k) {
     const auto t0 = Clock::now();
     const FrameParams f = view.prepare(scene, o.width, o.height);
-    cpuMs.push_back(msSince(t0));
+    const double cpu = view.lastLightSeconds() * 1e3;
     view.renderer().draw(f, target.fbo());
     glFinish();
-    frameMs.push_back(msSince(t0));
-    uploadUs.push_back(view.renderer().lastUploadSeconds() * 1e6);
+    stats.add(msSince(t0), cpu, view.renderer().lastUploadSeconds() * 1e6);
     scene.advanceSpin(1.0 / 60.0);  // headless frames are 1/60 s apart
   }
   if (GLenum e = glGetError(); e != GL_NO_ERROR)
     throw Error(fmt::format("OpenGL error 0x{:x} while rendering", e));
   if (!o.screenshot.empty()) {
-    if (fileExtension(o.screenshot) == "png") {
-      // What the window shows: the shader's tone-mapped sRGB codes, written as they are.
-      image::Image shown = target.readEncoded();
-      for (Rgb& p : shown.pixels)
-        p = {image::srgbToLinear(p.x), image::srgbToLinear(p.y), image::srgbToLinear(p.z)};
-      image::WriteOptions w;
-      w.toneMap = image::ToneMap::Clamp;  // codes are already display-referred
-      image::writeImage(o.screenshot, shown, w);
-    } else {
-      image::writeImage(o.screenshot, view.renderer().readLinear());
-    }
+    writeScreenshot(o.screenshot, target.readEncoded(), view.renderer().readLinear());
     out.info(fmt::format("wrote {} ({}x{}, {} bands, {} transfer)", o.screenshot, o.width, o.height,
                          scene.bands(), toString(scene.transfer().settings.mode)));
   }
-  if (o.stats) {
-    // The first frame uploads the mesh, transfer and textures; steady state is the rest.
-    const auto steady = [](const std::vector<double>& v) {
-      return v.size() > 1 ? std::vector<double>(v.begin() + 1, v.end()) : v;
-    };
-    std::printf("renderer: %s\n", context.description().c_str());
-    std::printf("scene: %zu triangles, %zu vertices, %d of %d bands, %s transfer (%s)\n",
-                scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(), scene.bands(),
-                scene.bakeBands(), toString(scene.transfer().settings.mode),
-                scene.transfer().field.channels == 3 ? "RGB" : "scalar");
-    std::printf("frames: %d at %dx%d; first frame %.2f ms (uploads)\n", o.frames, o.width, o.height,
-                frameMs.front());
-    std::printf("frame time (draw + glFinish): median %.3f ms, min %.3f ms\n",
-                median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
-    std::printf("CPU per frame (light rotation + packing): median %.4f ms\n",
-                median(steady(cpuMs)));
-    std::printf("light upload (glBufferSubData, %zu bytes): median %.2f us\n",
-                view.packer().bytes(), median(steady(uploadUs)));
-  }
+  if (o.stats) stats.print(context.description(), scene, o.width, o.height, view.packer().bytes());
 }
 
 }  // namespace

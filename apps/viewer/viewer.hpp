@@ -25,11 +25,10 @@ struct Options {
   std::string toneMap = "aces";
   bool autoRotate = false;
   double spinDegreesPerSecond = 30.0;
-  // Headless.
-  bool headless = false;
-  int frames = 1;
-  std::string screenshot;  ///< .png (what the window shows) or .exr/.hdr (linear)
-  bool stats = false;      ///< print timings to stdout
+  bool headless = false;   ///< render offscreen (EGL) instead of opening a window
+  int frames = 0;          ///< frames to draw, then exit (0: headless 1, window until closed)
+  std::string screenshot;  ///< after the last frame: .png as shown, .exr/.hdr linear
+  bool stats = false;      ///< print timings to stdout at exit
 };
 
 /// Chatter and warnings go through these (the CLI's quiet flag applies to `info`).

@@ -14,6 +14,7 @@
 #include <deque>
 #include <utility>
 
+#include "capture.hpp"
 #include "context.hpp"
 #include "prt/core/error.hpp"
 
@@ -55,6 +56,7 @@ struct Ui {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.75f);
     ImGui::Begin("prt view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushItemWidth(170);
     const Mesh& mesh = scene.bake().mesh;
     ImGui::TextUnformatted(scene.bakeName().c_str());
     ImGui::Text("%zu triangles, %zu vertices", mesh.triangleCount(), mesh.vertexCount());
@@ -84,10 +86,7 @@ struct Ui {
     }
     int bg = int(scene.background);
     const char* bgNames[] = {"environment", "SH reconstruction", "black"};
-    if (ImGui::Combo("background", &bg, bgNames, 3)) {
-      scene.background = BackgroundMode(bg);
-      ++scene.shVersion;  // the SH image is made on demand
-    }
+    if (ImGui::Combo("background", &bg, bgNames, 3)) scene.background = BackgroundMode(bg);
     ImGui::SliderFloat("exposure", &scene.exposureStops, -8.0f, 8.0f, "%.1f stops");
     int tm = int(scene.toneMap);
     const char* tmNames[] = {"clamp", "reinhard", "aces"};
@@ -107,6 +106,7 @@ struct Ui {
     for (const Message& m : messages)
       ImGui::TextColored(m.error ? ImVec4(1, 0.4f, 0.4f, 1) : ImVec4(0.7f, 1, 0.7f, 1), "%s",
                          m.text.c_str());
+    ImGui::PopItemWidth();
     ImGui::End();
     (void)out;
   }
@@ -128,10 +128,8 @@ void handleInput(Scene& scene, int height) {
   }
   if (!io.WantCaptureKeyboard) {
     if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) scene.autoRotate = !scene.autoRotate;
-    if (ImGui::IsKeyPressed(GLFW_KEY_B, false)) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_B, false))
       scene.background = BackgroundMode((int(scene.background) + 1) % 3);
-      ++scene.shVersion;
-    }
     if (ImGui::IsKeyPressed(GLFW_KEY_LEFT_BRACKET)) scene.setBands(scene.bands() - 1);
     if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT_BRACKET)) scene.setBands(scene.bands() + 1);
     if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false))
@@ -164,8 +162,9 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
   Ui ui;
   ui.renderer = window.renderer();
   out.info("prt view: " + ui.renderer);
+  FrameStats stats;
   auto last = Clock::now();
-  while (!glfwWindowShouldClose(w)) {
+  for (int frame = 0; !glfwWindowShouldClose(w); ++frame) {
     glfwPollEvents();
     const auto now = Clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
@@ -192,9 +191,14 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
       try {
         const auto t0 = Clock::now();
         const FrameParams f = view.prepare(scene, fbw, fbh);
-        const double cpu = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        const double cpu = view.lastLightSeconds() * 1e3;
         ui.cpuMs = ui.cpuMs == 0 ? cpu : 0.9 * ui.cpuMs + 0.1 * cpu;
         view.renderer().draw(f, 0);
+        if (o.stats) {
+          glFinish();  // only when asked: it stalls the pipeline
+          stats.add(std::chrono::duration<double, std::milli>(Clock::now() - t0).count(), cpu,
+                    view.renderer().lastUploadSeconds() * 1e6);
+        }
       } catch (const Error& e) {
         // A transfer the GPU cannot hold: say so and go back to the first one.
         ui.post(e.what(), true, out);
@@ -205,7 +209,19 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
       }
     }
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    const bool lastFrame = o.frames > 0 && frame + 1 >= o.frames;
+    if (lastFrame && !o.screenshot.empty() && fbw > 0 && fbh > 0) {
+      writeScreenshot(o.screenshot, readFramebufferEncoded(0, fbw, fbh),
+                      view.renderer().readLinear());
+      out.info(fmt::format("wrote {} ({}x{}, the window with its panel)", o.screenshot, fbw, fbh));
+    }
     glfwSwapBuffers(w);
+    if (lastFrame) break;
+  }
+  if (o.stats) {
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(w, &fbw, &fbh);
+    stats.print(ui.renderer, scene, fbw, fbh, view.packer().bytes());
   }
 }
 

@@ -136,6 +136,10 @@ TEST(Scene, FailedDropsLeaveTheSceneAsItWas) {
   writeBake(path("dropped_empty.glb"), empty);
   e = s.loadDropped(path("dropped_empty.glb"), 160, 120);
   EXPECT_NE(e.find("holds no transfer"), std::string::npos) << e;
+  // An SH light file with fewer bands than the bake's 3.
+  ASSERT_EQ(prt("-q light builtin:sky --bands 2 -o dropped_sky2.json").rc, 0);
+  e = s.loadDropped(path("dropped_sky2.json"), 160, 120);
+  EXPECT_NE(e.find("the light has 2 bands but the bake 3"), std::string::npos) << e;
   EXPECT_EQ(s.environments().size(), envs);
   EXPECT_EQ(s.bake().mesh.vertexCount(), verts);
 
@@ -150,6 +154,20 @@ TEST(Scene, FailedDropsLeaveTheSceneAsItWas) {
   EXPECT_EQ(s.bakeBands(), 4);
   for (const EnvironmentEntry& env : s.environments()) EXPECT_EQ(env.light.bands, 4);
   EXPECT_EQ(s.transfer().settings.mode, TransferMode::Interreflected);  // the richest first
+
+  // An SH light file of 4 bands is accepted now; a dropped 9-band bake then mismatches it and
+  // is refused as a whole, leaving the 4-band scene.
+  ASSERT_EQ(prt("-q light builtin:sky --bands 4 -o dropped_sky4.json").rc, 0);
+  EXPECT_EQ(s.loadDropped(path("dropped_sky4.json"), 160, 120), "");
+  ASSERT_EQ(prt("-q bake 'builtin:sphere?subdiv=1' --mode unshadowed --bands 9 --samples 16 "
+                "-o dropped_b9.glb")
+                .rc,
+            0);
+  e = s.loadDropped(path("dropped_b9.glb"), 160, 120);
+  EXPECT_NE(e.find("dropped_sky4.json: the light has 4 bands but the bake 9"), std::string::npos)
+      << e;
+  EXPECT_EQ(s.bakeBands(), 4);
+  for (const EnvironmentEntry& env : s.environments()) EXPECT_EQ(env.light.bands, 4);
 }
 
 }  // namespace

@@ -1,0 +1,56 @@
+#include "capture.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "prt/core/file.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image_io.hpp"
+
+namespace prt::viewer {
+
+void writeScreenshot(const std::string& path, const image::Image& encoded,
+                     const image::Image& linear) {
+  if (fileExtension(path) != "png") {
+    image::writeImage(path, linear);
+    return;
+  }
+  // Decode the codes to linear so the PNG writer's clamp + sRGB encode gives them back exactly
+  // (linearToSrgb(srgbToLinear(c/255)) rounds to c).
+  image::Image shown = encoded;
+  for (Rgb& p : shown.pixels)
+    p = {image::srgbToLinear(p.x), image::srgbToLinear(p.y), image::srgbToLinear(p.z)};
+  image::WriteOptions w;
+  w.toneMap = image::ToneMap::Clamp;
+  image::writeImage(path, shown, w);
+}
+
+namespace {
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+std::vector<double> steady(const std::vector<double>& v) {
+  return v.size() > 1 ? std::vector<double>(v.begin() + 1, v.end()) : v;
+}
+}  // namespace
+
+void FrameStats::print(const std::string& renderer, const Scene& scene, int width, int height,
+                       std::size_t lightBytes) const {
+  if (frameMs.empty()) return;
+  std::printf("renderer: %s\n", renderer.c_str());
+  std::printf("scene: %zu triangles, %zu vertices, %d of %d bands, %s transfer (%s)\n",
+              scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(), scene.bands(),
+              scene.bakeBands(), toString(scene.transfer().settings.mode),
+              scene.transfer().field.channels == 3 ? "RGB" : "scalar");
+  std::printf("frames: %zu at %dx%d; first frame %.2f ms (uploads)\n", frameMs.size(), width,
+              height, frameMs.front());
+  std::printf("frame time (draw + glFinish): median %.3f ms, min %.3f ms\n",
+              median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
+  std::printf("CPU per frame (light rotation + packing): median %.4f ms\n", median(steady(cpuMs)));
+  std::printf("light upload (glBufferSubData, %zu bytes): median %.2f us\n", lightBytes,
+              median(steady(uploadUs)));
+}
+
+}  // namespace prt::viewer

@@ -1,0 +1,55 @@
+// The viewer's CPU work per frame (prt view): the light rotation R = Ry(spin) · R_user, the SH
+// rotation of the light's first b bands (sh::Rotation::set + apply, RGB) and its packing into the
+// std140 uniform block (LightPacker::pack), for b = 3, 6, 9, 16. Budget: under 0.1 ms at 9 bands.
+// Baseline in the same run: the CPU relighting's light preparation for the same rotation
+// (relight::prepareLight: builds a Rotation, allocates both layouts), which the viewer does not
+// use per frame. The GL upload itself (glBufferSubData of the block) is timed by
+// `prt view --headless --stats`; see docs/viewer.md.
+// Run: build-viewer/bench/bench_viewer_frame --benchmark_min_time=0.2
+#include <benchmark/benchmark.h>
+
+#include "../apps/viewer/light_packer.hpp"
+#include "prt/relight/relight.hpp"
+
+namespace {
+
+prt::sh::RgbSh light(int bands) {
+  prt::sh::RgbSh l(bands);
+  for (int i = 0; i < bands * bands; ++i) l.c[i] = prt::Rgb(1.0f / (1 + i), 0.5f, 0.25f);
+  return l;
+}
+
+void BM_ViewerLightFrame(benchmark::State& state) {
+  const int bands = int(state.range(0));
+  prt::viewer::LightPacker packer;
+  packer.setLight(light(bands));
+  const prt::Mat3d user = prt::rotationEulerXYZ(20, 30, 40);
+  double spin = 0;
+  for (auto _ : state) {
+    spin += 0.01;  // a new angle every frame, as auto-rotation gives
+    const prt::Mat3d r = prt::rotationAxisAngle({0, 1, 0}, spin) * user;
+    packer.pack(r, bands);
+    benchmark::DoNotOptimize(packer.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["bytes"] = double(packer.bytes());
+}
+BENCHMARK(BM_ViewerLightFrame)->Arg(3)->Arg(6)->Arg(9)->Arg(16)->Unit(benchmark::kMicrosecond);
+
+void BM_PrepareLightBaseline(benchmark::State& state) {
+  const int bands = int(state.range(0));
+  const prt::sh::RgbSh l = light(bands);
+  const prt::Mat3d user = prt::rotationEulerXYZ(20, 30, 40);
+  double spin = 0;
+  for (auto _ : state) {
+    spin += 0.01;
+    const prt::sh::Rotation rot(bands, prt::rotationAxisAngle({0, 1, 0}, spin) * user);
+    prt::relight::PreparedLight p = prt::relight::prepareLight(l, bands, &rot);
+    benchmark::DoNotOptimize(p.interleaved.data());
+  }
+}
+BENCHMARK(BM_PrepareLightBaseline)->Arg(3)->Arg(9)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
