@@ -10,6 +10,8 @@ packages=(
   libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libopenexr-dev zlib1g-dev
   libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # viewer (prt view): window, UI, GL loader; EGL + Mesa (llvmpipe) headless; Xvfb for its window test
+  libglfw3-dev libimgui-dev libepoxy-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri xvfb xauth
 )
 assets=(glmark2-data blender-data)
 
