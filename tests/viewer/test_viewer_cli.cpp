@@ -70,6 +70,26 @@ TEST(ViewCli, RotatedLightMatchesRenderRotate) {
   EXPECT_GT(displayedRmse(path("plain.png"), path("render.png")), 4 * kMatch);
 }
 
+TEST(ViewCli, AutoRotationAndCameraMatchRender) {
+  PRT_REQUIRE_HEADLESS_GL();
+  // Headless frames are 1/60 s apart: frame 31 of a 180°/s spin shows the light turned by
+  // 30/60 · 180° = 90° about +Y, i.e. render --rotate 0,90,0.
+  const Result r = prt("-q render '" + spherePlaneBake() + "' " + std::string(kSize) +
+                       " --rotate 0,90,0 -o render.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Result v = prt("-q view '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
+                       " --frames 31 --auto-rotate --spin 180 --screenshot spun.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_LT(displayedRmse(path("spun.png"), path("render.png")), kMatch);
+  const Result v1 = prt("-q view '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
+                        " --frames 21 --auto-rotate --spin 180 --screenshot spun60.png");
+  ASSERT_EQ(v1.rc, 0) << v1.err;
+  EXPECT_GT(displayedRmse(path("spun60.png"), path("render.png")), 2 * kMatch);
+  // A given camera, as prt render --camera.
+  EXPECT_LT(compareWithRender(cornellBake(), "--camera 'eye=2,1.6,4;target=0,0.8,0;fov=50'"),
+            kMatch);
+}
+
 TEST(ViewCli, ShBackgroundTruncatedBandsAndToneMapsMatch) {
   PRT_REQUIRE_HEADLESS_GL();
   EXPECT_LT(compareWithRender(cornellBake(), "--background sh --rotate 0,45,0"), kMatch);
