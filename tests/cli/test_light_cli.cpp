@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cli_harness.hpp"
+#include "envmap/games202_recipe.hpp"
 #include "prt/core/file.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
@@ -104,32 +105,17 @@ TEST_F(LightCli, Games202CompatMatchesTheCourseRecipe) {
   const sh::RgbSh got = io::readLightGames202(p("light.txt"));
   ASSERT_EQ(got.bands, bands);
 
-  // The recipe, plainly: frames per file in the course order, normalize(u U + v V + C), exact
-  // solid angle as the integral of the projected-area density over the texel (fine midpoints).
-  const double U[6][3] = {{0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {1, 0, 0}};
-  const double V[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, -1}, {0, 0, 1}, {0, -1, 0}, {0, -1, 0}};
-  const double C[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
-  std::vector<Rgbd> ref(bands * bands, Rgbd(0.0));
-  std::vector<double> y(bands * bands);
-  for (int f = 0; f < 6; ++f)
-    for (int py = 0; py < n; ++py)
-      for (int px = 0; px < n; ++px) {
-        const double u = 2 * (px + 0.5) / n - 1, v = 2 * (py + 0.5) / n - 1;
-        double w = 0;
-        const int m = 64;
-        for (int j = 0; j < m; ++j)
-          for (int i = 0; i < m; ++i) {
-            const double s = 2.0 * (px + (i + 0.5) / m) / n - 1, t = 2.0 * (py + (j + 0.5) / m) / n - 1;
-            w += (2.0 / n / m) * (2.0 / n / m) / std::pow(1 + s * s + t * t, 1.5);
-          }
-        const Vec3d d = normalize(Vec3d(u * U[f][0] + v * V[f][0] + C[f][0], u * U[f][1] + v * V[f][1] + C[f][1],
-                                        u * U[f][2] + v * V[f][2] + C[f][2]));
-        sh::evalReference(bands, d, y.data());
-        const auto& c = codes[f][py * n + px];
-        Rgbd le;
-        for (int k = 0; k < 3; ++k) le[k] = std::pow(static_cast<double>(static_cast<float>(c[k] / 255.0f)), 2.2);
-        for (int i = 0; i < bands * bands; ++i) ref[i] += le * (y[i] * w);
-      }
+  // The recipe on the course's decoding of the same codes: (c/255)^2.2.
+  std::array<image::Image, 6> decoded;
+  for (int f = 0; f < 6; ++f) {
+    decoded[f] = image::Image(n, n);
+    for (int i = 0; i < n * n; ++i) {
+      Rgb& px = decoded[f].pixels[i];
+      for (int k = 0; k < 3; ++k)
+        px[k] = static_cast<float>(std::pow(static_cast<double>(codes[f][i][k] / 255.0f), 2.2));
+    }
+  }
+  const std::vector<Rgbd> ref = prt::testing::games202Recipe(decoded, bands);
   for (int i = 0; i < bands * bands; ++i)
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(got.c[i][k], ref[i][k], 2e-5 * (std::abs(ref[0][k]))) << "coefficient " << i << " channel " << k;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "envmap/games202_recipe.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/envmap/analytic.hpp"
@@ -170,19 +171,6 @@ TEST(Project, BandsAreChecked) {
   EXPECT_NO_THROW(projectEnvironment(env, 32));
 }
 
-namespace {
-
-// Solid angle of the planar triangle (a, b, c) seen from the origin: Van Oosterom & Strackee,
-// IEEE Trans. Biomed. Eng. 30(2), 1983 (an independent formula from the atan2 corner form).
-double triangleSolidAngle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  const double la = length(a), lb = length(b), lc = length(c);
-  const double num = dot(a, cross(b, c));
-  const double den = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
-  return 2 * std::atan2(std::abs(num), den);
-}
-
-}  // namespace
-
 TEST(Project, Games202CompatMatchesTheCourseRecipe) {
   const int n = 6, bands = 3;
   std::array<image::Image, 6> faces;  // in the course order negx, posx, posy, negy, posz, negz
@@ -193,27 +181,7 @@ TEST(Project, Games202CompatMatchesTheCourseRecipe) {
         faces[f].at(x, y) = Rgb(0.1f * (f + 1), 0.05f * x + 0.2f, 0.03f * y * (f % 3 + 1) + 0.1f);
   }
   const sh::RgbSh got = projectGames202Faces(faces, bands);
-  // The recipe, written plainly.
-  const double U[6][3] = {{0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {1, 0, 0}};
-  const double V[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, -1}, {0, 0, 1}, {0, -1, 0}, {0, -1, 0}};
-  const double C[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
-  std::vector<Rgbd> ref(bands * bands, Rgbd(0.0));
-  std::vector<double> y(bands * bands);
-  for (int f = 0; f < 6; ++f)
-    for (int py = 0; py < n; ++py)
-      for (int px = 0; px < n; ++px) {
-        auto at = [&](double u, double v) {
-          return Vec3d(u * U[f][0] + v * V[f][0] + C[f][0], u * U[f][1] + v * V[f][1] + C[f][1],
-                       u * U[f][2] + v * V[f][2] + C[f][2]);
-        };
-        const double u = 2 * (px + 0.5) / n - 1, v = 2 * (py + 0.5) / n - 1;
-        const double u0 = 2.0 * px / n - 1, u1 = 2.0 * (px + 1) / n - 1, v0 = 2.0 * py / n - 1,
-                     v1 = 2.0 * (py + 1) / n - 1;
-        const double w = triangleSolidAngle(at(u0, v0), at(u1, v0), at(u1, v1)) +
-                         triangleSolidAngle(at(u0, v0), at(u1, v1), at(u0, v1));
-        sh::evalReference(bands, normalize(at(u, v)), y.data());
-        for (int i = 0; i < bands * bands; ++i) ref[i] += Rgbd(faces[f].at(px, py)) * (y[i] * w);
-      }
+  const std::vector<Rgbd> ref = prt::testing::games202Recipe(faces, bands);
   for (int i = 0; i < bands * bands; ++i)
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(got.c[i][c], ref[i][c], 1e-5 * (1 + std::abs(ref[i][c]))) << i;
   // And it differs from the OpenGL-convention projection of the same files (the course's quirk).
