@@ -4,12 +4,14 @@
 // size, bound and type is checked here, so that a truncated or hand-edited file gives one clear
 // line instead of a crash. Layout: docs/formats-bake.md.
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -88,24 +90,53 @@ struct Reader {
 // ---------------------------------------------------------------------------------------------
 // Writing.
 
+// The binary chunk is described, not assembled: each bufferView is a segment that writes its
+// bytes straight from the mesh and transfer arrays when the file is streamed out, so writing a
+// bake needs no second copy of the transfer (nor the several that assembling a GLB in memory
+// costs: the buffer, tinygltf's chunk copy, the string stream and its result).
+struct Segment {
+  std::size_t offset = 0, size = 0;
+  std::function<void(std::ostream&)> write;
+};
+
 struct BufferBuilder {
   tinygltf::Model& model;
-  std::vector<unsigned char>& bytes;
+  std::vector<Segment> segments;
+  std::size_t length = 0;  ///< bytes of the binary chunk so far
 
-  /// Appends `size` bytes as a new bufferView (16-byte aligned) and returns its index.
-  int view(const void* data, std::size_t size, int stride, int target, const std::string& name) {
-    while (bytes.size() % 16) bytes.push_back(0);
+  /// A new bufferView of `size` bytes (16-byte aligned) whose content `write` produces.
+  int view(std::size_t size, int stride, int target, const std::string& name,
+           std::function<void(std::ostream&)> write) {
+    length = (length + 15) / 16 * 16;
     tinygltf::BufferView v;
     v.buffer = 0;
-    v.byteOffset = bytes.size();
+    v.byteOffset = length;
     v.byteLength = size;
     v.byteStride = static_cast<size_t>(stride);
     v.target = target;
     v.name = name;
-    const auto* p = static_cast<const unsigned char*>(data);
-    bytes.insert(bytes.end(), p, p + size);
+    segments.push_back({length, size, std::move(write)});
+    length += size;
     model.bufferViews.push_back(std::move(v));
     return static_cast<int>(model.bufferViews.size() - 1);
+  }
+  /// A bufferView of bytes that stay alive (and unchanged) until the file is written.
+  int view(const void* data, std::size_t size, int stride, int target, const std::string& name) {
+    const char* p = static_cast<const char*>(data);
+    return view(size, stride, target, name,
+                [p, size](std::ostream& os) { os.write(p, static_cast<std::streamsize>(size)); });
+  }
+
+  /// Streams the binary chunk: the segments in order, zero padding between and after them.
+  void writeBinary(std::ostream& os, std::size_t paddedLength) const {
+    static const char zeros[16] = {};
+    std::size_t at = 0;
+    for (const Segment& seg : segments) {
+      os.write(zeros, static_cast<std::streamsize>(seg.offset - at));
+      seg.write(os);
+      at = seg.offset + seg.size;
+    }
+    os.write(zeros, static_cast<std::streamsize>(paddedLength - at));
   }
 
   int accessor(int view, std::size_t byteOffset, std::size_t n, int type, int componentType) {
@@ -340,7 +371,21 @@ const BakedTransfer* BakeFile::find(TransferMode mode) const {
   return nullptr;
 }
 
-std::string encodeBake(const BakeFile& bake) {
+namespace {
+
+// GLB container (glTF 2.0 §4.4): 12-byte header, JSON chunk (padded with spaces), BIN chunk
+// (padded with zeros), every length a multiple of 4 and the whole below 2^32 bytes.
+constexpr std::uint32_t kGlbMagic = 0x46546C67, kChunkJson = 0x4E4F534A, kChunkBin = 0x004E4942;
+
+void putU32(std::ostream& os, std::uint32_t v) {
+  const unsigned char b[4] = {static_cast<unsigned char>(v), static_cast<unsigned char>(v >> 8),
+                              static_cast<unsigned char>(v >> 16),
+                              static_cast<unsigned char>(v >> 24)};
+  os.write(reinterpret_cast<const char*>(b), 4);
+}
+
+/// Streams the bake as GLB to `os`.
+void streamBake(const BakeFile& bake, std::ostream& os) {
   const std::vector<MeshPart> parts = partsOf(bake.mesh);
   validateForWriting(bake, parts);
   const Mesh& mesh = bake.mesh;
@@ -350,8 +395,7 @@ std::string encodeBake(const BakeFile& bake) {
   model.asset.version = "2.0";
   model.asset.generator = bake.generator;
   model.buffers.resize(1);
-  std::vector<unsigned char>& bytes = model.buffers[0].data;
-  BufferBuilder bb{model, bytes};
+  BufferBuilder bb{model, {}, 0};
 
   // Shared vertex data in the scene's global order (parts view slices of it).
   const int posView =
@@ -364,16 +408,26 @@ std::string encodeBake(const BakeFile& bake) {
   const int colView = mesh.albedo.empty() ? -1
                                           : bb.view(mesh.albedo.data(), V * 12, 12,
                                                     TINYGLTF_TARGET_ARRAY_BUFFER, "albedo");
-  // Indices, local to each part (each part's attributes start at its first vertex).
-  std::vector<std::uint32_t> local(mesh.triangleCount() * 3);
-  for (const MeshPart& p : parts)
-    for (std::uint32_t t = p.firstTriangle; t < p.firstTriangle + p.triangleCount; ++t)
-      for (int k = 0; k < 3; ++k) local[t * 3 + k] = mesh.triangles[t][k] - p.firstVertex;
-  const int idxView =
-      bb.view(local.data(), local.size() * 4, 0, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, "indices");
+  // Indices, local to each part (each part's attributes start at its first vertex), made while
+  // streaming in blocks.
+  const int idxView = bb.view(
+      mesh.triangleCount() * 12, 0, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, "indices",
+      [&mesh, &parts](std::ostream& os) {
+        std::vector<std::uint32_t> block;
+        for (const MeshPart& p : parts)
+          for (std::uint32_t t = p.firstTriangle; t < p.firstTriangle + p.triangleCount;) {
+            const std::uint32_t end = std::min(p.firstTriangle + p.triangleCount, t + 4096);
+            block.clear();
+            for (; t < end; ++t)
+              for (int k = 0; k < 3; ++k) block.push_back(mesh.triangles[t][k] - p.firstVertex);
+            os.write(reinterpret_cast<const char*>(block.data()),
+                     static_cast<std::streamsize>(block.size() * 4));
+          }
+      });
 
   // Transfer: K = ceil(B²C/4) VEC4 columns per mode, each its own tightly packed view over the
-  // vertex range; column k of vertex v = row floats 4k..4k+3, zero-padded.
+  // vertex range; column k of vertex v = row floats 4k..4k+3, zero-padded. Written column by
+  // column in blocks of vertices while streaming.
   struct Columns {
     std::vector<int> views, rangeAccessors;
   };
@@ -382,15 +436,22 @@ std::string encodeBake(const BakeFile& bake) {
     const TransferField& f = bake.transfers[ti].field;
     const std::size_t S = f.stride(), K = (S + 3) / 4, n = f.vertexCount;
     const std::string prefix = transferAttributePrefix(bake.transfers[ti].settings.mode);
-    std::vector<float> col(n * 4);
     for (std::size_t k = 0; k < K; ++k) {
-      std::fill(col.begin(), col.end(), 0.0f);
-      for (std::size_t v = 0; v < n; ++v)
-        for (std::size_t j = 0; j < 4 && 4 * k + j < S; ++j)
-          col[v * 4 + j] = f.vertex(v)[4 * k + j];
-      columns[ti].views.push_back(bb.view(col.data(), col.size() * 4, 16,
-                                          TINYGLTF_TARGET_ARRAY_BUFFER,
-                                          prefix + std::to_string(k)));
+      const auto writeColumn = [&f, S, n, k](std::ostream& os) {
+        constexpr std::size_t kBlock = 4096;
+        std::vector<float> col(kBlock * 4);
+        for (std::size_t v0 = 0; v0 < n; v0 += kBlock) {
+          const std::size_t m = std::min(kBlock, n - v0);
+          std::fill(col.begin(), col.end(), 0.0f);
+          for (std::size_t v = 0; v < m; ++v)
+            for (std::size_t j = 0; j < 4 && 4 * k + j < S; ++j)
+              col[v * 4 + j] = f.vertex(v0 + v)[4 * k + j];
+          os.write(reinterpret_cast<const char*>(col.data()),
+                   static_cast<std::streamsize>(m * 16));
+        }
+      };
+      columns[ti].views.push_back(bb.view(n * 16, 16, TINYGLTF_TARGET_ARRAY_BUFFER,
+                                          prefix + std::to_string(k), writeColumn));
       columns[ti].rangeAccessors.push_back(
           bb.accessor(columns[ti].views.back(), 0, n, TINYGLTF_TYPE_VEC4, kFloat));
       model.accessors.back().name = prefix + std::to_string(k) + " (vertex range)";
@@ -455,7 +516,7 @@ std::string encodeBake(const BakeFile& bake) {
   }
   model.scenes.push_back(scene);
   model.defaultScene = 0;
-  while (bytes.size() % 4) bytes.push_back(0);
+  const std::size_t binLength = (bb.length + 3) / 4 * 4;
 
   // extras.prtkit
   Value::Object prt;
@@ -481,21 +542,48 @@ std::string encodeBake(const BakeFile& bake) {
   if (!transfers.empty()) prt["transfers"] = Value(std::move(transfers));
   model.extras = Value(Value::Object{{"prtkit", Value(std::move(prt))}});
 
-  std::ostringstream out;
+  // The JSON by tinygltf from the model with an empty buffer, then the buffer declared as the
+  // GLB's BIN chunk (no uri, its real length).
+  std::ostringstream text;
   tinygltf::TinyGLTF gltf;
-  if (!gltf.WriteGltfSceneToStream(&model, out, false, true))
+  if (!gltf.WriteGltfSceneToStream(&model, text, false, false))
     throw Error("bake file: glTF serialisation failed");
+  nlohmann::json doc = nlohmann::json::parse(text.str());
+  doc["buffers"] = nlohmann::json::array({nlohmann::json{{"byteLength", binLength}}});
+  std::string json = doc.dump();
+  while (json.size() % 4) json.push_back(' ');
+  const std::uint64_t total = 12 + 8 + json.size() + 8 + binLength;
+  if (total >= (std::uint64_t(1) << 32))
+    throw Error("bake file: " + std::to_string(total >> 20) +
+                " MiB exceeds the 4 GiB a GLB file can hold (bake fewer bands, or split the "
+                "bake with --range)");
+
+  putU32(os, kGlbMagic);
+  putU32(os, 2);
+  putU32(os, static_cast<std::uint32_t>(total));
+  putU32(os, static_cast<std::uint32_t>(json.size()));
+  putU32(os, kChunkJson);
+  os.write(json.data(), static_cast<std::streamsize>(json.size()));
+  putU32(os, static_cast<std::uint32_t>(binLength));
+  putU32(os, kChunkBin);
+  bb.writeBinary(os, binLength);
+}
+
+}  // namespace
+
+std::string encodeBake(const BakeFile& bake) {
+  std::ostringstream out;
+  streamBake(bake, out);
   return out.str();
 }
 
 void writeBake(const std::string& path, const BakeFile& bake) {
-  std::string bytes;
   try {
-    bytes = encodeBake(bake);
+    writeFileAtomically(path, [&](std::ostream& os) { streamBake(bake, os); });
   } catch (const Error& e) {
-    throw Error(path, e.what());
+    const std::string what = e.what();
+    throw Error(what.rfind(path, 0) == 0 ? what : path + ": " + what);
   }
-  writeFileAtomically(path, bytes);
 }
 
 BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& name) {
