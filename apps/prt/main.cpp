@@ -88,6 +88,22 @@ int main(int argc, char** argv) {
     // One line, like every other error: "prt VERB: error: what (see prt VERB --help)".
     std::string verb = "prt";
     for (auto* sub : app.get_subcommands()) verb += " " + sub->get_name();
+    if (app.get_subcommands().empty()) {
+      // "prt frob": name the unknown verb and the known ones, not "a subcommand is required".
+      for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "-j" || a == "--threads") {
+          ++i;
+          continue;
+        }
+        if (a.empty() || a[0] == '-') continue;
+        std::string verbs;
+        for (const CLI::App* sub : app.get_subcommands({}))
+          verbs += (verbs.empty() ? "" : ", ") + sub->get_name();
+        std::cerr << "prt: error: unknown verb '" << a << "' (one of: " << verbs << ")\n";
+        return e.get_exit_code();
+      }
+    }
     std::cerr << verb << ": error: " << e.what() << " (see " << verb << " --help)\n";
     return e.get_exit_code();
   } catch (const prt::Cancelled&) {
