@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -62,11 +63,10 @@ Scene loadScene(const Options& o, const Output& out) {
   if (!o.mode.empty()) {
     mode = parseTransferMode(o.mode);
     if (!bake.find(*mode)) {
-      std::string have;
-      for (const auto& t : bake.transfers)
-        have += std::string(have.empty() ? "" : ", ") + toString(t.settings.mode);
-      throw Error(o.bake,
-                  fmt::format("no {} transfer in the bake (it has {})", toString(*mode), have));
+      std::vector<std::string> names;
+      for (const BakedTransfer& t : bake.transfers) names.emplace_back(toString(t.settings.mode));
+      throw Error(o.bake, fmt::format("no {} transfer in the bake (it has {})", toString(*mode),
+                                      fmt::join(names, ", ")));
     }
   }
   scene.setBake(std::move(bake), o.bake, o.width, o.height);
@@ -74,8 +74,8 @@ Scene loadScene(const Options& o, const Output& out) {
     for (int k = 0; k < int(scene.bake().transfers.size()); ++k)
       if (scene.bake().transfers[k].settings.mode == *mode) scene.selectTransfer(k);
   if (o.bands > scene.bakeBands())
-    out.warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands,
-                         scene.bakeBands(), scene.bakeBands()));
+    out.warn(fmt::format("--bands {} asked for, but the bake has only {} bands: showing {}",
+                         o.bands, scene.bakeBands(), scene.bakeBands()));
   if (o.bands > 0) scene.setBands(o.bands);
 
   const std::vector<std::string> envs =

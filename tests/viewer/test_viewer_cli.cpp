@@ -188,7 +188,7 @@ TEST(ViewCli, MoreBandsThanTheBakeWarnsAndRuns) {
   const Result v = prt("view '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
                        " --bands 9 --screenshot many.png");
   EXPECT_EQ(v.rc, 0) << v.err;
-  EXPECT_NE(v.err.find("the bake has only 3 bands"), std::string::npos) << v.err;
+  EXPECT_NE(v.err.find("but the bake has only 3 bands"), std::string::npos) << v.err;
 }
 
 TEST(ViewCli, WindowUnderXvfbShowsTheHeadlessFrame) {
