@@ -73,8 +73,8 @@ void addViewCommand(CLI::App& root) {
   CLI::App* cmd = root.add_subcommand("view", "Real-time viewer: relight a bake on the GPU");
   cmd->add_option("bake", a->bake, "Bake file (.glb)")->required();
   cmd->add_option("--env,--light", a->envs,
-                  "Environment image, face folder or builtin:NAME (repeat to switch between "
-                  "several; default builtin:sky)");
+                  "Environment image, face folder, builtin:NAME or SH light (.json/.txt); repeat "
+                  "to switch between several (default builtin:sky)");
   cmd->add_option("--size", a->size, "Window or frame size WxH")->capture_default_str();
   cmd->add_option("--rotate", a->rotate,
                   "Rotate the environment: X,Y,Z degrees (X, then Y, then Z; as prt render)")
