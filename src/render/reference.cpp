@@ -25,23 +25,56 @@ using envmap::Environment;
 EnvironmentSampler::EnvironmentSampler(const Environment& env) : env_(env) {
   const std::size_t n = env.texelCount();
   if (n == 0) throw Error("environment has no texels");
-  radiance_.resize(n);
+  if (n >= (std::size_t(1) << 32)) throw Error("environment has too many texels to sample");
+  texels_.resize(n);
   direction_.resize(n);
   solidAngle_.resize(n);
-  cdf_.resize(n);
+  std::vector<double> prob(n);
   double sum = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const envmap::Texel t = env.texel(k);
-    radiance_[k] = t.radiance;
+    texels_[k].radiance = t.radiance;
     direction_[k] = t.direction;
     solidAngle_[k] = t.solidAngle;
     const double w = std::max(0.0f, image::luminance(t.radiance)) * env.texelSolidAngle(k);
-    sum += std::isfinite(w) ? w : 0.0;
-    cdf_[k] = sum;
+    prob[k] = std::isfinite(w) ? w : 0.0;
+    sum += prob[k];
   }
   total_ = sum;
-  if (total_ > 0)
-    for (double& c : cdf_) c /= total_;
+  alias_.resize(n);
+  if (total_ <= 0) return;
+  for (std::size_t k = 0; k < n; ++k) {
+    prob[k] /= total_;
+    texels_[k].prob = static_cast<float>(prob[k]);
+  }
+
+  // Vose: scaled probabilities n P_k; pair each "small" (< 1) with a "large" (≥ 1) one. Both
+  // work lists are filled in index order and drained from the back, so the table is a pure
+  // function of the environment.
+  std::vector<double> scaled(n);
+  std::vector<std::uint32_t> small, large;
+  for (std::size_t k = 0; k < n; ++k) {
+    scaled[k] = prob[k] * static_cast<double>(n);
+    (scaled[k] < 1.0 ? small : large).push_back(static_cast<std::uint32_t>(k));
+  }
+  while (!small.empty() && !large.empty()) {
+    const std::uint32_t s = small.back(), l = large.back();
+    small.pop_back();
+    alias_[s] = {static_cast<float>(scaled[s]), l};
+    scaled[l] = (scaled[l] + scaled[s]) - 1.0;
+    if (scaled[l] < 1.0) {
+      large.pop_back();
+      small.push_back(l);
+    }
+  }
+  // What is left holds probability 1 up to rounding: it keeps itself. A texel of zero
+  // probability can be left only through rounding; it forwards to the most probable texel.
+  const auto best = static_cast<std::uint32_t>(std::max_element(prob.begin(), prob.end()) -
+                                               prob.begin());
+  for (std::uint32_t l : large) alias_[l] = {1.0f, l};
+  for (std::uint32_t s : small) alias_[s] = prob[s] > 0 ? AliasEntry{1.0f, s} : AliasEntry{0.0f, best};
+  for (AliasEntry& a : alias_)
+    if (a.accept < 1.0f && texels_[a.alias].prob == 0.0f) a.alias = best;
 }
 
 std::size_t EnvironmentSampler::texelOf(const Vec3f& dir) const {
@@ -113,23 +146,32 @@ double EnvironmentSampler::densityWithin(std::size_t k, const Vec3f& dir) const 
 
 Rgb EnvironmentSampler::radiance(const Vec3f& dir) const {
   const std::size_t k = texelOf(dir);
-  return k == npos ? Rgb(0.0f) : radiance_[k];
+  return k == npos ? Rgb(0.0f) : texels_[k].radiance;
 }
 
 double EnvironmentSampler::pdf(const Vec3f& dir) const {
-  if (total_ <= 0) return 0;
+  double p = 0;
+  lookup(dir, p);
+  return p;
+}
+
+Rgb EnvironmentSampler::lookup(const Vec3f& dir, double& pdf) const {
+  pdf = 0;
   const std::size_t k = texelOf(dir);
-  if (k == npos) return 0;
-  const double pk = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0);
-  return pk > 0 ? pk * densityWithin(k, dir) : 0.0;
+  if (k == npos) return Rgb(0.0f);
+  const TexelEntry& t = texels_[k];
+  if (total_ > 0 && t.prob > 0) pdf = t.prob * densityWithin(k, dir);
+  return t.radiance;
 }
 
 bool EnvironmentSampler::sample(double u0, float u1, float u2, Vec3f& dir, double& pdf,
                                 Rgb& radiance) const {
   if (total_ <= 0) return false;
-  // First k with cdf_[k] > u0 (texels of zero probability are never chosen).
-  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u0);
-  const std::size_t k = std::min(static_cast<std::size_t>(it - cdf_.begin()), cdf_.size() - 1);
+  // The alias table: column j = ⌊u0 n⌋, kept on the fraction of u0 n below accept_[j].
+  const double un = u0 * static_cast<double>(alias_.size());
+  const std::size_t j = std::min(static_cast<std::size_t>(un), alias_.size() - 1);
+  const AliasEntry a = alias_[j];
+  const std::size_t k = un - static_cast<double>(j) < a.accept ? j : a.alias;
   const auto& imgs = env_.images();
   switch (env_.kind()) {
     case Environment::Kind::LatLong:
@@ -162,10 +204,7 @@ bool EnvironmentSampler::sample(double u0, float u1, float u2, Vec3f& dir, doubl
   }
   // The point may fall in a neighbour by rounding: evaluate pdf and radiance where it landed,
   // so sample and lookup stay one function.
-  const std::size_t at = texelOf(dir);
-  radiance = radiance_[at];
-  const double pk = cdf_[at] - (at > 0 ? cdf_[at - 1] : 0.0);
-  pdf = pk * densityWithin(at, dir);
+  radiance = lookup(dir, pdf);
   return pdf > 0;
 }
 
@@ -173,13 +212,14 @@ Rgb EnvironmentSampler::irradianceQuadrature(const Vec3f& n, const Mat3d& rotati
   // n · (R ω) = (Rᵀ n) · ω.
   const Vec3f m = Vec3f(rotation.transposed() * Vec3d(n));
   double r = 0, g = 0, b = 0;
-  for (std::size_t k = 0; k < radiance_.size(); ++k) {
+  for (std::size_t k = 0; k < texels_.size(); ++k) {
     const float c = dot(m, direction_[k]);
     if (c <= 0) continue;
     const double w = double(c) * solidAngle_[k];
-    r += w * radiance_[k].x;
-    g += w * radiance_[k].y;
-    b += w * radiance_[k].z;
+    const Rgb& l = texels_[k].radiance;
+    r += w * l.x;
+    g += w * l.y;
+    b += w * l.z;
   }
   return Rgb(Vec3d(r, g, b));
 }
@@ -275,8 +315,9 @@ Rgb ReferenceIntegrator::incoming(const Vec3f& p, const Vec3f& n, int bouncesLef
       }
       if (!h.hit) {
         const Vec3f de = Vec3f(rotT_ * Vec3d(w));
-        const double pe = sampler_.pdf(de);
-        result += sampler_.radiance(de) * static_cast<float>(misWeight(c / kPi, pe));
+        double pe = 0;
+        const Rgb le = sampler_.lookup(de, pe);
+        result += le * static_cast<float>(misWeight(c / kPi, pe));
       } else if (bouncesLeft > 0) {
         const auto& tri = mesh_.triangles[h.triangle];
         const Vec3f p0 = mesh_.positions[tri[0]], p1 = mesh_.positions[tri[1]],

@@ -64,6 +64,8 @@ class EnvironmentSampler {
   Rgb radiance(const Vec3f& dir) const;
   /// Density (per steradian) with which sample() produces `dir`.
   double pdf(const Vec3f& dir) const;
+  /// Both at once (one texel search): returns the radiance, writes the density to `pdf`.
+  Rgb lookup(const Vec3f& dir, double& pdf) const;
   /// Draws a direction: u0 picks the texel, (u1, u2) the point within it. Returns false for a
   /// null sample (a probe texel point outside the disc, or an all-black environment).
   bool sample(double u0, float u1, float u2, Vec3f& dir, double& pdf, Rgb& radiance) const;
@@ -82,11 +84,24 @@ class EnvironmentSampler {
   double densityWithin(std::size_t k, const Vec3f& dir) const;
 
   envmap::Environment env_;
-  std::vector<Rgb> radiance_;
+  /// Per texel what a lookup needs, side by side: one cache line fetch per random lookup.
+  struct TexelEntry {
+    Rgb radiance;
+    float prob = 0;  ///< P_k = lum_k ΔΩ_k / Σ, Σ P_k = 1
+  };
+  /// Walker's alias table (Vose's construction, "A Linear Algorithm for Generating Random
+  /// Numbers with a Given Distribution", IEEE TSE 1991): texel j = ⌊u n⌋ is kept when the
+  /// fraction of u n is below `accept`, else `alias` is taken — O(1) per sample, one random
+  /// memory access instead of a binary search over a CDF of n doubles.
+  struct AliasEntry {
+    float accept = 1;
+    std::uint32_t alias = 0;
+  };
+  std::vector<TexelEntry> texels_;
+  std::vector<AliasEntry> alias_;
   std::vector<Vec3f> direction_;
   std::vector<float> solidAngle_;
-  std::vector<double> cdf_;  ///< inclusive prefix sums of P_k, cdf_.back() == 1
-  double total_ = 0;         ///< Σ lum_k ΔΩ_k
+  double total_ = 0;  ///< Σ lum_k ΔΩ_k
 };
 
 enum class MisHeuristic { Balance, Power };
