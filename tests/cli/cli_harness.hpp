@@ -30,6 +30,18 @@ inline std::string slurp(const fs::path& p) {
   return s.str();
 }
 
+/// Runs `PREFIX prt ARGS` in `dir`, capturing stdout and stderr there.
+inline Result runPrt(const fs::path& dir, const std::string& args, const std::string& prefix = "") {
+  const std::string cmd = "cd '" + dir.string() + "' && " + prefix + "'" + PRT_CLI_PATH + "' " +
+                          args + " > stdout.txt 2> stderr.txt";
+  Result r;
+  const int status = std::system(cmd.c_str());
+  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(dir / "stdout.txt");
+  r.err = slurp(dir / "stderr.txt");
+  return r;
+}
+
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -43,14 +55,7 @@ class CliTest : public ::testing::Test {
 
   /// Runs `PREFIX prt ARGS` in the test directory.
   Result prt(const std::string& args, const std::string& prefix = "") const {
-    const std::string cmd = "cd '" + dir_.string() + "' && " + prefix + "'" + PRT_CLI_PATH +
-                            "' " + args + " > stdout.txt 2> stderr.txt";
-    Result r;
-    const int status = std::system(cmd.c_str());
-    r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "stdout.txt");
-    r.err = slurp(dir_ / "stderr.txt");
-    return r;
+    return runPrt(dir_, args, prefix);
   }
   void write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;

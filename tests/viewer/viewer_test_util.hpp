@@ -15,6 +15,7 @@
 #include <system_error>
 #include <vector>
 
+#include "cli/cli_harness.hpp"
 #include "context.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
@@ -24,17 +25,8 @@ namespace prt::viewer::test {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int rc = -1;
-  std::string out, err;
-};
-
-inline std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using prt::testing::Result;
+using prt::testing::slurp;
 
 /// A per-program scratch folder holding the fixtures below.
 inline const fs::path& scratch() {
@@ -59,14 +51,7 @@ inline const bool kScratchCleanupRegistered =
 
 /// Runs `[prefix] prt ARGS` in the scratch folder.
 inline Result prt(const std::string& args, const std::string& prefix = "") {
-  const std::string cmd = "cd '" + scratch().string() + "' && " + prefix + "'" + PRT_CLI_PATH +
-                          "' " + args + " > stdout.txt 2> stderr.txt";
-  Result r;
-  const int status = std::system(cmd.c_str());
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(scratch() / "stdout.txt");
-  r.err = slurp(scratch() / "stderr.txt");
-  return r;
+  return prt::testing::runPrt(scratch(), args, prefix);
 }
 
 inline std::string path(const std::string& name) {
