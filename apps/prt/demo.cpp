@@ -231,8 +231,9 @@ figcaption{font-size:.85em;color:#555} img{display:block;max-width:100%} code{ba
       h << "<figure><img src=\"" << m.refImage
         << "\"><figcaption>Monte Carlo reference (no SH)</figcaption></figure>";
       h << "<figure><img src=\"" << m.errImage
-        << fmt::format("\"><figcaption>relative error per vertex: black 0 … white {:.1f}%",
-                       100 * m.errorScale)
+        << fmt::format("\"><figcaption>relative error per vertex: black 0 … white {:.1f}% "
+                       "(the reference's own noise: {:.1f}%)",
+                       100 * m.errorScale, 100 * r.rows.back().refStdErr)
         << "</figcaption></figure></div>\n";
       h << "<table><tr><th>bands</th><th>rel. RMSE</th><th>mean rel. error</th><th>max rel. "
            "error</th><th>truncation floor</th><th>reference std. error</th></tr>\n";
