@@ -41,7 +41,7 @@
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transport/bake.hpp"
-#include "reference_args.hpp"
+#include "args.hpp"
 
 #ifndef PRT_VERSION
 #define PRT_VERSION "dev"
@@ -275,7 +275,7 @@ void runDemo(const DemoArgs& a) {
     throw Error(fmt::format("--bounces {}: must be 1..{}", a.bounces, kMaxBounces));
   if (a.frames < 0 || a.frames > 360) throw Error("--frames must be 0..360");
   render::FrameSettings frame;
-  refargs::parseSize(a.size, frame.width, frame.height);
+  parseSize(a.size, frame.width, frame.height);
   const std::vector<std::string> envSpecs = a.envs.empty() ? defaultEnvironments() : a.envs;
 
   // Inputs first: a bad mesh or environment fails before anything is written.

@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "args.hpp"
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -45,17 +46,6 @@ struct LightOptions {
   bool strict = false;
 };
 
-std::array<double, 3> parseRotation(const std::string& text) {
-  std::array<double, 3> r{0, 0, 0};
-  if (text.empty()) return r;
-  std::istringstream is(text);
-  char c1 = 0, c2 = 0;
-  std::string rest;
-  if (!(is >> r[0] >> c1 >> r[1] >> c2 >> r[2]) || c1 != ',' || c2 != ',' || (is >> rest))
-    throw Error("--rotate expects X,Y,Z in degrees, got '" + text + "'");
-  return r;
-}
-
 void warnAboutPixels(const envmap::LoadedEnvironment& loaded, bool strict) {
   for (std::size_t i = 0; i < loaded.files.size(); ++i) {
     const image::ReadStats& s = loaded.stats[i];
@@ -78,7 +68,7 @@ void runLight(const LightOptions& o) {
   if (!o.compat.empty() && !compat) throw Error("--compat accepts only 'games202', got '" + o.compat + "'");
   const std::string format = !o.format.empty() ? o.format : (fileExtension(o.output) == "txt" ? "games202" : "json");
   if (format != "json" && format != "games202") throw Error("--format must be json or games202, got '" + format + "'");
-  const std::array<double, 3> rot = parseRotation(o.rotate);
+  const std::array<double, 3> rot = parseEulerDegrees(o.rotate);
   const sh::Window window = o.window == "none"      ? sh::Window::None
                             : o.window == "hanning" ? sh::Window::Hanning
                             : o.window == "lanczos" ? sh::Window::Lanczos

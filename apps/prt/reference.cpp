@@ -21,13 +21,11 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/render/validate.hpp"
-#include "reference_args.hpp"
+#include "args.hpp"
 
 namespace prt::cli {
 
 namespace {
-
-using namespace refargs;
 
 struct ReferenceArgs {
   std::string bake, light, mode, output, rotate, mis = "power";

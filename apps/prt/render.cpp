@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "args.hpp"
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -50,25 +51,6 @@ struct RenderOptions {
   std::string output;
 };
 
-void parseSize(const std::string& s, int& w, int& h) {
-  char x = 0;
-  std::istringstream in(s);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof())
-    throw Error("--size '" + s + "' is not WIDTHxHEIGHT");
-  if (w <= 0 || h <= 0) throw Error("--size " + s + ": width and height must be positive");
-}
-
-Mat3d parseRotation(const std::string& s) {
-  if (s.empty()) return Mat3d::identity();
-  double a[3];
-  char c1 = 0, c2 = 0;
-  std::istringstream in(s);
-  if (!(in >> a[0] >> c1 >> a[1] >> c2 >> a[2]) || c1 != ',' || c2 != ',' ||
-      !(in >> std::ws).eof() || !std::isfinite(a[0] + a[1] + a[2]))
-    throw Error("--rotate '" + s + "' is not three angles X,Y,Z in degrees");
-  return rotationEulerXYZ(a[0], a[1], a[2]);
-}
-
 void checkOutput(const std::string& path, const char* what) {
   const std::string ext = fileExtension(path);
   if (ext != "png" && ext != "exr" && ext != "hdr")
@@ -81,24 +63,6 @@ std::string framePath(const std::string& out, int k) {
   const std::filesystem::path p(out);
   const std::string name = fmt::format("{}_{:03d}{}", p.stem().string(), k, p.extension().string());
   return (p.parent_path() / name).string();
-}
-
-const BakedTransfer& pickTransfer(const BakeFile& bake, const std::string& mode,
-                                  const std::string& file) {
-  if (bake.transfers.empty()) throw Error(file, "the bake holds no transfer");
-  if (!mode.empty()) {
-    const TransferMode m = parseTransferMode(mode);
-    if (const BakedTransfer* t = bake.find(m)) return *t;
-    std::string have;
-    for (const auto& t : bake.transfers)
-      have += std::string(have.empty() ? "" : ", ") + toString(t.settings.mode);
-    throw Error(file,
-                std::string("no ") + toString(m) + " transfer in the bake (it has " + have + ")");
-  }
-  for (TransferMode m :
-       {TransferMode::Interreflected, TransferMode::Shadowed, TransferMode::Unshadowed})
-    if (const BakedTransfer* t = bake.find(m)) return *t;
-  return bake.transfers.front();
 }
 
 void run(const RenderOptions& o) {

@@ -22,13 +22,11 @@
 #include "prt/render/metrics.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
-#include "reference_args.hpp"
+#include "args.hpp"
 
 namespace prt::cli {
 
 namespace {
-
-using namespace refargs;
 
 struct ValidateArgs {
   std::string bake, light, mode, json, image, imageSize = "640x480", mis = "power";

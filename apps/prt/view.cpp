@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdio>
 
+#include "args.hpp"
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 
@@ -24,7 +25,7 @@ struct ViewArgs {
   std::string bake;
   std::vector<std::string> envs;
   std::string size = "640x480";
-  std::vector<double> rotate;
+  std::string rotate;
   std::string camera, mode, background = "env", toneMap = "aces", screenshot;
   int bands = 0, frames = 0;
   float exposure = 0.0f;
@@ -37,14 +38,8 @@ void runView(const ViewArgs& a) {
   viewer::Options o;
   o.bake = a.bake;
   o.environments = a.envs;
-  char x = 0, tail = 0;
-  if (std::sscanf(a.size.c_str(), "%d%c%d%c", &o.width, &x, &o.height, &tail) != 3 ||
-      (x != 'x' && x != 'X'))
-    throw Error("--size '" + a.size + "' is not WIDTHxHEIGHT");
-  if (!a.rotate.empty()) {
-    if (a.rotate.size() != 3) throw Error("--rotate needs three angles X,Y,Z in degrees");
-    o.rotateDeg = std::array<double, 3>{a.rotate[0], a.rotate[1], a.rotate[2]};
-  }
+  parseSize(a.size, o.width, o.height);
+  if (!a.rotate.empty()) o.rotateDeg = parseEulerDegrees(a.rotate);
   o.camera = a.camera;
   o.mode = a.mode;
   o.bands = a.bands;
@@ -77,9 +72,7 @@ void addViewCommand(CLI::App& root) {
                   "to switch between several (default builtin:sky)");
   cmd->add_option("--size", a->size, "Window or frame size WxH")->capture_default_str();
   cmd->add_option("--rotate", a->rotate,
-                  "Rotate the environment: X,Y,Z degrees (X, then Y, then Z; as prt render)")
-      ->delimiter(',')
-      ->expected(3);
+                  "Rotate the environment: X,Y,Z degrees (X, then Y, then Z; as prt render)");
   cmd->add_option("--camera", a->camera,
                   "Camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (default: prt render's "
                   "framing)");

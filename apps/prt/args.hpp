@@ -1,7 +1,8 @@
 #pragma once
-// Argument parsing shared by `prt reference` and `prt validate` (header-only, internal to the
-// command line).
+// Argument parsing shared by the verbs (header-only, internal to the command line), so that
+// --rotate, --size, --mode and number lists mean the same and fail the same way everywhere.
 
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -12,7 +13,7 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/render/reference.hpp"
 
-namespace prt::cli::refargs {
+namespace prt::cli {
 
 /// "1,2,5" -> {1, 2, 5}; throws naming `option` on anything else.
 inline std::vector<double> parseNumberList(const std::string& s, const char* option) {
@@ -30,21 +31,28 @@ inline std::vector<double> parseNumberList(const std::string& s, const char* opt
   return out;
 }
 
-/// "X,Y,Z" Euler degrees (about X, then Y, then Z) -> rotation; "" -> identity.
-inline Mat3d parseRotation(const std::string& s) {
-  if (s.empty()) return Mat3d::identity();
+/// "X,Y,Z" Euler degrees (about X, then Y, then Z) -> the three angles; "" -> zeros.
+inline std::array<double, 3> parseEulerDegrees(const std::string& s) {
+  if (s.empty()) return {0, 0, 0};
   const std::vector<double> a = parseNumberList(s, "--rotate");
   if (a.size() != 3) throw Error("--rotate '" + s + "' is not three angles X,Y,Z in degrees");
+  return {a[0], a[1], a[2]};
+}
+
+/// "X,Y,Z" Euler degrees -> R = Rz Ry Rx; "" -> identity.
+inline Mat3d parseRotation(const std::string& s) {
+  const std::array<double, 3> a = parseEulerDegrees(s);
   return rotationEulerXYZ(a[0], a[1], a[2]);
 }
 
-/// "WxH" -> (w, h), both positive.
-inline void parseSize(const std::string& s, int& w, int& h) {
+/// "WxH" -> (w, h), both in 1..16384; `option` names the flag in messages.
+inline void parseSize(const std::string& s, int& w, int& h, const char* option = "--size") {
   char x = 0;
   std::istringstream in(s);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof() || w <= 0 ||
-      h <= 0 || w > 16384 || h > 16384)
-    throw Error("size '" + s + "' is not WIDTHxHEIGHT (1..16384)");
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof())
+    throw Error(std::string(option) + " '" + s + "' is not WIDTHxHEIGHT");
+  if (w <= 0 || h <= 0 || w > 16384 || h > 16384)
+    throw Error(std::string(option) + " " + s + ": width and height must be 1..16384");
 }
 
 inline render::MisHeuristic parseMis(const std::string& s) {
@@ -53,14 +61,19 @@ inline render::MisHeuristic parseMis(const std::string& s) {
   throw Error("--mis '" + s + "': expected power or balance");
 }
 
-/// The transfer of `mode` ("" picks interreflected, else shadowed, else unshadowed).
+/// The transfer of `mode` ("" picks interreflected, else shadowed, else unshadowed); the error
+/// names the modes the bake does hold.
 inline const BakedTransfer& pickTransfer(const BakeFile& bake, const std::string& mode,
                                          const std::string& file) {
   if (bake.transfers.empty()) throw Error(file, "the bake holds no transfer");
   if (!mode.empty()) {
     const TransferMode m = parseTransferMode(mode);
     if (const BakedTransfer* t = bake.find(m)) return *t;
-    throw Error(file, std::string("no ") + toString(m) + " transfer in the bake");
+    std::string have;
+    for (const auto& t : bake.transfers)
+      have += std::string(have.empty() ? "" : ", ") + toString(t.settings.mode);
+    throw Error(file, std::string("no ") + toString(m) + " transfer in the bake (it has " + have +
+                          ")");
   }
   for (TransferMode m :
        {TransferMode::Interreflected, TransferMode::Shadowed, TransferMode::Unshadowed})
@@ -68,4 +81,4 @@ inline const BakedTransfer& pickTransfer(const BakeFile& bake, const std::string
   return bake.transfers.front();
 }
 
-}  // namespace prt::cli::refargs
+}  // namespace prt::cli
