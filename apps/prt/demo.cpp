@@ -260,7 +260,7 @@ figcaption{font-size:.85em;color:#555} img{display:block;max-width:100%} code{ba
   h << "<p>Made by <code>prt demo</code> (prtkit " << PRT_VERSION
     << "). Relative error per vertex: sqrt(Σ<sub>c</sub>(R<sub>PRT</sub>−R<sub>ref</sub>)² / "
        "Σ<sub>c</sub>(R<sub>ref</sub>² + ε)); the truncation floor is the error a perfect "
-       "unshadowed transfer would still have at that band count (see docs/render.md).</p>\n"
+       "unshadowed transfer would still have at that band count (see docs/validation.md).</p>\n"
        "</body></html>\n";
   writeFileAtomically(path, h.str());
 }
@@ -296,6 +296,8 @@ void runDemo(const DemoArgs& a) {
   const fs::path out = fs::absolute(a.output);
   const fs::path tmp = out.parent_path() / (out.filename().string() + ".partial");
   std::error_code ec;
+  if (fs::exists(out, ec) && !fs::exists(out / "index.html", ec))
+    throw Error(out.string(), "exists and is not a prt demo folder; not replacing it");
   fs::remove_all(tmp, ec);
   if (!fs::create_directories(tmp / "img", ec) || !fs::create_directories(tmp / "lights", ec) ||
       !fs::create_directories(tmp / "validation", ec))
@@ -445,8 +447,6 @@ void runDemo(const DemoArgs& a) {
 
   // Into place: replace an earlier demo folder only now that the new one is complete.
   if (fs::exists(out)) {
-    if (!fs::exists(out / "index.html"))
-      throw Error(out.string(), "exists and is not a prt demo folder; not replacing it");
     fs::remove_all(out, ec);
     if (ec) throw Error(out.string(), "cannot replace the earlier demo (" + ec.message() + ")");
   }
