@@ -188,12 +188,13 @@ void writeIndex(const std::string& path, const Scene& scene, const BakeFile& bak
   h << R"(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>prtkit demo</title>
 <style>
-body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1500px;color:#222;background:#fafafa}
+body{font-family:system-ui,sans-serif;margin:2em auto;padding:0 2em;max-width:1500px;color:#222;background:#fafafa;line-height:1.4}
 h1,h2,h3{font-weight:600} table{border-collapse:collapse;margin:.5em 0}
 td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right;font-variant-numeric:tabular-nums}
-th{background:#eee} .imgs{display:flex;gap:.6em;flex-wrap:wrap} figure{margin:0}
-figcaption{font-size:.85em;color:#555} img{display:block;max-width:100%} code{background:#eee;padding:0 .2em}
-.mode{border-top:1px solid #ddd;padding-top:.5em;margin-top:1em}
+th{background:#eee} .imgs{display:grid;grid-template-columns:repeat(3,1fr);gap:.6em} figure{margin:0}
+figcaption{font-size:.85em;color:#555} img{display:block;max-width:100%} .imgs img{width:100%}
+code{background:#eee;padding:0 .2em} .preview{max-width:420px}
+.mode{border-top:1px solid #ddd;padding-top:.5em;margin-top:1em} .note{max-width:75em}
 </style></head><body>
 <h1>prtkit demo</h1>
 )";
@@ -206,21 +207,37 @@ figcaption{font-size:.85em;color:#555} img{display:block;max-width:100%} code{ba
     << " Monte Carlo samples per vertex (environment importance sampling and cosine sampling "
        "combined by MIS), no spherical harmonics anywhere. Total "
     << fmt::format("{:.0f}", totalSeconds) << " s.</p>\n";
+  h << "<p class=\"note\">How to read it: <b>unshadowed</b> PRT should match the reference up to "
+       "the SH truncation of the light (the table's <i>truncation floor</i>). <b>Shadowed</b> and "
+       "<b>inter-reflected</b> PRT carry only the low-frequency part of visibility × light: "
+       "ambient occlusion, soft shadows and colour bleeding come out right, but a sharp sun "
+       "shadow is blurred (and can ring) at "
+    << a.bands
+    << " bands — the error image shows where. Bake more bands (<code>--bands 9</code>) or use "
+       "a softer environment to watch it shrink. Errors near the reference's own noise are below "
+       "what this comparison can resolve.</p>\n";
   h << "<table><tr><th>mode</th><th>rays</th><th>time</th><th>Mrays/s</th><th>std. error of "
        "T<sub>00</sub> (mean)</th></tr>\n";
-  for (const BakedTransfer& t : bake.transfers)
+  for (const BakedTransfer& t : bake.transfers) {
+    if (t.stats.rays == 0) {  // unshadowed: the clamped-cosine lobe in closed form
+      h << "<tr><td>" << toString(t.settings.mode)
+        << "</td><td colspan=\"4\" style=\"text-align:left\">exact: the clamped-cosine lobe "
+           "about the normal, in closed form (no rays)</td></tr>\n";
+      continue;
+    }
     h << fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{:.2f} s</td><td>{:.1f}</td><td>{:.2e}</td></tr>\n",
         toString(t.settings.mode), t.stats.rays, t.stats.secondsTotal, t.stats.raysPerSecond / 1e6,
         t.stats.stdErrT0Mean);
+  }
   h << "</table>\n<p>Files: <code>scene.glb</code> (the bake; any glTF viewer opens it as a mesh), "
        "<code>lights/*.json</code> (SH lighting), <code>validation/*.json</code>. Try "
        "<code>prt render scene.glb --light lights/"
     << (lights.empty() ? "sky" : lights.front().name) << ".json -o mine.png</code>.</p>\n";
 
   for (const LightResult& L : lights) {
-    h << "<h2>" << htmlEscape(L.spec) << "</h2>\n<figure><img src=\"" << L.preview
-      << "\" width=\"512\"><figcaption>The environment (top), its " << a.bands
+    h << "<h2>" << htmlEscape(L.spec) << "</h2>\n<figure class=\"preview\"><img src=\""
+      << L.preview << "\"><figcaption>The environment (top), its " << a.bands
       << "-band SH reconstruction, and the irradiance/π it gives a white surface.</figcaption>"
          "</figure>\n";
     for (const ModeResult& m : L.modes) {
