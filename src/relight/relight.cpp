@@ -213,7 +213,10 @@ __attribute__((target("avx2,fma"))) void scalarBlock8(const float* transfer, std
 }
 
 bool haveAvx2Fma() {
-  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  static const bool yes = [] {
+    __builtin_cpu_init();  // safe even if called before libgcc's own constructor ran
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }();
   return yes;
 }
 #endif
