@@ -1,16 +1,29 @@
-// prt info: what a file holds, on stdout. Bake files (.glb) and transport.txt; light files once
-// their reader is in.
+// prt info: what a file holds, on stdout: bake files (.glb), SH light files (.json and the
+// course's light.txt), GAMES202 transport.txt, and environments (images, face folders,
+// builtin:NAME).
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <limits>
+#include <sstream>
 
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/envmap/builtin.hpp"
+#include "prt/envmap/load.hpp"
+#include "prt/envmap/project.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/games202_transport.hpp"
+#include "prt/io/light_file.hpp"
 
 namespace prt::cli {
 
@@ -72,19 +85,121 @@ void describeTransportTxt(const std::string& path) {
   std::cout << '\n';
 }
 
+/// Mean radiance, per-band energy and the dominant direction of SH lighting. With Y1,-1 = −c y,
+/// Y1,0 = c z, Y1,1 = −c x (docs/conventions.md), the linear band of a lobe along d is ∝
+/// (−d_y, d_z, −d_x).
+void describeSh(const sh::RgbSh& c) {
+  const double k = 1.0 / std::sqrt(4 * kPi);
+  std::cout << fmt::format("bands       {} ({} coefficients)\n", c.bands, c.c.size());
+  std::cout << fmt::format("mean        {:.6g} {:.6g} {:.6g} (radiance averaged over the sphere)\n",
+                           c.c[0].x * k, c.c[0].y * k, c.c[0].z * k);
+  std::cout << "band energy";
+  for (int l = 0; l < c.bands; ++l) {
+    double e = 0;
+    for (int m = -l; m <= l; ++m) {
+      const double y = image::luminance(c.c[l * (l + 1) + m]);
+      e += y * y;
+    }
+    std::cout << fmt::format(" {:.3g}", e);
+  }
+  std::cout << " (luminance, sum over m of L_lm^2, per band)\n";
+  if (c.bands >= 2) {
+    const double x = -image::luminance(c.c[3]), y = -image::luminance(c.c[1]),
+                 z = image::luminance(c.c[2]);
+    const double n = std::sqrt(x * x + y * y + z * z);
+    if (n > 0)
+      std::cout << fmt::format(
+          "dominant    direction {:.3f} {:.3f} {:.3f} (from band 1; elevation {:.1f} degrees)\n",
+          x / n, y / n, z / n, std::asin(std::clamp(y / n, -1.0, 1.0)) * 180 / kPi);
+  }
+}
+
+void describeLightJson(const std::string& path) {
+  const io::LightFile lf = io::readLightJson(path);
+  std::cout << fmt::format("{}: prtkit SH light (JSON)\n", path);
+  std::cout << fmt::format("source      {} ({}), window {}, rotation {},{},{} degrees\n",
+                           lf.source, lf.layout, lf.window, lf.rotationDeg[0], lf.rotationDeg[1],
+                           lf.rotationDeg[2]);
+  describeSh(lf.coefficients);
+}
+
+void describeLightTxt(const std::string& path) {
+  const sh::RgbSh c = io::readLightGames202(path);
+  std::cout << fmt::format("{}: GAMES202 light.txt\n", path);
+  describeSh(c);
+}
+
+void describeEnvironment(const std::string& spec) {
+  const envmap::LoadedEnvironment e = envmap::loadEnvironment(spec);
+  std::cout << fmt::format("{}: environment, layout {}\n", spec, e.layout);
+  const auto& imgs = e.env.images();
+  if (!imgs.empty())
+    std::cout << fmt::format("size        {} image(s) of {}x{}, {} texels\n", imgs.size(),
+                             imgs[0].width, imgs[0].height, e.env.texelCount());
+  double total = 0, lumMax = -1, lumMin = std::numeric_limits<double>::infinity();
+  Vec3d mean(0.0), brightest(0.0, 1.0, 0.0);
+  for (std::size_t k = 0; k < e.env.texelCount(); ++k) {
+    const envmap::Texel t = e.env.texel(k);
+    if (t.solidAngle <= 0) continue;
+    total += t.solidAngle;
+    mean += Vec3d(t.radiance) * double(t.solidAngle);
+    const double lum = image::luminance(t.radiance);
+    lumMin = std::min(lumMin, lum);
+    if (lum > lumMax) lumMax = lum, brightest = Vec3d(t.direction);
+  }
+  mean = mean * (1.0 / (4 * kPi));
+  std::cout << fmt::format("solid angle {:.6f} x 4 pi\n", total / (4 * kPi));
+  std::cout << fmt::format(
+      "radiance    mean {:.6g} {:.6g} {:.6g}; luminance min {:.4g}, max {:.4g}\n", mean.x, mean.y,
+      mean.z, lumMin, lumMax);
+  std::cout << fmt::format("brightest   direction {:.3f} {:.3f} {:.3f}\n", brightest.x,
+                           brightest.y, brightest.z);
+  for (std::size_t k = 0; k < e.files.size(); ++k)
+    if (e.stats[k].nonFinitePixels + e.stats[k].negativePixels > 0)
+      std::cout << fmt::format("repaired    {}: {} non-finite and {} negative pixels set to 0\n",
+                               e.files[k], e.stats[k].nonFinitePixels, e.stats[k].negativePixels);
+  std::cout << "as 3-band SH:\n";
+  describeSh(envmap::projectEnvironment(e.env, 3));
+}
+
+/// A .txt is the course's light.txt when its first line holds three numbers, else transport.txt.
+bool isLightTxt(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line) && line.find_first_not_of(" \t\r") == std::string::npos) {
+  }
+  std::istringstream ls(line);
+  int tokens = 0;
+  for (std::string tok; ls >> tok;) ++tokens;
+  return tokens == 3;
+}
+
 void runInfo(const std::vector<std::string>& files) {
   bool first = true;
   for (const auto& path : files) {
     if (!first) std::cout << '\n';
     first = false;
     const std::string ext = fileExtension(path);
+    std::error_code ec;
+    if (envmap::isBuiltin(path) || std::filesystem::is_directory(path, ec) ||
+        image::isReadableImageExtension(ext)) {
+      describeEnvironment(path);
+      continue;
+    }
     const auto bytes = readFileBytes(path);
     if (bytes.size() >= 4 && std::string(bytes.begin(), bytes.begin() + 4) == "glTF") {
       describeBake(path);
+    } else if (ext == "json") {
+      describeLightJson(path);
     } else if (ext == "txt") {
-      describeTransportTxt(path);
+      if (isLightTxt(path))
+        describeLightTxt(path);
+      else
+        describeTransportTxt(path);
     } else {
-      throw Error(path, "unknown file type (expected a bake file .glb or a transport.txt)");
+      throw Error(path,
+                  "unknown file type (expected a bake .glb, a light .json or .txt, a "
+                  "transport.txt, an environment image, a face folder or builtin:NAME)");
     }
   }
 }
@@ -93,7 +208,8 @@ void runInfo(const std::vector<std::string>& files) {
 
 void addInfoCommand(CLI::App& root) {
   auto files = std::make_shared<std::vector<std::string>>();
-  auto* cmd = root.add_subcommand("info", "Describe bake files (.glb) and GAMES202 text files");
+  auto* cmd = root.add_subcommand(
+      "info", "Describe bakes, SH light files, GAMES202 text files and environments");
   cmd->add_option("files", *files, "Files to describe")->required();
   cmd->callback([files] { runInfo(*files); });
 }

@@ -72,6 +72,36 @@ TEST_F(RenderCli, LightFilesRelightLikeTheirEnvironment) {
   expectCleanFailure("render missing.glb -o out/x.png", "missing.glb");
 }
 
+TEST_F(RenderCli, InfoDescribesLightsAndEnvironments) {
+  // A constant grey environment of 0.5: mean radiance 0.5, nothing above band 0.
+  ASSERT_EQ(prt("-q light 'builtin:constant?value=0.5' --bands 3 -o c.json").rc, 0);
+  ASSERT_EQ(prt("-q light 'builtin:constant?value=0.5' --bands 3 -o c.txt").rc, 0);
+  for (const char* f : {"c.json", "c.txt"}) {
+    const Result r = prt(std::string("info ") + f);
+    ASSERT_EQ(r.rc, 0) << r.err;
+    EXPECT_NE(r.out.find("bands       3 (9 coefficients)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("mean        0.5 0.5 0.5"), std::string::npos) << r.out;
+  }
+  EXPECT_NE(prt("info c.txt").out.find("GAMES202 light.txt"), std::string::npos);
+  // The sky: its sun direction from band 1 points up (positive elevation) toward the sun.
+  Result r = prt("info 'builtin:sky?elevation=40&azimuth=0'");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("solid angle 1.000000 x 4 pi"), std::string::npos) << r.out;
+  const std::size_t at = r.out.find("elevation ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_GT(std::stod(r.out.substr(at + 10)), 15.0) << r.out;
+  image::writeImage(path("env.exr"), image::Image(64, 32, Rgb(2.0f)));
+  r = prt("info env.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("layout latlong"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("64x32, 2048 texels"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("mean 2 2 2"), std::string::npos) << r.out;
+  write("what.bin", "nothing");
+  expectCleanFailure("info what.bin", "unknown file type");
+  write("bad.json", "{\"bands\": 2}");
+  expectCleanFailure("info bad.json", "bad.json");
+}
+
 TEST_F(RenderCli, MergeJoinsSplitBakesExactly) {
   const std::string bake = std::string("-q bake ") + kScene + " --mode shadowed --samples 32 ";
   ASSERT_EQ(prt(bake + "-o full.glb").rc, 0);
