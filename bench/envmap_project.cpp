@@ -53,7 +53,9 @@ void NaiveEval(benchmark::State& state) {
         for (int px = 0; px < n; ++px) {
           const double s = 2.0 * (px + 0.5) / n - 1, t = 2.0 * (py + 0.5) / n - 1;
           const Vec3f d(normalize(envmap::cubeFaceDirection(f, s, t)));
-          auto a = [](double u, double v) { return std::atan2(u * v, std::sqrt(u * u + v * v + 1)); };
+          auto a = [](double u, double v) {
+            return std::atan2(u * v, std::sqrt(u * u + v * v + 1));
+          };
           const double s0 = s - 1.0 / n, s1 = s + 1.0 / n, t0 = t - 1.0 / n, t1 = t + 1.0 / n;
           const double w = a(s1, t1) - a(s0, t1) - a(s1, t0) + a(s0, t0);
           sh::eval(kBands, d, y.data());

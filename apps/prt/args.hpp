@@ -72,8 +72,8 @@ inline const BakedTransfer& pickTransfer(const BakeFile& bake, const std::string
     std::string have;
     for (const auto& t : bake.transfers)
       have += std::string(have.empty() ? "" : ", ") + toString(t.settings.mode);
-    throw Error(file, std::string("no ") + toString(m) + " transfer in the bake (it has " + have +
-                          ")");
+    throw Error(file,
+                std::string("no ") + toString(m) + " transfer in the bake (it has " + have + ")");
   }
   for (TransferMode m :
        {TransferMode::Interreflected, TransferMode::Shadowed, TransferMode::Unshadowed})

@@ -13,9 +13,9 @@ namespace prt::cli {
 
 /// Global options, parsed before any verb runs.
 struct Globals {
-  int threads = 0;      ///< -j/--threads, 0 = all cores
-  bool quiet = false;   ///< -q
-  bool verbose = false; ///< -v
+  int threads = 0;       ///< -j/--threads, 0 = all cores
+  bool quiet = false;    ///< -q
+  bool verbose = false;  ///< -v
 };
 Globals& globals();
 

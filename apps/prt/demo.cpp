@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "args.hpp"
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -41,7 +42,6 @@
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transport/bake.hpp"
-#include "args.hpp"
 
 #ifndef PRT_VERSION
 #define PRT_VERSION "dev"
@@ -99,8 +99,7 @@ Scene makeScene(const std::string& spec) {
   }
   // A ground plane under the object, three times its size, so it casts a shadow.
   const float size = 3 * std::max({b.hi.x - b.lo.x, b.hi.z - b.lo.z}) / 2;
-  const std::string plane =
-      fmt::format("builtin:plane?y={:.6g}&size={:.6g}&grid=64", b.lo.y, size);
+  const std::string plane = fmt::format("builtin:plane?y={:.6g}&size={:.6g}&grid=64", b.lo.y, size);
   s.mesh = std::move(object);
   appendMesh(s.mesh, loadMesh(plane));
   s.mesh.source = path + "+" + plane;
@@ -136,11 +135,20 @@ std::string htmlEscape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -236,8 +244,8 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
     << (lights.empty() ? "sky" : lights.front().name) << ".json -o mine.png</code>.</p>\n";
 
   for (const LightResult& L : lights) {
-    h << "<h2>" << htmlEscape(L.spec) << "</h2>\n<figure class=\"preview\"><img src=\""
-      << L.preview << "\"><figcaption>The environment (top), its " << a.bands
+    h << "<h2>" << htmlEscape(L.spec) << "</h2>\n<figure class=\"preview\"><img src=\"" << L.preview
+      << "\"><figcaption>The environment (top), its " << a.bands
       << "-band SH reconstruction, and the irradiance/π it gives a white surface.</figcaption>"
          "</figure>\n";
     for (const ModeResult& m : L.modes) {
@@ -248,9 +256,10 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
       h << "<figure><img src=\"" << m.refImage
         << "\"><figcaption>Monte Carlo reference (no SH)</figcaption></figure>";
       h << "<figure><img src=\"" << m.errImage
-        << fmt::format("\"><figcaption>relative error per vertex: black 0 … white {:.1f}% "
-                       "(the reference's own noise: {:.1f}%)",
-                       100 * m.errorScale, 100 * r.rows.back().refStdErr)
+        << fmt::format(
+               "\"><figcaption>relative error per vertex: black 0 … white {:.1f}% "
+               "(the reference's own noise: {:.1f}%)",
+               100 * m.errorScale, 100 * r.rows.back().refStdErr)
         << "</figcaption></figure></div>\n";
       h << "<table><tr><th>bands</th><th>rel. RMSE</th><th>mean rel. error</th><th>max rel. "
            "error</th><th>truncation floor</th><th>reference std. error</th></tr>\n";
@@ -269,7 +278,8 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
       h << "<h3>The light turning about +Y (inter-reflected, SH rotation)</h3>\n<img id=\"turn_"
         << L.name << "\" src=\"" << L.frames.front() << "\"><p><a href=\"" << L.turntable
         << "\">contact sheet</a></p>\n<script>(function(){const f=[";
-      for (std::size_t k = 0; k < L.frames.size(); ++k) h << (k ? "," : "") << '"' << L.frames[k] << '"';
+      for (std::size_t k = 0; k < L.frames.size(); ++k)
+        h << (k ? "," : "") << '"' << L.frames[k] << '"';
       h << "];let i=0;const im=document.getElementById(\"turn_" << L.name
         << "\");setInterval(()=>{i=(i+1)%f.length;im.src=f[i];},150);})();</script>\n";
     }
@@ -356,8 +366,8 @@ void runDemo(const DemoArgs& a) {
   writeBake(file("scene.glb"), bake);
   const double bakeSeconds = since(tb);
 
-  render::Camera camera = render::frameSphere(scene.centre, scene.radius, frame.width,
-                                              frame.height);
+  render::Camera camera =
+      render::frameSphere(scene.centre, scene.radius, frame.width, frame.height);
   std::vector<LightResult> lights;
   for (std::size_t li = 0; li < envs.size(); ++li) {
     const auto tl = Clock::now();
@@ -387,9 +397,9 @@ void runDemo(const DemoArgs& a) {
       m.mode = bt.settings.mode;
       render::ValidateSettings vs;
       vs.reference.samples = a.referenceSamples;
-      m.report = render::validate(bake.mesh, *occluder, bt.field, bt.settings, env, light, vs,
-                                  progressBar(fmt::format("reference {} {}", L.name,
-                                                          toString(m.mode))));
+      m.report =
+          render::validate(bake.mesh, *occluder, bt.field, bt.settings, env, light, vs,
+                           progressBar(fmt::format("reference {} {}", L.name, toString(m.mode))));
       writeFileAtomically(file(fmt::format("validation/{}_{}.json", L.name, toString(m.mode))),
                           render::reportJson(m.report));
       const std::vector<Rgb> relit = relight::relight(bt.field, light, bake.mesh.albedo);
@@ -404,15 +414,15 @@ void runDemo(const DemoArgs& a) {
         image::writeImage(file(name), panels3.back(), {image::ToneMap::Clamp, 0.0f});
         return name;
       };
-      m.prtImage = save(base + "_prt.png",
-                        render::renderRelit(bake.mesh, *occluder, relit, camera, frame, background),
-                        wo);
+      m.prtImage =
+          save(base + "_prt.png",
+               render::renderRelit(bake.mesh, *occluder, relit, camera, frame, background), wo);
       std::vector<Rgb> reference(bake.mesh.vertexCount());
       for (std::size_t i = 0; i < m.report.reference.vertices.size(); ++i)
         reference[m.report.reference.vertices[i]] = m.report.reference.radiance[i];
-      m.refImage = save(
-          base + "_ref.png",
-          render::renderRelit(bake.mesh, *occluder, reference, camera, frame, background), wo);
+      m.refImage =
+          save(base + "_ref.png",
+               render::renderRelit(bake.mesh, *occluder, reference, camera, frame, background), wo);
       const std::vector<Rgb> colours =
           render::vertexErrorColours(bake.mesh, m.report, &m.errorScale);
       m.errImage = save(base + "_err.png",
@@ -420,10 +430,11 @@ void runDemo(const DemoArgs& a) {
                                             render::colourBackground(Rgb(0.0f))),
                         {image::ToneMap::Clamp, 0.0f});
       const render::BandRow& last = m.report.rows.back();
-      info(fmt::format("demo: {} {}: rel. RMSE {:.2f}% at {} bands (floor {:.2f}%, reference "
-                       "std. error {:.2f}%; reference {:.1f} s, all {:.1f} s)",
-                       L.name, toString(m.mode), 100 * last.relRmse, last.bands, 100 * last.floor,
-                       100 * last.refStdErr, m.report.reference.seconds, since(tm)));
+      info(
+          fmt::format("demo: {} {}: rel. RMSE {:.2f}% at {} bands (floor {:.2f}%, reference "
+                      "std. error {:.2f}%; reference {:.1f} s, all {:.1f} s)",
+                      L.name, toString(m.mode), 100 * last.relRmse, last.bands, 100 * last.floor,
+                      100 * last.refStdErr, m.report.reference.seconds, since(tm)));
       L.modes.push_back(std::move(m));
     }
 
@@ -470,7 +481,8 @@ void runDemo(const DemoArgs& a) {
   fs::rename(tmp, out, ec);
   if (ec) throw Error(out.string(), "cannot move the demo into place (" + ec.message() + ")");
   cleanup.keep = true;
-  info(fmt::format("demo: finished in {:.0f} s; open {}", since(t0), (out / "index.html").string()));
+  info(
+      fmt::format("demo: finished in {:.0f} s; open {}", since(t0), (out / "index.html").string()));
 }
 
 }  // namespace

@@ -117,8 +117,8 @@ void describeSh(const sh::RgbSh& c) {
 void describeLightJson(const std::string& path) {
   const io::LightFile lf = io::readLightJson(path);
   std::cout << fmt::format("{}: prtkit SH light (JSON)\n", path);
-  std::cout << fmt::format("source      {} ({}), window {}, rotation {},{},{} degrees\n",
-                           lf.source, lf.layout, lf.window, lf.rotationDeg[0], lf.rotationDeg[1],
+  std::cout << fmt::format("source      {} ({}), window {}, rotation {},{},{} degrees\n", lf.source,
+                           lf.layout, lf.window, lf.rotationDeg[0], lf.rotationDeg[1],
                            lf.rotationDeg[2]);
   describeSh(lf.coefficients);
 }
@@ -152,8 +152,8 @@ void describeEnvironment(const std::string& spec) {
   std::cout << fmt::format(
       "radiance    mean {:.6g} {:.6g} {:.6g}; luminance min {:.4g}, max {:.4g}\n", mean.x, mean.y,
       mean.z, lumMin, lumMax);
-  std::cout << fmt::format("brightest   direction {:.3f} {:.3f} {:.3f}\n", brightest.x,
-                           brightest.y, brightest.z);
+  std::cout << fmt::format("brightest   direction {:.3f} {:.3f} {:.3f}\n", brightest.x, brightest.y,
+                           brightest.z);
   for (std::size_t k = 0; k < e.files.size(); ++k)
     if (e.stats[k].nonFinitePixels + e.stats[k].negativePixels > 0)
       std::cout << fmt::format("repaired    {}: {} non-finite and {} negative pixels set to 0\n",

@@ -51,9 +51,11 @@ void warnAboutPixels(const envmap::LoadedEnvironment& loaded, bool strict) {
     const image::ReadStats& s = loaded.stats[i];
     if (s.nonFinitePixels == 0 && s.negativePixels == 0) continue;
     std::string msg = loaded.files[i] + ":";
-    if (s.nonFinitePixels) msg += " " + std::to_string(s.nonFinitePixels) + " pixels with NaN/Inf set to 0";
+    if (s.nonFinitePixels)
+      msg += " " + std::to_string(s.nonFinitePixels) + " pixels with NaN/Inf set to 0";
     if (s.nonFinitePixels && s.negativePixels) msg += ",";
-    if (s.negativePixels) msg += " " + std::to_string(s.negativePixels) + " pixels with negative values clamped to 0";
+    if (s.negativePixels)
+      msg += " " + std::to_string(s.negativePixels) + " pixels with negative values clamped to 0";
     if (strict) throw Error(msg + " (--strict)");
     warn(msg);
   }
@@ -63,23 +65,31 @@ void runLight(const LightOptions& o) {
   // Validate everything first: nothing is written unless all of it works.
   if (o.bands < 1 || o.bands > sh::kMaxBands)
     throw Error("--bands must be in 1..32, got " + std::to_string(o.bands));
-  if (o.previewWidth < 8 || o.previewWidth % 2) throw Error("--preview-width must be an even number >= 8");
+  if (o.previewWidth < 8 || o.previewWidth % 2)
+    throw Error("--preview-width must be an even number >= 8");
   const bool compat = o.compat == "games202";
-  if (!o.compat.empty() && !compat) throw Error("--compat accepts only 'games202', got '" + o.compat + "'");
-  const std::string format = !o.format.empty() ? o.format : (fileExtension(o.output) == "txt" ? "games202" : "json");
-  if (format != "json" && format != "games202") throw Error("--format must be json or games202, got '" + format + "'");
+  if (!o.compat.empty() && !compat)
+    throw Error("--compat accepts only 'games202', got '" + o.compat + "'");
+  const std::string format =
+      !o.format.empty() ? o.format : (fileExtension(o.output) == "txt" ? "games202" : "json");
+  if (format != "json" && format != "games202")
+    throw Error("--format must be json or games202, got '" + format + "'");
   const std::array<double, 3> rot = parseEulerDegrees(o.rotate);
   const sh::Window window = o.window == "none"      ? sh::Window::None
                             : o.window == "hanning" ? sh::Window::Hanning
                             : o.window == "lanczos" ? sh::Window::Lanczos
-                            : o.window == "dering"  ? sh::Window::Dering
-                                                    : throw Error("--window must be none, hanning, lanczos or dering, "
-                                                                  "got '" + o.window + "'");
+                            : o.window == "dering"
+                                ? sh::Window::Dering
+                                : throw Error(
+                                      "--window must be none, hanning, lanczos or dering, "
+                                      "got '" +
+                                      o.window + "'");
   const image::ToneMap tone = image::parseToneMap(o.toneMap);
   checkWritable(o.output);
   if (!o.preview.empty()) {
     checkWritable(o.preview);
-    if (fileExtension(o.preview) != "png" && fileExtension(o.preview) != "exr" && fileExtension(o.preview) != "hdr")
+    if (fileExtension(o.preview) != "png" && fileExtension(o.preview) != "exr" &&
+        fileExtension(o.preview) != "hdr")
       throw Error(o.preview, "preview must be .png, .exr or .hdr");
   }
 
@@ -97,31 +107,40 @@ void runLight(const LightOptions& o) {
     if (lo.layout && *lo.layout != envmap::Layout::Faces)
       throw Error(o.input, "--compat games202 reads cube faces only");
     // The course reads negx, posx, posy, negy, posz, negz and pairs them with its own frames.
-    auto faces = envmap::readFaceFolder(o.input, envmap::kGames202FaceOrder, lo.ldrDecode, &loaded.files, &loaded.stats);
+    auto faces = envmap::readFaceFolder(o.input, envmap::kGames202FaceOrder, lo.ldrDecode,
+                                        &loaded.files, &loaded.stats);
     warnAboutPixels(loaded, o.strict);
     loaded.layout = "faces";
-    info(o.input + ": 6 faces " + std::to_string(faces[0].width) + "x" + std::to_string(faces[0].height) +
+    info(o.input + ": 6 faces " + std::to_string(faces[0].width) + "x" +
+         std::to_string(faces[0].height) +
          ", GAMES202 compatibility (gamma 2.2 decode, course face frames)");
     f = envmap::projectGames202Faces(faces, o.bands, progress);
     if (!o.preview.empty()) {
       // Preview in the standard convention: course order → OpenGL order +X −X +Y −Y +Z −Z.
-      loaded.env = envmap::Environment::cube({faces[1], faces[0], faces[2], faces[3], faces[4], faces[5]});
+      loaded.env =
+          envmap::Environment::cube({faces[1], faces[0], faces[2], faces[3], faces[4], faces[5]});
     }
   } else {
     loaded = envmap::loadEnvironment(o.input, lo);
     warnAboutPixels(loaded, o.strict);
-    info(o.input + ": " + loaded.layout + ", " + std::to_string(loaded.env.texelCount()) + " texels, " +
-         std::to_string(o.bands) + " bands");
+    info(o.input + ": " + loaded.layout + ", " + std::to_string(loaded.env.texelCount()) +
+         " texels, " + std::to_string(o.bands) + " bands");
     f = envmap::projectEnvironment(loaded.env, o.bands, progress);
   }
 
   switch (window) {
-    case sh::Window::None: break;
-    case sh::Window::Hanning: sh::convolveZonal(f, sh::hanningWindow(o.bands)); break;
-    case sh::Window::Lanczos: sh::convolveZonal(f, sh::lanczosWindow(o.bands)); break;
+    case sh::Window::None:
+      break;
+    case sh::Window::Hanning:
+      sh::convolveZonal(f, sh::hanningWindow(o.bands));
+      break;
+    case sh::Window::Lanczos:
+      sh::convolveZonal(f, sh::lanczosWindow(o.bands));
+      break;
     case sh::Window::Dering: {
       const sh::DeringResult r = sh::dering(f);
-      info("de-ringing: minimum " + std::to_string(r.minBefore) + " -> " + std::to_string(r.minAfter));
+      info("de-ringing: minimum " + std::to_string(r.minBefore) + " -> " +
+           std::to_string(r.minAfter));
       break;
     }
   }
@@ -153,22 +172,30 @@ void runLight(const LightOptions& o) {
 
 void addLightCommand(CLI::App& root) {
   auto opts = std::make_shared<LightOptions>();
-  CLI::App* cmd = root.add_subcommand("light", "Project an environment onto SH lighting coefficients");
+  CLI::App* cmd =
+      root.add_subcommand("light", "Project an environment onto SH lighting coefficients");
   cmd->add_option("input", opts->input,
-                   "Environment: image (.hdr .exr .png .jpg), folder of six faces, or builtin:sky|constant|studio "
-                   "(default builtin:sky)");
-  cmd->add_option("-o,--output", opts->output, "Output light file (.json, or .txt for the GAMES202 format)")
+                  "Environment: image (.hdr .exr .png .jpg), folder of six faces, or "
+                  "builtin:sky|constant|studio "
+                  "(default builtin:sky)");
+  cmd->add_option("-o,--output", opts->output,
+                  "Output light file (.json, or .txt for the GAMES202 format)")
       ->required();
-  cmd->add_option("--layout", opts->layout, "latlong|probe|vcross|hcross|faces (default: detected)");
-  cmd->add_option("-b,--bands", opts->bands, "SH bands B (1..32; B² coefficients)")->capture_default_str();
+  cmd->add_option("--layout", opts->layout,
+                  "latlong|probe|vcross|hcross|faces (default: detected)");
+  cmd->add_option("-b,--bands", opts->bands, "SH bands B (1..32; B² coefficients)")
+      ->capture_default_str();
   cmd->add_option("--window", opts->window, "none|hanning|lanczos|dering")->capture_default_str();
   cmd->add_option("--rotate", opts->rotate, "Rotate the light: X,Y,Z Euler degrees (R = Rz Ry Rx)");
   cmd->add_option("--compat", opts->compat, "games202: reproduce the course framework's numbers");
   cmd->add_option("--format", opts->format, "json|games202 (default: by extension)");
-  cmd->add_option("--preview", opts->preview, "Preview image: source, SH radiance, SH irradiance/pi");
-  cmd->add_option("--preview-width", opts->previewWidth, "Preview width in pixels")->capture_default_str();
+  cmd->add_option("--preview", opts->preview,
+                  "Preview image: source, SH radiance, SH irradiance/pi");
+  cmd->add_option("--preview-width", opts->previewWidth, "Preview width in pixels")
+      ->capture_default_str();
   cmd->add_option("--exposure", opts->exposure, "Preview exposure in stops (default: automatic)");
-  cmd->add_option("--tonemap", opts->toneMap, "Preview tone mapper: clamp|reinhard|aces")->capture_default_str();
+  cmd->add_option("--tonemap", opts->toneMap, "Preview tone mapper: clamp|reinhard|aces")
+      ->capture_default_str();
   cmd->add_flag("--strict", opts->strict, "Fail on NaN/Inf or negative pixels instead of warning");
   cmd->callback([opts] { runLight(*opts); });
 }

@@ -26,7 +26,9 @@ void info(const std::string& line) {
   if (!globals().quiet) std::cerr << line << '\n';
 }
 
-void warn(const std::string& line) { std::cerr << "prt: warning: " << line << '\n'; }
+void warn(const std::string& line) {
+  std::cerr << "prt: warning: " << line << '\n';
+}
 
 ProgressFn progressBar(const std::string& label) {
   const bool show = !globals().quiet && ::isatty(STDERR_FILENO);
@@ -62,7 +64,8 @@ int main(int argc, char** argv) {
   app.fallthrough();  // -j, -q, -v also after the verb: prt bake ... -q
   app.set_version_flag("--version", std::string("prt ") + PRT_VERSION);
   auto& g = globals();
-  app.add_option("-j,--threads", g.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("-j,--threads", g.threads, "Worker threads (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", g.quiet, "No progress or chatter on stderr");
   app.add_flag("-v,--verbose", g.verbose, "More detail on stderr");
 

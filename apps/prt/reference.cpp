@@ -14,6 +14,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "args.hpp"
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -21,7 +22,6 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/render/validate.hpp"
-#include "args.hpp"
 
 namespace prt::cli {
 

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "args.hpp"
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -22,7 +23,6 @@
 #include "prt/render/metrics.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
-#include "args.hpp"
 
 namespace prt::cli {
 

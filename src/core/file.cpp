@@ -19,7 +19,8 @@ void checkWritable(const std::string& path) {
   fs::path p(path);
   fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw Error(path, "directory " + dir.string() + " does not exist");
+  if (!fs::is_directory(dir, ec))
+    throw Error(path, "directory " + dir.string() + " does not exist");
   if (fs::is_directory(p, ec)) throw Error(path, "is a directory");
   if (::access(dir.c_str(), W_OK) != 0) throw Error(path, "directory is not writable");
 }
@@ -62,14 +63,16 @@ std::vector<unsigned char> readFileBytes(const std::string& path) {
   if (size < 0) throw Error(path, "cannot read");
   in.seekg(0, std::ios::beg);
   std::vector<unsigned char> data(static_cast<std::size_t>(size));
-  if (size > 0 && !in.read(reinterpret_cast<char*>(data.data()), size)) throw Error(path, "read failed");
+  if (size > 0 && !in.read(reinterpret_cast<char*>(data.data()), size))
+    throw Error(path, "read failed");
   return data;
 }
 
 std::string fileExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 

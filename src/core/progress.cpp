@@ -8,9 +8,15 @@ namespace {
 std::atomic<bool> gCancel{false};
 }
 
-void requestCancel() { gCancel.store(true); }
-bool cancelRequested() { return gCancel.load(std::memory_order_relaxed); }
-void clearCancel() { gCancel.store(false); }
+void requestCancel() {
+  gCancel.store(true);
+}
+bool cancelRequested() {
+  return gCancel.load(std::memory_order_relaxed);
+}
+void clearCancel() {
+  gCancel.store(false);
+}
 
 Progress::Progress(const ProgressFn& fn, std::size_t total) : fn_(fn), total_(total ? total : 1) {}
 

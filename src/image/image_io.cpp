@@ -75,7 +75,8 @@ Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>&
     return out;
   };
   const std::string magic = line();
-  if (magic != "#?RADIANCE" && magic != "#?RGBE") throw Error(path, "not a Radiance HDR file (bad signature)");
+  if (magic != "#?RADIANCE" && magic != "#?RGBE")
+    throw Error(path, "not a Radiance HDR file (bad signature)");
   for (std::string l = line(); !l.empty(); l = line())
     if (l.rfind("FORMAT=", 0) == 0 && l != "FORMAT=32-bit_rle_rgbe")
       throw Error(path, "unsupported Radiance pixel format '" + l.substr(7) + "'");
@@ -88,11 +89,13 @@ Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>&
   Image img(w, h);
   std::vector<unsigned char> scan(static_cast<std::size_t>(w) * 4);
   auto need = [&](std::size_t n) {
-    if (pos + n > b.size()) throw Error(path, "truncated Radiance HDR file (pixel data ends early)");
+    if (pos + n > b.size())
+      throw Error(path, "truncated Radiance HDR file (pixel data ends early)");
   };
   for (int y = 0; y < h; ++y) {
     need(4);
-    const bool rle = w >= 8 && w < 32768 && b[pos] == 2 && b[pos + 1] == 2 && ((b[pos + 2] << 8) | b[pos + 3]) == w;
+    const bool rle = w >= 8 && w < 32768 && b[pos] == 2 && b[pos + 1] == 2 &&
+                     ((b[pos + 2] << 8) | b[pos + 3]) == w;
     if (rle) {
       pos += 4;
       for (int c = 0; c < 4; ++c) {

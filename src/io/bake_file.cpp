@@ -4,8 +4,8 @@
 // size, bound and type is checked here, so that a truncated or hand-edited file gives one clear
 // line instead of a crash. Layout: docs/formats-bake.md.
 
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -410,20 +410,21 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
                                                     TINYGLTF_TARGET_ARRAY_BUFFER, "albedo");
   // Indices, local to each part (each part's attributes start at its first vertex), made while
   // streaming in blocks.
-  const int idxView = bb.view(
-      mesh.triangleCount() * 12, 0, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, "indices",
-      [&mesh, &parts](std::ostream& os) {
-        std::vector<std::uint32_t> block;
-        for (const MeshPart& p : parts)
-          for (std::uint32_t t = p.firstTriangle; t < p.firstTriangle + p.triangleCount;) {
-            const std::uint32_t end = std::min(p.firstTriangle + p.triangleCount, t + 4096);
-            block.clear();
-            for (; t < end; ++t)
-              for (int k = 0; k < 3; ++k) block.push_back(mesh.triangles[t][k] - p.firstVertex);
-            os.write(reinterpret_cast<const char*>(block.data()),
-                     static_cast<std::streamsize>(block.size() * 4));
-          }
-      });
+  const int idxView =
+      bb.view(mesh.triangleCount() * 12, 0, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, "indices",
+              [&mesh, &parts](std::ostream& os) {
+                std::vector<std::uint32_t> block;
+                for (const MeshPart& p : parts)
+                  for (std::uint32_t t = p.firstTriangle; t < p.firstTriangle + p.triangleCount;) {
+                    const std::uint32_t end = std::min(p.firstTriangle + p.triangleCount, t + 4096);
+                    block.clear();
+                    for (; t < end; ++t)
+                      for (int k = 0; k < 3; ++k)
+                        block.push_back(mesh.triangles[t][k] - p.firstVertex);
+                    os.write(reinterpret_cast<const char*>(block.data()),
+                             static_cast<std::streamsize>(block.size() * 4));
+                  }
+              });
 
   // Transfer: K = ceil(B²C/4) VEC4 columns per mode, each its own tightly packed view over the
   // vertex range; column k of vertex v = row floats 4k..4k+3, zero-padded. Written column by
@@ -446,8 +447,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
           for (std::size_t v = 0; v < m; ++v)
             for (std::size_t j = 0; j < 4 && 4 * k + j < S; ++j)
               col[v * 4 + j] = f.vertex(v0 + v)[4 * k + j];
-          os.write(reinterpret_cast<const char*>(col.data()),
-                   static_cast<std::streamsize>(m * 16));
+          os.write(reinterpret_cast<const char*>(col.data()), static_cast<std::streamsize>(m * 16));
         }
       };
       columns[ti].views.push_back(bb.view(n * 16, 16, TINYGLTF_TARGET_ARRAY_BUFFER,

@@ -24,7 +24,8 @@ int bandsFromCount(const std::string& path, std::size_t count) {
   const int b = static_cast<int>(std::lround(std::sqrt(static_cast<double>(count))));
   if (count == 0 || static_cast<std::size_t>(b) * b != count)
     throw Error(path, std::to_string(count) + " coefficients is not a square number B² of bands");
-  if (b > sh::kMaxBands) throw Error(path, std::to_string(b) + " bands is more than the 32 supported");
+  if (b > sh::kMaxBands)
+    throw Error(path, std::to_string(b) + " bands is more than the 32 supported");
   return b;
 }
 
@@ -37,8 +38,8 @@ void writeLightJson(const std::string& path, const LightFile& light) {
   std::ostringstream os;
   os << "{\n  \"bands\": " << c.bands << ",\n  \"coefficients\": [\n";
   for (std::size_t i = 0; i < c.c.size(); ++i)
-    os << "    [" << formatFloat(c.c[i].x) << ", " << formatFloat(c.c[i].y) << ", " << formatFloat(c.c[i].z) << "]"
-       << (i + 1 < c.c.size() ? ",\n" : "\n");
+    os << "    [" << formatFloat(c.c[i].x) << ", " << formatFloat(c.c[i].y) << ", "
+       << formatFloat(c.c[i].z) << "]" << (i + 1 < c.c.size() ? ",\n" : "\n");
   os << "  ],\n  \"source\": " << nlohmann::json(light.source).dump()
      << ",\n  \"layout\": " << nlohmann::json(light.layout).dump()
      << ",\n  \"window\": " << nlohmann::json(light.window).dump() << ",\n  \"rotation\": ["
@@ -61,13 +62,14 @@ LightFile readLightJson(const std::string& path) {
   const auto& rows = j["coefficients"];
   const int bands = bandsFromCount(path, rows.size());
   if (j.contains("bands") && (!j["bands"].is_number_integer() || j["bands"].get<int>() != bands))
-    throw Error(path, "\"bands\" says " + j["bands"].dump() + " but there are " + std::to_string(rows.size()) +
-                          " coefficients");
+    throw Error(path, "\"bands\" says " + j["bands"].dump() + " but there are " +
+                          std::to_string(rows.size()) + " coefficients");
   LightFile out;
   out.coefficients = sh::RgbSh(bands);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
-    if (!r.is_array() || r.size() != 3 || !r[0].is_number() || !r[1].is_number() || !r[2].is_number())
+    if (!r.is_array() || r.size() != 3 || !r[0].is_number() || !r[1].is_number() ||
+        !r[2].is_number())
       throw Error(path, "coefficient " + std::to_string(i) + " is not [r, g, b]");
     const Rgb v(r[0].get<float>(), r[1].get<float>(), r[2].get<float>());
     if (!isFinite(v)) throw Error(path, "coefficient " + std::to_string(i) + " is not finite");
@@ -84,7 +86,8 @@ LightFile readLightJson(const std::string& path) {
   str("prtkit_version", out.prtkitVersion);
   if (j.contains("rotation")) {
     const auto& r = j["rotation"];
-    if (!r.is_array() || r.size() != 3 || !r[0].is_number() || !r[1].is_number() || !r[2].is_number())
+    if (!r.is_array() || r.size() != 3 || !r[0].is_number() || !r[1].is_number() ||
+        !r[2].is_number())
       throw Error(path, "\"rotation\" must be [x, y, z] in degrees");
     for (int k = 0; k < 3; ++k) out.rotationDeg[k] = r[k].get<double>();
   }
@@ -93,7 +96,8 @@ LightFile readLightJson(const std::string& path) {
 
 void writeLightGames202(const std::string& path, const sh::RgbSh& c) {
   std::string text;
-  for (const Rgb& v : c.c) text += formatFloat(v.x) + " " + formatFloat(v.y) + " " + formatFloat(v.z) + "\n";
+  for (const Rgb& v : c.c)
+    text += formatFloat(v.x) + " " + formatFloat(v.y) + " " + formatFloat(v.z) + "\n";
   writeFileAtomically(path, text);
 }
 

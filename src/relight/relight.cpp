@@ -175,13 +175,13 @@ __attribute__((target("avx2,fma"))) void scalarBlock8(const float* transfer, std
     const float* t[8];
     for (int k = 0; k < 8; ++k) t[k] = transfer + (v + k) * stride;
     __m256 r = _mm256_setzero_ps(), g = r, b = r;
-#define PRT_MADD8(x, i)                                          \
-  do {                                                           \
-    const __m256 x_ = (x);                                       \
-    const float* l_ = splat + 12 * (i);                          \
-    r = _mm256_fmadd_ps(x_, _mm256_broadcast_ss(l_), r);         \
-    g = _mm256_fmadd_ps(x_, _mm256_broadcast_ss(l_ + 4), g);     \
-    b = _mm256_fmadd_ps(x_, _mm256_broadcast_ss(l_ + 8), b);     \
+#define PRT_MADD8(x, i)                                      \
+  do {                                                       \
+    const __m256 x_ = (x);                                   \
+    const float* l_ = splat + 12 * (i);                      \
+    r = _mm256_fmadd_ps(x_, _mm256_broadcast_ss(l_), r);     \
+    g = _mm256_fmadd_ps(x_, _mm256_broadcast_ss(l_ + 4), g); \
+    b = _mm256_fmadd_ps(x_, _mm256_broadcast_ss(l_ + 8), b); \
   } while (0)
 #pragma GCC unroll 32
     for (int q = 0; q < groups; ++q) {
@@ -197,7 +197,8 @@ __attribute__((target("avx2,fma"))) void scalarBlock8(const float* transfer, std
     }
     for (int i = 4 * groups; i < count; ++i)
       PRT_MADD8(
-          _mm256_setr_ps(t[0][i], t[1][i], t[2][i], t[3][i], t[4][i], t[5][i], t[6][i], t[7][i]), i);
+          _mm256_setr_ps(t[0][i], t[1][i], t[2][i], t[3][i], t[4][i], t[5][i], t[6][i], t[7][i]),
+          i);
 #undef PRT_MADD8
     alignas(32) float rs[8], gs[8], bs[8];
     _mm256_store_ps(rs, r);
@@ -310,7 +311,7 @@ void scalarKernel(const float* transfer, std::size_t stride, const float* light,
     scalarBlock8<N>(transfer, stride, splat, n, albedo, out, begin, end);
   else
 #endif
-  if (N > 0 && N <= 25)
+      if (N > 0 && N <= 25)
     scalarBlock4<N>(transfer, stride, splat, n, albedo, out, begin, end);
   else
     scalarBlock<N>(transfer, stride, light, n, albedo, out, begin, end);

@@ -69,10 +69,11 @@ EnvironmentSampler::EnvironmentSampler(const Environment& env) : env_(env) {
   }
   // What is left holds probability 1 up to rounding: it keeps itself. A texel of zero
   // probability can be left only through rounding; it forwards to the most probable texel.
-  const auto best = static_cast<std::uint32_t>(std::max_element(prob.begin(), prob.end()) -
-                                               prob.begin());
+  const auto best =
+      static_cast<std::uint32_t>(std::max_element(prob.begin(), prob.end()) - prob.begin());
   for (std::uint32_t l : large) alias_[l] = {1.0f, l};
-  for (std::uint32_t s : small) alias_[s] = prob[s] > 0 ? AliasEntry{1.0f, s} : AliasEntry{0.0f, best};
+  for (std::uint32_t s : small)
+    alias_[s] = prob[s] > 0 ? AliasEntry{1.0f, s} : AliasEntry{0.0f, best};
   for (AliasEntry& a : alias_)
     if (a.accept < 1.0f && texels_[a.alias].prob == 0.0f) a.alias = best;
 }

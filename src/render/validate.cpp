@@ -116,7 +116,8 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   constexpr std::size_t kFloorVertices = 4096;
   const std::size_t stride = (n + kFloorVertices - 1) / kFloorVertices;
   std::vector<std::uint32_t> floorVerts;
-  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(stride, 1)) floorVerts.push_back(verts[i]);
+  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(stride, 1))
+    floorVerts.push_back(verts[i]);
   const std::size_t nf = floorVerts.size();
   const EnvironmentSampler sampler(env);
   std::vector<Rgb> floorRef(nf);

@@ -8,9 +8,12 @@ namespace prt {
 
 const char* toString(TransferMode mode) {
   switch (mode) {
-    case TransferMode::Unshadowed: return "unshadowed";
-    case TransferMode::Shadowed: return "shadowed";
-    case TransferMode::Interreflected: return "interreflected";
+    case TransferMode::Unshadowed:
+      return "unshadowed";
+    case TransferMode::Shadowed:
+      return "shadowed";
+    case TransferMode::Interreflected:
+      return "interreflected";
   }
   return "?";
 }
@@ -19,7 +22,8 @@ TransferMode parseTransferMode(const std::string& s) {
   if (s == "unshadowed") return TransferMode::Unshadowed;
   if (s == "shadowed") return TransferMode::Shadowed;
   if (s == "interreflected") return TransferMode::Interreflected;
-  throw Error("unknown transfer mode '" + s + "' (expected unshadowed, shadowed or interreflected)");
+  throw Error("unknown transfer mode '" + s +
+              "' (expected unshadowed, shadowed or interreflected)");
 }
 
 TransferField TransferField::truncated(int b) const {
@@ -30,8 +34,7 @@ TransferField TransferField::truncated(int b) const {
   out.vertexCount = vertexCount;
   const std::size_t n = static_cast<std::size_t>(b * b) * channels;
   out.data.resize(vertexCount * n);
-  for (std::size_t v = 0; v < vertexCount; ++v)
-    std::copy_n(vertex(v), n, out.data.data() + v * n);
+  for (std::size_t v = 0; v < vertexCount; ++v) std::copy_n(vertex(v), n, out.data.data() + v * n);
   return out;
 }
 

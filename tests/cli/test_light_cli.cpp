@@ -41,7 +41,8 @@ class LightCli : public prt::testing::CliTest {
     EXPECT_NE(r.rc, 0) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(r.err.rfind("prt light: error: ", 0), 0u) << r.err;
-    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "'" << n << "' not in: " << r.err;
+    for (const auto& n : needles)
+      EXPECT_NE(r.err.find(n), std::string::npos) << "'" << n << "' not in: " << r.err;
     EXPECT_FALSE(fs::exists(p("out.json"))) << args;
     EXPECT_FALSE(fs::exists(p("prev.png"))) << args;
   }
@@ -68,7 +69,8 @@ TEST_F(LightCli, DefaultIsTheBuiltinSky) {
 
 TEST_F(LightCli, ConstantLatLongGivesTheDcTermAndAPreview) {
   image::writeImage(p("white.exr"), image::Image(64, 32, Rgb(1.0f)));
-  const Result r = run("'" + p("white.exr") + "' --bands 4 -o '" + p("w.json") + "' --preview '" + p("w.png") + "'");
+  const Result r = run("'" + p("white.exr") + "' --bands 4 -o '" + p("w.json") + "' --preview '" +
+                       p("w.png") + "'");
   ASSERT_EQ(r.rc, 0) << r.err;
   const io::LightFile lf = io::readLightJson(p("w.json"));
   ASSERT_EQ(lf.coefficients.bands, 4);
@@ -96,11 +98,14 @@ TEST_F(LightCli, Games202CompatMatchesTheCourseRecipe) {
         const std::array<int, 3> c = {(37 * f + 11 * x + 3 * y) % 256, (50 + 29 * y + 7 * f) % 256,
                                       (200 + 13 * x * y + f) % 256};
         codes[f].push_back(c);
-        img.at(x, y) = Rgb(image::srgb8ToLinear(c[0]), image::srgb8ToLinear(c[1]), image::srgb8ToLinear(c[2]));
+        img.at(x, y) =
+            Rgb(image::srgb8ToLinear(c[0]), image::srgb8ToLinear(c[1]), image::srgb8ToLinear(c[2]));
       }
-    image::writeImage(p(std::string("sky/") + order[f] + ".png"), img, {image::ToneMap::Clamp, 0.0f});
+    image::writeImage(p(std::string("sky/") + order[f] + ".png"), img,
+                      {image::ToneMap::Clamp, 0.0f});
   }
-  const Result r = run("'" + p("sky") + "' --compat games202 --bands 3 -o '" + p("light.txt") + "'");
+  const Result r =
+      run("'" + p("sky") + "' --compat games202 --bands 3 -o '" + p("light.txt") + "'");
   ASSERT_EQ(r.rc, 0) << r.err;
   const sh::RgbSh got = io::readLightGames202(p("light.txt"));
   ASSERT_EQ(got.bands, bands);
@@ -118,7 +123,8 @@ TEST_F(LightCli, Games202CompatMatchesTheCourseRecipe) {
   const std::vector<Rgbd> ref = prt::testing::games202Recipe(decoded, bands);
   for (int i = 0; i < bands * bands; ++i)
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(got.c[i][k], ref[i][k], 2e-5 * (std::abs(ref[0][k]))) << "coefficient " << i << " channel " << k;
+      EXPECT_NEAR(got.c[i][k], ref[i][k], 2e-5 * (std::abs(ref[0][k])))
+          << "coefficient " << i << " channel " << k;
 }
 
 TEST_F(LightCli, PixelRepairsAreWarnedWithCounts) {
@@ -142,7 +148,8 @@ TEST_F(LightCli, BadInputsFailCleanly) {
   {
     const auto bytes = readFileBytes(p("ok.png"));
     std::ofstream os(p("cut.png"), std::ios::binary);
-    os.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size() / 2));
+    os.write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size() / 2));
   }
   expectFailure("'" + p("cut.png") + "'", {"cut.png"});
   std::ofstream(p("env.tga")) << "x";
@@ -178,11 +185,16 @@ TEST_F(LightCli, FaceFoldersAndRotation) {
   const io::LightFile lf = io::readLightJson(p("c.json"));
   EXPECT_EQ(lf.layout, "faces");
   // RGBE keeps 8 mantissa bits, decoded at the bin centre (Radiance: (m + 0.5)·2^(e−136)).
-  EXPECT_NEAR(lf.coefficients.c[0].x, 0.5 * std::sqrt(4 * kPi), 0.5 * std::sqrt(4 * kPi) * 2.0 / 256);
+  EXPECT_NEAR(lf.coefficients.c[0].x, 0.5 * std::sqrt(4 * kPi),
+              0.5 * std::sqrt(4 * kPi) * 2.0 / 256);
   // Rotation about +Y by 90° moves a lobe along +X to −Z (right-handed).
-  ASSERT_EQ(run("'builtin:sky?elevation=0&azimuth=90&sky=0.01' --rotate 0,90,0 -o '" + p("r.json") + "'").rc, 0);
+  ASSERT_EQ(
+      run("'builtin:sky?elevation=0&azimuth=90&sky=0.01' --rotate 0,90,0 -o '" + p("r.json") + "'")
+          .rc,
+      0);
   const io::LightFile rl = io::readLightJson(p("r.json"));
-  const Vec3d lobe = normalize(Vec3d(-rl.coefficients.c[3].x, -rl.coefficients.c[1].x, rl.coefficients.c[2].x));
+  const Vec3d lobe =
+      normalize(Vec3d(-rl.coefficients.c[3].x, -rl.coefficients.c[1].x, rl.coefficients.c[2].x));
   EXPECT_LT(lobe.z, -0.9) << lobe.x << " " << lobe.y << " " << lobe.z;
   EXPECT_EQ(rl.rotationDeg[1], 90.0);
 }

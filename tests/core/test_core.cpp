@@ -63,13 +63,15 @@ TEST(File, AtomicWriteLeavesNothingOnFailure) {
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "out.txt").string();
   std::filesystem::remove(path);
-  EXPECT_THROW(writeFileAtomically(path, [](std::ostream& o) {
-                 o << "partial";
-                 throw Error("boom");
-               }),
+  EXPECT_THROW(writeFileAtomically(path,
+                                   [](std::ostream& o) {
+                                     o << "partial";
+                                     throw Error("boom");
+                                   }),
                Error);
   EXPECT_FALSE(std::filesystem::exists(path));
-  for (auto& e : std::filesystem::directory_iterator(dir)) ADD_FAILURE() << "left behind " << e.path();
+  for (auto& e : std::filesystem::directory_iterator(dir))
+    ADD_FAILURE() << "left behind " << e.path();
   writeFileAtomically(path, std::string_view("hello"));
   EXPECT_EQ(readFileBytes(path).size(), 5u);
   EXPECT_THROW(writeFileAtomically((dir / "no/such/dir/x").string(), std::string_view("x")), Error);

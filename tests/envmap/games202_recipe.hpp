@@ -25,7 +25,7 @@ inline double triangleSolidAngle(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 
 /// SH coefficients (double) of six square faces in the course's order, by the course's recipe.
 inline std::vector<Rgbd> games202Recipe(const std::array<image::Image, 6>& faces, int bands) {
-  static constexpr double U[6][3] = {{0, 0, 1}, {0, 0, 1}, {1, 0, 0},
+  static constexpr double U[6][3] = {{0, 0, 1}, {0, 0, 1},  {1, 0, 0},
                                      {1, 0, 0}, {-1, 0, 0}, {1, 0, 0}};
   static constexpr double V[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, -1},
                                      {0, 0, 1},  {0, -1, 0}, {0, -1, 0}};

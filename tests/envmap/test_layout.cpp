@@ -29,16 +29,25 @@ double angleBetween(const Vec3d& a, const Vec3d& b) {
 
 TEST(Layout, ConstantEnvironmentIntegratesTo4PiInEveryLayout) {
   const double fourPi = 4 * kPi;
-  for (int h : {1, 3, 32, 101}) EXPECT_NEAR(totalSolidAngle(Environment::latLong(image::Image(2 * h, h))) / fourPi, 1, 1e-6);
+  for (int h : {1, 3, 32, 101})
+    EXPECT_NEAR(totalSolidAngle(Environment::latLong(image::Image(2 * h, h))) / fourPi, 1, 1e-6);
   for (int n : {1, 2, 7, 64}) {
     std::array<image::Image, 6> faces;
     for (auto& f : faces) f = image::Image(n, n);
     EXPECT_NEAR(totalSolidAngle(Environment::cube(faces)) / fourPi, 1, 1e-6) << n;
-    EXPECT_NEAR(totalSolidAngle(Environment::cross(image::Image(3 * n, 4 * n), Layout::VCross)) / fourPi, 1, 1e-6);
-    EXPECT_NEAR(totalSolidAngle(Environment::cross(image::Image(4 * n, 3 * n), Layout::HCross)) / fourPi, 1, 1e-6);
+    EXPECT_NEAR(
+        totalSolidAngle(Environment::cross(image::Image(3 * n, 4 * n), Layout::VCross)) / fourPi, 1,
+        1e-6);
+    EXPECT_NEAR(
+        totalSolidAngle(Environment::cross(image::Image(4 * n, 3 * n), Layout::HCross)) / fourPi, 1,
+        1e-6);
   }
-  for (int n : {1, 2, 5, 64, 129}) EXPECT_NEAR(totalSolidAngle(Environment::probe(image::Image(n, n))) / fourPi, 1, 1e-6) << n;
-  EXPECT_NEAR(totalSolidAngle(Environment::analytic([](const Vec3f&) { return Rgb(1.0f); }, {}, 64)) / fourPi, 1, 1e-6);
+  for (int n : {1, 2, 5, 64, 129})
+    EXPECT_NEAR(totalSolidAngle(Environment::probe(image::Image(n, n))) / fourPi, 1, 1e-6) << n;
+  EXPECT_NEAR(
+      totalSolidAngle(Environment::analytic([](const Vec3f&) { return Rgb(1.0f); }, {}, 64)) /
+          fourPi,
+      1, 1e-6);
 }
 
 TEST(Layout, CubeTexelSolidAngleMatchesQuadrature) {
@@ -63,7 +72,8 @@ TEST(Layout, ProbeTexelSolidAngleMatchesQuadrature) {
   // dω = π sin(πr)/r dA inside the unit disc, 0 outside; dense midpoint sampling of the texel.
   const int n = 9;
   const std::vector<double> sa = probeTexelSolidAngles(n, n);
-  for (auto [x, y] : std::vector<std::pair<int, int>>{{4, 4}, {5, 3}, {8, 4}, {0, 0}, {1, 1}, {7, 2}}) {
+  for (auto [x, y] :
+       std::vector<std::pair<int, int>>{{4, 4}, {5, 3}, {8, 4}, {0, 0}, {1, 1}, {7, 2}}) {
     const int m = 800;
     const double a0 = 2.0 * x / n - 1, b0 = 1 - 2.0 * (y + 1) / n, h = 2.0 / n / m;
     double q = 0;
@@ -98,11 +108,13 @@ TEST(Layout, LatLongConvention) {
 TEST(Layout, CubeFacesFollowOpenGL) {
   // Face centres and the orientation of s and t (OpenGL 4.6 table 8.19: +X has sc = −z, tc = −y).
   const Vec3d centres[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  for (int f = 0; f < 6; ++f) EXPECT_LT(angleBetween(cubeFaceDirection(f, 0, 0), centres[f]), 1e-12);
+  for (int f = 0; f < 6; ++f)
+    EXPECT_LT(angleBetween(cubeFaceDirection(f, 0, 0), centres[f]), 1e-12);
   EXPECT_LT(angleBetween(cubeFaceDirection(PosX, 1, 0), {1, 0, -1}), 1e-12);
   EXPECT_LT(angleBetween(cubeFaceDirection(PosX, 0, -1), {1, 1, 0}), 1e-12);  // top row looks up
   EXPECT_LT(angleBetween(cubeFaceDirection(PosZ, 1, 0), {1, 0, 1}), 1e-12);
-  EXPECT_LT(angleBetween(cubeFaceDirection(PosY, 0, 1), {0, 1, 1}), 1e-12);  // +Y bottom edge meets +Z
+  EXPECT_LT(angleBetween(cubeFaceDirection(PosY, 0, 1), {0, 1, 1}),
+            1e-12);  // +Y bottom edge meets +Z
   EXPECT_LT(angleBetween(cubeFaceDirection(NegY, 0, -1), {0, -1, 1}), 1e-12);
   for (int f = 0; f < 6; ++f)
     for (double s : {-0.9, 0.1, 0.7})
@@ -120,10 +132,12 @@ TEST(Layout, CrossNeighboursAreNeighboursOnTheSphere) {
   // directions about one texel apart, which checks every cut and the 180° turn of −Z.
   const int n = 8;
   for (Layout layout : {Layout::VCross, Layout::HCross}) {
-    const int w = layout == Layout::VCross ? 3 * n : 4 * n, h = layout == Layout::VCross ? 4 * n : 3 * n;
+    const int w = layout == Layout::VCross ? 3 * n : 4 * n,
+              h = layout == Layout::VCross ? 4 * n : 3 * n;
     image::Image img(w, h, Rgb(-1.0f));
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) img.at(x, y) = Rgb(static_cast<float>(x), static_cast<float>(y), 1.0f);
+      for (int x = 0; x < w; ++x)
+        img.at(x, y) = Rgb(static_cast<float>(x), static_cast<float>(y), 1.0f);
     const Environment env = Environment::cross(img, layout);
     std::map<std::pair<int, int>, Vec3d> dirOf;
     for (std::size_t k = 0; k < env.texelCount(); ++k) {
@@ -152,7 +166,8 @@ TEST(Layout, DetectionAndParsing) {
     detectLayout(500, 256, "odd.hdr");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("odd.hdr: 500x256 fits no layout"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("odd.hdr: 500x256 fits no layout"), std::string::npos)
+        << e.what();
   }
   for (Layout l : {Layout::LatLong, Layout::Probe, Layout::VCross, Layout::HCross, Layout::Faces})
     EXPECT_EQ(parseLayout(layoutName(l)), l);
@@ -176,7 +191,8 @@ TEST(Environment, LookupReturnsTexelValuesAtTexelCentres) {
     return a * a + b * b > 1;
   };
   int probeChecked = 0;
-  for (const Environment& env : {Environment::latLong(ll), Environment::cube(faces), Environment::probe(pr)})
+  for (const Environment& env :
+       {Environment::latLong(ll), Environment::cube(faces), Environment::probe(pr)})
     for (std::size_t k = 0; k < env.texelCount(); ++k) {
       const Texel t = env.texel(k);
       if (t.solidAngle == 0) continue;

@@ -22,14 +22,15 @@ namespace {
 
 // A smooth test environment (not band-limited, so resolution matters).
 Rgb smoothEnv(const Vec3d& d) {
-  return Rgb(static_cast<float>(1 + 0.5 * d.x + 0.25 * d.y * d.y), static_cast<float>(std::exp(d.y)),
-             static_cast<float>(0.5 + 0.4 * d.z * d.x));
+  return Rgb(static_cast<float>(1 + 0.5 * d.x + 0.25 * d.y * d.y),
+             static_cast<float>(std::exp(d.y)), static_cast<float>(0.5 + 0.4 * d.z * d.x));
 }
 
 Environment sampledLatLong(int h) {
   image::Image img(2 * h, h);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < 2 * h; ++x) img.at(x, y) = smoothEnv(latLongDirection(2 * h, h, x + 0.5, y + 0.5));
+    for (int x = 0; x < 2 * h; ++x)
+      img.at(x, y) = smoothEnv(latLongDirection(2 * h, h, x + 0.5, y + 0.5));
   return Environment::latLong(std::move(img));
 }
 
@@ -39,7 +40,8 @@ Environment sampledCube(int n) {
     faces[f] = image::Image(n, n);
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x)
-        faces[f].at(x, y) = smoothEnv(normalize(cubeFaceDirection(f, 2.0 * (x + 0.5) / n - 1, 2.0 * (y + 0.5) / n - 1)));
+        faces[f].at(x, y) = smoothEnv(
+            normalize(cubeFaceDirection(f, 2.0 * (x + 0.5) / n - 1, 2.0 * (y + 0.5) / n - 1)));
   }
   return Environment::cube(std::move(faces));
 }
@@ -54,11 +56,14 @@ Vec3d lobeDirection(const sh::RgbSh& f) {
 TEST(Project, ConstantEnvironmentGivesOnlyTheDcTerm) {
   std::array<image::Image, 6> faces;
   for (auto& f : faces) f = image::Image(16, 16, Rgb(2.0f));
-  for (const Environment& env : {Environment::latLong(image::Image(256, 128, Rgb(2.0f))), Environment::cube(faces),
-                                 Environment::probe(image::Image(129, 129, Rgb(2.0f)))}) {  // a probe texel spans π·2/n rad: 129 matches the others
+  for (const Environment& env :
+       {Environment::latLong(image::Image(256, 128, Rgb(2.0f))), Environment::cube(faces),
+        Environment::probe(image::Image(
+            129, 129, Rgb(2.0f)))}) {  // a probe texel spans π·2/n rad: 129 matches the others
     const sh::RgbSh f = projectEnvironment(env, 4);
     EXPECT_NEAR(f.c[0].y, 2 * std::sqrt(4 * kPi), 2e-5 * f.c[0].y);
-    for (int i = 1; i < 16; ++i) EXPECT_NEAR(f.c[i].y, 0, 2e-3) << i;  // discretisation of Y_i: O(texel angle²)
+    for (int i = 1; i < 16; ++i)
+      EXPECT_NEAR(f.c[i].y, 0, 2e-3) << i;  // discretisation of Y_i: O(texel angle²)
   }
   const sh::RgbSh c = constantSh(3, Rgb(2.0f));
   EXPECT_FLOAT_EQ(c.c[0].x, static_cast<float>(2 * std::sqrt(4 * kPi)));
@@ -66,7 +71,8 @@ TEST(Project, ConstantEnvironmentGivesOnlyTheDcTerm) {
 
 TEST(Project, LatLongAndCubeAgreeWithTheExactProjection) {
   const int bands = 5;
-  const sh::RgbSh exact = sh::projectFunctionRgb(bands, [](const Vec3d& d) { return Rgbd(smoothEnv(d)); }, 40);
+  const sh::RgbSh exact = sh::projectFunctionRgb(
+      bands, [](const Vec3d& d) { return Rgbd(smoothEnv(d)); }, 40);
   const sh::RgbSh ll = projectEnvironment(sampledLatLong(128), bands);
   const sh::RgbSh cube = projectEnvironment(sampledCube(64), bands);
   const sh::RgbSh coarse = projectEnvironment(sampledCube(8), bands);
@@ -99,8 +105,11 @@ TEST(Project, SingleBrightTexelPutsTheLobeInItsDirection) {
     EXPECT_GT(dot(d, expected), 0.995) << x << "," << y;
   }
   // Cube: centre of posx is +X, of posy +Y; the top-centre texels of posz look up-forward.
-  for (auto [face, x, y, expected] : std::vector<std::tuple<int, int, int, Vec3d>>{
-           {PosX, 8, 8, {1, 0, 0}}, {PosY, 8, 8, {0, 1, 0}}, {NegZ, 8, 8, {0, 0, -1}}, {PosZ, 8, 0, {0, 1, 1}}}) {
+  for (auto [face, x, y, expected] :
+       std::vector<std::tuple<int, int, int, Vec3d>>{{PosX, 8, 8, {1, 0, 0}},
+                                                     {PosY, 8, 8, {0, 1, 0}},
+                                                     {NegZ, 8, 8, {0, 0, -1}},
+                                                     {PosZ, 8, 0, {0, 1, 1}}}) {
     std::array<image::Image, 6> faces;
     for (auto& f : faces) f = image::Image(16, 16);
     faces[face].at(x, y) = faces[face].at(x - 1, y) = Rgb(1000.0f);
@@ -133,12 +142,14 @@ TEST(Project, CapMatchesQuadratureInItsOwnFrame) {
     }
   }
   (void)ng;
-  for (int k = 0; k < bands * bands; ++k) EXPECT_NEAR(f.c[k].y, 2 * ref[k], 2e-6 + 1e-6 * std::abs(ref[k])) << k;
+  for (int k = 0; k < bands * bands; ++k)
+    EXPECT_NEAR(f.c[k].y, 2 * ref[k], 2e-6 + 1e-6 * std::abs(ref[k])) << k;
   // A tiny cap of the same power tends to the delta light.
   Cap tiny{cap.direction, 1e-3, Rgb(1.0f)};
   const sh::RgbSh d = directionalSh(bands, cap.direction, tiny.power());
   const sh::RgbSh c = capSh(bands, tiny);
-  for (int k = 0; k < bands * bands; ++k) EXPECT_NEAR(c.c[k].x, d.c[k].x, 1e-5 * tiny.power().x * 10) << k;
+  for (int k = 0; k < bands * bands; ++k)
+    EXPECT_NEAR(c.c[k].x, d.c[k].x, 1e-5 * tiny.power().x * 10) << k;
 }
 
 TEST(Project, AnalyticEnvironmentMatchesItsTexels) {
@@ -183,7 +194,8 @@ TEST(Project, Games202CompatMatchesTheCourseRecipe) {
   const sh::RgbSh got = projectGames202Faces(faces, bands);
   const std::vector<Rgbd> ref = prt::testing::games202Recipe(faces, bands);
   for (int i = 0; i < bands * bands; ++i)
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got.c[i][c], ref[i][c], 1e-5 * (1 + std::abs(ref[i][c]))) << i;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(got.c[i][c], ref[i][c], 1e-5 * (1 + std::abs(ref[i][c]))) << i;
   // And it differs from the OpenGL-convention projection of the same files (the course's quirk).
   std::array<image::Image, 6> gl = {faces[1], faces[0], faces[2], faces[3], faces[4], faces[5]};
   const sh::RgbSh conv = projectEnvironment(Environment::cube(gl), bands);

@@ -46,7 +46,7 @@ TEST(Sky, SunPowerIsTheDiscIntegralTimesTransmittance) {
   SkyParams p{3, 90, 0};
   p.sunPower = 10;
   const Cap c = PreethamSky(p).sunCap();
-  EXPECT_LT(c.power().x, 10.0f);  // extinction
+  EXPECT_LT(c.power().x, 10.0f);        // extinction
   EXPECT_GT(c.power().x, c.power().z);  // blue scattered more than red
   p.elevationDeg = 5;
   EXPECT_LT(PreethamSky(p).sunCap().power().x, c.power().x);  // longer path at low sun
@@ -71,8 +71,10 @@ TEST(Builtin, ParsesParametersAndRejectsBadOnes) {
     return std::string();
   };
   EXPECT_NE(message("builtin:moon").find("unknown builtin environment 'moon'"), std::string::npos);
-  EXPECT_NE(message("builtin:sky?turbidty=3").find("unknown parameter 'turbidty'"), std::string::npos);
+  EXPECT_NE(message("builtin:sky?turbidty=3").find("unknown parameter 'turbidty'"),
+            std::string::npos);
   EXPECT_NE(message("builtin:sky?turbidity=abc").find("needs a finite number"), std::string::npos);
-  EXPECT_NE(message("builtin:sky?turbidity=100").find("builtin:sky?turbidity=100: "), std::string::npos);
+  EXPECT_NE(message("builtin:sky?turbidity=100").find("builtin:sky?turbidity=100: "),
+            std::string::npos);
   EXPECT_NE(message("builtin:constant?value=-1").find(">= 0"), std::string::npos);
 }

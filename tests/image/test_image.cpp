@@ -32,14 +32,16 @@ struct TempDir {
 Image gradient(int w, int h) {
   Image img(w, h);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) img.at(x, y) = {0.01f + 3.0f * x / w, 0.5f * y / h, 0.25f + 0.001f * (x * y)};
+    for (int x = 0; x < w; ++x)
+      img.at(x, y) = {0.01f + 3.0f * x / w, 0.5f * y / h, 0.25f + 0.001f * (x * y)};
   return img;
 }
 
 void truncateFile(const std::string& path, double keep) {
   const auto bytes = readFileBytes(path);
   std::ofstream os(path, std::ios::binary | std::ios::trunc);
-  os.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size() * keep));
+  os.write(reinterpret_cast<const char*>(bytes.data()),
+           static_cast<std::streamsize>(bytes.size() * keep));
 }
 
 std::string errorOf(const std::function<void()>& fn) {
@@ -62,8 +64,9 @@ TEST(Color, SrgbMatchesTheStandard) {
     const float v = i / 255.0f;
     EXPECT_NEAR(linearToSrgb(srgbToLinear(v)), v, 2e-6) << i;
     EXPECT_FLOAT_EQ(srgb8ToLinear(static_cast<std::uint8_t>(i)), srgbToLinear(v));
-    EXPECT_FLOAT_EQ(gamma22ToLinear(static_cast<std::uint8_t>(i)),
-                    static_cast<float>(std::pow(static_cast<double>(i / 255.0f), 2.2000000476837158)));
+    EXPECT_FLOAT_EQ(
+        gamma22ToLinear(static_cast<std::uint8_t>(i)),
+        static_cast<float>(std::pow(static_cast<double>(i / 255.0f), 2.2000000476837158)));
   }
   EXPECT_NEAR(luminance(Rgb(1, 1, 1)), 1.0f, 1e-6);
 }
@@ -169,8 +172,10 @@ TEST(ImageIo, BrokenFilesGiveOneLineErrorsNamingTheFile) {
     std::ofstream{p};
     EXPECT_NE(errorOf([&] { readImage(p); }).find("empty"), std::string::npos);
   }
-  EXPECT_NE(errorOf([&] { readImage(dir / "image.tga"); }).find("unknown image extension"), std::string::npos);
-  EXPECT_NE(errorOf([&] { readImage(dir / "missing.exr"); }).find("missing.exr"), std::string::npos);
+  EXPECT_NE(errorOf([&] { readImage(dir / "image.tga"); }).find("unknown image extension"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { readImage(dir / "missing.exr"); }).find("missing.exr"),
+            std::string::npos);
   EXPECT_NE(errorOf([&] { writeImage(dir / "out.bmp", img); }).find("out.bmp"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "out.bmp"));
 }

@@ -26,7 +26,7 @@ class Cancelled : public Error {
 
 }  // namespace prt
 
-#define PRT_CHECK(cond, msg)                                              \
-  do {                                                                    \
-    if (!(cond)) ::prt::checkFailed(#cond, __FILE__, __LINE__, (msg));    \
+#define PRT_CHECK(cond, msg)                                           \
+  do {                                                                 \
+    if (!(cond)) ::prt::checkFailed(#cond, __FILE__, __LINE__, (msg)); \
   } while (0)

@@ -13,7 +13,8 @@
 namespace prt {
 
 /// Runs fn(begin, end) over disjoint chunks [begin, end) covering [0, n), in parallel.
-void parallelFor(std::size_t n, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& fn);
+void parallelFor(std::size_t n, std::size_t grain,
+                 const std::function<void(std::size_t, std::size_t)>& fn);
 
 /// Deterministic reduction: [0, n) is cut into fixed chunks of `chunk` items independent of the
 /// thread count; fn(begin, end, partial) accumulates one chunk; the partials are then combined

@@ -28,26 +28,59 @@ struct Vec3 {
   constexpr Vec3 operator*(T s) const { return {x * s, y * s, z * s}; }
   constexpr Vec3 operator/(T s) const { return {x / s, y / s, z / s}; }
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-  constexpr Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  constexpr Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  constexpr Vec3& operator*=(const Vec3& o) { x *= o.x; y *= o.y; z *= o.z; return *this; }
-  constexpr Vec3& operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
-  constexpr Vec3& operator/=(T s) { x /= s; y /= s; z /= s; return *this; }
+  constexpr Vec3& operator+=(const Vec3& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  constexpr Vec3& operator-=(const Vec3& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  constexpr Vec3& operator*=(const Vec3& o) {
+    x *= o.x;
+    y *= o.y;
+    z *= o.z;
+    return *this;
+  }
+  constexpr Vec3& operator*=(T s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
+  constexpr Vec3& operator/=(T s) {
+    x /= s;
+    y /= s;
+    z /= s;
+    return *this;
+  }
   constexpr bool operator==(const Vec3&) const = default;
 };
 
 template <typename T>
-constexpr Vec3<T> operator*(T s, const Vec3<T>& v) { return v * s; }
+constexpr Vec3<T> operator*(T s, const Vec3<T>& v) {
+  return v * s;
+}
 template <typename T>
-constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 template <typename T>
 constexpr Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 template <typename T>
-inline T length(const Vec3<T>& v) { return std::sqrt(dot(v, v)); }
+inline T length(const Vec3<T>& v) {
+  return std::sqrt(dot(v, v));
+}
 template <typename T>
-inline Vec3<T> normalize(const Vec3<T>& v) { return v / length(v); }
+inline Vec3<T> normalize(const Vec3<T>& v) {
+  return v / length(v);
+}
 template <typename T>
 constexpr Vec3<T> min(const Vec3<T>& a, const Vec3<T>& b) {
   return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
@@ -85,7 +118,8 @@ struct Mat3 {
   constexpr Mat3 operator*(const Mat3& o) const {
     Mat3 r;
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) r.m[i][j] = m[i][0] * o.m[0][j] + m[i][1] * o.m[1][j] + m[i][2] * o.m[2][j];
+      for (int j = 0; j < 3; ++j)
+        r.m[i][j] = m[i][0] * o.m[0][j] + m[i][1] * o.m[1][j] + m[i][2] * o.m[2][j];
     return r;
   }
   constexpr Mat3 transposed() const {

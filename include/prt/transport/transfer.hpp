@@ -22,9 +22,9 @@ TransferMode parseTransferMode(const std::string& s);
 
 struct TransferField {
   int bands = 0;
-  int channels = 1;            ///< 1 (scalar) or 3 (RGB)
+  int channels = 1;  ///< 1 (scalar) or 3 (RGB)
   std::size_t vertexCount = 0;
-  std::vector<float> data;     ///< vertexCount × B² × channels
+  std::vector<float> data;  ///< vertexCount × B² × channels
 
   int coeffs() const { return bands * bands; }
   std::size_t stride() const { return static_cast<std::size_t>(coeffs()) * channels; }
