@@ -322,7 +322,8 @@ TEST(BakeFile, PartialRangesMergeExactly) {
     }
     // Through the file format: a partial file has no per-primitive transfer attributes.
     const std::string bytes = encodeBake(p);
-    for (const auto& mesh : splitGlb(bytes).json["meshes"])
+    const auto glb = splitGlb(bytes);  // (a temporary's member would die before the loop runs)
+    for (const auto& mesh : glb.json["meshes"])
       for (auto it = mesh["primitives"][0]["attributes"].begin();
            it != mesh["primitives"][0]["attributes"].end(); ++it)
         EXPECT_NE(it.key().rfind("_PRT", 0), 0u) << it.key();

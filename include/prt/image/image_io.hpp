@@ -3,9 +3,9 @@
 //
 // Formats, chosen by the (case-insensitive) extension:
 //  * .hdr  Radiance RGBE (our bounds-checked decoder), linear.
-//  * .exr  OpenEXR, linear: tinyexr first; files tinyexr cannot decode (e.g. DWAA/DWAB
-//          compression, as in Blender's bundled Poly Haven maps) go through the OpenEXR library.
-//          RGB(A) or single-channel Y; other channels are ignored.
+//  * .exr  OpenEXR, linear, read by the OpenEXR library (every compression, DWAA/DWAB of
+//          Blender's bundled Poly Haven maps included; written by tinyexr). RGB(A) or
+//          single-channel Y; other channels are ignored.
 //  * .png, .jpg/.jpeg: 8-bit (or 16-bit PNG) decoded from sRGB to linear by default, or by the
 //          course's (v/255)^2.2 with LdrDecode::Gamma22. Alpha is ignored; grey expands to RGB.
 // Writing: .png (exposure, tone map, sRGB encode, 8-bit), .exr (32-bit float, ZIP), .hdr (RGBE).
