@@ -82,6 +82,16 @@ struct Albedo {
   Rgb at(std::size_t v) const { return perVertex ? perVertex[v] : uniform; }
 };
 
+// out[v + k] = albedo(v + k) ⊙ (r[k], g[k], b[k]) for k < K: the write-back of the blocked kernels.
+template <int K>
+[[gnu::always_inline]] inline void writeBlock(const float* r, const float* g, const float* b,
+                                              std::size_t v, const Albedo& albedo, Rgb* out) {
+  for (int k = 0; k < K; ++k) {
+    const Rgb a = albedo.at(v + k);
+    out[v + k] = Rgb(r[k] * a.x, g[k] * a.y, b[k] * a.z);
+  }
+}
+
 // Scalar transfer. `planar` holds the light as three planes (r, g, b) of `pad` floats each
 // (pad = B² rounded up to a multiple of 4, zero-filled), so plane c starts at planar + c·pad.
 //
@@ -141,10 +151,7 @@ void scalarBlock4(const float* transfer, std::size_t stride, const float* splat,
     _mm_store_ps(rs, r);
     _mm_store_ps(gs, g);
     _mm_store_ps(bs, b);
-    for (int k = 0; k < 4; ++k) {
-      const Rgb a = albedo.at(v + k);
-      out[v + k] = Rgb(rs[k] * a.x, gs[k] * a.y, bs[k] * a.z);
-    }
+    writeBlock<4>(rs, gs, bs, v, albedo, out);
   }
   for (; v < end; ++v) {  // the last 0..3 vertices
     const float* t = transfer + v * stride;
@@ -204,10 +211,7 @@ __attribute__((target("avx2,fma"))) void scalarBlock8(const float* transfer, std
     _mm256_store_ps(rs, r);
     _mm256_store_ps(gs, g);
     _mm256_store_ps(bs, b);
-    for (int k = 0; k < 8; ++k) {
-      const Rgb a = albedo.at(v + k);
-      out[v + k] = Rgb(rs[k] * a.x, gs[k] * a.y, bs[k] * a.z);
-    }
+    writeBlock<8>(rs, gs, bs, v, albedo, out);
   }
   // The last 0..7 vertices through the SSE2 form.
   scalarBlock4<N>(transfer, stride, splat, n, albedo, out, v, end);
