@@ -7,10 +7,12 @@
 #include <cstring>
 #include <memory>
 #include <ostream>
+#include <stdexcept>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -175,10 +177,33 @@ Image readStbLdr(const std::string& path, const std::vector<unsigned char>& byte
   return img;
 }
 
+// The file's bytes (already read and checked) as an OpenEXR input stream, so the library decodes
+// exactly what was read, without opening the file a second time. Reads past the end throw, as
+// the library expects of a truncated file.
+class MemoryIStream : public Imf::IStream {
+ public:
+  MemoryIStream(const std::string& name, const std::vector<unsigned char>& bytes)
+      : Imf::IStream(name.c_str()), bytes_(bytes) {}
+  bool read(char c[], int n) override {
+    if (n < 0 || pos_ + static_cast<std::uint64_t>(n) > bytes_.size())
+      throw std::runtime_error("unexpected end of file");
+    std::memcpy(c, bytes_.data() + pos_, static_cast<std::size_t>(n));
+    pos_ += static_cast<std::uint64_t>(n);
+    return pos_ < bytes_.size();
+  }
+  uint64_t tellg() override { return pos_; }
+  void seekg(uint64_t pos) override { pos_ = pos; }
+
+ private:
+  const std::vector<unsigned char>& bytes_;
+  std::uint64_t pos_ = 0;
+};
+
 // The OpenEXR library: every compression (DWAA/DWAB included), tiled or scan-line files.
-Image readOpenExr(const std::string& path) {
+Image readOpenExr(const std::string& path, const std::vector<unsigned char>& bytes) {
   try {
-    Imf::InputFile file(path.c_str());
+    MemoryIStream stream(path, bytes);
+    Imf::InputFile file(stream);
     const Imath::Box2i dw = file.header().dataWindow();
     const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
     if (w <= 0 || h <= 0) throw Error(path, "empty OpenEXR data window");
@@ -220,7 +245,7 @@ Image readExr(const std::string& path, const std::vector<unsigned char>& bytes) 
   // Read by the reference library: every compression (tinyexr lacks DWAA/DWAB, which Blender's
   // Poly Haven maps use) and, under AddressSanitizer, no leaks on malformed files (tinyexr's
   // decoder leaks its line buffers when a file is truncated). tinyexr writes our EXRs.
-  return readOpenExr(path);
+  return readOpenExr(path, bytes);
 }
 
 }  // namespace
