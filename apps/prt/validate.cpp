@@ -48,7 +48,7 @@ void runValidate(const ValidateArgs& a) {
   const Mat3d rotation = parseRotation(a.rotate);
   int iw = 0, ih = 0;
   if (!a.image.empty()) {
-    parseSize(a.imageSize, iw, ih);
+    parseSize(a.imageSize, iw, ih, "--image-size");
     if (fileExtension(a.image) != "png" && fileExtension(a.image) != "exr")
       throw Error(a.image, "--image must be .png or .exr");
     checkWritable(a.image);
