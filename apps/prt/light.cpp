@@ -7,7 +7,6 @@
 
 #include <filesystem>
 #include <optional>
-#include <sstream>
 
 #include "args.hpp"
 #include "cli.hpp"

@@ -8,10 +8,8 @@
 // coefficients; the background rotates with it.
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <sstream>
 
 #include <fmt/format.h>
 

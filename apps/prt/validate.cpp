@@ -5,11 +5,9 @@
 //                [--rotate X,Y,Z] [--vertices N] [--seed S] [--mis power|balance]
 //                [--json REPORT.json] [--image error.png] [--image-size WxH]
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 
 #include "args.hpp"
 #include "cli.hpp"
