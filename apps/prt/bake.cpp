@@ -125,7 +125,7 @@ void runBake(const BakeArgs& a) {
     s.bounces = mode == TransferMode::Interreflected ? a.bounces : 0;
     s.seed = a.seed;
     s.sampling = sampling;
-    s.albedo = albedo;
+    s.material.diffuse = albedo;
     s.firstVertex = file.firstVertex;
     s.vertexCount = file.vertexCount;
     t.field =

@@ -55,8 +55,8 @@ void describeBake(const std::string& path) {
         (t.field.stride() + 3) / 4 - 1);
     std::cout << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples,
                              s.bounces, s.seed, toString(s.sampling));
-    if (s.albedo)
-      std::cout << fmt::format(", albedo {},{},{}", s.albedo->x, s.albedo->y, s.albedo->z);
+    if (s.material.diffuse)
+      std::cout << fmt::format(", albedo {},{},{}", s.material.diffuse->x, s.material.diffuse->y, s.material.diffuse->z);
     std::cout << '\n';
     std::cout << fmt::format("    rays {}, {:.3g} Mrays/s, {:.3f} s total ({:.3f} s direct",
                              st.rays, st.raysPerSecond / 1e6, st.secondsTotal, st.secondsDirect);

@@ -92,7 +92,7 @@ void runReference(const ReferenceArgs& a) {
   rs.samples = a.samples;
   rs.mode = bt.settings.mode;
   rs.bounces = bt.settings.mode == TransferMode::Interreflected ? bt.settings.bounces : 0;
-  rs.bounceAlbedo = bt.settings.albedo;
+  rs.bounceAlbedo = bt.settings.material.diffuse;
   rs.seed = a.seed;
   rs.rotation = rotation;
   rs.heuristic = mis;

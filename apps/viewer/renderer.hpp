@@ -30,7 +30,7 @@
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
 #include "prt/render/camera.hpp"
-#include "prt/transport/transfer.hpp"
+#include "prt/transfer/field.hpp"
 
 namespace prt::viewer {
 

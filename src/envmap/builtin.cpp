@@ -1,68 +1,16 @@
 #include "prt/envmap/builtin.hpp"
 
 #include <cmath>
-#include <map>
-#include <set>
 
 #include "prt/core/error.hpp"
+#include "prt/core/spec.hpp"
 #include "prt/envmap/sky.hpp"
 
 namespace prt::envmap {
 
 namespace {
 
-struct Spec {
-  std::string name;
-  std::map<std::string, double> params;
-};
-
-Spec parse(const std::string& spec) {
-  Spec s;
-  const std::string rest = spec.substr(8);  // after "builtin:"
-  const auto q = rest.find('?');
-  s.name = rest.substr(0, q);
-  if (q == std::string::npos) return s;
-  std::string query = rest.substr(q + 1);
-  std::size_t pos = 0;
-  while (pos <= query.size()) {
-    const std::size_t amp = query.find('&', pos);
-    const std::string item =
-        query.substr(pos, amp == std::string::npos ? std::string::npos : amp - pos);
-    if (!item.empty()) {
-      const auto eq = item.find('=');
-      if (eq == std::string::npos)
-        throw Error(spec, "parameter '" + item + "' has no value (use NAME=VALUE)");
-      const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
-      std::size_t used = 0;
-      double v = 0;
-      try {
-        v = std::stod(value, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != value.size() || value.empty() || !std::isfinite(v))
-        throw Error(spec, "parameter '" + key + "' needs a finite number, got '" + value + "'");
-      s.params[key] = v;
-    }
-    if (amp == std::string::npos) break;
-    pos = amp + 1;
-  }
-  return s;
-}
-
-void checkKeys(const std::string& spec, const Spec& s, const std::set<std::string>& allowed) {
-  for (const auto& [k, v] : s.params)
-    if (!allowed.count(k)) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw Error(spec, "unknown parameter '" + k + "' (known: " + list + ")");
-    }
-}
-
-double get(const Spec& s, const std::string& key, double def) {
-  const auto it = s.params.find(key);
-  return it == s.params.end() ? def : it->second;
-}
+constexpr double kAny = 1e300;  // parameters whose range the model itself checks
 
 }  // namespace
 
@@ -76,17 +24,17 @@ std::vector<std::string> builtinNames() {
 
 Environment builtinEnvironment(const std::string& spec, int texelWidth) {
   if (!isBuiltin(spec)) throw Error(spec, "not a builtin environment");
-  const Spec s = parse(spec);
-  if (s.name == "sky") {
-    checkKeys(spec, s, {"turbidity", "elevation", "azimuth", "sun", "sunsize", "sky", "ground"});
+  Spec s(spec, "builtin:");
+  if (s.name() == "sky") {
     SkyParams p;
-    p.turbidity = get(s, "turbidity", p.turbidity);
-    p.elevationDeg = get(s, "elevation", p.elevationDeg);
-    p.azimuthDeg = get(s, "azimuth", p.azimuthDeg);
-    p.sunPower = get(s, "sun", p.sunPower);
-    p.sunRadiusDeg = get(s, "sunsize", p.sunRadiusDeg);
-    p.skyScale = get(s, "sky", p.skyScale);
-    p.groundAlbedo = get(s, "ground", p.groundAlbedo);
+    p.turbidity = s.number("turbidity", p.turbidity, -kAny, kAny);
+    p.elevationDeg = s.number("elevation", p.elevationDeg, -kAny, kAny);
+    p.azimuthDeg = s.number("azimuth", p.azimuthDeg, -kAny, kAny);
+    p.sunPower = s.number("sun", p.sunPower, -kAny, kAny);
+    p.sunRadiusDeg = s.number("sunsize", p.sunRadiusDeg, -kAny, kAny);
+    p.skyScale = s.number("sky", p.skyScale, -kAny, kAny);
+    p.groundAlbedo = s.number("ground", p.groundAlbedo, -kAny, kAny);
+    s.finish();
     try {
       auto sky = std::make_shared<PreethamSky>(p);
       std::vector<Cap> caps;
@@ -98,17 +46,18 @@ Environment builtinEnvironment(const std::string& spec, int texelWidth) {
       throw Error(spec, e.what());
     }
   }
-  if (s.name == "constant") {
-    checkKeys(spec, s, {"value", "r", "g", "b"});
-    const double v = get(s, "value", 1.0);
-    const Rgb c(static_cast<float>(get(s, "r", v)), static_cast<float>(get(s, "g", v)),
-                static_cast<float>(get(s, "b", v)));
+  if (s.name() == "constant") {
+    const double v = s.number("value", 1.0, -kAny, kAny);
+    const Rgb c(static_cast<float>(s.number("r", v, -kAny, kAny)),
+                static_cast<float>(s.number("g", v, -kAny, kAny)),
+                static_cast<float>(s.number("b", v, -kAny, kAny)));
+    s.finish();
     if (c.x < 0 || c.y < 0 || c.z < 0) throw Error(spec, "radiance must be >= 0");
     return Environment::analytic([c](const Vec3f&) { return c; }, {}, texelWidth);
   }
-  if (s.name == "studio") {
-    checkKeys(spec, s, {"intensity"});
-    const float k = static_cast<float>(get(s, "intensity", 1.0));
+  if (s.name() == "studio") {
+    const float k = static_cast<float>(s.number("intensity", 1.0, -kAny, kAny));
+    s.finish();
     if (k < 0) throw Error(spec, "intensity must be >= 0");
     auto deg = [](double d) { return d * kPi / 180; };
     std::vector<Cap> caps = {
@@ -121,7 +70,7 @@ Environment builtinEnvironment(const std::string& spec, int texelWidth) {
   }
   std::string list;
   for (const auto& n : builtinNames()) list += (list.empty() ? "" : ", ") + n;
-  throw Error(spec, "unknown builtin environment '" + s.name + "' (known: " + list + ")");
+  throw Error(spec, "unknown builtin environment '" + s.name() + "' (known: " + list + ")");
 }
 
 }  // namespace prt::envmap

@@ -8,74 +8,13 @@
 #include <utility>
 
 #include "prt/core/error.hpp"
+#include "prt/core/spec.hpp"
 
 namespace prt {
 
 namespace {
 
 constexpr const char* kPrefix = "builtin:";
-
-/// "name?a=1&b=2" parsed into a name and numeric parameters; every parameter must be consumed.
-class Params {
- public:
-  Params(const std::string& full, std::string& name) : full_(full) {
-    std::string s = full;
-    if (s.rfind(kPrefix, 0) == 0) s = s.substr(std::char_traits<char>::length(kPrefix));
-    const auto q = s.find('?');
-    name = s.substr(0, q);
-    if (q == std::string::npos) return;
-    std::string rest = s.substr(q + 1);
-    std::size_t pos = 0;
-    while (pos <= rest.size()) {
-      const auto amp = rest.find('&', pos);
-      const std::string kv =
-          rest.substr(pos, amp == std::string::npos ? std::string::npos : amp - pos);
-      if (!kv.empty()) {
-        const auto eq = kv.find('=');
-        if (eq == std::string::npos || eq == 0)
-          throw Error(full_, "parameter '" + kv + "' is not of the form key=value");
-        const std::string key = kv.substr(0, eq), val = kv.substr(eq + 1);
-        char* end = nullptr;
-        const double x = std::strtod(val.c_str(), &end);
-        if (val.empty() || *end != '\0' || !std::isfinite(x))
-          throw Error(full_, "parameter " + key + "=" + val + " is not a number");
-        values_[key] = x;
-      }
-      if (amp == std::string::npos) break;
-      pos = amp + 1;
-    }
-  }
-
-  double get(const std::string& key, double def, double lo, double hi) {
-    used_.insert(key);
-    const auto it = values_.find(key);
-    if (it == values_.end()) return def;
-    if (!(it->second >= lo && it->second <= hi))
-      throw Error(full_, "parameter " + key + " must lie in [" + fmt(lo) + ", " + fmt(hi) + "]");
-    return it->second;
-  }
-  int getInt(const std::string& key, int def, int lo, int hi) {
-    const double x = get(key, def, lo, hi);
-    if (x != std::floor(x)) throw Error(full_, "parameter " + key + " must be an integer");
-    return static_cast<int>(x);
-  }
-  /// Throws if a parameter was given that the scene does not know.
-  void finish() const {
-    for (const auto& [k, v] : values_)
-      if (!used_.count(k)) throw Error(full_, "unknown parameter '" + k + "'");
-  }
-
- private:
-  static std::string fmt(double x) {
-    std::string s = std::to_string(x);
-    while (s.size() > 1 && s.back() == '0') s.pop_back();
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    return s;
-  }
-  std::string full_;
-  std::map<std::string, double> values_;
-  std::set<std::string> used_;
-};
 
 /// Appends `part` (its own vertex and triangle numbering) to `scene` as a new MeshPart.
 void append(Mesh& scene, const Mesh& part, const std::string& name) {
@@ -192,23 +131,23 @@ Mesh block(float hx, float hy, float hz, float angle, float cx, float cz, int n,
   return out;
 }
 
-Mesh makeSphere(Params& p) {
-  const int subdiv = p.getInt("subdiv", 5, 0, 7);
-  const double r = p.get("r", 1.0, 1e-6, 1e6);
-  const double a = p.get("albedo", 0.8, 0.0, 1.0);
+Mesh makeSphere(Spec& p) {
+  const int subdiv = p.integer("subdiv", 5, 0, 7);
+  const double r = p.number("r", 1.0, 1e-6, 1e6);
+  const double a = p.number("albedo", 0.8, 0.0, 1.0);
   p.finish();
   Mesh scene;
   append(scene, icosphere(subdiv, float(r), Vec3f{0.0f}, Rgb(float(a))), "sphere");
   return scene;
 }
 
-Mesh makeSpherePlane(Params& p, const std::string& full) {
-  const double r = p.get("r", 0.5, 1e-6, 1e6);
-  const double h = p.get("h", 1.0, -1e6, 1e6);
-  const double size = p.get("size", 4.0, 1e-6, 1e6);
-  const int n = p.getInt("grid", 96, 1, 1000);
-  const int subdiv = p.getInt("subdiv", 4, 0, 7);
-  const double a = p.get("albedo", 0.8, 0.0, 1.0);
+Mesh makeSpherePlane(Spec& p, const std::string& full) {
+  const double r = p.number("r", 0.5, 1e-6, 1e6);
+  const double h = p.number("h", 1.0, -1e6, 1e6);
+  const double size = p.number("size", 4.0, 1e-6, 1e6);
+  const int n = p.integer("grid", 96, 1, 1000);
+  const int subdiv = p.integer("subdiv", 4, 0, 7);
+  const double a = p.number("albedo", 0.8, 0.0, 1.0);
   p.finish();
   if (!(h > r)) throw Error(full, "the sphere must lie above the plane (h > r)");
   Mesh scene;
@@ -219,11 +158,11 @@ Mesh makeSpherePlane(Params& p, const std::string& full) {
   return scene;
 }
 
-Mesh makePlane(Params& p) {
-  const double y = p.get("y", 0.0, -1e6, 1e6);
-  const double size = p.get("size", 4.0, 1e-6, 1e6);
-  const int n = p.getInt("grid", 96, 1, 2000);
-  const double a = p.get("albedo", 0.8, 0.0, 1.0);
+Mesh makePlane(Spec& p) {
+  const double y = p.number("y", 0.0, -1e6, 1e6);
+  const double size = p.number("size", 4.0, 1e-6, 1e6);
+  const int n = p.integer("grid", 96, 1, 2000);
+  const double a = p.number("albedo", 0.8, 0.0, 1.0);
   p.finish();
   Mesh scene;
   const float s = float(size), h = float(y);
@@ -231,8 +170,8 @@ Mesh makePlane(Params& p) {
   return scene;
 }
 
-Mesh makeCornell(Params& p) {
-  const int n = p.getInt("grid", 40, 1, 400);
+Mesh makeCornell(Spec& p) {
+  const int n = p.integer("grid", 40, 1, 400);
   p.finish();
   const Rgb white{0.73f, 0.73f, 0.73f}, red{0.63f, 0.065f, 0.05f}, green{0.14f, 0.45f, 0.091f};
   Mesh scene;
@@ -259,8 +198,8 @@ bool isBuiltinScene(const std::string& path) {
 }
 
 Mesh builtinScene(const std::string& full) {
-  std::string name;
-  Params p(full, name);
+  Spec p(full, kPrefix);
+  const std::string& name = p.name();
   const std::string label = isBuiltinScene(full) ? full : std::string(kPrefix) + full;
   Mesh m;
   if (name == "sphere")

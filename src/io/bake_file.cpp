@@ -214,8 +214,8 @@ Value settingsJson(const BakedTransfer& t) {
   o["bounces"] = Value(s.bounces);
   o["seed"] = seedValue(s.seed);
   o["sampling"] = str(toString(s.sampling));
-  if (s.albedo)
-    o["albedo"] = Value(Value::Array{num(s.albedo->x), num(s.albedo->y), num(s.albedo->z)});
+  if (s.material.diffuse)
+    o["albedo"] = Value(Value::Array{num(s.material.diffuse->x), num(s.material.diffuse->y), num(s.material.diffuse->z)});
   return Value(std::move(o));
 }
 
@@ -326,7 +326,7 @@ BakeSettings parseSettings(const Value& o, const std::string& where, const Reade
     if (!a.IsArray() || a.ArrayLen() != 3 || !a.Get(0).IsNumber() || !a.Get(1).IsNumber() ||
         !a.Get(2).IsNumber())
       r.fail(where + ".albedo is not three numbers");
-    s.albedo = Rgb(static_cast<float>(a.Get(0).GetNumberAsDouble()),
+    s.material.diffuse = Rgb(static_cast<float>(a.Get(0).GetNumberAsDouble()),
                    static_cast<float>(a.Get(1).GetNumberAsDouble()),
                    static_cast<float>(a.Get(2).GetNumberAsDouble()));
   }
@@ -462,9 +462,9 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
   mat.name = "prtkit default";
   const BakedTransfer* withAlbedo = nullptr;
   for (const auto& t : bake.transfers)
-    if (t.settings.albedo) withAlbedo = &t;
+    if (t.settings.material.diffuse) withAlbedo = &t;
   if (withAlbedo && mesh.albedo.empty()) {
-    const Rgb a = *withAlbedo->settings.albedo;
+    const Rgb a = *withAlbedo->settings.material.diffuse;
     mat.pbrMetallicRoughness.baseColorFactor = {a.x, a.y, a.z, 1.0};
   }
   mat.pbrMetallicRoughness.metallicFactor = 0.0;
@@ -789,7 +789,7 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces) {
         throw Error(who + std::string(" lacks the ") + toString(a.settings.mode) + " transfer");
       const BakeSettings &sa = a.settings, &sb = b->settings;
       if (sa.bands != sb.bands || sa.samples != sb.samples || sa.bounces != sb.bounces ||
-          sa.seed != sb.seed || sa.sampling != sb.sampling || sa.albedo != sb.albedo ||
+          sa.seed != sb.seed || sa.sampling != sb.sampling || sa.material != sb.material || sa.layout != sb.layout ||
           a.field.bands != b->field.bands || a.field.channels != b->field.channels)
         throw Error(who + " was baked with different settings (" + toString(sa.mode) + ")");
       a.field.data.insert(a.field.data.end(), b->field.data.begin(), b->field.data.end());

@@ -23,6 +23,7 @@
 #include <span>
 #include <string>
 
+#include "bake_common.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
@@ -50,7 +51,7 @@ Sampling parseSampling(const std::string& s) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using namespace bakedetail;
 
 constexpr std::size_t kBatch = 64;            // rays traced per batch
 constexpr int kFlushEvery = 4 * kBatch;       // samples summed in float before going to double
@@ -81,20 +82,6 @@ struct ShEval {
       fixed(d, out);
     else
       sh::eval(bands, d, out);
-  }
-};
-
-/// Albedo used for the bounces: uniform or per vertex, interpolated at hits.
-struct Albedo {
-  bool perVertex = false;
-  bool grey = true;
-  Rgb uniform{1.0f};
-  const std::vector<Rgb>* values = nullptr;
-
-  Rgb at(const std::array<std::uint32_t, 3>& tri, float u, float v) const {
-    if (!perVertex) return uniform;
-    const auto& a = *values;
-    return a[tri[0]] * (1.0f - u - v) + a[tri[1]] * u + a[tri[2]] * v;
   }
 };
 
@@ -151,22 +138,6 @@ class VertexSampler {
   Vec3f n_, t_, b_;
   std::uint32_t seed0_ = 0, seed1_ = 0, index_ = 0;
   Pcg32 rng_;
-};
-
-/// Running sum and sum of squares of one scalar estimator, for its i.i.d. standard error.
-struct Moments {
-  double s1 = 0, s2 = 0;
-  void add(double x) {
-    s1 += x;
-    s2 += x * x;
-  }
-  /// Estimated variance of the mean of n samples (unbiased sample variance / n).
-  double varianceOfMean(int n) const {
-    if (n < 2) return 0;
-    const double mean = s1 / n;
-    const double var = std::max(0.0, (s2 - n * mean * mean) / (n - 1));
-    return var / n;
-  }
 };
 
 struct Context {
@@ -345,63 +316,14 @@ double bounceVertex(Context& ctx, std::size_t v, int pass, const float* prev, in
   return m.varianceOfMean(n);
 }
 
-void validate(const Mesh& mesh, const BakeSettings& s) {
-  const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
-  if (mesh.vertexCount() == 0 || mesh.triangleCount() == 0)
-    throw Error(name, "cannot bake an empty mesh (" + std::to_string(mesh.vertexCount()) +
-                          " vertices, " + std::to_string(mesh.triangleCount()) + " triangles)");
-  if (mesh.normals.size() != mesh.vertexCount())
-    throw Error(name, "has " + std::to_string(mesh.normals.size()) + " normals for " +
-                          std::to_string(mesh.vertexCount()) + " vertices");
-  if (mesh.hasAlbedo() && mesh.albedo.size() != mesh.vertexCount())
-    throw Error(name, "has " + std::to_string(mesh.albedo.size()) + " albedo values for " +
-                          std::to_string(mesh.vertexCount()) + " vertices");
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-    for (std::uint32_t i : mesh.triangles[t])
-      if (i >= mesh.vertexCount())
-        throw Error(name, "triangle " + std::to_string(t) + " references vertex " +
-                              std::to_string(i) + " (mesh has " +
-                              std::to_string(mesh.vertexCount()) + ")");
-  sh::checkBands(s.bands);
-  if (s.samples < 1 || s.samples > kMaxBakeSamples)
-    throw Error("samples must be in 1.." + std::to_string(kMaxBakeSamples) + ", got " +
-                std::to_string(s.samples));
-  if (s.bounces < 0 || s.bounces > kMaxBounces)
-    throw Error("bounces must be in 0.." + std::to_string(kMaxBounces) + ", got " +
-                std::to_string(s.bounces));
-  if (s.albedo &&
-      !(isFinite(*s.albedo) && s.albedo->x >= 0 && s.albedo->y >= 0 && s.albedo->z >= 0))
-    throw Error("albedo must be finite and non-negative");
-  if (s.firstVertex >= mesh.vertexCount() || s.vertexCount > mesh.vertexCount() - s.firstVertex)
-    throw Error(name, "vertex range [" + std::to_string(s.firstVertex) + ", " +
-                          std::to_string(s.firstVertex + s.vertexCount) +
-                          ") is outside the mesh (" + std::to_string(mesh.vertexCount()) +
-                          " vertices)");
-}
-
-Albedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s) {
-  Albedo a;
-  if (s.albedo) {
-    a.uniform = *s.albedo;
-    a.grey = a.uniform.x == a.uniform.y && a.uniform.y == a.uniform.z;
-  } else if (mesh.hasAlbedo()) {
-    a.perVertex = true;
-    a.values = &mesh.albedo;
-    a.grey = std::all_of(mesh.albedo.begin(), mesh.albedo.end(),
-                         [](const Rgb& c) { return c.x == c.y && c.y == c.z; });
-  }
-  return a;
-}
-
-double seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
-
 }  // namespace
 
 TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
                    BakeStats* stats, const ProgressFn& progressFn) {
-  validate(mesh, settings);
+  validateBake(mesh, settings);
+  checkFootprint(mesh, settings, bakeFootprint(mesh, settings));
+  if (settings.layout == TransferLayout::Matrix)
+    return bakeMatrix(mesh, occluder, settings, stats, progressFn);
   const auto start = Clock::now();
   const std::size_t n = mesh.vertexCount();
   const std::size_t first = settings.firstVertex;

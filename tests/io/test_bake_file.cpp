@@ -57,7 +57,7 @@ BakedTransfer transfer(TransferMode mode, int bands, int channels, std::size_t f
   t.settings.bounces = mode == TransferMode::Interreflected ? 2 : 0;
   t.settings.seed = (std::uint64_t(1) << 60) + 12345;  // beyond 2^53: stored as a string
   t.settings.sampling = Sampling::UniformRandom;
-  t.settings.albedo = Rgb(0.25f, 0.5f, 0.75f);
+  t.settings.material.diffuse = Rgb(0.25f, 0.5f, 0.75f);
   t.settings.firstVertex = first;
   t.settings.vertexCount = n;
   t.stats.rays = (std::uint64_t(1) << 40) + 7;  // beyond 32 bits
@@ -125,7 +125,7 @@ void expectSameBake(const BakeFile& a, const BakeFile& b) {
     EXPECT_EQ(x.settings.bounces, y.settings.bounces);
     EXPECT_EQ(x.settings.seed, y.settings.seed);
     EXPECT_EQ(x.settings.sampling, y.settings.sampling);
-    EXPECT_EQ(x.settings.albedo, y.settings.albedo);
+    EXPECT_EQ(x.settings.material.diffuse, y.settings.material.diffuse);
     EXPECT_EQ(x.settings.firstVertex, y.settings.firstVertex);
     EXPECT_EQ(x.settings.vertexCount, y.settings.vertexCount);
     EXPECT_EQ(x.stats.rays, y.stats.rays);

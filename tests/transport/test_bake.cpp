@@ -251,7 +251,7 @@ TEST(Bake, InterreflectionWhiteFurnaceInSphericalCavity) {
   ASSERT_LT(f, 0.3);
   auto occluder = makeEmbreeOccluder(cavity.mesh);
   BakeSettings s = settings(TransferMode::Interreflected, 3, 256);
-  s.albedo = Rgb(1.0f);
+  s.material.diffuse = Rgb(1.0f);
   std::vector<Summary> sums;
   std::vector<TransferField> bakes;
   for (int k = 0; k <= 4; ++k) {
@@ -283,7 +283,7 @@ TEST(Bake, EachBounceAtMostAlbedoTimesThePrevious) {
   Scene scene("builtin:cornell?grid=10");
   const float rho = 0.6f;
   BakeSettings s = settings(TransferMode::Interreflected, 2, 128);
-  s.albedo = Rgb(rho);
+  s.material.diffuse = Rgb(rho);
   std::vector<TransferField> bakes;
   for (int k = 0; k <= 3; ++k) {
     s.bounces = k;
@@ -307,15 +307,15 @@ TEST(Bake, ColouredAlbedoGivesRgbTransferMatchingScalarBakes) {
   BakeSettings s = settings(TransferMode::Interreflected, 3, 64);
   s.bounces = 2;
   const Rgb rho(0.9f, 0.5f, 0.2f);
-  s.albedo = rho;
+  s.material.diffuse = rho;
   const auto rgb = bake(scene.mesh, *scene.occluder, s);
   ASSERT_EQ(rgb.channels, 3);
   // Without an override, the Cornell box's own red and green walls make the transfer RGB.
   BakeSettings own = s;
-  own.albedo.reset();
+  own.material.diffuse.reset();
   EXPECT_EQ(bake(scene.mesh, *scene.occluder, own).channels, 3);
   for (int c = 0; c < 3; ++c) {
-    s.albedo = Rgb(rho[c]);
+    s.material.diffuse = Rgb(rho[c]);
     const auto grey = bake(scene.mesh, *scene.occluder, s);
     ASSERT_EQ(grey.channels, 1);
     double worst = 0;
@@ -326,7 +326,7 @@ TEST(Bake, ColouredAlbedoGivesRgbTransferMatchingScalarBakes) {
   }
   // Shadowed bakes ignore albedo: always scalar.
   s.mode = TransferMode::Shadowed;
-  s.albedo = rho;
+  s.material.diffuse = rho;
   EXPECT_EQ(bake(scene.mesh, *scene.occluder, s).channels, 1);
 }
 
@@ -344,7 +344,7 @@ TEST(Bake, DeterministicOverThreadsAndRanges) {
   for (TransferMode mode : {TransferMode::Shadowed, TransferMode::Interreflected}) {
     BakeSettings s = settings(mode, 3, 64);
     s.bounces = 2;
-    s.albedo = Rgb(0.7f, 0.6f, 0.5f);
+    s.material.diffuse = Rgb(0.7f, 0.6f, 0.5f);
     TransferField one, two;
     {
       ThreadLimit limit(1);

@@ -27,7 +27,7 @@
 
 #include "prt/geometry/mesh.hpp"
 #include "prt/transport/bake.hpp"
-#include "prt/transport/transfer.hpp"
+#include "prt/transfer/field.hpp"
 
 namespace prt {
 

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "prt/geometry/mesh.hpp"
-#include "prt/transport/transfer.hpp"
+#include "prt/transfer/field.hpp"
 
 namespace prt {
 

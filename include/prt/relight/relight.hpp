@@ -25,7 +25,7 @@
 #include "prt/core/vec.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
-#include "prt/transport/transfer.hpp"
+#include "prt/transfer/field.hpp"
 
 namespace prt::relight {
 

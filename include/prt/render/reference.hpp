@@ -50,7 +50,7 @@
 #include "prt/envmap/environment.hpp"
 #include "prt/geometry/mesh.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/transport/transfer.hpp"
+#include "prt/transfer/field.hpp"
 
 namespace prt::render {
 

@@ -1,12 +1,19 @@
 #pragma once
-// Diffuse transfer baking per vertex: unshadowed, shadowed and inter-reflected
-// (Sloan, Kautz & Snyder, "Precomputed Radiance Transfer for Real-Time Rendering in Dynamic,
-// Low-Frequency Lighting Environments", SIGGRAPH 2002, §5). The maths, estimators and their
-// error are derived in docs/transport.md.
+// Transfer baking per vertex: unshadowed, shadowed and inter-reflected; diffuse vectors and
+// glossy matrices (Sloan, Kautz & Snyder, "Precomputed Radiance Transfer for Real-Time Rendering
+// in Dynamic, Low-Frequency Lighting Environments", SIGGRAPH 2002, §5–6). The maths, estimators
+// and their error are derived in docs/transport.md.
 //
+// Vectors (TransferLayout::Vector):
 //   T⁰_i(p) = (1/π) ∫ Y_i(ω) V(p,ω) max(n·ω,0) dω          (unshadowed: V = 1)
 //   Tᵏ(p)   = (1/π) ∫ ρ(h(p,ω)) ⊙ Tᵏ⁻¹(h(p,ω)) [front face of h seen] max(n·ω,0) dω
 //   T       = T⁰ + T¹ + … + Tᴷ
+//
+// Matrices (TransferLayout::Matrix), the light arriving at p as a linear map of the source light:
+//   M⁰_ij(p) = ∫_{n·ω>0} Y_i(ω) V(p,ω) Y_j(ω) dω                  (unshadowed: V = 1)
+//   M_ij(p)  = M⁰_ij(p) + ∫_{n·ω>0} Y_i(ω) ρ(h) T_j^{K−1}(h) [front face of h seen] dω
+// for K bounces, with T^{K−1} the diffuse vector transfer with K−1 bounces: the light a diffuse
+// surface at h sends toward p (glossy-to-glossy bounces are not modelled).
 //
 // Determinism: every vertex draws its own sample set from (seed, global vertex index, bounce),
 // so the transfer of vertex v depends on the inputs and the seed only — never on the thread
@@ -22,7 +29,8 @@
 #include "prt/core/vec.hpp"
 #include "prt/geometry/mesh.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/transport/transfer.hpp"
+#include "prt/transfer/field.hpp"
+#include "prt/transfer/material.hpp"
 
 namespace prt {
 
@@ -44,13 +52,18 @@ inline constexpr int kMaxBounces = 16;
 
 struct BakeSettings {
   TransferMode mode = TransferMode::Shadowed;
+  /// Vector: diffuse transfer (B² per vertex). Matrix: glossy transfer (B² × B² per vertex,
+  /// see prt/transfer/field.hpp), sampled uniformly over each vertex's hemisphere.
+  TransferLayout layout = TransferLayout::Vector;
   int bands = 3;
   int samples = 1024;  ///< directions per vertex per pass (powers of two suit Sobol' best)
   int bounces = 0;     ///< inter-reflection bounces (Interreflected only), 0..16
   std::uint64_t seed = 0;
   Sampling sampling = Sampling::CosineSobol;
-  /// Uniform albedo used for the bounces, overriding mesh.albedo. Without either, albedo 1.
-  std::optional<Rgb> albedo;
+  /// The surface. Its diffuse colour (material.diffuse, else mesh.albedo, else 1) is the albedo
+  /// of the bounces; its lobe is not used by the bake (it is applied at relighting) but is
+  /// stored with the bake as the default for relighting.
+  Material material;
   /// The vertex range to bake: [firstVertex, firstVertex + vertexCount); vertexCount 0 means
   /// "to the last vertex". The result holds the range's vertices only (row 0 = firstVertex).
   std::size_t firstVertex = 0, vertexCount = 0;
@@ -74,10 +87,25 @@ struct BakeStats {
   double stdErrConstMean = 0, stdErrConstMax = 0;
 };
 
+/// What a bake will hold in memory, known before it starts (the transfer dominates: 4·B⁴ bytes
+/// per vertex and channel for matrices).
+struct BakeFootprint {
+  int channels = 1;                ///< of the transfer the bake will return
+  std::size_t bytesPerVertex = 0;  ///< of the transfer
+  std::size_t transferBytes = 0;   ///< the returned transfer (the range's vertices)
+  std::size_t workingBytes = 0;    ///< full-mesh buffers for inter-reflection
+};
+BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& settings);
+/// The largest transfer a bake file can hold (a GLB chunk length is 32 bits).
+inline constexpr std::size_t kMaxTransferFileBytes =
+    (std::size_t(1) << 32) - (std::size_t(1) << 26);
+
 /// Bakes the transfer of mesh (whose triangles `occluder` was built from) under `settings`.
 /// Channels: 1, unless the mode is Interreflected and some bounce albedo is not grey, then 3
 /// (the hit albedos are folded into the bounces; the albedo at the vertex itself is not).
-/// Throws prt::Error on bad settings or mesh, prt::Cancelled if `progress` returns false.
+/// Throws prt::Error on bad settings or mesh, or when the footprint would not fit in this
+/// machine's memory or a bake file (the message states the figure); prt::Cancelled if
+/// `progress` returns false.
 TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
                    BakeStats* stats = nullptr, const ProgressFn& progress = {});
 

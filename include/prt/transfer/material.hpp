@@ -1,0 +1,79 @@
+#pragma once
+// Materials for relighting: a Lambertian part and an optional glossy lobe that is radially
+// symmetric about the reflected view direction R = 2(n·v)n − v.
+//
+//   exit radiance  e(p, v) = kd(p) ⊙ (1/π) ∫ L'_p(ω) max(n·ω, 0) dω  +  ks ⊙ ∫ L'_p(ω) G(R·ω) dω
+//
+// with L'_p the light that arrives at p (shadowed, and bounced off the scene for inter-reflected
+// transfer). With L'_p in SH (L'_p = M_p L for glossy transfer matrices, field.hpp), both
+// integrals are zonal convolutions (Funk–Hecke), so
+//
+//   e(p, v) = Σ_lm L'_lm [ kd (A_l/π) Y_lm(n) + ks Λ_l Y_lm(R) ],    Λ_l = 2π ∫ G(t) P_l(t) dt,
+//
+// A_l the clamped-cosine kernel (Ramamoorthi & Hanrahan 2001). The lobe enters at relighting
+// time only, so it can be changed without a new bake (Sloan, Kautz & Snyder 2002, §6; Kautz,
+// Sloan & Snyder 2002 for arbitrary BRDFs in a local frame, not done here).
+//
+// Lobes (each normalised: ∫ G dω = 1, so Λ_0 = 1 and a white furnace returns ks):
+//   * phong:  G(t) = (s + 1)/(2π) · max(t, 0)^s                       (s = exponent)
+//   * ggx:    the GGX/Trowbridge–Reitz NDF D(h) (α = roughness²) carried to reflected
+//             directions at normal incidence: ω at angle θ from R has half vector at θ/2 and
+//             G(cos θ) = D(θ/2)/4 (the Jacobian dω/dh = 4 h·v). The usual zonal fit of a
+//             microfacet lobe (Fresnel and masking omitted, so it conserves energy exactly).
+// The brute-force reference (render/reference) evaluates the same G, so PRT and reference
+// differ only by band limit and noise.
+//
+// Spec strings (`--material`, bake metadata): `lambert`, `phong?exponent=32&ks=0.5`,
+// `ggx?roughness=0.3&ks=0.04`; every kind takes `kd=x` or `kd=r,g,b` (the diffuse colour,
+// replacing the mesh's own albedo) and `ks` likewise.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "prt/core/vec.hpp"
+
+namespace prt {
+
+enum class LobeKind { None, Phong, Ggx };
+
+struct GlossyLobe {
+  LobeKind kind = LobeKind::None;
+  double exponent = 0;   ///< Phong exponent s >= 0
+  double roughness = 0;  ///< GGX perceptual roughness in (0, 1]; α = roughness²
+
+  /// G(t), t = cos of the angle to R; zero for None.
+  double value(double t) const;
+  /// Λ_l = 2π ∫ G(t) P_l(t) dt for l = 0..bands-1 (Λ_0 = 1 for a lobe, all 0 for None).
+  std::vector<double> zonal(int bands) const;
+  /// Fraction of the lobe's energy ∫ G² dω in bands ≥ `bands`: what a B-band representation
+  /// of the lobe cannot hold (Σ_{l≥B} Λ_l² (2l+1)/(4π) / ∫ G² dω). 0 for None.
+  double energyBeyond(int bands) const;
+  bool operator==(const GlossyLobe&) const = default;
+};
+
+struct Material {
+  /// The diffuse colour kd; unset: the mesh's per-vertex albedo (glTF COLOR_0 / baseColor,
+  /// OBJ Kd), else 1.
+  std::optional<Rgb> diffuse;
+  Rgb specular{0.0f};  ///< ks
+  GlossyLobe lobe;
+
+  /// True when the glossy term contributes (a lobe and ks > 0).
+  bool glossy() const;
+  /// The spec string that parses back to this material.
+  std::string spec() const;
+  bool operator==(const Material&) const = default;
+};
+
+/// Parses a spec string (see above); throws prt::Error("SPEC: ...") on anything unknown or out
+/// of range.
+Material parseMaterial(const std::string& spec);
+
+/// The reflected view direction R = 2(n·v)n − v for unit n and v (v points away from the
+/// surface, toward the eye).
+inline Vec3f reflectView(const Vec3f& n, const Vec3f& v) {
+  return n * (2.0f * dot(n, v)) - v;
+}
+
+}  // namespace prt

@@ -1,0 +1,120 @@
+#include "bake_common.hpp"
+
+#include <string>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <limits>
+
+#include "prt/core/error.hpp"
+#include "prt/sh/sh.hpp"
+
+namespace prt::bakedetail {
+
+void validateBake(const Mesh& mesh, const BakeSettings& s) {
+  const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
+  if (mesh.vertexCount() == 0 || mesh.triangleCount() == 0)
+    throw Error(name, "cannot bake an empty mesh (" + std::to_string(mesh.vertexCount()) +
+                          " vertices, " + std::to_string(mesh.triangleCount()) + " triangles)");
+  if (mesh.normals.size() != mesh.vertexCount())
+    throw Error(name, "has " + std::to_string(mesh.normals.size()) + " normals for " +
+                          std::to_string(mesh.vertexCount()) + " vertices");
+  if (mesh.hasAlbedo() && mesh.albedo.size() != mesh.vertexCount())
+    throw Error(name, "has " + std::to_string(mesh.albedo.size()) + " albedo values for " +
+                          std::to_string(mesh.vertexCount()) + " vertices");
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    for (std::uint32_t i : mesh.triangles[t])
+      if (i >= mesh.vertexCount())
+        throw Error(name, "triangle " + std::to_string(t) + " references vertex " +
+                              std::to_string(i) + " (mesh has " +
+                              std::to_string(mesh.vertexCount()) + ")");
+  sh::checkBands(s.bands);
+  if (s.samples < 1 || s.samples > kMaxBakeSamples)
+    throw Error("samples must be in 1.." + std::to_string(kMaxBakeSamples) + ", got " +
+                std::to_string(s.samples));
+  if (s.bounces < 0 || s.bounces > kMaxBounces)
+    throw Error("bounces must be in 0.." + std::to_string(kMaxBounces) + ", got " +
+                std::to_string(s.bounces));
+  if (s.material.diffuse && !(isFinite(*s.material.diffuse) && s.material.diffuse->x >= 0 &&
+                              s.material.diffuse->y >= 0 && s.material.diffuse->z >= 0))
+    throw Error("albedo must be finite and non-negative");
+  if (s.firstVertex >= mesh.vertexCount() || s.vertexCount > mesh.vertexCount() - s.firstVertex)
+    throw Error(name, "vertex range [" + std::to_string(s.firstVertex) + ", " +
+                          std::to_string(s.firstVertex + s.vertexCount) +
+                          ") is outside the mesh (" + std::to_string(mesh.vertexCount()) +
+                          " vertices)");
+}
+
+Albedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s) {
+  Albedo a;
+  if (s.material.diffuse) {
+    a.uniform = *s.material.diffuse;
+    a.grey = a.uniform.x == a.uniform.y && a.uniform.y == a.uniform.z;
+  } else if (mesh.hasAlbedo()) {
+    a.perVertex = true;
+    a.values = &mesh.albedo;
+    a.grey = std::all_of(mesh.albedo.begin(), mesh.albedo.end(),
+                         [](const Rgb& c) { return c.x == c.y && c.y == c.z; });
+  }
+  return a;
+}
+
+std::string bytesText(std::size_t bytes) {
+  const char* units[] = {"B", "KB", "MB", "GB", "TB", "PB", "EB"};
+  double x = static_cast<double>(bytes);
+  int u = 0;
+  while (x >= 1000.0 && u < 6) {
+    x /= 1000.0;
+    ++u;
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, u == 0 ? "%.0f %s" : "%.3g %s", x, units[u]);
+  return buf;
+}
+
+std::size_t physicalMemoryBytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return std::numeric_limits<std::size_t>::max();
+  return static_cast<std::size_t>(pages) * static_cast<std::size_t>(page);
+}
+
+void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint& f) {
+  const std::size_t need =
+      f.transferBytes > std::numeric_limits<std::size_t>::max() - f.workingBytes
+          ? std::numeric_limits<std::size_t>::max()
+          : f.transferBytes + f.workingBytes;
+  const std::size_t have = physicalMemoryBytes();
+  if (need > have / 10 * 9)
+    throw Error(mesh.source.empty() ? "mesh" : mesh.source,
+                std::string(toString(s.layout)) + " transfer at " + std::to_string(s.bands) +
+                    " bands needs " + bytesText(f.bytesPerVertex) + " per vertex, " +
+                    bytesText(need) + " in all; this machine has " + bytesText(have) +
+                    " (fewer bands, a vertex range, or a smaller mesh)");
+}
+
+}  // namespace prt::bakedetail
+
+namespace prt {
+
+BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
+  using namespace bakedetail;
+  BakeFootprint f;
+  const std::size_t n = mesh.vertexCount();
+  const std::size_t first = std::min(s.firstVertex, n);
+  const std::size_t count = s.vertexCount ? std::min(s.vertexCount, n - first) : n - first;
+  const bool inter = s.mode == TransferMode::Interreflected && s.bounces > 0;
+  const Albedo a = resolveAlbedo(mesh, s);
+  f.channels = inter && !a.grey ? 3 : 1;
+  f.bytesPerVertex = transferBytes(s.layout, s.bands, f.channels, 1);
+  f.transferBytes = transferBytes(s.layout, s.bands, f.channels, count);
+  if (inter) {
+    // Vector: two full-mesh buffers of the previous and current order. Matrix: the diffuse
+    // vector transfer with K − 1 bounces over the whole mesh, plus its own working buffers.
+    const std::size_t vec = transferBytes(TransferLayout::Vector, s.bands, f.channels, n);
+    f.workingBytes = s.layout == TransferLayout::Matrix ? 3 * vec : 2 * vec;
+  }
+  return f;
+}
+
+}  // namespace prt

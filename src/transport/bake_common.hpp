@@ -1,0 +1,66 @@
+#pragma once
+// Pieces shared by the vector (diffuse) and matrix (glossy) bakes; private to src/transport.
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "prt/transport/bake.hpp"
+
+namespace prt::bakedetail {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+/// Albedo used for the bounces: uniform or per vertex, interpolated at hits.
+struct Albedo {
+  bool perVertex = false;
+  bool grey = true;
+  Rgb uniform{1.0f};
+  const std::vector<Rgb>* values = nullptr;
+
+  Rgb at(const std::array<std::uint32_t, 3>& tri, float u, float v) const {
+    if (!perVertex) return uniform;
+    const auto& a = *values;
+    return a[tri[0]] * (1.0f - u - v) + a[tri[1]] * u + a[tri[2]] * v;
+  }
+};
+
+/// Running sum and sum of squares of one scalar estimator, for its i.i.d. standard error.
+struct Moments {
+  double s1 = 0, s2 = 0;
+  void add(double x) {
+    s1 += x;
+    s2 += x * x;
+  }
+  /// Estimated variance of the mean of n samples (unbiased sample variance / n).
+  double varianceOfMean(int n) const {
+    if (n < 2) return 0;
+    const double mean = s1 / n;
+    const double var = std::max(0.0, (s2 - n * mean * mean) / (n - 1));
+    return var / n;
+  }
+};
+
+/// Throws prt::Error naming the first problem with the mesh or the settings.
+void validateBake(const Mesh& mesh, const BakeSettings& s);
+/// The bounce albedo: the material's diffuse colour, else the mesh's, else white.
+Albedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s);
+
+/// "2.5 KB", "26 GB": decimal units, three digits.
+std::string bytesText(std::size_t bytes);
+std::size_t physicalMemoryBytes();
+/// Throws prt::Error stating the figure when the bake would not fit in this machine's memory.
+void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint& f);
+
+/// The matrix (glossy) bake; bake() dispatches here for TransferLayout::Matrix.
+TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+                         BakeStats* stats, const ProgressFn& progress);
+
+}  // namespace prt::bakedetail

@@ -1,0 +1,370 @@
+// Glossy transfer matrices per vertex (Sloan, Kautz & Snyder 2002, §6):
+//
+//   M_ij(p) = ∫_{n·ω>0} Y_i(ω) V(p,ω) Y_j(ω) dω   (+ the light bounced off the scene)
+//
+// maps the source light's SH L to the SH of the light arriving at p, L'_p = M_p L. See
+// prt/transport/bake.hpp for the bounce term and docs/transport.md for the estimators.
+//
+// Estimator. Directions are uniform over the hemisphere about n (Owen-scrambled Sobol' points,
+// per-vertex seeds; pdf 1/(2π)): the integrand Y_i Y_j V has no cosine to importance-sample, and
+// the lobe that will meet it is chosen at relighting time. As in the vector bake, the visibility
+// enters through a control variate: V = 1 − (1 − V), and the unshadowed part is exact,
+//
+//   M_ij ≈ H_ij(n) − (2π/N) Σ_{s blocked} Y_i(ω_s) Y_j(ω_s),
+//
+// H(n) = ∫_{n·ω>0} Y Yᵀ dω the hemisphere product matrix. H about +Z is computed once by a
+// quadrature that is exact for it (Gauss–Legendre in cos θ, uniform in φ) and turned to n by
+// the SH rotation D(R) (R z = n): H(n) = D H_z Dᵀ. Unshadowed transfer is H(n) itself; an
+// unoccluded vertex comes out exact.
+//
+// Speed. Samples are batched 64 at a time; the blocked ones form the columns of Y (B² × k) and
+// enter as one symmetric rank-k update P += Y Yᵀ (Eigen's selfadjointView::rankUpdate, the
+// lower triangle only), the bounce term as one GEMM G += Y Zᵀ with Z the hit points' bounced
+// transfer. Float within a batch group, double across groups (as the vector bake), per vertex
+// in a fixed order: bit-identical for any thread count and any vertex range.
+
+#include <Eigen/Dense>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <string>
+
+#include "bake_common.hpp"
+#include "prt/core/error.hpp"
+#include "prt/core/parallel.hpp"
+#include "prt/core/sampling.hpp"
+#include "prt/sh/rotate.hpp"
+#include "prt/sh/sh.hpp"
+
+namespace prt::bakedetail {
+
+namespace {
+
+constexpr std::size_t kBatch = 64;
+constexpr int kFlushBatches = 4;  // float rank updates summed before going to double
+constexpr std::size_t kVertexGrain = 2;
+constexpr std::uint64_t kMatrixPass = 0x6d61747269780000ull;  // decorrelates from vector passes
+
+using MatF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic>;
+using MatD = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
+
+/// Gauss–Legendre nodes and weights on [0, 1] (Newton on P_n, Golub–Welsch-free).
+void gaussLegendre01(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.resize(n);
+  w.resize(n);
+  for (int i = 0; i < n; ++i) {
+    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = z;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (z * p1 - p0) / (z * z - 1);
+      const double dz = p1 / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-15) break;
+    }
+    x[i] = 0.5 * (z + 1);
+    w[i] = 1.0 / ((1 - z * z) * dp * dp);  // 2/((1−z²)P'²) halved for [0, 1]
+  }
+}
+
+MatD hemisphereProductZ(int bands) {
+  // Y_i Y_j restricted to one m is a polynomial of degree ≤ 2(B−1) in cos θ times a
+  // trigonometric polynomial of degree ≤ 2(B−1) in φ: B Gauss points and 4B φ steps are exact.
+  const int nc = bands * bands;
+  std::vector<double> t, w;
+  gaussLegendre01(bands + 1, t, w);
+  const int nphi = 4 * bands;
+  MatD h = MatD::Zero(nc, nc);
+  std::vector<double> y(nc);
+  for (std::size_t a = 0; a < t.size(); ++a) {
+    const double s = std::sqrt(std::max(0.0, 1 - t[a] * t[a]));
+    for (int k = 0; k < nphi; ++k) {
+      const double phi = 2 * kPi * (k + 0.5) / nphi;
+      sh::eval(bands, Vec3d(s * std::cos(phi), s * std::sin(phi), t[a]), y.data());
+      const double wk = w[a] * 2 * kPi / nphi;
+      for (int i = 0; i < nc; ++i)
+        for (int j = 0; j < nc; ++j) h(i, j) += wk * y[i] * y[j];
+    }
+  }
+  return h;
+}
+
+/// H(n) = D H_z Dᵀ with D the SH rotation of R = [t b n] (R z = n).
+void hemisphereProduct(const MatD& hz, int bands, const Vec3d& n, MatD& out, MatD& tmp) {
+  Vec3d t, b;
+  orthonormalBasis(n, t, b);
+  Mat3d r;
+  for (int k = 0; k < 3; ++k) {
+    r.m[k][0] = t[k];
+    r.m[k][1] = b[k];
+    r.m[k][2] = n[k];
+  }
+  const sh::Rotation rot(bands, r);
+  const int nc = bands * bands;
+  tmp.resize(nc, nc);
+  out.resize(nc, nc);
+  for (int j = 0; j < nc; ++j) rot.apply(hz.col(j).data(), tmp.col(j).data());  // D H_z
+  const MatD tt = tmp.transpose();                                              // H_z Dᵀ
+  for (int j = 0; j < nc; ++j) rot.apply(tt.col(j).data(), out.col(j).data());  // D H_z Dᵀ
+}
+
+/// Uniform directions over the hemisphere about n from scrambled Sobol' points.
+class HemisphereSampler {
+ public:
+  HemisphereSampler(const BakeSettings& s, const OwenSobol2D& sobol, std::size_t vertex,
+                    const Vec3f& n)
+      : sobol_(sobol), n_(n) {
+    const std::uint64_t key =
+        deriveSeed(deriveSeed(s.seed, kMatrixPass), static_cast<std::uint64_t>(vertex));
+    seed0_ = static_cast<std::uint32_t>(key);
+    seed1_ = static_cast<std::uint32_t>(key >> 32);
+    orthonormalBasis(n_, t_, b_);
+  }
+  Vec3f next() {
+    const Point2 u = sobol_.point(index_++, seed0_, seed1_);
+    const float z = u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float phi = 2.0f * kPif * u.y;
+    return t_ * (r * std::cos(phi)) + b_ * (r * std::sin(phi)) + n_ * z;
+  }
+
+ private:
+  const OwenSobol2D& sobol_;
+  Vec3f n_, t_, b_;
+  std::uint32_t seed0_ = 0, seed1_ = 0, index_ = 0;
+};
+
+struct MatrixContext {
+  const Mesh& mesh;
+  const Occluder& occluder;
+  const BakeSettings& settings;
+  int bands, nc, channels;
+  MatD hz;
+  std::unique_ptr<OwenSobol2D> sobol;
+  Albedo albedo;
+  const TransferField* bounced = nullptr;  ///< diffuse transfer T^{K−1}, whole mesh (inter)
+  std::atomic<std::uint64_t> rays{0};
+};
+
+/// Per-thread working storage.
+struct Workspace {
+  MatD h, tmp, total;          // H(n), scratch, Σ over the vertex (double)
+  MatF y, part;                // batch columns Y (nc × 64), float partial P
+  std::vector<MatF> z, gpart;  // per channel: Z (nc × 64), float partial G
+  std::vector<MatD> gtotal;
+  std::vector<float> interp;
+  explicit Workspace(int nc, int channels)
+      : total(nc, nc), y(nc, kBatch), part(nc, nc), interp(static_cast<std::size_t>(nc) * 3) {
+    for (int c = 0; c < channels; ++c) {
+      z.emplace_back(nc, kBatch);
+      gpart.emplace_back(nc, nc);
+      gtotal.emplace_back(nc, nc);
+    }
+  }
+};
+
+/// One vertex: writes its B² × B² (× C) row to out; returns Var of the M_00 estimator's mean.
+double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws) {
+  const Mesh& mesh = ctx.mesh;
+  const int nc = ctx.nc, channels = ctx.channels;
+  const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
+  hemisphereProduct(ctx.hz, ctx.bands, Vec3d(nrm), ws.h, ws.tmp);
+  auto write = [&](const MatD& m, int c) {
+    for (int i = 0; i < nc; ++i)
+      for (int j = 0; j < nc; ++j)
+        out[(static_cast<std::size_t>(i) * nc + j) * channels + c] = static_cast<float>(m(i, j));
+  };
+  if (ctx.settings.mode == TransferMode::Unshadowed) {
+    for (int c = 0; c < channels; ++c) write(ws.h, c);
+    return 0.0;
+  }
+  const bool inter = ctx.bounced != nullptr;
+  const int n = ctx.settings.samples;
+  const Vec3f origin = p + nrm * ctx.occluder.rayOffset(p);
+  HemisphereSampler sampler(ctx.settings, *ctx.sobol, v, nrm);
+  ws.total.setZero();
+  ws.part.setZero();
+  for (int c = 0; c < channels; ++c) {
+    ws.gtotal[c].setZero();
+    ws.gpart[c].setZero();
+  }
+  const std::size_t bStride = ctx.bounced ? ctx.bounced->stride() : 0;
+  const int bChannels = ctx.bounced ? ctx.bounced->channels : 1;
+
+  std::array<Ray, kBatch> rays;
+  std::array<std::uint8_t, kBatch> blocked;
+  Moments m;
+  std::uint64_t cast = 0;
+  int batches = 0;
+  const float y00sq = 1.0f / (4.0f * kPif);
+  for (int base = 0; base < n; base += static_cast<int>(kBatch)) {
+    const int count = std::min<int>(kBatch, n - base);
+    for (int j = 0; j < count; ++j)
+      rays[j] = Ray{origin, sampler.next(), 0.0f, std::numeric_limits<float>::infinity()};
+    cast += static_cast<std::uint64_t>(count);
+    int k = 0, kz = 0;  // blocked columns; of those, front-face hits (bounce columns)
+    if (!inter) {
+      ctx.occluder.occluded(std::span<const Ray>(rays.data(), count),
+                            std::span<std::uint8_t>(blocked.data(), count));
+      for (int j = 0; j < count; ++j) {
+        m.add(blocked[j] ? 2.0 * kPi * y00sq : 0.0);
+        if (!blocked[j]) continue;
+        sh::eval(ctx.bands, rays[j].dir, ws.y.col(k++).data());
+      }
+    } else {
+      // Closest hits: every hit blocks; a front-face hit also sends its bounced light toward p.
+      // Blocked columns come first in Y; the front-face ones are Y's first kz columns too, so
+      // they are evaluated first.
+      std::array<Hit, kBatch> hits;
+      std::array<int, kBatch> front, back;
+      int nf = 0, nb = 0;
+      for (int j = 0; j < count; ++j) {
+        hits[j] = ctx.occluder.intersect(rays[j]);
+        if (!hits[j].hit) {
+          m.add(0.0);
+          continue;
+        }
+        m.add(2.0 * kPi * y00sq);
+        const auto& tri = mesh.triangles[hits[j].triangle];
+        const Vec3f p0 = mesh.positions[tri[0]];
+        const Vec3f ng = cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
+        if (dot(ng, rays[j].dir) < 0.0f)
+          front[nf++] = j;
+        else
+          back[nb++] = j;
+      }
+      for (int q = 0; q < nf; ++q) {
+        const int j = front[q];
+        sh::eval(ctx.bands, rays[j].dir, ws.y.col(k++).data());
+        const Hit& h = hits[j];
+        const auto& tri = mesh.triangles[h.triangle];
+        const float b0 = 1.0f - h.u - h.v;
+        const float* r0 = ctx.bounced->vertex(tri[0]);
+        const float* r1 = ctx.bounced->vertex(tri[1]);
+        const float* r2 = ctx.bounced->vertex(tri[2]);
+        for (std::size_t i = 0; i < bStride; ++i)
+          ws.interp[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
+        const Rgb rho = ctx.albedo.at(tri, h.u, h.v);
+        for (int c = 0; c < channels; ++c) {
+          float* zc = ws.z[c].col(kz).data();
+          const int src = bChannels == 1 ? 0 : c;
+          for (int i = 0; i < nc; ++i) zc[i] = rho[c] * ws.interp[i * bChannels + src];
+        }
+        ++kz;
+      }
+      for (int q = 0; q < nb; ++q) sh::eval(ctx.bands, rays[back[q]].dir, ws.y.col(k++).data());
+    }
+    if (k > 0) ws.part.selfadjointView<Eigen::Lower>().rankUpdate(ws.y.leftCols(k));
+    if (kz > 0)
+      for (int c = 0; c < channels; ++c)
+        ws.gpart[c].noalias() += ws.y.leftCols(kz) * ws.z[c].leftCols(kz).transpose();
+    if (++batches % kFlushBatches == 0 || base + static_cast<int>(kBatch) >= n) {
+      ws.total += ws.part.cast<double>();
+      ws.part.setZero();
+      for (int c = 0; c < channels && inter; ++c) {
+        ws.gtotal[c] += ws.gpart[c].cast<double>();
+        ws.gpart[c].setZero();
+      }
+    }
+  }
+  ctx.rays.fetch_add(cast, std::memory_order_relaxed);
+  const double scale = 2.0 * kPi / n;
+  ws.total.triangularView<Eigen::StrictlyUpper>() = ws.total.transpose();
+  for (int c = 0; c < channels; ++c) {
+    ws.tmp = ws.h - scale * ws.total;
+    if (inter) ws.tmp += scale * ws.gtotal[c];
+    write(ws.tmp, c);
+  }
+  // M_00 = H_00 − mean(2π Y00² [blocked]) (+ the bounce, whose variance is not counted here).
+  return m.varianceOfMean(n);
+}
+
+}  // namespace
+
+TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+                         BakeStats* stats, const ProgressFn& progressFn) {
+  const auto start = Clock::now();
+  const std::size_t total = mesh.vertexCount();
+  const std::size_t first = settings.firstVertex;
+  const std::size_t count = settings.vertexCount ? settings.vertexCount : total - first;
+  const bool inter = settings.mode == TransferMode::Interreflected && settings.bounces > 0;
+
+  // The bounced light: the diffuse transfer with K−1 bounces over the whole mesh (hits land
+  // anywhere). It takes the first share of the progress.
+  const double preShare = inter ? 0.3 : 0.0;
+  TransferField bounced;
+  BakeStats bounceStats;
+  if (inter) {
+    BakeSettings vs = settings;
+    vs.layout = TransferLayout::Vector;
+    vs.firstVertex = 0;
+    vs.vertexCount = 0;
+    vs.bounces = settings.bounces - 1;
+    vs.mode = vs.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
+    ProgressFn sub;
+    if (progressFn) sub = [&](double f) { return progressFn(preShare * f); };
+    bounced = prt::bake(mesh, occluder, vs, &bounceStats, sub);
+  }
+
+  MatrixContext ctx{mesh,
+                    occluder,
+                    settings,
+                    settings.bands,
+                    settings.bands * settings.bands,
+                    1,
+                    hemisphereProductZ(settings.bands),
+                    nullptr,
+                    resolveAlbedo(mesh, settings),
+                    inter ? &bounced : nullptr,
+                    {}};
+  ctx.channels = bakeFootprint(mesh, settings).channels;
+  if (settings.mode != TransferMode::Unshadowed)
+    ctx.sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(settings.samples));
+
+  TransferField out =
+      TransferField::zeros(TransferLayout::Matrix, settings.bands, ctx.channels, count);
+  ProgressFn mainFn;
+  if (progressFn) mainFn = [&](double f) { return progressFn(preShare + (1 - preShare) * f); };
+  Progress progress(mainFn, count);
+  std::vector<double> variance(count, 0.0);
+  const auto tm = Clock::now();
+  parallelFor(count, kVertexGrain, [&](std::size_t b, std::size_t e) {
+    progress.check();
+    Workspace ws(ctx.nc, ctx.channels);
+    for (std::size_t r = b; r < e; ++r)
+      variance[r] = matrixVertex(ctx, first + r, out.vertex(r), ws);
+    progress.advance(e - b);
+  });
+
+  if (stats) {
+    BakeStats st;
+    st.threads = maxThreads();
+    st.vertices = count;
+    st.rays = ctx.rays.load() + bounceStats.rays;
+    st.secondsDirect = seconds(tm);
+    if (inter) {
+      st.secondsBounce = {bounceStats.secondsTotal};
+      st.raysBounce = {bounceStats.rays};
+    }
+    st.secondsTotal = seconds(start);
+    st.raysPerSecond = st.secondsTotal > 0 ? double(st.rays) / st.secondsTotal : 0.0;
+    double sum = 0, mx = 0;
+    for (double var : variance) {
+      sum += std::sqrt(var);
+      mx = std::max(mx, std::sqrt(var));
+    }
+    // For matrices the standard error is that of M_00, the transferred radiance under the
+    // constant light L = 1 (L00 = √(4π), so L'_00 Y00 = M_00).
+    st.stdErrT0Mean = st.stdErrConstMean = count ? sum / double(count) : 0.0;
+    st.stdErrT0Max = st.stdErrConstMax = mx;
+    *stats = std::move(st);
+  }
+  return out;
+}
+
+}  // namespace prt::bakedetail
