@@ -61,24 +61,14 @@ inline render::MisHeuristic parseMis(const std::string& s) {
   throw Error("--mis '" + s + "': expected power or balance");
 }
 
-/// The transfer of `mode` ("" picks interreflected, else shadowed, else unshadowed); the error
-/// names the modes the bake does hold.
+/// The transfer of `mode` ("" = the richest, see prt::pickTransfer) and `layout` ("" = any).
 inline const BakedTransfer& pickTransfer(const BakeFile& bake, const std::string& mode,
-                                         const std::string& file) {
-  if (bake.transfers.empty()) throw Error(file, "the bake holds no transfer");
-  if (!mode.empty()) {
-    const TransferMode m = parseTransferMode(mode);
-    if (const BakedTransfer* t = bake.find(m)) return *t;
-    std::string have;
-    for (const auto& t : bake.transfers)
-      have += std::string(have.empty() ? "" : ", ") + toString(t.settings.mode);
-    throw Error(file,
-                std::string("no ") + toString(m) + " transfer in the bake (it has " + have + ")");
-  }
-  for (TransferMode m :
-       {TransferMode::Interreflected, TransferMode::Shadowed, TransferMode::Unshadowed})
-    if (const BakedTransfer* t = bake.find(m)) return *t;
-  return bake.transfers.front();
+                                         const std::string& file, const std::string& layout = "") {
+  std::optional<TransferMode> m;
+  std::optional<TransferLayout> l;
+  if (!mode.empty()) m = parseTransferMode(mode);
+  if (!layout.empty()) l = parseTransferLayout(layout);
+  return prt::pickTransfer(bake, m, l, file);
 }
 
 }  // namespace prt::cli

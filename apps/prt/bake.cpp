@@ -12,6 +12,7 @@
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/units.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/raytrace/occluder.hpp"
@@ -34,6 +35,8 @@ struct BakeArgs {
   std::uint64_t seed = 0;
   std::string sampling = "cosine";
   std::string albedo;
+  std::string transfer = "vector";
+  std::string material;
   std::string range;
   std::string output;
 };
@@ -92,6 +95,10 @@ void runBake(const BakeArgs& a) {
   const Sampling sampling = parseSampling(a.sampling == "cosine" ? "cosine-sobol" : a.sampling);
   std::optional<Rgb> albedo;
   if (!a.albedo.empty()) albedo = parseAlbedo(a.albedo);
+  const TransferLayout layout = parseTransferLayout(a.transfer);
+  Material material;
+  if (!a.material.empty()) material = parseMaterial(a.material);
+  if (albedo) material.diffuse = albedo;
   if (fileExtension(a.output) != "glb") throw Error(a.output + ": the bake file must end in .glb");
   checkWritable(a.output);
 
@@ -118,6 +125,7 @@ void runBake(const BakeArgs& a) {
 
   for (TransferMode mode : modes) {
     BakedTransfer t;
+    t.settings.layout = layout;
     BakeSettings& s = t.settings;
     s.mode = mode;
     s.bands = a.bands;
@@ -125,9 +133,21 @@ void runBake(const BakeArgs& a) {
     s.bounces = mode == TransferMode::Interreflected ? a.bounces : 0;
     s.seed = a.seed;
     s.sampling = sampling;
-    s.material.diffuse = albedo;
+    s.material = material;
     s.firstVertex = file.firstVertex;
     s.vertexCount = file.vertexCount;
+    // State the memory before the work, and refuse what a bake file cannot hold.
+    const BakeFootprint fp = bakeFootprint(mesh, s);
+    info(fmt::format("{} {}: {} per vertex, {} in all{}", toString(mode), toString(layout),
+                     bytesText(fp.bytesPerVertex), bytesText(fp.transferBytes),
+                     fp.workingBytes ? " + " + bytesText(fp.workingBytes) + " working" : ""));
+    if (fp.transferBytes > kMaxTransferFileBytes)
+      throw Error(a.output,
+                  fmt::format("{} {} transfer of {} vertices at {} bands is {}, more "
+                              "than a bake file holds ({}); use fewer bands or split "
+                              "the bake with --range",
+                              toString(mode), toString(layout), file.vertexCount, a.bands,
+                              bytesText(fp.transferBytes), bytesText(kMaxTransferFileBytes)));
     t.field =
         bake(mesh, *occluder, s, &t.stats, progressBar(std::string("bake ") + toString(mode)));
     const BakeStats& st = t.stats;
@@ -178,6 +198,13 @@ void addBakeCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--albedo", args->albedo,
                   "Uniform albedo r,g,b for the bounces (overrides the mesh's)");
+  cmd->add_option("--transfer", args->transfer,
+                  "vector (diffuse, B² per vertex) | matrix (glossy, B² x B² per vertex)")
+      ->capture_default_str();
+  cmd->add_option("--material", args->material,
+                  "Surface: lambert | phong?exponent=32&ks=0.5 | ggx?roughness=0.3&ks=0.5, with "
+                  "kd=r,g,b (diffuse colour); stored as the default for relighting")
+      ->capture_default_str();
   cmd->add_option("--range", args->range,
                   "Bake only vertices FIRST:END (split bakes; merge later)");
   cmd->add_option("-o,--output", args->output, "Output bake file (.glb)")->required();

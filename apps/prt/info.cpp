@@ -16,6 +16,7 @@
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/units.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/project.hpp"
@@ -49,14 +50,24 @@ void describeBake(const std::string& path) {
   for (const auto& t : b.transfers) {
     const BakeSettings& s = t.settings;
     const BakeStats& st = t.stats;
-    std::cout << fmt::format(
-        "  {}: {} bands ({} coefficients) x {} channel(s), attributes {}0..{}\n", toString(s.mode),
-        t.field.bands, t.field.coeffs(), t.field.channels, transferAttributePrefix(s.mode),
-        (t.field.stride() + 3) / 4 - 1);
+    if (t.field.isMatrix())
+      std::cout << fmt::format(
+          "  {}: matrix (glossy), {} bands ({}x{} per vertex) x {} channel(s), {} per vertex, "
+          "accessor {}\n",
+          toString(s.mode), t.field.bands, t.field.coeffs(), t.field.coeffs(), t.field.channels,
+          bytesText(t.field.stride() * sizeof(float)), transferMatrixName(s.mode));
+    else
+      std::cout << fmt::format(
+          "  {}: vector (diffuse), {} bands ({} coefficients) x {} channel(s), attributes "
+          "{}0..{}\n",
+          toString(s.mode), t.field.bands, t.field.coeffs(), t.field.channels,
+          transferAttributePrefix(s.mode), (t.field.stride() + 3) / 4 - 1);
+    std::cout << fmt::format("    material {}\n", s.material.spec());
     std::cout << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples,
                              s.bounces, s.seed, toString(s.sampling));
     if (s.material.diffuse)
-      std::cout << fmt::format(", albedo {},{},{}", s.material.diffuse->x, s.material.diffuse->y, s.material.diffuse->z);
+      std::cout << fmt::format(", albedo {},{},{}", s.material.diffuse->x, s.material.diffuse->y,
+                               s.material.diffuse->z);
     std::cout << '\n';
     std::cout << fmt::format("    rays {}, {:.3g} Mrays/s, {:.3f} s total ({:.3f} s direct",
                              st.rays, st.raysPerSecond / 1e6, st.secondsTotal, st.secondsDirect);

@@ -23,6 +23,7 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/raytrace/occluder.hpp"
+#include "prt/relight/glossy.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/render.hpp"
@@ -41,6 +42,8 @@ struct RenderOptions {
   float exposure = 0.0f;
   std::string tonemap = "aces";
   std::string mode;
+  std::string transfer;
+  std::string material;
   int bands = 0;
   std::string background = "env";
   int turntable = 0;
@@ -92,7 +95,15 @@ void run(const RenderOptions& o) {
                             "with prt merge first)",
                             bake.firstVertex, bake.firstVertex + bake.vertexCount,
                             bake.mesh.vertexCount()));
-  const BakedTransfer& baked = pickTransfer(bake, o.mode, o.bake);
+  const BakedTransfer& baked = pickTransfer(bake, o.mode, o.bake, o.transfer);
+  // The material: --material, else the one the bake stored.
+  const Material material =
+      o.material.empty() ? baked.settings.material : parseMaterial(o.material);
+  if (material.glossy() && !baked.field.isMatrix())
+    warn(
+        fmt::format("{}: the {} transfer is a vector (diffuse only); the material's glossy lobe "
+                    "needs a matrix bake (prt bake --transfer matrix)",
+                    o.bake, toString(baked.settings.mode)));
   TransferField transfer = baked.field;
   if (o.bands > 0 && o.bands < transfer.bands) transfer = transfer.truncated(o.bands);
   if (o.bands > transfer.bands)
@@ -135,8 +146,16 @@ void run(const RenderOptions& o) {
     const Mat3d rotation = o.turntable > 0
                                ? rotationAxisAngle({0, 1, 0}, 2 * kPi * k / frames) * userRotation
                                : userRotation;
+    // Matrix transfer is view-dependent: each vertex is seen from the camera's eye.
     const relight::RelightInfo relit =
-        relight::relight(transfer, light, bake.mesh.albedo, radiance, rotation);
+        transfer.isMatrix()
+            ? relight::relightGlossy(transfer, light, material,
+                                     {bake.mesh.positions, bake.mesh.normals, camera.eye},
+                                     bake.mesh.albedo, radiance, rotation)
+            : relight::relight(transfer, light,
+                               material.diffuse ? std::span<const Rgb>(&*material.diffuse, 1)
+                                                : std::span<const Rgb>(bake.mesh.albedo),
+                               radiance, rotation);
     if (!warned && !relit.warning().empty()) warn(relit.warning()), warned = true;
     render::BackgroundFn bg;
     switch (kind) {
@@ -158,8 +177,9 @@ void run(const RenderOptions& o) {
     const std::string path = o.turntable > 0 ? framePath(o.output, k) : o.output;
     image::writeImage(path, img, write);
     if (!o.contactSheet.empty()) sheet.push_back(std::move(img));
-    info(fmt::format("wrote {} ({}x{}, {} spp, {} bands, {} transfer)", path, frame.width,
-                     frame.height, frame.spp, relit.bands, toString(baked.settings.mode)));
+    info(fmt::format("wrote {} ({}x{}, {} spp, {} bands, {} {} transfer, {})", path, frame.width,
+                     frame.height, frame.spp, relit.bands, toString(baked.settings.mode),
+                     toString(transfer.layout), material.spec()));
   }
   if (!o.contactSheet.empty()) {
     image::writeImage(o.contactSheet, render::contactSheet(sheet), write);
@@ -189,6 +209,12 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--mode", opts->mode,
                   "Transfer to use: unshadowed, shadowed, interreflected (default: the richest in "
                   "the bake)");
+  cmd->add_option("--transfer", opts->transfer,
+                  "Layout to use when the bake holds both: vector or matrix (default: matrix)");
+  cmd->add_option("--material", opts->material,
+                  "Relight with this material instead of the bake's: lambert, "
+                  "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5 (kd=r,g,b sets the diffuse "
+                  "colour); the lobe needs a matrix bake");
   cmd->add_option("--bands", opts->bands, "Use at most this many SH bands");
   cmd->add_option("--background", opts->background,
                   "What rays that miss show: env, sh (the light's SH reconstruction), none, a "

@@ -6,7 +6,6 @@
 // Built only when GLFW, libepoxy, EGL and Dear ImGui were found at configure time
 // (PRT_HAVE_VIEWER); otherwise the verb exists and says so.
 
-
 #include "args.hpp"
 #include "cli.hpp"
 #include "prt/core/error.hpp"

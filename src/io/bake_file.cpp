@@ -194,8 +194,10 @@ void validateForWriting(const BakeFile& bake, const std::vector<MeshPart>& parts
     const auto& t = bake.transfers[i];
     const TransferField& f = t.field;
     for (std::size_t j = 0; j < i; ++j)
-      if (bake.transfers[j].settings.mode == t.settings.mode)
-        throw Error(std::string("bake file: two transfers of mode ") + toString(t.settings.mode));
+      if (bake.transfers[j].settings.mode == t.settings.mode &&
+          bake.transfers[j].field.layout == f.layout)
+        throw Error(std::string("bake file: two ") + toString(f.layout) + " transfers of mode " +
+                    toString(t.settings.mode));
     if (f.bands < 1 || f.bands > kMaxBands || (f.channels != 1 && f.channels != 3))
       throw Error("bake file: transfer has " + std::to_string(f.bands) + " bands and " +
                   std::to_string(f.channels) + " channels");
@@ -214,8 +216,11 @@ Value settingsJson(const BakedTransfer& t) {
   o["bounces"] = Value(s.bounces);
   o["seed"] = seedValue(s.seed);
   o["sampling"] = str(toString(s.sampling));
+  o["layout"] = str(toString(t.field.layout));
+  o["material"] = str(s.material.spec());
   if (s.material.diffuse)
-    o["albedo"] = Value(Value::Array{num(s.material.diffuse->x), num(s.material.diffuse->y), num(s.material.diffuse->z)});
+    o["albedo"] = Value(Value::Array{num(s.material.diffuse->x), num(s.material.diffuse->y),
+                                     num(s.material.diffuse->z)});
   return Value(std::move(o));
 }
 
@@ -321,14 +326,30 @@ BakeSettings parseSettings(const Value& o, const std::string& where, const Reade
   s.samples = static_cast<int>(r.integer(o, "samples", where, 0, 2147483647.0));
   s.bounces = static_cast<int>(r.integer(o, "bounces", where, 0, 2147483647.0));
   s.seed = r.integer(o, "seed", where);
+  if (o.Has("layout")) {
+    try {
+      s.layout = parseTransferLayout(r.string(o, "layout", where));
+    } catch (const Error& e) {
+      if (std::string(e.what()).rfind(r.name, 0) == 0) throw;
+      r.fail(where + ": " + e.what());
+    }
+  }
+  if (o.Has("material")) {
+    try {
+      s.material = parseMaterial(r.string(o, "material", where));
+    } catch (const Error& e) {
+      if (std::string(e.what()).rfind(r.name, 0) == 0) throw;
+      r.fail(where + ".material: " + e.what());
+    }
+  }
   if (o.Has("albedo")) {
     const Value& a = o.Get("albedo");
     if (!a.IsArray() || a.ArrayLen() != 3 || !a.Get(0).IsNumber() || !a.Get(1).IsNumber() ||
         !a.Get(2).IsNumber())
       r.fail(where + ".albedo is not three numbers");
     s.material.diffuse = Rgb(static_cast<float>(a.Get(0).GetNumberAsDouble()),
-                   static_cast<float>(a.Get(1).GetNumberAsDouble()),
-                   static_cast<float>(a.Get(2).GetNumberAsDouble()));
+                             static_cast<float>(a.Get(1).GetNumberAsDouble()),
+                             static_cast<float>(a.Get(2).GetNumberAsDouble()));
   }
   return s;
 }
@@ -365,9 +386,27 @@ std::string transferAttributePrefix(TransferMode mode) {
   return "_PRT_" + m + "_T";
 }
 
+std::string transferMatrixName(TransferMode mode) {
+  std::string m = toString(mode);
+  for (char& c : m) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return "_PRT_" + m + "_M";
+}
+
+int BakeFile::requiredVersion() const {
+  for (const auto& t : transfers)
+    if (t.field.isMatrix()) return 2;
+  return 1;
+}
+
 const BakedTransfer* BakeFile::find(TransferMode mode) const {
   for (const auto& t : transfers)
     if (t.settings.mode == mode) return &t;
+  return nullptr;
+}
+
+const BakedTransfer* BakeFile::find(TransferMode mode, TransferLayout layout) const {
+  for (const auto& t : transfers)
+    if (t.settings.mode == mode && t.field.layout == layout) return &t;
   return nullptr;
 }
 
@@ -436,6 +475,17 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
   for (std::size_t ti = 0; ti < bake.transfers.size(); ++ti) {
     const TransferField& f = bake.transfers[ti].field;
     const std::size_t S = f.stride(), K = (S + 3) / 4, n = f.vertexCount;
+    if (f.isMatrix()) {
+      // Matrices (version 2): B⁴·C floats per vertex are far past the 16 vertex attributes a
+      // GPU guarantees, so they are one tightly packed SCALAR float accessor of the rows as
+      // TransferField holds them, named from extras (not a primitive attribute).
+      const std::string name = transferMatrixName(bake.transfers[ti].settings.mode);
+      const int view = bb.view(f.data.data(), f.data.size() * sizeof(float), 0, 0, name);
+      columns[ti].rangeAccessors.push_back(
+          bb.accessor(view, 0, f.data.size(), TINYGLTF_TYPE_SCALAR, kFloat));
+      model.accessors.back().name = name;
+      continue;
+    }
     const std::string prefix = transferAttributePrefix(bake.transfers[ti].settings.mode);
     for (std::size_t k = 0; k < K; ++k) {
       const auto writeColumn = [&f, S, n, k](std::ostream& os) {
@@ -497,6 +547,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
           bb.accessor(colView, p.firstVertex * 12u, n, TINYGLTF_TYPE_VEC3, kFloat);
     if (bake.complete())
       for (std::size_t ti = 0; ti < bake.transfers.size(); ++ti) {
+        if (bake.transfers[ti].field.isMatrix()) continue;
         const std::string prefix = transferAttributePrefix(bake.transfers[ti].settings.mode);
         for (std::size_t k = 0; k < columns[ti].views.size(); ++k)
           prim.attributes[prefix + std::to_string(k)] =
@@ -520,7 +571,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
 
   // extras.prtkit
   Value::Object prt;
-  prt["formatVersion"] = Value(kBakeFormatVersion);
+  prt["formatVersion"] = Value(bake.requiredVersion());
   prt["generator"] = str(bake.generator);
   prt["source"] = str(mesh.source);
   prt["vertexCount"] = count(V);
@@ -533,7 +584,10 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
     Value::Object o;
     o["settings"] = settingsJson(t);
     o["stats"] = statsJson(t.stats);
-    o["attributePrefix"] = str(transferAttributePrefix(t.settings.mode));
+    if (t.field.isMatrix())
+      o["matrixAccessor"] = str(transferMatrixName(t.settings.mode));
+    else
+      o["attributePrefix"] = str(transferAttributePrefix(t.settings.mode));
     Value::Array acc;
     for (int a : columns[ti].rangeAccessors) acc.push_back(Value(a));
     o["accessors"] = Value(std::move(acc));
@@ -723,8 +777,12 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
       bt.settings = parseSettings(so, tw + ".settings", r);
       bt.settings.firstVertex = bake.firstVertex;
       bt.settings.vertexCount = bake.vertexCount;
-      if (bake.find(bt.settings.mode))
-        r.fail(std::string("two transfers of mode ") + toString(bt.settings.mode));
+      if (bake.find(bt.settings.mode, bt.settings.layout))
+        r.fail(std::string("two ") + toString(bt.settings.layout) + " transfers of mode " +
+               toString(bt.settings.mode));
+      if (bt.settings.layout == TransferLayout::Matrix && bake.formatVersion < 2)
+        r.fail(tw + " is a matrix transfer in a version " + std::to_string(bake.formatVersion) +
+               " file (matrices need version 2)");
       const auto bands = r.integer(so, "bands", tw + ".settings", 1, kMaxBands);
       const auto channels = r.integer(so, "channels", tw + ".settings", 1, 3);
       if (channels == 2) r.fail(tw + ".settings.channels must be 1 or 3");
@@ -734,8 +792,20 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
       f.bands = static_cast<int>(bands);
       f.channels = static_cast<int>(channels);
       f.vertexCount = bake.vertexCount;
-      const std::size_t S = f.stride(), K = (S + 3) / 4;
+      f.layout = bt.settings.layout;
+      const std::size_t S = f.stride(), K = f.isMatrix() ? 1 : (S + 3) / 4;
       const Value& acc = r.member(t, "accessors", tw);
+      if (f.isMatrix()) {
+        if (!acc.IsArray() || acc.ArrayLen() != 1 || !acc.Get(0).IsInt())
+          r.fail(tw + ".accessors must list the one accessor of the matrices");
+        // readAccessor checks the declared count against the bytes present before allocating.
+        f.data = readAccessor<float>(model, acc.Get(0).Get<int>(), TINYGLTF_TYPE_SCALAR, 1, kFloat,
+                                     f.vertexCount * S,
+                                     std::string(toString(bt.settings.mode)) + " matrices", r);
+        requireFinite(f.data, std::string(toString(bt.settings.mode)) + " matrices", r);
+        bake.transfers.push_back(std::move(bt));
+        continue;
+      }
       if (!acc.IsArray() || acc.ArrayLen() != K)
         r.fail(tw + ".accessors must list " + std::to_string(K) + " accessors for " +
                std::to_string(bands) + " bands x " + std::to_string(channels) + " channels");
@@ -755,6 +825,28 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
     }
   }
   return bake;
+}
+
+const BakedTransfer& pickTransfer(const BakeFile& bake, std::optional<TransferMode> mode,
+                                  std::optional<TransferLayout> layout, const std::string& file) {
+  if (bake.transfers.empty()) throw Error(file, "the bake holds no transfer");
+  const TransferMode order[] = {TransferMode::Interreflected, TransferMode::Shadowed,
+                                TransferMode::Unshadowed};
+  const TransferLayout layouts[] = {TransferLayout::Matrix, TransferLayout::Vector};
+  for (TransferMode m : order) {
+    if (mode && *mode != m) continue;
+    for (TransferLayout l : layouts) {
+      if (layout && *layout != l) continue;
+      if (const BakedTransfer* t = bake.find(m, l)) return *t;
+    }
+  }
+  const std::string want = std::string(mode ? toString(*mode) + std::string(" ") : "") +
+                           (layout ? toString(*layout) + std::string(" ") : "");
+  std::string have;
+  for (const auto& t : bake.transfers)
+    have += std::string(have.empty() ? "" : ", ") + toString(t.settings.mode) + " " +
+            toString(t.field.layout);
+  throw Error(file, "no " + want + "transfer in the bake (it has " + have + ")");
 }
 
 BakeFile readBake(const std::string& path) {
@@ -784,13 +876,14 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces) {
     if (p.transfers.size() != out.transfers.size()) throw Error(who + " holds different modes");
     for (std::size_t t = 0; t < out.transfers.size(); ++t) {
       BakedTransfer& a = out.transfers[t];
-      const BakedTransfer* b = p.find(a.settings.mode);
+      const BakedTransfer* b = p.find(a.settings.mode, a.field.layout);
       if (!b)
         throw Error(who + std::string(" lacks the ") + toString(a.settings.mode) + " transfer");
       const BakeSettings &sa = a.settings, &sb = b->settings;
       if (sa.bands != sb.bands || sa.samples != sb.samples || sa.bounces != sb.bounces ||
-          sa.seed != sb.seed || sa.sampling != sb.sampling || sa.material != sb.material || sa.layout != sb.layout ||
-          a.field.bands != b->field.bands || a.field.channels != b->field.channels)
+          sa.seed != sb.seed || sa.sampling != sb.sampling || sa.material != sb.material ||
+          sa.layout != sb.layout || a.field.bands != b->field.bands ||
+          a.field.channels != b->field.channels)
         throw Error(who + " was baked with different settings (" + toString(sa.mode) + ")");
       a.field.data.insert(a.field.data.end(), b->field.data.begin(), b->field.data.end());
       a.field.vertexCount += b->field.vertexCount;

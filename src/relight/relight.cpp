@@ -343,6 +343,8 @@ RangeFn pick(int bands, bool rgb) {
 void relight(const TransferField& transfer, const PreparedLight& light, std::span<const Rgb> albedo,
              std::span<Rgb> out) {
   const std::size_t nv = transfer.vertexCount;
+  if (transfer.isMatrix())
+    throw Error("relight: glossy (matrix) transfer depends on the view; use relightGlossy");
   if (transfer.channels != 1 && transfer.channels != 3)
     throw Error("relight: transfer has " + std::to_string(transfer.channels) +
                 " channels (expected 1 or 3)");

@@ -35,7 +35,7 @@ void integrateOverSphere(const GlossyLobe& g, F&& f) {
 
 std::string number(double x) {
   std::ostringstream s;
-  s.precision(9);
+  s.precision(6);
   s << x;
   return s.str();
 }

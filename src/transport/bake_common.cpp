@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "prt/core/error.hpp"
+#include "prt/core/units.hpp"
 #include "prt/sh/sh.hpp"
 
 namespace prt::bakedetail {
@@ -58,19 +59,6 @@ Albedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s) {
                          [](const Rgb& c) { return c.x == c.y && c.y == c.z; });
   }
   return a;
-}
-
-std::string bytesText(std::size_t bytes) {
-  const char* units[] = {"B", "KB", "MB", "GB", "TB", "PB", "EB"};
-  double x = static_cast<double>(bytes);
-  int u = 0;
-  while (x >= 1000.0 && u < 6) {
-    x /= 1000.0;
-    ++u;
-  }
-  char buf[32];
-  std::snprintf(buf, sizeof buf, u == 0 ? "%.0f %s" : "%.3g %s", x, units[u]);
-  return buf;
 }
 
 std::size_t physicalMemoryBytes() {

@@ -53,8 +53,6 @@ void validateBake(const Mesh& mesh, const BakeSettings& s);
 /// The bounce albedo: the material's diffuse colour, else the mesh's, else white.
 Albedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s);
 
-/// "2.5 KB", "26 GB": decimal units, three digits.
-std::string bytesText(std::size_t bytes);
 std::size_t physicalMemoryBytes();
 /// Throws prt::Error stating the figure when the bake would not fit in this machine's memory.
 void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint& f);

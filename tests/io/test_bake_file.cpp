@@ -125,7 +125,9 @@ void expectSameBake(const BakeFile& a, const BakeFile& b) {
     EXPECT_EQ(x.settings.bounces, y.settings.bounces);
     EXPECT_EQ(x.settings.seed, y.settings.seed);
     EXPECT_EQ(x.settings.sampling, y.settings.sampling);
-    EXPECT_EQ(x.settings.material.diffuse, y.settings.material.diffuse);
+    EXPECT_EQ(x.settings.material, y.settings.material);
+    EXPECT_EQ(x.settings.layout, y.settings.layout);
+    EXPECT_EQ(x.field.layout, y.field.layout);
     EXPECT_EQ(x.settings.firstVertex, y.settings.firstVertex);
     EXPECT_EQ(x.settings.vertexCount, y.settings.vertexCount);
     EXPECT_EQ(x.stats.rays, y.stats.rays);
@@ -165,13 +167,76 @@ TEST(BakeFile, RoundTripIsBitExact) {
   const BakeFile b = sampleBake();
   const std::string bytes = encodeBake(b);
   const BakeFile r = decodeBake(asBytes(bytes), "mem.glb");
-  EXPECT_EQ(r.formatVersion, kBakeFormatVersion);
+  EXPECT_EQ(r.formatVersion, 1);  // vectors only: still version 1, for older readers
   EXPECT_EQ(r.generator, "prtkit test");
   EXPECT_EQ(r.mesh.source, "test-mesh");
   EXPECT_TRUE(r.complete());
   expectSameBake(b, r);
   // Encoding is a pure function of the bake: the same bytes again.
   EXPECT_EQ(encodeBake(r), bytes);
+}
+
+BakedTransfer matrixTransfer(TransferMode mode, int bands, int channels, std::size_t n) {
+  BakedTransfer t = transfer(mode, bands, channels, 0, n, 9);
+  t.settings.layout = TransferLayout::Matrix;
+  t.settings.material = parseMaterial("ggx?roughness=0.35&ks=0.25,0.5,0.75&kd=0.5");
+  TransferField f = TransferField::zeros(TransferLayout::Matrix, bands, channels, n);
+  for (std::size_t k = 0; k < f.data.size(); ++k)
+    f.data[k] = static_cast<float>(std::sin(0.37 * double(k)) / 3.0);
+  t.field = std::move(f);
+  return t;
+}
+
+TEST(BakeFile, MatricesNeedVersionTwoAndRoundTripBitExact) {
+  BakeFile b = sampleBake();
+  // A shadowed matrix beside the shadowed vector: (mode, layout) pairs are unique.
+  b.transfers.push_back(matrixTransfer(TransferMode::Shadowed, 3, 1, b.vertexCount));
+  b.transfers.push_back(matrixTransfer(TransferMode::Interreflected, 2, 3, b.vertexCount));
+  const std::string bytes = encodeBake(b);
+  const BakeFile r = decodeBake(asBytes(bytes), "mem.glb");
+  EXPECT_EQ(r.formatVersion, 2);
+  expectSameBake(b, r);
+  EXPECT_EQ(encodeBake(r), bytes);
+  ASSERT_NE(r.find(TransferMode::Shadowed, TransferLayout::Matrix), nullptr);
+  ASSERT_NE(r.find(TransferMode::Shadowed, TransferLayout::Vector), nullptr);
+  // The policy: the richest mode, a matrix before a vector.
+  EXPECT_EQ(&pickTransfer(r, std::nullopt, std::nullopt, "x"),
+            r.find(TransferMode::Interreflected, TransferLayout::Matrix));
+  EXPECT_EQ(&pickTransfer(r, TransferMode::Shadowed, TransferLayout::Vector, "x"),
+            r.find(TransferMode::Shadowed, TransferLayout::Vector));
+  EXPECT_THROW(pickTransfer(r, TransferMode::Unshadowed, std::nullopt, "x"), Error);
+  // Matrices are not vertex attributes (a GPU guarantees only 16): an accessor named in extras.
+  const Glb g = splitGlb(bytes);
+  for (const auto& mesh : g.json["meshes"])
+    for (const auto& [name, index] : mesh["primitives"][0]["attributes"].items())
+      EXPECT_EQ(name.find("_M"), std::string::npos) << name;
+  const auto& t2 = g.json["extras"]["prtkit"]["transfers"][2];
+  EXPECT_EQ(t2["matrixAccessor"], "_PRT_SHADOWED_M");
+  EXPECT_EQ(t2["settings"]["layout"], "matrix");
+  // A file that claims version 1 but holds a matrix is refused, naming the problem.
+  nlohmann::json doc = g.json;
+  doc["extras"]["prtkit"]["formatVersion"] = 1;
+  std::string json = doc.dump();
+  while (json.size() % 4) json.push_back(' ');
+  std::string edited = bytes.substr(0, 12);
+  const auto put = [&](std::uint32_t v) { edited.append(reinterpret_cast<const char*>(&v), 4); };
+  put(static_cast<std::uint32_t>(json.size()));
+  put(0x4E4F534Au);
+  edited += json;
+  const std::size_t oldBinAt = 20 + [&] {
+    std::uint32_t x;
+    std::memcpy(&x, bytes.data() + 12, 4);
+    return x;
+  }();
+  edited += bytes.substr(oldBinAt);
+  const std::uint32_t total = static_cast<std::uint32_t>(edited.size());
+  std::memcpy(edited.data() + 8, &total, 4);
+  try {
+    decodeBake(asBytes(edited), "old.glb");
+    FAIL() << "a matrix in a version-1 file was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("version 1"), std::string::npos) << e.what();
+  }
 }
 
 TEST(BakeFile, WriteAndReadThroughDisk) {
@@ -361,13 +426,13 @@ TEST(BakeFile, NewerFormatVersionIsRejectedWithOneLine) {
   const std::string key = "\"formatVersion\":1";
   const auto at = bytes.find(key);
   ASSERT_NE(at, std::string::npos);
-  bytes[at + key.size() - 1] = '2';  // same length: the container stays valid
+  bytes[at + key.size() - 1] = '3';  // same length: the container stays valid
   try {
     decodeBake(asBytes(bytes), "new.glb");
     FAIL() << "accepted a newer format";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
-                 "new.glb: bake format version 2 is newer than this prtkit understands (1)");
+                 "new.glb: bake format version 3 is newer than this prtkit understands (2)");
   }
 }
 

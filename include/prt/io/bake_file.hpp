@@ -21,23 +21,26 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "prt/geometry/mesh.hpp"
-#include "prt/transport/bake.hpp"
 #include "prt/transfer/field.hpp"
+#include "prt/transport/bake.hpp"
 
 namespace prt {
 
 /// The bake-file format version this prtkit writes and the newest it reads.
-inline constexpr int kBakeFormatVersion = 1;
+/// Version 1: vector transfer as vertex attributes. Version 2 adds matrix (glossy) transfer in
+/// accessors named from extras; a bake without matrices is still written as version 1.
+inline constexpr int kBakeFormatVersion = 2;
 
 /// One transfer stored in a bake file, with the settings and statistics that produced it.
 /// settings.firstVertex / vertexCount equal the file's vertex range.
 struct BakedTransfer {
-  BakeSettings settings;  ///< settings.mode is the transfer's mode (unique within a file)
+  BakeSettings settings;  ///< mode and layout equal the field's; (mode, layout) unique in a file
   BakeStats stats;
   TransferField field;  ///< rows for the file's vertex range (field.vertexCount = range count)
 };
@@ -47,13 +50,17 @@ struct BakeFile {
   std::vector<BakedTransfer> transfers;    ///< distinct modes, all over the same vertex range
   std::size_t firstVertex = 0;             ///< the vertex range the transfers cover
   std::size_t vertexCount = 0;             ///< (equal to mesh.vertexCount() for a complete bake)
-  int formatVersion = kBakeFormatVersion;  ///< as read (writeBake always writes the current one)
+  int formatVersion = kBakeFormatVersion;  ///< as read (writeBake writes requiredVersion())
   std::string generator = "prtkit";        ///< "prtkit 0.1.0"; written to asset.generator too
 
   /// True if the transfers cover every vertex of the mesh.
   bool complete() const { return firstVertex == 0 && vertexCount == mesh.vertexCount(); }
-  /// The transfer of `mode`, or nullptr.
+  /// The first transfer of `mode` (any layout), or nullptr.
   const BakedTransfer* find(TransferMode mode) const;
+  /// The transfer of `mode` and `layout`, or nullptr.
+  const BakedTransfer* find(TransferMode mode, TransferLayout layout) const;
+  /// The oldest format version that holds this bake (2 if it has matrices, else 1).
+  int requiredVersion() const;
 };
 
 /// Serialises to GLB bytes. Throws prt::Error if the bake is inconsistent (row counts, bands,
@@ -68,13 +75,22 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
 /// Reads and validates a bake file.
 BakeFile readBake(const std::string& path);
 
+/// The transfer to relight with — the one policy every verb and the viewers share: of `mode`
+/// if given, else the richest the bake holds (interreflected, then shadowed, then unshadowed);
+/// of `layout` if given, else a matrix (glossy) before a vector of the same mode. Throws
+/// prt::Error("FILE: no ... transfer in the bake (it has ...)").
+const BakedTransfer& pickTransfer(const BakeFile& bake, std::optional<TransferMode> mode,
+                                  std::optional<TransferLayout> layout, const std::string& file);
+
 /// Concatenates bakes of disjoint, adjacent vertex ranges of the same mesh with the same modes
 /// and settings (in any order) into one bake of the union range. Statistics are combined: rays
 /// and times add, mean errors average weighted by vertex count, maxima take the maximum.
 /// Throws prt::Error naming the first mismatch, gap or overlap.
 BakeFile mergeBakes(std::vector<BakeFile> pieces);
 
-/// The glTF attribute name prefix of a mode's transfer: "_PRT_SHADOWED_T" etc.
+/// The glTF attribute name prefix of a mode's vector transfer: "_PRT_SHADOWED_T" etc.
 std::string transferAttributePrefix(TransferMode mode);
+/// The accessor name of a mode's matrix transfer: "_PRT_SHADOWED_M" etc.
+std::string transferMatrixName(TransferMode mode);
 
 }  // namespace prt
