@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <random>
 
+#include "common/scratch.hpp"
 #include "prt/core/error.hpp"
 #include "prt/io/bake_file.hpp"
 
@@ -175,8 +176,8 @@ TEST(BakeFile, RoundTripIsBitExact) {
 }
 
 TEST(BakeFile, WriteAndReadThroughDisk) {
-  const auto dir = std::filesystem::temp_directory_path() / "prt_test_bake_file";
-  std::filesystem::create_directories(dir);
+  const prt::testing::ScratchDir scratch;
+  const std::filesystem::path& dir = scratch.path();
   const std::string path = (dir / "b.glb").string();
   const BakeFile b = sampleBake();
   writeBake(path, b);
@@ -187,7 +188,6 @@ TEST(BakeFile, WriteAndReadThroughDisk) {
   const std::string badPath = (dir / "bad.glb").string();
   EXPECT_THROW(writeBake(badPath, bad), Error);
   EXPECT_FALSE(std::filesystem::exists(badPath));
-  std::filesystem::remove_all(dir);
 }
 
 TEST(BakeFile, GltfRulesHold) {
