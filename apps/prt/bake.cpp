@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/geometry/load.hpp"
@@ -59,6 +60,8 @@ void parseRange(const std::string& s, std::size_t vertices, std::size_t& first,
   auto num = [&](const std::string& t) -> std::size_t {
     if (t.empty() || t.find_first_not_of("0123456789") != std::string::npos)
       throw Error("--range '" + s + "': expected FIRST:END vertex indices, e.g. 0:5000");
+    if (t.size() > 15)  // beyond any mesh; also keeps std::stoull from overflowing
+      throw Error(fmt::format("--range {}: {} is past the vertex count {}", s, t, vertices));
     return std::stoull(t);
   };
   if (colon == std::string::npos) throw Error("--range '" + s + "': expected FIRST:END");
@@ -93,6 +96,9 @@ void runBake(const BakeArgs& a) {
   std::optional<Rgb> albedo;
   if (!a.albedo.empty()) albedo = parseAlbedo(a.albedo);
   if (fileExtension(a.output) != "glb") throw Error(a.output + ": the bake file must end in .glb");
+  std::vector<NamedPath> inputs;
+  for (const std::string& in : a.inputs) inputs.push_back({"input", in});
+  checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -100,6 +106,10 @@ void runBake(const BakeArgs& a) {
   BakeFile file;
   file.mesh = loadScene(a.inputs, &report);
   for (const auto& w : report.warnings) warn(w);
+  // --albedo replaces the mesh's own albedo in the mesh the bake stores, so every consumer of
+  // the file (render, reference, validate, the viewer) relights with the albedo the transfer's
+  // bounces were baked with.
+  if (albedo) file.mesh.albedo.assign(file.mesh.vertexCount(), *albedo);
   const Mesh& mesh = file.mesh;
   const double loadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -171,6 +181,7 @@ void addBakeCommand(CLI::App& root) {
   cmd->add_option("--bounces", args->bounces, "Inter-reflection bounces (interreflected mode)")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed (results are identical for any thread count)")
+      ->check(unsignedInt())
       ->capture_default_str();
   cmd->add_option(
          "--sampling", args->sampling,

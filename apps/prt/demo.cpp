@@ -24,6 +24,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/builtin.hpp"
@@ -304,6 +305,13 @@ void runDemo(const DemoArgs& a) {
   render::FrameSettings frame;
   parseSize(a.size, frame.width, frame.height);
   const std::vector<std::string> envSpecs = a.envs.empty() ? defaultEnvironments() : a.envs;
+  // The output folder (and its .partial sibling) is replaced as a whole: no input may live there.
+  {
+    std::vector<NamedPath> inputs = {{"--mesh", a.mesh == "auto" ? "" : a.mesh}};
+    for (const std::string& e : envSpecs) inputs.push_back({"--env", e});
+    checkOutputFolder({"-o", a.output}, inputs);
+    checkOutputFolder({"-o", a.output + ".partial"}, inputs);
+  }
 
   // Inputs first: a bad mesh or environment fails before anything is written.
   const Scene scene = makeScene(a.mesh);
