@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "cli.hpp"
@@ -154,6 +155,15 @@ void runBake(const BakeArgs& a) {
                     "radiance mean {:.2e} max {:.2e}; {} channel(s)",
                     toString(mode), st.stdErrT0Mean, st.stdErrT0Max, st.stdErrConstMean,
                     st.stdErrConstMax, t.field.channels));
+    // Never write a bake no reader can use: a non-finite coefficient (an absurd material albedo
+    // amplified by the bounces, coordinates beyond float range) fails here, with the vertex.
+    const std::size_t stride = t.field.stride();
+    for (std::size_t k = 0; k < t.field.data.size(); ++k)
+      if (!std::isfinite(t.field.data[k]))
+        throw Error(mesh.source,
+                    fmt::format("{} transfer of vertex {} is not finite (check the material "
+                                "albedos and coordinates); nothing written",
+                                toString(mode), file.firstVertex + k / stride));
     file.transfers.push_back(std::move(t));
   }
   writeBake(a.output, file);

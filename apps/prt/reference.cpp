@@ -9,6 +9,7 @@
 //   .bin   "PRTREF1\0", uint32 count, then count × (uint32 vertex, 3 float radiance,
 //          3 float standard error), all little-endian.
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -101,6 +102,12 @@ void runReference(const ReferenceArgs& a) {
   rs.vertices = render::vertexSubset(file.mesh.vertexCount(), a.vertices, a.seed);
   const render::ReferenceResult r =
       render::renderReference(file.mesh, *occluder, env.env, rs, progressBar("reference"));
+  for (std::size_t i = 0; i < r.radiance.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(r.radiance[i][c]) || !std::isfinite(r.stdError[i][c]))
+        throw Error(a.light, "the radiance at vertex " + std::to_string(r.vertices[i]) +
+                                 " is not finite (the environment is too bright for 32-bit "
+                                 "floats); nothing written");
   if (fileExtension(a.output) == "json")
     writeFileAtomically(a.output, toJson(r, a, toString(rs.mode), rs.bounces));
   else

@@ -182,6 +182,15 @@ TEST_F(HardeningCli, NonFiniteCoefficientsAreNeverWritten) {
   write("bright.hdr", hdr);
   expectCleanFailure("light bright.hdr -o out/l.json --preview out/p.png", "not finite");
   expectCleanFailure("light bright.hdr --format games202 -o out/l.txt", "too bright");
+  // A material albedo of 1e30, amplified by two bounces between a floor and a ceiling that face
+  // each other, overflows the transfer: no bake is written (whether the loader or the bake refuses
+  // it, the line names the scene's files).
+  write("tri.mtl", "newmtl hot\nKd 1e30 1e30 1e30\n");
+  write("tri.obj",
+        "mtllib tri.mtl\nv -1 0 -1\nv 1 0 -1\nv 0 0 1\nv -1 0.5 -1\nv 1 0.5 -1\nv 0 0.5 1\n"
+        "usemtl hot\nf 1 3 2\nf 4 5 6\n");
+  expectCleanFailure("bake tri.obj --mode interreflected --bounces 2 --samples 16 -o out/t.glb",
+                     "tri.");
 }
 
 // --- messages -----------------------------------------------------------------------------

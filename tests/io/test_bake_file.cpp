@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <random>
@@ -381,6 +382,23 @@ TEST(BakeFile, ForeignGltfIsRejected) {
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("not a prtkit bake file"), std::string::npos) << e.what();
+  }
+}
+
+// A seed string past 2^64 - 1 is our one-line error, not std::stoull's bare "stoull".
+TEST(BakeFile, SeedPastTwoToTheSixtyFourIsRejectedByName) {
+  BakeFile b = sampleBake();
+  b.transfers[0].settings.seed = UINT64_MAX;
+  std::string bytes = encodeBake(b);
+  const auto at = bytes.find("\"18446744073709551615\"");
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 1] = '9';  // same length: the container stays valid
+  try {
+    decodeBake(asBytes(bytes), "big.glb");
+    FAIL() << "accepted a seed past 2^64";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("big.glb: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("larger than 2^64 - 1"), std::string::npos) << e.what();
   }
 }
 
