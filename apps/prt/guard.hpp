@@ -75,9 +75,10 @@ inline void checkOutputs(const std::vector<NamedPath>& outputs,
     if (detail::isSpec(o.path)) continue;
     for (const NamedPath& in : inputs)
       if (!detail::isSpec(in.path) && detail::sameFile(o.path, in.path))
-        throw Error(o.path, o.option + " would overwrite the input " + in.path +
-                                (in.option.empty() ? "" : " (" + in.option + ")") +
-                                "; choose another output name");
+        throw Error(o.path,
+                    o.option + " would overwrite the input " + in.path +
+                        (in.option.empty() || in.option == "input" ? "" : " (" + in.option + ")") +
+                        "; choose another output name");
     for (std::size_t j = 0; j < k; ++j)
       if (!detail::isSpec(outputs[j].path) && detail::sameFile(o.path, outputs[j].path))
         throw Error(o.path, o.option + " and " + outputs[j].option + " name the same file");

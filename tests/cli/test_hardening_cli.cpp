@@ -84,6 +84,16 @@ TEST_F(HardeningCli, OutputsNeverOverwriteInputs) {
   EXPECT_NE(demo.rc, 0);
   EXPECT_NE(demo.err.find("holds the input d/mesh.obj"), std::string::npos) << demo.err;
   EXPECT_TRUE(std::filesystem::exists(dir_ / "d/mesh.obj"));
+  // A face folder: its six images are inputs (a light.txt beside them is fine, as in the course).
+  ASSERT_EQ(prt("-q render b.glb --size 16x16 -o face.png").rc, 0);
+  std::filesystem::create_directories(dir_ / "Sky");
+  for (const char* f : {"posx", "negx", "posy", "negy", "posz", "negz"})
+    std::filesystem::copy_file(dir_ / "face.png", dir_ / "Sky" / (std::string(f) + ".png"));
+  refused("light Sky/ -o Sky/posx.png", "Sky/posx.png");
+  refused("light Sky --preview Sky/negz.png --format games202 -o out/l.txt", "Sky/negz.png");
+  EXPECT_EQ(prt("-q light Sky/ --format games202 -o Sky/light.txt").rc, 0);
+  EXPECT_EQ(slurp(dir_ / "Sky/posx.png"), slurp(dir_ / "face.png"));
+  EXPECT_EQ(slurp(dir_ / "Sky/negz.png"), slurp(dir_ / "face.png"));
   // Nothing above changed an input.
   EXPECT_EQ(slurp(dir_ / "b.glb"), bake);
   EXPECT_EQ(slurp(dir_ / "env.exr"), env);
