@@ -7,9 +7,11 @@
 
 #include <fmt/format.h>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/units.hpp"
@@ -62,6 +64,8 @@ void parseRange(const std::string& s, std::size_t vertices, std::size_t& first,
   auto num = [&](const std::string& t) -> std::size_t {
     if (t.empty() || t.find_first_not_of("0123456789") != std::string::npos)
       throw Error("--range '" + s + "': expected FIRST:END vertex indices, e.g. 0:5000");
+    if (t.size() > 15)  // beyond any mesh; also keeps std::stoull from overflowing
+      throw Error(fmt::format("--range {}: {} is past the vertex count {}", s, t, vertices));
     return std::stoull(t);
   };
   if (colon == std::string::npos) throw Error("--range '" + s + "': expected FIRST:END");
@@ -100,6 +104,9 @@ void runBake(const BakeArgs& a) {
   if (!a.material.empty()) material = parseMaterial(a.material);
   if (albedo) material.diffuse = albedo;
   if (fileExtension(a.output) != "glb") throw Error(a.output + ": the bake file must end in .glb");
+  std::vector<NamedPath> inputs;
+  for (const std::string& in : a.inputs) inputs.push_back({"input", in});
+  checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -107,6 +114,10 @@ void runBake(const BakeArgs& a) {
   BakeFile file;
   file.mesh = loadScene(a.inputs, &report);
   for (const auto& w : report.warnings) warn(w);
+  // --albedo (or --material kd=...) replaces the mesh's own albedo in the mesh the bake stores, so every consumer of
+  // the file (render, reference, validate, the viewer) relights with the albedo the transfer's
+  // bounces were baked with.
+  if (material.diffuse) file.mesh.albedo.assign(file.mesh.vertexCount(), *material.diffuse);
   const Mesh& mesh = file.mesh;
   const double loadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -164,6 +175,15 @@ void runBake(const BakeArgs& a) {
                     "radiance mean {:.2e} max {:.2e}; {} channel(s)",
                     toString(mode), st.stdErrT0Mean, st.stdErrT0Max, st.stdErrConstMean,
                     st.stdErrConstMax, t.field.channels));
+    // Never write a bake no reader can use: a non-finite coefficient (an absurd material albedo
+    // amplified by the bounces, coordinates beyond float range) fails here, with the vertex.
+    const std::size_t stride = t.field.stride();
+    for (std::size_t k = 0; k < t.field.data.size(); ++k)
+      if (!std::isfinite(t.field.data[k]))
+        throw Error(mesh.source,
+                    fmt::format("{} transfer of vertex {} is not finite (check the material "
+                                "albedos and coordinates); nothing written",
+                                toString(mode), file.firstVertex + k / stride));
     file.transfers.push_back(std::move(t));
   }
   writeBake(a.output, file);
@@ -191,6 +211,7 @@ void addBakeCommand(CLI::App& root) {
   cmd->add_option("--bounces", args->bounces, "Inter-reflection bounces (interreflected mode)")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed (results are identical for any thread count)")
+      ->check(unsignedInt())
       ->capture_default_str();
   cmd->add_option(
          "--sampling", args->sampling,

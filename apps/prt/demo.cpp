@@ -24,6 +24,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/builtin.hpp"
@@ -215,8 +216,9 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
     << " Monte Carlo samples per vertex (environment importance sampling and cosine sampling "
        "combined by MIS), no spherical harmonics anywhere. Total "
     << fmt::format("{:.0f}", totalSeconds) << " s.</p>\n";
-  h << "<p class=\"note\">How to read it: <b>unshadowed</b> PRT should match the reference up to "
-       "the SH truncation of the light (the table's <i>truncation floor</i>). <b>Shadowed</b> and "
+  h << "<p class=\"note\">How to read it: every mode should match the reference up to the SH "
+       "truncation (the table's <i>truncation floor</i>: the error a perfect transfer of that many "
+       "bands would still have) plus noise. <b>Shadowed</b> and "
        "<b>inter-reflected</b> PRT carry only the low-frequency part of visibility × light: "
        "ambient occlusion, soft shadows and colour bleeding come out right, but a sharp sun "
        "shadow is blurred (and can ring) at "
@@ -261,14 +263,15 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
                "(the reference's own noise: {:.1f}%)",
                100 * m.errorScale, 100 * r.rows.back().refStdErr)
         << "</figcaption></figure></div>\n";
-      h << "<table><tr><th>bands</th><th>rel. RMSE</th><th>mean rel. error</th><th>max rel. "
-           "error</th><th>truncation floor</th><th>reference std. error</th></tr>\n";
+      h << "<table><tr><th>bands</th><th>rel. RMSE</th><th>energy-weighted</th><th>mean rel. "
+           "error</th><th>max rel. error</th><th>truncation floor</th><th>reference std. "
+           "error</th></tr>\n";
       for (const render::BandRow& row : r.rows)
         h << fmt::format(
-            "<tr><td>{}</td><td>{:.2f}%</td><td>{:.2f}%</td><td>{:.1f}%</td><td>{:.2f}%</td>"
-            "<td>{:.2f}%</td></tr>\n",
-            row.bands, 100 * row.relRmse, 100 * row.meanRel, 100 * row.maxRel, 100 * row.floor,
-            100 * row.refStdErr);
+            "<tr><td>{}</td><td>{:.2f}%</td><td>{:.2f}%</td><td>{:.2f}%</td><td>{:.1f}%</td>"
+            "<td>{:.2f}%</td><td>{:.2f}%</td></tr>\n",
+            row.bands, 100 * row.relRmse, 100 * row.energyRel, 100 * row.meanRel, 100 * row.maxRel,
+            100 * row.floor, 100 * row.refStdErr);
       h << "</table></div>\n";
     }
     h << "<p><a href=\"" << L.comparison
@@ -286,8 +289,11 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
   }
   h << "<p>Made by <code>prt demo</code> (prtkit " << PRT_VERSION
     << "). Relative error per vertex: sqrt(Σ<sub>c</sub>(R<sub>PRT</sub>−R<sub>ref</sub>)² / "
-       "Σ<sub>c</sub>(R<sub>ref</sub>² + ε)); the truncation floor is the error a perfect "
-       "unshadowed transfer would still have at that band count (see docs/validation.md).</p>\n"
+       "Σ<sub>c</sub>(R<sub>ref</sub>² + ε)); energy-weighted: ‖R<sub>PRT</sub>−R<sub>ref</sub>‖ / "
+       "‖R<sub>ref</sub>‖ over all vertices; the truncation floor is the error a perfect "
+       "transfer would still have at that band count: R(L − L<sub>b</sub>), by quadrature "
+       "(unshadowed) or by the reference run with the residual light (shadowed, inter-reflected; "
+       "see docs/validation.md).</p>\n"
        "</body></html>\n";
   writeFileAtomically(path, h.str());
 }
@@ -304,6 +310,13 @@ void runDemo(const DemoArgs& a) {
   render::FrameSettings frame;
   parseSize(a.size, frame.width, frame.height);
   const std::vector<std::string> envSpecs = a.envs.empty() ? defaultEnvironments() : a.envs;
+  // The output folder (and its .partial sibling) is replaced as a whole: no input may live there.
+  {
+    std::vector<NamedPath> inputs = {{"--mesh", a.mesh == "auto" ? "" : a.mesh}};
+    for (const std::string& e : envSpecs) inputs.push_back({"--env", e});
+    checkOutputFolder({"-o", a.output}, inputs);
+    checkOutputFolder({"-o", a.output + ".partial"}, inputs);
+  }
 
   // Inputs first: a bad mesh or environment fails before anything is written.
   const Scene scene = makeScene(a.mesh);

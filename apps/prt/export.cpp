@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/io/bake_file.hpp"
@@ -34,6 +35,7 @@ void runExport(const ExportArgs& a) {
     throw Error("--layout " + a.layout + ": expected faces (the course's file) or vertices");
   std::optional<ChannelSelect> channel;
   if (!a.channel.empty()) channel = parseChannelSelect(a.channel);
+  checkOutputs({{"-o", a.output}}, {{"input", a.input}});
   checkWritable(a.output);
 
   const BakeFile bake = readBake(a.input);

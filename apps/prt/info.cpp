@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/units.hpp"
@@ -185,17 +186,35 @@ bool isLightTxt(const std::string& path) {
   return tokens == 3;
 }
 
+void describe(const std::string& path);
+
 void runInfo(const std::vector<std::string>& files) {
   bool first = true;
   for (const auto& path : files) {
     if (!first) std::cout << '\n';
     first = false;
+    // A parser's own exception (a JSON library's "number overflow ...") does not name the file:
+    // name it here. Our errors already do; out-of-memory is reported as such by main.
+    try {
+      describe(path);
+    } catch (const Error&) {
+      throw;
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw Error(path, oneLine(e.what(), 200));
+    }
+  }
+}
+
+void describe(const std::string& path) {
+  {
     const std::string ext = fileExtension(path);
     std::error_code ec;
     if (envmap::isBuiltin(path) || std::filesystem::is_directory(path, ec) ||
         image::isReadableImageExtension(ext)) {
       describeEnvironment(path);
-      continue;
+      return;
     }
     const auto bytes = readFileBytes(path);
     if (bytes.size() >= 4 && std::string(bytes.begin(), bytes.begin() + 4) == "glTF") {

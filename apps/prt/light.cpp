@@ -5,11 +5,15 @@
 //
 // Everything is validated before any file is written; outputs are written atomically.
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <filesystem>
 #include <optional>
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/builtin.hpp"
@@ -84,6 +88,7 @@ void runLight(const LightOptions& o) {
                                       "got '" +
                                       o.window + "'");
   const image::ToneMap tone = image::parseToneMap(o.toneMap);
+  checkOutputs({{"-o", o.output}, {"--preview", o.preview}}, {{"input", o.input}});
   checkWritable(o.output);
   if (!o.preview.empty()) {
     checkWritable(o.preview);
@@ -127,6 +132,11 @@ void runLight(const LightOptions& o) {
     f = envmap::projectEnvironment(loaded.env, o.bands, progress);
   }
 
+  // The files actually read (a face folder's six images) are inputs too.
+  std::vector<NamedPath> read;
+  for (const std::string& f : loaded.files) read.push_back({"input", f});
+  checkOutputs({{"-o", o.output}, {"--preview", o.preview}}, read);
+
   switch (window) {
     case sh::Window::None:
       break;
@@ -145,6 +155,16 @@ void runLight(const LightOptions& o) {
   }
   const Mat3d rotation = rotationEulerXYZ(rot[0], rot[1], rot[2]);
   if (rot != std::array<double, 3>{0, 0, 0}) f = sh::Rotation(o.bands, rotation).apply(f);
+
+  // Coefficients beyond float range (an extremely bright image) would be written as "inf",
+  // which no reader accepts: refuse with the figure instead.
+  for (std::size_t k = 0; k < f.c.size(); ++k)
+    for (int ch = 0; ch < 3; ++ch)
+      if (!std::isfinite(f.c[k][ch]))
+        throw Error(o.input, fmt::format("SH coefficient {} ({} channel) is not finite: the "
+                                         "environment is too bright for 32-bit floats (scale it "
+                                         "down); nothing written",
+                                         k, "RGB"[ch]));
 
   // The preview first (it is the one that can still fail on encoding), then the light.
   if (!o.preview.empty()) {
@@ -191,8 +211,10 @@ void addLightCommand(CLI::App& root) {
   cmd->add_option("--preview", opts->preview,
                   "Preview image: source, SH radiance, SH irradiance/pi");
   cmd->add_option("--preview-width", opts->previewWidth, "Preview width in pixels")
+      ->check(intRange(8, 16384))
       ->capture_default_str();
-  cmd->add_option("--exposure", opts->exposure, "Preview exposure in stops (default: automatic)");
+  cmd->add_option("--exposure", opts->exposure, "Preview exposure in stops (default: automatic)")
+      ->check(finite(-64, 64));
   cmd->add_option("--tonemap", opts->toneMap, "Preview tone mapper: clamp|reinhard|aces")
       ->capture_default_str();
   cmd->add_flag("--strict", opts->strict, "Fail on NaN/Inf or negative pixels instead of warning");

@@ -1,13 +1,17 @@
 // prt: the prtkit command line. `prt VERB --help` for each verb.
 
+#include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <mutex>
 
 #include <unistd.h>
 
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 
@@ -27,21 +31,45 @@ void info(const std::string& line) {
 }
 
 void warn(const std::string& line) {
-  std::cerr << "prt: warning: " << line << '\n';
+  std::cerr << "prt: warning: " << oneLine(line) << '\n';
 }
 
 ProgressFn progressBar(const std::string& label) {
-  const bool show = !globals().quiet && ::isatty(STDERR_FILENO);
-  return [show, label, last = -1](double f) mutable {
+  if (globals().quiet) return [](double) { return !cancelRequested(); };
+  if (::isatty(STDERR_FILENO)) {
+    return [label, last = -1](double f) mutable {
+      if (cancelRequested()) return false;
+      const int pct = static_cast<int>(f * 100.0);
+      if (pct == last) return true;
+      last = pct;
+      const int width = 30, filled = pct * width / 100;
+      std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%%s", label.c_str(), filled,
+                   "##############################", width - filled, "", pct,
+                   pct >= 100 ? "\n" : "");
+      std::fflush(stderr);
+      return true;
+    };
+  }
+  // Not a terminal (a pipe, a log file, CI): a plain line at most every few seconds, so long
+  // work is never silent — "reference: 35% (12 s)". PRT_PROGRESS_INTERVAL (seconds, default 5)
+  // sets the spacing; the tests set it to 0.
+  double interval = 5.0;
+  if (const char* env = std::getenv("PRT_PROGRESS_INTERVAL")) {
+    char* end = nullptr;
+    const double v = std::strtod(env, &end);
+    if (end != env && *end == '\0' && std::isfinite(v) && v >= 0) interval = v;
+  }
+  using Clock = std::chrono::steady_clock;
+  return [label, interval, start = Clock::now(), next = interval, lastPct = -1](double f) mutable {
     if (cancelRequested()) return false;
-    if (!show) return true;
+    const double t = std::chrono::duration<double>(Clock::now() - start).count();
     const int pct = static_cast<int>(f * 100.0);
-    if (pct == last) return true;
-    last = pct;
-    const int width = 30, filled = pct * width / 100;
-    std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%%s", label.c_str(), filled,
-                 "##############################", width - filled, "", pct, pct >= 100 ? "\n" : "");
-    std::fflush(stderr);
+    if (t >= next && pct != lastPct && pct < 100) {
+      std::fprintf(stderr, "%s: %d%% (%.0f s)\n", label.c_str(), pct, t);
+      std::fflush(stderr);
+      lastPct = pct;
+      next = t + interval;
+    }
     return true;
   };
 }
@@ -55,6 +83,28 @@ extern "C" void onSigint(int) {
   prt::requestCancel();
 }
 
+/// "prt bake", or "prt" before a verb was parsed.
+std::string verbName(const CLI::App& app) {
+  std::string verb = "prt";
+  for (const auto* sub : app.get_subcommands()) verb += " " + sub->get_name();
+  return verb;
+}
+
+/// What a verb was doing, for messages that cannot say more ("out of memory while ...").
+const char* activity(const std::string& verb) {
+  if (verb == "prt light") return "loading or projecting the environment";
+  if (verb == "prt bake") return "loading or baking the scene";
+  if (verb == "prt export") return "reading or converting the bake";
+  if (verb == "prt info") return "reading the file";
+  if (verb == "prt render") return "rendering";
+  if (verb == "prt validate") return "validating";
+  if (verb == "prt reference") return "computing the reference";
+  if (verb == "prt view") return "viewing";
+  if (verb == "prt merge") return "merging the bakes";
+  if (verb == "prt demo") return "running the demo";
+  return "reading the command line";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -65,7 +115,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("prt ") + PRT_VERSION);
   auto& g = globals();
   app.add_option("-j,--threads", g.threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(intRange(0, 4096));
   app.add_flag("-q,--quiet", g.quiet, "No progress or chatter on stderr");
   app.add_flag("-v,--verbose", g.verbose, "More detail on stderr");
 
@@ -79,6 +129,7 @@ int main(int argc, char** argv) {
   addViewCommand(app);
   addMergeCommand(app);
   addDemoCommand(app);
+  oneValuePerOption(app);
 
   std::signal(SIGINT, onSigint);
   std::unique_ptr<prt::ThreadLimit> limit;
@@ -89,8 +140,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // One line, like every other error: "prt VERB: error: what (see prt VERB --help)".
-    std::string verb = "prt";
-    for (auto* sub : app.get_subcommands()) verb += " " + sub->get_name();
+    const std::string verb = verbName(app);
     if (app.get_subcommands().empty()) {
       // "prt frob": name the unknown verb and the known ones, not "a subcommand is required".
       for (int i = 1; i < argc; ++i) {
@@ -103,19 +153,37 @@ int main(int argc, char** argv) {
         std::string verbs;
         for (const CLI::App* sub : app.get_subcommands({}))
           verbs += (verbs.empty() ? "" : ", ") + sub->get_name();
-        std::cerr << "prt: error: unknown verb '" << a << "' (one of: " << verbs << ")\n";
+        std::cerr << "prt: error: unknown verb '" << oneLine(a, 60) << "' (one of: " << verbs
+                  << ")\n";
         return e.get_exit_code();
       }
     }
-    std::cerr << verb << ": error: " << e.what() << " (see " << verb << " --help)\n";
+    std::cerr << verb << ": error: " << oneLine(e.what()) << " (see " << verb << " --help)\n";
     return e.get_exit_code();
   } catch (const prt::Cancelled&) {
     std::cerr << "\nprt: cancelled\n";
     return 130;
+  } catch (const std::bad_alloc&) {
+    // No allocation may be left to build a message with: fixed text only.
+    const std::string verb = verbName(app);
+    std::fprintf(stderr,
+                 "%s: error: out of memory while %s (the input is too large for this "
+                 "machine's memory)\n",
+                 verb.c_str(), activity(verb));
+    return 1;
+  } catch (const prt::Error& e) {
+    std::cerr << verbName(app) << ": error: " << oneLine(e.what()) << '\n';
+    return 1;
   } catch (const std::exception& e) {
-    std::string verb = "prt";
-    for (auto* sub : app.get_subcommands()) verb += " " + sub->get_name();
-    std::cerr << verb << ": error: " << e.what() << '\n';
+    // Not one of our messages (std::stoull's "stoull", a filesystem_error, ...): say what kind
+    // of failure it was rather than echo a bare function name.
+    const std::string verb = verbName(app);
+    const char* kind = dynamic_cast<const std::out_of_range*>(&e)       ? "a number is out of range"
+                       : dynamic_cast<const std::invalid_argument*>(&e) ? "a value is malformed"
+                       : dynamic_cast<const std::length_error*>(&e)     ? "a size is too large"
+                                                                        : "unexpected failure";
+    std::cerr << verb << ": error: " << kind << " while " << activity(verb) << " ("
+              << oneLine(e.what(), 200) << ")\n";
     return 1;
   }
   return 0;

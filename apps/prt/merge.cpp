@@ -10,7 +10,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <utility>
+
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/io/bake_file.hpp"
@@ -27,13 +31,33 @@ struct MergeArgs {
 void runMerge(const MergeArgs& a) {
   if (a.inputs.size() < 2) throw Error("prt merge needs at least two bake files");
   if (fileExtension(a.output) != "glb") throw Error(a.output + ": the bake file must end in .glb");
-  for (const std::string& in : a.inputs)
-    if (in == a.output) throw Error(a.output + ": the output is also an input");
+  std::vector<NamedPath> inputs;
+  for (const std::string& in : a.inputs) inputs.push_back({"input", in});
+  checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
-  std::vector<BakeFile> pieces;
+  // Read every piece, then merge them in vertex order one at a time, so that an error names the
+  // file that does not fit ("part1.glb: overlaps the previous range ...").
+  std::vector<std::pair<BakeFile, std::string>> pieces;
   pieces.reserve(a.inputs.size());
-  for (const std::string& in : a.inputs) pieces.push_back(readBake(in));
-  const BakeFile merged = mergeBakes(std::move(pieces));
+  for (const std::string& in : a.inputs) pieces.emplace_back(readBake(in), in);
+  std::stable_sort(pieces.begin(), pieces.end(), [](const auto& x, const auto& y) {
+    return x.first.firstVertex < y.first.firstVertex;
+  });
+  BakeFile merged = std::move(pieces.front().first);
+  for (std::size_t k = 1; k < pieces.size(); ++k) {
+    std::vector<BakeFile> two;
+    two.push_back(std::move(merged));
+    two.push_back(std::move(pieces[k].first));
+    try {
+      merged = mergeBakes(std::move(two));
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      std::string msg = e.what();
+      if (msg.rfind("merge: ", 0) == 0) msg.erase(0, 7);
+      throw Error(pieces[k].second, msg);
+    }
+  }
   writeBake(a.output, merged);
   info(fmt::format("wrote {} ({} vertices {}..{}{}, {} mode(s))", a.output, merged.vertexCount,
                    merged.firstVertex, merged.firstVertex + merged.vertexCount - 1,

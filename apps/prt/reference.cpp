@@ -9,6 +9,7 @@
 //   .bin   "PRTREF1\0", uint32 count, then count × (uint32 vertex, 3 float radiance,
 //          3 float standard error), all little-endian.
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +17,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -79,6 +81,7 @@ void runReference(const ReferenceArgs& a) {
   if (a.samples < 1) throw Error("--samples must be at least 1");
   const std::string ext = fileExtension(a.output);
   if (ext != "json" && ext != "bin") throw Error(a.output, "output must be .json or .bin");
+  checkOutputs({{"-o", a.output}}, {{"input", a.bake}, {"--light", a.light}});
   checkWritable(a.output);
   const Mat3d rotation = parseRotation(a.rotate);
   const render::MisHeuristic mis = parseMis(a.mis);
@@ -99,6 +102,12 @@ void runReference(const ReferenceArgs& a) {
   rs.vertices = render::vertexSubset(file.mesh.vertexCount(), a.vertices, a.seed);
   const render::ReferenceResult r =
       render::renderReference(file.mesh, *occluder, env.env, rs, progressBar("reference"));
+  for (std::size_t i = 0; i < r.radiance.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(r.radiance[i][c]) || !std::isfinite(r.stdError[i][c]))
+        throw Error(a.light, "the radiance at vertex " + std::to_string(r.vertices[i]) +
+                                 " is not finite (the environment is too bright for 32-bit "
+                                 "floats); nothing written");
   if (fileExtension(a.output) == "json")
     writeFileAtomically(a.output, toJson(r, a, toString(rs.mode), rs.bounces));
   else
@@ -120,11 +129,14 @@ void addReferenceCommand(CLI::App& root) {
   cmd->add_option("--light", a->light, "Environment: image, face folder or builtin:NAME")
       ->required();
   cmd->add_option("--mode", a->mode, "Transport settings of this transfer of the bake");
-  cmd->add_option("--samples", a->samples, "Samples per vertex")->capture_default_str();
+  cmd->add_option("--samples", a->samples, "Samples per vertex")
+      ->check(intRange(1, 1 << 24))
+      ->capture_default_str();
   cmd->add_option("--rotate", a->rotate, "Rotate the environment: Euler X,Y,Z degrees");
   cmd->add_option("--vertices", a->vertices,
-                  "Estimate a deterministic random subset of N vertices (0: all)");
-  cmd->add_option("--seed", a->seed, "Seed")->capture_default_str();
+                  "Estimate a deterministic random subset of N vertices (0: all)")
+      ->check(unsignedInt(UINT32_MAX));
+  cmd->add_option("--seed", a->seed, "Seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();
   cmd->add_option("-o,--output", a->output, "Output .json or .bin")->required();
   cmd->callback([a] { runReference(*a); });

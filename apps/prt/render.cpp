@@ -15,6 +15,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -87,6 +88,13 @@ void run(const RenderOptions& o) {
   }
   if (o.bands < 0 || o.bands > sh::kMaxBands)
     throw Error(fmt::format("--bands must be 1..{}", sh::kMaxBands));
+  // What is written: -o itself, or with --turntable its numbered frames and the contact sheet.
+  std::vector<NamedPath> outputs;
+  if (o.turntable == 0) outputs.push_back({"-o", o.output});
+  for (int k = 0; k < o.turntable; ++k)
+    outputs.push_back({fmt::format("-o (frame {})", k), framePath(o.output, k)});
+  outputs.push_back({"--contact-sheet", o.contactSheet});
+  checkOutputs(outputs, {{"input", o.bake}, {"--light", o.light}});
 
   const BakeFile bake = readBake(o.bake);
   if (!bake.complete())
@@ -203,7 +211,9 @@ void addRenderCommand(CLI::App& root) {
                   "sphere from above-front)");
   cmd->add_option("--size", opts->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--spp", opts->spp, "Stratified samples per pixel")->capture_default_str();
-  cmd->add_option("--exposure", opts->exposure, "Exposure in stops (PNG)")->capture_default_str();
+  cmd->add_option("--exposure", opts->exposure, "Exposure in stops (PNG)")
+      ->check(finite(-64, 64))
+      ->capture_default_str();
   cmd->add_option("--tonemap", opts->tonemap, "Tone map for PNG: aces, reinhard, clamp")
       ->capture_default_str();
   cmd->add_option("--mode", opts->mode,
@@ -215,16 +225,20 @@ void addRenderCommand(CLI::App& root) {
                   "Relight with this material instead of the bake's: lambert, "
                   "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5 (kd=r,g,b sets the diffuse "
                   "colour); the lobe needs a matrix bake");
-  cmd->add_option("--bands", opts->bands, "Use at most this many SH bands");
+  cmd->add_option("--bands", opts->bands, "Use at most this many SH bands (default: all)")
+      ->check(intRange(1, sh::kMaxBands));
   cmd->add_option("--background", opts->background,
                   "What rays that miss show: env, sh (the light's SH reconstruction), none, a "
                   "linear colour r,g,b, or #rrggbb")
       ->capture_default_str();
   cmd->add_option("--turntable", opts->turntable,
-                  "Render N frames with the light turning once about +Y (OUT_000.png ...)");
+                  "Render N frames with the light turning once about +Y (OUT_000.png ...)")
+      ->check(intRange(1, 3600));
   cmd->add_option("--contact-sheet", opts->contactSheet,
                   "With --turntable: also a grid of all frames");
-  cmd->add_option("--seed", opts->seed, "Seed of the sub-pixel jitter")->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Seed of the sub-pixel jitter")
+      ->check(unsignedInt(UINT32_MAX))
+      ->capture_default_str();
   cmd->add_option("-o,--output", opts->output,
                   "Output image (.png tone-mapped sRGB, .exr/.hdr linear)")
       ->required();

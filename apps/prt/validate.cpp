@@ -11,6 +11,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -52,6 +53,8 @@ void runValidate(const ValidateArgs& a) {
     checkWritable(a.image);
   }
   if (!a.json.empty()) checkWritable(a.json);
+  checkOutputs({{"--json", a.json}, {"--image", a.image}},
+               {{"input", a.bake}, {"--light", a.light}});
 
   const BakeFile file = readBake(a.bake);
   const BakedTransfer& bt = pickTransfer(file, a.mode, a.bake);
@@ -82,6 +85,17 @@ void runValidate(const ValidateArgs& a) {
                 rep.reference.vertices.size(), a.samples,
                 static_cast<unsigned long long>(rep.reference.rays), rep.reference.seconds,
                 toString(rep.mode), rep.bounces);
+  info(line);
+  if (rep.floorRays > 0)
+    std::snprintf(line, sizeof line,
+                  "truncation floor: the reference with the residual light L - L_b, %zu vertices x "
+                  "%d samples per band count, %llu rays, %.2f s",
+                  rep.floorVertices, a.samples, static_cast<unsigned long long>(rep.floorRays),
+                  rep.floorSeconds);
+  else
+    std::snprintf(line, sizeof line,
+                  "truncation floor: band-limited vs. quadrature irradiance, %zu vertices",
+                  rep.floorVertices);
   info(line);
   std::cout << render::formatTable(rep) << std::flush;
 
@@ -123,13 +137,15 @@ void addValidateCommand(CLI::App& root) {
                   "Transfer to validate when the bake holds several "
                   "(unshadowed|shadowed|interreflected; default: the most complete)");
   cmd->add_option("--reference-samples", a->samples, "Reference samples per vertex")
+      ->check(intRange(1, 1 << 24))
       ->capture_default_str();
   cmd->add_option("--bands-list", a->bandsList,
                   "Band counts to tabulate, e.g. 1,2,3 (default 1..B)");
   cmd->add_option("--rotate", a->rotate, "Rotate the environment: Euler X,Y,Z degrees");
   cmd->add_option("--vertices", a->vertices,
-                  "Validate a deterministic random subset of N vertices (0: all)");
-  cmd->add_option("--seed", a->seed, "Reference seed")->capture_default_str();
+                  "Validate a deterministic random subset of N vertices (0: all)")
+      ->check(unsignedInt(UINT32_MAX));
+  cmd->add_option("--seed", a->seed, "Reference seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();
   cmd->add_option("--json", a->json, "Write the table as JSON");
   cmd->add_option("--image", a->image, "Write a false-colour per-vertex error image (.png/.exr)");

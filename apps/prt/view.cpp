@@ -8,6 +8,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/error.hpp"
 
 #ifdef PRT_HAVE_VIEWER
@@ -32,6 +33,9 @@ struct ViewArgs {
 
 #ifdef PRT_HAVE_VIEWER
 void runView(const ViewArgs& a) {
+  std::vector<NamedPath> inputs = {{"input", a.bake}};
+  for (const std::string& e : a.envs) inputs.push_back({"--env", e});
+  checkOutputs({{"--screenshot", a.screenshot}}, inputs);
   viewer::Options o;
   o.bake = a.bake;
   o.environments = a.envs;
@@ -74,20 +78,25 @@ void addViewCommand(CLI::App& root) {
                   "Camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (default: prt render's "
                   "framing)");
   cmd->add_option("--mode", a->mode, "Transfer mode to start with (default: the richest)");
-  cmd->add_option("--bands", a->bands, "Start with at most this many SH bands");
+  cmd->add_option("--bands", a->bands, "Start with at most this many SH bands")
+      ->check(intRange(1, 32));
   cmd->add_option("--background", a->background,
                   "env (the image), sh (its SH reconstruction) or none")
       ->capture_default_str();
-  cmd->add_option("--exposure", a->exposure, "Exposure in stops")->capture_default_str();
+  cmd->add_option("--exposure", a->exposure, "Exposure in stops")
+      ->check(finite(-64, 64))
+      ->capture_default_str();
   cmd->add_option("--tonemap", a->toneMap, "aces, reinhard or clamp")->capture_default_str();
   cmd->add_flag("--auto-rotate", a->autoRotate, "Turn the light about +Y");
   cmd->add_option("--spin", a->spin, "Auto-rotation speed, degrees per second")
+      ->check(finite(-36000, 36000))
       ->capture_default_str();
   cmd->add_flag("--headless", a->headless,
                 "Render offscreen (EGL, no display needed) instead of opening a window");
   cmd->add_option("--frames", a->frames,
                   "Draw N frames, then exit (headless default 1, 1/60 s apart; window: until "
-                  "closed)");
+                  "closed)")
+      ->check(intRange(0, 1000000));
   cmd->add_option("--screenshot", a->screenshot,
                   "After the last frame write it: .png as shown (the window's with its panel), "
                   ".exr/.hdr linear radiance");

@@ -73,6 +73,8 @@ struct Reader {
       if (s.empty() || s.size() > 20 ||
           !std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); }))
         fail(where + "." + key + " is not an integer");
+      if (s.size() == 20 && s > "18446744073709551615")  // std::stoull would throw "stoull"
+        fail(where + "." + key + " = " + s + " is larger than 2^64 - 1");
       return std::stoull(s);
     }
     const double x = number(obj, key, where);

@@ -36,7 +36,9 @@ EnvironmentSampler::EnvironmentSampler(const Environment& env) : env_(env) {
     texels_[k].radiance = t.radiance;
     direction_[k] = t.direction;
     solidAngle_[k] = t.solidAngle;
-    const double w = std::max(0.0f, image::luminance(t.radiance)) * env.texelSolidAngle(k);
+    // |luminance|: an environment may be signed (validation's residual L − L_b); sampling by
+    // magnitude keeps the estimator unbiased and is the same for every non-negative one.
+    const double w = std::abs(image::luminance(t.radiance)) * env.texelSolidAngle(k);
     prob[k] = std::isfinite(w) ? w : 0.0;
     sum += prob[k];
   }

@@ -46,6 +46,36 @@ double sumSq(const Rgb& c) {
   return double(c.x) * c.x + double(c.y) * c.y + double(c.z) * c.z;
 }
 
+/// The environment minus its b-band SH reconstruction, texel by texel: L_k − Σ_i L_b,i Y_i(ω_k)
+/// at each texel centre ω_k (signed), in the same layout, so the reference integrates it as it
+/// integrates L.
+envmap::Environment residualEnvironment(const envmap::Environment& env, const sh::RgbSh& lb) {
+  std::vector<image::Image> imgs = env.images();
+  const std::size_t n = env.texelCount();
+  const std::size_t perImage = imgs.empty() ? 0 : imgs[0].size();
+  parallelFor(n, 4096, [&](std::size_t b, std::size_t e) {
+    std::vector<float> y(static_cast<std::size_t>(lb.bands) * lb.bands);
+    for (std::size_t k = b; k < e; ++k) {
+      const envmap::Texel t = env.texel(k);
+      Vec3d r(t.radiance);
+      if (t.solidAngle > 0) {
+        sh::eval(lb.bands, t.direction, y.data());
+        for (std::size_t i = 0; i < y.size(); ++i) r -= Vec3d(lb.c[i]) * double(y[i]);
+      }
+      const bool cube = env.kind() == envmap::Environment::Kind::Cube;
+      imgs[cube ? k / perImage : 0].pixels[cube ? k % perImage : k] = Rgb(r);
+    }
+  });
+  switch (env.kind()) {
+    case envmap::Environment::Kind::Cube:
+      return envmap::Environment::cube({imgs[0], imgs[1], imgs[2], imgs[3], imgs[4], imgs[5]});
+    case envmap::Environment::Kind::Probe:
+      return envmap::Environment::probe(imgs[0]);
+    default:  // lat-long, and an analytic environment's texel lat-long
+      return envmap::Environment::latLong(imgs[0]);
+  }
+}
+
 }  // namespace
 
 ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const TransferField& transfer,
@@ -94,7 +124,18 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   rs.bounces = rep.bounces;
   rs.bounceAlbedo = bake.material.diffuse;
   rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
-  rep.reference = renderReference(mesh, occluder, env, rs, progress);
+  const bool residualFloor = bake.mode != TransferMode::Unshadowed;
+  // Progress: the reference, then (shadowed, inter-reflected) one residual run per band count
+  // over the floor subset, in proportion to their vertex counts.
+  const std::size_t nMain = rs.vertices.size();
+  const std::size_t nFloorRuns =
+      residualFloor ? kept.size() * std::min(nMain, settings.floorVertices) : 0;
+  const double mainShare = double(nMain) / double(nMain + nFloorRuns);
+  const auto part = [&](double lo, double hi) -> ProgressFn {
+    if (!progress) return {};
+    return [&progress, lo, hi](double f) { return progress(lo + (hi - lo) * f); };
+  };
+  rep.reference = renderReference(mesh, occluder, env, rs, part(0.0, mainShare));
   const auto& verts = rep.reference.vertices;
   const std::size_t n = verts.size();
   const std::vector<Rgb>& ref = rep.reference.radiance;
@@ -109,64 +150,111 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     refStd += std::sqrt(sumSq(rep.reference.stdError[i]) / (sumSq(ref[i]) + 3 * eps));
   refStd /= std::max<std::size_t>(n, 1);
 
-  // The irradiance of the piecewise-constant environment by texel quadrature, O(texels) per
-  // vertex: the expensive part of the floor, so it is taken over an evenly strided subset of at
-  // most kFloorVertices of the validated vertices (the floor is an RMS over vertices; a few
-  // thousand estimate it to well under a tenth of itself).
-  constexpr std::size_t kFloorVertices = 4096;
-  const std::size_t stride = (n + kFloorVertices - 1) / kFloorVertices;
+  // The truncation floor: the error a perfect b-band transfer would still have. A perfect
+  // transfer relights exactly the b-band light L_b (T·L_b is the transport of L_b), so its error
+  // is R(L) − R(L_b) = R(L − L_b) by linearity. It is taken over an evenly strided subset of at
+  // most settings.floorVertices of the validated vertices (an RMS over vertices; a thousand
+  // estimate it to a few per cent of itself).
+  //  * unshadowed: R is the clamped-cosine irradiance, R(L) by quadrature over the texels and
+  //    R(L_b) = ρ Σ Λ_l L_lm Y_lm(n)/π in closed form (Ramamoorthi & Hanrahan 2001): exact;
+  //  * shadowed, inter-reflected: the reference itself run with the residual environment L − L_b
+  //    (same transport, visibility and bounces, same samples), whose squared estimate is
+  //    debiased by its own squared standard error, so the floor covers visibility too.
+  const std::size_t stride =
+      (n + settings.floorVertices - 1) / std::max<std::size_t>(settings.floorVertices, 1);
   std::vector<std::uint32_t> floorVerts;
-  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(stride, 1))
+  std::vector<std::size_t> floorIdx;  // positions in `verts`
+  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(stride, 1)) {
     floorVerts.push_back(verts[i]);
+    floorIdx.push_back(i);
+  }
   const std::size_t nf = floorVerts.size();
-  const EnvironmentSampler sampler(env);
   std::vector<Rgb> floorRef(nf);
-  parallelFor(nf, 4, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
-      const std::uint32_t v = floorVerts[i];
-      const Rgb a = mesh.hasAlbedo() ? mesh.albedo[v] : Rgb(1.0f);
-      floorRef[i] = a * sampler.irradianceQuadrature(mesh.normals[v], rs.rotation) *
-                    static_cast<float>(1.0 / kPi);
-    }
-  });
+  if (!residualFloor) {
+    const EnvironmentSampler sampler(env);
+    parallelFor(nf, 4, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        const std::uint32_t v = floorVerts[i];
+        const Rgb a = mesh.hasAlbedo() ? mesh.albedo[v] : Rgb(1.0f);
+        floorRef[i] = a * sampler.irradianceQuadrature(mesh.normals[v], rs.rotation) *
+                      static_cast<float>(1.0 / kPi);
+      }
+    });
+  }
+  rep.floorMethod = residualFloor ? "residual reference" : "irradiance quadrature";
+  rep.floorVertices = nf;
   const sh::RgbSh rotatedLight = sh::Rotation(light.bands, rs.rotation).apply(light);
   const std::vector<double> lambda = sh::clampedCosineKernel(rep.bands);
+  std::size_t floorRun = 0;
 
   std::vector<Rgb> albedo;
   if (mesh.hasAlbedo()) albedo = mesh.albedo;
-  std::vector<Rgb> prt(n), floorTest(nf);
+  std::vector<Rgb> prt(n);
   std::vector<float> y(static_cast<std::size_t>(rep.bands) * rep.bands);
   for (int b : kept) {
     // PRT radiance at b bands (relight rotates the light itself).
     const std::vector<Rgb> all =
         relight::relight(transfer.truncated(b), light.truncated(b), albedo, rs.rotation);
     for (std::size_t i = 0; i < n; ++i) prt[i] = all[verts[i]];
-    // Unshadowed band-limited irradiance E_b(n) = Σ_{l<b} Λ_l L_lm Y_lm(n), radiance ρ E_b / π.
-    for (std::size_t i = 0; i < nf; ++i) {
-      const std::uint32_t v = floorVerts[i];
-      sh::eval(b, mesh.normals[v], y.data());
-      Vec3d e(0.0);
-      for (int l = 0; l < b; ++l)
-        for (int m = -l; m <= l; ++m) {
-          const int k = l * (l + 1) + m;
-          e += Vec3d(rotatedLight.c[k]) * (lambda[l] * y[k]);
+    double floorSq = 0;
+    if (!residualFloor) {
+      // Unshadowed band-limited irradiance E_b(n) = Σ_{l<b} Λ_l L_lm Y_lm(n), radiance ρ E_b / π.
+      std::vector<Rgb> floorTest(nf);
+      for (std::size_t i = 0; i < nf; ++i) {
+        const std::uint32_t v = floorVerts[i];
+        sh::eval(b, mesh.normals[v], y.data());
+        Vec3d e(0.0);
+        for (int l = 0; l < b; ++l)
+          for (int m = -l; m <= l; ++m) {
+            const int k = l * (l + 1) + m;
+            e += Vec3d(rotatedLight.c[k]) * (lambda[l] * y[k]);
+          }
+        const Rgb a = mesh.hasAlbedo() ? mesh.albedo[v] : Rgb(1.0f);
+        floorTest[i] = a * Rgb(e * (1.0 / kPi));
+      }
+      const double f = relativeRmse(row(floorTest), row(floorRef), eps);
+      floorSq = f * f;
+    } else {
+      ReferenceSettings fr = rs;
+      fr.vertices = floorVerts;
+      const double lo = mainShare + (1 - mainShare) * double(floorRun) / double(kept.size());
+      const double hi = mainShare + (1 - mainShare) * double(floorRun + 1) / double(kept.size());
+      ++floorRun;
+      const ReferenceResult res = renderReference(
+          mesh, occluder, residualEnvironment(env, light.truncated(b)), fr, part(lo, hi));
+      rep.floorRays += res.rays;
+      rep.floorSeconds += res.seconds;
+      // The same metric as rel RMSE, with R(L − L_b) for the difference: E[x̂²] = x² + se², so
+      // x̂² − se² estimates x² without the reference noise inflating the floor.
+      double sum = 0;
+      for (std::size_t i = 0; i < nf; ++i) {
+        const Rgb& r0 = ref[floorIdx[i]];
+        for (int c = 0; c < 3; ++c) {
+          const double x = res.radiance[i][c], se = res.stdError[i][c];
+          sum += (x * x - se * se) / (double(r0[c]) * r0[c] + eps);
         }
-      const Rgb a = mesh.hasAlbedo() ? mesh.albedo[v] : Rgb(1.0f);
-      floorTest[i] = a * Rgb(e * (1.0 / kPi));
+      }
+      floorSq = std::max(0.0, sum / (3.0 * double(std::max<std::size_t>(nf, 1))));
     }
     BandRow r;
     r.bands = b;
     r.relRmse = relativeRmse(row(prt), row(ref), eps);
-    r.floor = relativeRmse(row(floorTest), row(floorRef), eps);
+    r.floor = std::sqrt(floorSq);
     r.refStdErr = refStd;
     std::vector<float> err(n);
-    double sum = 0, mx = 0;
+    double sum = 0, mx = 0, diffEnergy = 0, refEnergy = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      const double e = std::sqrt(sumSq(prt[i] - ref[i]) / (sumSq(ref[i]) + 3 * eps));
+      const double d2 = sumSq(prt[i] - ref[i]), r2 = sumSq(ref[i]);
+      const double e = std::sqrt(d2 / (r2 + 3 * eps));
       err[i] = static_cast<float>(e);
       sum += e;
       mx = std::max(mx, e);
+      diffEnergy += d2;
+      refEnergy += r2;
     }
+    // Energy-weighted: ‖R_b − R_ref‖ / ‖R_ref‖ over all vertices and channels, i.e. e(p)² weighted
+    // by each vertex's share of the reference energy (no ε): bright vertices count most.
+    r.energyRel = refEnergy > 0 ? std::sqrt(diffEnergy / refEnergy) : 0.0;
     r.meanRel = sum / std::max<std::size_t>(n, 1);
     r.maxRel = mx;
     rep.rows.push_back(r);
@@ -177,15 +265,18 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
 
 std::string formatTable(const ValidationReport& rep) {
   std::ostringstream os;
-  char line[160];
-  std::snprintf(line, sizeof line, "%5s | %9s | %12s | %11s | %16s | %11s\n", "bands", "rel RMSE",
-                "mean rel err", "max rel err", "truncation floor", "ref std err");
+  char line[200];
+  std::snprintf(line, sizeof line, "%5s | %9s | %15s | %12s | %11s | %16s | %11s\n", "bands",
+                "rel RMSE", "energy-weighted", "mean rel err", "max rel err", "truncation floor",
+                "ref std err");
   os << line;
-  os << "------+-----------+--------------+-------------+------------------+------------\n";
+  os << "------+-----------+-----------------+--------------+-------------+------------------+----"
+        "--------\n";
   for (const BandRow& r : rep.rows) {
-    std::snprintf(line, sizeof line, "%5d | %8.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%%\n",
-                  r.bands, 100 * r.relRmse, 100 * r.meanRel, 100 * r.maxRel, 100 * r.floor,
-                  100 * r.refStdErr);
+    std::snprintf(line, sizeof line,
+                  "%5d | %8.3f%% | %14.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%%\n", r.bands,
+                  100 * r.relRmse, 100 * r.energyRel, 100 * r.meanRel, 100 * r.maxRel,
+                  100 * r.floor, 100 * r.refStdErr);
     os << line;
   }
   return os.str();
@@ -231,6 +322,10 @@ std::string reportJson(const ValidationReport& rep, int indent) {
   os << i1 << "\"vertices\": " << rep.reference.vertices.size() << "," << nl;
   os << i1 << "\"referenceRays\": " << rep.reference.rays << "," << nl;
   os << i1 << "\"referenceSeconds\": " << num(rep.reference.seconds) << "," << nl;
+  os << i1 << "\"floorMethod\": " << jsonString(rep.floorMethod) << "," << nl;
+  os << i1 << "\"floorVertices\": " << rep.floorVertices << "," << nl;
+  os << i1 << "\"floorRays\": " << rep.floorRays << "," << nl;
+  os << i1 << "\"floorSeconds\": " << num(rep.floorSeconds) << "," << nl;
   os << i1 << "\"warnings\": [";
   for (std::size_t k = 0; k < rep.warnings.size(); ++k)
     os << (k ? ", " : "") << jsonString(rep.warnings[k]);
@@ -241,6 +336,7 @@ std::string reportJson(const ValidationReport& rep, int indent) {
     os << i2 << "{" << nl;
     os << i3 << "\"bands\": " << r.bands << "," << nl;
     os << i3 << "\"relRmse\": " << num(r.relRmse) << "," << nl;
+    os << i3 << "\"energyWeightedRelErr\": " << num(r.energyRel) << "," << nl;
     os << i3 << "\"meanRelErr\": " << num(r.meanRel) << "," << nl;
     os << i3 << "\"maxRelErr\": " << num(r.maxRel) << "," << nl;
     os << i3 << "\"truncationFloor\": " << num(r.floor) << "," << nl;

@@ -11,8 +11,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
+
+#include "common/scratch.hpp"
 
 namespace prt::testing {
 
@@ -45,13 +48,11 @@ inline Result runPrt(const fs::path& dir, const std::string& args, const std::st
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("prt_cli_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
+    scratch_ = std::make_unique<ScratchDir>();
+    dir_ = scratch_->path();
     fs::create_directories(dir_ / "out");
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override { scratch_.reset(); }
 
   /// Runs `PREFIX prt ARGS` in the test directory.
   Result prt(const std::string& args, const std::string& prefix = "") const {
@@ -75,6 +76,7 @@ class CliTest : public ::testing::Test {
     EXPECT_TRUE(fs::is_empty(dir_ / "out")) << "output left behind";
   }
 
+  std::unique_ptr<ScratchDir> scratch_;
   fs::path dir_;
 };
 

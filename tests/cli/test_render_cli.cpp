@@ -147,7 +147,7 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
   const std::filesystem::path d = dir_ / "out/demo";
   const std::string html = slurp(d / "index.html");
   for (const char* needle : {"unshadowed", "shadowed", "interreflected", "builtin:sky",
-                             "builtin:constant?value=0.5", "truncation floor"})
+                             "builtin:constant?value=0.5", "truncation floor", "energy-weighted"})
     EXPECT_NE(html.find(needle), std::string::npos) << needle;
   for (const char* file :
        {"scene.glb", "lights/sky.json", "lights/constant.json", "img/sky_shadowed_prt.png",

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/scratch.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/parallel.hpp"
@@ -59,8 +60,8 @@ TEST(Progress, CancelThrows) {
 }
 
 TEST(File, AtomicWriteLeavesNothingOnFailure) {
-  const auto dir = std::filesystem::temp_directory_path() / "prt_core_test";
-  std::filesystem::create_directories(dir);
+  const prt::testing::ScratchDir scratch;
+  const std::filesystem::path& dir = scratch.path();
   const std::string path = (dir / "out.txt").string();
   std::filesystem::remove(path);
   EXPECT_THROW(writeFileAtomically(path,
@@ -77,5 +78,4 @@ TEST(File, AtomicWriteLeavesNothingOnFailure) {
   EXPECT_THROW(writeFileAtomically((dir / "no/such/dir/x").string(), std::string_view("x")), Error);
   EXPECT_THROW(readFileBytes((dir / "missing").string()), Error);
   EXPECT_EQ(fileExtension("a/b/C.HDR"), "hdr");
-  std::filesystem::remove_all(dir);
 }

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 
+#include "common/scratch.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/image/color.hpp"
@@ -19,15 +20,7 @@ using namespace prt::image;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("prt_test_image_" + std::to_string(::getpid()));
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
+using TempDir = prt::testing::ScratchDir;
 
 Image gradient(int w, int h) {
   Image img(w, h);

@@ -6,10 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <random>
 
+#include "common/scratch.hpp"
 #include "prt/core/error.hpp"
 #include "prt/io/bake_file.hpp"
 
@@ -240,8 +242,8 @@ TEST(BakeFile, MatricesNeedVersionTwoAndRoundTripBitExact) {
 }
 
 TEST(BakeFile, WriteAndReadThroughDisk) {
-  const auto dir = std::filesystem::temp_directory_path() / "prt_test_bake_file";
-  std::filesystem::create_directories(dir);
+  const prt::testing::ScratchDir scratch;
+  const std::filesystem::path& dir = scratch.path();
   const std::string path = (dir / "b.glb").string();
   const BakeFile b = sampleBake();
   writeBake(path, b);
@@ -252,7 +254,6 @@ TEST(BakeFile, WriteAndReadThroughDisk) {
   const std::string badPath = (dir / "bad.glb").string();
   EXPECT_THROW(writeBake(badPath, bad), Error);
   EXPECT_FALSE(std::filesystem::exists(badPath));
-  std::filesystem::remove_all(dir);
 }
 
 TEST(BakeFile, GltfRulesHold) {
@@ -446,6 +447,23 @@ TEST(BakeFile, ForeignGltfIsRejected) {
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("not a prtkit bake file"), std::string::npos) << e.what();
+  }
+}
+
+// A seed string past 2^64 - 1 is our one-line error, not std::stoull's bare "stoull".
+TEST(BakeFile, SeedPastTwoToTheSixtyFourIsRejectedByName) {
+  BakeFile b = sampleBake();
+  b.transfers[0].settings.seed = UINT64_MAX;
+  std::string bytes = encodeBake(b);
+  const auto at = bytes.find("\"18446744073709551615\"");
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 1] = '9';  // same length: the container stays valid
+  try {
+    decodeBake(asBytes(bytes), "big.glb");
+    FAIL() << "accepted a seed past 2^64";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("big.glb: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("larger than 2^64 - 1"), std::string::npos) << e.what();
   }
 }
 

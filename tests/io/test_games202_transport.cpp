@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <tuple>
 
+#include "common/scratch.hpp"
 #include "prt/core/error.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/io/games202_transport.hpp"
@@ -100,12 +102,13 @@ bool rowIsTriple(const float* r, const ObjText& o, const std::array<int, 3>& c) 
 class Games202Obj : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() / "prt_test_games202";
-    std::filesystem::create_directories(dir_);
+    scratch_ = std::make_unique<prt::testing::ScratchDir>();
+    dir_ = scratch_->path();
     obj_ = (dir_ / "shared.obj").string();
     std::ofstream(obj_) << kObj;
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
+  void TearDown() override { scratch_.reset(); }
+  std::unique_ptr<prt::testing::ScratchDir> scratch_;  // this test's own folder (ctest -j)
   std::filesystem::path dir_;
   std::string obj_;
 };

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "prt/core/error.hpp"
@@ -68,7 +69,6 @@ TEST(Validate, ShadowedSpherePlaneUnderSmoothLight) {
   EXPECT_LE(r5.meanRel, r5.maxRel);
   EXPECT_GT(rep.rows[0].relRmse, 2 * r5.relRmse);  // one band misses the shadows and the disc
   EXPECT_GT(rep.rows[0].floor, rep.rows[2].floor);
-  EXPECT_LT(rep.rows[2].floor, 0.03);  // irradiance is nearly 3-band (Ramamoorthi & Hanrahan)
   EXPECT_GT(r5.refStdErr, 0.0);
   EXPECT_LT(r5.refStdErr, 0.03);
   ASSERT_EQ(rep.vertexError.size(), 250u);
@@ -103,6 +103,66 @@ TEST(Validate, InterreflectedSpherePlaneUnderConstantLight) {
   noBounce.bounces = 0;
   const ValidationReport wrong = validate(s.mesh, *s.occ, s.transfer, noBounce, env, light, vs);
   EXPECT_GT(wrong.rows[0].relRmse, 2 * rep.rows[0].relRmse);
+}
+
+// The floor of shadowed transfer is the reference run with the residual light L − L_b, so it
+// covers visibility: it is what a perfect b-band transfer would still miss. Where truncation
+// dominates (few bands) the bake's error sits on it; it is never far below the error; and it is
+// larger than the unshadowed floor of the same scene (shadows need more bands than irradiance).
+TEST(Validate, ShadowedFloorIsTheErrorOfAPerfectTransfer) {
+  const Scene s = bakeScene("builtin:sphere-plane?grid=24&subdiv=3", TransferMode::Shadowed, 5, 0);
+  const Environment env = smoothEnv();
+  const sh::RgbSh light = envmap::projectEnvironment(env, 5);
+  ValidateSettings vs;
+  vs.reference.samples = 1024;
+  vs.maxVertices = 250;
+  const ValidationReport rep = validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs);
+  ASSERT_EQ(rep.rows.size(), 5u);
+  EXPECT_EQ(rep.floorMethod, "residual reference");
+  EXPECT_EQ(rep.floorVertices, 250u);
+  EXPECT_GT(rep.floorRays, 0u);
+  for (const BandRow& r : rep.rows) {
+    SCOPED_TRACE(r.bands);
+    // error² ≈ floor² + noise²: the floor is never above the error by more than noise.
+    EXPECT_LT(r.floor, r.relRmse + 2 * r.refStdErr);
+  }
+  for (int b : {1, 2})  // truncation dominates: the error is the floor
+    EXPECT_NEAR(rep.rows[b - 1].relRmse, rep.rows[b - 1].floor, 0.15 * rep.rows[b - 1].relRmse)
+        << b << " bands";
+  EXPECT_GT(rep.rows[0].floor, rep.rows[4].floor);
+
+  Scene u = bakeScene("builtin:sphere-plane?grid=24&subdiv=3", TransferMode::Unshadowed, 5, 0);
+  const ValidationReport unshadowed = validate(u.mesh, *u.occ, u.transfer, u.bake, env, light, vs);
+  EXPECT_EQ(unshadowed.floorMethod, "irradiance quadrature");
+  EXPECT_EQ(unshadowed.floorRays, 0u);
+  EXPECT_LT(unshadowed.rows[2].floor, 0.03);  // irradiance is nearly 3-band (R&H 2001)
+  EXPECT_GT(rep.rows[2].floor, 1.5 * unshadowed.rows[2].floor);
+  for (std::size_t k = 0; k < rep.rows.size(); ++k)
+    std::printf(
+        "bands %d: shadowed rel RMSE %.4f floor %.4f (ref std err %.4f); unshadowed "
+        "rel RMSE %.4f floor %.4f\n",
+        rep.rows[k].bands, rep.rows[k].relRmse, rep.rows[k].floor, rep.rows[k].refStdErr,
+        unshadowed.rows[k].relRmse, unshadowed.rows[k].floor);
+}
+
+// The energy-weighted error is ‖R_b − R_ref‖ / ‖R_ref‖: a transfer that doubles every radiance
+// is off by exactly its own energy, 100%; the exact one (unshadowed, constant light, one band)
+// by the reference noise only.
+TEST(Validate, EnergyWeightedErrorOfADoubledTransfer) {
+  Scene s = bakeScene("builtin:sphere?subdiv=2", TransferMode::Unshadowed, 2, 0);
+  const Environment env = Environment::analytic([](const Vec3f&) { return Rgb(0.7f); }, {}, 64);
+  const sh::RgbSh light = envmap::projectEnvironment(env, 2);
+  ValidateSettings vs;
+  vs.reference.samples = 256;
+  vs.bandsList = {1};
+  const ValidationReport exact = validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs);
+  // Only the reference's noise (and the bake's, far smaller) separates them.
+  EXPECT_LT(exact.rows[0].energyRel, 2 * exact.rows[0].refStdErr + 0.002);
+  for (float& x : s.transfer.data) x *= 2;
+  const ValidationReport twice = validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs);
+  EXPECT_NEAR(twice.rows[0].energyRel, 1.0, 0.03);
+  EXPECT_NE(reportJson(twice).find("\"energyWeightedRelErr\""), std::string::npos);
+  EXPECT_NE(formatTable(twice).find("energy-weighted"), std::string::npos);
 }
 
 TEST(Validate, BandReconciliationAndBadInput) {

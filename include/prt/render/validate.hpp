@@ -3,21 +3,25 @@
 // PRT radiance R_b(p) = ρ(p) ⊙ T_b(p)·L_b (the first b² coefficients of one bake and of the
 // light: TransferField::truncated) against the reference R_ref(p), over a set of vertices.
 //
-// Per vertex, with channels c and ε = 10⁻² · (mean reference value)² (scale-free, so dark
-// vertices do not dominate; cf. Rousselle et al. 2011's relMSE):
-//   e(p) = sqrt( Σ_c (R_b,c − R_ref,c)² / Σ_c (R_ref,c² + ε) )           (relative error)
-// Columns of the table (one row per b):
-//   rel RMSE         render::relativeRmse over all vertices and channels (the same ε)
-//   mean / max       mean and maximum of e(p)
-//   truncation floor relative RMSE of the clamped-cosine irradiance of the b-band light
-//                    (Λ_l L_lm, Ramamoorthi & Hanrahan 2001) against the irradiance of the
-//                    environment by quadrature over its texels — the error a perfect unshadowed
-//                    transfer would still have at b bands; over an even stride of at most 4096
-//                    of the validated vertices (the quadrature costs O(texels) per vertex)
+// With N validated vertices p, channels c ∈ {r, g, b}, d = R_b − R_ref, and
+// ε = 10⁻² · m², m the mean over vertices and channels of R_ref (scale-free, so dark vertices do
+// not dominate; cf. Rousselle et al. 2011's relMSE):
+//   rel RMSE         sqrt( 1/(3N) Σ_p Σ_c d_pc² / (R_ref,pc² + ε) )   (render::relativeRmse)
+//   energy-weighted  sqrt( Σ_p Σ_c d_pc² / Σ_p Σ_c R_ref,pc² )        (‖d‖ / ‖R_ref‖, no ε)
+//   mean / max       mean and maximum over p of
+//                    e(p) = sqrt( Σ_c d_pc² / Σ_c (R_ref,pc² + ε) )
+//   truncation floor the rel RMSE a perfect b-band transfer would still have: R(L) − R(L_b) =
+//                    R(L − L_b) by linearity. Unshadowed: the clamped-cosine irradiance of the
+//                    b-band light (Λ_l L_lm, Ramamoorthi & Hanrahan 2001) against the texel
+//                    quadrature of the irradiance (exact). Shadowed and inter-reflected: the
+//                    reference run with the residual environment L − L_b (visibility and
+//                    bounces included), x̂² − se² per channel so its noise does not inflate it.
+//                    Over an even stride of at most `floorVertices` of the validated vertices.
 //   ref std err      mean over vertices of the reference's relative standard error
 //                    sqrt(Σ_c se_c²) / sqrt(Σ_c (R_ref,c² + ε))
-// A PRT error near the floor is SH truncation; one near the reference's standard error is below
-// what this comparison can resolve.
+// Read it as error ≈ floor + (the transfer's noise and discretisation) + (the reference's
+// noise): a PRT error near the floor is SH truncation; one near the reference's standard error
+// is below what this comparison can resolve.
 
 #include <cstddef>
 #include <cstdint>
@@ -34,11 +38,14 @@ struct ValidateSettings {
   ReferenceSettings reference;  ///< samples, seed, rotation, heuristic (mode/bounces: the bake's)
   std::vector<int> bandsList;   ///< band counts to tabulate; empty: 1..B
   std::size_t maxVertices = 0;  ///< 0: every vertex; else a deterministic random subset
+  /// Vertices over which the truncation floor is taken (an even stride of the validated ones);
+  /// shadowed and inter-reflected floors cost one reference run over them per band count.
+  std::size_t floorVertices = 1024;
 };
 
 struct BandRow {
   int bands = 0;
-  double relRmse = 0, meanRel = 0, maxRel = 0, floor = 0, refStdErr = 0;
+  double relRmse = 0, energyRel = 0, meanRel = 0, maxRel = 0, floor = 0, refStdErr = 0;
 };
 
 struct ValidationReport {
@@ -49,6 +56,10 @@ struct ValidationReport {
   ReferenceResult reference;       ///< over the validated vertices
   std::vector<BandRow> rows;       ///< one per band count, ascending
   std::vector<float> vertexError;  ///< e(p) at the last row's band count, per validated vertex
+  std::string floorMethod;         ///< "irradiance quadrature" or "residual reference"
+  std::size_t floorVertices = 0;   ///< vertices the floor was taken over
+  std::uint64_t floorRays = 0;     ///< rays of the residual runs (shadowed, inter-reflected)
+  double floorSeconds = 0;
 };
 
 /// A deterministic random subset of `count` of [0, n) (all when count is 0 or ≥ n), sorted.
