@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
   addViewCommand(app);
   addMergeCommand(app);
   addDemoCommand(app);
+  addWebCommand(app);
 
   std::signal(SIGINT, onSigint);
   std::unique_ptr<prt::ThreadLimit> limit;
