@@ -31,24 +31,13 @@
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
+#include "web.hpp"
 
 namespace prt::cli {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-struct WebArgs {
-  std::string bake;
-  std::vector<std::string> envs;
-  std::string output;
-  std::string rotate;
-  std::string mode;
-  std::string toneMap = "aces";
-  float exposure = 0.0f;
-  int bands = 0;
-  int backgroundWidth = 512;
-};
 
 /// The page's built assets (index.html, prt-web.js): $PRT_WEB_ASSETS, else
 /// <exe>/../share/prtkit/web (installed), else the build tree's web/ (PRT_WEB_ASSETS_DIR, set by
@@ -166,7 +155,19 @@ std::string readText(const fs::path& p) {
   return std::string(b.begin(), b.end());
 }
 
-void run(const WebArgs& a) {
+}  // namespace
+
+bool webAssetsAvailable(std::string* why) {
+  try {
+    findAssets();
+    return true;
+  } catch (const Error& e) {
+    if (why) *why = e.what();
+    return false;
+  }
+}
+
+void writeWebViewer(const WebOptions& a) {
   const Mat3d rotation = parseRotation(a.rotate);  // validates --rotate early
   (void)rotation;
   const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
@@ -233,10 +234,8 @@ void run(const WebArgs& a) {
                    (out / "index.html").string(), envs.size(), bands));
 }
 
-}  // namespace
-
 void addWebCommand(CLI::App& root) {
-  auto args = std::make_shared<WebArgs>();
+  auto args = std::make_shared<WebOptions>();
   CLI::App* cmd = root.add_subcommand(
       "web", "Write the browser viewer (WebGL2) for a bake: a folder that works from file://");
   cmd->add_option("bake", args->bake, "Bake file (.glb)")->required();
@@ -253,7 +252,7 @@ void addWebCommand(CLI::App& root) {
   cmd->add_option("--background-width", args->backgroundWidth,
                   "Width of each environment's lat-long background image")
       ->capture_default_str();
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args] { writeWebViewer(*args); });
 }
 
 }  // namespace prt::cli

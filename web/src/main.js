@@ -375,6 +375,8 @@ async function main() {
   }
   if (query.has('bench')) {
     const n = Math.max(1, Number(query.get('bench')) || 20);
+    // &nomesh: the same frame without the mesh (background, resolve, tone map), the baseline.
+    if (query.has('nomesh')) for (const m of parts) m.visible = false;
     renderer.setSize(fixedW, fixedH);
     frameCamera(fixedW, fixedH);
     const one = new Uint8Array(4), times = [];
