@@ -14,11 +14,14 @@ packages=(
   libglfw3-dev libimgui-dev libepoxy-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri xvfb xauth
   # browser viewer (prt web): node + npm bundle web/ (three.js, lil-gui, esbuild from npm, pinned
   # by web/package-lock.json); chromium runs its tests headless (SwiftShader, no GPU needed)
-  nodejs npm chromium
+  # (npm is added below only when no npm command exists: NodeSource's nodejs ships its own npm and
+  # conflicts with Debian's npm package)
+  nodejs chromium
 )
 assets=(glmark2-data blender-data)
 
 want=("${packages[@]}")
+if ! command -v npm >/dev/null 2>&1; then want+=(npm); fi
 if [[ "${1:-}" == "--with-assets" ]]; then want+=("${assets[@]}"); fi
 
 missing=()
