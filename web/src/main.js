@@ -462,6 +462,21 @@ async function main() {
   gui.add(actions, 'reset light');
   gui.add(actions, 'reset camera');
 
+  // Keys, as prt view: [ ] one band fewer / more, B background, Tab next environment, space
+  // auto-rotate.
+  const backgrounds = ['env', 'sh', 'none'];
+  window.addEventListener('keydown', (e) => {
+    if (e.target && /INPUT|SELECT|TEXTAREA/.test(e.target.tagName)) return;
+    if (e.key === '[') state.bands = Math.max(1, state.bands - 1);
+    else if (e.key === ']') state.bands = Math.min(transfer().bands, state.bands + 1);
+    else if (e.key === 'b' || e.key === 'B') state.background = backgrounds[(backgrounds.indexOf(state.background) + 1) % 3];
+    else if (e.key === 'Tab') state.env = (state.env + 1) % envs.length;
+    else if (e.key === ' ') actions['auto-rotate'] = !actions['auto-rotate'];
+    else return;
+    e.preventDefault();
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  });
+
   // Drag and drop: a .glb replaces the bake, an SH light .json is added and shown. A bad file
   // leaves everything as it was and says why.
   async function loadFile(file) {
@@ -544,10 +559,20 @@ async function dropTest(readFrame, snapshot) {
   dv.setUint32(12, json.length + pad, true), dv.setUint32(16, 0x4e4f534a, true);
   plain.set(json, 20);
   plain.fill(0x20, 20 + json.length);
+  const glbWith = (doc) => {
+    const j = enc.encode(JSON.stringify(doc)), p = (4 - (j.length % 4)) % 4;
+    const b = new Uint8Array(20 + j.length + p), v = new DataView(b.buffer);
+    v.setUint32(0, 0x46546c67, true), v.setUint32(4, 2, true), v.setUint32(8, b.length, true);
+    v.setUint32(12, j.length + p, true), v.setUint32(16, 0x4e4f534a, true);
+    b.set(j, 20);
+    b.fill(0x20, 20 + j.length);
+    return b;
+  };
   const cases = [
     ['garbage.glb', enc.encode('this is not a glb file at all, just text')],
     ['truncated.glb', plain.slice(0, plain.length - 4)],
     ['plain.glb', plain],
+    ['newer.glb', glbWith({ asset: { version: '2.0' }, extras: { prtkit: { formatVersion: 2 } } })],
     ['broken.json', enc.encode('{"bands": 3, "coefficients": [')],
     ['rows.json', enc.encode(JSON.stringify({ bands: 2, coefficients: [[1, 1, 1], [0, 0, 0], [0, 0, 0]] }))],
     ['short.json', enc.encode(JSON.stringify({ bands: 2, coefficients: [[1, 1, 1], [0, 0, 0], [0, 0, 0], [0, 0, 0]] }))],
