@@ -340,6 +340,9 @@ TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
   }
   // The control: a good light file is added, and clears the message.
   EXPECT_NE(json.find("\"control\":{\"message\":\"\",\"added\":true}"), std::string::npos) << json;
+  // And a good bake replaces the scene.
+  EXPECT_NE(json.find("\"controlBake\":{\"message\":\"\",\"replaced\":true}"), std::string::npos)
+      << json;
 }
 
 TEST(Web, ClearMessagesWithoutDataOrWebGl2) {

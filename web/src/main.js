@@ -550,15 +550,7 @@ async function dropTest(readFrame, snapshot) {
   const w = 64, h = 48;
   const frame0 = bytesBase64(readFrame(w, h)), s0 = snapshot();
   const enc = new TextEncoder();
-  // A glTF binary that is valid glTF but holds no prtkit bake.
-  const json = enc.encode(JSON.stringify({ asset: { version: '2.0' } }) + '  '.slice(0, 0));
-  const pad = (4 - (json.length % 4)) % 4;
-  const plain = new Uint8Array(12 + 8 + json.length + pad);
-  const dv = new DataView(plain.buffer);
-  dv.setUint32(0, 0x46546c67, true), dv.setUint32(4, 2, true), dv.setUint32(8, plain.length, true);
-  dv.setUint32(12, json.length + pad, true), dv.setUint32(16, 0x4e4f534a, true);
-  plain.set(json, 20);
-  plain.fill(0x20, 20 + json.length);
+  // A GLB holding only the JSON chunk `doc`.
   const glbWith = (doc) => {
     const j = enc.encode(JSON.stringify(doc)), p = (4 - (j.length % 4)) % 4;
     const b = new Uint8Array(20 + j.length + p), v = new DataView(b.buffer);
@@ -568,6 +560,7 @@ async function dropTest(readFrame, snapshot) {
     b.fill(0x20, 20 + j.length);
     return b;
   };
+  const plain = glbWith({ asset: { version: '2.0' } });  // valid glTF, no prtkit bake
   const cases = [
     ['garbage.glb', enc.encode('this is not a glb file at all, just text')],
     ['truncated.glb', plain.slice(0, plain.length - 4)],
@@ -589,7 +582,10 @@ async function dropTest(readFrame, snapshot) {
   const B = s0.bake.maxBands, good = { bands: B, coefficients: Array.from({ length: B * B }, (_, i) => (i ? [0, 0, 0] : [1, 1, 1])) };
   const message = await drop('good.json', enc.encode(JSON.stringify(good)));
   const added = snapshot().envCount === s0.envCount + 1;
-  report({ ok: true, cases: results, control: { message, added } });
+  // Control: a good bake (the page's own, again) replaces the scene.
+  const glbMessage = await drop('again.glb', base64Bytes(window.PRT_DATA.bake.glb));
+  const replaced = snapshot().bake !== s0.bake && snapshot().bake.vertices === s0.bake.vertices;
+  report({ ok: true, cases: results, control: { message, added }, controlBake: { message: glbMessage, replaced } });
 }
 
 main().catch((e) => fatal(`prt web: ${e && e.message ? e.message : e}`));
