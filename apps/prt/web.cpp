@@ -183,6 +183,12 @@ void writeWebViewer(const WebOptions& a) {
   // The bake: validated here (one clear line now rather than on the page), copied verbatim.
   const std::vector<unsigned char> glb = readFileBytes(a.bake);
   const BakeFile bake = decodeBake(glb, a.bake);
+  // The page draws vector (diffuse) transfer, bake format version 1; glossy matrices (version 2)
+  // are refused here, as the page refuses such a file dropped on it.
+  if (bake.formatVersion != 1)
+    throw Error(a.bake, fmt::format("bake format version {}: the browser viewer draws version 1 "
+                                    "(diffuse vector transfer) only",
+                                    bake.formatVersion));
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   if (!bake.complete())
