@@ -490,6 +490,10 @@ void runDemo(const DemoArgs& a) {
     w.envs = envSpecs;
     w.output = file("web");
     w.mode = "interreflected";
+    // The stills' framing: the object, not the whole ground plane.
+    const render::Camera c = render::frameSphere(scene.centre, scene.radius, 640, 480);
+    w.camera = fmt::format("eye={},{},{};target={},{},{}", c.eye.x, c.eye.y, c.eye.z, c.target.x,
+                           c.target.y, c.target.z);
     writeWebViewer(w);
   } else {
     warn("demo: no live viewer on the page: " + webWhy);

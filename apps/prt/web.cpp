@@ -31,6 +31,7 @@
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/render/camera.hpp"
 #include "web.hpp"
 
 namespace prt::cli {
@@ -200,6 +201,17 @@ void writeWebViewer(const WebOptions& a) {
   int bands = 0;
   for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.field.bands);
 
+  // --camera: keys not given come from the default framing (render::frameMesh at 640x480).
+  std::string cameraJson = "null";
+  if (!a.camera.empty()) {
+    const render::Camera c = render::parseCamera(a.camera, render::frameMesh(bake.mesh, 640, 480));
+    cameraJson = fmt::format(
+        "{{\"eye\": [{:.9g}, {:.9g}, {:.9g}], \"target\": [{:.9g}, {:.9g}, {:.9g}], \"up\": "
+        "[{:.9g}, {:.9g}, {:.9g}], \"fov\": {:.9g}}}",
+        c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y, c.up.z,
+        c.fovY);
+  }
+
   std::vector<WebEnvironment> envs;
   const std::vector<std::string> specs =
       a.envs.empty() ? std::vector<std::string>{"builtin:sky"} : a.envs;
@@ -211,7 +223,8 @@ void writeWebViewer(const WebOptions& a) {
   js << "\"generator\": " << jsonString(std::string("prtkit ") + PRT_VERSION) << ",\n";
   js << "\"view\": {\"rotate\": [" << euler[0] << ", " << euler[1] << ", " << euler[2]
      << "], \"exposure\": " << a.exposure << ", \"tonemap\": " << jsonString(a.toneMap)
-     << ", \"mode\": " << jsonString(a.mode) << ", \"bands\": " << a.bands << "},\n";
+     << ", \"mode\": " << jsonString(a.mode) << ", \"bands\": " << a.bands
+     << ", \"camera\": " << cameraJson << "},\n";
   js << "\"bake\": {\"name\": " << jsonString(fs::path(a.bake).filename().string())
      << ", \"glb\": \"" << base64(glb.data(), glb.size()) << "\"},\n";
   js << "\"environments\": [\n";
@@ -250,6 +263,9 @@ void addWebCommand(CLI::App& root) {
                   "offer several (default builtin:sky)");
   cmd->add_option("-o,--output", args->output, "Folder to write")->required();
   cmd->add_option("--rotate", args->rotate, "Initial light rotation X,Y,Z (degrees)");
+  cmd->add_option("--camera", args->camera,
+                  "Initial camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (as prt render; "
+                  "default: framed)");
   cmd->add_option("--mode", args->mode, "Initial transfer mode");
   cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
   cmd->add_option("--exposure", args->exposure, "Initial exposure in stops");

@@ -11,6 +11,7 @@ struct WebOptions {
   std::vector<std::string> envs;  ///< environments or SH light files; empty: builtin:sky
   std::string output;             ///< folder to write
   std::string rotate;             ///< initial light rotation "X,Y,Z" degrees
+  std::string camera;             ///< initial camera, prt render's --camera syntax ("" = framed)
   std::string mode;               ///< initial transfer mode ("" = the richest)
   std::string toneMap = "aces";
   float exposure = 0.0f;

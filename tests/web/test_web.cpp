@@ -242,6 +242,22 @@ TEST(Web, FirstFrameMatchesPrtRenderRgbAndToneMap) {
             << "/255\n";
 }
 
+TEST(Web, GivenCameraMatchesPrtRender) {
+  PRT_REQUIRE_PAGE();
+  const std::string cam = "eye=1.2,2.2,2.6;target=0.1,0.2,0;up=0.2,1,0;fov=55";
+  Result r = prt("-q web cornell.glb --env builtin:studio --camera '" + cam + "' -o page_cam");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render cornell.glb --light builtin:studio --camera '" + cam +
+          "' --mode shadowed --size 320x240 -o cam.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string json = runPage(path("page_cam"), "screenshot&size=320x240&mode=shadowed");
+  const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("cam.png"));
+  EXPECT_LT(e, kMatch) << json.substr(0, 200);
+  EXPECT_LT(quantile90, kInterior);
+  // The default framing is another view: far off.
+  EXPECT_GT(displayedRmse(pageFrame("env=1&mode=shadowed"), path("cam.png")), 4 * kMatch);
+}
+
 TEST(Web, ShRotationMatchesLibrary) {
   const std::string node = which({"node", "nodejs"});
   if (node.empty()) GTEST_SKIP() << "no node here (apt-get install nodejs)";

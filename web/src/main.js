@@ -228,8 +228,18 @@ async function main() {
     }
   }
 
-  /** Frames the mesh as render::frameMesh does for a width × height image. */
+  /** The camera prt web was given (--camera), else the mesh framed as render::frameMesh does
+   *  for a width × height image. */
   function frameCamera(w, h) {
+    const given = data.view && data.view.camera;
+    if (given && data.bake.name === bake.name) {
+      camera.fov = given.fov;
+      camera.up.fromArray(given.up);
+      camera.position.fromArray(given.eye);
+      camera.lookAt(new THREE.Vector3().fromArray(given.target));
+      if (controls) controls.target.fromArray(given.target), controls.update();
+      return;
+    }
     const fovY = 40, halfY = (fovY / 2) * Math.PI / 180;
     const halfX = Math.atan(Math.tan(halfY) * w / h);
     const d = (1.05 * bake.radius) / Math.sin(Math.min(halfX, halfY));
@@ -310,7 +320,8 @@ async function main() {
     }
     // Camera: the projection as RayGenerator, near/far around the bounding sphere.
     camera.aspect = w / h;
-    const forward = new THREE.Vector3().subVectors(controls ? controls.target : bake.centre, camera.position).normalize();
+    camera.updateMatrixWorld();
+    const forward = camera.getWorldDirection(new THREE.Vector3());
     const d = new THREE.Vector3().subVectors(bake.centre, camera.position).dot(forward);
     camera.far = Math.max(d + 1.01 * bake.radius, 1e-3 * bake.radius);
     camera.near = Math.max(d - 1.01 * bake.radius, 1e-4 * camera.far);
@@ -435,7 +446,7 @@ async function main() {
   renderer.domElement.addEventListener('contextmenu', (e) => e.preventDefault());
 
   // Panel.
-  const gui = new GUI({ title: 'prtkit' });
+  const gui = new GUI({ title: 'prtkit', container: document.getElementById('prt-panel') });
   const envNames = () => Object.fromEntries(envs.map((e, i) => [e.name, i]));
   const envCtl = gui.add(state, 'env', envNames()).name('environment');
   let modeCtl = null, bandsCtl = null;
