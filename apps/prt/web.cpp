@@ -169,10 +169,10 @@ bool webAssetsAvailable(std::string* why) {
 }
 
 void writeWebViewer(const WebOptions& a) {
-  const Mat3d rotation = parseRotation(a.rotate);  // validates --rotate early
-  (void)rotation;
+  // Everything cheap is validated before any work, so errors come at once and nothing is written.
   const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
   image::parseToneMap(a.toneMap);
+  if (!std::isfinite(a.exposure)) throw Error("--exposure must be a finite number of stops");
   if (a.backgroundWidth < 8 || a.backgroundWidth > 8192 || a.backgroundWidth % 2)
     throw Error("--background-width must be an even number of pixels in 8..8192");
   if (a.bands < 0 || a.bands > sh::kMaxBands)
