@@ -258,6 +258,25 @@ TEST(Web, GivenCameraMatchesPrtRender) {
   EXPECT_GT(displayedRmse(pageFrame("env=1&mode=shadowed"), path("cam.png")), 4 * kMatch);
 }
 
+TEST(Web, MeshWithoutAlbedoMatchesPrtRender) {
+  // An OBJ has no per-vertex albedo: no COLOR_0 in the bake, white in relight and in the page.
+  PRT_REQUIRE_PAGE();
+  std::ofstream(path("box.obj")) << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                                    "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                                    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+                                    "f 4 7 3\nf 4 8 7\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n";
+  Result r = prt("-q bake box.obj --mode unshadowed --bands 3 -o box.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q web box.glb --env builtin:studio -o page_box");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render box.glb --light builtin:studio --rotate 0,40,0 --size 320x240 -o box.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string json = runPage(path("page_box"), "screenshot&size=320x240&rotate=0,40,0");
+  EXPECT_LT(displayedRmse(unbase64(jsonField(json, "rgb")), path("box.png")), kMatch)
+      << json.substr(0, 200);
+  EXPECT_LT(quantile90, kInterior);
+}
+
 TEST(Web, ShRotationMatchesLibrary) {
   const std::string node = which({"node", "nodejs"});
   if (node.empty()) GTEST_SKIP() << "no node here (apt-get install nodejs)";
