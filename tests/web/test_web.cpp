@@ -366,7 +366,8 @@ TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
       {"broken.json", "broken.json: is not JSON"},
       {"rows.json", "rows.json: has 3 coefficients but 2 bands need 4"},
       {"short.json", "short.json: the light has 2 bands but the bake 4"},
-      {"picture.png", "picture.png: not a bake (.glb) or an SH light (.json)"},
+      {"picture.png", "picture.png: not a bake (.glb) or an SH light (.json, or the course's"},
+      {"odd.txt", "odd.txt: has 2 lines; a light.txt has B² lines"},
   };
   for (const auto& [name, message] : expect) {
     const std::size_t at = json.find("{\"name\":\"" + name + "\"");
@@ -376,7 +377,7 @@ TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
     for (const char* same : {"\"sameBake\":true", "\"sameEnvs\":true", "\"sameFrame\":true"})
       EXPECT_NE(entry.find(same), std::string::npos) << same << " in " << entry;
   }
-  // The control: a good light file is added, and clears the message.
+  // The control: a good light file (JSON, then light.txt) is added, and clears the message.
   EXPECT_NE(json.find("\"control\":{\"message\":\"\",\"added\":true}"), std::string::npos) << json;
   // And a good bake replaces the scene.
   EXPECT_NE(json.find("\"controlBake\":{\"message\":\"\",\"replaced\":true}"), std::string::npos)

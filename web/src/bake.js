@@ -153,3 +153,20 @@ export function parseLightJson(text, name) {
   });
   return { bands: B, coeffs };
 }
+
+/**
+ * Parses the GAMES202 course's light.txt (docs/formats-light.md): B² lines "r g b", nothing else.
+ */
+export function parseLightTxt(text, name) {
+  const lines = text.split(/\r?\n/).map((l) => l.trim()).filter((l) => l.length > 0);
+  const B = Math.round(Math.sqrt(lines.length));
+  if (lines.length === 0 || B * B !== lines.length)
+    fail(name, `has ${lines.length} lines; a light.txt has B² lines of "r g b"`);
+  const coeffs = new Float32Array(lines.length * 3);
+  lines.forEach((l, i) => {
+    const v = l.split(/\s+/).map(Number);
+    if (v.length !== 3 || !v.every(Number.isFinite)) fail(name, `line ${i + 1} is not three numbers`);
+    coeffs.set(v, 3 * i);
+  });
+  return { bands: B, coeffs };
+}

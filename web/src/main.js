@@ -11,7 +11,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import GUI from 'lil-gui';
 
-import { parseBake, parseLightJson } from './bake.js';
+import { parseBake, parseLightJson, parseLightTxt } from './bake.js';
 import { axisAngle, evalSh, mul3, rotateLight, rotationEulerXYZ } from './sh.js';
 import meshVert from './shaders/mesh.vert';
 import meshFrag from './shaders/mesh.frag';
@@ -497,15 +497,16 @@ async function main() {
       setBake(b);
       rebuildBakeControls();
       frameCamera(renderer.domElement.width, renderer.domElement.height);
-    } else if (ext === 'json') {
-      const l = parseLightJson(await file.text(), name);
+    } else if (ext === 'json' || ext === 'txt') {
+      const text = await file.text();
+      const l = ext === 'json' ? parseLightJson(text, name) : parseLightTxt(text, name);
       if (l.bands < bake.maxBands)
         throw new Error(`${name}: the light has ${l.bands} bands but the bake ${bake.maxBands}; the transfer's upper bands would see no light (write it with prt light --bands ${bake.maxBands})`);
       envs.push({ name, bands: l.bands, coeffs: l.coeffs, background: null, texture: null, shCache: null });
       state.env = envs.length - 1;
       envCtl.options(envNames()).setValue(state.env);
     } else {
-      throw new Error(`${name}: not a bake (.glb) or an SH light (.json)`);
+      throw new Error(`${name}: not a bake (.glb) or an SH light (.json, or the course's light.txt)`);
     }
   }
   async function onDrop(e) {
@@ -581,6 +582,7 @@ async function dropTest(readFrame, snapshot) {
     ['rows.json', enc.encode(JSON.stringify({ bands: 2, coefficients: [[1, 1, 1], [0, 0, 0], [0, 0, 0]] }))],
     ['short.json', enc.encode(JSON.stringify({ bands: 2, coefficients: [[1, 1, 1], [0, 0, 0], [0, 0, 0], [0, 0, 0]] }))],
     ['picture.png', enc.encode('PNG')],
+    ['odd.txt', enc.encode('1 1 1\n0 0 0\n')],
   ];
   const results = [];
   for (const [name, bytes] of cases) {
@@ -592,7 +594,10 @@ async function dropTest(readFrame, snapshot) {
   // Control: a good light with the bake's bands is added (so the handler does run).
   const B = s0.bake.maxBands, good = { bands: B, coefficients: Array.from({ length: B * B }, (_, i) => (i ? [0, 0, 0] : [1, 1, 1])) };
   const message = await drop('good.json', enc.encode(JSON.stringify(good)));
-  const added = snapshot().envCount === s0.envCount + 1;
+  // ... and so is the course's light.txt.
+  const txt = Array.from({ length: B * B }, (_, i) => (i ? '0 0 0' : '0.5 0.5 0.5')).join('\n');
+  const txtMessage = await drop('light.txt', enc.encode(txt));
+  const added = snapshot().envCount === s0.envCount + 2 && txtMessage === '';
   // Control: a good bake (the page's own, again) replaces the scene.
   const glbMessage = await drop('again.glb', base64Bytes(window.PRT_DATA.bake.glb));
   const replaced = snapshot().bake !== s0.bake && snapshot().bake.vertices === s0.bake.vertices;
