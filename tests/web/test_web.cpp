@@ -7,6 +7,7 @@
 // Each test skips, saying why, where chromium, node or the built page is missing.
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
