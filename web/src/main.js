@@ -127,6 +127,10 @@ async function main() {
   renderer.setClearColor(0x000000, 1);
   document.body.appendChild(renderer.domElement);
   const gl = renderer.getContext();
+  // The frame is drawn in linear HDR into a half-float target, then tone mapped.
+  if (!gl.getExtension('EXT_color_buffer_float') && !gl.getExtension('EXT_color_buffer_half_float'))
+    return fatal('This page needs to render into floating-point images (WebGL2 extension ' +
+                 'EXT_color_buffer_float), which this browser or GPU does not offer.');
   const limits = {
     maxTextureSize: gl.getParameter(gl.MAX_TEXTURE_SIZE),
     // uL[pad4(B²)] plus a few other uniforms must fit the vertex shader's uniform vectors.
