@@ -12,10 +12,16 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # viewer (prt view): window, UI, GL loader; EGL + Mesa (llvmpipe) headless; Xvfb for its window test
   libglfw3-dev libimgui-dev libepoxy-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri xvfb xauth
+  # browser viewer (prt web): node + npm bundle web/ (three.js, lil-gui, esbuild from npm, pinned
+  # by web/package-lock.json); chromium runs its tests headless (SwiftShader, no GPU needed)
+  # (npm is added below only when no npm command exists: NodeSource's nodejs ships its own npm and
+  # conflicts with Debian's npm package)
+  nodejs chromium
 )
 assets=(glmark2-data blender-data)
 
 want=("${packages[@]}")
+if ! command -v npm >/dev/null 2>&1; then want+=(npm); fi
 if [[ "${1:-}" == "--with-assets" ]]; then want+=("${assets[@]}"); fi
 
 missing=()
@@ -25,8 +31,24 @@ for p in "${want[@]}"; do
   fi
 done
 
+# The browser viewer's npm packages, exactly as locked (web/package-lock.json), into
+# web/node_modules; skipped when they are already there. Re-run cmake afterwards so the build
+# bundles the page (target prt_web_assets).
+web_packages() {
+  local web
+  web="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/web"
+  if [[ -f "$web/node_modules/three/package.json" && -f "$web/node_modules/lil-gui/package.json" &&
+        -f "$web/node_modules/esbuild/package.json" &&
+        "$web/node_modules/.package-lock.json" -nt "$web/package-lock.json" ]]; then
+    return 0
+  fi
+  echo "setup: installing the browser viewer's npm packages (web/package-lock.json)" >&2
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
+}
+
 if ((${#missing[@]} == 0)); then
   echo "setup: all ${#want[@]} packages present" >&2
+  web_packages
   exit 0
 fi
 
@@ -36,4 +58,5 @@ if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+web_packages
 echo "setup: done" >&2

@@ -38,5 +38,6 @@ void addReferenceCommand(CLI::App& root);
 void addViewCommand(CLI::App& root);
 void addMergeCommand(CLI::App& root);
 void addDemoCommand(CLI::App& root);
+void addWebCommand(CLI::App& root);
 
 }  // namespace prt::cli

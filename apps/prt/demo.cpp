@@ -43,6 +43,7 @@
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transport/bake.hpp"
+#include "web.hpp"
 
 #ifndef PRT_VERSION
 #define PRT_VERSION "dev"
@@ -192,7 +193,7 @@ struct LightResult {
 
 void writeIndex(const std::string& path, const Scene& scene, const BakeFile& bake,
                 const std::vector<LightResult>& lights, const DemoArgs& a, double bakeSeconds,
-                double totalSeconds) {
+                double totalSeconds, const std::string& webWhy) {
   std::ostringstream h;
   h << R"(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>prtkit demo</title>
@@ -207,6 +208,16 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
 </style></head><body>
 <h1>prtkit demo</h1>
 )";
+  // The live viewer (prt web, docs/web.md) above the still images.
+  if (webWhy.empty())
+    h << "<iframe src=\"web/index.html\" title=\"live viewer\" style=\"width:100%;height:540px;"
+         "border:1px solid #ccc;background:#000\"></iframe>\n<p>Live, in this browser (WebGL2): "
+         "left-drag orbits, right-drag (or shift-drag) turns the light, the panel switches "
+         "environments, transfer modes and bands; drop another <code>.glb</code> bake or SH light "
+         "<code>.json</code> on it. <a href=\"web/index.html\">Open it full-window</a>; "
+         "<code>prt web scene.glb -o DIR</code> writes the same for any bake.</p>\n";
+  else
+    h << "<p class=\"note\">(No live viewer here: " << htmlEscape(webWhy) << ")</p>\n";
   h << "<p>Scene: " << htmlEscape(scene.description) << ", " << bake.mesh.vertexCount()
     << " vertices, " << bake.mesh.triangleCount() << " triangles. Baked with " << a.bands
     << " SH bands (" << a.bands * a.bands << " coefficients), " << a.samples
@@ -484,7 +495,24 @@ void runDemo(const DemoArgs& a) {
     lights.push_back(std::move(L));
   }
 
-  writeIndex(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0));
+  // The live viewer: prt web's folder for the same bake and environments, in web/.
+  std::string webWhy;
+  if (webAssetsAvailable(&webWhy)) {
+    WebOptions w;
+    w.bake = file("scene.glb");
+    w.envs = envSpecs;
+    w.output = file("web");
+    w.mode = "interreflected";
+    // The stills' framing: the object, not the whole ground plane.
+    const render::Camera c = render::frameSphere(scene.centre, scene.radius, 640, 480);
+    w.camera = fmt::format("eye={},{},{};target={},{},{}", c.eye.x, c.eye.y, c.eye.z, c.target.x,
+                           c.target.y, c.target.z);
+    writeWebViewer(w);
+  } else {
+    warn("demo: no live viewer on the page: " + webWhy);
+  }
+
+  writeIndex(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0), webWhy);
 
   // Into place: replace an earlier demo folder only now that the new one is complete.
   if (fs::exists(out)) {

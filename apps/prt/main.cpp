@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
   addViewCommand(app);
   addMergeCommand(app);
   addDemoCommand(app);
+  addWebCommand(app);
   oneValuePerOption(app);
 
   std::signal(SIGINT, onSigint);

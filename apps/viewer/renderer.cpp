@@ -10,100 +10,24 @@
 #include <string>
 
 #include "prt/core/error.hpp"
+#include "prt_viewer_shaders.hpp"
 
 namespace prt::viewer {
 
 namespace {
 
 // ---- shaders --------------------------------------------------------------------------------
+// The GLSL lives in shaders/ (shared functions prt_*.glsl, this viewer's stages in
+// shaders/viewer/), embedded at configure time (cmake/EmbedShaders.cmake); the web page (web/)
+// compiles the same shared functions. Each source gets the desktop's #version here.
 
-constexpr const char* kMeshVs = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aAlbedo;
-uniform mat4 uViewProj;
-uniform samplerBuffer uTransfer;  // GL_RGBA32F, layout in renderer.hpp
-uniform int uTexelsPerVertex;     // scalar: roundUp4(B²)/4; RGB: B²
-uniform int uCount;               // scalar: texels to read = roundUp4(b²)/4; RGB: b²
-uniform bool uRgb;
-layout(std140) uniform Light { vec4 uL[1024]; };  // D(R) L, (r, g, b, -) per coefficient
-out vec3 vRadiance;
-void main() {
-  int base = gl_VertexID * uTexelsPerVertex;
-  vec3 r = vec3(0.0);
-  if (uRgb) {
-    for (int i = 0; i < uCount; ++i) r += texelFetch(uTransfer, base + i).rgb * uL[i].rgb;
-  } else {
-    for (int k = 0; k < uCount; ++k) {
-      vec4 t = texelFetch(uTransfer, base + k);
-      int i = 4 * k;
-      r += t.x * uL[i].rgb + t.y * uL[i + 1].rgb + t.z * uL[i + 2].rgb + t.w * uL[i + 3].rgb;
-    }
-  }
-  vRadiance = aAlbedo * r;  // R(v) = albedo(v) ⊙ Σ_i T_i(v) L'_i
-  gl_Position = uViewProj * vec4(aPosition, 1.0);
+std::string glsl330(const char* body) {
+  return std::string("#version 330 core\n") + body;
 }
-)";
 
-constexpr const char* kMeshFs = R"(#version 330 core
-in vec3 vRadiance;
-out vec4 fragColour;
-void main() { fragColour = vec4(vRadiance, 1.0); }
-)";
-
-// A triangle covering the viewport: vertices (-1,-1), (3,-1), (-1,3).
-constexpr const char* kFullscreenVs = R"(#version 330 core
-void main() {
-  vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
-  gl_Position = vec4(p, 1.0, 1.0);
-}
-)";
-
-// Camera ray of a pixel as in render::RayGenerator: ndc = (2 px / w − 1, 1 − 2 py / h) with py
-// from the top, i.e. (2 x / w − 1, 2 y / h − 1) in GL's bottom-up window coordinates;
-// d ∝ forward + ndc.x tanX right + ndc.y tanY up. Lat-long lookup (envmap/layout.hpp): for the
-// unrotated direction e = Rᵀ d, θ = acos e.y, φ = atan2(e.z, e.x), u = φ / 2π + 1/2, v = θ / π.
-constexpr const char* kBackgroundFs = R"(#version 330 core
-uniform vec2 uViewport;
-uniform vec3 uForward, uRightTan, uUpTan;
-uniform mat3 uRotationT;
-uniform sampler2D uLatLong;
-out vec4 fragColour;
-const float kPi = 3.14159265358979;
-void main() {
-  vec2 ndc = 2.0 * gl_FragCoord.xy / uViewport - 1.0;
-  vec3 d = normalize(uForward + ndc.x * uRightTan + ndc.y * uUpTan);
-  vec3 e = uRotationT * d;
-  float theta = acos(clamp(e.y, -1.0, 1.0));
-  float phi = atan(e.z, e.x);
-  vec2 uv = vec2(phi / (2.0 * kPi) + 0.5, theta / kPi);
-  fragColour = vec4(max(texture(uLatLong, uv).rgb, vec3(0.0)), 1.0);
-}
-)";
-
-// image::toneMap then image::linearToSrgb (prt/image/color.hpp), per channel.
-constexpr const char* kToneFs = R"(#version 330 core
-uniform sampler2D uHdr;
-uniform float uScale;  // 2^exposure
-uniform int uToneMap;  // 0 clamp, 1 reinhard, 2 aces
-out vec4 fragColour;
-float tone(float v) {
-  v = max(v * uScale, 0.0);
-  if (uToneMap == 0) return min(v, 1.0);
-  if (uToneMap == 1) return v / (1.0 + v);
-  return clamp(v * (2.51 * v + 0.03) / (v * (2.43 * v + 0.59) + 0.14), 0.0, 1.0);
-}
-float srgb(float v) {
-  v = clamp(v, 0.0, 1.0);
-  return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
-}
-void main() {
-  vec3 c = texelFetch(uHdr, ivec2(gl_FragCoord.xy), 0).rgb;
-  fragColour = vec4(srgb(tone(c.r)), srgb(tone(c.g)), srgb(tone(c.b)), 1.0);
-}
-)";
-
-GLuint compile(GLenum type, const char* src, const char* name) {
+GLuint compile(GLenum type, const std::string& source, const char* name) {
   const GLuint s = glCreateShader(type);
+  const char* src = source.c_str();
   glShaderSource(s, 1, &src, nullptr);
   glCompileShader(s);
   GLint ok = 0;
@@ -119,7 +43,7 @@ GLuint compile(GLenum type, const char* src, const char* name) {
   return s;
 }
 
-GLuint link(const char* vs, const char* fs, const char* name) {
+GLuint link(const std::string& vs, const std::string& fs, const char* name) {
   const GLuint v = compile(GL_VERTEX_SHADER, vs, name), f = compile(GL_FRAGMENT_SHADER, fs, name);
   const GLuint p = glCreateProgram();
   glAttachShader(p, v);
@@ -213,9 +137,11 @@ image::Image OffscreenTarget::readEncoded() const {
 // ---- Renderer -------------------------------------------------------------------------------
 
 Renderer::Renderer() {
-  meshProgram_ = link(kMeshVs, kMeshFs, "mesh");
-  backgroundProgram_ = link(kFullscreenVs, kBackgroundFs, "background");
-  toneProgram_ = link(kFullscreenVs, kToneFs, "tone map");
+  using namespace prt::shaders;
+  meshProgram_ = link(glsl330(kShaderMeshVert), glsl330(kShaderMeshFrag), "mesh");
+  backgroundProgram_ =
+      link(glsl330(kShaderFullscreenVert), glsl330(kShaderBackgroundFrag), "background");
+  toneProgram_ = link(glsl330(kShaderFullscreenVert), glsl330(kShaderToneFrag), "tone map");
   glUniformBlockBinding(meshProgram_, glGetUniformBlockIndex(meshProgram_, "Light"), 0);
   glGenVertexArrays(1, &vao_);
   glGenVertexArrays(1, &emptyVao_);

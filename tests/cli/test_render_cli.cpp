@@ -164,6 +164,11 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
     EXPECT_TRUE(std::filesystem::exists(d / html.substr(at + 5, end - at - 5)))
         << html.substr(at + 5, end - at - 5);
   }
+  // The live viewer (prt web) sits above the images when its page is built.
+  if (html.find("src=\"web/index.html\"") != std::string::npos) {
+    EXPECT_TRUE(std::filesystem::exists(d / "web/prt-data.js"));
+    EXPECT_TRUE(std::filesystem::exists(d / "web/prt-web.js"));
+  }
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out/demo.partial"));
 
   // A second run replaces the folder; a failing run leaves the old one and no partial folder.

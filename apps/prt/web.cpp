@@ -1,0 +1,280 @@
+// prt web: writes the browser viewer (web/, docs/web.md) for a bake into a folder that works
+// opened straight from disk (file://, no server) and from any static web server.
+//
+//   prt web bunny.glb --env studio.exr --env builtin:sky -o bunny-web/
+//
+// The folder: index.html and prt-web.js (the page and its bundled JavaScript: three.js, lil-gui,
+// the shared GLSL; built from web/ by CMake with esbuild, see web/build.mjs), and prt-data.js,
+// written here: `window.PRT_DATA = {...}` holding the bake (.glb bytes, base64), each
+// environment's SH coefficients at the bake's bands and a small lat-long background (RGBE,
+// base64). Classic <script> files because Chromium refuses fetch() and ES-module imports of
+// file:// URLs.
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "args.hpp"
+#include "cli.hpp"
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/envmap/load.hpp"
+#include "prt/envmap/preview.hpp"
+#include "prt/envmap/project.hpp"
+#include "prt/image/color.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/io/light_file.hpp"
+#include "prt/render/camera.hpp"
+#include "web.hpp"
+
+namespace prt::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The page's built assets (index.html, prt-web.js): $PRT_WEB_ASSETS, else
+/// <exe>/../share/prtkit/web (installed), else the build tree's web/ (PRT_WEB_ASSETS_DIR, set by
+/// CMake).
+fs::path findAssets() {
+  std::vector<fs::path> tried;
+  if (const char* env = std::getenv("PRT_WEB_ASSETS")) tried.emplace_back(env);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) tried.push_back(exe.parent_path().parent_path() / "share" / "prtkit" / "web");
+#ifdef PRT_WEB_ASSETS_DIR
+  tried.emplace_back(PRT_WEB_ASSETS_DIR);
+#endif
+  for (const fs::path& p : tried)
+    if (fs::is_regular_file(p / "prt-web.js") && fs::is_regular_file(p / "index.html")) return p;
+  std::string where;
+  for (const fs::path& p : tried) where += (where.empty() ? "" : ", ") + p.string();
+  throw Error(fmt::format(
+      "the browser viewer's assets (index.html, prt-web.js) are not built (looked in {}); run "
+      "scripts/setup.sh, which installs web/node_modules with npm, then rebuild (ninja "
+      "prt_web_assets), or set PRT_WEB_ASSETS",
+      where.empty() ? "nowhere" : where));
+}
+
+std::string base64(const void* data, std::size_t n) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* p = static_cast<const unsigned char*>(data);
+  std::string out;
+  out.reserve((n + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < n; i += 3) {
+    const unsigned v = (p[i] << 16) | (p[i + 1] << 8) | p[i + 2];
+    out += k[v >> 18], out += k[(v >> 12) & 63], out += k[(v >> 6) & 63], out += k[v & 63];
+  }
+  if (i + 1 == n) {
+    const unsigned v = p[i] << 16;
+    out += k[v >> 18], out += k[(v >> 12) & 63], out += "==";
+  } else if (i + 2 == n) {
+    const unsigned v = (p[i] << 16) | (p[i + 1] << 8);
+    out += k[v >> 18], out += k[(v >> 12) & 63], out += k[(v >> 6) & 63], out += '=';
+  }
+  return out;
+}
+
+/// A JSON string literal (also safe inside a <script>: no "</").
+std::string jsonString(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\')
+      o += '\\', o += c;
+    else if (c == '/')
+      o += "\\/";
+    else if (u < 0x20)
+      o += fmt::format("\\u{:04x}", u);
+    else
+      o += c;
+  }
+  return o + "\"";
+}
+
+struct WebEnvironment {
+  std::string name;
+  sh::RgbSh light;
+  image::Image background;  // lat-long, linear RGB
+};
+
+WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
+  WebEnvironment e;
+  e.name = spec;
+  const std::string ext = fileExtension(spec);
+  if (ext == "json" || ext == "txt") {
+    const sh::RgbSh source = io::readLight(spec).coefficients;
+    if (source.bands < bands)
+      throw Error(spec, fmt::format("the light has {} bands but the bake {}; the transfer's upper "
+                                    "bands would see no light (write it with prt light --bands {})",
+                                    source.bands, bands, bands));
+    e.light = source.truncated(bands);
+    e.background = envmap::renderSh(source, width);
+    for (Rgb& p : e.background.pixels) p = max(p, Rgb(0.0f));
+    return e;
+  }
+  envmap::LoadedEnvironment loaded = envmap::loadEnvironment(spec);
+  for (std::size_t k = 0; k < loaded.stats.size(); ++k)
+    if (loaded.stats[k].nonFinitePixels + loaded.stats[k].negativePixels > 0)
+      warn(fmt::format("{}: {} non-finite and {} negative pixels set to 0", loaded.files[k],
+                       loaded.stats[k].nonFinitePixels, loaded.stats[k].negativePixels));
+  e.light = envmap::projectEnvironment(loaded.env, bands, progressBar("projecting"));
+  e.background = envmap::renderEnvironment(loaded.env, width);
+  return e;
+}
+
+/// Radiance RGBE (Ward, "Real Pixels", Graphics Gems II, 1991): a shared exponent and three
+/// 8-bit mantissas, 4 bytes a pixel (a float32 RGB lat-long is 3× larger, and half floats
+/// overflow at a sun's radiance). Relative precision ~1/256 of the largest channel.
+std::vector<unsigned char> encodeRgbe(const image::Image& img) {
+  std::vector<unsigned char> out(img.pixels.size() * 4, 0);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+    const Rgb p = max(img.pixels[i], Rgb(0.0f));
+    const float v = std::max({p.x, p.y, p.z});
+    if (!(v >= 1e-32f) || !std::isfinite(v)) continue;
+    int e = 0;
+    const float scale = std::frexp(v, &e) * 256.0f / v;
+    if (e + 128 > 255) e = 127;
+    out[4 * i] = static_cast<unsigned char>(std::min(255.0f, p.x * scale));
+    out[4 * i + 1] = static_cast<unsigned char>(std::min(255.0f, p.y * scale));
+    out[4 * i + 2] = static_cast<unsigned char>(std::min(255.0f, p.z * scale));
+    out[4 * i + 3] = static_cast<unsigned char>(e + 128);
+  }
+  return out;
+}
+
+std::string readText(const fs::path& p) {
+  const std::vector<unsigned char> b = readFileBytes(p.string());
+  return std::string(b.begin(), b.end());
+}
+
+}  // namespace
+
+bool webAssetsAvailable(std::string* why) {
+  try {
+    findAssets();
+    return true;
+  } catch (const Error& e) {
+    if (why) *why = e.what();
+    return false;
+  }
+}
+
+void writeWebViewer(const WebOptions& a) {
+  // Everything cheap is validated before any work, so errors come at once and nothing is written.
+  const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
+  image::parseToneMap(a.toneMap);
+  if (!std::isfinite(a.exposure)) throw Error("--exposure must be a finite number of stops");
+  if (a.backgroundWidth < 8 || a.backgroundWidth > 8192 || a.backgroundWidth % 2)
+    throw Error("--background-width must be an even number of pixels in 8..8192");
+  if (a.bands < 0 || a.bands > sh::kMaxBands)
+    throw Error(fmt::format("--bands must be 1..{}", sh::kMaxBands));
+  const fs::path assets = findAssets();
+  if (fs::exists(a.output) && !fs::is_directory(a.output))
+    throw Error(a.output, "exists and is not a folder (-o names the folder to write)");
+
+  // The bake: validated here (one clear line now rather than on the page), copied verbatim.
+  const std::vector<unsigned char> glb = readFileBytes(a.bake);
+  const BakeFile bake = decodeBake(glb, a.bake);
+  // The page draws vector (diffuse) transfer, bake format version 1; glossy matrices (version 2)
+  // are refused here, as the page refuses such a file dropped on it.
+  if (bake.formatVersion != 1)
+    throw Error(a.bake, fmt::format("bake format version {}: the browser viewer draws version 1 "
+                                    "(diffuse vector transfer) only",
+                                    bake.formatVersion));
+  if (bake.transfers.empty())
+    throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
+  if (!bake.complete())
+    throw Error(a.bake, fmt::format("holds transfer for vertices {}..{} of {} only (merge the "
+                                    "pieces with prt merge first)",
+                                    bake.firstVertex, bake.firstVertex + bake.vertexCount,
+                                    bake.mesh.vertexCount()));
+  if (!a.mode.empty()) pickTransfer(bake, a.mode, a.bake);
+  int bands = 0;
+  for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.field.bands);
+
+  // --camera: keys not given come from the default framing (render::frameMesh at 640x480).
+  std::string cameraJson = "null";
+  if (!a.camera.empty()) {
+    const render::Camera c = render::parseCamera(a.camera, render::frameMesh(bake.mesh, 640, 480));
+    cameraJson = fmt::format(
+        "{{\"eye\": [{:.9g}, {:.9g}, {:.9g}], \"target\": [{:.9g}, {:.9g}, {:.9g}], \"up\": "
+        "[{:.9g}, {:.9g}, {:.9g}], \"fov\": {:.9g}}}",
+        c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y, c.up.z,
+        c.fovY);
+  }
+
+  std::vector<WebEnvironment> envs;
+  const std::vector<std::string> specs =
+      a.envs.empty() ? std::vector<std::string>{"builtin:sky"} : a.envs;
+  for (const std::string& s : specs) envs.push_back(loadEnvironment(s, bands, a.backgroundWidth));
+
+  std::ostringstream js;
+  js << "// Written by prt web (prtkit " << PRT_VERSION << "): the bake and its lights, read by "
+     << "prt-web.js.\nwindow.PRT_DATA = {\n";
+  js << "\"generator\": " << jsonString(std::string("prtkit ") + PRT_VERSION) << ",\n";
+  js << "\"view\": {\"rotate\": [" << euler[0] << ", " << euler[1] << ", " << euler[2]
+     << "], \"exposure\": " << a.exposure << ", \"tonemap\": " << jsonString(a.toneMap)
+     << ", \"mode\": " << jsonString(a.mode) << ", \"bands\": " << a.bands
+     << ", \"camera\": " << cameraJson << "},\n";
+  js << "\"bake\": {\"name\": " << jsonString(fs::path(a.bake).filename().string())
+     << ", \"glb\": \"" << base64(glb.data(), glb.size()) << "\"},\n";
+  js << "\"environments\": [\n";
+  for (std::size_t k = 0; k < envs.size(); ++k) {
+    const WebEnvironment& e = envs[k];
+    js << "{\"name\": " << jsonString(e.name) << ", \"bands\": " << e.light.bands
+       << ", \"coefficients\": [";
+    for (std::size_t i = 0; i < e.light.c.size(); ++i) {
+      const Rgb& c = e.light.c[i];
+      js << (i ? ", " : "") << fmt::format("[{:.9g}, {:.9g}, {:.9g}]", c.x, c.y, c.z);
+    }
+    const std::vector<unsigned char> rgbe = encodeRgbe(e.background);
+    js << "],\n \"background\": {\"width\": " << e.background.width
+       << ", \"height\": " << e.background.height << ", \"rgbe\": \""
+       << base64(rgbe.data(), rgbe.size()) << "\"}}" << (k + 1 < envs.size() ? ",\n" : "\n");
+  }
+  js << "]};\n";
+
+  fs::create_directories(a.output);
+  const fs::path out(a.output);
+  for (const char* f : {"index.html", "prt-web.js", "THIRD_PARTY_LICENSES.txt"})
+    if (fs::is_regular_file(assets / f))
+      writeFileAtomically((out / f).string(), readText(assets / f));
+  writeFileAtomically((out / "prt-data.js").string(), js.str());
+  info(fmt::format("wrote {} (open {} in a browser; {} environment(s), {} bands)", a.output,
+                   (out / "index.html").string(), envs.size(), bands));
+}
+
+void addWebCommand(CLI::App& root) {
+  auto args = std::make_shared<WebOptions>();
+  CLI::App* cmd = root.add_subcommand(
+      "web", "Write the browser viewer (WebGL2) for a bake: a folder that works from file://");
+  cmd->add_option("bake", args->bake, "Bake file (.glb)")->required();
+  cmd->add_option("--env,--light", args->envs,
+                  "Environment (image, face folder, builtin:NAME) or SH light file; repeat to "
+                  "offer several (default builtin:sky)");
+  cmd->add_option("-o,--output", args->output, "Folder to write")->required();
+  cmd->add_option("--rotate", args->rotate, "Initial light rotation X,Y,Z (degrees)");
+  cmd->add_option("--camera", args->camera,
+                  "Initial camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (as prt render; "
+                  "default: framed)");
+  cmd->add_option("--mode", args->mode, "Initial transfer mode");
+  cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
+  cmd->add_option("--exposure", args->exposure, "Initial exposure in stops");
+  cmd->add_option("--tonemap", args->toneMap, "Initial tone map: aces, reinhard, clamp")
+      ->capture_default_str();
+  cmd->add_option("--background-width", args->backgroundWidth,
+                  "Width of each environment's lat-long background image")
+      ->capture_default_str();
+  cmd->callback([args] { writeWebViewer(*args); });
+}
+
+}  // namespace prt::cli

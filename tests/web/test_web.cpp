@@ -1,0 +1,415 @@
+// prt web (docs/web.md): the page in headless Chromium (Debian's `chromium`, software GL through
+// SwiftShader) against the library.
+//   * its first frame (?screenshot) matches prt render of the same bake, light, rotation and
+//     default view: RMSE < 0.02 on displayed [0, 1] colour; a turned light must not match;
+//   * its SH rotation (web/src/sh.js under node) equals sh::Rotation to 1e-5 for 3, 5, 9 bands;
+//   * bad dropped files leave the scene (bake, environments, pixels) as it was and say why.
+// Each test skips, saying why, where chromium, node or the built page is missing.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli_harness.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image_io.hpp"
+#include "prt/sh/rotate.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using prt::testing::Result;
+
+const fs::path& scratch() {
+  static const fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / ("prt_test_web_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+struct ScratchCleanup : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(scratch(), ec);
+  }
+};
+const bool kCleanup = (::testing::AddGlobalTestEnvironment(new ScratchCleanup), true);
+
+Result prt(const std::string& args) {
+  return prt::testing::runPrt(scratch(), args);
+}
+std::string path(const std::string& name) {
+  return (scratch() / name).string();
+}
+
+Result shell(const std::string& cmd) {
+  const fs::path out = scratch() / "shell.out", err = scratch() / "shell.err";
+  Result r;
+  r.rc = std::system((cmd + " >'" + out.string() + "' 2>'" + err.string() + "'").c_str());
+  r.rc = WIFEXITED(r.rc) ? WEXITSTATUS(r.rc) : -1;
+  r.out = prt::testing::slurp(out);
+  r.err = prt::testing::slurp(err);
+  return r;
+}
+
+std::string which(const std::vector<std::string>& names) {
+  for (const std::string& n : names) {
+    if (n.empty()) continue;
+    if (n.find('/') != std::string::npos) {
+      if (::access(n.c_str(), X_OK) == 0) return n;
+      continue;
+    }
+    const Result r = shell("command -v '" + n + "'");
+    if (r.rc == 0 && !r.out.empty()) return r.out.substr(0, r.out.find('\n'));
+  }
+  return "";
+}
+
+const std::string& chromium() {
+  static const std::string c = [] {
+    const char* env = std::getenv("PRT_CHROMIUM");
+    return which({env ? env : "", "chromium", "chromium-browser", "google-chrome"});
+  }();
+  return c;
+}
+
+/// The page folder for a small Cornell box (RGB interreflected + scalar shadowed, 4 bands)
+/// under builtin:sky, written once; "" (and `why`) when prt web cannot write it here.
+const std::string& webFolder(std::string* why) {
+  static std::string reason;
+  static const std::string dir = []() -> std::string {
+    Result r =
+        prt("-q bake 'builtin:cornell?grid=12' --mode interreflected --mode shadowed "
+            "--bands 4 --samples 64 -o cornell.glb");
+    if (r.rc != 0) return reason = "bake failed: " + r.err, "";
+    r = prt("-q web cornell.glb --env builtin:sky --env builtin:studio -o page");
+    if (r.rc != 0) return reason = "prt web failed: " + r.err, "";
+    return path("page");
+  }();
+  if (why) *why = reason;
+  return dir;
+}
+
+#define PRT_REQUIRE_PAGE()                                                                 \
+  do {                                                                                     \
+    if (chromium().empty()) GTEST_SKIP() << "no chromium here (apt-get install chromium)"; \
+    std::string why_;                                                                      \
+    if (webFolder(&why_).empty()) {                                                        \
+      if (why_.find("assets") != std::string::npos) GTEST_SKIP() << why_;                  \
+      FAIL() << why_;                                                                      \
+    }                                                                                      \
+  } while (0)
+
+/// Loads DIR/index.html?QUERY in headless Chromium and returns the JSON the page's test hook
+/// wrote into <pre id="prt-test"> ("" if none; `log` gets Chromium's stderr).
+std::string runPage(const std::string& dir, const std::string& query, std::string* log = nullptr,
+                    const std::string& extraFlags = "") {
+  const fs::path profile = scratch() / ("profile" + std::to_string(std::rand()));
+  const std::string cmd =
+      "timeout 120 '" + chromium() + "' --headless --no-sandbox --disable-gpu --disable-quic " +
+      "--no-first-run --disable-background-networking --disable-component-update --disable-sync " +
+      "--use-angle=swiftshader --enable-unsafe-swiftshader --user-data-dir='" + profile.string() +
+      "' " + extraFlags + " --virtual-time-budget=60000 --dump-dom 'file://" + dir +
+      "/index.html?" + query + "'";
+  const Result r = shell(cmd);
+  if (log) *log = r.err;
+  // (std::regex recurses per character: no regex on these long strings.)
+  const std::string open = "<pre id=\"prt-test\">";
+  const std::size_t a = r.out.find(open);
+  if (a == std::string::npos) return "";
+  const std::size_t b = r.out.find("</pre>", a);
+  if (b == std::string::npos) return "";
+  std::string s = r.out.substr(a + open.size(), b - a - open.size());
+  // --dump-dom escapes &, < and > in text; the hook's JSON holds none but messages might.
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&amp;", "&"}})
+    for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + 1))
+      s.replace(p, from.size(), to);
+  return s;
+}
+
+/// The string value of "key" in flat JSON (values without escaped quotes).
+std::string jsonField(const std::string& json, const std::string& key) {
+  const std::string k = "\"" + key + "\":\"";
+  const std::size_t a = json.find(k);
+  if (a == std::string::npos) return "";
+  const std::size_t b = json.find('"', a + k.size());
+  return b == std::string::npos ? "" : json.substr(a + k.size(), b - a - k.size());
+}
+
+std::vector<unsigned char> unbase64(const std::string& s) {
+  std::vector<unsigned char> out;
+  unsigned v = 0;
+  int n = 0;
+  for (char c : s) {
+    int d = c >= 'A' && c <= 'Z'   ? c - 'A'
+            : c >= 'a' && c <= 'z' ? c - 'a' + 26
+            : c >= '0' && c <= '9' ? c - '0' + 52
+            : c == '+'             ? 62
+            : c == '/'             ? 63
+                                   : -1;
+    if (d < 0) continue;
+    v = (v << 6) | unsigned(d);
+    if ((n += 6) >= 8) out.push_back(static_cast<unsigned char>(v >> (n -= 8)));
+  }
+  return out;
+}
+
+double quantile90 = 1.0;  // of the last displayedRmse
+
+/// RMSE between the page's RGB bytes and a prt render PNG, both as displayed ([0, 1] sRGB).
+/// Also checks the interior: the 90th percentile of the per-pixel error (edges differ by
+/// anti-aliasing: prt render jitters 4 samples, WebGL resolves 4× MSAA) must be < 2.5/255, as
+/// tests/viewer require of prt view.
+double displayedRmse(const std::vector<unsigned char>& rgb, const std::string& png) {
+  const prt::image::Image ref = prt::image::readImage(png);
+  EXPECT_EQ(rgb.size(), ref.pixels.size() * 3);
+  if (rgb.size() != ref.pixels.size() * 3) return 1.0;
+  double sum = 0;
+  std::vector<double> pixel;
+  for (std::size_t i = 0; i < ref.pixels.size(); ++i) {
+    const prt::Rgb& p = ref.pixels[i];
+    const float want[3] = {prt::image::linearToSrgb(p.x), prt::image::linearToSrgb(p.y),
+                           prt::image::linearToSrgb(p.z)};
+    double e = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = rgb[3 * i + c] / 255.0 - want[c];
+      e += d * d;
+    }
+    sum += e;
+    pixel.push_back(std::sqrt(e / 3));
+  }
+  std::sort(pixel.begin(), pixel.end());
+  quantile90 = pixel[pixel.size() * 9 / 10];
+  return std::sqrt(sum / double(rgb.size()));
+}
+
+constexpr double kMatch = 0.02;
+constexpr double kInterior = 2.5 / 255.0;
+
+/// The page's ?screenshot frame for QUERY (320x240, as tests/viewer compare prt view) as RGB bytes.
+std::vector<unsigned char> pageFrame(const std::string& query) {
+  std::string log;
+  const std::string json = runPage(webFolder(nullptr), "screenshot&size=320x240&" + query, &log);
+  EXPECT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
+  return unbase64(jsonField(json, "rgb"));
+}
+
+TEST(Web, FirstFrameMatchesPrtRenderScalar) {
+  PRT_REQUIRE_PAGE();
+  const Result r =
+      prt("-q render cornell.glb --light builtin:sky --rotate 0,70,0 --mode shadowed "
+          "--size 320x240 -o shadowed.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const double same =
+      displayedRmse(pageFrame("env=0&rotate=0,70,0&mode=shadowed"), path("shadowed.png"));
+  EXPECT_LT(same, kMatch);
+  EXPECT_LT(quantile90, kInterior);
+  std::cout << "page vs prt render, scalar: RMSE " << same << ", 90th percentile "
+            << quantile90 * 255 << "/255\n";
+  // The test can fail: another light rotation is far off.
+  const double turned =
+      displayedRmse(pageFrame("env=0&rotate=0,160,0&mode=shadowed"), path("shadowed.png"));
+  EXPECT_GT(turned, 4 * kMatch) << "same " << same;
+}
+
+TEST(Web, FirstFrameMatchesPrtRenderRgbAndToneMap) {
+  PRT_REQUIRE_PAGE();
+  const Result r =
+      prt("-q render cornell.glb --light builtin:studio --rotate 20,-30,10 "
+          "--mode interreflected --bands 3 --exposure 0.5 --tonemap reinhard "
+          "--size 320x240 -o rgb.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const double rmse = displayedRmse(
+      pageFrame("env=1&rotate=20,-30,10&mode=interreflected&bands=3&exposure=0.5&tonemap=reinhard"),
+      path("rgb.png"));
+  EXPECT_LT(rmse, kMatch);
+  EXPECT_LT(quantile90, kInterior);
+  std::cout << "page vs prt render, RGB: RMSE " << rmse << ", 90th percentile " << quantile90 * 255
+            << "/255\n";
+}
+
+TEST(Web, GivenCameraMatchesPrtRender) {
+  PRT_REQUIRE_PAGE();
+  const std::string cam = "eye=1.2,2.2,2.6;target=0.1,0.2,0;up=0.2,1,0;fov=55";
+  Result r = prt("-q web cornell.glb --env builtin:studio --camera '" + cam + "' -o page_cam");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render cornell.glb --light builtin:studio --camera '" + cam +
+          "' --mode shadowed --size 320x240 -o cam.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string json = runPage(path("page_cam"), "screenshot&size=320x240&mode=shadowed");
+  const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("cam.png"));
+  EXPECT_LT(e, kMatch) << json.substr(0, 200);
+  EXPECT_LT(quantile90, kInterior);
+  // The default framing is another view: far off.
+  EXPECT_GT(displayedRmse(pageFrame("env=1&mode=shadowed"), path("cam.png")), 4 * kMatch);
+}
+
+TEST(Web, MeshWithoutAlbedoMatchesPrtRender) {
+  // An OBJ has no per-vertex albedo: no COLOR_0 in the bake, white in relight and in the page.
+  PRT_REQUIRE_PAGE();
+  std::ofstream(path("box.obj")) << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                                    "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                                    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+                                    "f 4 7 3\nf 4 8 7\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n";
+  Result r = prt("-q bake box.obj --mode unshadowed --bands 3 -o box.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q web box.glb --env builtin:studio -o page_box");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render box.glb --light builtin:studio --rotate 0,40,0 --size 320x240 -o box.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string json = runPage(path("page_box"), "screenshot&size=320x240&rotate=0,40,0");
+  EXPECT_LT(displayedRmse(unbase64(jsonField(json, "rgb")), path("box.png")), kMatch)
+      << json.substr(0, 200);
+  EXPECT_LT(quantile90, kInterior);
+}
+
+TEST(Web, ShRotationMatchesLibrary) {
+  const std::string node = which({"node", "nodejs"});
+  if (node.empty()) GTEST_SKIP() << "no node here (apt-get install nodejs)";
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), angle(-180, 180);
+  struct Case {
+    int bands;
+    double euler[3];
+    std::vector<double> light, want;
+  };
+  std::vector<Case> cases;
+  for (int bands : {3, 5, 9})
+    for (int k = 0; k < 4; ++k) {
+      Case c;
+      c.bands = bands;
+      for (double& e : c.euler) e = k == 0 ? 0.0 : angle(rng);
+      if (k == 1) c.euler[0] = c.euler[2] = 0;  // about +Y only
+      c.light.resize(std::size_t(bands) * bands * 3);
+      for (double& v : c.light) v = u(rng);
+      const prt::Mat3d R = prt::rotationEulerXYZ(c.euler[0], c.euler[1], c.euler[2]);
+      const prt::sh::Rotation rot(bands, R);
+      c.want.resize(c.light.size());
+      for (int ch = 0; ch < 3; ++ch) {
+        std::vector<double> in(bands * bands), out(bands * bands);
+        for (int i = 0; i < bands * bands; ++i) in[i] = c.light[3 * i + ch];
+        rot.apply(in.data(), out.data());
+        for (int i = 0; i < bands * bands; ++i) c.want[3 * i + ch] = out[i];
+      }
+      cases.push_back(std::move(c));
+    }
+  {
+    std::ofstream f(path("rotation_in.json"));
+    f.precision(17);
+    f << "{\"cases\": [";
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const Case& c = cases[k];
+      f << (k ? ",\n" : "") << "{\"bands\": " << c.bands << ", \"euler\": [" << c.euler[0] << ", "
+        << c.euler[1] << ", " << c.euler[2] << "], \"light\": [";
+      for (std::size_t i = 0; i < c.light.size(); ++i) f << (i ? ", " : "") << c.light[i];
+      f << "]}";
+    }
+    f << "]}\n";
+  }
+  const Result r = shell("'" + node + "' '" PRT_SOURCE_DIR "/tests/web/rotation_check.mjs' '" +
+                         path("rotation_in.json") + "'");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  // {"cases":[{"rotated":[...]}, ...]}
+  std::size_t k = 0;
+  double worstAll = 0;
+  for (std::size_t at = r.out.find("\"rotated\":["); at != std::string::npos && k < cases.size();
+       at = r.out.find("\"rotated\":[", at + 1), ++k) {
+    const std::size_t from = at + 11, to = r.out.find(']', from);
+    std::vector<double> got;
+    std::stringstream ss(r.out.substr(from, to - from));
+    std::string item;
+    while (std::getline(ss, item, ',')) got.push_back(std::stod(item));
+    const Case& c = cases[k];
+    ASSERT_EQ(got.size(), c.want.size()) << "case " << k;
+    double worst = 0;
+    for (std::size_t i = 0; i < got.size(); ++i)
+      worst = std::max(worst, std::abs(got[i] - c.want[i]));
+    worstAll = std::max(worstAll, worst);
+    EXPECT_LT(worst, 1e-5) << c.bands << " bands, euler " << c.euler[0] << "," << c.euler[1] << ","
+                           << c.euler[2];
+    // Non-trivial rotations really move the light (the comparison is not vacuous).
+    if (c.euler[1] != 0) {
+      double moved = 0;
+      for (std::size_t i = 0; i < got.size(); ++i)
+        moved = std::max(moved, std::abs(got[i] - c.light[i]));
+      EXPECT_GT(moved, 0.01);
+    }
+  }
+  EXPECT_EQ(k, cases.size()) << r.out.substr(0, 200);
+  std::cout << "page rotation vs sh::Rotation: largest difference " << worstAll << "\n";
+}
+
+TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
+  PRT_REQUIRE_PAGE();
+  std::string log;
+  const std::string json = runPage(webFolder(nullptr), "test=drop", &log);
+  ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
+  const std::vector<std::pair<std::string, std::string>> expect = {
+      {"garbage.glb", "garbage.glb: is not a glTF binary (.glb) file"},
+      {"truncated.glb", "truncated.glb: is truncated"},
+      {"plain.glb", "plain.glb: is a glTF file but not a prtkit bake"},
+      {"newer.glb", "newer.glb: bake format version 2 is not supported by this page"},
+      {"broken.json", "broken.json: is not JSON"},
+      {"rows.json", "rows.json: has 3 coefficients but 2 bands need 4"},
+      {"short.json", "short.json: the light has 2 bands but the bake 4"},
+      {"picture.png", "picture.png: not a bake (.glb) or an SH light (.json, or the course's"},
+      {"odd.txt", "odd.txt: has 2 lines; a light.txt has B² lines"},
+  };
+  for (const auto& [name, message] : expect) {
+    const std::size_t at = json.find("{\"name\":\"" + name + "\"");
+    ASSERT_NE(at, std::string::npos) << name << " missing in " << json;
+    const std::string entry = json.substr(at, json.find('}', at) - at);
+    EXPECT_NE(jsonField(entry, "message").find(message), std::string::npos) << entry;
+    for (const char* same : {"\"sameBake\":true", "\"sameEnvs\":true", "\"sameFrame\":true"})
+      EXPECT_NE(entry.find(same), std::string::npos) << same << " in " << entry;
+  }
+  // The control: a good light file (JSON, then light.txt) is added, and clears the message.
+  EXPECT_NE(json.find("\"control\":{\"message\":\"\",\"added\":true}"), std::string::npos) << json;
+  // And a good bake replaces the scene.
+  EXPECT_NE(json.find("\"controlBake\":{\"message\":\"\",\"replaced\":true}"), std::string::npos)
+      << json;
+}
+
+TEST(Web, ClearMessagesWithoutDataOrWebGl2) {
+  PRT_REQUIRE_PAGE();
+  // No prt-data.js: the page says how to write the folder.
+  const fs::path bare = scratch() / "bare";
+  fs::create_directories(bare);
+  for (const char* f : {"index.html", "prt-web.js"})
+    fs::copy_file(fs::path(webFolder(nullptr)) / f, bare / f, fs::copy_options::overwrite_existing);
+  std::string json = runPage(bare.string(), "test=none");
+  EXPECT_NE(json.find("prt-data.js is missing"), std::string::npos) << json;
+  // WebGL2 switched off: the page says it needs WebGL2.
+  json = runPage(webFolder(nullptr), "test=none", nullptr, "--disable-webgl2");
+  EXPECT_NE(json.find("needs WebGL2"), std::string::npos) << json;
+}
+
+TEST(Web, CliRefusesWhatThePageCannotShow) {
+  // One-line errors before anything is written.
+  std::ofstream(path("notabake.glb")) << "hello";
+  Result r = prt("web notabake.glb -o nope");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("prt web: error: "), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(path("nope/prt-data.js")));
+  r = prt("web missing.glb -o nope --tonemap sepia");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("sepia"), std::string::npos) << r.err;
+}
+
+}  // namespace
