@@ -92,7 +92,7 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   ReferenceSettings rs = settings.reference;
   rs.mode = bake.mode;
   rs.bounces = rep.bounces;
-  rs.bounceAlbedo = bake.material.diffuse;
+  rs.material = bake.material;
   rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
   rep.reference = renderReference(mesh, occluder, env, rs, progress);
   const auto& verts = rep.reference.vertices;
