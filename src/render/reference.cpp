@@ -241,9 +241,9 @@ ReferenceIntegrator::ReferenceIntegrator(const Mesh& mesh, const Occluder& occlu
   settings_.vertices.clear();
 }
 
-double ReferenceIntegrator::misWeight(double pa, double pb) const {
-  if (settings_.heuristic == MisHeuristic::Balance) return pa / (pa + pb);
-  return pa * pa / (pa * pa + pb * pb);
+double ReferenceIntegrator::misWeight(double pa, double pb, double pc) const {
+  if (settings_.heuristic == MisHeuristic::Balance) return pa / (pa + pb + pc);
+  return pa * pa / (pa * pa + pb * pb + pc * pc);
 }
 
 Rgb ReferenceIntegrator::hitAlbedo(std::uint32_t tri, float u, float v) const {
@@ -348,9 +348,39 @@ Rgb ReferenceIntegrator::incoming(const Vec3f& p, const Vec3f& n, int bouncesLef
   return result;
 }
 
-// One sample of ∫_{n·ω>0} L_in(p, ω) G(r·ω) dω: one environment direction and one lobe
-// direction, MIS-weighted (the header gives the two terms); the lobe direction continues the
-// path at a front-facing hit, into the diffuse estimator with one bounce less.
+namespace {
+
+/// A direction about the unit `axis` with density G(axis·ω) per steradian (the lobe is a
+/// normalised density), from (u1, u2) in [0, 1)²; `ct` receives the drawn cos θ to the axis,
+/// exact (without the rounding of the returned float direction). cos θ inverts the lobe's CDF:
+///   Phong: P(cos θ ≤ t) = t^{s+1}  →  cos θ = u^{1/(s+1)};
+///   GGX:   θ = 2θ_h, the half angle from the NDF: tan² θ_h = α² u/(1 − u) (density
+///          D(θ_h) cos θ_h dω_h = D/4 dω = G dω), so cos θ = (1 − tan²θ_h)/(1 + tan²θ_h) and
+///          sin θ = 2 tan θ_h/(1 + tan² θ_h).
+Vec3f sampleLobe(const GlossyLobe& lobe, const Vec3f& axis, double u1, double u2, double& ct) {
+  double st = 0;
+  if (lobe.kind == LobeKind::Phong) {
+    ct = std::pow(u1, 1.0 / (lobe.exponent + 1.0));
+    st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
+  } else {
+    const double a2 = std::pow(lobe.roughness, 4.0);  // α², α = roughness²
+    const double t2 = a2 * u1 / (1.0 - u1);
+    ct = (1.0 - t2) / (1.0 + t2);
+    st = 2.0 * std::sqrt(t2) / (1.0 + t2);
+  }
+  const double phi = 2.0 * kPi * u2;
+  Vec3f t, b;
+  orthonormalBasis(axis, t, b);
+  return normalize(t * float(st * std::cos(phi)) + b * float(st * std::sin(phi)) +
+                   axis * float(ct));
+}
+
+}  // namespace
+
+// One sample of ∫_{n·ω>0} L_in(p, ω) G(r·ω) dω: one environment direction, one lobe direction
+// and, when r lies below the horizon, one horizon-lobe direction, MIS-weighted (the header gives
+// the terms); the directional strategies continue the path at a front-facing hit, into the
+// diffuse estimator with one bounce less.
 Rgb ReferenceIntegrator::glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, int bounces,
                                 Pcg32& rng, std::uint64_t& rays) const {
   const GlossyLobe& lobe = settings_.material.lobe;
@@ -359,7 +389,41 @@ Rgb ReferenceIntegrator::glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, 
   const float inf = std::numeric_limits<float>::infinity();
   Rgb result(0.0f);
 
-  // (a) Environment sample: L V G / p_env, weighted by w(p_env, p_lobe = G).
+  // The horizon lobe: G about r_h = the point of the horizon nearest r (r − (n·r)n normalised;
+  // any horizon point when r = −n), used when n·r < 0. Its density is G(r_h·ω).
+  const double nr = dot(Vec3d(n), Vec3d(r));
+  const bool horizon = nr < 0;
+  Vec3f rh = r;
+  if (horizon) {
+    const Vec3f x = r - n * float(nr);
+    const float len = length(x);
+    Vec3f t, b;
+    orthonormalBasis(n, t, b);
+    rh = len > 1e-6f ? x / len : t;
+  }
+  const auto horizonPdf = [&](const Vec3f& w) {
+    return horizon ? lobe.value(dot(Vec3d(rh), Vec3d(w))) : 0.0;
+  };
+  // The light along a traced direction w, as the strategy with density `pdf` sees it: escaping,
+  // L·weight over {env, lobe, horizon}; at a front face, ρ(h) L_in(h) weighted over {lobe,
+  // horizon} (the environment strategy cannot reach surfaces).
+  const auto traced = [&](const Vec3f& w, double pdf, double other) -> Rgb {
+    Hit h;
+    if (shadowed) {
+      ++rays;
+      h = occluder_.intersect(Ray{origin, w, 0.0f, inf});
+    }
+    if (!h.hit) {
+      double pe = 0;
+      const Rgb le = sampler_.lookup(Vec3f(rotT_ * Vec3d(w)), pe);
+      return le * static_cast<float>(misWeight(pdf, pe, other));
+    }
+    if (bounces > 0)
+      return frontHit(h, w, bounces, rng, rays) * static_cast<float>(misWeight(pdf, 0.0, other));
+    return Rgb(0.0f);
+  };
+
+  // (a) Environment sample: L V G / p_env, weighted by w(p_env; p_lobe = G, p_horizon).
   {
     const double u0 = uniform53(rng);
     const float u1 = rng.uniform(), u2 = rng.uniform();
@@ -375,48 +439,33 @@ Rgb ReferenceIntegrator::glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, 
           ++rays;
           blocked = occluder_.occluded(Ray{origin, w, 0.0f, inf});
         }
-        if (!blocked) result += le * static_cast<float>(misWeight(pe, g) * g / pe);
+        if (!blocked) result += le * static_cast<float>(misWeight(pe, g, horizonPdf(w)) * g / pe);
       }
     }
   }
 
-  // (b) Lobe sample about r, density G: the integrand over the density is L V, weighted by
-  // w(G, p_env). cos θ (to r) is drawn by inverting the lobe's CDF in cos θ:
-  //   Phong: ∫_t^1 (s+1) x^s dx = 1 − t^{s+1} =: 1 − u  →  cos θ = u^{1/(s+1)};
-  //   GGX:   θ = 2θ_h with tan² θ_h = α² u/(1 − u), so cos θ = (1 − tan²θ_h)/(1 + tan²θ_h) and
-  //          sin θ = 2 tan θ_h/(1 + tan² θ_h).
+  // (b) Lobe sample about r, density G: the integrand over the density is L_in (G/p = 1).
   {
     const double u1 = rng.uniform(), u2 = rng.uniform();
-    double ct = 1, st = 0;
-    if (lobe.kind == LobeKind::Phong) {
-      ct = std::pow(u1, 1.0 / (lobe.exponent + 1.0));
-      st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
-    } else {
-      const double a2 = std::pow(lobe.roughness, 4.0);  // α², α = roughness²
-      const double t2 = a2 * u1 / (1.0 - u1);
-      ct = (1.0 - t2) / (1.0 + t2);
-      st = 2.0 * std::sqrt(t2) / (1.0 + t2);
-    }
+    double ct;
+    const Vec3f w = sampleLobe(lobe, r, u1, u2, ct);
     const double g = lobe.value(ct);
-    const double phi = 2.0 * kPi * u2;
-    Vec3f t, b;
-    orthonormalBasis(r, t, b);
-    const Vec3f w =
-        normalize(t * float(st * std::cos(phi)) + b * float(st * std::sin(phi)) + r * float(ct));
-    if (g > 0 && dot(n, w) > 0) {
-      Hit h;
-      if (shadowed) {
-        ++rays;
-        h = occluder_.intersect(Ray{origin, w, 0.0f, inf});
-      }
-      if (!h.hit) {
-        double pe = 0;
-        const Rgb le = sampler_.lookup(Vec3f(rotT_ * Vec3d(w)), pe);
-        result += le * static_cast<float>(misWeight(g, pe));
-      } else if (bounces > 0) {
-        result += frontHit(h, w, bounces, rng, rays);
-      }
-    }
+    if (g > 0 && dot(n, w) > 0) result += traced(w, g, horizonPdf(w));
+  }
+
+  // (c) Horizon-lobe sample, density p_h = G(r_h·ω): the integrand over the density is
+  // L_in G(r·ω)/G(r_h·ω), and G(r·ω) ≤ G(r_h·ω) above the horizon (in the right spherical
+  // triangle r, r_h, h' of any horizon point h', cos∠(r, h') = cos∠(r, r_h) cos∠(r_h, h'), so
+  // r_h is nearer than r to every point above the horizon, and G falls with the angle). The
+  // ratio stays ≤ 1 where neither the environment nor the lobe about r puts samples — the
+  // horizon point nearest r, where a mostly clipped lobe has all of its remaining mass.
+  if (horizon) {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    double ct;
+    const Vec3f w = sampleLobe(lobe, rh, u1, u2, ct);
+    const double ph = lobe.value(ct);
+    const double g = lobe.value(dot(Vec3d(r), Vec3d(w)));
+    if (ph > 0 && g > 0 && dot(n, w) > 0) result += traced(w, ph, g) * static_cast<float>(g / ph);
   }
   return result;
 }

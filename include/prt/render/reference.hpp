@@ -44,14 +44,21 @@
 // path).
 //
 // The glossy term (when Material::glossy()) is estimated alongside, by MIS of
-//  (a) the environment, as above, and
+//  (a) the environment, as above;
 //  (b) the lobe itself about r: G is a normalised density on the sphere (∫ G dω = 1), drawn
 //      exactly — Phong: cos θ = u^{1/(s+1)}; GGX: the half-angle from the NDF,
 //      tan² θ_h = α² u/(1 − u), and θ = 2θ_h (D(θ_h) cos θ_h dω_h = D/4 dω = G dω) — so
-//      p_lobe(ω) = G(r·ω) over the whole sphere, and a direction with n·ω ≤ 0 contributes 0:
-//   environment ω_e:  w_e · L(ω_e) V(ω_e) G(r·ω_e) / p_env(ω_e),   w_e = w(p_env, p_lobe)
-//   lobe ω_g:         w_g · L(ω_g) V(ω_g)       (G / p_lobe = 1),   w_g = w(p_lobe, p_env)
-//                     + ρ(h) ⊙ (1/π)∫ L_in(h) cos  (one bounce less, weight 1) at a front hit.
+//      p_lobe(ω) = G(r·ω) over the whole sphere, and a direction with n·ω ≤ 0 contributes 0;
+//  (c) when r lies below the horizon (n·r < 0), the same lobe about r_h, the horizon point
+//      nearest r: p_h(ω) = G(r_h·ω). A mostly clipped lobe keeps its mass next to r_h, where
+//      (a) and (b) rarely sample; r_h is nearer than r to every direction above the horizon, so
+//      G(r·ω)/p_h(ω) ≤ 1 there and the estimate no longer rests on rare samples.
+// With p_h = 0 when (c) is off, and w(a; b, c) the heuristic's weight of a among a, b, c:
+//   environment ω_e:  w(p_env; G, p_h) · L V G / p_env
+//   lobe ω_g:         w(G; p_env, p_h) · L V                        (G / p_lobe = 1)
+//   horizon ω_h:      w(p_h; p_env, G) · L V G / p_h
+// and where ω_g or ω_h hits a front face, instead ρ(h) ⊙ (1/π)∫ L_in(h) cos (one bounce less)
+// times G/p and w(p; 0, other) (the environment strategy cannot reach surfaces).
 // One sample of e is X = kd ⊙ D + ks ⊙ S, D and S one diffuse and one glossy sample from
 // independent random streams of the same vertex (the diffuse stream is the one a diffuse-only
 // material draws, so kd-only results are unchanged). Each vertex draws its streams from (seed,
@@ -179,7 +186,8 @@ class ReferenceIntegrator {
              std::uint64_t& rays) const;
   Rgb frontHit(const Hit& h, const Vec3f& w, int bouncesLeft, Pcg32& rng,
                std::uint64_t& rays) const;
-  double misWeight(double pa, double pb) const;
+  /// The heuristic's weight of strategy a among those with densities pa, pb, pc.
+  double misWeight(double pa, double pb, double pc = 0.0) const;
   Rgb hitAlbedo(std::uint32_t tri, float u, float v) const;
 
   const Mesh& mesh_;
