@@ -59,9 +59,11 @@
 //   horizon ω_h:      w(p_h; p_env, G) · L V G / p_h
 // and where ω_g or ω_h hits a front face, instead ρ(h) ⊙ (1/π)∫ L_in(h) cos (one bounce less)
 // times G/p and w(p; 0, other) (the environment strategy cannot reach surfaces).
-// One sample of e is X = kd ⊙ D + ks ⊙ S, D and S one diffuse and one glossy sample from
-// independent random streams of the same vertex (the diffuse stream is the one a diffuse-only
-// material draws, so kd-only results are unchanged). Each vertex draws its streams from (seed,
+//
+// One sample of e is X = kd ⊙ D + ks ⊙ S, D and S one diffuse and one glossy sample from two
+// PCG32 streams of the same vertex (the diffuse stream is the one a diffuse-only material draws,
+// so kd-only results are unchanged; any dependence between D and S is inside X, whose sample
+// variance then includes it). Each vertex draws its streams from (seed,
 // vertex index), so results do not depend on the thread count, and the per-vertex standard
 // error sqrt(s²(X)/N) per channel is an honest i.i.d. error bar for the whole of e.
 
