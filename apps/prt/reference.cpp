@@ -2,7 +2,12 @@
 // (render/reference.hpp; docs/validation.md).
 //
 //   prt reference BAKE.glb --light ENV [--mode M] [--samples N] [--rotate X,Y,Z]
-//                 [--vertices N] [--seed S] [--mis power|balance] -o radiance.json|.bin
+//                 [--material SPEC] [--eye X,Y,Z] [--vertices N] [--seed S]
+//                 [--mis power|balance] -o radiance.json|.bin
+//
+// A glossy --material (transfer/material.hpp) is seen from --eye, by default the eye of the
+// default camera of `prt render` (render::frameMesh at its default 640x480), so the numbers are
+// those of the default render's view.
 //
 // Outputs, one entry per estimated vertex:
 //   .json  {"vertices": [...], "radiance": [[r,g,b],...], "stdError": [[r,g,b],...], ...}
@@ -13,7 +18,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <sstream>
+#include <vector>
 
 #include "args.hpp"
 #include "cli.hpp"
@@ -22,27 +29,35 @@
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/render/camera.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/render/validate.hpp"
+#include "prt/transfer/material.hpp"
 
 namespace prt::cli {
 
 namespace {
 
 struct ReferenceArgs {
-  std::string bake, light, mode, output, rotate, mis = "power";
+  std::string bake, light, mode, output, rotate, material, eye, mis = "power";
   int samples = 1024;
   std::size_t vertices = 0;
   std::uint64_t seed = 0;
 };
 
-std::string toJson(const render::ReferenceResult& r, const ReferenceArgs& a, const char* mode,
-                   int bounces) {
+std::string toJson(const render::ReferenceResult& r, const ReferenceArgs& a,
+                   const render::ReferenceSettings& rs) {
   std::ostringstream os;
   char buf[96];
-  os << "{\n  \"samples\": " << a.samples << ",\n  \"mode\": \"" << mode
-     << "\",\n  \"bounces\": " << bounces << ",\n  \"seed\": " << a.seed
-     << ",\n  \"rays\": " << r.rays << ",\n  \"vertices\": [";
+  os << "{\n  \"samples\": " << a.samples << ",\n  \"mode\": \"" << toString(rs.mode)
+     << "\",\n  \"bounces\": " << rs.bounces << ",\n  \"material\": \"" << rs.material.spec()
+     << "\",\n";
+  if (rs.eye && rs.material.glossy()) {
+    std::snprintf(buf, sizeof buf, "  \"eye\": [%.8g,%.8g,%.8g],\n", rs.eye->x, rs.eye->y,
+                  rs.eye->z);
+    os << buf;
+  }
+  os << "  \"seed\": " << a.seed << ",\n  \"rays\": " << r.rays << ",\n  \"vertices\": [";
   for (std::size_t i = 0; i < r.vertices.size(); ++i) os << (i ? "," : "") << r.vertices[i];
   const auto triples = [&](const char* key, const std::vector<Rgb>& v) {
     os << "],\n  \"" << key << "\": [";
@@ -85,6 +100,14 @@ void runReference(const ReferenceArgs& a) {
   checkWritable(a.output);
   const Mat3d rotation = parseRotation(a.rotate);
   const render::MisHeuristic mis = parseMis(a.mis);
+  std::optional<Material> material;
+  if (!a.material.empty()) material = parseMaterial(a.material);
+  std::optional<Vec3f> eye;
+  if (!a.eye.empty()) {
+    const std::vector<double> e = parseNumberList(a.eye, "--eye");
+    if (e.size() != 3) throw Error("--eye '" + a.eye + "' is not three numbers X,Y,Z");
+    eye = Vec3f(Vec3d(e[0], e[1], e[2]));
+  }
 
   const BakeFile file = readBake(a.bake);
   const BakedTransfer& bt = pickTransfer(file, a.mode, a.bake);
@@ -95,7 +118,16 @@ void runReference(const ReferenceArgs& a) {
   rs.samples = a.samples;
   rs.mode = bt.settings.mode;
   rs.bounces = bt.settings.mode == TransferMode::Interreflected ? bt.settings.bounces : 0;
-  rs.bounceAlbedo = bt.settings.material.diffuse;
+  // The bake stores its material (bake file version 2 keeps the whole spec); --material replaces
+  // it, keeping the bake's kd unless it names its own.
+  rs.material = bt.settings.material;
+  if (material) {
+    const std::optional<Rgb> bakeKd = rs.material.diffuse;
+    rs.material = *material;
+    if (!rs.material.diffuse) rs.material.diffuse = bakeKd;
+  }
+  // The default view: the eye of `prt render`'s default camera (its default --size 640x480).
+  rs.eye = eye ? *eye : render::frameMesh(file.mesh, 640, 480).eye;
   rs.seed = a.seed;
   rs.rotation = rotation;
   rs.heuristic = mis;
@@ -109,7 +141,7 @@ void runReference(const ReferenceArgs& a) {
                                  " is not finite (the environment is too bright for 32-bit "
                                  "floats); nothing written");
   if (fileExtension(a.output) == "json")
-    writeFileAtomically(a.output, toJson(r, a, toString(rs.mode), rs.bounces));
+    writeFileAtomically(a.output, toJson(r, a, rs));
   else
     writeFileAtomically(a.output, toBinary(r));
   char line[200];
@@ -136,6 +168,13 @@ void addReferenceCommand(CLI::App& root) {
   cmd->add_option("--vertices", a->vertices,
                   "Estimate a deterministic random subset of N vertices (0: all)")
       ->check(unsignedInt(UINT32_MAX));
+  cmd->add_option("--material", a->material,
+                  "Material: lambert, phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.04, each "
+                  "with optional kd=r,g,b (default: the bake's material; kd left out: the "
+                  "bake's)");
+  cmd->add_option("--eye", a->eye,
+                  "Camera position X,Y,Z for a glossy material's view directions (default: the "
+                  "eye of prt render's default camera)");
   cmd->add_option("--seed", a->seed, "Seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();
   cmd->add_option("-o,--output", a->output, "Output .json or .bin")->required();

@@ -2,7 +2,9 @@
 
 // Brute-force Monte Carlo reference for PRT (see the header for the integral and the
 // estimator). Multiple importance sampling: Veach & Guibas, SIGGRAPH 1995; Veach's thesis
-// (1997) §9.2 for the balance and power heuristics.
+// (1997) §9.2 for the balance and power heuristics. Sampling the GGX distribution of normals:
+// Walter, Marschner, Li & Torrance, "Microfacet Models for Refraction through Rough Surfaces",
+// EGSR 2007, eq. 35–36 (tan² θ_h = α² u/(1 − u) draws h with density D(h) cos θ_h).
 
 #include <algorithm>
 #include <chrono>
@@ -241,13 +243,13 @@ ReferenceIntegrator::ReferenceIntegrator(const Mesh& mesh, const Occluder& occlu
   settings_.vertices.clear();
 }
 
-double ReferenceIntegrator::misWeight(double pa, double pb) const {
-  if (settings_.heuristic == MisHeuristic::Balance) return pa / (pa + pb);
-  return pa * pa / (pa * pa + pb * pb);
+double ReferenceIntegrator::misWeight(double pa, double pb, double pc) const {
+  if (settings_.heuristic == MisHeuristic::Balance) return pa / (pa + pb + pc);
+  return pa * pa / (pa * pa + pb * pb + pc * pc);
 }
 
 Rgb ReferenceIntegrator::hitAlbedo(std::uint32_t tri, float u, float v) const {
-  if (settings_.bounceAlbedo) return *settings_.bounceAlbedo;
+  if (settings_.material.diffuse) return *settings_.material.diffuse;
   if (!mesh_.hasAlbedo()) return Rgb(1.0f);
   const auto& t = mesh_.triangles[tri];
   return mesh_.albedo[t[0]] * (1.0f - u - v) + mesh_.albedo[t[1]] * u + mesh_.albedo[t[2]] * v;
@@ -262,6 +264,25 @@ double uniform53(Pcg32& rng) {
 }
 
 }  // namespace
+
+// The light a hit h of the ray in direction w sends back along it: ρ(h) ⊙ (one sample of
+// (1/π) ∫ L_in(h, ω') max(n_h·ω', 0) dω' with one bounce less) at a front face, 0 at a back face.
+Rgb ReferenceIntegrator::frontHit(const Hit& h, const Vec3f& w, int bouncesLeft, Pcg32& rng,
+                                  std::uint64_t& rays) const {
+  const auto& tri = mesh_.triangles[h.triangle];
+  const Vec3f p0 = mesh_.positions[tri[0]], p1 = mesh_.positions[tri[1]],
+              p2 = mesh_.positions[tri[2]];
+  const Vec3f ng = cross(p1 - p0, p2 - p0);
+  if (dot(ng, w) >= 0.0f) return Rgb(0.0f);  // back face: blocks, sends nothing
+  const float b0 = 1.0f - h.u - h.v;
+  const Vec3f q = p0 * b0 + p1 * h.u + p2 * h.v;
+  Vec3f nq = mesh_.normals[tri[0]] * b0 + mesh_.normals[tri[1]] * h.u + mesh_.normals[tri[2]] * h.v;
+  const float len = length(nq);
+  nq = len > 0 ? nq / len : normalize(ng);
+  const Rgb rho = hitAlbedo(h.triangle, h.u, h.v);
+  if (rho.x <= 0 && rho.y <= 0 && rho.z <= 0) return Rgb(0.0f);
+  return rho * incoming(q, nq, bouncesLeft - 1, rng, rays);
+}
 
 // One sample of (1/π) ∫ L_in(p, ω) max(n·ω, 0) dω: one environment direction and one cosine
 // direction, MIS-weighted; the cosine direction continues the path at a front-facing hit.
@@ -322,36 +343,151 @@ Rgb ReferenceIntegrator::incoming(const Vec3f& p, const Vec3f& n, int bouncesLef
         const Rgb le = sampler_.lookup(de, pe);
         result += le * static_cast<float>(misWeight(c / kPi, pe));
       } else if (bouncesLeft > 0) {
-        const auto& tri = mesh_.triangles[h.triangle];
-        const Vec3f p0 = mesh_.positions[tri[0]], p1 = mesh_.positions[tri[1]],
-                    p2 = mesh_.positions[tri[2]];
-        const Vec3f ng = cross(p1 - p0, p2 - p0);
-        if (dot(ng, w) < 0.0f) {  // front face: it reflects toward p
-          const float b0 = 1.0f - h.u - h.v;
-          const Vec3f q = p0 * b0 + p1 * h.u + p2 * h.v;
-          Vec3f nq = mesh_.normals[tri[0]] * b0 + mesh_.normals[tri[1]] * h.u +
-                     mesh_.normals[tri[2]] * h.v;
-          const float len = length(nq);
-          nq = len > 0 ? nq / len : normalize(ng);
-          const Rgb rho = hitAlbedo(h.triangle, h.u, h.v);
-          if (rho.x > 0 || rho.y > 0 || rho.z > 0)
-            result += rho * incoming(q, nq, bouncesLeft - 1, rng, rays);
-        }
+        result += frontHit(h, w, bouncesLeft, rng, rays);
       }
     }
   }
   return result;
 }
 
-Estimate ReferenceIntegrator::estimate(const Vec3f& p, const Vec3f& n, const Rgb& albedo,
-                                       int samples, std::uint64_t seed, std::uint64_t* rays) const {
+namespace {
+
+/// A direction about the unit `axis` with density G(axis·ω) per steradian (the lobe is a
+/// normalised density), from (u1, u2) in [0, 1)²; `ct` receives the drawn cos θ to the axis,
+/// exact (without the rounding of the returned float direction). cos θ inverts the lobe's CDF:
+///   Phong: P(cos θ ≤ t) = t^{s+1}  →  cos θ = u^{1/(s+1)};
+///   GGX:   θ = 2θ_h, the half angle from the NDF: tan² θ_h = α² u/(1 − u) (density
+///          D(θ_h) cos θ_h dω_h = D/4 dω = G dω), so cos θ = (1 − tan²θ_h)/(1 + tan²θ_h) and
+///          sin θ = 2 tan θ_h/(1 + tan² θ_h).
+Vec3f sampleLobe(const GlossyLobe& lobe, const Vec3f& axis, double u1, double u2, double& ct) {
+  double st = 0;
+  if (lobe.kind == LobeKind::Phong) {
+    ct = std::pow(u1, 1.0 / (lobe.exponent + 1.0));
+    st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
+  } else {
+    const double a2 = std::pow(lobe.roughness, 4.0);  // α², α = roughness²
+    const double t2 = a2 * u1 / (1.0 - u1);
+    ct = (1.0 - t2) / (1.0 + t2);
+    st = 2.0 * std::sqrt(t2) / (1.0 + t2);
+  }
+  const double phi = 2.0 * kPi * u2;
+  Vec3f t, b;
+  orthonormalBasis(axis, t, b);
+  return normalize(t * float(st * std::cos(phi)) + b * float(st * std::sin(phi)) +
+                   axis * float(ct));
+}
+
+}  // namespace
+
+// One sample of ∫_{n·ω>0} L_in(p, ω) G(r·ω) dω: one environment direction, one lobe direction
+// and, when r lies below the horizon, one horizon-lobe direction, MIS-weighted (the header gives
+// the terms); the directional strategies continue the path at a front-facing hit, into the
+// diffuse estimator with one bounce less.
+Rgb ReferenceIntegrator::glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, int bounces,
+                                Pcg32& rng, std::uint64_t& rays) const {
+  const GlossyLobe& lobe = settings_.material.lobe;
+  const bool shadowed = settings_.mode != TransferMode::Unshadowed;
+  const Vec3f origin = shadowed ? p + n * occluder_.rayOffset(p) : p;
+  const float inf = std::numeric_limits<float>::infinity();
+  Rgb result(0.0f);
+
+  // The horizon lobe: G about r_h = the point of the horizon nearest r (r − (n·r)n normalised;
+  // any horizon point when r = −n), used when n·r < 0. Its density is G(r_h·ω).
+  const double nr = dot(Vec3d(n), Vec3d(r));
+  const bool horizon = nr < 0;
+  Vec3f rh = r;
+  if (horizon) {
+    const Vec3f x = r - n * float(nr);
+    const float len = length(x);
+    Vec3f t, b;
+    orthonormalBasis(n, t, b);
+    rh = len > 1e-6f ? x / len : t;
+  }
+  const auto horizonPdf = [&](const Vec3f& w) {
+    return horizon ? lobe.value(dot(Vec3d(rh), Vec3d(w))) : 0.0;
+  };
+  // The light along a traced direction w, as the strategy with density `pdf` sees it: escaping,
+  // L·weight over {env, lobe, horizon}; at a front face, ρ(h) L_in(h) weighted over {lobe,
+  // horizon} (the environment strategy cannot reach surfaces).
+  const auto traced = [&](const Vec3f& w, double pdf, double other) -> Rgb {
+    Hit h;
+    if (shadowed) {
+      ++rays;
+      h = occluder_.intersect(Ray{origin, w, 0.0f, inf});
+    }
+    if (!h.hit) {
+      double pe = 0;
+      const Rgb le = sampler_.lookup(Vec3f(rotT_ * Vec3d(w)), pe);
+      return le * static_cast<float>(misWeight(pdf, pe, other));
+    }
+    if (bounces > 0)
+      return frontHit(h, w, bounces, rng, rays) * static_cast<float>(misWeight(pdf, 0.0, other));
+    return Rgb(0.0f);
+  };
+
+  // (a) Environment sample: L V G / p_env, weighted by w(p_env; p_lobe = G, p_horizon).
+  {
+    const double u0 = uniform53(rng);
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    Vec3f d;
+    double pe;
+    Rgb le;
+    if (sampler_.sample(u0, u1, u2, d, pe, le)) {
+      const Vec3f w = Vec3f(settings_.rotation * Vec3d(d));
+      const double g = lobe.value(dot(Vec3d(r), Vec3d(w)));
+      if (dot(n, w) > 0 && g > 0) {
+        bool blocked = false;
+        if (shadowed) {
+          ++rays;
+          blocked = occluder_.occluded(Ray{origin, w, 0.0f, inf});
+        }
+        if (!blocked) result += le * static_cast<float>(misWeight(pe, g, horizonPdf(w)) * g / pe);
+      }
+    }
+  }
+
+  // (b) Lobe sample about r, density G: the integrand over the density is L_in (G/p = 1).
+  {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    double ct;
+    const Vec3f w = sampleLobe(lobe, r, u1, u2, ct);
+    const double g = lobe.value(ct);
+    if (g > 0 && dot(n, w) > 0) result += traced(w, g, horizonPdf(w));
+  }
+
+  // (c) Horizon-lobe sample, density p_h = G(r_h·ω): the integrand over the density is
+  // L_in G(r·ω)/G(r_h·ω), and G(r·ω) ≤ G(r_h·ω) above the horizon (in the right spherical
+  // triangle r, r_h, h' of any horizon point h', cos∠(r, h') = cos∠(r, r_h) cos∠(r_h, h'), so
+  // r_h is nearer than r to every point above the horizon, and G falls with the angle). The
+  // ratio stays ≤ 1 where neither the environment nor the lobe about r puts samples — the
+  // horizon point nearest r, where a mostly clipped lobe has all of its remaining mass.
+  if (horizon) {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    double ct;
+    const Vec3f w = sampleLobe(lobe, rh, u1, u2, ct);
+    const double ph = lobe.value(ct);
+    const double g = lobe.value(dot(Vec3d(r), Vec3d(w)));
+    if (ph > 0 && g > 0 && dot(n, w) > 0) result += traced(w, ph, g) * static_cast<float>(g / ph);
+  }
+  return result;
+}
+
+Estimate ReferenceIntegrator::estimate(const Vec3f& p, const Vec3f& n, const Vec3f& v,
+                                       const Rgb& kd, int samples, std::uint64_t seed,
+                                       std::uint64_t* rays) const {
   const int bounces = settings_.mode == TransferMode::Interreflected ? settings_.bounces : 0;
-  Pcg32 rng(seed);
+  const bool gloss = settings_.material.glossy();
+  const Vec3d ks(settings_.material.specular);
+  const Vec3f r = gloss ? normalize(reflectView(n, v)) : n;
+  // Two independent streams: the diffuse one is what a diffuse-only material draws.
+  Pcg32 rng(seed), rngGloss(seed, 0x9e3779b97f4a7c15ull);
   std::uint64_t cast = 0;
-  // Welford's running mean and variance, per channel, in double.
+  // One sample X = kd ⊙ D + ks ⊙ S; Welford's running mean and variance of X, per channel, in
+  // double.
   Vec3d mean(0.0), m2(0.0);
   for (int s = 0; s < samples; ++s) {
-    const Vec3d x(incoming(p, n, bounces, rng, cast));
+    Vec3d x = Vec3d(kd) * Vec3d(incoming(p, n, bounces, rng, cast));
+    if (gloss) x += ks * Vec3d(glossy(p, n, r, bounces, rngGloss, cast));
     const Vec3d delta = x - mean;
     mean += delta / double(s + 1);
     m2 += delta * (x - mean);
@@ -359,10 +495,9 @@ Estimate ReferenceIntegrator::estimate(const Vec3f& p, const Vec3f& n, const Rgb
   if (rays) *rays += cast;
   Estimate e;
   const Vec3d var = samples > 1 ? m2 / double(samples - 1) : Vec3d(0.0);
-  const Vec3d se(std::sqrt(var.x / samples), std::sqrt(var.y / samples),
-                 std::sqrt(var.z / samples));
-  e.mean = albedo * Rgb(mean);
-  e.stdError = albedo * Rgb(se);
+  e.mean = Rgb(mean);
+  e.stdError = Rgb(
+      Vec3d(std::sqrt(var.x / samples), std::sqrt(var.y / samples), std::sqrt(var.z / samples)));
   return e;
 }
 
@@ -380,6 +515,9 @@ ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, cons
   if (mesh.normals.size() != nv) throw Error(mesh.source, "has no per-vertex normals");
   if (mesh.hasAlbedo() && mesh.albedo.size() != nv)
     throw Error(mesh.source, "albedo count differs from vertex count");
+  if (settings.material.glossy() && !settings.eye)
+    throw Error("a glossy reference (" + settings.material.spec() +
+                ") needs the eye position for its view directions");
 
   ReferenceResult out;
   if (settings.vertices.empty()) {
@@ -404,10 +542,16 @@ ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, cons
     for (std::size_t i = b; i < e; ++i) {
       prog.check();
       const std::uint32_t v = out.vertices[i];
-      const Rgb albedo = mesh.hasAlbedo() ? mesh.albedo[v] : Rgb(1.0f);
-      const Estimate est =
-          integrator.estimate(mesh.positions[v], mesh.normals[v], albedo, settings.samples,
-                              deriveSeed(settings.seed, v), &rays[i]);
+      const Vec3f& p = mesh.positions[v];
+      const Vec3f& n = mesh.normals[v];
+      const Rgb kd = settings.material.diffuse ? *settings.material.diffuse
+                     : mesh.hasAlbedo()        ? mesh.albedo[v]
+                                               : Rgb(1.0f);
+      // v = normalize(eye − p); an eye on the vertex (or none) looks along the normal.
+      const Vec3f toEye = settings.eye ? *settings.eye - p : n;
+      const Vec3f view = length(toEye) > 0 ? normalize(toEye) : n;
+      const Estimate est = integrator.estimate(p, n, view, kd, settings.samples,
+                                               deriveSeed(settings.seed, v), &rays[i]);
       out.radiance[i] = est.mean;
       out.stdError[i] = est.stdError;
       prog.advance(1);

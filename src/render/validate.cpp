@@ -122,7 +122,7 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   ReferenceSettings rs = settings.reference;
   rs.mode = bake.mode;
   rs.bounces = rep.bounces;
-  rs.bounceAlbedo = bake.material.diffuse;
+  rs.material = bake.material;
   rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
   const bool residualFloor = bake.mode != TransferMode::Unshadowed;
   // Progress: the reference, then (shadowed, inter-reflected) one residual run per band count

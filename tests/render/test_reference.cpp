@@ -114,7 +114,7 @@ TEST(Reference, SpherePlaneClosedForm) {
     ReferenceSettings s;
     s.heuristic = h;
     const ReferenceIntegrator ref(mesh, *occ, env, s);
-    const Estimate e = ref.estimate({0, 0, 0}, {0, 1, 0}, Rgb(0.8f), 4096, 42);
+    const Estimate e = ref.estimate({0, 0, 0}, {0, 1, 0}, {0, 1, 0}, Rgb(0.8f), 4096, 42);
     const double expected = 0.8 * (1 - 0.25) * 2.0;
     // The icosphere (subdiv 6) is inscribed in the sphere: its silhouette is smaller by < 0.05%.
     EXPECT_NEAR(e.mean.x, expected, 4 * e.stdError.x + 1e-3 * expected);
@@ -123,7 +123,7 @@ TEST(Reference, SpherePlaneClosedForm) {
     // Unshadowed: the whole hemisphere, R = ρ c.
     s.mode = TransferMode::Unshadowed;
     const ReferenceIntegrator un(mesh, *occ, env, s);
-    const Estimate u = un.estimate({0, 0, 0}, {0, 1, 0}, Rgb(0.8f), 1024, 42);
+    const Estimate u = un.estimate({0, 0, 0}, {0, 1, 0}, {0, 1, 0}, Rgb(0.8f), 1024, 42);
     EXPECT_NEAR(u.mean.x, 1.6, 4 * u.stdError.x + 1e-4);
   }
 }
@@ -142,9 +142,9 @@ TEST(Reference, WhiteFurnaceWithBounces) {
     ReferenceSettings s;
     s.mode = TransferMode::Interreflected;
     s.bounces = k;
-    s.bounceAlbedo = Rgb(1.0f);
+    s.material.diffuse = Rgb(1.0f);
     const ReferenceIntegrator ref(mesh, *occ, env, s);
-    const Estimate e = ref.estimate(p, n, Rgb(1.0f), 2048, 3);
+    const Estimate e = ref.estimate(p, n, n, Rgb(1.0f), 2048, 3);
     r.push_back(e.mean.x);
     if (k == 12) {
       EXPECT_NEAR(e.mean.x, 1.0, 4 * e.stdError.x + 5e-3);
@@ -177,7 +177,7 @@ TEST(Reference, SmallCapMatchesAnalyticIrradiance) {
     ReferenceSettings s;
     s.heuristic = h;
     const ReferenceIntegrator ref(mesh, *occ, env, s);
-    const Estimate e = ref.estimate(n * 1.0f, n, Rgb(0.5f), 1024, 11);
+    const Estimate e = ref.estimate(n * 1.0f, n, n, Rgb(0.5f), 1024, 11);
     const double expected = 0.5 / kPi * exactE;
     EXPECT_NEAR(e.mean.x, expected, 4 * e.stdError.x + 0.01 * expected);
     EXPECT_LT(e.stdError.x, 0.01 * expected);
@@ -195,12 +195,14 @@ TEST(Reference, RotationMovesTheEnvironment) {
   const Vec3f n{0, 1, 0}, rn = Vec3f(rot * Vec3d(n));
   ReferenceSettings s0, s1;
   s1.rotation = rot;
-  const Estimate a = ReferenceIntegrator(mesh, *occ, env, s0).estimate(n, n, Rgb(1.0f), 2048, 5);
-  const Estimate b = ReferenceIntegrator(mesh, *occ, env, s1).estimate(rn, rn, Rgb(1.0f), 2048, 6);
+  const Estimate a = ReferenceIntegrator(mesh, *occ, env, s0).estimate(n, n, n, Rgb(1.0f), 2048, 5);
+  const Estimate b =
+      ReferenceIntegrator(mesh, *occ, env, s1).estimate(rn, rn, rn, Rgb(1.0f), 2048, 6);
   const double se = std::hypot(a.stdError.x, b.stdError.x);
   EXPECT_NEAR(a.mean.x, b.mean.x, 4 * se + 1e-3 * a.mean.x);
   // And a normal facing away from the rotated sun sees only the dim sky.
-  const Estimate c = ReferenceIntegrator(mesh, *occ, env, s1).estimate(-rn, -rn, Rgb(1.0f), 512, 7);
+  const Estimate c =
+      ReferenceIntegrator(mesh, *occ, env, s1).estimate(-rn, -rn, -rn, Rgb(1.0f), 512, 7);
   EXPECT_LT(c.mean.x, 0.1);
 }
 

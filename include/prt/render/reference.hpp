@@ -9,34 +9,63 @@
 // environment (Environment::analytic) that is its lat-long texel sampling, in which the caps
 // (the sun) are present by their covered fraction. The sampled radiance and the looked-up
 // radiance are therefore one function, as multiple importance sampling requires. With the
-// environment rotated by R (a feature at d appears at R d), L'(ω) = L(Rᵀ ω). Then
+// environment rotated by R (a feature at d appears at R d), L'(ω) = L(Rᵀ ω). Then, for the
+// material of transfer/material.hpp (kd, ks, a lobe G about the reflected view direction),
 //
-//   R(p) = ρ(p)/π ∫ L_in(p, ω) max(n·ω, 0) dω,
+//   e(p, v) = kd(p) ⊙ (1/π) ∫ L_in(p, ω) max(n·ω, 0) dω  +  ks ⊙ ∫_{n·ω>0} L_in(p, ω) G(r·ω) dω,
+//   r = 2(n·v)n − v,  v = normalize(eye − p),
 //   L_in(p, ω) = L'(ω)                   if the ray (p, ω) escapes,
 //              = ρ(h)/π ∫ L_in(h, ω') max(n_h·ω', 0) dω'   at its closest hit h if h is a front
 //                                        face and bounces remain (recursively, one bounce less),
 //              = 0                       otherwise (back faces block and send nothing),
 //
-// matching transport::bake's conventions (docs/transport.md): unshadowed mode drops V; the
-// offset origin p + n·rayOffset(p); bounce albedo = BakeSettings::albedo, else the mesh's
-// per-vertex albedo interpolated at the hit, else 1; the shading normal at a hit is the
-// barycentric interpolation of the vertex normals. (The bake interpolates the *transfer* of the
-// hit triangle's vertices instead of integrating at the hit: that discretisation is part of what
-// a validation measures.)
+// matching transport::bake's conventions (docs/transport.md): unshadowed mode drops V (but keeps
+// n·ω > 0 in both terms); the offset origin p + n·rayOffset(p); kd(p) and the bounce albedo ρ =
+// Material::diffuse, else the mesh's per-vertex albedo (interpolated at a hit), else 1; the
+// shading normal at a hit is the barycentric interpolation of the vertex normals. Surfaces the
+// light bounces off are diffuse (the glossy lobe is seen only at the first vertex, as in the
+// bake's glossy transfer matrices). G is Material::lobe.value, the same zonal lobe PRT convolves
+// with; Fresnel, masking-shadowing and the (n·ω) of a BRDF-times-cosine are omitted on both sides
+// so that PRT and reference differ only by band limit and noise. (The bake interpolates the
+// *transfer* of the hit triangle's vertices instead of integrating at the hit: that
+// discretisation is part of what a validation measures.)
 //
-// Estimator. Every sample combines two strategies by multiple importance sampling (Veach &
-// Guibas, "Optimally Combining Sampling Techniques for Monte Carlo Rendering", SIGGRAPH 1995):
-//  (a) the environment: a texel k drawn with probability P_k ∝ lum(L_k)·ΔΩ_k from a CDF built
-//      once (ΔΩ_k the texel's exact solid angle), then a direction within the texel uniformly in
-//      its parametrisation, so p_env(ω) = P_k · q_k(ω) with q_k the density within the texel
-//      (1/ΔΩ_k for lat-long texels, where sampling is uniform in φ and cos θ);
+// Estimator. Every sample of the diffuse term combines two strategies by multiple importance
+// sampling (Veach & Guibas, "Optimally Combining Sampling Techniques for Monte Carlo
+// Rendering", SIGGRAPH 1995):
+//  (a) the environment: a texel k drawn with probability P_k ∝ lum(L_k)·ΔΩ_k from an alias table
+//      built once (ΔΩ_k the texel's exact solid angle), then a direction within the texel
+//      uniformly in its parametrisation, so p_env(ω) = P_k · q_k(ω) with q_k the density within
+//      the texel (1/ΔΩ_k for lat-long texels, where sampling is uniform in φ and cos θ);
 //  (b) the cosine-weighted hemisphere, p_cos(ω) = max(n·ω, 0)/π.
 // One direction of each per sample, weighted by the balance heuristic w_a = p_a/(p_a + p_b) or
 // the power heuristic w_a = p_a²/(p_a² + p_b²). The cosine direction also carries the path on:
 // at a front-facing hit the estimate recurses (next-event estimation at every vertex of the
-// path). Each vertex draws independent PCG32 streams from (seed, vertex index), so results do
-// not depend on the thread count, and the per-vertex standard error
-// sqrt(sample variance / N) per channel is an honest i.i.d. error bar.
+// path).
+//
+// The glossy term (when Material::glossy()) is estimated alongside, by MIS of
+//  (a) the environment, as above;
+//  (b) the lobe itself about r: G is a normalised density on the sphere (∫ G dω = 1), drawn
+//      exactly — Phong: cos θ = u^{1/(s+1)}; GGX: the half-angle from the NDF,
+//      tan² θ_h = α² u/(1 − u), and θ = 2θ_h (D(θ_h) cos θ_h dω_h = D/4 dω = G dω) — so
+//      p_lobe(ω) = G(r·ω) over the whole sphere, and a direction with n·ω ≤ 0 contributes 0;
+//  (c) when r lies below the horizon (n·r < 0), the same lobe about r_h, the horizon point
+//      nearest r: p_h(ω) = G(r_h·ω). A mostly clipped lobe keeps its mass next to r_h, where
+//      (a) and (b) rarely sample; r_h is nearer than r to every direction above the horizon, so
+//      G(r·ω)/p_h(ω) ≤ 1 there and the estimate no longer rests on rare samples.
+// With p_h = 0 when (c) is off, and w(a; b, c) the heuristic's weight of a among a, b, c:
+//   environment ω_e:  w(p_env; G, p_h) · L V G / p_env
+//   lobe ω_g:         w(G; p_env, p_h) · L V                        (G / p_lobe = 1)
+//   horizon ω_h:      w(p_h; p_env, G) · L V G / p_h
+// and where ω_g or ω_h hits a front face, instead ρ(h) ⊙ (1/π)∫ L_in(h) cos (one bounce less)
+// times G/p and w(p; 0, other) (the environment strategy cannot reach surfaces).
+//
+// One sample of e is X = kd ⊙ D + ks ⊙ S, D and S one diffuse and one glossy sample from two
+// PCG32 streams of the same vertex (the diffuse stream is the one a diffuse-only material draws,
+// so kd-only results are unchanged; any dependence between D and S is inside X, whose sample
+// variance then includes it). Each vertex draws its streams from (seed,
+// vertex index), so results do not depend on the thread count, and the per-vertex standard
+// error sqrt(s²(X)/N) per channel is an honest i.i.d. error bar for the whole of e.
 
 #include <cstddef>
 #include <cstdint>
@@ -51,6 +80,7 @@
 #include "prt/geometry/mesh.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transfer/field.hpp"
+#include "prt/transfer/material.hpp"
 
 namespace prt::render {
 
@@ -107,10 +137,15 @@ class EnvironmentSampler {
 enum class MisHeuristic { Balance, Power };
 
 struct ReferenceSettings {
-  int samples = 1024;  ///< samples per vertex (each: one environment and one cosine direction)
+  /// Samples per vertex (each: an environment and a cosine direction, and when glossy an
+  /// environment and a lobe direction).
+  int samples = 1024;
   TransferMode mode = TransferMode::Shadowed;
-  int bounces = 0;                  ///< Interreflected only
-  std::optional<Rgb> bounceAlbedo;  ///< as BakeSettings::albedo
+  int bounces = 0;  ///< Interreflected only
+  /// kd override and bounce albedo (Material::diffuse, as BakeSettings::material), ks and lobe.
+  Material material;
+  /// World position of the camera: v = normalize(eye − p) per vertex. Required when glossy.
+  std::optional<Vec3f> eye;
   std::uint64_t seed = 0;
   Mat3d rotation = Mat3d::identity();  ///< environment rotation (a feature at d moves to R d)
   MisHeuristic heuristic = MisHeuristic::Power;
@@ -139,15 +174,22 @@ class ReferenceIntegrator {
   ReferenceIntegrator(const Mesh& mesh, const Occluder& occluder, const EnvironmentSampler& sampler,
                       const ReferenceSettings& settings);
 
-  /// R at point p with unit normal n and albedo ρ: ρ/π ∫ L_in max(n·ω,0) dω from `samples`
-  /// samples of the random stream `seed`. `rays` (if given) is incremented by the rays cast.
-  Estimate estimate(const Vec3f& p, const Vec3f& n, const Rgb& albedo, int samples,
+  /// e(p, v) at point p with unit normal n, unit direction v toward the eye (used only when the
+  /// material is glossy) and diffuse colour kd: kd/π ∫ L_in max(n·ω,0) dω + ks ∫ L_in G(r·ω) dω
+  /// from `samples` samples of the random streams `seed`. `rays` (if given) is incremented by
+  /// the rays cast.
+  Estimate estimate(const Vec3f& p, const Vec3f& n, const Vec3f& v, const Rgb& kd, int samples,
                     std::uint64_t seed, std::uint64_t* rays = nullptr) const;
 
  private:
   Rgb incoming(const Vec3f& p, const Vec3f& n, int bouncesLeft, Pcg32& rng,
                std::uint64_t& rays) const;
-  double misWeight(double pa, double pb) const;
+  Rgb glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, int bounces, Pcg32& rng,
+             std::uint64_t& rays) const;
+  Rgb frontHit(const Hit& h, const Vec3f& w, int bouncesLeft, Pcg32& rng,
+               std::uint64_t& rays) const;
+  /// The heuristic's weight of strategy a among those with densities pa, pb, pc.
+  double misWeight(double pa, double pb, double pc = 0.0) const;
   Rgb hitAlbedo(std::uint32_t tri, float u, float v) const;
 
   const Mesh& mesh_;
@@ -157,9 +199,10 @@ class ReferenceIntegrator {
   Mat3d rotT_;  ///< Rᵀ: world → environment frame
 };
 
-/// Per-vertex reference radiance. Vertex albedo: the mesh's, else 1 (as relight::relight with the
-/// mesh albedo). Parallel over vertices, progress per vertex; throws prt::Error on bad settings
-/// (samples < 1 or > 2^24, bounces out of 0..16, vertex index out of range) and prt::Cancelled.
+/// Per-vertex reference radiance e(p, v), v = normalize(eye − p). kd: material.diffuse, else the
+/// mesh's albedo, else 1. Parallel over vertices, progress per vertex; throws prt::Error on bad
+/// settings (samples < 1 or > 2^24, bounces out of 0..16, vertex index out of range, a glossy
+/// material without an eye) and prt::Cancelled.
 ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder,
                                 const envmap::Environment& env, const ReferenceSettings& settings,
                                 const ProgressFn& progress = {});
