@@ -30,7 +30,7 @@ namespace {
 struct ValidateArgs {
   std::string bake, light, mode, json, image, imageSize = "640x480", mis = "power";
   int samples = 1024;
-  std::string bandsList, rotate;
+  std::string bandsList, rotate, material, transfer;
   std::size_t vertices = 0;
   std::uint64_t seed = 0;
 };
@@ -57,7 +57,18 @@ void runValidate(const ValidateArgs& a) {
                {{"input", a.bake}, {"--light", a.light}});
 
   const BakeFile file = readBake(a.bake);
-  const BakedTransfer& bt = pickTransfer(file, a.mode, a.bake);
+  const BakedTransfer& bt = pickTransfer(file, a.mode, a.bake, a.transfer);
+  // The material: the bake's, or --material (keeping the bake's kd unless it names one).
+  BakeSettings settings = bt.settings;
+  if (!a.material.empty()) {
+    const std::optional<Rgb> bakeKd = settings.material.diffuse;
+    settings.material = parseMaterial(a.material);
+    if (!settings.material.diffuse) settings.material.diffuse = bakeKd;
+  }
+  if (settings.material.glossy() && !bt.field.isMatrix())
+    warn(a.bake + ": the " + toString(bt.settings.mode) +
+         " transfer is a vector (diffuse only); validating the diffuse part alone against a "
+         "glossy reference");
   if (!file.complete())
     throw Error(a.bake, "holds vertices " + std::to_string(file.firstVertex) + ".." +
                             std::to_string(file.firstVertex + file.vertexCount) + " of " +
@@ -72,12 +83,14 @@ void runValidate(const ValidateArgs& a) {
   vs.reference.seed = a.seed;
   vs.reference.rotation = rotation;
   vs.reference.heuristic = parseMis(a.mis);
+  // Glossy: PRT and reference see each vertex from the eye of prt render's default camera.
+  vs.reference.eye = render::frameMesh(file.mesh, 640, 480).eye;
   vs.bandsList = bands;
   vs.maxVertices = a.vertices;
   info("validating " + std::string(toString(bt.settings.mode)) + " transfer (" +
        std::to_string(bt.field.bands) + " bands) of " + a.bake + " under " + a.light);
   const render::ValidationReport rep = render::validate(
-      file.mesh, *occluder, bt.field, bt.settings, env.env, light, vs, progressBar("reference"));
+      file.mesh, *occluder, bt.field, settings, env.env, light, vs, progressBar("reference"));
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
   std::snprintf(line, sizeof line,
@@ -136,6 +149,12 @@ void addValidateCommand(CLI::App& root) {
   cmd->add_option("--mode", a->mode,
                   "Transfer to validate when the bake holds several "
                   "(unshadowed|shadowed|interreflected; default: the most complete)");
+  cmd->add_option("--transfer", a->transfer,
+                  "Layout when the bake holds both: vector or matrix (default: matrix)");
+  cmd->add_option("--material", a->material,
+                  "Material for both PRT and reference (default: the bake's): lambert, "
+                  "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5; glossy surfaces are seen "
+                  "from the eye of prt render's default camera");
   cmd->add_option("--reference-samples", a->samples, "Reference samples per vertex")
       ->check(intRange(1, 1 << 24))
       ->capture_default_str();

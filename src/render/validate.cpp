@@ -10,6 +10,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
+#include "prt/relight/glossy.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/sh/convolve.hpp"
@@ -124,7 +125,11 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   rs.bounces = rep.bounces;
   rs.material = bake.material;
   rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
-  const bool residualFloor = bake.mode != TransferMode::Unshadowed;
+  // Glossy (matrix) transfer is seen from an eye; its floor has no closed form even unshadowed.
+  const bool glossy = transfer.isMatrix();
+  if (glossy && !rs.eye)
+    throw Error("validating glossy (matrix) transfer needs the eye the reference and PRT share");
+  const bool residualFloor = bake.mode != TransferMode::Unshadowed || glossy;
   // Progress: the reference, then (shadowed, inter-reflected) one residual run per band count
   // over the floor subset, in proportion to their vertex counts.
   const std::size_t nMain = rs.vertices.size();
@@ -193,8 +198,15 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   std::vector<float> y(static_cast<std::size_t>(rep.bands) * rep.bands);
   for (int b : kept) {
     // PRT radiance at b bands (relight rotates the light itself).
-    const std::vector<Rgb> all =
-        relight::relight(transfer.truncated(b), light.truncated(b), albedo, rs.rotation);
+    std::vector<Rgb> all(nv);
+    if (glossy)
+      relight::relightGlossy(transfer.truncated(b), light.truncated(b), rs.material,
+                             {mesh.positions, mesh.normals, *rs.eye}, albedo, all, rs.rotation);
+    else
+      relight::relight(transfer.truncated(b), light.truncated(b),
+                       rs.material.diffuse ? std::span<const Rgb>(&*rs.material.diffuse, 1)
+                                           : std::span<const Rgb>(albedo),
+                       all, rs.rotation);
     for (std::size_t i = 0; i < n; ++i) prt[i] = all[verts[i]];
     double floorSq = 0;
     if (!residualFloor) {
@@ -241,6 +253,8 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     r.relRmse = relativeRmse(row(prt), row(ref), eps);
     r.floor = std::sqrt(floorSq);
     r.refStdErr = refStd;
+    // What the lobe itself loses at b bands: its zonal energy beyond b (0 for a diffuse surface).
+    r.lobeEnergyBeyond = rs.material.glossy() ? rs.material.lobe.energyBeyond(b) : 0.0;
     std::vector<float> err(n);
     double sum = 0, mx = 0, diffEnergy = 0, refEnergy = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -266,18 +280,25 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
 std::string formatTable(const ValidationReport& rep) {
   std::ostringstream os;
   char line[200];
-  std::snprintf(line, sizeof line, "%5s | %9s | %15s | %12s | %11s | %16s | %11s\n", "bands",
+  const bool lobe = !rep.rows.empty() && rep.rows.front().lobeEnergyBeyond > 0;
+  std::snprintf(line, sizeof line, "%5s | %9s | %15s | %12s | %11s | %16s | %11s%s\n", "bands",
                 "rel RMSE", "energy-weighted", "mean rel err", "max rel err", "truncation floor",
-                "ref std err");
+                "ref std err", lobe ? " | lobe energy > B" : "");
   os << line;
   os << "------+-----------+-----------------+--------------+-------------+------------------+----"
-        "--------\n";
+        "--------"
+     << (lobe ? "+------------------" : "") << "\n";
   for (const BandRow& r : rep.rows) {
     std::snprintf(line, sizeof line,
-                  "%5d | %8.3f%% | %14.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%%\n", r.bands,
+                  "%5d | %8.3f%% | %14.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%%", r.bands,
                   100 * r.relRmse, 100 * r.energyRel, 100 * r.meanRel, 100 * r.maxRel,
                   100 * r.floor, 100 * r.refStdErr);
     os << line;
+    if (lobe) {
+      std::snprintf(line, sizeof line, " | %15.3f%%", 100 * r.lobeEnergyBeyond);
+      os << line;
+    }
+    os << "\n";
   }
   return os.str();
 }
@@ -340,7 +361,8 @@ std::string reportJson(const ValidationReport& rep, int indent) {
     os << i3 << "\"meanRelErr\": " << num(r.meanRel) << "," << nl;
     os << i3 << "\"maxRelErr\": " << num(r.maxRel) << "," << nl;
     os << i3 << "\"truncationFloor\": " << num(r.floor) << "," << nl;
-    os << i3 << "\"refStdErr\": " << num(r.refStdErr) << nl;
+    os << i3 << "\"refStdErr\": " << num(r.refStdErr) << "," << nl;
+    os << i3 << "\"lobeEnergyBeyond\": " << num(r.lobeEnergyBeyond) << nl;
     os << i2 << "}" << (k + 1 < rep.rows.size() ? "," : "") << nl;
   }
   os << i1 << "]" << nl << "}" << nl;

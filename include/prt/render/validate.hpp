@@ -46,6 +46,9 @@ struct ValidateSettings {
 struct BandRow {
   int bands = 0;
   double relRmse = 0, energyRel = 0, meanRel = 0, maxRel = 0, floor = 0, refStdErr = 0;
+  /// Glossy materials: the fraction of the lobe's energy beyond `bands` (GlossyLobe::energyBeyond),
+  /// what no b-band transfer can hold however exact; 0 for diffuse surfaces.
+  double lobeEnergyBeyond = 0;
 };
 
 struct ValidationReport {
