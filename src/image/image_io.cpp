@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <ostream>
 #include <stdexcept>
@@ -20,6 +21,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 
 namespace prt::image {
 
@@ -67,7 +69,7 @@ std::string stbReason() {
 // on every byte: stb_image loops forever on some truncated run-length scan lines.
 // Supports the "-Y H +X W" orientation (what every writer emits), flat and new-style RLE scan
 // lines. Decoding follows Radiance's colr_color: (m + 0.5) · 2^(e − 136), 0 when e = 0.
-Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>& b) {
+Image readRadianceHdr(const std::string& path, std::span<const unsigned char> b) {
   std::size_t pos = 0;
   auto line = [&]() -> std::string {
     std::string out;
@@ -87,7 +89,22 @@ Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>&
   char ya[3] = {}, xa[3] = {};
   if (std::sscanf(res.c_str(), "%2s %d %2s %d", ya, &h, xa, &w) != 4 || std::string(ya) != "-Y" ||
       std::string(xa) != "+X" || w <= 0 || h <= 0 || w > (1 << 16) || h > (1 << 16))
-    throw Error(path, "unsupported Radiance resolution line '" + res + "' (expected -Y H +X W)");
+    throw Error(path, "unsupported Radiance resolution line '" + res.substr(0, 60) +
+                          "' (expected -Y H +X W)");
+  checkImageSize(path, std::uint64_t(w), std::uint64_t(h));
+  // The fewest bytes a scan line can take: flat 4w, or run-length encoded 4 header bytes plus, per
+  // channel, one (count, value) pair per run of at most 127. Check before allocating.
+  {
+    const std::uint64_t runs = (std::uint64_t(w) + 126) / 127;
+    const std::uint64_t minLine = (w >= 8 && w < 32768)
+                                      ? std::min<std::uint64_t>(4ull * w, 4 + 8 * runs)
+                                      : 4ull * std::uint64_t(w);
+    if (std::uint64_t(h) * minLine > b.size() - pos)
+      throw Error(path, "truncated Radiance HDR file (" + std::to_string(w) + "x" +
+                            std::to_string(h) + " needs at least " +
+                            std::to_string(std::uint64_t(h) * minLine) + " bytes of pixels, " +
+                            std::to_string(b.size() - pos) + " present)");
+  }
   Image img(w, h);
   std::vector<unsigned char> scan(static_cast<std::size_t>(w) * 4);
   auto need = [&](std::size_t n) {
@@ -119,7 +136,7 @@ Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>&
       }
     } else {
       need(static_cast<std::size_t>(w) * 4);
-      std::copy_n(b.begin() + static_cast<std::ptrdiff_t>(pos), w * 4, scan.begin());
+      std::copy_n(b.data() + pos, std::size_t(w) * 4, scan.begin());
       pos += static_cast<std::size_t>(w) * 4;
     }
     for (int x = 0; x < w; ++x) {
@@ -136,16 +153,17 @@ Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>&
 }
 
 // JPEG streams end with an EOI marker (FF D9); stb_image decodes a cut-off JPEG without error.
-bool jpegComplete(const std::vector<unsigned char>& b) {
+bool jpegComplete(std::span<const unsigned char> b) {
   std::size_t end = b.size();
   while (end > 2 && b[end - 1] == 0) --end;  // some writers pad after EOI
   return end >= 4 && b[end - 2] == 0xFF && b[end - 1] == 0xD9;
 }
 
-Image readStbLdr(const std::string& path, const std::vector<unsigned char>& bytes, LdrDecode decode,
+Image readStbLdr(const std::string& path, std::span<const unsigned char> bytes, LdrDecode decode,
                  bool jpeg) {
   if (jpeg && !jpegComplete(bytes))
     throw Error(path, "truncated JPEG file (no end-of-image marker)");
+  checkEncodedImageSize(path, bytes);
   MemoryReader reader{bytes.data(), bytes.size()};
   const bool sixteen =
       !jpeg && stbi_is_16_bit_from_memory(bytes.data(), static_cast<int>(bytes.size()));
@@ -182,7 +200,7 @@ Image readStbLdr(const std::string& path, const std::vector<unsigned char>& byte
 // the library expects of a truncated file.
 class MemoryIStream : public Imf::IStream {
  public:
-  MemoryIStream(const std::string& name, const std::vector<unsigned char>& bytes)
+  MemoryIStream(const std::string& name, std::span<const unsigned char> bytes)
       : Imf::IStream(name.c_str()), bytes_(bytes) {}
   bool read(char c[], int n) override {
     if (n < 0 || pos_ + static_cast<std::uint64_t>(n) > bytes_.size())
@@ -195,18 +213,25 @@ class MemoryIStream : public Imf::IStream {
   void seekg(uint64_t pos) override { pos_ = pos; }
 
  private:
-  const std::vector<unsigned char>& bytes_;
+  std::span<const unsigned char> bytes_;
   std::uint64_t pos_ = 0;
 };
 
 // The OpenEXR library: every compression (DWAA/DWAB included), tiled or scan-line files.
-Image readOpenExr(const std::string& path, const std::vector<unsigned char>& bytes) {
+Image readOpenExr(const std::string& path, std::span<const unsigned char> bytes) {
   try {
+    // The library checks the header's data window (and tile size) against these before it
+    // allocates anything sized by them; 0 would mean "no limit".
+    const Limits lim = limits();
+    const int side = int(std::min<std::uint64_t>(lim.maxImageSide, 1u << 30));
+    Imf::Header::setMaxImageSize(side, side);
+    Imf::Header::setMaxTileSize(side, side);
     MemoryIStream stream(path, bytes);
     Imf::InputFile file(stream);
     const Imath::Box2i dw = file.header().dataWindow();
     const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
     if (w <= 0 || h <= 0) throw Error(path, "empty OpenEXR data window");
+    checkImageSize(path, std::uint64_t(w), std::uint64_t(h));
     const Imf::ChannelList& channels = file.header().channels();
     const bool rgb =
         channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
@@ -238,7 +263,7 @@ Image readOpenExr(const std::string& path, const std::vector<unsigned char>& byt
   }
 }
 
-Image readExr(const std::string& path, const std::vector<unsigned char>& bytes) {
+Image readExr(const std::string& path, std::span<const unsigned char> bytes) {
   if (bytes.size() < 4 ||
       !(bytes[0] == 0x76 && bytes[1] == 0x2f && bytes[2] == 0x31 && bytes[3] == 0x01))
     throw Error(path, "not an OpenEXR file (bad magic number)");
@@ -281,6 +306,23 @@ Image readImage(const std::string& path, const ReadOptions& options, ReadStats* 
                                   : "unknown image extension '." + ext +
                                         "' (expected .hdr, .exr, .png, .jpg)");
   const std::vector<unsigned char> bytes = readFileBytes(path);
+  return readImageBytes(path, ext, bytes, options, stats);
+}
+
+void checkEncodedImageSize(const std::string& label, std::span<const unsigned char> bytes) {
+  int w = 0, h = 0, n = 0;
+  if (bytes.size() > std::size_t(std::numeric_limits<int>::max()))
+    throw Error(label, "image file too large to decode");
+  if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &n))
+    throw Error(label, "cannot decode image (" + stbReason() + ")");
+  checkImageSize(label, std::uint64_t(std::max(w, 0)), std::uint64_t(std::max(h, 0)));
+}
+
+Image readImageBytes(const std::string& path, const std::string& ext,
+                     std::span<const unsigned char> bytes, const ReadOptions& options,
+                     ReadStats* stats) {
+  if (!isReadableImageExtension(ext))
+    throw Error(path, "unknown image extension '." + ext + "' (expected .hdr, .exr, .png, .jpg)");
   if (bytes.empty()) throw Error(path, "empty file");
   Image img;
   bool ldr = false;
