@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -141,6 +142,12 @@ class MtlReader : public tinyobj::MaterialReader {
   std::optional<std::string> error_;
 };
 
+std::string colourText(const tinyobj::real_t* c) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", double(c[0]), double(c[1]), double(c[2]));
+  return buf;
+}
+
 struct TripleHash {
   std::size_t operator()(const std::array<int, 3>& t) const {
     std::size_t h = static_cast<std::size_t>(t[0]) * 0x9E3779B97F4A7C15ull;
@@ -201,9 +208,7 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
   for (const tinyobj::material_t& m : materials)
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(m.diffuse[k]) || m.diffuse[k] > kMaxAlbedo || m.diffuse[k] < 0)
-        throw Error(path, "material '" + m.name.substr(0, 80) + "': Kd " +
-                              std::to_string(m.diffuse[0]) + " " + std::to_string(m.diffuse[1]) +
-                              " " + std::to_string(m.diffuse[2]) +
+        throw Error(path, "material '" + m.name.substr(0, 80) + "': Kd " + colourText(m.diffuse) +
                               " is not a colour (each component finite, in [0, 100])");
   const std::size_t np = attrib.vertices.size() / 3, nt = attrib.texcoords.size() / 2,
                     nn = attrib.normals.size() / 3;
