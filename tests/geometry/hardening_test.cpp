@@ -253,9 +253,9 @@ TEST(Hardening, CoordinatesBeyondTheRayTracersRangeAreRejectedWithTheFigure) {
   const std::string far = dir.write("far.obj", "v 0 0 0\nv 3e13 0 0\nv 0 1 0\nf 1 2 3\n");
   expectOneLine(errorOf([&] { loadMesh(far); }), far,
                 "vertex 1 at (3e+13, 0, 0) lies outside the extent the ray tracer handles "
-                "(|coordinate| <= 1e+12, PRT_MAX_COORDINATE)");
+                "(|coordinate| <= 1e+10, PRT_MAX_COORDINATE)");
   // The same scene scaled into range loads.
-  EXPECT_NO_THROW(loadMesh(dir.write("near.obj", "v 0 0 0\nv 3e11 0 0\nv 0 3e11 0\nf 1 2 3\n")));
+  EXPECT_NO_THROW(loadMesh(dir.write("near.obj", "v 0 0 0\nv 3e9 0 0\nv 0 3e9 0\nf 1 2 3\n")));
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ struct Limits {
   std::uint64_t maxVertices = std::uint64_t(1) << 27;     ///< 134 M
   std::uint64_t maxTriangles = std::uint64_t(1) << 28;    ///< 268 M
   std::uint64_t maxNesting = 256;
-  double maxCoordinate = 1e12;  ///< squares and cross products stay far below FLT_MAX
+  double maxCoordinate = 1e10;  ///< renders go black near 3e12 (cubes of the radius overflow)
 };
 
 /// The limits in force (defaults, overridden by PRT_MAX_* variables, or by setLimits()).
