@@ -16,6 +16,7 @@ all=(hdr exr ldr obj ply off gltf bake light_json light_txt transport_txt)
 build="$root/build-fuzz"
 jobs=${FUZZ_BUILD_JOBS:-2}
 
+"$root/scripts/setup.sh" --with-fuzzing
 cxx=${CXX_FUZZ:-clang++-14}
 command -v "$cxx" >/dev/null || { echo "fuzz.sh: $cxx not found (apt-get install clang-14 libclang-rt-14-dev)" >&2; exit 2; }
 launcher=()
@@ -23,14 +24,19 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER="$cxx" "${launcher[@]}" -DPRT_BUILD_FUZZERS=ON -DPRT_BUILD_TESTS=OFF \
   -DPRT_BUILD_BENCH=OFF -DPRT_BUILD_VIEWER=OFF >/dev/null
-nice -n 10 ninja -C "$build" -j "$jobs" make_seeds prt_cli $(printf 'fuzz_%s ' "${targets[@]}")
+# The bake seed is written by `prt`: the regular build's when there is one (saves building the
+# command line a second time with sanitizers), else this build's.
+prt="$root/build/prt"
+cli=()
+[[ -x "$prt" ]] || { prt="$build/prt"; cli=(prt_cli); }
+nice -n 10 ninja -C "$build" -j "$jobs" make_seeds "${cli[@]}" $(printf 'fuzz_%s ' "${targets[@]}")
 
 # Seeds: tiny files from our own writers (make_seeds), and a bake written by `prt bake`.
 seeds="$build/seeds"
 rm -rf "$seeds"
-"$build/make_seeds" "$seeds"
+"$build/fuzz/make_seeds" "$seeds"
 mkdir -p "$seeds/bake"
-ASAN_OPTIONS=detect_leaks=0 "$build/prt" bake "builtin:sphere?subdiv=0" --mode unshadowed \
+ASAN_OPTIONS=detect_leaks=0 "$prt" bake "builtin:sphere?subdiv=0" --mode unshadowed \
   --samples 16 -q -o "$seeds/bake/sphere.glb" >/dev/null
 cp "$seeds/bake/sphere.glb" "$seeds/gltf/"
 
@@ -44,7 +50,7 @@ for t in "${targets[@]}"; do
   echo "fuzz.sh: $t for ${seconds}s"
   # -rss_limit_mb / -malloc_limit_mb: an input that makes us allocate more than this is a finding
   # (the limits in fuzz_common.hpp keep legal inputs far below it). -timeout: a hang is a finding.
-  if ! nice -n 10 "$build/fuzz_$t" "$corpus" "$seeds/$t" -max_total_time="$seconds" \
+  if ! nice -n 10 "$build/fuzz/fuzz_$t" "$corpus" "$seeds/$t" -max_total_time="$seconds" \
       -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
       -artifact_prefix="$findings/" -print_final_stats=1 >"$build/fuzz_$t.log" 2>&1; then
     echo "fuzz.sh: $t FOUND A PROBLEM: see $build/fuzz_$t.log and $findings/" >&2

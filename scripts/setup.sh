@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian package prtkit's build, tests, benchmarks and demo need.
 # Idempotent: when everything is present it only checks (a second or two) and exits.
-# Usage: scripts/setup.sh [--with-assets]   (--with-assets also installs the demo's real assets)
+# Usage: scripts/setup.sh [--with-assets | --with-fuzzing]   (the demo's real assets; clang-14 and
+# libFuzzer for scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -14,9 +15,12 @@ packages=(
   libglfw3-dev libimgui-dev libepoxy-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri xvfb xauth
 )
 assets=(glmark2-data blender-data)
+# scripts/fuzz.sh: libFuzzer with clang 14 (ASan + UBSan)
+fuzzing=(clang-14 libclang-rt-14-dev)
 
 want=("${packages[@]}")
 if [[ "${1:-}" == "--with-assets" ]]; then want+=("${assets[@]}"); fi
+if [[ "${1:-}" == "--with-fuzzing" ]]; then want+=("${fuzzing[@]}"); fi
 
 missing=()
 for p in "${want[@]}"; do

@@ -9,6 +9,7 @@
 #include <memory>
 #include <ostream>
 #include <stdexcept>
+#include <utility>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -159,8 +160,39 @@ bool jpegComplete(std::span<const unsigned char> b) {
   return end >= 4 && b[end - 2] == 0xFF && b[end - 1] == 0xD9;
 }
 
+bool isPng(std::span<const unsigned char> b) {
+  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  return b.size() >= 8 && std::memcmp(b.data(), sig, 8) == 0;
+}
+bool isJpeg(std::span<const unsigned char> b) {
+  return b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF;
+}
+
+// stb_image grows its buffer to a chunk's declared length before reading it (a 104-byte PNG
+// declaring a 1.7 GB IDAT, found by fuzz_ldr): every chunk must fit in the bytes present.
+void checkPngChunks(const std::string& path, std::span<const unsigned char> b) {
+  std::size_t pos = 8;
+  while (b.size() - pos >= 12) {
+    const std::uint32_t len =
+        (std::uint32_t(b[pos]) << 24) | (b[pos + 1] << 16) | (b[pos + 2] << 8) | b[pos + 3];
+    const std::string type(reinterpret_cast<const char*>(b.data() + pos + 4), 4);
+    if (len > b.size() - pos - 12)
+      throw Error(path, "truncated or corrupt PNG: a chunk declares " + std::to_string(len) +
+                            " bytes, " + std::to_string(b.size() - pos - 12) + " remain");
+    pos += 12 + std::size_t(len);
+    if (type == "IEND") return;
+  }
+}
+
 Image readStbLdr(const std::string& path, std::span<const unsigned char> bytes, LdrDecode decode,
-                 bool jpeg) {
+                 bool jpegByName) {
+  // Decode by content (a PNG named .jpg still reads), but only PNG and JPEG: stb_image would
+  // also take GIF, PSD, PIC, PNM, TGA and HDR data under these names.
+  const bool png = isPng(bytes), jpeg = isJpeg(bytes);
+  if (!png && !jpeg)
+    throw Error(path,
+                std::string("not a ") + (jpegByName ? "JPEG" : "PNG") + " file (bad signature)");
+  if (png) checkPngChunks(path, bytes);
   if (jpeg && !jpegComplete(bytes))
     throw Error(path, "truncated JPEG file (no end-of-image marker)");
   checkEncodedImageSize(path, bytes);
@@ -203,7 +235,8 @@ class MemoryIStream : public Imf::IStream {
   MemoryIStream(const std::string& name, std::span<const unsigned char> bytes)
       : Imf::IStream(name.c_str()), bytes_(bytes) {}
   bool read(char c[], int n) override {
-    if (n < 0 || pos_ + static_cast<std::uint64_t>(n) > bytes_.size())
+    // pos_ may be anything a corrupt offset table seeks to: compare without overflowing.
+    if (n < 0 || pos_ > bytes_.size() || static_cast<std::uint64_t>(n) > bytes_.size() - pos_)
       throw std::runtime_error("unexpected end of file");
     std::memcpy(c, bytes_.data() + pos_, static_cast<std::size_t>(n));
     pos_ += static_cast<std::uint64_t>(n);
@@ -263,10 +296,143 @@ Image readOpenExr(const std::string& path, std::span<const unsigned char> bytes)
   }
 }
 
+// OpenEXR allocates what the header declares before reading it: an attribute's size (1.8 GB for
+// an unknown attribute type, found by fuzz_exr), a preview image's width × height, the chunk
+// offset table of a data window cut into tiny tiles. Walk the header first (OpenEXR file layout:
+// magic, version, then per part NUL-terminated name, type, int32 size, value; an empty name ends
+// a header, and in a multi-part file an empty header ends the list) and check every declared
+// size against the bytes present and the image limits.
+/// Bytes OpenEXR reads for a value of a fixed-size attribute type (0: variable or unknown).
+std::size_t exrFixedSize(const std::string& type) {
+  static const std::pair<const char*, std::size_t> table[] = {
+      {"box2i", 16},      {"box2f", 16},   {"chromaticities", 32},
+      {"compression", 1}, {"double", 8},   {"envmap", 1},
+      {"float", 4},       {"int", 4},      {"keycode", 28},
+      {"lineOrder", 1},   {"m33f", 36},    {"m33d", 72},
+      {"m44f", 64},       {"m44d", 128},   {"rational", 8},
+      {"tiledesc", 9},    {"timecode", 8}, {"v2i", 8},
+      {"v2f", 8},         {"v2d", 16},     {"v3i", 12},
+      {"v3f", 12},        {"v3d", 24},     {"deepImageState", 1}};
+  for (const auto& [name, size] : table)
+    if (type == name) return size;
+  return 0;
+}
+
+void checkExrHeader(const std::string& path, std::span<const unsigned char> b) {
+  std::size_t pos = 8;
+  if (b.size() < 8) throw Error(path, "truncated OpenEXR header");
+  const std::uint32_t version = b[4] | (b[5] << 8) | (b[6] << 16) | (std::uint32_t(b[7]) << 24);
+  const bool multipart = version & 0x1000;
+  const auto cstr = [&](const char* what) {
+    const std::size_t start = pos;
+    while (pos < b.size() && b[pos] != 0) {
+      if (pos - start > 255)
+        throw Error(path, std::string("OpenEXR header: ") + what + " too long");
+      ++pos;
+    }
+    if (pos >= b.size()) throw Error(path, "truncated OpenEXR header");
+    ++pos;
+    return std::string(reinterpret_cast<const char*>(b.data() + start), pos - 1 - start);
+  };
+  const auto i32 = [&](std::size_t at) {
+    std::int32_t v;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+  };
+  while (true) {
+    std::int64_t w = 0, h = 0, tileX = 0, tileY = 0;
+    bool haveWindow = false;
+    while (true) {
+      const std::string name = cstr("attribute name");
+      if (name.empty()) break;
+      const std::string type = cstr("attribute type");
+      if (b.size() - pos < 4) throw Error(path, "truncated OpenEXR header");
+      const std::int32_t size = i32(pos);
+      pos += 4;
+      if (size < 0 || std::size_t(size) > b.size() - pos)
+        throw Error(path, "OpenEXR header: attribute '" + name.substr(0, 40) + "' declares " +
+                              std::to_string(size) + " bytes, " + std::to_string(b.size() - pos) +
+                              " remain (truncated or corrupt)");
+      const std::size_t at = pos;
+      // OpenEXR reads a known type's value by its own layout, not by the declared size, and
+      // carries on from where that read stops: compute that layout too.
+      std::size_t used = std::size_t(size);
+      if (const std::size_t fixed = exrFixedSize(type)) {
+        used = fixed;
+      } else if (type == "chlist") {
+        std::size_t p = at;
+        while (true) {
+          if (p >= b.size()) throw Error(path, "truncated OpenEXR header");
+          const std::size_t nameStart = p;
+          while (p < b.size() && b[p] != 0) ++p;
+          if (p >= b.size() || p - nameStart > 255)
+            throw Error(path, "corrupt OpenEXR channel list");
+          ++p;
+          if (p == nameStart + 1) break;  // empty name: end of the list
+          if (b.size() - p < 16) throw Error(path, "truncated OpenEXR header");
+          p += 16;
+        }
+        used = p - at;
+      } else if (type == "preview") {
+        if (size < 8) throw Error(path, "corrupt OpenEXR preview attribute");
+        const std::uint64_t pw = std::uint32_t(i32(at)), ph = std::uint32_t(i32(at + 4));
+        if (pw * ph * 4 != std::uint64_t(size) - 8)
+          throw Error(path, "OpenEXR header: preview image " + std::to_string(pw) + "x" +
+                                std::to_string(ph) + " does not fit its attribute");
+      } else if (type == "stringvector") {
+        for (std::size_t p = at; p < at + std::size_t(size);) {
+          if (at + std::size_t(size) - p < 4) throw Error(path, "corrupt OpenEXR string vector");
+          const std::int32_t len = i32(p);
+          p += 4;
+          if (len < 0 || std::size_t(len) > at + std::size_t(size) - p)
+            throw Error(path, "corrupt OpenEXR string vector");
+          p += std::size_t(len);
+        }
+      }
+      // Valid files agree with themselves; refusing any disagreement makes our walk and
+      // OpenEXR's the same whichever of the two sizes OpenEXR follows.
+      if (used != std::size_t(size))
+        throw Error(path, "OpenEXR header: attribute '" + name.substr(0, 40) + "' of type " +
+                              type.substr(0, 40) + " declares " + std::to_string(size) +
+                              " bytes but its value takes " + std::to_string(used));
+      pos = at + used;
+      if (type == "box2i" && name == "dataWindow") {
+        w = std::int64_t(i32(at + 8)) - i32(at) + 1;
+        h = std::int64_t(i32(at + 12)) - i32(at + 4) + 1;
+        haveWindow = true;
+      } else if (type == "tiledesc") {
+        tileX = std::uint32_t(i32(at));
+        tileY = std::uint32_t(i32(at + 4));
+      } else if (name == "chunkCount" && type == "int") {
+        const std::int32_t chunks = i32(at);
+        if (chunks < 0 || std::uint64_t(chunks) * 8 > b.size())
+          throw Error(path, "OpenEXR header: chunkCount " + std::to_string(chunks) +
+                                " does not fit the file");
+      }
+    }
+    if (haveWindow) {
+      if (w <= 0 || h <= 0) throw Error(path, "empty OpenEXR data window");
+      checkImageSize(path, std::uint64_t(w), std::uint64_t(h));
+      // The chunk offset table (8 bytes per chunk) must be in the file: at most 256 scan lines
+      // per chunk (DWAB), or the level-0 tiles of a tiled part.
+      std::uint64_t chunks = std::uint64_t(h + 255) / 256;
+      if (tileX > 0 && tileY > 0)
+        chunks = std::uint64_t((w + tileX - 1) / tileX) * std::uint64_t((h + tileY - 1) / tileY);
+      if (chunks > b.size() / 8)
+        throw Error(path, "truncated OpenEXR file (" + std::to_string(w) + "x" + std::to_string(h) +
+                              " needs " + std::to_string(chunks) + " chunk offsets)");
+    }
+    if (!multipart) break;
+    if (pos >= b.size()) throw Error(path, "truncated OpenEXR header");
+    if (b[pos] == 0) break;  // the empty header that ends a multi-part list
+  }
+}
+
 Image readExr(const std::string& path, std::span<const unsigned char> bytes) {
   if (bytes.size() < 4 ||
       !(bytes[0] == 0x76 && bytes[1] == 0x2f && bytes[2] == 0x31 && bytes[3] == 0x01))
     throw Error(path, "not an OpenEXR file (bad magic number)");
+  checkExrHeader(path, bytes);
   // Read by the reference library: every compression (tinyexr lacks DWAA/DWAB, which Blender's
   // Poly Haven maps use) and, under AddressSanitizer, no leaks on malformed files (tinyexr's
   // decoder leaks its line buffers when a file is truncated). tinyexr writes our EXRs.
@@ -310,6 +476,10 @@ Image readImage(const std::string& path, const ReadOptions& options, ReadStats* 
 }
 
 void checkEncodedImageSize(const std::string& label, std::span<const unsigned char> bytes) {
+  if (isPng(bytes))
+    checkPngChunks(label, bytes);
+  else if (!isJpeg(bytes))
+    throw Error(label, "not a PNG or JPEG image (bad signature)");
   int w = 0, h = 0, n = 0;
   if (bytes.size() > std::size_t(std::numeric_limits<int>::max()))
     throw Error(label, "image file too large to decode");

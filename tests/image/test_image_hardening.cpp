@@ -78,6 +78,47 @@ TEST(ImageHardening, PngHeaderSizeIsCheckedBeforeDecoding) {
   EXPECT_LT(peak.bytes(), 1u << 20);
 }
 
+std::string writtenBytes(const std::string& ext, const Image& img) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("prt_img_" + std::to_string(std::rand()) + "_" + std::to_string(std::rand()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / ("small." + ext)).string();
+  writeImage(path, img);
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  std::filesystem::remove_all(dir);
+  return bytes;
+}
+
+TEST(ImageHardening, ChunkAndAttributeLengthsAreCheckedBeforeTheDecoderAllocates) {
+  // fuzz_ldr: a PNG whose IDAT declared 1.7 GB made stb_image allocate it before reading.
+  std::string png = writtenBytes("png", Image(8, 4));
+  const std::size_t idat = png.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  png[idat - 4] = 0x68;
+  {
+    PeakAllocation peak;
+    expectOneLine(errorOf([&] { readImageBytes("idat.png", "png", span(png)); }), "idat.png",
+                  "truncated or corrupt PNG: a chunk declares 1744830");
+    EXPECT_LT(peak.bytes(), 1u << 20);
+  }
+  // Other formats stb_image knows are not taken for PNG or JPEG.
+  expectOneLine(
+      errorOf([&] { readImageBytes("gif.png", "png", span(std::string("GIF89a....."))); }),
+      "gif.png", "not a PNG file (bad signature)");
+  // fuzz_exr: an attribute declaring 1.8 GB made OpenEXR allocate it before reading.
+  std::string exr = writtenBytes("exr", Image(8, 4));
+  const std::string key = std::string("compression\0compression\0", 24);
+  const std::size_t at = exr.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const std::int32_t huge = 1836016384;
+  std::memcpy(&exr[at + key.size()], &huge, 4);
+  PeakAllocation peak;
+  expectOneLine(errorOf([&] { readImageBytes("attr.exr", "exr", span(exr)); }), "attr.exr",
+                "OpenEXR header: attribute 'compression' declares 1836016384 bytes");
+  EXPECT_LT(peak.bytes(), 1u << 20);
+}
+
 TEST(ImageHardening, ExrDataWindowIsCheckedBeforeAllocating) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("prt_exr_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +

@@ -49,8 +49,9 @@ Image readImage(const std::string& path, const ReadOptions& options = {},
 Image readImageBytes(const std::string& label, const std::string& ext,
                      std::span<const unsigned char> bytes, const ReadOptions& options = {},
                      ReadStats* stats = nullptr);
-/// Reads the width and height that an encoded PNG/JPEG/… declares in its header and checks them
-/// against prt::limits() (throws Error(label, ...) if they exceed them or cannot be read).
+/// Checks an encoded PNG or JPEG before anything decodes it: the signature, PNG chunk lengths
+/// against the bytes present, and the width and height in its header against prt::limits()
+/// (throws Error(label, ...) otherwise).
 void checkEncodedImageSize(const std::string& label, std::span<const unsigned char> bytes);
 
 /// Applies the pixel policy in place and returns the counts (used by the readers; exposed for
