@@ -273,14 +273,12 @@ Image readOpenExr(const std::string& path, std::span<const unsigned char> bytes)
     std::vector<float> planes(static_cast<std::size_t>(w) * h * 3, 0.0f);
     Imf::FrameBuffer fb;
     const std::size_t xs = sizeof(float) * 3, ys = xs * static_cast<std::size_t>(w);
-    // The slice base points at pixel (0, 0) of the data window's coordinate system.
-    char* base =
-        reinterpret_cast<char*>(planes.data()) -
-        (static_cast<std::ptrdiff_t>(dw.min.x) * xs + static_cast<std::ptrdiff_t>(dw.min.y) * ys);
+    // Slice::Make points the slice at the data window's origin with integer arithmetic (the
+    // classic "base - origin" pointer leaves the array, undefined behaviour UBSan reports).
     const char* names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
       fb.insert(grey ? "Y" : names[c],
-                Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1, 0.0));
+                Imf::Slice::Make(Imf::FLOAT, planes.data() + c, dw, xs, ys, 1, 1, 0.0));
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     Image img(w, h);
