@@ -47,6 +47,14 @@ TEST(IoHardening, DeeplyNestedJsonIsRefusedBeforeParsing) {
   }
   EXPECT_EQ(
       e, "deep.json: JSON nested deeper than 256 levels (PRT_MAX_NESTING); refusing to parse it");
+  // fuzz_light_json: a number beyond double range threw nlohmann's out_of_range, not prt::Error.
+  e.clear();
+  try {
+    io::parseLightJson("4444444444444444444444444E4444444", "big.json");
+  } catch (const Error& err) {
+    e = err.what();
+  }
+  EXPECT_EQ(e, "big.json: invalid JSON (a number out of range)");
   // A normal light file still parses from memory.
   const io::LightFile ok = io::parseLightJson(R"({"coefficients": [[1, 2, 3]]})", "ok.json");
   EXPECT_EQ(ok.coefficients.bands, 1);
