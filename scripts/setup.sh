@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian package prtkit's build, tests, benchmarks and demo need.
 # Idempotent: when everything is present it only checks (a second or two) and exits.
-# Usage: scripts/setup.sh [--with-assets]   (--with-assets also installs the demo's real assets)
+# Usage: scripts/setup.sh [--with-assets | --with-fuzzing]   (the demo's real assets; clang-14 and
+# libFuzzer for scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -19,10 +20,13 @@ packages=(
   nodejs chromium
 )
 assets=(glmark2-data blender-data)
+# scripts/fuzz.sh: libFuzzer with clang 14 (ASan + UBSan)
+fuzzing=(clang-14 libclang-rt-14-dev)
 
 want=("${packages[@]}")
 if ! command -v npm >/dev/null 2>&1; then want+=(npm); fi
 if [[ "${1:-}" == "--with-assets" ]]; then want+=("${assets[@]}"); fi
+if [[ "${1:-}" == "--with-fuzzing" ]]; then want+=("${fuzzing[@]}"); fi
 
 missing=()
 for p in "${want[@]}"; do

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
 
 namespace prt {
 
@@ -61,6 +62,8 @@ std::vector<unsigned char> readFileBytes(const std::string& path) {
   in.seekg(0, std::ios::end);
   const auto size = in.tellg();
   if (size < 0) throw Error(path, "cannot read");
+  checkLimit(path, "file size", static_cast<std::uint64_t>(size), limits().maxFileBytes,
+             "PRT_MAX_FILE_BYTES");
   in.seekg(0, std::ios::beg);
   std::vector<unsigned char> data(static_cast<std::size_t>(size));
   if (size > 0 && !in.read(reinterpret_cast<char*>(data.data()), size))

@@ -11,9 +11,15 @@ OwenSobol2D::OwenSobol2D(std::uint32_t n) : rev1_(n) {
 // Compiled for AVX2 and SSE4.1 beside the SSE2 baseline, picked at load time (GCC function
 // multiversioning): the hash needs 32-bit vector multiplies (pmulld, SSE4.1) to vectorise. All
 // versions give identical bits: IEEE operations in the same order, no FMA contraction (ISO mode).
-__attribute__((target_clones("avx2", "sse4.1", "default"))) void OwenSobol2D::cosineBatch(
-    std::uint32_t first, std::uint32_t count, std::uint32_t seed0, std::uint32_t seed1, float* x,
-    float* y, float* z) const {
+// GCC only: clang 14 (the fuzz build) emits no symbol for a multiversioned member function.
+#if defined(__GNUC__) && !defined(__clang__)
+#define PRT_TARGET_CLONES __attribute__((target_clones("avx2", "sse4.1", "default")))
+#else
+#define PRT_TARGET_CLONES
+#endif
+PRT_TARGET_CLONES void OwenSobol2D::cosineBatch(std::uint32_t first, std::uint32_t count,
+                                                std::uint32_t seed0, std::uint32_t seed1, float* x,
+                                                float* y, float* z) const {
   float u1[64], u2[64];
   if (count > 64) count = 64;
   const std::uint32_t* rev1 = rev1_.data() + first;

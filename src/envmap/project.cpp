@@ -15,6 +15,16 @@ namespace {
 
 constexpr std::size_t kChunk = 1024;
 
+/// A valid but extremely bright environment (RGBE reaches 1.7e38) overflows the float sums to
+/// inf; say so instead of handing on coefficients that no later stage can use.
+void checkFiniteProjection(const sh::RgbSh& c) {
+  for (std::size_t i = 0; i < c.c.size(); ++i)
+    if (!isFinite(c.c[i]))
+      throw Error("projecting the environment onto SH overflowed: coefficient " +
+                  std::to_string(i) +
+                  " is not finite (radiance too bright for 32-bit floats; scale the image down)");
+}
+
 // Accumulates texels [lo, hi) into out (3·B² doubles, RGB interleaved per coefficient).
 template <int B, typename TexelFn>
 void accumulate(const TexelFn& texelAt, std::size_t lo, std::size_t hi, double* out) {
@@ -72,6 +82,7 @@ sh::RgbSh projectTexels(int bands, std::size_t count, const TexelFn& texelAt,
   for (std::size_t i = 0; i < n; ++i)
     out.c[i] = {static_cast<float>(total[3 * i]), static_cast<float>(total[3 * i + 1]),
                 static_cast<float>(total[3 * i + 2])};
+  checkFiniteProjection(out);
   return out;
 }
 
@@ -86,6 +97,7 @@ sh::RgbSh projectEnvironment(const Environment& env, int bands, const ProgressFn
       const sh::RgbSh c = capSh(bands, cap);
       for (std::size_t i = 0; i < out.c.size(); ++i) out.c[i] += c.c[i];
     }
+    checkFiniteProjection(out);
     return out;
   }
   auto texelAt = [&env](std::size_t k) { return env.texel(k); };

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "loaders.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/geometry/normals.hpp"
 
@@ -27,6 +29,56 @@ std::vector<std::string> meshExtensions() {
   return {"obj", "ply", "off", "gltf", "glb"};
 }
 
+namespace {
+
+std::string triple(float a, float b, float c) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", double(a), double(b), double(c));
+  return buf;
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+}  // namespace
+
+void checkMeshExtent(const Mesh& m, const std::string& label) {
+  const double maxCoord = limits().maxCoordinate;
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const Vec3f& p = m.positions[v];
+    if (!isFinite(p))
+      throw Error(label, "vertex " + std::to_string(v) + " has a non-finite coordinate " +
+                             triple(p.x, p.y, p.z));
+    for (int k = 0; k < 3; ++k)
+      if (std::fabs(double(p[k])) > maxCoord)
+        throw Error(label, "vertex " + std::to_string(v) + " at " + triple(p.x, p.y, p.z) +
+                               " lies outside the extent the ray tracer handles (|coordinate| <= " +
+                               number(maxCoord) + ", PRT_MAX_COORDINATE); rescale the scene");
+  }
+}
+
+void checkMeshValues(const Mesh& m, const std::string& label) {
+  checkMeshExtent(m, label);
+  for (std::size_t v = 0; v < m.normals.size(); ++v)
+    if (!isFinite(m.normals[v]))
+      throw Error(label, "vertex " + std::to_string(v) + " has a non-finite normal " +
+                             triple(m.normals[v].x, m.normals[v].y, m.normals[v].z));
+  for (std::size_t v = 0; v < m.uvs.size(); ++v)
+    if (!std::isfinite(m.uvs[v].x) || !std::isfinite(m.uvs[v].y))
+      throw Error(label, "vertex " + std::to_string(v) + " has a non-finite texture coordinate");
+  for (std::size_t v = 0; v < m.albedo.size(); ++v) {
+    const Rgb& a = m.albedo[v];
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(a[k]) || a[k] > kMaxAlbedo)
+        throw Error(label, "vertex " + std::to_string(v) + " has albedo " + triple(a.x, a.y, a.z) +
+                               " (each component must be finite and at most " +
+                               std::to_string(int(kMaxAlbedo)) + ")");
+  }
+}
+
 namespace detail {
 
 void throwBadIndex(const std::string& label, std::size_t face, long long index, std::size_t count,
@@ -35,33 +87,47 @@ void throwBadIndex(const std::string& label, std::size_t face, long long index, 
                          std::to_string(index) + " (mesh has " + std::to_string(count) + ")");
 }
 
-std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsigned char> bytes) {
+std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsigned char> bytes,
+                                  std::string_view magic) {
+  // Streamed in chunks with the output capped at limits().maxDecompressedBytes, so a gzip bomb
+  // (a few MB inflating to many GB) stops at the cap instead of exhausting memory.
+  const std::uint64_t cap = limits().maxDecompressedBytes;
   z_stream zs{};
   // 15 window bits + 32: accept both gzip and zlib headers.
   if (inflateInit2(&zs, 15 + 32) != Z_OK) throw Error(label, "cannot initialise zlib");
+  struct End {
+    z_stream* z;
+    ~End() { inflateEnd(z); }
+  } end{&zs};
   std::vector<unsigned char> out;
-  out.resize(std::max<std::size_t>(bytes.size() * 4, 1 << 16));
-  zs.next_in = const_cast<unsigned char*>(bytes.data());
-  zs.avail_in = static_cast<uInt>(bytes.size());
-  int rc = Z_OK;
+  std::vector<unsigned char> chunk(1 << 16);
+  std::size_t inPos = 0;
   while (true) {
-    if (zs.total_out == out.size()) out.resize(out.size() * 2);
-    zs.next_out = out.data() + zs.total_out;
-    zs.avail_out = static_cast<uInt>(std::min<std::size_t>(out.size() - zs.total_out, 1u << 30));
-    rc = inflate(&zs, Z_NO_FLUSH);
+    if (zs.avail_in == 0 && inPos < bytes.size()) {
+      const std::size_t n = std::min<std::size_t>(bytes.size() - inPos, 1u << 30);
+      zs.next_in = const_cast<unsigned char*>(bytes.data() + inPos);
+      zs.avail_in = static_cast<uInt>(n);
+      inPos += n;
+    }
+    zs.next_out = chunk.data();
+    zs.avail_out = static_cast<uInt>(chunk.size());
+    const int rc = inflate(&zs, Z_NO_FLUSH);
+    const std::size_t produced = chunk.size() - zs.avail_out;
+    if (out.size() + produced > cap)
+      throw Error(label, "gzip: decompresses to more than " + std::to_string(cap) +
+                             " bytes (PRT_MAX_DECOMPRESSED_BYTES)");
+    out.insert(out.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(produced));
+    // Stop at once, not after gigabytes, when what comes out is not the expected format.
+    if (!magic.empty() && out.size() >= magic.size() && out.size() - produced < magic.size() &&
+        std::string_view(reinterpret_cast<const char*>(out.data()), magic.size()) != magic)
+      throw Error(label,
+                  "gzip: the decompressed data does not start with '" + std::string(magic) + "'");
     if (rc == Z_STREAM_END) break;
-    if (rc != Z_OK && rc != Z_BUF_ERROR) {
-      const std::string msg = zs.msg ? zs.msg : "corrupt data";
-      inflateEnd(&zs);
-      throw Error(label, "gzip: " + msg);
-    }
-    if (rc == Z_BUF_ERROR && zs.avail_in == 0) {
-      inflateEnd(&zs);
+    if (rc == Z_NEED_DICT || (rc != Z_OK && rc != Z_BUF_ERROR))
+      throw Error(label, "gzip: " + std::string(zs.msg ? zs.msg : "corrupt data"));
+    if (zs.avail_in == 0 && inPos >= bytes.size() && produced == 0)
       throw Error(label, "gzip: truncated data");
-    }
   }
-  out.resize(zs.total_out);
-  inflateEnd(&zs);
   return out;
 }
 
@@ -91,18 +157,20 @@ std::string stem(const std::string& path) {
   return name;
 }
 
+}  // namespace
+
+namespace detail {
+
 /// Validates a freshly read mesh and brings it to the invariants stated in load.hpp.
 void finishMesh(Mesh& m, const std::string& label, LoadReport& report) {
   if (m.positions.empty()) throw Error(label, "has no vertices");
   if (m.triangles.empty())
     throw Error(label, "has no faces (" + std::to_string(m.positions.size()) +
                            " vertices but no triangles; a point cloud cannot be baked)");
-  for (std::size_t v = 0; v < m.positions.size(); ++v)
-    if (!isFinite(m.positions[v]))
-      throw Error(label, "vertex " + std::to_string(v) + " has a non-finite coordinate (" +
-                             std::to_string(m.positions[v].x) + ", " +
-                             std::to_string(m.positions[v].y) + ", " +
-                             std::to_string(m.positions[v].z) + ")");
+  checkLimit(label, "vertex count", m.positions.size(), limits().maxVertices, "PRT_MAX_VERTICES");
+  checkLimit(label, "triangle count", m.triangles.size(), limits().maxTriangles,
+             "PRT_MAX_TRIANGLES");
+  checkMeshValues(m, label);
   for (std::size_t t = 0; t < m.triangles.size(); ++t)
     for (std::uint32_t i : m.triangles[t])
       if (i >= m.positions.size()) detail::throwBadIndex(label, t, i, m.positions.size());
@@ -110,7 +178,7 @@ void finishMesh(Mesh& m, const std::string& label, LoadReport& report) {
     throw Error(label, "internal: albedo count differs from vertex count");
   for (Rgb& a : m.albedo)
     for (int k = 0; k < 3; ++k)
-      if (!std::isfinite(a[k]) || a[k] < 0) a[k] = 0;
+      if (a[k] < 0) a[k] = 0;
   if (!m.uvs.empty() && m.uvs.size() != m.positions.size()) m.uvs.clear();
   if (m.parts.empty()) m.parts.push_back(MeshPart{stem(label), 0, 0, 0, 0});
   if (m.parts.size() == 1) {
@@ -143,36 +211,53 @@ void finishMesh(Mesh& m, const std::string& label, LoadReport& report) {
                               " missing or invalid normals replaced by computed ones");
 }
 
-Mesh loadFile(const std::string& path, LoadReport& report) {
-  std::string ext = fileExtension(path);
-  bool gz = false;
-  std::string inner = path;
-  if (ext == "gz") {
-    gz = true;
-    inner = path.substr(0, path.size() - 3);
-    ext = fileExtension(inner);
-  }
-  const auto bytesOf = [&]() {
-    std::vector<unsigned char> bytes = readFileBytes(path);
-    return gz ? detail::gunzip(path, bytes) : bytes;
-  };
-  if (ext == "ply") {
-    const auto bytes = bytesOf();
-    return detail::readPly(path, bytes, report);
-  }
-  if (ext == "off") {
-    const auto bytes = bytesOf();
-    return detail::readOff(
-        path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), report);
-  }
-  if (gz && (ext == "obj" || ext == "gltf" || ext == "glb"))
-    throw Error(path, "compressed ." + ext + " is not supported (only .ply.gz and .off.gz)");
-  if (ext == "obj") return detail::readObj(path, report);
-  if (ext == "gltf" || ext == "glb") return detail::readGltf(path, report);
+}  // namespace detail
+
+namespace {
+
+std::string extensionList() {
   std::string list;
   for (const auto& e : meshExtensions()) list += (list.empty() ? "." : ", .") + e;
-  throw Error(path, (ext.empty() ? std::string("has no extension") : "unknown extension ." + ext) +
-                        " (mesh formats: " + list + ", .ply.gz, .off.gz, builtin:NAME)");
+  return list;
+}
+
+/// Splits "x.ply.gz" into ("ply", gz = true).
+std::string meshFormat(const std::string& path, bool& gz) {
+  std::string ext = fileExtension(path);
+  gz = ext == "gz";
+  if (gz) ext = fileExtension(path.substr(0, path.size() - 3));
+  if (gz && (ext == "obj" || ext == "gltf" || ext == "glb"))
+    throw Error(path, "compressed ." + ext + " is not supported (only .ply.gz and .off.gz)");
+  if (ext != "ply" && ext != "off" && ext != "obj" && ext != "gltf" && ext != "glb")
+    throw Error(path,
+                (ext.empty() ? std::string("has no extension") : "unknown extension ." + ext) +
+                    " (mesh formats: " + extensionList() + ", .ply.gz, .off.gz, builtin:NAME)");
+  return ext;
+}
+
+Mesh readBytes(const std::string& label, const std::string& ext, bool gz,
+               std::span<const unsigned char> raw, LoadReport& report) {
+  std::vector<unsigned char> inflated;
+  if (gz) inflated = detail::gunzip(label, raw, ext == "ply" ? "ply" : "");
+  const std::span<const unsigned char> bytes = gz ? std::span<const unsigned char>(inflated) : raw;
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (ext == "ply") return detail::readPly(label, bytes, report);
+  if (ext == "off") return detail::readOff(label, text, report);
+  if (ext == "obj") {
+    static const std::string noMaterials;  // every mtllib reads as empty: nothing from disk
+    return detail::readObjText(label, text, "", &noMaterials, report);
+  }
+  return detail::readGltfBytes(label, bytes, ext == "glb", "", false, report);
+}
+
+Mesh loadFile(const std::string& path, LoadReport& report) {
+  bool gz = false;
+  const std::string ext = meshFormat(path, gz);
+  // OBJ and glTF may refer to other files (materials, textures, buffers) beside them.
+  if (ext == "obj") return detail::readObj(path, report);
+  if (ext == "gltf" || ext == "glb") return detail::readGltf(path, report);
+  const std::vector<unsigned char> bytes = readFileBytes(path);
+  return readBytes(path, ext, gz, bytes, report);
 }
 
 }  // namespace
@@ -182,8 +267,20 @@ Mesh loadMesh(const std::string& path, LoadReport* report) {
   LoadReport& r = report ? *report : local;
   if (isBuiltinScene(path)) return builtinScene(path);
   Mesh m = loadFile(path, r);
-  finishMesh(m, path, r);
+  detail::finishMesh(m, path, r);
   m.source = path;
+  return m;
+}
+
+Mesh loadMeshBytes(const std::string& name, std::span<const unsigned char> bytes,
+                   LoadReport* report) {
+  LoadReport local;
+  LoadReport& r = report ? *report : local;
+  bool gz = false;
+  const std::string ext = meshFormat(name, gz);
+  Mesh m = readBytes(name, ext, gz, bytes, r);
+  detail::finishMesh(m, name, r);
+  m.source = name;
   return m;
 }
 

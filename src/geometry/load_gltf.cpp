@@ -23,10 +23,13 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 
 #include "loaders.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 
@@ -132,8 +135,8 @@ class Reader {
     if (comps != wantComps && !(wantComps == 3 && comps == 4 && std::string(what) == "COLOR_0"))
       fail(std::string(what) + " has " + std::to_string(comps) + " components, expected " +
            std::to_string(wantComps));
+    const auto [data, stride] = span(a, comps, what);  // checks the count against the bytes first
     std::vector<float> out(a.count * comps);
-    const auto [data, stride] = span(a, comps, what);
     for (std::size_t i = 0; i < a.count; ++i)
       for (int c = 0; c < comps; ++c) {
         const unsigned char* p =
@@ -148,7 +151,7 @@ class Reader {
   std::vector<std::uint32_t> indices(int index) {
     const tinygltf::Accessor& a = accessor(index, "indices");
     if (a.type != TINYGLTF_TYPE_SCALAR) fail("indices accessor is not scalar");
-    const auto [data, stride] = span(a, 1, "indices");
+    const auto [data, stride] = span(a, 1, "indices");  // count checked against the bytes
     std::vector<std::uint32_t> out(a.count);
     for (std::size_t i = 0; i < a.count; ++i) {
       const unsigned char* p = data + i * stride;
@@ -242,8 +245,18 @@ class Reader {
     if (csize <= 0) fail(std::string(what) + " has an invalid component type");
     const std::size_t elem = std::size_t(csize) * comps;
     const std::size_t stride = bv.byteStride ? bv.byteStride : elem;
+    if (stride < elem && a.count > 1)
+      fail(std::string(what) + ": byteStride " + std::to_string(stride) +
+           " is smaller than an element (" + std::to_string(elem) + " bytes)");
+    // Counts and offsets come from the file: compare in a way that cannot overflow.
+    const std::uint64_t count = a.count;
+    if (count > buf.size())
+      fail(std::string(what) + ": accessor count " + std::to_string(count) + " exceeds the " +
+           std::to_string(buf.size()) + " bytes of its buffer");
+    if (bv.byteOffset > buf.size() || a.byteOffset > buf.size())
+      fail(std::string(what) + ": accessor runs past the end of its buffer (truncated file?)");
     const std::size_t start = bv.byteOffset + a.byteOffset;
-    const std::size_t need = a.count == 0 ? 0 : stride * (a.count - 1) + elem;
+    const std::uint64_t need = count == 0 ? 0 : std::uint64_t(stride) * (count - 1) + elem;
     if (start > buf.size() || need > buf.size() - start || a.byteOffset + need > bv.byteLength)
       fail(std::string(what) + ": accessor runs past the end of its buffer (truncated file?)");
     return {buf.data() + start, stride};
@@ -290,26 +303,100 @@ class Reader {
 
 }  // namespace
 
+namespace {
+
+// File access for tinygltf (external buffers and images): regular files only, read through
+// readFileBytes (so under the file-size cap), never a device or a pipe. In memory mode (fuzzing,
+// decodeBake-like callers) nothing outside the bytes given is read.
+struct FsContext {
+  bool allowFiles = true;
+};
+
+bool fsExists(const std::string& path, void* user) {
+  if (!static_cast<FsContext*>(user)->allowFiles) return false;
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec);
+}
+std::string fsExpand(const std::string& path, void*) {
+  return path;
+}
+bool fsRead(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+            void* user) {
+  if (!fsExists(path, user)) {
+    if (err) *err += "external file " + path + " not found\n";
+    return false;
+  }
+  try {
+    *out = readFileBytes(path);
+    return true;
+  } catch (const Error& e) {
+    if (err) *err += std::string(e.what()) + "\n";
+    return false;
+  }
+}
+bool fsWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "writing is not allowed\n";
+  return false;
+}
+
+/// tinygltf decodes embedded images with stb_image while parsing; check the size each declares
+/// against the image limits first, so a 100-byte PNG header cannot ask for gigabytes.
+bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
+               int reqW, int reqH, const unsigned char* bytes, int size, void* user) {
+  try {
+    image::checkEncodedImageSize(
+        "image " + std::to_string(index),
+        std::span<const unsigned char>(bytes, std::size_t(std::max(size, 0))));
+  } catch (const Error& e) {
+    // Not fatal for the mesh: the texture is skipped (Reader::texture warns).
+    if (warn) *warn += std::string(e.what()) + "\n";
+    return true;
+  }
+  return tinygltf::LoadImageData(image, index, err, warn, reqW, reqH, bytes, size, user);
+}
+
+}  // namespace
+
 Mesh readGltf(const std::string& path, LoadReport& report) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
-  const bool binary = ext == ".glb" || ext == ".GLB";
   {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
       throw Error(path, "cannot open (does it exist and is it readable?)");
   }
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const std::vector<unsigned char> bytes = readFileBytes(path);
+  const std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  const bool binary = ext == ".glb" || ext == ".GLB";
+  return readGltfBytes(path, bytes, binary, std::filesystem::path(path).parent_path().string(),
+                       true, report);
+}
+
+Mesh readGltfBytes(const std::string& path, std::span<const unsigned char> bytes, bool binary,
+                   const std::string& baseDir, bool allowFiles, LoadReport& report) {
+  // tinygltf parses with nlohmann::json and then walks the tree recursively (extras, extensions):
+  // refuse deep nesting before either sees the bytes.
+  checkGltfNesting(path, bytes);
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  FsContext fsContext{allowFiles};
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{&fsExists, &fsExpand, &fsRead, &fsWrite, &fsContext});
+  loader.SetImageLoader(&loadImage, nullptr);
+  std::string err, warn;
+  if (bytes.size() > std::numeric_limits<unsigned int>::max())
+    throw Error(path, "file too large for a glTF");
+  const bool ok =
+      binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                           static_cast<unsigned int>(bytes.size()), baseDir)
+             : loader.LoadASCIIFromString(&model, &err, &warn,
+                                          reinterpret_cast<const char*>(bytes.data()),
+                                          static_cast<unsigned int>(bytes.size()), baseDir);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
     if (const auto nl = err.find('\n'); nl != std::string::npos) err.resize(nl);
+    if (err.size() > 200) err = err.substr(0, 200) + "...";
     throw Error(path, err.empty() ? "cannot parse glTF" : err);
   }
   Reader rd(path, model, report);
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  const std::filesystem::path dir = baseDir;
   Mesh mesh;
   bool anyAlbedo = false, anyNormals = false;
   std::vector<Rgb> albedo;
@@ -343,6 +430,9 @@ Mesh readGltf(const std::string& path, LoadReport& report) {
       const int posAcc = attr("POSITION");
       if (posAcc < 0)
         rd.fail("mesh '" + gm.name + "' primitive " + std::to_string(pi) + " has no POSITION");
+      // A mesh instanced by many nodes is copied per instance: cap the total as it grows.
+      checkLimit(path, "vertex count", mesh.positions.size() + rd.count(posAcc, "POSITION"),
+                 limits().maxVertices, "PRT_MAX_VERTICES");
       const std::vector<float> pos = rd.floats(posAcc, 3, "POSITION");
       const std::size_t n = pos.size() / 3;
       const std::uint32_t base = std::uint32_t(mesh.positions.size());
@@ -442,21 +532,53 @@ Mesh readGltf(const std::string& path, LoadReport& report) {
     const int s = model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size())
                       ? model.defaultScene
                       : 0;
-    std::vector<int> visiting;
-    std::function<void(int, const Mat4&)> visit = [&](int node, const Mat4& parent) {
+    // Depth first, children in order, without recursion (a chain of 10^5 nodes must not overflow
+    // the stack); a node on the current path again is a cycle, a path deeper than the nesting
+    // limit is refused.
+    const std::uint64_t maxDepth = limits().maxNesting;
+    std::vector<char> onPath(model.nodes.size(), 0);
+    struct Frame {
+      int node;
+      Mat4 world;
+      std::size_t next = 0;  // next child to visit
+    };
+    std::vector<Frame> stack;
+    std::size_t instances = 0;
+    const std::size_t maxInstances = std::max<std::size_t>(1000000, 4 * model.nodes.size());
+    const auto enter = [&](int node, const Mat4& parent) {
       if (node < 0 || node >= int(model.nodes.size()))
         rd.fail("scene refers to node " + std::to_string(node) + " (file has " +
                 std::to_string(model.nodes.size()) + ")");
-      if (std::find(visiting.begin(), visiting.end(), node) != visiting.end())
+      if (onPath[node])
         rd.fail("node " + std::to_string(node) + " is its own ancestor (cycle in the scene graph)");
-      visiting.push_back(node);
+      // A node shared by several parents is visited once per path: a chain of nodes each
+      // listing the next twice makes 2^depth paths. Cap the instances.
+      if (++instances > maxInstances)
+        rd.fail("scene graph instantiates more than " + std::to_string(maxInstances) +
+                " nodes (shared subtrees)");
+      if (stack.size() >= maxDepth)
+        rd.fail("scene graph deeper than " + std::to_string(maxDepth) +
+                " levels (PRT_MAX_NESTING)");
+      onPath[node] = 1;
       const tinygltf::Node& nd = model.nodes[node];
-      const Mat4 world = parent * localMatrix(nd);
-      if (nd.mesh >= 0) addMesh(nd.mesh, world, nd.name);
-      for (int c : nd.children) visit(c, world);
-      visiting.pop_back();
+      stack.push_back(Frame{node, parent * localMatrix(nd)});
+      if (nd.mesh >= 0) addMesh(nd.mesh, stack.back().world, nd.name);
     };
-    for (int root : model.scenes[s].nodes) visit(root, Mat4{});
+    for (int root : model.scenes[s].nodes) {
+      enter(root, Mat4{});
+      while (!stack.empty()) {
+        Frame& f = stack.back();
+        const tinygltf::Node& nd = model.nodes[f.node];
+        if (f.next < nd.children.size()) {
+          const int child = nd.children[f.next++];
+          const Mat4 world = f.world;  // `f` may move when the stack grows
+          enter(child, world);
+        } else {
+          onPath[f.node] = 0;
+          stack.pop_back();
+        }
+      }
+    }
   }
   if (mesh.positions.empty()) throw Error(path, "has no triangle meshes in its scene");
   if (anyAlbedo) mesh.albedo = std::move(albedo);

@@ -17,52 +17,135 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <sstream>
 #include <unordered_map>
 
 #include "loaders.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/image/image_io.hpp"
 
 namespace prt::detail {
 
 namespace {
 
-/// tinyobjloader silently reads a malformed number ("nan", "1e999") as 0 or inf; scan the "v"
-/// lines ourselves so such a file is rejected with its line number.
-void checkVertexLines(const std::string& path) {
-  const std::vector<unsigned char> bytes = readFileBytes(path);
-  const char* s = reinterpret_cast<const char*>(bytes.data());
-  const char* end = s + bytes.size();
+/// tinyobjloader silently reads a malformed number ("nan", "1e999") as 0 or inf, and an index
+/// too large for an int wraps to some valid vertex; scan the lines ourselves so such a file is
+/// rejected with its line number. Checked: every number on v, vn and vt lines (finite, within
+/// float range) and every index on f, l and p lines (an integer that fits in 32 bits).
+void checkObjText(const std::string& label, std::string_view text) {
+  const char* s = text.data();
+  const char* end = s + text.size();
   std::size_t line = 1;
+  const auto isBlank = [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+  };
+  const auto fail = [&](const std::string& msg) {
+    throw Error(label, "line " + std::to_string(line) + ": " + msg);
+  };
   while (s < end) {
     const char* eol = static_cast<const char*>(std::memchr(s, '\n', end - s));
     if (!eol) eol = end;
     const char* p = s;
-    while (p < eol && (*p == ' ' || *p == '\t')) ++p;
-    if (eol - p > 2 && p[0] == 'v' && (p[1] == ' ' || p[1] == '\t')) {
-      p += 2;
-      for (int k = 0; k < 3; ++k) {
-        while (p < eol && (*p == ' ' || *p == '\t')) ++p;
+    while (p < eol && isBlank(*p)) ++p;
+    const char* kw = p;
+    while (p < eol && !isBlank(*p)) ++p;
+    const std::string_view key(kw, p - kw);
+    const bool vertex = key == "v" || key == "vn" || key == "vt";
+    const bool element = key == "f" || key == "l" || key == "p";
+    if (vertex || element) {
+      int count = 0;
+      while (true) {
+        while (p < eol && isBlank(*p)) ++p;
+        if (p >= eol || *p == '#') break;
         const char* tok = p;
-        while (p < eol && *p != ' ' && *p != '\t' && *p != '\r') ++p;
-        double x = 0;
-        const char* num = (tok < p && *tok == '+') ? tok + 1 : tok;  // from_chars rejects '+'
-        const auto [ptr, ec] = std::from_chars(num, p, x);
-        if (tok == p)
-          throw Error(path,
-                      "line " + std::to_string(line) + ": vertex has fewer than 3 coordinates");
-        if (ec != std::errc() || ptr != p || !std::isfinite(x) || std::fabs(x) > 3.4e38)
-          throw Error(path, "line " + std::to_string(line) + ": vertex coordinate '" +
-                                std::string(tok, p) + "' is not a finite number");
+        while (p < eol && !isBlank(*p)) ++p;
+        const std::string_view t(tok, p - tok);
+        ++count;
+        if (vertex) {
+          double x = 0;
+          const char* num = (!t.empty() && t[0] == '+') ? tok + 1 : tok;  // from_chars rejects '+'
+          const auto [ptr, ec] = std::from_chars(num, p, x);
+          if (ec != std::errc() || ptr != p || !std::isfinite(x) || std::fabs(x) > 3.4e38)
+            fail(std::string(key == "v"    ? "vertex coordinate"
+                             : key == "vn" ? "normal component"
+                                           : "texture coordinate") +
+                 " '" + std::string(t.substr(0, 40)) + "' is not a finite number");
+        } else {
+          // i, i/j, i//k, i/j/k; each present index an integer that fits in an int.
+          std::size_t b = 0;
+          while (b <= t.size()) {
+            std::size_t e = t.find('/', b);
+            if (e == std::string_view::npos) e = t.size();
+            if (e > b) {
+              long long x = 0;
+              const auto [ptr, ec] = std::from_chars(t.data() + b, t.data() + e, x);
+              if (ec != std::errc() || ptr != t.data() + e || x > 2147483647LL || x < -2147483647LL)
+                fail("index '" + std::string(t.substr(b, std::min<std::size_t>(e - b, 40))) +
+                     "' is not an integer in the 32-bit range");
+            }
+            b = e + 1;
+          }
+        }
       }
+      if (key == "v" && count < 3) fail("vertex has fewer than 3 coordinates");
+      if (key == "vn" && count < 3) fail("normal has fewer than 3 components");
     }
     s = eol + 1;
     ++line;
   }
+}
+
+/// Resolves mtllib names: files beside the OBJ (regular files only, read through readFileBytes
+/// and so under the file-size cap), or one text in memory that every name resolves to.
+class MtlReader : public tinyobj::MaterialReader {
+ public:
+  MtlReader(std::filesystem::path dir, const std::string* memory)
+      : dir_(std::move(dir)), memory_(memory) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* matMap, std::string* warn,
+                  std::string* err) override {
+    std::string text;
+    if (memory_) {
+      text = *memory_;
+    } else {
+      const std::filesystem::path file = dir_ / name;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(file, ec)) {
+        if (warn) *warn += "material file " + name + " not found\n";
+        return false;
+      }
+      try {
+        const std::vector<unsigned char> bytes = readFileBytes(file.string());
+        text.assign(bytes.begin(), bytes.end());
+      } catch (const Error& e) {
+        if (!error_) error_ = e.what();
+        return false;
+      }
+    }
+    std::istringstream in(text);
+    tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+    return true;
+  }
+  /// A cap or read error met while loading an MTL (rethrown after parsing).
+  const std::optional<std::string>& error() const { return error_; }
+
+ private:
+  std::filesystem::path dir_;
+  const std::string* memory_;
+  std::optional<std::string> error_;
+};
+
+std::string colourText(const tinyobj::real_t* c) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", double(c[0]), double(c[1]), double(c[2]));
+  return buf;
 }
 
 struct TripleHash {
@@ -77,19 +160,41 @@ struct TripleHash {
 }  // namespace
 
 Mesh readObj(const std::string& path, LoadReport& report) {
-  checkVertexLines(path);
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // we fan-triangulate, keeping the corner order
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
-    std::string msg = reader.Error();
+  const std::vector<unsigned char> bytes = readFileBytes(path);
+  return readObjText(path,
+                     std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                     std::filesystem::path(path).parent_path().string(), nullptr, report);
+}
+
+Mesh readObjText(const std::string& path, std::string_view text, const std::string& baseDir,
+                 const std::string* mtlText, LoadReport& report) {
+  checkObjText(path, text);
+  checkLimit(path, "file size", text.size(), limits().maxFileBytes, "PRT_MAX_FILE_BYTES");
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapesStore;
+  std::vector<tinyobj::material_t> materialsStore;
+  std::string warnText, errText;
+  MtlReader mtl(baseDir, mtlText);
+  // Read straight from memory (no copy of a possibly large file into a stringstream).
+  struct ViewBuf : std::streambuf {
+    explicit ViewBuf(std::string_view v) {
+      char* b = const_cast<char*>(v.data());
+      setg(b, b, b + v.size());
+    }
+  } buf(text);
+  std::istream in(&buf);
+  // No triangulation (we fan-triangulate, keeping the corner order), no default vertex colours.
+  const bool ok = tinyobj::LoadObj(&attrib, &shapesStore, &materialsStore, &warnText, &errText, &in,
+                                   &mtl, false, false);
+  if (mtl.error()) throw Error(*mtl.error());
+  if (!ok) {
+    std::string msg = errText;
     while (!msg.empty() && (msg.back() == '\n' || msg.back() == '\r')) msg.pop_back();
     if (const auto nl = msg.find('\n'); nl != std::string::npos) msg.resize(nl);
     throw Error(path, msg.empty() ? "cannot parse OBJ" : msg);
   }
-  if (!reader.Warning().empty()) {
-    std::string w = reader.Warning();
+  if (!warnText.empty()) {
+    std::string w = warnText;
     std::size_t pos = 0;
     while (pos < w.size()) {
       auto nl = w.find('\n', pos);
@@ -98,18 +203,22 @@ Mesh readObj(const std::string& path, LoadReport& report) {
       pos = nl + 1;
     }
   }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  const auto& shapes = reader.GetShapes();
-  const auto& materials = reader.GetMaterials();
+  const auto& shapes = shapesStore;
+  const auto& materials = materialsStore;
+  for (const tinyobj::material_t& m : materials)
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(m.diffuse[k]) || m.diffuse[k] > kMaxAlbedo || m.diffuse[k] < 0)
+        throw Error(path, "material '" + m.name.substr(0, 80) + "': Kd " + colourText(m.diffuse) +
+                              " is not a colour (each component finite, in [0, 100])");
   const std::size_t np = attrib.vertices.size() / 3, nt = attrib.texcoords.size() / 2,
                     nn = attrib.normals.size() / 3;
 
   // Textures, decoded once per material.
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  const std::filesystem::path dir = baseDir;
   std::vector<image::Image> textures(materials.size());
   for (std::size_t m = 0; m < materials.size(); ++m) {
     std::string name = materials[m].diffuse_texname;
-    if (name.empty()) continue;
+    if (name.empty() || mtlText) continue;  // textures only from files
     std::replace(name.begin(), name.end(), '\\', '/');
     const std::string file = (dir / name).string();
     try {

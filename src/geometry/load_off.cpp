@@ -12,6 +12,7 @@
 
 #include "loaders.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/image/color.hpp"
 
 namespace prt::detail {
@@ -21,6 +22,9 @@ namespace {
 /// Whitespace-separated tokens with '#' comments, tracking the line number for messages.
 class Tokens {
  public:
+  /// Whitespace other than a newline. Must agree with the token scan in next() (std::isspace),
+  /// or a character that ends a token but is not skipped (a vertical tab) loops forever.
+  static bool blank(char c) { return c != '\n' && std::isspace(static_cast<unsigned char>(c)); }
   Tokens(std::string_view text, const std::string& label) : s_(text), label_(label) {}
 
   bool next(std::string_view& tok) {
@@ -31,7 +35,7 @@ class Tokens {
       } else if (c == '\n') {
         ++line_;
         ++pos_;
-      } else if (c == ' ' || c == '\t' || c == '\r') {
+      } else if (blank(c)) {
         ++pos_;
       } else {
         break;
@@ -48,7 +52,7 @@ class Tokens {
   /// True if another token lies on the current line.
   bool moreOnLine() {
     std::size_t p = pos_;
-    while (p < s_.size() && (s_[p] == ' ' || s_[p] == '\t' || s_[p] == '\r')) ++p;
+    while (p < s_.size() && blank(s_[p])) ++p;
     return p < s_.size() && s_[p] != '\n' && s_[p] != '#';
   }
   template <typename T>
@@ -99,6 +103,8 @@ Mesh readOff(const std::string& label, std::string_view text, LoadReport& report
       std::size_t(nf) > in.remaining() / 8 + 1)
     throw Error(label, "vertex/face counts " + std::to_string(nv) + "/" + std::to_string(nf) +
                            " do not fit the file size (truncated or corrupt header)");
+  checkLimit(label, "vertex count", std::uint64_t(nv), limits().maxVertices, "PRT_MAX_VERTICES");
+  checkLimit(label, "face count", std::uint64_t(nf), limits().maxTriangles, "PRT_MAX_TRIANGLES");
   Mesh m;
   m.positions.resize(nv);
   if (hasNormals) m.normals.resize(nv);
@@ -114,7 +120,11 @@ Mesh readOff(const std::string& label, std::string_view text, LoadReport& report
       bool integer = true;
       while (count < 4 && in.moreOnLine() && in.next(tok)) {
         integer &= tok.find('.') == std::string_view::npos;
-        std::from_chars(tok.data(), tok.data() + tok.size(), c[count++]);
+        const auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), c[count]);
+        if (ec != std::errc() || ptr != tok.data() + tok.size() || !std::isfinite(c[count]))
+          in.fail("vertex " + std::to_string(v) + " colour '" + std::string(tok.substr(0, 40)) +
+                  "' is not a finite number");
+        ++count;
       }
       if (count < 3) in.fail("vertex " + std::to_string(v) + " has no RGB colour");
       for (int k = 0; k < 3; ++k)
@@ -125,7 +135,7 @@ Mesh readOff(const std::string& label, std::string_view text, LoadReport& report
   std::vector<std::uint32_t> corners;
   for (long long f = 0; f < nf; ++f) {
     const long long n = in.number<long long>("a face's corner count");
-    if (n < 0 || n > 1000000)
+    if (n < 0 || std::size_t(n) > in.remaining())
       in.fail("face " + std::to_string(f) + " has " + std::to_string(n) + " corners");
     corners.clear();
     for (long long k = 0; k < n; ++k) {

@@ -16,12 +16,14 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <optional>
 #include <sstream>
 
 #include "loaders.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/image/color.hpp"
 
 namespace prt::detail {
@@ -137,6 +139,19 @@ class Body {
     return 0;
   }
   std::size_t remaining() const { return std::size_t(end_ - p_); }
+  /// A list's length as read: a whole number no larger than the bytes left (every entry takes at
+  /// least one byte), so a lying length fails here instead of looping or overflowing a cast.
+  std::size_t listLength(double c) const {
+    if (!(c >= 0) || c != std::floor(c) || c > double(remaining()))
+      throw Error(label_, "in the " + where_ + ": list length " + shortNumber(c) +
+                              " is not a count that fits the file");
+    return std::size_t(c);
+  }
+  static std::string shortNumber(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    return buf;
+  }
   void setWhere(std::string w) { where_ = std::move(w); }
 
  private:
@@ -255,6 +270,17 @@ Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, Loa
                              " records but the file has room for at most " +
                              std::to_string(in.remaining() / minRecord) + " (truncated?)");
     in.setWhere(e.name + " element");
+    // An element without properties has no bytes: nothing to read, however large its count
+    // (iterating 10^18 empty records would never end).
+    if (e.props.empty()) {
+      if (e.name == "vertex" && !sawVertex)
+        throw Error(label, "PLY vertex element lacks x, y or z");
+      continue;
+    }
+    if (e.name == "vertex" && !sawVertex)
+      checkLimit(label, "vertex count", e.count, limits().maxVertices, "PRT_MAX_VERTICES");
+    if (e.name == "face" && !sawFace)
+      checkLimit(label, "face count", e.count, limits().maxTriangles, "PRT_MAX_TRIANGLES");
     if (e.name == "vertex" && !sawVertex) {
       sawVertex = true;
       nv = e.count;
@@ -299,9 +325,8 @@ Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, Loa
         for (std::size_t k = 0; k < e.props.size(); ++k) {
           const Property& p = e.props[k];
           if (p.list) {
-            const double c = in.read(p.countType);
-            if (c < 0) throw Error(label, "negative list length in vertex " + std::to_string(v));
-            for (std::size_t j = 0; j < std::size_t(c); ++j) in.read(p.type);
+            const std::size_t c = in.listLength(in.read(p.countType));
+            for (std::size_t j = 0; j < c; ++j) in.read(p.type);
             val[k] = 0;
           } else {
             val[k] = in.read(p.type);
@@ -340,11 +365,7 @@ Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, Loa
             in.read(p.type);
             continue;
           }
-          const double c = in.read(p.countType);
-          if (c < 0 || c > 1e6)
-            throw Error(label,
-                        "face " + std::to_string(f) + " has " + std::to_string(c) + " corners");
-          const std::size_t n = std::size_t(c);
+          const std::size_t n = in.listLength(in.read(p.countType));
           if (k != li) {
             for (std::size_t j = 0; j < n; ++j) in.read(p.type);
             continue;
@@ -352,7 +373,10 @@ Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, Loa
           corners.clear();
           for (std::size_t j = 0; j < n; ++j) {
             const double i = in.read(p.type);
-            if (!(i >= 0 && i < double(nv))) throwBadIndex(label, f, static_cast<long long>(i), nv);
+            if (!(i >= 0 && i < double(nv) && i == std::floor(i)))
+              throw Error(label, "face " + std::to_string(f) + " references vertex " +
+                                     Body::shortNumber(i) + " (mesh has " + std::to_string(nv) +
+                                     ")");
             corners.push_back(static_cast<std::uint32_t>(i));
           }
           if (n > 3) ++report.polygonsTriangulated;
@@ -364,9 +388,8 @@ Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, Loa
       for (std::size_t r = 0; r < e.count; ++r)
         for (const Property& p : e.props) {
           if (p.list) {
-            const double c = in.read(p.countType);
-            if (c < 0) throw Error(label, "negative list length in element '" + e.name + "'");
-            for (std::size_t j = 0; j < std::size_t(c); ++j) in.read(p.type);
+            const std::size_t c = in.listLength(in.read(p.countType));
+            for (std::size_t j = 0; j < c; ++j) in.read(p.type);
           } else {
             in.read(p.type);
           }

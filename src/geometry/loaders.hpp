@@ -16,16 +16,30 @@
 namespace prt::detail {
 
 Mesh readObj(const std::string& path, LoadReport& report);
+/// OBJ from memory: mtllib names resolve to files in `baseDir`, or all to `*mtlText` when it is
+/// given (textures are then not read).
+Mesh readObjText(const std::string& label, std::string_view text, const std::string& baseDir,
+                 const std::string* mtlText, LoadReport& report);
 Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, LoadReport& report);
 Mesh readOff(const std::string& label, std::string_view text, LoadReport& report);
 Mesh readGltf(const std::string& path, LoadReport& report);
+/// glTF from memory (.glb when `binary`); external buffers and images are read from `baseDir`
+/// only when `allowFiles`.
+Mesh readGltfBytes(const std::string& label, std::span<const unsigned char> bytes, bool binary,
+                   const std::string& baseDir, bool allowFiles, LoadReport& report);
 
-/// Inflates gzip (or zlib) data; throws Error(label, ...) on corrupt or truncated input.
-std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsigned char> bytes);
+/// Inflates gzip (or zlib) data, streamed, refusing more than limits().maxDecompressedBytes of
+/// output, and (when `magic` is given) output that does not start with `magic`; throws
+/// Error(label, ...) on corrupt, truncated or oversized input.
+std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsigned char> bytes,
+                                  std::string_view magic = {});
 
 /// Bilinear lookup at texture coordinates (u, v) with repeat wrapping; v = 0 is the image's
 /// bottom row when `vUp` (OBJ), its top row otherwise (glTF).
 Rgb sampleTexture(const image::Image& img, Vec2f uv, bool vUp);
+
+/// Validates a freshly read mesh and brings it to the invariants stated in load.hpp.
+void finishMesh(Mesh& m, const std::string& label, LoadReport& report);
 
 /// "face 12 references vertex 900 (mesh has 512)" as an Error naming `label`.
 [[noreturn]] void throwBadIndex(const std::string& label, std::size_t face, long long index,

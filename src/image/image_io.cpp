@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <ostream>
 #include <stdexcept>
+#include <utility>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -20,6 +22,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 
 namespace prt::image {
 
@@ -67,7 +70,7 @@ std::string stbReason() {
 // on every byte: stb_image loops forever on some truncated run-length scan lines.
 // Supports the "-Y H +X W" orientation (what every writer emits), flat and new-style RLE scan
 // lines. Decoding follows Radiance's colr_color: (m + 0.5) · 2^(e − 136), 0 when e = 0.
-Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>& b) {
+Image readRadianceHdr(const std::string& path, std::span<const unsigned char> b) {
   std::size_t pos = 0;
   auto line = [&]() -> std::string {
     std::string out;
@@ -87,7 +90,22 @@ Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>&
   char ya[3] = {}, xa[3] = {};
   if (std::sscanf(res.c_str(), "%2s %d %2s %d", ya, &h, xa, &w) != 4 || std::string(ya) != "-Y" ||
       std::string(xa) != "+X" || w <= 0 || h <= 0 || w > (1 << 16) || h > (1 << 16))
-    throw Error(path, "unsupported Radiance resolution line '" + res + "' (expected -Y H +X W)");
+    throw Error(path, "unsupported Radiance resolution line '" + res.substr(0, 60) +
+                          "' (expected -Y H +X W)");
+  checkImageSize(path, std::uint64_t(w), std::uint64_t(h));
+  // The fewest bytes a scan line can take: flat 4w, or run-length encoded 4 header bytes plus, per
+  // channel, one (count, value) pair per run of at most 127. Check before allocating.
+  {
+    const std::uint64_t runs = (std::uint64_t(w) + 126) / 127;
+    const std::uint64_t minLine = (w >= 8 && w < 32768)
+                                      ? std::min<std::uint64_t>(4ull * w, 4 + 8 * runs)
+                                      : 4ull * std::uint64_t(w);
+    if (std::uint64_t(h) * minLine > b.size() - pos)
+      throw Error(path, "truncated Radiance HDR file (" + std::to_string(w) + "x" +
+                            std::to_string(h) + " needs at least " +
+                            std::to_string(std::uint64_t(h) * minLine) + " bytes of pixels, " +
+                            std::to_string(b.size() - pos) + " present)");
+  }
   Image img(w, h);
   std::vector<unsigned char> scan(static_cast<std::size_t>(w) * 4);
   auto need = [&](std::size_t n) {
@@ -119,7 +137,7 @@ Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>&
       }
     } else {
       need(static_cast<std::size_t>(w) * 4);
-      std::copy_n(b.begin() + static_cast<std::ptrdiff_t>(pos), w * 4, scan.begin());
+      std::copy_n(b.data() + pos, std::size_t(w) * 4, scan.begin());
       pos += static_cast<std::size_t>(w) * 4;
     }
     for (int x = 0; x < w; ++x) {
@@ -136,16 +154,48 @@ Image readRadianceHdr(const std::string& path, const std::vector<unsigned char>&
 }
 
 // JPEG streams end with an EOI marker (FF D9); stb_image decodes a cut-off JPEG without error.
-bool jpegComplete(const std::vector<unsigned char>& b) {
+bool jpegComplete(std::span<const unsigned char> b) {
   std::size_t end = b.size();
   while (end > 2 && b[end - 1] == 0) --end;  // some writers pad after EOI
   return end >= 4 && b[end - 2] == 0xFF && b[end - 1] == 0xD9;
 }
 
-Image readStbLdr(const std::string& path, const std::vector<unsigned char>& bytes, LdrDecode decode,
-                 bool jpeg) {
+bool isPng(std::span<const unsigned char> b) {
+  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  return b.size() >= 8 && std::memcmp(b.data(), sig, 8) == 0;
+}
+bool isJpeg(std::span<const unsigned char> b) {
+  return b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF;
+}
+
+// stb_image grows its buffer to a chunk's declared length before reading it (a 104-byte PNG
+// declaring a 1.7 GB IDAT, found by fuzz_ldr): every chunk must fit in the bytes present.
+void checkPngChunks(const std::string& path, std::span<const unsigned char> b) {
+  std::size_t pos = 8;
+  while (b.size() - pos >= 12) {
+    const std::uint32_t len =
+        (std::uint32_t(b[pos]) << 24) | (b[pos + 1] << 16) | (b[pos + 2] << 8) | b[pos + 3];
+    const std::string type(reinterpret_cast<const char*>(b.data() + pos + 4), 4);
+    if (len > b.size() - pos - 12)
+      throw Error(path, "truncated or corrupt PNG: a chunk declares " + std::to_string(len) +
+                            " bytes, " + std::to_string(b.size() - pos - 12) + " remain");
+    pos += 12 + std::size_t(len);
+    if (type == "IEND") return;
+  }
+}
+
+Image readStbLdr(const std::string& path, std::span<const unsigned char> bytes, LdrDecode decode,
+                 bool jpegByName) {
+  // Decode by content (a PNG named .jpg still reads), but only PNG and JPEG: stb_image would
+  // also take GIF, PSD, PIC, PNM, TGA and HDR data under these names.
+  const bool png = isPng(bytes), jpeg = isJpeg(bytes);
+  if (!png && !jpeg)
+    throw Error(path,
+                std::string("not a ") + (jpegByName ? "JPEG" : "PNG") + " file (bad signature)");
+  if (png) checkPngChunks(path, bytes);
   if (jpeg && !jpegComplete(bytes))
     throw Error(path, "truncated JPEG file (no end-of-image marker)");
+  checkEncodedImageSize(path, bytes);
   MemoryReader reader{bytes.data(), bytes.size()};
   const bool sixteen =
       !jpeg && stbi_is_16_bit_from_memory(bytes.data(), static_cast<int>(bytes.size()));
@@ -182,10 +232,11 @@ Image readStbLdr(const std::string& path, const std::vector<unsigned char>& byte
 // the library expects of a truncated file.
 class MemoryIStream : public Imf::IStream {
  public:
-  MemoryIStream(const std::string& name, const std::vector<unsigned char>& bytes)
+  MemoryIStream(const std::string& name, std::span<const unsigned char> bytes)
       : Imf::IStream(name.c_str()), bytes_(bytes) {}
   bool read(char c[], int n) override {
-    if (n < 0 || pos_ + static_cast<std::uint64_t>(n) > bytes_.size())
+    // pos_ may be anything a corrupt offset table seeks to: compare without overflowing.
+    if (n < 0 || pos_ > bytes_.size() || static_cast<std::uint64_t>(n) > bytes_.size() - pos_)
       throw std::runtime_error("unexpected end of file");
     std::memcpy(c, bytes_.data() + pos_, static_cast<std::size_t>(n));
     pos_ += static_cast<std::uint64_t>(n);
@@ -195,18 +246,25 @@ class MemoryIStream : public Imf::IStream {
   void seekg(uint64_t pos) override { pos_ = pos; }
 
  private:
-  const std::vector<unsigned char>& bytes_;
+  std::span<const unsigned char> bytes_;
   std::uint64_t pos_ = 0;
 };
 
 // The OpenEXR library: every compression (DWAA/DWAB included), tiled or scan-line files.
-Image readOpenExr(const std::string& path, const std::vector<unsigned char>& bytes) {
+Image readOpenExr(const std::string& path, std::span<const unsigned char> bytes) {
   try {
+    // The library checks the header's data window (and tile size) against these before it
+    // allocates anything sized by them; 0 would mean "no limit".
+    const Limits lim = limits();
+    const int side = int(std::min<std::uint64_t>(lim.maxImageSide, 1u << 30));
+    Imf::Header::setMaxImageSize(side, side);
+    Imf::Header::setMaxTileSize(side, side);
     MemoryIStream stream(path, bytes);
     Imf::InputFile file(stream);
     const Imath::Box2i dw = file.header().dataWindow();
     const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
     if (w <= 0 || h <= 0) throw Error(path, "empty OpenEXR data window");
+    checkImageSize(path, std::uint64_t(w), std::uint64_t(h));
     const Imf::ChannelList& channels = file.header().channels();
     const bool rgb =
         channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
@@ -215,14 +273,12 @@ Image readOpenExr(const std::string& path, const std::vector<unsigned char>& byt
     std::vector<float> planes(static_cast<std::size_t>(w) * h * 3, 0.0f);
     Imf::FrameBuffer fb;
     const std::size_t xs = sizeof(float) * 3, ys = xs * static_cast<std::size_t>(w);
-    // The slice base points at pixel (0, 0) of the data window's coordinate system.
-    char* base =
-        reinterpret_cast<char*>(planes.data()) -
-        (static_cast<std::ptrdiff_t>(dw.min.x) * xs + static_cast<std::ptrdiff_t>(dw.min.y) * ys);
+    // Slice::Make points the slice at the data window's origin with integer arithmetic (the
+    // classic "base - origin" pointer leaves the array, undefined behaviour UBSan reports).
     const char* names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
       fb.insert(grey ? "Y" : names[c],
-                Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1, 0.0));
+                Imf::Slice::Make(Imf::FLOAT, planes.data() + c, dw, xs, ys, 1, 1, 0.0));
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     Image img(w, h);
@@ -238,10 +294,143 @@ Image readOpenExr(const std::string& path, const std::vector<unsigned char>& byt
   }
 }
 
-Image readExr(const std::string& path, const std::vector<unsigned char>& bytes) {
+// OpenEXR allocates what the header declares before reading it: an attribute's size (1.8 GB for
+// an unknown attribute type, found by fuzz_exr), a preview image's width × height, the chunk
+// offset table of a data window cut into tiny tiles. Walk the header first (OpenEXR file layout:
+// magic, version, then per part NUL-terminated name, type, int32 size, value; an empty name ends
+// a header, and in a multi-part file an empty header ends the list) and check every declared
+// size against the bytes present and the image limits.
+/// Bytes OpenEXR reads for a value of a fixed-size attribute type (0: variable or unknown).
+std::size_t exrFixedSize(const std::string& type) {
+  static const std::pair<const char*, std::size_t> table[] = {
+      {"box2i", 16},      {"box2f", 16},   {"chromaticities", 32},
+      {"compression", 1}, {"double", 8},   {"envmap", 1},
+      {"float", 4},       {"int", 4},      {"keycode", 28},
+      {"lineOrder", 1},   {"m33f", 36},    {"m33d", 72},
+      {"m44f", 64},       {"m44d", 128},   {"rational", 8},
+      {"tiledesc", 9},    {"timecode", 8}, {"v2i", 8},
+      {"v2f", 8},         {"v2d", 16},     {"v3i", 12},
+      {"v3f", 12},        {"v3d", 24},     {"deepImageState", 1}};
+  for (const auto& [name, size] : table)
+    if (type == name) return size;
+  return 0;
+}
+
+void checkExrHeader(const std::string& path, std::span<const unsigned char> b) {
+  std::size_t pos = 8;
+  if (b.size() < 8) throw Error(path, "truncated OpenEXR header");
+  const std::uint32_t version = b[4] | (b[5] << 8) | (b[6] << 16) | (std::uint32_t(b[7]) << 24);
+  const bool multipart = version & 0x1000;
+  const auto cstr = [&](const char* what) {
+    const std::size_t start = pos;
+    while (pos < b.size() && b[pos] != 0) {
+      if (pos - start > 255)
+        throw Error(path, std::string("OpenEXR header: ") + what + " too long");
+      ++pos;
+    }
+    if (pos >= b.size()) throw Error(path, "truncated OpenEXR header");
+    ++pos;
+    return std::string(reinterpret_cast<const char*>(b.data() + start), pos - 1 - start);
+  };
+  const auto i32 = [&](std::size_t at) {
+    std::int32_t v;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+  };
+  while (true) {
+    std::int64_t w = 0, h = 0, tileX = 0, tileY = 0;
+    bool haveWindow = false;
+    while (true) {
+      const std::string name = cstr("attribute name");
+      if (name.empty()) break;
+      const std::string type = cstr("attribute type");
+      if (b.size() - pos < 4) throw Error(path, "truncated OpenEXR header");
+      const std::int32_t size = i32(pos);
+      pos += 4;
+      if (size < 0 || std::size_t(size) > b.size() - pos)
+        throw Error(path, "OpenEXR header: attribute '" + name.substr(0, 40) + "' declares " +
+                              std::to_string(size) + " bytes, " + std::to_string(b.size() - pos) +
+                              " remain (truncated or corrupt)");
+      const std::size_t at = pos;
+      // OpenEXR reads a known type's value by its own layout, not by the declared size, and
+      // carries on from where that read stops: compute that layout too.
+      std::size_t used = std::size_t(size);
+      if (const std::size_t fixed = exrFixedSize(type)) {
+        used = fixed;
+      } else if (type == "chlist") {
+        std::size_t p = at;
+        while (true) {
+          if (p >= b.size()) throw Error(path, "truncated OpenEXR header");
+          const std::size_t nameStart = p;
+          while (p < b.size() && b[p] != 0) ++p;
+          if (p >= b.size() || p - nameStart > 255)
+            throw Error(path, "corrupt OpenEXR channel list");
+          ++p;
+          if (p == nameStart + 1) break;  // empty name: end of the list
+          if (b.size() - p < 16) throw Error(path, "truncated OpenEXR header");
+          p += 16;
+        }
+        used = p - at;
+      } else if (type == "preview") {
+        if (size < 8) throw Error(path, "corrupt OpenEXR preview attribute");
+        const std::uint64_t pw = std::uint32_t(i32(at)), ph = std::uint32_t(i32(at + 4));
+        if (pw * ph * 4 != std::uint64_t(size) - 8)
+          throw Error(path, "OpenEXR header: preview image " + std::to_string(pw) + "x" +
+                                std::to_string(ph) + " does not fit its attribute");
+      } else if (type == "stringvector") {
+        for (std::size_t p = at; p < at + std::size_t(size);) {
+          if (at + std::size_t(size) - p < 4) throw Error(path, "corrupt OpenEXR string vector");
+          const std::int32_t len = i32(p);
+          p += 4;
+          if (len < 0 || std::size_t(len) > at + std::size_t(size) - p)
+            throw Error(path, "corrupt OpenEXR string vector");
+          p += std::size_t(len);
+        }
+      }
+      // Valid files agree with themselves; refusing any disagreement makes our walk and
+      // OpenEXR's the same whichever of the two sizes OpenEXR follows.
+      if (used != std::size_t(size))
+        throw Error(path, "OpenEXR header: attribute '" + name.substr(0, 40) + "' of type " +
+                              type.substr(0, 40) + " declares " + std::to_string(size) +
+                              " bytes but its value takes " + std::to_string(used));
+      pos = at + used;
+      if (type == "box2i" && name == "dataWindow") {
+        w = std::int64_t(i32(at + 8)) - i32(at) + 1;
+        h = std::int64_t(i32(at + 12)) - i32(at + 4) + 1;
+        haveWindow = true;
+      } else if (type == "tiledesc") {
+        tileX = std::uint32_t(i32(at));
+        tileY = std::uint32_t(i32(at + 4));
+      } else if (name == "chunkCount" && type == "int") {
+        const std::int32_t chunks = i32(at);
+        if (chunks < 0 || std::uint64_t(chunks) * 8 > b.size())
+          throw Error(path, "OpenEXR header: chunkCount " + std::to_string(chunks) +
+                                " does not fit the file");
+      }
+    }
+    if (haveWindow) {
+      if (w <= 0 || h <= 0) throw Error(path, "empty OpenEXR data window");
+      checkImageSize(path, std::uint64_t(w), std::uint64_t(h));
+      // The chunk offset table (8 bytes per chunk) must be in the file: at most 256 scan lines
+      // per chunk (DWAB), or the level-0 tiles of a tiled part.
+      std::uint64_t chunks = std::uint64_t(h + 255) / 256;
+      if (tileX > 0 && tileY > 0)
+        chunks = std::uint64_t((w + tileX - 1) / tileX) * std::uint64_t((h + tileY - 1) / tileY);
+      if (chunks > b.size() / 8)
+        throw Error(path, "truncated OpenEXR file (" + std::to_string(w) + "x" + std::to_string(h) +
+                              " needs " + std::to_string(chunks) + " chunk offsets)");
+    }
+    if (!multipart) break;
+    if (pos >= b.size()) throw Error(path, "truncated OpenEXR header");
+    if (b[pos] == 0) break;  // the empty header that ends a multi-part list
+  }
+}
+
+Image readExr(const std::string& path, std::span<const unsigned char> bytes) {
   if (bytes.size() < 4 ||
       !(bytes[0] == 0x76 && bytes[1] == 0x2f && bytes[2] == 0x31 && bytes[3] == 0x01))
     throw Error(path, "not an OpenEXR file (bad magic number)");
+  checkExrHeader(path, bytes);
   // Read by the reference library: every compression (tinyexr lacks DWAA/DWAB, which Blender's
   // Poly Haven maps use) and, under AddressSanitizer, no leaks on malformed files (tinyexr's
   // decoder leaks its line buffers when a file is truncated). tinyexr writes our EXRs.
@@ -281,6 +470,27 @@ Image readImage(const std::string& path, const ReadOptions& options, ReadStats* 
                                   : "unknown image extension '." + ext +
                                         "' (expected .hdr, .exr, .png, .jpg)");
   const std::vector<unsigned char> bytes = readFileBytes(path);
+  return readImageBytes(path, ext, bytes, options, stats);
+}
+
+void checkEncodedImageSize(const std::string& label, std::span<const unsigned char> bytes) {
+  if (isPng(bytes))
+    checkPngChunks(label, bytes);
+  else if (!isJpeg(bytes))
+    throw Error(label, "not a PNG or JPEG image (bad signature)");
+  int w = 0, h = 0, n = 0;
+  if (bytes.size() > std::size_t(std::numeric_limits<int>::max()))
+    throw Error(label, "image file too large to decode");
+  if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &n))
+    throw Error(label, "cannot decode image (" + stbReason() + ")");
+  checkImageSize(label, std::uint64_t(std::max(w, 0)), std::uint64_t(std::max(h, 0)));
+}
+
+Image readImageBytes(const std::string& path, const std::string& ext,
+                     std::span<const unsigned char> bytes, const ReadOptions& options,
+                     ReadStats* stats) {
+  if (!isReadableImageExtension(ext))
+    throw Error(path, "unknown image extension '." + ext + "' (expected .hdr, .exr, .png, .jpg)");
   if (bytes.empty()) throw Error(path, "empty file");
   Image img;
   bool ldr = false;

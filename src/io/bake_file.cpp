@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/core/file.hpp"
 
 namespace prt {
@@ -645,6 +646,7 @@ void writeBake(const std::string& path, const BakeFile& bake) {
 BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& name) {
   const Reader r{name};
   checkGlbContainer(bytes, r);
+  checkGltfNesting(name, bytes);  // tinygltf recurses into extras: refuse deep JSON first
   tinygltf::Model model;
   {
     tinygltf::TinyGLTF gltf;

@@ -9,6 +9,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 
 namespace prt::io {
 
@@ -50,11 +51,20 @@ void writeLightJson(const std::string& path, const LightFile& light) {
 
 LightFile readLightJson(const std::string& path) {
   const std::vector<unsigned char> bytes = readFileBytes(path);
+  return parseLightJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                        path);
+}
+
+LightFile parseLightJson(std::string_view text, const std::string& path) {
+  checkJsonNesting(path, text);
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(bytes.begin(), bytes.end());
+    j = nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
     throw Error(path, "invalid JSON at byte " + std::to_string(e.byte));
+  } catch (const nlohmann::json::exception&) {
+    // out_of_range for a number too large for a double ("1e99999"; found by fuzz_light_json)
+    throw Error(path, "invalid JSON (a number out of range)");
   }
   if (!j.is_object()) throw Error(path, "expected a JSON object");
   if (!j.contains("coefficients") || !j["coefficients"].is_array())
@@ -103,7 +113,12 @@ void writeLightGames202(const std::string& path, const sh::RgbSh& c) {
 
 sh::RgbSh readLightGames202(const std::string& path) {
   const std::vector<unsigned char> bytes = readFileBytes(path);
-  std::istringstream is(std::string(bytes.begin(), bytes.end()));
+  return parseLightGames202(
+      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
+}
+
+sh::RgbSh parseLightGames202(std::string_view text, const std::string& path) {
+  std::istringstream is{std::string(text)};
   std::vector<Rgb> rows;
   std::string line;
   int lineNo = 0;

@@ -23,6 +23,7 @@
 #include <string>
 
 #include "prt/core/error.hpp"
+#include "prt/geometry/load.hpp"
 #include "prt/raytrace/occluder.hpp"
 
 namespace prt {
@@ -71,6 +72,7 @@ class EmbreeOccluder final : public Occluder {
     if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max() ||
         mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
       throw Error(label, "too many vertices or triangles for 32-bit indices");
+    checkMeshExtent(mesh, label);
     const std::size_t nv = mesh.positions.size();
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
       for (std::uint32_t i : mesh.triangles[t])

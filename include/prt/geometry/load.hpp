@@ -19,6 +19,7 @@
 // range and at least one part. Errors: prt::Error("FILE: what is wrong").
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,18 @@ namespace prt {
 /// The albedo given to vertices without a material colour when a scene mixes meshes with and
 /// without albedo (a mesh alone without colours keeps an empty albedo: "uniform").
 inline constexpr float kDefaultAlbedo = 0.8f;
+/// The largest albedo component a loader accepts: a diffuse albedo above 1 already reflects more
+/// than it receives; far above it (an MTL "Kd 1e30") is a broken file whose transfer overflows.
+inline constexpr float kMaxAlbedo = 100.0f;
+
+/// Rejects positions the ray tracer cannot handle, naming the first offender and the figure:
+/// non-finite, or a coordinate beyond limits().maxCoordinate (Embree asserts on ray origins past
+/// 1.8e19, and squared distances overflow floats well before; see prt/core/limits.hpp). Every
+/// loader runs it, and so does the Embree occluder for meshes built in code or read from bakes.
+void checkMeshExtent(const Mesh& mesh, const std::string& label);
+/// checkMeshExtent, plus non-finite normals, texture coordinates or albedo and albedo above
+/// kMaxAlbedo. Every loader runs it.
+void checkMeshValues(const Mesh& mesh, const std::string& label);
 
 /// What the loader repaired or noticed, for the CLI to print.
 struct LoadReport {
@@ -45,6 +58,13 @@ struct LoadReport {
 
 /// Loads one mesh file or builtin:NAME. Throws prt::Error("FILE: what is wrong").
 Mesh loadMesh(const std::string& path, LoadReport* report = nullptr);
+
+/// Loads a mesh held in memory; `name`'s extension chooses the format as for loadMesh (".ply.gz"
+/// included). Nothing outside `bytes` is read: an OBJ's mtllib and a glTF's external buffers
+/// and images are not available (materials are then missing, with a warning). For fuzzing and
+/// for callers that hold files in memory.
+Mesh loadMeshBytes(const std::string& name, std::span<const unsigned char> bytes,
+                   LoadReport* report = nullptr);
 
 /// Loads several inputs (files or builtin:NAME) and merges them into one Mesh, one MeshPart per
 /// input part, so the objects shadow each other. Mesh::source joins the inputs with '+'.

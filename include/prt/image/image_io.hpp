@@ -16,6 +16,7 @@
 // Errors: prt::Error("FILE: what is wrong") for unreadable, truncated or unknown files.
 
 #include <cstddef>
+#include <span>
 #include <string>
 
 #include "prt/image/color.hpp"
@@ -41,6 +42,17 @@ bool isReadableImageExtension(const std::string& ext);
 /// Reads an image; throws prt::Error("PATH: ...") on failure.
 Image readImage(const std::string& path, const ReadOptions& options = {},
                 ReadStats* stats = nullptr);
+
+/// Decodes an image held in memory; `ext` (lower case, no dot) chooses the format as for
+/// readImage and `label` names it in messages. Declared sizes are checked against the bytes
+/// present and prt::limits() before anything is allocated.
+Image readImageBytes(const std::string& label, const std::string& ext,
+                     std::span<const unsigned char> bytes, const ReadOptions& options = {},
+                     ReadStats* stats = nullptr);
+/// Checks an encoded PNG or JPEG before anything decodes it: the signature, PNG chunk lengths
+/// against the bytes present, and the width and height in its header against prt::limits()
+/// (throws Error(label, ...) otherwise).
+void checkEncodedImageSize(const std::string& label, std::span<const unsigned char> bytes);
 
 /// Applies the pixel policy in place and returns the counts (used by the readers; exposed for
 /// images built in memory).

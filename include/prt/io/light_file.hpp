@@ -10,6 +10,7 @@
 
 #include <array>
 #include <string>
+#include <string_view>
 
 #include "prt/sh/sh.hpp"
 
@@ -26,9 +27,13 @@ struct LightFile {
 
 void writeLightJson(const std::string& path, const LightFile& light);
 LightFile readLightJson(const std::string& path);
+/// The same from text in memory; `name` is used in messages.
+LightFile parseLightJson(std::string_view text, const std::string& name);
 /// Coefficients printed with 9 significant digits (exact float round trip).
 void writeLightGames202(const std::string& path, const sh::RgbSh& coefficients);
 sh::RgbSh readLightGames202(const std::string& path);
+/// The same from text in memory; `name` is used in messages.
+sh::RgbSh parseLightGames202(std::string_view text, const std::string& name);
 /// By extension: .json → JSON, anything else (.txt) → the course format.
 LightFile readLight(const std::string& path);
 

@@ -1,0 +1,147 @@
+// Writes a small seed corpus for every fuzz target: OUT/<target>/<name>. The images, lights and
+// transport text come from our own writers (so they are exactly what prtkit produces); meshes are
+// tiny hand-written files covering each variant the loaders accept. The bake seed is written by
+// scripts/fuzz.sh with `prt bake` (so it follows the bake format as it evolves).
+//
+//   make_seeds OUT
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <stb_image_write.h>
+#include <zlib.h>
+
+#include "prt/image/image_io.hpp"
+#include "prt/io/light_file.hpp"
+#include "prt/sh/sh.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path gOut;
+
+void put(const std::string& target, const std::string& name, const std::string& bytes) {
+  fs::create_directories(gOut / target);
+  std::ofstream(gOut / target / name, std::ios::binary) << bytes;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string gzip(const std::string& s) {
+  z_stream zs{};
+  deflateInit2(&zs, 9, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
+  std::string out(deflateBound(&zs, s.size()) + 32, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(s.data()));
+  zs.avail_in = static_cast<uInt>(s.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = static_cast<uInt>(out.size());
+  deflate(&zs, Z_FINISH);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
+}
+
+const char* kTetraPly =
+    "ply\nformat ascii 1.0\ncomment tetrahedron\nelement vertex 4\nproperty float x\n"
+    "property float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+    "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float u\n"
+    "property float v\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0 0 0 1 255 0 0 0 0\n1 0 0 0 0 1 0 255 0 1 0\n0 1 0 0 0 1 0 0 255 0 1\n"
+    "0 0 1 0 0 1 9 9 9 1 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+std::string binaryPly() {
+  std::string h =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float "
+      "y\nproperty float z\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+  const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  h.append(reinterpret_cast<const char*>(v), sizeof v);
+  h.push_back(3);
+  const unsigned idx[3] = {0, 1, 2};
+  h.append(reinterpret_cast<const char*>(idx), sizeof idx);
+  return h;
+}
+
+// One triangle; the buffer is a base64 data URI: 3 float3 positions then 3 uint16 indices.
+const char* kGltf = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+"nodes":[{"mesh":0,"children":[1]},{"mesh":0,"translation":[1,0,0]}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],
+"materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1]}}],
+"buffers":[{"byteLength":44,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]})";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: make_seeds OUT\n");
+    return 2;
+  }
+  gOut = argv[1];
+  fs::create_directories(gOut);
+  const fs::path tmp = gOut / "tmp";
+  fs::create_directories(tmp);
+
+  // Images: an 8x4 gradient (RLE needs width >= 8) in every format we read.
+  prt::image::Image img(8, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x) img.at(x, y) = {x / 8.0f, y / 4.0f, 0.25f};
+  for (const char* ext : {"hdr", "exr", "png"}) {
+    const fs::path p = tmp / (std::string("img.") + ext);
+    prt::image::writeImage(p.string(), img);
+    put(ext == std::string("png") ? "ldr" : ext, std::string("gradient.") + ext, slurp(p));
+  }
+  // A JPEG of the same gradient, written by stb (prtkit itself writes no JPEGs).
+  {
+    unsigned char rgb[8 * 4 * 3];
+    for (int i = 0; i < 8 * 4 * 3; ++i) rgb[i] = static_cast<unsigned char>(i * 7);
+    std::string jpg;
+    stbi_write_jpg_to_func(
+        [](void* ctx, void* data, int n) {
+          static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), n);
+        },
+        &jpg, 8, 4, 3, rgb, 90);
+    put("ldr", "gradient.jpg", jpg);
+  }
+
+  // Meshes.
+  put("ply", "tetra_ascii.ply", kTetraPly);
+  put("ply", "triangle_binary.ply", binaryPly());
+  put("ply", "tetra.ply.gz", gzip(kTetraPly));
+  const std::string off =
+      "OFF\n# tetrahedron\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n4 1 2 3 "
+      "0\n";
+  put("off", "tetra.off", off);
+  put("off", "tetra.off.gz", gzip(off));
+  put("off", "colours.off",
+      "CNOFF\n3 1 0\n0 0 0 0 0 1 255 0 0\n1 0 0 0 0 1 0.5 0.5 0.5 1\n0 1 0 0 0 1 0 0 255\n"
+      "3 0 1 2 255 255 255\n");
+  put("obj", "quad.obj",
+      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+      "vn 0 0 1\nusemtl red\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf -4 -2 -1\n"
+      "\n#MTL\nnewmtl red\nKd 0.5 0.25 0.125\nmap_Kd tex.png\n");
+  put("obj", "plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  put("gltf", "triangle.gltf", kGltf);
+
+  // Lights and transport.
+  prt::io::LightFile light;
+  light.coefficients = prt::sh::RgbSh(3);
+  for (std::size_t i = 0; i < light.coefficients.c.size(); ++i)
+    light.coefficients.c[i] = {0.1f * i, 0.2f, -0.05f * i};
+  light.source = "seed";
+  prt::io::writeLightJson((tmp / "light.json").string(), light);
+  put("light_json", "light.json", slurp(tmp / "light.json"));
+  prt::io::writeLightGames202((tmp / "light.txt").string(), light.coefficients);
+  put("light_txt", "light.txt", slurp(tmp / "light.txt"));
+  put("transport_txt", "vertices.txt", "2\n1 0.5 0 0\n0.25 0 0 1e-3\n");
+  put("transport_txt", "faces.txt", "1\n1 0 0 0\n1 0 0 0\n1 0 0 0\n");
+  fs::remove_all(tmp);
+  return 0;
+}
