@@ -17,8 +17,8 @@
 #include <sstream>
 
 #include "prt/core/error.hpp"
-#include "prt/core/limits.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 
 namespace prt {
 
