@@ -177,10 +177,14 @@ TEST(Hardening, DeepNestingIsRefusedNotAStackOverflow) {
   // A chain of 100 000 nodes (each the child of the one before) recursed once per level.
   std::string chain;
   const int n = 100000;
-  for (int i = 0; i < n; ++i)
-    chain += (i ? "," : "") + std::string(R"({"children":[)") +
-             (i + 1 < n ? std::to_string(i + 1) : "") + "]" + (i + 1 == n ? R"(,"mesh":0)" : "") +
-             "}";
+  for (int i = 0; i < n; ++i) {
+    if (i) chain += ',';
+    chain += R"({"children":[)";
+    if (i + 1 < n) chain += std::to_string(i + 1);
+    chain += ']';
+    if (i + 1 == n) chain += R"(,"mesh":0)";
+    chain += '}';
+  }
   const std::string deep = dir.write("chain.gltf", gltfWithNodes(chain));
   expectOneLine(errorOf([&] { loadMesh(deep); }), deep, "scene graph deeper than 256 levels");
   // JSON nested 20 000 deep in extras: tinygltf recursed into it and overflowed the stack.

@@ -87,6 +87,12 @@ class ScopedLimits {
 
 }  // namespace prt::test
 
+// GCC 12 cannot see that these new and delete are a matched malloc/free pair and warns
+// (-Wmismatched-new-delete) at every inlined delete; the pair is correct by construction.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+
 #define PRT_DEFINE_ALLOCATION_PROBE                       \
   void* operator new(std::size_t n) {                     \
     ::prt::test::noteAllocation(n);                       \
