@@ -8,6 +8,9 @@
 //                                    64, timing only the Embree calls. Counters: bake and raw
 //                                    rays/s, vs_raw = bake rate / the faster raw rate.
 //     BM_Interreflected/SCENE        1 and 2 bounces, 256 samples: each bounce's cost / direct.
+//     BM_Matrix/SCENE/BANDS          glossy transfer matrices, shadowed, 256 samples, against the
+//                                    vector bake and raw Embree (the vector bake's rays) in the
+//                                    same run: ns per sample of each; matrix/vector, matrix/raw.
 //   bench_bake --equal-error         RMS error of T₀ against a 65536-sample bake at 64…4096
 //                                    samples, cosine-Sobol' vs uniform random.
 //
@@ -235,6 +238,55 @@ void BM_Interreflected(benchmark::State& state, const std::string& name) {
   state.counters["Mrays/s"] = stats.raysPerSecond * 1e-6;
 }
 
+void BM_Matrix(benchmark::State& state, const std::string& name) {
+  Scene* s = scene(name);
+  if (!s) {
+    state.SkipWithError((std::string(kBunny) + " not found: bunny case skipped").c_str());
+    return;
+  }
+  prt::BakeSettings settings;
+  settings.mode = prt::TransferMode::Shadowed;
+  settings.bands = static_cast<int>(state.range(0));
+  settings.samples = 256;
+  settings.seed = 7;
+  double matrixSeconds = 0, vectorSeconds = 0, rawSeconds = 0, samples = 0;
+  for (auto _ : state) {
+    const RawTimes raw = traceRaw(name, settings.samples, settings.seed);
+    prt::BakeStats vs, ms;
+    settings.layout = prt::TransferLayout::Vector;
+    auto v = prt::bake(s->mesh, *s->occluder, settings, &vs);
+    settings.layout = prt::TransferLayout::Matrix;
+    auto m = prt::bake(s->mesh, *s->occluder, settings, &ms);
+    benchmark::DoNotOptimize(v.data.data());
+    benchmark::DoNotOptimize(m.data.data());
+    matrixSeconds += ms.secondsTotal;
+    vectorSeconds += vs.secondsTotal;
+    rawSeconds += std::min(raw.single, raw.stream);
+    samples += double(s->mesh.vertexCount()) * settings.samples;
+    state.SetIterationTime(ms.secondsTotal);
+  }
+  // Per sample on all threads (wall time × threads / samples).
+  const double threads = prt::maxThreads();
+  state.counters["vertices"] = double(s->mesh.vertexCount());
+  state.counters["matrix_ns"] = matrixSeconds * threads / samples * 1e9;
+  state.counters["vector_ns"] = vectorSeconds * threads / samples * 1e9;
+  state.counters["raw_ns"] = rawSeconds * threads / samples * 1e9;
+  state.counters["matrix/vector"] = matrixSeconds / vectorSeconds;
+  state.counters["matrix/raw"] = matrixSeconds / rawSeconds;
+}
+
+BENCHMARK_CAPTURE(BM_Matrix, bunny, std::string("bunny"))
+    ->Arg(5)
+    ->Arg(9)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_Matrix, sphere_plane, std::string("sphere-plane"))
+    ->Arg(5)
+    ->Arg(9)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_Shadowed, bunny, std::string("bunny"))
     ->Arg(3)
     ->Arg(9)

@@ -53,8 +53,8 @@ Data& data(int bands) {
     slot = std::make_unique<Data>();
     Data& d = *slot;
     d.mesh = mesh();
-    d.transfer = prt::TransferField::zeros(prt::TransferLayout::Matrix, bands, 1,
-                                           d.mesh.vertexCount());
+    d.transfer =
+        prt::TransferField::zeros(prt::TransferLayout::Matrix, bands, 1, d.mesh.vertexCount());
     prt::parallelFor(d.transfer.data.size(), 1 << 16, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i)
         d.transfer.data[i] = float((i * 2654435761u) % 1000) * 1e-3f - 0.5f;

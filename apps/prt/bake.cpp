@@ -114,9 +114,9 @@ void runBake(const BakeArgs& a) {
   BakeFile file;
   file.mesh = loadScene(a.inputs, &report);
   for (const auto& w : report.warnings) warn(w);
-  // --albedo (or --material kd=...) replaces the mesh's own albedo in the mesh the bake stores, so every consumer of
-  // the file (render, reference, validate, the viewer) relights with the albedo the transfer's
-  // bounces were baked with.
+  // --albedo (or --material kd=...) replaces the mesh's own albedo in the mesh the bake stores, so
+  // every consumer of the file (render, reference, validate, the viewer) relights with the albedo
+  // the transfer's bounces were baked with.
   if (material.diffuse) file.mesh.albedo.assign(file.mesh.vertexCount(), *material.diffuse);
   const Mesh& mesh = file.mesh;
   const double loadSeconds =

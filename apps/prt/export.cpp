@@ -39,10 +39,7 @@ void runExport(const ExportArgs& a) {
   checkWritable(a.output);
 
   const BakeFile bake = readBake(a.input);
-  if (!bake.complete())
-    throw Error(a.input, fmt::format("partial bake (vertices {}..{} of {}): merge the pieces first",
-                                     bake.firstVertex, bake.firstVertex + bake.vertexCount - 1,
-                                     bake.mesh.vertexCount()));
+  bake.requireComplete(a.input);
   if (bake.transfers.empty()) throw Error(a.input, "holds no transfer");
   const BakedTransfer* t = nullptr;
   if (!a.mode.empty()) {

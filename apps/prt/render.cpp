@@ -97,12 +97,7 @@ void run(const RenderOptions& o) {
   checkOutputs(outputs, {{"input", o.bake}, {"--light", o.light}});
 
   const BakeFile bake = readBake(o.bake);
-  if (!bake.complete())
-    throw Error(o.bake,
-                fmt::format("holds transfer for vertices {}..{} of {} only (merge the pieces "
-                            "with prt merge first)",
-                            bake.firstVertex, bake.firstVertex + bake.vertexCount,
-                            bake.mesh.vertexCount()));
+  bake.requireComplete(o.bake);
   const BakedTransfer& baked = pickTransfer(bake, o.mode, o.bake, o.transfer);
   // The material: --material, else the one the bake stored.
   const Material material =
@@ -121,8 +116,7 @@ void run(const RenderOptions& o) {
   // The light: an SH light file, or an environment projected to the transfer's bands.
   sh::RgbSh light;
   std::optional<envmap::Environment> env;
-  const std::string lext = fileExtension(o.light);
-  if (lext == "json" || lext == "txt") {
+  if (io::isLightFile(o.light)) {
     // An SH light file: no environment image, so the background is its SH reconstruction.
     // relight() reconciles its bands with the transfer's (and says so when they differ).
     light = io::readLight(o.light).coefficients;

@@ -69,11 +69,7 @@ void runValidate(const ValidateArgs& a) {
     warn(a.bake + ": the " + toString(bt.settings.mode) +
          " transfer is a vector (diffuse only); validating the diffuse part alone against a "
          "glossy reference");
-  if (!file.complete())
-    throw Error(a.bake, "holds vertices " + std::to_string(file.firstVertex) + ".." +
-                            std::to_string(file.firstVertex + file.vertexCount) + " of " +
-                            std::to_string(file.mesh.vertexCount()) +
-                            " (merge the pieces first: validation needs a complete bake)");
+  file.requireComplete(a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.field.bands);
   auto occluder = makeEmbreeOccluder(file.mesh);

@@ -109,8 +109,7 @@ struct WebEnvironment {
 WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
   WebEnvironment e;
   e.name = spec;
-  const std::string ext = fileExtension(spec);
-  if (ext == "json" || ext == "txt") {
+  if (io::isLightFile(spec)) {
     const sh::RgbSh source = io::readLight(spec).coefficients;
     if (source.bands < bands)
       throw Error(spec, fmt::format("the light has {} bands but the bake {}; the transfer's upper "
@@ -192,11 +191,7 @@ void writeWebViewer(const WebOptions& a) {
                                     bake.formatVersion));
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
-  if (!bake.complete())
-    throw Error(a.bake, fmt::format("holds transfer for vertices {}..{} of {} only (merge the "
-                                    "pieces with prt merge first)",
-                                    bake.firstVertex, bake.firstVertex + bake.vertexCount,
-                                    bake.mesh.vertexCount()));
+  bake.requireComplete(a.bake);
   if (!a.mode.empty()) pickTransfer(bake, a.mode, a.bake);
   int bands = 0;
   for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.field.bands);

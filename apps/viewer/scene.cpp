@@ -99,11 +99,7 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   BakeFile bake = readBake(path);
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
-  if (!bake.complete())
-    throw Error(path, fmt::format("holds transfer for vertices {}..{} of {} only (merge the "
-                                  "pieces first)",
-                                  bake.firstVertex, bake.firstVertex + bake.vertexCount,
-                                  bake.mesh.vertexCount()));
+  bake.requireComplete(path);
   for (const BakedTransfer& t : bake.transfers) {
     if (t.field.bands < 1 || t.field.bands > kMaxViewerBands)
       throw Error(path, fmt::format("the {} transfer has {} bands; the viewer draws 1..{}",
@@ -134,8 +130,7 @@ sh::RgbSh fitShLight(const std::string& name, const sh::RgbSh& source, int bands
 EnvironmentEntry Scene::loadEnvironment(const std::string& spec, int bands) {
   EnvironmentEntry e;
   e.name = spec;
-  const std::string ext = fileExtension(spec);
-  if (ext == "json" || ext == "txt") {
+  if (io::isLightFile(spec)) {
     e.isShFile = true;
     e.source = io::readLight(spec).coefficients;
     e.light = fitShLight(spec, e.source, bands);

@@ -51,7 +51,7 @@ std::array<image::Image, 6> readFaceFolder(const std::string& dir,
 LoadedEnvironment loadEnvironment(const std::string& input, const LoadOptions& options) {
   LoadedEnvironment out;
   if (isBuiltin(input)) {
-    if (options.layout) throw Error(input, "--layout does not apply to builtin environments");
+    if (options.layout) throw Error(input, "a layout does not apply to builtin environments");
     out.env = builtinEnvironment(input, options.builtinTexelWidth);
     out.layout = "builtin";
     return out;

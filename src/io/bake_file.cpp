@@ -395,6 +395,15 @@ std::string transferMatrixName(TransferMode mode) {
   return "_PRT_" + m + "_M";
 }
 
+void BakeFile::requireComplete(const std::string& file) const {
+  if (complete()) return;
+  throw Error(file, "is a partial bake: it holds transfer for vertices " +
+                        std::to_string(firstVertex) + ".." +
+                        std::to_string(firstVertex + vertexCount - 1) + " of " +
+                        std::to_string(mesh.vertexCount()) +
+                        " only (merge the pieces with prt merge first)");
+}
+
 int BakeFile::requiredVersion() const {
   for (const auto& t : transfers)
     if (t.field.isMatrix()) return 2;
@@ -613,7 +622,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
   if (total >= (std::uint64_t(1) << 32))
     throw Error("bake file: " + std::to_string(total >> 20) +
                 " MiB exceeds the 4 GiB a GLB file can hold (bake fewer bands, or split the "
-                "bake with --range)");
+                "bake into vertex ranges)");
 
   putU32(os, kGlbMagic);
   putU32(os, 2);

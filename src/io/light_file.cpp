@@ -141,6 +141,11 @@ sh::RgbSh parseLightGames202(std::string_view text, const std::string& path) {
   return out;
 }
 
+bool isLightFile(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  return ext == "json" || ext == "txt";
+}
+
 LightFile readLight(const std::string& path) {
   if (fileExtension(path) == "json") return readLightJson(path);
   LightFile out;

@@ -46,7 +46,7 @@ Vec3f parseVec(const std::string& key, const std::string& value) {
   std::istringstream in(value);
   if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
       !isFinite(v))
-    throw Error("--camera: " + key + "=" + value + " is not three numbers x,y,z");
+    throw Error("camera: " + key + "=" + value + " is not three numbers x,y,z");
   return v;
 }
 
@@ -62,7 +62,7 @@ Camera parseCamera(const std::string& spec, const Camera& base) {
     if (item.empty()) continue;
     const auto eq = item.find('=');
     if (eq == std::string::npos)
-      throw Error("--camera: '" + item + "' is not key=value (keys: eye, target, up, fov)");
+      throw Error("camera: '" + item + "' is not key=value (keys: eye, target, up, fov)");
     const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
     if (key == "eye") {
       c.eye = parseVec(key, value);
@@ -79,15 +79,15 @@ Camera parseCamera(const std::string& spec, const Camera& base) {
         used = 0;
       }
       if (used != value.size() || !(f > 0.0f && f < 180.0f))
-        throw Error("--camera: fov=" + value + " is not an angle in (0, 180) degrees");
+        throw Error("camera: fov=" + value + " is not an angle in (0, 180) degrees");
       c.fovY = f;
     } else {
-      throw Error("--camera: unknown key '" + key + "' (keys: eye, target, up, fov)");
+      throw Error("camera: unknown key '" + key + "' (keys: eye, target, up, fov)");
     }
   }
-  if (length(c.target - c.eye) <= 0.0f) throw Error("--camera: eye and target coincide");
+  if (length(c.target - c.eye) <= 0.0f) throw Error("camera: eye and target coincide");
   if (length(cross(c.target - c.eye, c.up)) <= 1e-6f * length(c.target - c.eye) * length(c.up))
-    throw Error("--camera: the up vector is parallel to the viewing direction");
+    throw Error("camera: the up vector is parallel to the viewing direction");
   return c;
 }
 

@@ -55,6 +55,9 @@ struct BakeFile {
 
   /// True if the transfers cover every vertex of the mesh.
   bool complete() const { return firstVertex == 0 && vertexCount == mesh.vertexCount(); }
+  /// Throws prt::Error("FILE: is a partial bake: it holds transfer for vertices a..b of n only
+  /// (merge ...)") unless complete(): the one check every consumer of a whole bake makes.
+  void requireComplete(const std::string& file) const;
   /// The first transfer of `mode` (any layout), or nullptr.
   const BakedTransfer* find(TransferMode mode) const;
   /// The transfer of `mode` and `layout`, or nullptr.

@@ -37,4 +37,8 @@ sh::RgbSh parseLightGames202(std::string_view text, const std::string& name);
 /// By extension: .json → JSON, anything else (.txt) → the course format.
 LightFile readLight(const std::string& path);
 
+/// True when `path` names an SH light file (.json, or the course's light.txt) rather than an
+/// environment (image, face folder, builtin:NAME): the one rule every verb and viewer uses.
+bool isLightFile(const std::string& path);
+
 }  // namespace prt::io
