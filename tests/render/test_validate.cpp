@@ -12,6 +12,7 @@
 #include "prt/envmap/project.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/render/validate.hpp"
+#include "prt/transfer/material.hpp"
 #include "prt/transport/bake.hpp"
 
 namespace prt::render {
@@ -77,6 +78,42 @@ TEST(Validate, ShadowedSpherePlaneUnderSmoothLight) {
   const std::string json = reportJson(rep);
   for (const char* key : {"relRmse", "meanRelErr", "maxRelErr", "truncationFloor", "refStdErr"})
     EXPECT_NE(json.find(key), std::string::npos) << key;
+}
+
+// Glossy acceptance: a shadowed matrix bake at 6 bands with a Phong lobe that 6 bands hold (its
+// energy beyond 6 bands is under 2%), under the smooth environment, against the glossy
+// brute-force reference seen from the same eye: within 5% relative RMSE, within the truncation
+// floor plus noise, and the error falls with bands.
+TEST(Validate, GlossyMatrixAtSixBandsAgreesWithTheGlossyReference) {
+  Scene s;
+  s.mesh = builtinScene("builtin:sphere-plane?grid=20&subdiv=3");
+  s.occ = makeEmbreeOccluder(s.mesh);
+  s.bake.mode = TransferMode::Shadowed;
+  s.bake.layout = TransferLayout::Matrix;
+  s.bake.bands = 6;
+  s.bake.samples = 1024;
+  s.bake.material = parseMaterial("phong?exponent=6&ks=0.6&kd=0.4");
+  ASSERT_LT(s.bake.material.lobe.energyBeyond(6), 0.02);
+  s.transfer = bake(s.mesh, *s.occ, s.bake);
+  const Environment env = smoothEnv();
+  const sh::RgbSh light = envmap::projectEnvironment(env, 6);
+  ValidateSettings vs;
+  vs.reference.samples = 1024;
+  vs.reference.eye = Vec3f(0.5f, 2.5f, 4.0f);
+  vs.maxVertices = 200;
+  vs.floorVertices = 200;
+  const ValidationReport rep = validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs);
+  ASSERT_EQ(rep.rows.size(), 6u);
+  const BandRow& r6 = rep.rows[5];
+  std::printf("glossy 6 bands: rel RMSE %.4f floor %.4f ref noise %.4f lobe beyond %.4f\n",
+              r6.relRmse, r6.floor, r6.refStdErr, r6.lobeEnergyBeyond);
+  EXPECT_LT(r6.relRmse, 0.05);
+  EXPECT_LT(r6.relRmse, r6.floor + 3 * r6.refStdErr + 0.01);
+  EXPECT_GT(rep.rows[1].relRmse, 1.5 * r6.relRmse);
+  EXPECT_GT(rep.rows[0].lobeEnergyBeyond, r6.lobeEnergyBeyond);
+  // Without the eye, glossy validation is refused (PRT and reference must share the view).
+  vs.reference.eye.reset();
+  EXPECT_THROW(validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs), Error);
 }
 
 // Under a constant environment one band is exact (L = c Y00 √4π), so the floor vanishes and the
