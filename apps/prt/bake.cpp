@@ -6,6 +6,7 @@
 //                                                                       docs/formats-bake.md)
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -114,6 +115,21 @@ void runBake(const BakeArgs& a) {
   BakeFile file;
   file.mesh = loadScene(a.inputs, &report);
   for (const auto& w : report.warnings) warn(w);
+  // Without --material, the file's own glossy surface (MTL Ks/Ns, glTF metallic-roughness).
+  if (a.material.empty() && file.mesh.gloss) {
+    const SurfaceGloss& g = *file.mesh.gloss;
+    const auto clamp01 = [](float x) { return std::clamp(x, 0.0f, 1.0f); };
+    const std::string ks = fmt::format("{},{},{}", clamp01(g.specular.x), clamp01(g.specular.y),
+                                       clamp01(g.specular.z));
+    const std::string spec =
+        g.model == SurfaceGloss::Model::Phong
+            ? fmt::format("phong?exponent={}&ks={}", std::clamp(g.exponent, 0.0f, 1e4f), ks)
+            : fmt::format("ggx?roughness={}&ks={}", std::clamp(g.roughness, 0.03f, 1.0f), ks);
+    const std::optional<Rgb> kd = material.diffuse;
+    material = parseMaterial(spec);
+    material.diffuse = kd;
+    info(fmt::format("material from {} ('{}'): {}", file.mesh.source, g.material, material.spec()));
+  }
   // --albedo (or --material kd=...) replaces the mesh's own albedo in the mesh the bake stores, so
   // every consumer of the file (render, reference, validate, the viewer) relights with the albedo
   // the transfer's bounces were baked with.

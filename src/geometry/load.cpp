@@ -285,6 +285,7 @@ Mesh loadMeshBytes(const std::string& name, std::span<const unsigned char> bytes
 }
 
 void appendMesh(Mesh& scene, const Mesh& part) {
+  if (!scene.gloss) scene.gloss = part.gloss;  // the first file's glossy surface
   const std::uint32_t v0 = static_cast<std::uint32_t>(scene.positions.size());
   const std::uint32_t t0 = static_cast<std::uint32_t>(scene.triangles.size());
   if (scene.albedo.empty() != part.albedo.empty()) {

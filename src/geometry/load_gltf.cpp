@@ -456,6 +456,22 @@ Mesh readGltfBytes(const std::string& path, std::span<const unsigned char> bytes
       if (mat) {
         const auto& f = mat->pbrMetallicRoughness.baseColorFactor;
         if (f.size() >= 3) factor = Rgb{float(f[0]), float(f[1]), float(f[2])};
+        if (!mesh.gloss) {
+          // glTF §3.9.2: F0 = mix(0.04, baseColor, metallic); the lobe's roughness is
+          // roughnessFactor (textures of either are not sampled here).
+          const double m = mat->pbrMetallicRoughness.metallicFactor;
+          const double r = mat->pbrMetallicRoughness.roughnessFactor;
+          if (!(std::isfinite(m) && std::isfinite(r) && m >= 0 && m <= 1 && r >= 0 && r <= 1))
+            rd.fail("material '" + mat->name.substr(0, 80) +
+                    "': metallicFactor and roughnessFactor must lie in [0, 1]");
+          SurfaceGloss g;
+          g.model = SurfaceGloss::Model::MetallicRoughness;
+          g.metallic = float(m);
+          g.roughness = float(r);
+          g.specular = Rgb(0.04f * float(1 - m)) + factor * float(m);
+          g.material = mat->name.substr(0, 80);
+          mesh.gloss = g;
+        }
         const auto& bt = mat->pbrMetallicRoughness.baseColorTexture;
         if (bt.index >= 0) {
           const std::string set = "TEXCOORD_" + std::to_string(std::max(0, bt.texCoord));

@@ -210,6 +210,24 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
       if (!std::isfinite(m.diffuse[k]) || m.diffuse[k] > kMaxAlbedo || m.diffuse[k] < 0)
         throw Error(path, "material '" + m.name.substr(0, 80) + "': Kd " + colourText(m.diffuse) +
                               " is not a colour (each component finite, in [0, 100])");
+  // The glossy part: the first material with a specular colour (Ks > 0), Phong exponent Ns.
+  std::optional<SurfaceGloss> gloss;
+  for (const tinyobj::material_t& m : materials) {
+    const bool finite = std::isfinite(m.specular[0]) && std::isfinite(m.specular[1]) &&
+                        std::isfinite(m.specular[2]) && std::isfinite(m.shininess);
+    if (!finite || m.specular[0] < 0 || m.specular[1] < 0 || m.specular[2] < 0 || m.shininess < 0)
+      throw Error(path, "material '" + m.name.substr(0, 80) + "': Ks " + colourText(m.specular) +
+                            " / Ns " + std::to_string(m.shininess) +
+                            " is not a specular colour and exponent (finite, >= 0)");
+    if (!gloss && (m.specular[0] > 0 || m.specular[1] > 0 || m.specular[2] > 0)) {
+      SurfaceGloss g;
+      g.model = SurfaceGloss::Model::Phong;
+      g.specular = Rgb(m.specular[0], m.specular[1], m.specular[2]);
+      g.exponent = m.shininess;
+      g.material = m.name.substr(0, 80);
+      gloss = g;
+    }
+  }
   const std::size_t np = attrib.vertices.size() / 3, nt = attrib.texcoords.size() / 2,
                     nn = attrib.normals.size() / 3;
 
@@ -293,6 +311,7 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
       mesh.albedo[v] = a;
     }
   }
+  mesh.gloss = gloss;
   return mesh;
 }
 

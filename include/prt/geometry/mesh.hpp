@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,20 @@ struct MeshPart {
   std::uint32_t firstTriangle = 0, triangleCount = 0;
 };
 
+/// The glossy part of a surface as its file describes it, for the default relighting material
+/// (prt/transfer/material.hpp). OBJ/MTL: Ks and the Phong exponent Ns (illumination models with
+/// a specular term). glTF: the metallic-roughness model, F0 = mix(0.04, baseColor, metallic)
+/// and its perceptual roughness. The diffuse colour stays per vertex in Mesh::albedo.
+struct SurfaceGloss {
+  enum class Model { Phong, MetallicRoughness };
+  Model model = Model::Phong;
+  Rgb specular{0.0f};    ///< Ks, or F0 for metallic-roughness
+  float exponent = 0;    ///< Phong: Ns
+  float roughness = 1;   ///< metallic-roughness: roughnessFactor
+  float metallic = 0;    ///< metallic-roughness: metallicFactor
+  std::string material;  ///< the file's name of the material it came from
+};
+
 struct Mesh {
   std::vector<Vec3f> positions;  ///< world space (scene transforms applied)
   std::vector<Vec3f> normals;    ///< unit, one per vertex
@@ -29,6 +44,9 @@ struct Mesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;  ///< counter-clockwise = front
   std::vector<MeshPart> parts;                          ///< at least one part when loaded
   std::string source;                                   ///< file name or builtin:NAME, for messages
+  /// The scene's glossy surface when a file describes one: one for the whole scene (the first
+  /// material with a specular term), as relighting applies one lobe.
+  std::optional<SurfaceGloss> gloss;
 
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return triangles.size(); }

@@ -23,6 +23,10 @@
 // The brute-force reference (render/reference) evaluates the same G, so PRT and reference
 // differ only by band limit and noise.
 //
+// Where a material comes from: `--material`, else the mesh file's own glossy surface
+// (Mesh::gloss: OBJ/MTL Ks and Ns → phong; glTF metallic-roughness → ggx with F0 as ks), else
+// lambert; the bake stores it and relighting uses it unless told otherwise.
+//
 // Spec strings (`--material`, bake metadata): `lambert`, `phong?exponent=32&ks=0.5`,
 // `ggx?roughness=0.3&ks=0.04`; every kind takes `kd=x` or `kd=r,g,b` (the diffuse colour,
 // replacing the mesh's own albedo) and `ks` likewise.
