@@ -652,6 +652,27 @@ void writeBake(const std::string& path, const BakeFile& bake) {
   }
 }
 
+namespace {
+
+// A bake file is one self-contained GLB: tinygltf must never open another file on its behalf
+// (a `uri` naming /dev/zero or a FIFO would otherwise be read or block).
+bool noFileExists(const std::string&, void*) {
+  return true;  // so that tinygltf asks to read it, and noFileRead says why it may not
+}
+std::string noFileExpand(const std::string& path, void*) {
+  return path;
+}
+bool noFileRead(std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+  if (err) *err += "refers to an external file (" + path.substr(0, 80) + "); a bake is one .glb\n";
+  return false;
+}
+bool noFileWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "writing is not allowed\n";
+  return false;
+}
+
+}  // namespace
+
 BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& name) {
   const Reader r{name};
   checkGlbContainer(bytes, r);
@@ -659,6 +680,8 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
   tinygltf::Model model;
   {
     tinygltf::TinyGLTF gltf;
+    gltf.SetFsCallbacks(
+        tinygltf::FsCallbacks{&noFileExists, &noFileExpand, &noFileRead, &noFileWrite, nullptr});
     std::string err, warn;
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) r.fail("file too large (> 4 GiB)");
     if (!gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),

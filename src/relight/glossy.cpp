@@ -35,9 +35,15 @@ namespace {
 
 // u += d_i · row, w += g_i · row over the matrix's rows: the whole per-vertex cost. Compiled for
 // AVX2+FMA and for the baseline, picked at load time (GCC function multi-versioning).
-[[gnu::target_clones("arch=haswell", "default")]] void accumulateRows(
-    const float* m, std::size_t rows, std::size_t rowStride, std::size_t width, const float* d,
-    const float* g, float* u, float* w) {
+// (GCC only: clang 14, used by the fuzz build, emits no symbol for multiversioned functions.)
+#if defined(__GNUC__) && !defined(__clang__)
+#define PRT_GLOSSY_CLONES [[gnu::target_clones("arch=haswell", "default")]]
+#else
+#define PRT_GLOSSY_CLONES
+#endif
+PRT_GLOSSY_CLONES void accumulateRows(const float* m, std::size_t rows, std::size_t rowStride,
+                                      std::size_t width, const float* d, const float* g, float* u,
+                                      float* w) {
   std::fill_n(u, width, 0.0f);
   if (g) std::fill_n(w, width, 0.0f);
   for (std::size_t i = 0; i < rows; ++i) {

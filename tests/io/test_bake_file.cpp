@@ -178,6 +178,36 @@ TEST(BakeFile, RoundTripIsBitExact) {
   EXPECT_EQ(encodeBake(r), bytes);
 }
 
+/// The GLB `bytes` with its JSON chunk replaced by `doc` (the BIN chunk kept).
+std::string withJson(const std::string& bytes, const nlohmann::json& doc) {
+  std::string json = doc.dump();
+  while (json.size() % 4) json.push_back(' ');
+  std::string edited = bytes.substr(0, 12);
+  const auto put = [&](std::uint32_t v) { edited.append(reinterpret_cast<const char*>(&v), 4); };
+  put(static_cast<std::uint32_t>(json.size()));
+  put(0x4E4F534Au);
+  edited += json;
+  std::uint32_t oldJson;
+  std::memcpy(&oldJson, bytes.data() + 12, 4);
+  edited += bytes.substr(20 + oldJson);
+  const std::uint32_t total = static_cast<std::uint32_t>(edited.size());
+  std::memcpy(edited.data() + 8, &total, 4);
+  return edited;
+}
+
+TEST(BakeFile, ExternalFilesAreNeverOpened) {
+  const std::string bytes = encodeBake(sampleBake());
+  nlohmann::json doc = splitGlb(bytes).json;
+  doc["buffers"].push_back({{"byteLength", 16}, {"uri", "/etc/hostname"}});
+  try {
+    decodeBake(asBytes(withJson(bytes, doc)), "ext.glb");
+    FAIL() << "a bake naming an external file was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("external file"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line";
+  }
+}
+
 BakedTransfer matrixTransfer(TransferMode mode, int bands, int channels, std::size_t n) {
   BakedTransfer t = transfer(mode, bands, channels, 0, n, 9);
   t.settings.layout = TransferLayout::Matrix;
@@ -218,21 +248,7 @@ TEST(BakeFile, MatricesNeedVersionTwoAndRoundTripBitExact) {
   // A file that claims version 1 but holds a matrix is refused, naming the problem.
   nlohmann::json doc = g.json;
   doc["extras"]["prtkit"]["formatVersion"] = 1;
-  std::string json = doc.dump();
-  while (json.size() % 4) json.push_back(' ');
-  std::string edited = bytes.substr(0, 12);
-  const auto put = [&](std::uint32_t v) { edited.append(reinterpret_cast<const char*>(&v), 4); };
-  put(static_cast<std::uint32_t>(json.size()));
-  put(0x4E4F534Au);
-  edited += json;
-  const std::size_t oldBinAt = 20 + [&] {
-    std::uint32_t x;
-    std::memcpy(&x, bytes.data() + 12, 4);
-    return x;
-  }();
-  edited += bytes.substr(oldBinAt);
-  const std::uint32_t total = static_cast<std::uint32_t>(edited.size());
-  std::memcpy(edited.data() + 8, &total, 4);
+  const std::string edited = withJson(bytes, doc);
   try {
     decodeBake(asBytes(edited), "old.glb");
     FAIL() << "a matrix in a version-1 file was accepted";
