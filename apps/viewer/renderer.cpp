@@ -160,8 +160,8 @@ Renderer::Renderer() {
 Renderer::~Renderer() {
   const GLuint programs[] = {meshProgram_, backgroundProgram_, toneProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
-  const GLuint buffers[] = {positions_, albedo_, indices_, transferBuffer_, lightUbo_};
-  glDeleteBuffers(5, buffers);
+  const GLuint buffers[] = {positions_, albedo_, indices_, transferBuffer_, lightUbo_, radiance_};
+  glDeleteBuffers(6, buffers);
   const GLuint textures[] = {transferTexture_, envTexture_, shTexture_, msColour_, resolveColour_};
   glDeleteTextures(5, textures);
   glDeleteRenderbuffers(1, &msDepth_);
@@ -201,12 +201,33 @@ void Renderer::setMesh(const Mesh& mesh) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   triangles_ = mesh.triangleCount();
   vertices_ = mesh.vertexCount();
+  hasRadiance_ = false;  // the radiance buffer, if any, was for another mesh
   const Bounds b = computeBounds(mesh);
   centre_ = b.centre();
   radius_ = std::max(b.radius(), 1e-6f);
 }
 
+void Renderer::setDirectRadiance() {
+  direct_ = true;
+}
+
+void Renderer::setRadiance(std::span<const Rgb> radiance) {
+  PRT_CHECK(radiance.size() == vertices_, "setRadiance needs one value per vertex");
+  glBindVertexArray(vao_);
+  if (!radiance_) glGenBuffers(1, &radiance_);
+  glBindBuffer(GL_ARRAY_BUFFER, radiance_);
+  // Orphan and refill: the previous frame may still be reading the old contents.
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sizeof(Rgb) * radiance.size()), radiance.data(),
+               GL_STREAM_DRAW);
+  glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(Rgb), nullptr);
+  glEnableVertexAttribArray(2);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  hasRadiance_ = true;
+}
+
 void Renderer::setTransfer(const TransferField& t) {
+  PRT_CHECK(!t.isMatrix(), "matrix transfer is relit on the CPU (setRadiance)");
   if (t.bands < 1 || t.bands > kMaxViewerBands)
     throw Error(
         fmt::format("the transfer has {} bands; the viewer draws 1..{}", t.bands, kMaxViewerBands));
@@ -238,6 +259,7 @@ void Renderer::setTransfer(const TransferField& t) {
   glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transferBuffer_);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  direct_ = false;
   transferBands_ = t.bands;
   transferChannels_ = t.channels;
   transferStride_ = texelsPerVertex;
@@ -341,7 +363,7 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   }
 
   // (b) the relit mesh.
-  if (triangles_ > 0 && transferTexture_) {
+  if (triangles_ > 0 && (direct_ ? hasRadiance_ : transferTexture_ != 0)) {
     const auto t0 = std::chrono::steady_clock::now();
     glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(f.light->bytes()), f.light->data());
@@ -357,7 +379,10 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     glUniform1i(loc(meshProgram_, "uTransfer"), 1);
     glUniform1i(loc(meshProgram_, "uTexelsPerVertex"), transferStride_);
     glUniform1i(loc(meshProgram_, "uRgb"), transferChannels_ == 3);
-    glUniform1i(loc(meshProgram_, "uCount"), transferChannels_ == 3 ? b * b : paddedCoeffs(b) / 4);
+    glUniform1i(loc(meshProgram_, "uCount"), direct_                  ? 0
+                                             : transferChannels_ == 3 ? b * b
+                                                                      : paddedCoeffs(b) / 4);
+    glUniform1i(loc(meshProgram_, "uDirect"), direct_);
     glBindVertexArray(vao_);
     glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
     glDisable(GL_DEPTH_TEST);

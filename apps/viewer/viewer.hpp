@@ -19,6 +19,7 @@ struct Options {
   std::optional<std::array<double, 3>> rotateDeg;  ///< X, Y, Z as prt render --rotate
   std::string camera;                              ///< as prt render --camera
   std::string mode;                                ///< transfer mode; "" = richest
+  std::string material;                            ///< as prt render --material; "" = the bake's
   int bands = 0;                                   ///< 0 = all the bake has
   std::string background = "env";                  ///< env | sh | none
   float exposure = 0.0f;
