@@ -163,6 +163,8 @@ class SceneView {
   double lastGlossySeconds() const { return glossySeconds_; }
   /// Glossy relightings so far (frames where something view- or light-dependent changed).
   int glossyRelights() const { return glossyRelights_; }
+  /// The last glossy relighting's per-vertex exit radiance (what the shader shows).
+  const std::vector<Rgb>& glossyRadiance() const { return radiance_; }
 
  private:
   /// Matrix transfer: relights on the CPU into the renderer's radiance buffer when the light,
