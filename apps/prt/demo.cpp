@@ -82,6 +82,9 @@ struct DemoArgs {
   std::string glossy = "phong?exponent=12&ks=0.5&kd=0.5";  ///< "none": no glossy rows
   int glossyBands = 5;
   int glossySamples = 256;
+  /// Each glossy reference sample is a diffuse and a glossy one (two rays and more): half the
+  /// diffuse modes' count costs about what one of them does.
+  int glossyReferenceSamples = 256;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -193,6 +196,7 @@ image::Image displayed(image::Image img, const image::WriteOptions& wo) {
 struct ModeResult {
   TransferMode mode;
   bool glossy = false;  ///< matrix transfer with the --glossy material
+  double seconds = 0;   ///< validation, relighting and pictures
   render::ValidationReport report;
   float errorScale = 0;
   std::string prtImage, refImage, errImage;
@@ -289,8 +293,16 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
         t.stats.secondsTotal, t.stats.raysPerSecond / 1e6, t.stats.stdErrT0Mean);
   }
   h << "</table>\n";
+  double glossySeconds = glossy ? glossy->seconds : 0;
+  for (const LightResult& L : lights)
+    for (const ModeResult& m : L.modes)
+      if (m.glossy) glossySeconds += m.seconds;
   if (glossy)
-    h << "<p class=\"note\">Glossy: <code>glossy.glb</code> ("
+    h << "<p class=\"note\">Glossy (" << fmt::format("{:.0f}", glossySeconds)
+      << " s of the total: the bake, then per environment its reference at "
+      << a.glossyReferenceSamples
+      << " samples per vertex, each a diffuse and a glossy one, and the pictures): "
+         "<code>glossy.glb</code> ("
       << fmt::format("{:.0f}", glossy->bytes / 1e6) << " MB: a " << a.glossyBands * a.glossyBands
       << "×" << a.glossyBands * a.glossyBands
       << " matrix per vertex) holds shadowed transfer matrices M<sub>p</sub>, L'<sub>p</sub> = "
@@ -369,7 +381,8 @@ void runDemo(const DemoArgs& a) {
   if (a.bands < 1 || a.bands > 16) throw Error(fmt::format("--bands {}: must be 1..16", a.bands));
   if (a.samples < 1 || a.samples > kMaxBakeSamples)
     throw Error(fmt::format("--samples {}: must be 1..{}", a.samples, kMaxBakeSamples));
-  if (a.referenceSamples < 1) throw Error("--reference-samples must be at least 1");
+  if (a.referenceSamples < 1 || a.glossyReferenceSamples < 1)
+    throw Error("--reference-samples and --glossy-reference-samples must be at least 1");
   if (a.bounces < 1 || a.bounces > kMaxBounces)
     throw Error(fmt::format("--bounces {}: must be 1..{}", a.bounces, kMaxBounces));
   if (a.frames < 0 || a.frames > 360) throw Error("--frames must be 0..360");
@@ -524,7 +537,7 @@ void runDemo(const DemoArgs& a) {
       m.glossy = bt.field.isMatrix();
       const std::string key = m.glossy ? "glossy" : toString(m.mode);
       render::ValidateSettings vs;
-      vs.reference.samples = a.referenceSamples;
+      vs.reference.samples = m.glossy ? a.glossyReferenceSamples : a.referenceSamples;
       // Glossy: PRT and reference see each vertex from the stills' camera.
       if (m.glossy) vs.reference.eye = camera.eye;
       const sh::RgbSh& lightHere = m.glossy ? glossyLight : light;
@@ -571,6 +584,7 @@ void runDemo(const DemoArgs& a) {
                       "std. error {:.2f}%; reference {:.1f} s, all {:.1f} s)",
                       L.name, key, 100 * last.relRmse, last.bands, 100 * last.floor,
                       100 * last.refStdErr, m.report.reference.seconds, since(tm)));
+      m.seconds = since(tm);
       L.modes.push_back(std::move(m));
     }
 
@@ -670,6 +684,9 @@ void addDemoCommand(CLI::App& root) {
                   "SH bands of the glossy matrices (B⁴ floats per vertex)")
       ->capture_default_str();
   cmd->add_option("--glossy-samples", a->glossySamples, "Bake directions per vertex, glossy")
+      ->capture_default_str();
+  cmd->add_option("--glossy-reference-samples", a->glossyReferenceSamples,
+                  "Reference Monte Carlo samples per vertex, glossy rows")
       ->capture_default_str();
   cmd->callback([a] { runDemo(*a); });
 }
