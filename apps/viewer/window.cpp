@@ -244,7 +244,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
         if (o.stats) {
           glFinish();  // only when asked: it stalls the pipeline
           stats.add(std::chrono::duration<double, std::milli>(Clock::now() - t0).count(), cpu,
-                    view.renderer().lastUploadSeconds() * 1e6);
+                    view.renderer().lastUploadSeconds() * 1e6, view.lastGlossySeconds() * 1e3);
         }
       } catch (const Error& e) {
         // A transfer the GPU cannot hold: say so and go back to the first one.
