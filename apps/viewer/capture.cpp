@@ -51,7 +51,10 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
               median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
   std::printf("CPU per frame (light rotation + packing%s): median %.4f ms\n",
               field.isMatrix() ? " + glossy relighting" : "", median(steady(cpuMs)));
-  if (field.isMatrix()) {
+  if (field.isMatrix() && glossyOnGpu) {
+    std::printf(
+        "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
+  } else if (field.isMatrix()) {
     // Only the frames that relit (light, eye, bands or material changed).
     std::vector<double> relit;
     for (double g : steady(glossyMs))

@@ -249,7 +249,9 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   if (mesh_ != scene.meshVersion) renderer_.setMesh(scene.bake().mesh), mesh_ = scene.meshVersion;
   if (transfer_ != scene.transferVersion) {
     // Matrix transfer is relit on the CPU (relightGlossy below): nothing to upload for it.
-    if (scene.transfer().field.isMatrix())
+    if (scene.transfer().field.isMatrix() && glossyOnGpu)
+      renderer_.setGlossyTransfer(scene.transfer().field), gpuMaterial_ = -1;
+    else if (scene.transfer().field.isMatrix())
       renderer_.setDirectRadiance();
     else
       renderer_.setTransfer(scene.transfer().field);
@@ -278,7 +280,17 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   f.lightRotation = scene.lightRotation();
   packer_.pack(f.lightRotation, scene.bands());
   glossySeconds_ = 0;
-  if (scene.transfer().field.isMatrix()) relightGlossy(scene, f.camera, f.lightRotation);
+  if (scene.transfer().field.isMatrix() && glossyOnGpu) {
+    if (gpuMaterial_ != scene.materialVersion) {
+      // The kernels depend on l only, so the transfer's band count serves every b ≤ B.
+      const relight::PreparedMaterial pm =
+          relight::prepareMaterial(scene.material(), scene.transfer().field.bands);
+      renderer_.setGlossyMaterial(pm.diffuse, pm.glossy, pm.kd, pm.specular);
+      gpuMaterial_ = scene.materialVersion;
+    }
+  } else if (scene.transfer().field.isMatrix()) {
+    relightGlossy(scene, f.camera, f.lightRotation);
+  }
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   f.light = &packer_;
   f.background = scene.background;

@@ -150,6 +150,9 @@ class Scene {
 class SceneView {
  public:
   SceneView() = default;
+  /// Relight glossy (matrix) transfer in the vertex shader instead of on the CPU (prt view
+  /// --glossy-on gpu); set before the first prepare.
+  bool glossyOnGpu = false;
   /// Uploads what changed since the last call and returns this frame's parameters (the light
   /// rotated and packed: the per-frame CPU work).
   FrameParams prepare(const Scene& scene, int width, int height);
@@ -175,7 +178,7 @@ class SceneView {
   LightPacker packer_;
   int mesh_ = -1, transfer_ = -1, env_ = -1, light_ = -1, sh_ = -1;
   double lightSeconds_ = 0, glossySeconds_ = 0;
-  int glossyRelights_ = 0;
+  int glossyRelights_ = 0, gpuMaterial_ = -1;
   // Glossy state: the transfer cut to the shown bands, the prepared material, the radiance, and
   // what they were computed for.
   TransferField glossyField_;

@@ -106,8 +106,10 @@ Scene loadScene(const Options& o, const Output& out) {
 void runHeadless(Scene& scene, const Options& o, const Output& out) {
   HeadlessContext context;
   SceneView view;
+  view.glossyOnGpu = o.glossyOnGpu;
   OffscreenTarget target(o.width, o.height);
   FrameStats stats;
+  stats.glossyOnGpu = o.glossyOnGpu;
   for (int k = 0; k < std::max(o.frames, 1); ++k) {
     const auto t0 = Clock::now();
     const FrameParams f = view.prepare(scene, o.width, o.height);

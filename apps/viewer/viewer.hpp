@@ -20,8 +20,9 @@ struct Options {
   std::string camera;                              ///< as prt render --camera
   std::string mode;                                ///< transfer mode; "" = richest
   std::string material;                            ///< as prt render --material; "" = the bake's
-  int bands = 0;                                   ///< 0 = all the bake has
-  std::string background = "env";                  ///< env | sh | none
+  bool glossyOnGpu = false;        ///< --glossy-on gpu: matrix transfer relit in the vertex shader
+  int bands = 0;                   ///< 0 = all the bake has
+  std::string background = "env";  ///< env | sh | none
   float exposure = 0.0f;
   std::string toneMap = "aces";
   bool autoRotate = false;

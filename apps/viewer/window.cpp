@@ -191,6 +191,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
   GLFWwindow* w = window.handle();
   glfwSetDropCallback(w, onDrop);
   SceneView view;
+  view.glossyOnGpu = o.glossyOnGpu;
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -210,6 +211,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
   ui.renderer = window.renderer();
   out.info("prt view: " + ui.renderer);
   FrameStats stats;
+  stats.glossyOnGpu = o.glossyOnGpu;
   auto last = Clock::now();
   for (int frame = 0; !glfwWindowShouldClose(w); ++frame) {
     glfwPollEvents();

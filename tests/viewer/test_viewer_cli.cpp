@@ -123,6 +123,30 @@ TEST(ViewCli, GlossyMatrixBakeMatchesRender) {
   EXPECT_GT(displayedRmse(path("diffuse.png"), path("render.png")), 2 * kMatch);
 }
 
+// The other glossy path: the matrices in a texture buffer, M·L and the two kernels (SH of the
+// normal and of the reflected view, evaluated in GLSL) in the vertex shader. Same answers.
+TEST(ViewCli, GlossyOnGpuMatchesRender) {
+  PRT_REQUIRE_HEADLESS_GL();
+  const std::string gpu = "--glossy-on gpu";
+  EXPECT_LT(compareWithRender(glossyBake(), "", gpu), kMatch);
+  EXPECT_LT(compareWithRender(glossyBake(),
+                              "--exposure -1 --rotate 20,70,0 "
+                              "--camera 'eye=0.4,1.3,2.3;target=0,0.8,0;fov=45'",
+                              gpu),
+            kMatch);
+  EXPECT_LT(compareWithRender(glossyBake(), "--material 'ggx?roughness=0.35&ks=0.5&kd=0.3'", gpu),
+            kMatch);
+  EXPECT_LT(compareWithRender(glossyBake(), "--bands 3 --light builtin:studio", gpu), kMatch);
+  // Frame 31 of a 180°/s spin against render --rotate 0,90,0: the light follows per frame.
+  const Result r = prt("-q render '" + glossyBake() + "' " + std::string(kSize) +
+                       " --rotate 0,90,0 -o render.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Result v = prt("-q view '" + glossyBake() + "' --headless " + std::string(kSize) +
+                       " --frames 31 --auto-rotate --spin 180 --glossy-on gpu --screenshot g.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_LT(displayedRmse(path("g.png"), path("render.png")), kMatch);
+}
+
 TEST(ViewCli, GlossyRelitEveryFrameAsLightAndCameraMove) {
   PRT_REQUIRE_HEADLESS_GL();
   // Frame 31 of a 180°/s spin is the light turned 90° about +Y (see AutoRotation... above): the
