@@ -11,6 +11,15 @@
 // per-vertex error is shown in false colour beside the per-band validation table. A turntable of
 // the light rotating about +Y closes each environment. index.html shows it all with the numbers.
 //
+// Glossy rows: the scene is also baked as shadowed transfer *matrices* (Sloan, Kautz & Snyder
+// 2002, §6; --glossy-bands, default 5: B⁴ = 625 floats per vertex) and relit with a glossy
+// material (--glossy, default a Phong lobe) seen from the stills' camera, e(p, v) with
+// v = normalize(eye − p) per vertex (relight::relightGlossy, as prt render); the brute-force
+// reference evaluates the same lobe with no SH (render/reference.hpp), and the table adds the
+// fraction of the lobe's energy beyond each band count — what no b-band transfer can hold.
+// The matrices go to glossy.glb (the demo's scene.glb stays the small diffuse bake the web page
+// loads); prt view and prt render relight it.
+//
 // Everything the demo writes comes from the library calls the verbs use (bake, relight,
 // renderRelit, validate), so the pictures are exactly what `prt bake/render/validate` give.
 
@@ -20,6 +29,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "args.hpp"
@@ -38,6 +48,7 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/raytrace/occluder.hpp"
+#include "prt/relight/glossy.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/render.hpp"
@@ -68,6 +79,12 @@ struct DemoArgs {
   int bounces = 1;
   std::string size = "480x360";
   int frames = 12;
+  std::string glossy = "phong?exponent=12&ks=0.5&kd=0.5";  ///< "none": no glossy rows
+  int glossyBands = 5;
+  int glossySamples = 256;
+  /// Each glossy reference sample is a diffuse and a glossy one (two rays and more): half the
+  /// diffuse modes' count costs about what one of them does.
+  int glossyReferenceSamples = 256;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -178,6 +195,8 @@ image::Image displayed(image::Image img, const image::WriteOptions& wo) {
 
 struct ModeResult {
   TransferMode mode;
+  bool glossy = false;  ///< matrix transfer with the --glossy material
+  double seconds = 0;   ///< validation, relighting and pictures
   render::ValidationReport report;
   float errorScale = 0;
   std::string prtImage, refImage, errImage;
@@ -191,9 +210,23 @@ struct LightResult {
   double seconds = 0;
 };
 
+/// The glossy bake, when made.
+struct GlossyBake {
+  BakeFile file;
+  Material material;
+  double seconds = 0;
+  std::size_t bytes = 0;
+};
+
+/// "shadowed" or "glossy (shadowed matrix, phong?...)".
+std::string modeTitle(const ModeResult& m, const GlossyBake* g) {
+  if (!m.glossy || !g) return toString(m.mode);
+  return fmt::format("glossy: {} transfer matrices, {}", toString(m.mode), g->material.spec());
+}
+
 void writeIndex(const std::string& path, const Scene& scene, const BakeFile& bake,
                 const std::vector<LightResult>& lights, const DemoArgs& a, double bakeSeconds,
-                double totalSeconds, const std::string& webWhy) {
+                double totalSeconds, const std::string& webWhy, const GlossyBake* glossy) {
   std::ostringstream h;
   h << R"(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>prtkit demo</title>
@@ -251,7 +284,37 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
         toString(t.settings.mode), t.stats.rays, t.stats.secondsTotal, t.stats.raysPerSecond / 1e6,
         t.stats.stdErrT0Mean);
   }
-  h << "</table>\n<p>Files: <code>scene.glb</code> (the bake; any glTF viewer opens it as a mesh), "
+  if (glossy) {
+    const BakedTransfer& t = glossy->file.transfers.front();
+    h << fmt::format(
+        "<tr><td>glossy ({} matrices, {} bands, {} samples)</td><td>{}</td><td>{:.2f} s</td>"
+        "<td>{:.1f}</td><td>{:.2e}</td></tr>\n",
+        toString(t.settings.mode), t.settings.bands, t.settings.samples, t.stats.rays,
+        t.stats.secondsTotal, t.stats.raysPerSecond / 1e6, t.stats.stdErrT0Mean);
+  }
+  h << "</table>\n";
+  double glossySeconds = glossy ? glossy->seconds : 0;
+  for (const LightResult& L : lights)
+    for (const ModeResult& m : L.modes)
+      if (m.glossy) glossySeconds += m.seconds;
+  if (glossy)
+    h << "<p class=\"note\">Glossy (" << fmt::format("{:.0f}", glossySeconds)
+      << " s of the total: the bake, then per environment its reference at "
+      << a.glossyReferenceSamples
+      << " samples per vertex, each a diffuse and a glossy one, and the pictures): "
+         "<code>glossy.glb</code> ("
+      << fmt::format("{:.0f}", glossy->bytes / 1e6) << " MB: a " << a.glossyBands * a.glossyBands
+      << "×" << a.glossyBands * a.glossyBands
+      << " matrix per vertex) holds shadowed transfer matrices M<sub>p</sub>, L'<sub>p</sub> = "
+         "M<sub>p</sub>L the light "
+         "arriving at p; the material <code>"
+      << htmlEscape(glossy->material.spec())
+      << "</code> is applied at relighting time, each vertex seen from the stills' camera "
+         "(<code>prt view glossy.glb</code> relights it live, <code>prt render glossy.glb "
+         "--material ...</code> with another lobe). Its reference uses the same lobe with no SH, "
+         "so the error is SH truncation of visibility, light <i>and</i> lobe (the table's last "
+         "column: the lobe's energy beyond b bands) plus noise.</p>\n";
+  h << "<p>Files: <code>scene.glb</code> (the bake; any glTF viewer opens it as a mesh), "
        "<code>lights/*.json</code> (SH lighting), <code>validation/*.json</code>. Try "
        "<code>prt render scene.glb --light lights/"
     << (lights.empty() ? "sky" : lights.front().name) << ".json -o mine.png</code>.</p>\n";
@@ -263,7 +326,8 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
          "</figure>\n";
     for (const ModeResult& m : L.modes) {
       const render::ValidationReport& r = m.report;
-      h << "<div class=\"mode\"><h3>" << toString(m.mode) << "</h3><div class=\"imgs\">";
+      h << "<div class=\"mode\"><h3>" << htmlEscape(modeTitle(m, glossy))
+        << "</h3><div class=\"imgs\">";
       h << "<figure><img src=\"" << m.prtImage << "\"><figcaption>PRT, " << r.bands
         << " bands</figcaption></figure>";
       h << "<figure><img src=\"" << m.refImage
@@ -276,18 +340,21 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
         << "</figcaption></figure></div>\n";
       h << "<table><tr><th>bands</th><th>rel. RMSE</th><th>energy-weighted</th><th>mean rel. "
            "error</th><th>max rel. error</th><th>truncation floor</th><th>reference std. "
-           "error</th></tr>\n";
+           "error</th>"
+        << (m.glossy ? "<th>lobe energy &gt; b</th>" : "") << "</tr>\n";
       for (const render::BandRow& row : r.rows)
         h << fmt::format(
-            "<tr><td>{}</td><td>{:.2f}%</td><td>{:.2f}%</td><td>{:.2f}%</td><td>{:.1f}%</td>"
-            "<td>{:.2f}%</td><td>{:.2f}%</td></tr>\n",
-            row.bands, 100 * row.relRmse, 100 * row.energyRel, 100 * row.meanRel, 100 * row.maxRel,
-            100 * row.floor, 100 * row.refStdErr);
+                 "<tr><td>{}</td><td>{:.2f}%</td><td>{:.2f}%</td><td>{:.2f}%</td><td>{:.1f}%</td>"
+                 "<td>{:.2f}%</td><td>{:.2f}%</td>",
+                 row.bands, 100 * row.relRmse, 100 * row.energyRel, 100 * row.meanRel,
+                 100 * row.maxRel, 100 * row.floor, 100 * row.refStdErr)
+          << (m.glossy ? fmt::format("<td>{:.1f}%</td>", 100 * row.lobeEnergyBeyond) : "")
+          << "</tr>\n";
       h << "</table></div>\n";
     }
     h << "<p><a href=\"" << L.comparison
-      << "\">All modes in one picture</a> (rows: unshadowed, shadowed, inter-reflected; "
-         "columns: PRT, reference, error).</p>\n";
+      << "\">All modes in one picture</a> (rows: unshadowed, shadowed, inter-reflected"
+      << (glossy ? ", glossy" : "") << "; columns: PRT, reference, error).</p>\n";
     if (!L.frames.empty()) {
       h << "<h3>The light turning about +Y (inter-reflected, SH rotation)</h3>\n<img id=\"turn_"
         << L.name << "\" src=\"" << L.frames.front() << "\"><p><a href=\"" << L.turntable
@@ -314,10 +381,23 @@ void runDemo(const DemoArgs& a) {
   if (a.bands < 1 || a.bands > 16) throw Error(fmt::format("--bands {}: must be 1..16", a.bands));
   if (a.samples < 1 || a.samples > kMaxBakeSamples)
     throw Error(fmt::format("--samples {}: must be 1..{}", a.samples, kMaxBakeSamples));
-  if (a.referenceSamples < 1) throw Error("--reference-samples must be at least 1");
+  if (a.referenceSamples < 1 || a.glossyReferenceSamples < 1)
+    throw Error("--reference-samples and --glossy-reference-samples must be at least 1");
   if (a.bounces < 1 || a.bounces > kMaxBounces)
     throw Error(fmt::format("--bounces {}: must be 1..{}", a.bounces, kMaxBounces));
   if (a.frames < 0 || a.frames > 360) throw Error("--frames must be 0..360");
+  if (a.glossyBands < 1 || a.glossyBands > 8)
+    throw Error(fmt::format("--glossy-bands {}: must be 1..8", a.glossyBands));
+  if (a.glossySamples < 1 || a.glossySamples > kMaxBakeSamples)
+    throw Error(
+        fmt::format("--glossy-samples {}: must be 1..{}", a.glossySamples, kMaxBakeSamples));
+  std::optional<Material> glossyMaterial;
+  if (a.glossy != "none") {
+    glossyMaterial = parseMaterial(a.glossy);
+    if (!glossyMaterial->glossy())
+      throw Error(
+          fmt::format("--glossy '{}': no glossy lobe (use 'none' for no glossy rows)", a.glossy));
+  }
   render::FrameSettings frame;
   parseSize(a.size, frame.width, frame.height);
   const std::vector<std::string> envSpecs = a.envs.empty() ? defaultEnvironments() : a.envs;
@@ -390,6 +470,32 @@ void runDemo(const DemoArgs& a) {
   writeBake(file("scene.glb"), bake);
   const double bakeSeconds = since(tb);
 
+  // The glossy bake: shadowed transfer matrices, in a file of their own.
+  std::optional<GlossyBake> glossy;
+  if (glossyMaterial) {
+    const auto tg = Clock::now();
+    glossy.emplace();
+    glossy->material = *glossyMaterial;
+    BakeFile& g = glossy->file;
+    g.mesh = bake.mesh;
+    g.generator = bake.generator;
+    g.vertexCount = bake.vertexCount;
+    BakedTransfer t;
+    t.settings.mode = TransferMode::Shadowed;
+    t.settings.layout = TransferLayout::Matrix;
+    t.settings.bands = a.glossyBands;
+    t.settings.samples = a.glossySamples;
+    t.settings.material = *glossyMaterial;
+    t.settings.vertexCount = g.vertexCount;
+    t.field = prt::bake(g.mesh, *occluder, t.settings, &t.stats, progressBar("bake glossy"));
+    g.transfers.push_back(std::move(t));
+    writeBake(file("glossy.glb"), g);
+    glossy->bytes = fs::file_size(file("glossy.glb"));
+    glossy->seconds = since(tg);
+    info(fmt::format("demo: baked glossy matrices ({} bands) in {:.2f} s, glossy.glb {:.0f} MB",
+                     a.glossyBands, glossy->seconds, glossy->bytes / 1e6));
+  }
+
   render::Camera camera =
       render::frameSphere(scene.centre, scene.radius, frame.width, frame.height);
   std::vector<LightResult> lights;
@@ -415,23 +521,42 @@ void runDemo(const DemoArgs& a) {
 
     const render::BackgroundFn background = render::environmentBackground(env, Mat3d::identity());
     std::vector<image::Image> panels3;  // per mode: PRT, reference, error (display values)
-    for (const BakedTransfer& bt : bake.transfers) {
+    std::vector<const BakedTransfer*> rows;
+    for (const BakedTransfer& bt : bake.transfers) rows.push_back(&bt);
+    if (glossy) rows.push_back(&glossy->file.transfers.front());
+    // The glossy light: this environment projected at the glossy bands (relightGlossy and
+    // validate cut a light with more bands; one with fewer would leave the matrices' upper
+    // columns dark).
+    const sh::RgbSh glossyLight =
+        glossy && a.glossyBands > a.bands ? envmap::projectEnvironment(env, a.glossyBands) : light;
+    for (const BakedTransfer* btp : rows) {
+      const BakedTransfer& bt = *btp;
       const auto tm = Clock::now();
       ModeResult m;
       m.mode = bt.settings.mode;
+      m.glossy = bt.field.isMatrix();
+      const std::string key = m.glossy ? "glossy" : toString(m.mode);
       render::ValidateSettings vs;
-      vs.reference.samples = a.referenceSamples;
-      m.report =
-          render::validate(bake.mesh, *occluder, bt.field, bt.settings, env, light, vs,
-                           progressBar(fmt::format("reference {} {}", L.name, toString(m.mode))));
-      writeFileAtomically(file(fmt::format("validation/{}_{}.json", L.name, toString(m.mode))),
+      vs.reference.samples = m.glossy ? a.glossyReferenceSamples : a.referenceSamples;
+      // Glossy: PRT and reference see each vertex from the stills' camera.
+      if (m.glossy) vs.reference.eye = camera.eye;
+      const sh::RgbSh& lightHere = m.glossy ? glossyLight : light;
+      m.report = render::validate(bake.mesh, *occluder, bt.field, bt.settings, env, lightHere, vs,
+                                  progressBar(fmt::format("reference {} {}", L.name, key)));
+      writeFileAtomically(file(fmt::format("validation/{}_{}.json", L.name, key)),
                           render::reportJson(m.report));
-      const std::vector<Rgb> relit = relight::relight(bt.field, light, bake.mesh.albedo);
+      std::vector<Rgb> relit(bake.mesh.vertexCount());
+      if (m.glossy)
+        relight::relightGlossy(bt.field, lightHere, bt.settings.material,
+                               {bake.mesh.positions, bake.mesh.normals, camera.eye},
+                               bake.mesh.albedo, relit);
+      else
+        relit = relight::relight(bt.field, light, bake.mesh.albedo);
       // One exposure per environment, from its unshadowed (brightest) relighting, so every picture
       // under it compares directly.
       if (m.mode == TransferMode::Unshadowed) L.exposure = objectExposure(relit);
       const image::WriteOptions wo{image::ToneMap::Aces, L.exposure};
-      const std::string base = fmt::format("img/{}_{}", L.name, toString(m.mode));
+      const std::string base = fmt::format("img/{}_{}", L.name, key);
       const auto save = [&](const std::string& name, const image::Image& img,
                             const image::WriteOptions& opts) {
         panels3.push_back(displayed(img, opts));
@@ -457,8 +582,9 @@ void runDemo(const DemoArgs& a) {
       info(
           fmt::format("demo: {} {}: rel. RMSE {:.2f}% at {} bands (floor {:.2f}%, reference "
                       "std. error {:.2f}%; reference {:.1f} s, all {:.1f} s)",
-                      L.name, toString(m.mode), 100 * last.relRmse, last.bands, 100 * last.floor,
+                      L.name, key, 100 * last.relRmse, last.bands, 100 * last.floor,
                       100 * last.refStdErr, m.report.reference.seconds, since(tm)));
+      m.seconds = since(tm);
       L.modes.push_back(std::move(m));
     }
 
@@ -512,7 +638,8 @@ void runDemo(const DemoArgs& a) {
     warn("demo: no live viewer on the page: " + webWhy);
   }
 
-  writeIndex(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0), webWhy);
+  writeIndex(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0), webWhy,
+             glossy ? &*glossy : nullptr);
 
   // Into place: replace an earlier demo folder only now that the new one is complete.
   if (fs::exists(out)) {
@@ -548,6 +675,18 @@ void addDemoCommand(CLI::App& root) {
   cmd->add_option("--bounces", a->bounces, "Inter-reflection bounces")->capture_default_str();
   cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Turntable frames per environment (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--glossy", a->glossy,
+                  "Material of the glossy rows (shadowed transfer matrices, glossy.glb), or "
+                  "none")
+      ->capture_default_str();
+  cmd->add_option("--glossy-bands", a->glossyBands,
+                  "SH bands of the glossy matrices (B⁴ floats per vertex)")
+      ->capture_default_str();
+  cmd->add_option("--glossy-samples", a->glossySamples, "Bake directions per vertex, glossy")
+      ->capture_default_str();
+  cmd->add_option("--glossy-reference-samples", a->glossyReferenceSamples,
+                  "Reference Monte Carlo samples per vertex, glossy rows")
       ->capture_default_str();
   cmd->callback([a] { runDemo(*a); });
 }

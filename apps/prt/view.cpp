@@ -24,7 +24,8 @@ struct ViewArgs {
   std::vector<std::string> envs;
   std::string size = "640x480";
   std::string rotate;
-  std::string camera, mode, background = "env", toneMap = "aces", screenshot;
+  std::string camera, mode, material, glossyOn = "cpu", background = "env", toneMap = "aces",
+                                      screenshot;
   int bands = 0, frames = 0;
   float exposure = 0.0f;
   bool autoRotate = false, headless = false, stats = false;
@@ -43,6 +44,8 @@ void runView(const ViewArgs& a) {
   if (!a.rotate.empty()) o.rotateDeg = parseEulerDegrees(a.rotate);
   o.camera = a.camera;
   o.mode = a.mode;
+  o.material = a.material;
+  o.glossyOnGpu = a.glossyOn == "gpu";
   o.bands = a.bands;
   o.background = a.background;
   o.exposure = a.exposure;
@@ -78,6 +81,15 @@ void addViewCommand(CLI::App& root) {
                   "Camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (default: prt render's "
                   "framing)");
   cmd->add_option("--mode", a->mode, "Transfer mode to start with (default: the richest)");
+  cmd->add_option("--material", a->material,
+                  "Relight with this material instead of the bake's: lambert, "
+                  "'phong?exponent=32&ks=0.5', 'ggx?roughness=0.3&ks=0.04' (glossy needs a "
+                  "matrix bake)");
+  cmd->add_option("--glossy-on", a->glossyOn,
+                  "Where glossy (matrix) transfer is relit: cpu (relightGlossy into a vertex "
+                  "buffer) or gpu (the vertex shader, scalar matrices up to 8 bands)")
+      ->check(CLI::IsMember({"cpu", "gpu"}))
+      ->capture_default_str();
   cmd->add_option("--bands", a->bands, "Start with at most this many SH bands")
       ->check(intRange(1, 32));
   cmd->add_option("--background", a->background,

@@ -40,15 +40,30 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
                        std::size_t lightBytes) const {
   if (frameMs.empty()) return;
   std::printf("renderer: %s\n", renderer.c_str());
-  std::printf("scene: %zu triangles, %zu vertices, %d of %d bands, %s transfer (%s)\n",
+  const TransferField& field = scene.transfer().field;
+  std::printf("scene: %zu triangles, %zu vertices, %d of %d bands, %s %s transfer (%s), %s\n",
               scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(), scene.bands(),
-              scene.bakeBands(), toString(scene.transfer().settings.mode),
-              scene.transfer().field.channels == 3 ? "RGB" : "scalar");
+              scene.bakeBands(), toString(scene.transfer().settings.mode), toString(field.layout),
+              field.channels == 3 ? "RGB" : "scalar", scene.material().spec().c_str());
   std::printf("frames: %zu at %dx%d; first frame %.2f ms (uploads)\n", frameMs.size(), width,
               height, frameMs.front());
   std::printf("frame time (draw + glFinish): median %.3f ms, min %.3f ms\n",
               median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
-  std::printf("CPU per frame (light rotation + packing): median %.4f ms\n", median(steady(cpuMs)));
+  std::printf("CPU per frame (light rotation + packing%s): median %.4f ms\n",
+              field.isMatrix() ? " + glossy relighting" : "", median(steady(cpuMs)));
+  if (field.isMatrix() && glossyOnGpu) {
+    std::printf(
+        "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
+  } else if (field.isMatrix()) {
+    // Only the frames that relit (light, eye, bands or material changed).
+    std::vector<double> relit;
+    for (double g : steady(glossyMs))
+      if (g > 0) relit.push_back(g);
+    std::printf(
+        "glossy relighting (CPU relightGlossy + radiance upload): median %.3f ms over "
+        "%zu relit frames\n",
+        median(relit), relit.size());
+  }
   std::printf("light upload (glBufferSubData, %zu bytes): median %.2f us\n", lightBytes,
               median(steady(uploadUs)));
 }

@@ -16,9 +16,12 @@ void writeScreenshot(const std::string& path, const image::Image& encoded,
 
 /// Per-frame timings in milliseconds; the first frame (uploads) is reported apart.
 struct FrameStats {
-  std::vector<double> frameMs, cpuMs, uploadUs;
-  void add(double frame, double cpu, double upload) {
+  std::vector<double> frameMs, cpuMs, uploadUs, glossyMs;
+  bool glossyOnGpu = false;  ///< matrix transfer relit in the vertex shader (no CPU relighting)
+  /// `glossy`: the CPU relighting of matrix transfer this frame (0 when none ran).
+  void add(double frame, double cpu, double upload, double glossy = 0.0) {
     frameMs.push_back(frame), cpuMs.push_back(cpu), uploadUs.push_back(upload);
+    glossyMs.push_back(glossy);
   }
   /// Prints the summary on stdout.
   void print(const std::string& renderer, const Scene& scene, int width, int height,

@@ -142,7 +142,9 @@ Renderer::Renderer() {
   backgroundProgram_ =
       link(glsl330(kShaderFullscreenVert), glsl330(kShaderBackgroundFrag), "background");
   toneProgram_ = link(glsl330(kShaderFullscreenVert), glsl330(kShaderToneFrag), "tone map");
+  glossyProgram_ = link(glsl330(kShaderGlossyVert), glsl330(kShaderMeshFrag), "glossy mesh");
   glUniformBlockBinding(meshProgram_, glGetUniformBlockIndex(meshProgram_, "Light"), 0);
+  glUniformBlockBinding(glossyProgram_, glGetUniformBlockIndex(glossyProgram_, "Light"), 0);
   glGenVertexArrays(1, &vao_);
   glGenVertexArrays(1, &emptyVao_);
   glGenBuffers(1, &lightUbo_);
@@ -158,10 +160,11 @@ Renderer::Renderer() {
 }
 
 Renderer::~Renderer() {
-  const GLuint programs[] = {meshProgram_, backgroundProgram_, toneProgram_};
+  const GLuint programs[] = {meshProgram_, backgroundProgram_, toneProgram_, glossyProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
-  const GLuint buffers[] = {positions_, albedo_, indices_, transferBuffer_, lightUbo_};
-  glDeleteBuffers(5, buffers);
+  const GLuint buffers[] = {positions_, albedo_,   indices_, transferBuffer_,
+                            lightUbo_,  radiance_, normals_};
+  glDeleteBuffers(7, buffers);
   const GLuint textures[] = {transferTexture_, envTexture_, shTexture_, msColour_, resolveColour_};
   glDeleteTextures(5, textures);
   glDeleteRenderbuffers(1, &msDepth_);
@@ -193,6 +196,17 @@ void Renderer::setMesh(const Mesh& mesh) {
     glDisableVertexAttribArray(1);
     glVertexAttrib3f(1, a.x, a.y, a.z);
   }
+  if (mesh.normals.size() == mesh.positions.size()) {
+    if (!normals_) glGenBuffers(1, &normals_);
+    glBindBuffer(GL_ARRAY_BUFFER, normals_);
+    glBufferData(GL_ARRAY_BUFFER, sizeof(Vec3f) * mesh.normals.size(), mesh.normals.data(),
+                 GL_STATIC_DRAW);
+    glVertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+    glEnableVertexAttribArray(3);
+  } else {
+    glDisableVertexAttribArray(3);
+    glVertexAttrib3f(3, 0.0f, 1.0f, 0.0f);
+  }
   if (!indices_) glGenBuffers(1, &indices_);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(mesh.triangles[0]) * mesh.triangles.size(),
@@ -201,12 +215,94 @@ void Renderer::setMesh(const Mesh& mesh) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   triangles_ = mesh.triangleCount();
   vertices_ = mesh.vertexCount();
+  hasRadiance_ = false;  // the radiance buffer, if any, was for another mesh
   const Bounds b = computeBounds(mesh);
   centre_ = b.centre();
   radius_ = std::max(b.radius(), 1e-6f);
 }
 
+void Renderer::setDirectRadiance() {
+  direct_ = true;
+  glossyGpu_ = false;
+}
+
+void Renderer::setGlossyTransfer(const TransferField& t) {
+  PRT_CHECK(t.isMatrix(), "setGlossyTransfer needs matrix transfer");
+  if (t.channels != 1)
+    throw Error("the vertex-shader glossy path takes scalar matrices only (use --glossy-on cpu)");
+  if (t.bands < 1 || t.bands > kMaxGpuGlossyBands)
+    throw Error(
+        fmt::format("the vertex-shader glossy path draws 1..{} bands, the transfer has {} "
+                    "(use --glossy-on cpu)",
+                    kMaxGpuGlossyBands, t.bands));
+  const int n = t.coeffs(), rowTexels = (n + 3) / 4, vertexTexels = n * rowTexels;
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  const double texels = double(vertexTexels) * double(t.vertexCount);
+  if (texels > double(maxTexels))
+    throw Error(
+        fmt::format("the glossy transfer needs {:.0f} texels, more than this OpenGL's "
+                    "texture buffer limit of {} (use --glossy-on cpu)",
+                    texels, maxTexels));
+  // Row i of vertex v at texels v·n·rowTexels + i·rowTexels, its n entries zero-padded.
+  std::vector<float> packed(std::size_t(vertexTexels) * 4 * t.vertexCount, 0.0f);
+  for (std::size_t v = 0; v < t.vertexCount; ++v)
+    for (int i = 0; i < n; ++i) {
+      const float* src = t.vertex(v) + std::size_t(i) * n;
+      std::copy(src, src + n, packed.data() + (v * vertexTexels + std::size_t(i) * rowTexels) * 4);
+    }
+  if (!transferBuffer_) glGenBuffers(1, &transferBuffer_);
+  glBindBuffer(GL_TEXTURE_BUFFER, transferBuffer_);
+  glBufferData(GL_TEXTURE_BUFFER, sizeof(float) * packed.size(), packed.data(), GL_STATIC_DRAW);
+  if (!transferTexture_) glGenTextures(1, &transferTexture_);
+  glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transferBuffer_);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  glossyGpu_ = true;
+  direct_ = false;
+  transferBands_ = t.bands;
+  transferChannels_ = 1;
+  transferStride_ = rowTexels;  // texels per row; a vertex is n rows
+}
+
+void Renderer::setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
+                                 std::optional<Rgb> kd, Rgb ks) {
+  // The SH normalisation N_lm the shader's basis leaves out: sqrt((2l+1)/4π · (l−|m|)!/(l+|m|)!),
+  // times √2 for m ≠ 0 (real SH).
+  glossyDiffuse_.assign(64, 0.0f);
+  glossyLobe_.assign(64, 0.0f);
+  for (int l = 0; l < kMaxGpuGlossyBands; ++l)
+    for (int m = -l; m <= l; ++m) {
+      const int i = l * (l + 1) + m, am = std::abs(m);
+      double ratio = 1.0;  // (l−|m|)! / (l+|m|)!
+      for (int k = l - am + 1; k <= l + am; ++k) ratio /= k;
+      double norm = std::sqrt((2 * l + 1) / (4 * kPi) * ratio);
+      if (m != 0) norm *= std::sqrt(2.0);
+      if (std::size_t(i) < diffuse.size()) glossyDiffuse_[i] = float(diffuse[i] * norm);
+      if (std::size_t(i) < glossy.size()) glossyLobe_[i] = float(glossy[i] * norm);
+    }
+  glossyKd_ = kd;
+  glossyKs_ = ks;
+}
+
+void Renderer::setRadiance(std::span<const Rgb> radiance) {
+  PRT_CHECK(radiance.size() == vertices_, "setRadiance needs one value per vertex");
+  glBindVertexArray(vao_);
+  if (!radiance_) glGenBuffers(1, &radiance_);
+  glBindBuffer(GL_ARRAY_BUFFER, radiance_);
+  // Orphan and refill: the previous frame may still be reading the old contents.
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sizeof(Rgb) * radiance.size()), radiance.data(),
+               GL_STREAM_DRAW);
+  glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(Rgb), nullptr);
+  glEnableVertexAttribArray(2);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  hasRadiance_ = true;
+}
+
 void Renderer::setTransfer(const TransferField& t) {
+  PRT_CHECK(!t.isMatrix(), "matrix transfer: setRadiance or setGlossyTransfer");
+  glossyGpu_ = false;
   if (t.bands < 1 || t.bands > kMaxViewerBands)
     throw Error(
         fmt::format("the transfer has {} bands; the viewer draws 1..{}", t.bands, kMaxViewerBands));
@@ -238,6 +334,7 @@ void Renderer::setTransfer(const TransferField& t) {
   glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transferBuffer_);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  direct_ = false;
   transferBands_ = t.bands;
   transferChannels_ = t.channels;
   transferStride_ = texelsPerVertex;
@@ -341,7 +438,35 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   }
 
   // (b) the relit mesh.
-  if (triangles_ > 0 && transferTexture_) {
+  if (triangles_ > 0 && glossyGpu_) {
+    const auto t0 = std::chrono::steady_clock::now();
+    glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(f.light->bytes()), f.light->data());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, lightUbo_);
+    uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const int b = std::min({f.light->bands(), transferBands_, kMaxGpuGlossyBands});
+    const GLuint p = glossyProgram_;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(p);
+    glUniformMatrix4fv(loc(p, "uViewProj"), 1, GL_FALSE, viewProj);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
+    glUniform1i(loc(p, "uTransfer"), 1);
+    glUniform1i(loc(p, "uBands"), b);
+    glUniform1i(loc(p, "uRowTexels"), transferStride_);
+    glUniform1i(loc(p, "uVertexTexels"), transferStride_ * transferBands_ * transferBands_);
+    glUniform1fv(loc(p, "uDiffuse"), 64, glossyDiffuse_.data());
+    glUniform1fv(loc(p, "uGlossy"), 64, glossyLobe_.data());
+    const Rgb kd = glossyKd_.value_or(Rgb(1.0f));
+    glUniform3f(loc(p, "uKd"), kd.x, kd.y, kd.z);
+    glUniform1i(loc(p, "uHasKd"), glossyKd_.has_value());
+    glUniform3f(loc(p, "uKs"), glossyKs_.x, glossyKs_.y, glossyKs_.z);
+    uniform3(p, "uEye", c.eye);
+    glBindVertexArray(vao_);
+    glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_DEPTH_TEST);
+  } else if (triangles_ > 0 && (direct_ ? hasRadiance_ : transferTexture_ != 0)) {
     const auto t0 = std::chrono::steady_clock::now();
     glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(f.light->bytes()), f.light->data());
@@ -357,7 +482,10 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     glUniform1i(loc(meshProgram_, "uTransfer"), 1);
     glUniform1i(loc(meshProgram_, "uTexelsPerVertex"), transferStride_);
     glUniform1i(loc(meshProgram_, "uRgb"), transferChannels_ == 3);
-    glUniform1i(loc(meshProgram_, "uCount"), transferChannels_ == 3 ? b * b : paddedCoeffs(b) / 4);
+    glUniform1i(loc(meshProgram_, "uCount"), direct_                  ? 0
+                                             : transferChannels_ == 3 ? b * b
+                                                                      : paddedCoeffs(b) / 4);
+    glUniform1i(loc(meshProgram_, "uDirect"), direct_);
     glBindVertexArray(vao_);
     glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
     glDisable(GL_DEPTH_TEST);

@@ -11,6 +11,8 @@
 //        from the transfer in a texture buffer and the rotated light L' = D(R) L in a uniform
 //        block (LightPacker); the rasteriser interpolates R perspective-correctly across each
 //        triangle — the barycentric interpolation prt render does on ray hits.
+//        Glossy (matrix) transfer instead arrives as per-vertex exit radiance computed on the
+//        CPU (SceneView, relight::relightGlossy) in a vertex buffer the shader passes through.
 //  2. The samples are resolved (box filter, like render's stratified spp average).
 //  3. A full-screen pass applies exposure 2^stops, the tone map and the sRGB encode
 //     (image::toneMap, image::linearToSrgb: the same formulas in GLSL) into the target.
@@ -22,6 +24,8 @@
 // Truncating to b < B bands only shortens the shader's loop: nothing is re-uploaded.
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "light_packer.hpp"
@@ -35,6 +39,9 @@
 namespace prt::viewer {
 
 enum class BackgroundMode { Env, Sh, None };
+
+/// Bands the vertex-shader glossy path evaluates (its SH arrays hold 64 coefficients).
+inline constexpr int kMaxGpuGlossyBands = 8;
 
 struct FrameParams {
   render::Camera camera;
@@ -78,6 +85,20 @@ class Renderer {
   /// Uploads a transfer with one row per mesh vertex. Throws prt::Error when it does not fit
   /// the driver's texture-buffer limit or its bands exceed kMaxViewerBands.
   void setTransfer(const TransferField& transfer);
+  /// Draws per-vertex radiance from setRadiance instead of relighting a transfer in the shader
+  /// (glossy transfer, relit on the CPU); until the next setTransfer.
+  void setDirectRadiance();
+  /// Uploads exit radiance, one value per mesh vertex (albedo already applied).
+  void setRadiance(std::span<const Rgb> radiance);
+  /// The other glossy path (prt view --glossy-on gpu): uploads scalar transfer matrices (rows
+  /// padded to a multiple of four) and relights them in the vertex shader (shaders/viewer/
+  /// glossy.vert). Throws prt::Error for RGB matrices, more than kMaxGpuGlossyBands bands or a
+  /// transfer over the texture-buffer limit.
+  void setGlossyTransfer(const TransferField& transfer);
+  /// The material for setGlossyTransfer's shader: per-coefficient kernels (A_l/π and Λ_l, as
+  /// relight::PreparedMaterial, at least b² of them), kd (unset: the mesh's albedo) and ks.
+  void setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
+                         std::optional<Rgb> kd, Rgb ks);
   /// The lat-long images behind BackgroundMode::Env and ::Sh (linear RGB).
   void setEnvironmentImage(const image::Image& latLong);
   void setShImage(const image::Image& latLong);
@@ -94,13 +115,17 @@ class Renderer {
  private:
   void resize(int width, int height);
 
-  unsigned meshProgram_ = 0, backgroundProgram_ = 0, toneProgram_ = 0;
-  unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0;
-  unsigned transferBuffer_ = 0, transferTexture_ = 0, lightUbo_ = 0;
+  unsigned meshProgram_ = 0, backgroundProgram_ = 0, toneProgram_ = 0, glossyProgram_ = 0;
+  unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0, normals_ = 0;
+  unsigned transferBuffer_ = 0, transferTexture_ = 0, lightUbo_ = 0, radiance_ = 0;
   unsigned envTexture_ = 0, shTexture_ = 0;
   unsigned msFbo_ = 0, msColour_ = 0, msDepth_ = 0, resolveFbo_ = 0, resolveColour_ = 0;
   int fbWidth_ = 0, fbHeight_ = 0;
-  bool hasAlbedo_ = false;
+  bool hasAlbedo_ = false, direct_ = false, hasRadiance_ = false, glossyGpu_ = false;
+  // Kernels × the SH normalisation, 64 each.
+  std::vector<float> glossyDiffuse_ = std::vector<float>(64), glossyLobe_ = std::vector<float>(64);
+  std::optional<Rgb> glossyKd_;
+  Rgb glossyKs_{0.0f};
   int transferBands_ = 0, transferChannels_ = 1, transferStride_ = 0;
   std::size_t triangles_ = 0, vertices_ = 0;
   Vec3f centre_{0.0f};

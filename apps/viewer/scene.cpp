@@ -12,6 +12,7 @@
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/relight/relight.hpp"
 
 namespace prt::viewer {
 
@@ -158,16 +159,25 @@ void Scene::setBake(BakeFile bake, const std::string& name, int width, int heigh
                                   : envmap::projectEnvironment(e.env, bands));
     for (std::size_t k = 0; k < envs_.size(); ++k) envs_[k].light = std::move(lights[k]);
   }
+  // pickTransfer's order: the richest mode first, a matrix before a vector of the same mode.
   std::stable_sort(bake.transfers.begin(), bake.transfers.end(),
                    [](const BakedTransfer& a, const BakedTransfer& b) {
-                     return richness(a.settings.mode) < richness(b.settings.mode);
+                     const int ra = richness(a.settings.mode), rb = richness(b.settings.mode);
+                     if (ra != rb) return ra < rb;
+                     return a.field.isMatrix() && !b.field.isMatrix();
                    });
   bake_ = std::move(bake);
   bakeName_ = name;
   bakeBands_ = bands_ = bands;
   transfer_ = 0;
+  setMaterial(materialOverride_ ? *materialOverride_ : bake_.transfers.front().settings.material);
   orbit = OrbitCamera(render::frameMesh(bake_.mesh, width, height));
   ++meshVersion, ++transferVersion, ++shVersion;
+}
+
+void Scene::setMaterial(const Material& m) {
+  material_ = m;
+  ++materialVersion;
 }
 
 void Scene::addEnvironment(EnvironmentEntry entry) {
@@ -191,7 +201,9 @@ std::string Scene::loadDropped(const std::string& path, int width, int height) {
 
 void Scene::selectTransfer(int k) {
   k = std::clamp(k, 0, int(bake_.transfers.size()) - 1);
-  if (k != transfer_) transfer_ = k, ++transferVersion;
+  if (k == transfer_) return;
+  transfer_ = k, ++transferVersion;
+  setMaterial(materialOverride_ ? *materialOverride_ : bake_.transfers[k].settings.material);
 }
 
 void Scene::selectEnvironment(int k) {
@@ -230,8 +242,16 @@ image::Image Scene::shBackground() const {
 
 FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   if (mesh_ != scene.meshVersion) renderer_.setMesh(scene.bake().mesh), mesh_ = scene.meshVersion;
-  if (transfer_ != scene.transferVersion)
-    renderer_.setTransfer(scene.transfer().field), transfer_ = scene.transferVersion;
+  if (transfer_ != scene.transferVersion) {
+    // Matrix transfer is relit on the CPU (relightGlossy below): nothing to upload for it.
+    if (scene.transfer().field.isMatrix() && glossyOnGpu)
+      renderer_.setGlossyTransfer(scene.transfer().field), gpuMaterial_ = -1;
+    else if (scene.transfer().field.isMatrix())
+      renderer_.setDirectRadiance();
+    else
+      renderer_.setTransfer(scene.transfer().field);
+    transfer_ = scene.transferVersion;
+  }
   const auto& envs = scene.environments();
   if (env_ != scene.envVersion && !envs.empty()) {
     const EnvironmentEntry& e = envs[scene.environmentIndex()];
@@ -254,12 +274,65 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   const auto t0 = std::chrono::steady_clock::now();
   f.lightRotation = scene.lightRotation();
   packer_.pack(f.lightRotation, scene.bands());
+  glossySeconds_ = 0;
+  if (scene.transfer().field.isMatrix() && glossyOnGpu) {
+    if (gpuMaterial_ != scene.materialVersion) {
+      // The kernels depend on l only, so the transfer's band count serves every b ≤ B.
+      const relight::PreparedMaterial pm =
+          relight::prepareMaterial(scene.material(), scene.transfer().field.bands);
+      renderer_.setGlossyMaterial(pm.diffuse, pm.glossy, pm.kd, pm.specular);
+      gpuMaterial_ = scene.materialVersion;
+    }
+  } else if (scene.transfer().field.isMatrix()) {
+    relightGlossy(scene, f.camera, f.lightRotation);
+  }
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   f.light = &packer_;
   f.background = scene.background;
   f.exposureStops = scene.exposureStops;
   f.toneMap = scene.toneMap;
   return f;
+}
+
+void SceneView::relightGlossy(const Scene& scene, const render::Camera& camera,
+                              const Mat3d& rotation) {
+  const int b = scene.bands();
+  const bool sameRotation =
+      std::equal(&rotation.m[0][0], &rotation.m[0][0] + 9, &glossyRotation_.m[0][0]);
+  if (glossyTransfer_ == scene.transferVersion && glossyBands_ == b &&
+      glossyMaterialVersion_ == scene.materialVersion && glossyLightVersion_ == light_ &&
+      sameRotation && glossyEye_ == camera.eye)
+    return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const TransferField& full = scene.transfer().field;
+  if (glossyTransfer_ != scene.transferVersion || glossyBands_ != b) {
+    // Fewer bands than baked: the leading b² × b² block of every matrix (exact, as prt render
+    // --bands); kept so later frames only relight.
+    glossyField_ = b < full.bands ? full.truncated(b) : TransferField{};
+    glossyMaterialVersion_ = -1;
+  }
+  const TransferField& field = b < full.bands ? glossyField_ : full;
+  if (glossyMaterialVersion_ != scene.materialVersion)
+    glossyMaterial_ = relight::prepareMaterial(scene.material(), b);
+  // The light D(R) L the packer just rotated, in relight's (r, g, b) per coefficient layout.
+  glossyLight_.bands = b;
+  glossyLight_.interleaved.resize(std::size_t(3 * b * b));
+  for (int i = 0; i < b * b; ++i) {
+    const Rgb c = packer_.coefficient(i);
+    for (int k = 0; k < 3; ++k) glossyLight_.interleaved[std::size_t(3 * i + k)] = c[k];
+  }
+  const Mesh& mesh = scene.bake().mesh;
+  radiance_.resize(mesh.vertexCount());
+  // Exactly prt render's call: each vertex seen from the camera's eye, the mesh's albedo as kd
+  // unless the material sets one.
+  relight::relightGlossy(field, glossyLight_, glossyMaterial_,
+                         {mesh.positions, mesh.normals, camera.eye}, mesh.albedo, radiance_);
+  renderer_.setRadiance(radiance_);
+  glossyTransfer_ = scene.transferVersion, glossyBands_ = b;
+  glossyMaterialVersion_ = scene.materialVersion, glossyLightVersion_ = light_;
+  glossyRotation_ = rotation, glossyEye_ = camera.eye;
+  ++glossyRelights_;
+  glossySeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace prt::viewer

@@ -8,7 +8,16 @@
 // then the auto-rotation about +Y (as prt render --turntable turns it). Dragging horizontally by
 // Δx pixels turns the environment about world +Y by Δx · kDragDegreesPerPixel; vertically, about
 // the camera's right axis.
+//
+// Glossy (matrix) transfer is view-dependent, e(p, v) with v = normalize(eye − p) per vertex
+// (prt/relight/glossy.hpp), so it cannot be a fixed per-vertex vector dotted with the light in
+// the vertex shader. SceneView relights it on the CPU with the library's kernel,
+// relight::relightGlossy — the very code prt render runs, with the orbit camera's eye — into a
+// radiance buffer the shader only displays, and only on frames where the light rotation, the
+// eye, the bands, the material or the environment changed. Why the CPU and not the vertex
+// shader (a B⁴ matrix per vertex in a texture buffer): docs/viewer.md, "Glossy transfer".
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +26,9 @@
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/relight/glossy.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/transfer/material.hpp"
 #include "renderer.hpp"
 
 namespace prt::viewer {
@@ -68,8 +79,9 @@ class Scene {
   static EnvironmentEntry loadEnvironment(const std::string& spec, int bands);
 
   /// Replaces the bake (environments are re-projected when the band count changes), picks the
-  /// richest transfer mode and the full band count, resets the camera to the default framing of
-  /// a width × height view.
+  /// transfer as prt render does (pickTransfer: the richest mode, a matrix before a vector) and
+  /// the full band count, takes that transfer's material (unless one was set with
+  /// overrideMaterial), resets the camera to the default framing of a width × height view.
   void setBake(BakeFile bake, const std::string& name, int width, int height);
   void addEnvironment(EnvironmentEntry entry);
 
@@ -87,8 +99,16 @@ class Scene {
   int bakeBands() const { return bakeBands_; }
   int bands() const { return bands_; }
 
+  /// Selects transfer k; its material comes with it unless overrideMaterial was called.
   void selectTransfer(int k);
   void selectEnvironment(int k);
+
+  /// The material relighting uses (glossy lobe and ks apply to matrix transfer only).
+  const Material& material() const { return material_; }
+  /// Sets the material live (the panel's sliders); it stays until the next transfer selection.
+  void setMaterial(const Material& m);
+  /// As prt view --material: this material for every transfer from now on.
+  void overrideMaterial(const Material& m) { materialOverride_ = m, setMaterial(m); }
   /// Clamps to 1..bake bands.
   void setBands(int b);
 
@@ -112,7 +132,7 @@ class Scene {
 
   /// Bumped whenever the mesh/transfer, the environment image or the SH background change, so a
   /// renderer knows what to re-upload.
-  int meshVersion = 0, transferVersion = 0, envVersion = 0, shVersion = 0;
+  int meshVersion = 0, transferVersion = 0, envVersion = 0, shVersion = 0, materialVersion = 0;
 
  private:
   BakeFile bake_;
@@ -121,6 +141,8 @@ class Scene {
   int transfer_ = 0, env_ = 0, bakeBands_ = 0, bands_ = 0;
   Mat3d userRotation_ = Mat3d::identity();
   double spinRad_ = 0;
+  Material material_;
+  std::optional<Material> materialOverride_;
 };
 
 /// Keeps a Renderer and a LightPacker in step with a Scene: uploads what changed (by the
@@ -128,19 +150,45 @@ class Scene {
 class SceneView {
  public:
   SceneView() = default;
+  /// Relight glossy (matrix) transfer in the vertex shader instead of on the CPU (prt view
+  /// --glossy-on gpu); set before the first prepare.
+  bool glossyOnGpu = false;
   /// Uploads what changed since the last call and returns this frame's parameters (the light
   /// rotated and packed: the per-frame CPU work).
   FrameParams prepare(const Scene& scene, int width, int height);
   Renderer& renderer() { return renderer_; }
   const LightPacker& packer() const { return packer_; }
-  /// Seconds the last prepare spent on the per-frame light work (rotation + packing).
+  /// Seconds the last prepare spent on the per-frame light work (rotation + packing, plus the
+  /// glossy relighting when it ran).
   double lastLightSeconds() const { return lightSeconds_; }
+  /// Seconds the last glossy relighting took (relightGlossy + radiance upload); 0 when the last
+  /// prepare did not relight (vector transfer, or nothing changed).
+  double lastGlossySeconds() const { return glossySeconds_; }
+  /// Glossy relightings so far (frames where something view- or light-dependent changed).
+  int glossyRelights() const { return glossyRelights_; }
+  /// The last glossy relighting's per-vertex exit radiance (what the shader shows).
+  const std::vector<Rgb>& glossyRadiance() const { return radiance_; }
 
  private:
+  /// Matrix transfer: relights on the CPU into the renderer's radiance buffer when the light,
+  /// eye, bands, material or transfer differ from the last time.
+  void relightGlossy(const Scene& scene, const render::Camera& camera, const Mat3d& rotation);
+
   Renderer renderer_;
   LightPacker packer_;
   int mesh_ = -1, transfer_ = -1, env_ = -1, light_ = -1, sh_ = -1;
-  double lightSeconds_ = 0;
+  double lightSeconds_ = 0, glossySeconds_ = 0;
+  int glossyRelights_ = 0, gpuMaterial_ = -1;
+  // Glossy state: the transfer cut to the shown bands, the prepared material, the radiance, and
+  // what they were computed for.
+  TransferField glossyField_;
+  relight::PreparedMaterial glossyMaterial_;
+  relight::PreparedLight glossyLight_;
+  std::vector<Rgb> radiance_;
+  int glossyTransfer_ = -1, glossyMaterialVersion_ = -1, glossyBands_ = -1,
+      glossyLightVersion_ = -1;
+  Mat3d glossyRotation_;
+  Vec3f glossyEye_{0.0f};
 };
 
 }  // namespace prt::viewer

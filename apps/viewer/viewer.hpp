@@ -19,8 +19,10 @@ struct Options {
   std::optional<std::array<double, 3>> rotateDeg;  ///< X, Y, Z as prt render --rotate
   std::string camera;                              ///< as prt render --camera
   std::string mode;                                ///< transfer mode; "" = richest
-  int bands = 0;                                   ///< 0 = all the bake has
-  std::string background = "env";                  ///< env | sh | none
+  std::string material;                            ///< as prt render --material; "" = the bake's
+  bool glossyOnGpu = false;        ///< --glossy-on gpu: matrix transfer relit in the vertex shader
+  int bands = 0;                   ///< 0 = all the bake has
+  std::string background = "env";  ///< env | sh | none
   float exposure = 0.0f;
   std::string toneMap = "aces";
   bool autoRotate = false;

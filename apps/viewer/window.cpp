@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -52,6 +53,48 @@ struct Ui {
     while (messages.size() > 6) messages.pop_front();
   }
 
+  /// The material: the lobe, its width and ks, live (the lobe is applied at relighting time, so
+  /// a change costs one CPU relighting, no re-bake). Vector transfer shows kd only.
+  static void materialPanel(Scene& scene) {
+    Material m = scene.material();
+    if (!scene.transfer().field.isMatrix()) {
+      ImGui::TextDisabled("material: diffuse (vector transfer)");
+      return;
+    }
+    bool changed = false;
+    int kind = int(m.lobe.kind);
+    const char* kinds[] = {"lambert (no lobe)", "phong", "ggx"};
+    if (ImGui::Combo("lobe", &kind, kinds, 3)) {
+      m.lobe.kind = LobeKind(kind);
+      // parseMaterial's defaults for a lobe chosen here first.
+      if (m.lobe.kind == LobeKind::Phong && m.lobe.exponent <= 0) m.lobe.exponent = 32;
+      if (m.lobe.kind == LobeKind::Ggx && m.lobe.roughness <= 0) m.lobe.roughness = 0.3;
+      if (m.lobe.kind != LobeKind::None && m.specular == Rgb(0.0f)) m.specular = Rgb(0.5f);
+      changed = true;
+    }
+    if (m.lobe.kind == LobeKind::Phong) {
+      float s = float(m.lobe.exponent);
+      if (ImGui::SliderFloat("exponent", &s, 0.0f, 256.0f, "%.1f", ImGuiSliderFlags_Logarithmic))
+        m.lobe.exponent = std::max(double(s), 0.0), changed = true;
+    } else if (m.lobe.kind == LobeKind::Ggx) {
+      float r = float(m.lobe.roughness);
+      // 0.03: parseMaterial's lower limit (narrower lobes need more than 32 bands).
+      if (ImGui::SliderFloat("roughness", &r, 0.03f, 1.0f, "%.3f"))
+        m.lobe.roughness = std::clamp(double(r), 0.03, 1.0), changed = true;
+    }
+    if (m.lobe.kind != LobeKind::None) {
+      float ks[3] = {m.specular.x, m.specular.y, m.specular.z};
+      if (ImGui::ColorEdit3("ks", ks, ImGuiColorEditFlags_Float))
+        m.specular = {std::max(ks[0], 0.0f), std::max(ks[1], 0.0f), std::max(ks[2], 0.0f)},
+        changed = true;
+      // What the shown bands cannot hold of the lobe (GlossyLobe::energyBeyond).
+      ImGui::TextDisabled("lobe energy beyond %d bands: %.0f%%", scene.bands(),
+                          100.0 * m.lobe.energyBeyond(scene.bands()));
+    }
+    ImGui::TextDisabled("%s", m.spec().c_str());
+    if (changed) scene.setMaterial(m);
+  }
+
   void panel(Scene& scene, const Output& out) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.75f);
@@ -66,17 +109,21 @@ struct Ui {
     ImGui::Separator();
 
     const auto& transfers = scene.bake().transfers;
-    if (ImGui::BeginCombo("transfer", toString(scene.transfer().settings.mode))) {
+    const auto label = [](const BakedTransfer& t) {
+      return fmt::format("{} {} ({})", toString(t.settings.mode), toString(t.field.layout),
+                         t.field.channels == 3 ? "RGB" : "scalar");
+    };
+    if (ImGui::BeginCombo("transfer", label(scene.transfer()).c_str())) {
       for (int k = 0; k < int(transfers.size()); ++k) {
         const auto& t = transfers[k];
-        const std::string label = fmt::format("{} ({})", toString(t.settings.mode),
-                                              t.field.channels == 3 ? "RGB" : "scalar");
-        if (ImGui::Selectable(label.c_str(), k == scene.transferIndex())) scene.selectTransfer(k);
+        if (ImGui::Selectable(label(t).c_str(), k == scene.transferIndex()))
+          scene.selectTransfer(k);
       }
       ImGui::EndCombo();
     }
     int bands = scene.bands();
     if (ImGui::SliderInt("bands", &bands, 1, scene.bakeBands())) scene.setBands(bands);
+    materialPanel(scene);
     const auto& envs = scene.environments();
     if (ImGui::BeginCombo("environment", envs[scene.environmentIndex()].name.c_str())) {
       for (int k = 0; k < int(envs.size()); ++k)
@@ -144,6 +191,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
   GLFWwindow* w = window.handle();
   glfwSetDropCallback(w, onDrop);
   SceneView view;
+  view.glossyOnGpu = o.glossyOnGpu;
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -163,6 +211,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
   ui.renderer = window.renderer();
   out.info("prt view: " + ui.renderer);
   FrameStats stats;
+  stats.glossyOnGpu = o.glossyOnGpu;
   auto last = Clock::now();
   for (int frame = 0; !glfwWindowShouldClose(w); ++frame) {
     glfwPollEvents();
@@ -197,7 +246,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
         if (o.stats) {
           glFinish();  // only when asked: it stalls the pipeline
           stats.add(std::chrono::duration<double, std::milli>(Clock::now() - t0).count(), cpu,
-                    view.renderer().lastUploadSeconds() * 1e6);
+                    view.renderer().lastUploadSeconds() * 1e6, view.lastGlossySeconds() * 1e3);
         }
       } catch (const Error& e) {
         // A transfer the GPU cannot hold: say so and go back to the first one.

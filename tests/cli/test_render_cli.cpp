@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cli_harness.hpp"
 #include "prt/image/image_io.hpp"
@@ -141,22 +142,43 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
   const std::string tiny =
       "demo --mesh 'builtin:sphere-plane?grid=8&subdiv=1' --env builtin:sky --env "
       "'builtin:constant?value=0.5' --samples 16 --reference-samples 16 --frames 2 ";
-  const std::string small = tiny + "--bands 3 --size 48x36 ";
+  const std::string small = tiny +
+                            "--bands 3 --size 48x36 --glossy-bands 3 --glossy-samples 16 "
+                            "--glossy 'phong?exponent=4&ks=0.5&kd=0.5' ";
   Result r = prt("-q " + small + "-o out/demo");
   ASSERT_EQ(r.rc, 0) << r.err;
   const std::filesystem::path d = dir_ / "out/demo";
   const std::string html = slurp(d / "index.html");
-  for (const char* needle : {"unshadowed", "shadowed", "interreflected", "builtin:sky",
-                             "builtin:constant?value=0.5", "truncation floor", "energy-weighted"})
+  for (const char* needle :
+       {"unshadowed", "shadowed", "interreflected", "builtin:sky", "builtin:constant?value=0.5",
+        "truncation floor", "energy-weighted",
+        "glossy: shadowed transfer matrices, phong?exponent=4", "lobe energy &gt; b", "glossy.glb"})
     EXPECT_NE(html.find(needle), std::string::npos) << needle;
   for (const char* file :
        {"scene.glb", "lights/sky.json", "lights/constant.json", "img/sky_shadowed_prt.png",
         "img/sky_shadowed_ref.png", "img/sky_shadowed_err.png", "img/sky_comparison.png",
         "img/constant_turn_01.png", "img/constant_turntable.png",
-        "validation/sky_interreflected.json"})
+        "validation/sky_interreflected.json", "glossy.glb", "img/sky_glossy_prt.png",
+        "img/sky_glossy_ref.png", "img/sky_glossy_err.png", "validation/constant_glossy.json"})
     EXPECT_TRUE(std::filesystem::exists(d / file)) << file;
   const BakeFile bake = readBake((d / "scene.glb").string());
   EXPECT_EQ(bake.transfers.size(), 3u);
+  // The glossy rows: shadowed matrices with the material, and a validation whose lobe column
+  // is the lobe's zonal energy beyond b bands (falls with b; exponent 4 keeps some beyond 3).
+  const BakeFile glossy = readBake((d / "glossy.glb").string());
+  ASSERT_EQ(glossy.transfers.size(), 1u);
+  EXPECT_TRUE(glossy.transfers[0].field.isMatrix());
+  EXPECT_EQ(glossy.transfers[0].field.bands, 3);
+  EXPECT_EQ(glossy.transfers[0].settings.material.spec(), "phong?exponent=4&ks=0.5&kd=0.5");
+  const std::string v = slurp(d / "validation/sky_glossy.json");
+  std::vector<double> lobe;
+  for (std::size_t at = v.find("\"lobeEnergyBeyond\": "); at != std::string::npos;
+       at = v.find("\"lobeEnergyBeyond\": ", at + 1))
+    lobe.push_back(std::stod(v.substr(at + 20)));
+  ASSERT_EQ(lobe.size(), 3u) << v;
+  EXPECT_GT(lobe[0], lobe[1]);
+  EXPECT_GT(lobe[1], lobe[2]);
+  EXPECT_GT(lobe[2], 0.0);
   // Every image the HTML names exists.
   for (std::size_t at = html.find("src=\""); at != std::string::npos;
        at = html.find("src=\"", at + 1)) {
@@ -181,6 +203,9 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
   expectCleanFailure(tiny + "--bands 0 -o out/demo", "--bands");
   expectCleanFailure(tiny + "--size 0x0 -o out/demo", "size");
   expectCleanFailure(tiny + "--frames many -o out/demo", "--frames");
+  expectCleanFailure(tiny + "--glossy lambert -o out/demo", "--glossy 'lambert': no glossy lobe");
+  expectCleanFailure(tiny + "--glossy 'phong?size=2' -o out/demo", "phong?size=2");
+  expectCleanFailure(tiny + "--glossy-bands 0 -o out/demo", "--glossy-bands");
   expectCleanFailure("demo --mesh nothing.obj -o out/demo", "nothing.obj");
   // A folder that is not an earlier demo is never replaced.
   std::filesystem::create_directories(dir_ / "out/mine");

@@ -10,7 +10,10 @@
 #include "prt/envmap/builtin.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/relight/glossy.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/transport/bake.hpp"
 #include "scene.hpp"
 #include "viewer_test_util.hpp"
 
@@ -168,6 +171,105 @@ TEST(Scene, FailedDropsLeaveTheSceneAsItWas) {
       << e;
   EXPECT_EQ(s.bakeBands(), 4);
   for (const EnvironmentEntry& env : s.environments()) EXPECT_EQ(env.light.bands, 4);
+}
+
+/// A sphere over a plane baked twice, shadowed, 3 bands: a vector (Lambert) and a matrix
+/// (Phong), in that order in the file.
+BakeFile vectorAndMatrixBake() {
+  BakeFile b;
+  b.mesh = builtinScene("builtin:sphere-plane?grid=8&subdiv=2");
+  b.vertexCount = b.mesh.vertexCount();
+  const auto occluder = makeEmbreeOccluder(b.mesh);
+  for (TransferLayout layout : {TransferLayout::Vector, TransferLayout::Matrix}) {
+    BakedTransfer t;
+    t.settings.layout = layout;
+    t.settings.bands = 3;
+    t.settings.samples = 16;
+    t.settings.vertexCount = b.vertexCount;
+    if (layout == TransferLayout::Matrix)
+      t.settings.material = parseMaterial("phong?exponent=8&ks=0.5&kd=0.5");
+    t.field = prt::bake(b.mesh, *occluder, t.settings, &t.stats);
+    b.transfers.push_back(std::move(t));
+  }
+  return b;
+}
+
+TEST(Scene, PicksMatrixFirstAndItsMaterialUnlessOverridden) {
+  Scene s;
+  s.setBake(vectorAndMatrixBake(), "both", 64, 48);
+  // pickTransfer's order: a matrix before a vector of the same mode; its material with it.
+  ASSERT_TRUE(s.transfer().field.isMatrix());
+  EXPECT_EQ(s.material().spec(), "phong?exponent=8&ks=0.5&kd=0.5");
+  s.selectTransfer(1);
+  EXPECT_FALSE(s.transfer().field.isMatrix());
+  EXPECT_FALSE(s.material().glossy());
+  // --material: one material for every transfer from then on.
+  const Material ggx = parseMaterial("ggx?roughness=0.4&ks=0.3");
+  s.overrideMaterial(ggx);
+  s.selectTransfer(0);
+  EXPECT_EQ(s.material(), ggx);
+}
+
+TEST(Scene, GlossyRadianceIsRenderRelightAndFollowsLightEyeAndMaterial) {
+  PRT_REQUIRE_HEADLESS_GL();
+  HeadlessContext context;
+  Scene s;
+  s.setBake(vectorAndMatrixBake(), "both", 64, 48);
+  s.addEnvironment(Scene::loadEnvironment("builtin:sky", s.bakeBands()));
+  s.setUserRotation(rotationEulerXYZ(10, 50, -20));
+  SceneView view;
+  const auto expected = [&] {
+    // prt render's call: the unrotated light, the rotation, the camera's eye.
+    const Mesh& m = s.bake().mesh;
+    std::vector<Rgb> out(m.vertexCount());
+    relight::relightGlossy(s.transfer().field, s.environments()[0].light, s.material(),
+                           {m.positions, m.normals, s.orbit.camera().eye}, m.albedo, out,
+                           s.lightRotation());
+    return out;
+  };
+  const auto maxDiff = [&](const std::vector<Rgb>& want) {
+    const std::vector<Rgb>& got = view.glossyRadiance();
+    EXPECT_EQ(got.size(), want.size());
+    double worst = 0, peak = 0;
+    for (std::size_t v = 0; v < std::min(got.size(), want.size()); ++v)
+      for (int c = 0; c < 3; ++c) {
+        worst = std::max(worst, double(std::abs(got[v][c] - want[v][c])));
+        peak = std::max(peak, double(std::abs(want[v][c])));
+      }
+    return worst / std::max(peak, 1e-30);
+  };
+  view.prepare(s, 64, 48);
+  EXPECT_EQ(view.glossyRelights(), 1);
+  EXPECT_LT(maxDiff(expected()), 1e-5);
+  // Nothing changed: not relit.
+  view.prepare(s, 64, 48);
+  EXPECT_EQ(view.glossyRelights(), 1);
+  // The eye moves: relit, and the lobe moves with it (the old radiance is wrong now).
+  const std::vector<Rgb> before = view.glossyRadiance();
+  s.orbit.orbit(0.8, 0.2);
+  view.prepare(s, 64, 48);
+  EXPECT_EQ(view.glossyRelights(), 2);
+  EXPECT_LT(maxDiff(expected()), 1e-5);
+  EXPECT_GT(maxDiff(before), 1e-2);
+  // The light turns, the material changes, the bands drop: relit each time, still render's.
+  s.dragLight(40, -25);
+  view.prepare(s, 64, 48);
+  EXPECT_LT(maxDiff(expected()), 1e-5);
+  s.setMaterial(parseMaterial("ggx?roughness=0.3&ks=0.6&kd=0.2"));
+  view.prepare(s, 64, 48);
+  EXPECT_LT(maxDiff(expected()), 1e-5);
+  EXPECT_EQ(view.glossyRelights(), 4);
+  s.setBands(2);
+  view.prepare(s, 64, 48);
+  EXPECT_EQ(view.glossyRelights(), 5);
+  {
+    const Mesh& m = s.bake().mesh;
+    std::vector<Rgb> out(m.vertexCount());
+    relight::relightGlossy(s.transfer().field.truncated(2), s.environments()[0].light.truncated(2),
+                           s.material(), {m.positions, m.normals, s.orbit.camera().eye}, m.albedo,
+                           out, s.lightRotation());
+    EXPECT_LT(maxDiff(out), 1e-5);
+  }
 }
 
 }  // namespace

@@ -81,6 +81,19 @@ inline const std::string& spherePlaneBake() {
   return p;
 }
 
+/// Glossy (matrix) transfer of the sphere over the plane, shadowed, 4 bands, a Phong lobe.
+inline const std::string& glossyBake() {
+  static const std::string p = [] {
+    const Result r =
+        prt("-q bake 'builtin:sphere-plane?size=1.5&grid=40&subdiv=3' --mode shadowed "
+            "--transfer matrix --bands 4 --samples 64 "
+            "--material 'phong?exponent=8&ks=0.6&kd=0.4' -o glossy.glb");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return path("glossy.glb");
+  }();
+  return p;
+}
+
 /// A PNG as displayed: sRGB-encoded values in [0, 1].
 inline image::Image readDisplayed(const std::string& file) {
   image::Image img = image::readImage(file);
