@@ -8,7 +8,7 @@
 // Run: build-viewer/bench/bench_viewer_frame --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
-#include "../apps/viewer/light_packer.hpp"
+#include "prt/relight/light_packer.hpp"
 #include "prt/relight/relight.hpp"
 
 namespace {
@@ -21,7 +21,7 @@ prt::sh::RgbSh light(int bands) {
 
 void BM_ViewerLightFrame(benchmark::State& state) {
   const int bands = int(state.range(0));
-  prt::viewer::LightPacker packer;
+  prt::relight::LightPacker packer;
   packer.setLight(light(bands));
   const prt::Mat3d user = prt::rotationEulerXYZ(20, 30, 40);
   double spin = 0;

@@ -28,15 +28,21 @@
 #include <span>
 #include <vector>
 
-#include "light_packer.hpp"
 #include "prt/core/vec.hpp"
 #include "prt/geometry/mesh.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
+#include "prt/relight/light_packer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/transfer/field.hpp"
 
 namespace prt::viewer {
+
+// The light packing lives in the library (prt/relight/light_packer.hpp); the viewer's names.
+using relight::LightPacker;
+using relight::paddedCoeffs;
+inline constexpr int kMaxViewerBands = relight::kMaxPackedBands;
+inline constexpr int kMaxViewerCoeffs = relight::kMaxPackedCoeffs;
 
 enum class BackgroundMode { Env, Sh, None };
 

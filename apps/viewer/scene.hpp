@@ -21,12 +21,12 @@
 #include <string>
 #include <vector>
 
-#include "light_packer.hpp"
 #include "prt/envmap/environment.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/relight/glossy.hpp"
+#include "prt/relight/light_packer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/transfer/material.hpp"
 #include "renderer.hpp"

@@ -6,14 +6,15 @@
 
 #include <random>
 
-#include "light_packer.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/glossy.hpp"
+#include "prt/relight/light_packer.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/transport/bake.hpp"
+#include "renderer.hpp"
 #include "scene.hpp"
 #include "viewer_test_util.hpp"
 

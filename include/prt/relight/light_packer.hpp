@@ -1,6 +1,7 @@
 #pragma once
-// The viewer's per-frame CPU work: rotate the light's SH coefficients and lay them out for the
-// GPU. Header-only so bench/viewer_frame.cpp measures exactly this code without the GL stack.
+// The per-frame CPU work of a GPU relighting viewer (prt view; the same layout the web page
+// builds in JS): rotate the light's SH coefficients and lay them out for a shader. Header-only
+// so bench/viewer_frame.cpp measures exactly this code without the GL stack.
 //
 // Rotating the environment by R (a lobe along d moves to R d) acts on the coefficients band by
 // band, L'_l = M_l(R) L_l (sh::Rotation, see prt/sh/rotate.hpp); the vertex shader then forms
@@ -22,12 +23,12 @@
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
 
-namespace prt::viewer {
+namespace prt::relight {
 
-/// Largest band count the viewer's shaders accept: the library's limit, 32² vec4 = 16 KiB, the
+/// Largest band count a packed light holds: the library's limit, 32² vec4 = 16 KiB, the
 /// smallest GL_MAX_UNIFORM_BLOCK_SIZE OpenGL 3.3 allows.
-inline constexpr int kMaxViewerBands = sh::kMaxBands;
-inline constexpr int kMaxViewerCoeffs = kMaxViewerBands * kMaxViewerBands;
+inline constexpr int kMaxPackedBands = sh::kMaxBands;
+inline constexpr int kMaxPackedCoeffs = kMaxPackedBands * kMaxPackedBands;
 
 /// b² rounded up to a multiple of 4: the coefficients the shader reads at b bands.
 constexpr int paddedCoeffs(int bands) {
@@ -40,7 +41,7 @@ class LightPacker {
 
   /// The light to draw with (its bands: the most the viewer can use with it).
   void setLight(const sh::RgbSh& light) {
-    PRT_CHECK(light.bands >= 1 && light.bands <= kMaxViewerBands, "light bands out of range");
+    PRT_CHECK(light.bands >= 1 && light.bands <= kMaxPackedBands, "light bands out of range");
     light_ = light;
   }
   const sh::RgbSh& light() const { return light_; }
@@ -74,8 +75,8 @@ class LightPacker {
   sh::RgbSh light_;
   sh::Rotation rotation_;
   int bands_ = 0;
-  std::array<Rgb, kMaxViewerCoeffs> rotated_{};
-  alignas(16) std::array<float, 4 * kMaxViewerCoeffs> data_{};
+  std::array<Rgb, kMaxPackedCoeffs> rotated_{};
+  alignas(16) std::array<float, 4 * kMaxPackedCoeffs> data_{};
 };
 
-}  // namespace prt::viewer
+}  // namespace prt::relight
