@@ -5,6 +5,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
+#include "prt/sh/sh_fixed.hpp"
 
 #if defined(__SSE2__)
 #include <xmmintrin.h>
@@ -328,14 +329,14 @@ void scalarKernel(const float* transfer, std::size_t stride, const float* light,
 }
 #endif
 
-template <int B>
+/// Relighting kernels are specialised for B ≤ 10 (B² ≤ 100 coefficients: the loop bounds and the
+/// light registers are constants); above, the generic kernel.
+constexpr int kRelightFixedBands = 10;
+
 RangeFn pick(int bands, bool rgb) {
-  if constexpr (B == 0) {
-    return rgb ? &rgbRange<0> : &scalarKernel<0>;
-  } else {
-    if (bands == B) return rgb ? &rgbRange<B * B> : &scalarKernel<B * B>;
-    return pick<B - 1>(bands, rgb);
-  }
+  return sh::dispatchBands<kRelightFixedBands>(
+      bands, [rgb]<int B>() -> RangeFn { return rgb ? &rgbRange<B * B> : &scalarKernel<B * B>; },
+      [rgb]() -> RangeFn { return rgb ? &rgbRange<0> : &scalarKernel<0>; });
 }
 
 }  // namespace
@@ -367,7 +368,7 @@ void relight(const TransferField& transfer, const PreparedLight& light, std::spa
                 std::to_string(nv) + " vertices (expected one per vertex, one, or none)");
   }
   const bool rgb = transfer.channels == 3;
-  const RangeFn fn = pick<10>(light.bands, rgb);
+  const RangeFn fn = pick(light.bands, rgb);
   const float* lightData = rgb ? light.interleaved.data() : light.planar.data();
   const int n = light.bands * light.bands;
   const std::size_t stride = transfer.stride();

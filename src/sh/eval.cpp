@@ -20,9 +20,6 @@ void checkBands(int bands) {
 
 namespace {
 
-// Compile-time specialised up to this band count; above, the same recurrence in plain loops.
-constexpr int kFixedBands = 16;
-
 template <typename T>
 using EvalFn = void (*)(T, T, T, T*);
 

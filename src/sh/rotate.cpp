@@ -446,8 +446,6 @@ void applyFixed(const Rotation::Factors<T>& fa, const Rotation::ZFactor4* z, con
   (std::make_integer_sequence<int, (B > 2 ? B - 2 : 0)>{});
 }
 
-constexpr int kFixedBands = 16;
-
 template <typename T, int C, typename V, int... B>
 constexpr auto makeApplyTable(std::integer_sequence<int, B...>) {
   return std::array{&applyFixed<T, C, V, B + 1>...};

@@ -58,25 +58,20 @@ constexpr int kFlushEvery = 4 * kBatch;       // samples summed in float before 
 constexpr std::size_t kVertexGrain = 4;       // vertices per parallel task
 constexpr double kY00 = 0.28209479177387814;  // 1/√(4π)
 
-using EvalFn = void (*)(const Vec3f&, float*);
-
-template <int B>
-void evalFixedFn(const Vec3f& d, float* out) {
-  sh::evalFixed<B>(d, out);
-}
-
-template <int... B>
-EvalFn pickEval(int bands, std::integer_sequence<int, B...>) {
-  EvalFn fn = nullptr;
-  ((bands == B + 1 ? (fn = &evalFixedFn<B + 1>, 0) : 0), ...);
-  return fn;
-}
-
-/// The unrolled evaluator for small band counts (the hot path), else the general one.
+/// SH evaluation for the bake's band count: the unrolled evaluator for B ≤ sh::kFixedBands,
+/// picked once (sh::dispatchBands), else the general one.
 struct ShEval {
+  using Fn = void (*)(const Vec3f&, float*);
   int bands;
-  EvalFn fixed;
-  explicit ShEval(int b) : bands(b), fixed(pickEval(b, std::make_integer_sequence<int, 10>{})) {}
+  Fn fixed;
+  explicit ShEval(int b)
+      : bands(b),
+        fixed(sh::dispatchBands<sh::kFixedBands>(
+            b,
+            []<int B>() -> Fn {
+              return [](const Vec3f& d, float* out) { sh::evalFixed<B>(d, out); };
+            },
+            []() -> Fn { return nullptr; })) {}
   void operator()(const Vec3f& d, float* out) const {
     if (fixed)
       fixed(d, out);

@@ -29,6 +29,10 @@ namespace prt::sh {
 
 /// Largest band count the library accepts anywhere.
 inline constexpr int kMaxBands = 32;
+/// Band counts 1..kFixedBands have compile-time specialised (fully unrolled) evaluation and
+/// rotation; above, the same recurrences run in loops. Kernels that specialise further on the
+/// band count (relighting) dispatch with sh::dispatchBands (sh_fixed.hpp).
+inline constexpr int kFixedBands = 16;
 
 constexpr int coeffCount(int bands) {
   return bands * bands;

@@ -129,3 +129,22 @@ inline void evalFixed(const Vec3f& d, float* out) {
 }
 
 }  // namespace prt::sh
+
+namespace prt::sh {
+
+/// The one band-count dispatch: returns f.template operator()<B>() for the compile-time
+/// B == bands when 1 <= bands <= MaxB, else fallback(). (Each kernel states its MaxB: the band
+/// counts worth a specialised copy; MaxB <= kMaxBands.)
+template <int MaxB, typename F, typename G>
+decltype(auto) dispatchBands(int bands, F&& f, G&& fallback) {
+  static_assert(MaxB >= 1 && MaxB <= kMaxBands);
+  if constexpr (MaxB == 1) {
+    if (bands == 1) return f.template operator()<1>();
+    return fallback();
+  } else {
+    if (bands == MaxB) return f.template operator()<MaxB>();
+    return dispatchBands<MaxB - 1>(bands, std::forward<F>(f), std::forward<G>(fallback));
+  }
+}
+
+}  // namespace prt::sh
