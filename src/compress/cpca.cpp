@@ -385,4 +385,31 @@ CompressedTransfer compressCpca(const TransferField& field, const CpcaOptions& o
   return c;
 }
 
+std::vector<CpcaSweepPoint> sweepCpca(const TransferField& field, const std::vector<int>& clusters,
+                                      int maxBasis, std::uint64_t seed, int maxIterations,
+                                      double stopAtError, const ProgressFn& progress) {
+  std::vector<CpcaSweepPoint> points;
+  const double total = static_cast<double>(clusters.size()) * (maxBasis + 1);
+  std::size_t done = 0;
+  for (int K : clusters) {
+    CompressedTransfer prev;
+    for (int N = 0; N <= maxBasis; ++N, ++done) {
+      if (progress && !progress(done / total)) throw Cancelled();
+      CpcaSweepPoint p;
+      p.clusters = K;
+      p.basisCount = N;
+      CompressedTransfer c =
+          compressCpca(field, {K, N, seed, maxIterations}, &p.stats, N > 0 ? &prev : nullptr);
+      p.bytes = c.bytes();
+      points.push_back(p);
+      prev = std::move(c);
+      if (stopAtError > 0 && p.stats.relativeRms <= stopAtError) {
+        done += static_cast<std::size_t>(maxBasis - N);
+        break;
+      }
+    }
+  }
+  return points;
+}
+
 }  // namespace prt

@@ -157,4 +157,20 @@ void relightCompressedGlossy(const CompressedTransfer& t, const PreparedLight& l
   });
 }
 
+RelightInfo relightCompressed(const CompressedTransfer& t, const sh::RgbSh& light,
+                              const Material& material, const GlossyView& view,
+                              std::span<const Rgb> albedo, std::span<Rgb> out,
+                              const Mat3d& rotation) {
+  RelightInfo info;
+  const int bands = std::min(light.bands, t.bands);
+  const sh::Rotation rot(bands, rotation);
+  const PreparedLight p = prepareLight(light, t.bands, &rot, &info);
+  if (t.layout == TransferLayout::Matrix)
+    relightCompressedGlossy(t, p, prepareMaterial(material, t.bands), view, albedo, out);
+  else
+    relightCompressed(t, p, material.diffuse ? std::span<const Rgb>(&*material.diffuse, 1) : albedo,
+                      out);
+  return info;
+}
+
 }  // namespace prt::relight

@@ -105,4 +105,19 @@ CompressedTransfer compressCpca(const TransferField& field, const CpcaOptions& o
 /// The error statistics of `c` against `field` (seconds and iterations left 0).
 CpcaStats measureCpca(const TransferField& field, const CompressedTransfer& c);
 
+/// One (K, N) of a sweep.
+struct CpcaSweepPoint {
+  int clusters = 0, basisCount = 0;
+  std::size_t bytes = 0;  ///< CompressedTransfer::bytes()
+  CpcaStats stats;
+};
+
+/// Compresses with every K of `clusters` (each ≤ rows) and N = 0..maxBasis (≤ D), each N
+/// warm-started from the clustering of N − 1 so the error never grows with N. With
+/// stopAtError > 0 a K's sweep stops at the first N whose relative RMS error is ≤ stopAtError
+/// (larger N only cost more). Points in order of K then N.
+std::vector<CpcaSweepPoint> sweepCpca(const TransferField& field, const std::vector<int>& clusters,
+                                      int maxBasis, std::uint64_t seed, int maxIterations,
+                                      double stopAtError = 0, const ProgressFn& progress = {});
+
 }  // namespace prt

@@ -42,4 +42,12 @@ void relightCompressedGlossy(const CompressedTransfer& transfer, const PreparedL
                              const PreparedMaterial& material, const GlossyView& view,
                              std::span<const Rgb> albedo, std::span<Rgb> out);
 
+/// Convenience, as relight() and relightGlossy(): rotates the light by `rotation`, prepares it
+/// (and the material) and runs the kernel for the transfer's layout. For vectors the material's
+/// kd, if set, replaces the albedo; matrices shade with the whole material and `view`.
+RelightInfo relightCompressed(const CompressedTransfer& transfer, const sh::RgbSh& light,
+                              const Material& material, const GlossyView& view,
+                              std::span<const Rgb> albedo, std::span<Rgb> out,
+                              const Mat3d& rotation = Mat3d::identity());
+
 }  // namespace prt::relight
