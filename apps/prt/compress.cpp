@@ -32,7 +32,7 @@ struct CompressArgs {
   std::string bake, output, mode, transfer, sweep, sweepClusters = "1,4,16,64,256";
   int clusters = 64, basis = 8, iterations = 30, maxBasis = 16;
   std::uint64_t seed = 0;
-  double targetError = 0;
+  double targetError = 0, tolerance = 1e-3;
 };
 
 // Line colours of the plot, one per K (cycled).
@@ -154,13 +154,13 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
                   a.bake, toString(picked.settings.mode), toString(field.layout), field.bands,
                   field.channels, D, rows));
 
-  CpcaOptions opt{a.clusters, a.basis, a.seed, a.iterations};
+  CpcaOptions opt{a.clusters, a.basis, a.seed, a.iterations, a.tolerance};
   bool chain = false;
   if (sweeping || a.targetError > 0) {
     const std::vector<int> ks = parseClusterList(a.sweepClusters, rows);
     const int maxN = std::min<int>(a.maxBasis, static_cast<int>(D));
-    const auto pts = sweepCpca(field, ks, maxN, a.seed, a.iterations, sweeping ? 0 : a.targetError,
-                               progressBar("sweeping"));
+    const auto pts = sweepCpca(field, ks, maxN, a.seed, a.iterations, a.tolerance,
+                               sweeping ? 0 : a.targetError, progressBar("sweeping"));
     if (sweeping) {
       std::cout << fmt::format("{:>7} {:>4} {:>12} {:>10} {:>9} {:>9} {:>8}  {}\n", "K", "N",
                                "bytes/vertex", "rel. RMS", "SNR dB", "ratio", "seconds", "colour");
@@ -243,6 +243,11 @@ void addCompressCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--iterations", args->iterations, "Most reassignment passes")
       ->check(intRange(0, 10000))
+      ->capture_default_str();
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Converged when a pass lowers the error by less than this fraction (0: until "
+                  "no vertex moves)")
+      ->check(finite(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--target-error", args->targetError,
                   "Pick the smallest K, N whose relative RMS error is at most this")

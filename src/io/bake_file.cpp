@@ -410,6 +410,7 @@ void readCompressed(const tinygltf::Model& model, const Value& z, const Value& a
   bt.compression.seed = z.Has("seed") ? r.integer(z, "seed", zw) : 0;
   bt.compression.maxIterations =
       static_cast<int>(r.numberOr(z, "maxIterations", bt.compression.maxIterations, zw));
+  bt.compression.tolerance = r.numberOr(z, "tolerance", bt.compression.tolerance, zw);
   const std::size_t K = static_cast<std::size_t>(c.clusters),
                     N = static_cast<std::size_t>(c.basisCount);
   const std::size_t want = N > 0 ? 4 : 2;
@@ -726,6 +727,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
       z["basisCount"] = Value(c.basisCount);
       z["seed"] = seedValue(t.compression.seed);
       z["maxIterations"] = Value(t.compression.maxIterations);
+      z["tolerance"] = num(t.compression.tolerance);
       z["accessorPrefix"] = str(transferCompressedPrefix(t.settings.mode));
       Value::Object st;
       st["squaredError"] = num(cs.squaredError);

@@ -19,7 +19,8 @@
 //      trick: B = Xcᵀu / |Xcᵀu|);
 //   2. reassign every row to the cluster whose mean + basis reconstructs it with least squared
 //      error |x − M_k|² − Σ_j (B_kj·(x − M_k))², keeping its cluster on ties;
-//   3. repeat until no row moves or maxIterations; then refit the bases to the last assignment.
+//   3. repeat until no row moves, a pass lowers the total error by less than `tolerance`
+//      (relative), or maxIterations; then refit the bases to the last assignment.
 // Both steps are optimal for the other's output, so the total squared error never increases
 // across iterations (up to float rounding). An empty cluster is re-seeded with the row of largest
 // error (lowest index on ties). N = 0 is vector quantisation (k-means); K = 1 is plain PCA.
@@ -79,6 +80,9 @@ struct CpcaOptions {
   int basisCount = 0;      ///< N ≤ D
   std::uint64_t seed = 0;  ///< of the k-means++ seeding
   int maxIterations = 30;  ///< of the reassignment loop
+  /// Converged when a pass lowers the total squared error by less than this fraction (0: run
+  /// until no row moves or maxIterations).
+  double tolerance = 1e-3;
 };
 
 /// How well a compressed field approximates its source.
@@ -118,6 +122,7 @@ struct CpcaSweepPoint {
 /// (larger N only cost more). Points in order of K then N.
 std::vector<CpcaSweepPoint> sweepCpca(const TransferField& field, const std::vector<int>& clusters,
                                       int maxBasis, std::uint64_t seed, int maxIterations,
-                                      double stopAtError = 0, const ProgressFn& progress = {});
+                                      double tolerance, double stopAtError = 0,
+                                      const ProgressFn& progress = {});
 
 }  // namespace prt
