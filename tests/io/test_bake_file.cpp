@@ -580,6 +580,25 @@ TEST(BakeFile, CompressedTransferNeedsVersionThreeAndRoundTripsBitExact) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("needs version 3"), std::string::npos) << e.what();
   }
+  // Hand-edited shapes are refused with one line naming the file: fewer clusters than the
+  // arrays hold, more basis vectors than the accessor list.
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"clusters\":3", "\"clusters\":2"},
+        {"\"basisCount\":2", "\"basisCount\":1"},
+        {"\"basisCount\":0", "\"basisCount\":1"}}) {
+    std::string bad = bytes;
+    const auto pos = bad.find(from);
+    ASSERT_NE(pos, std::string::npos) << from;
+    bad.replace(pos, from.size(), to);
+    try {
+      decodeBake(asBytes(bad), "bad.glb");
+      FAIL() << to << " was accepted";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("bad.glb: ", 0), 0u) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
   // Compressed pieces are not merged.
   EXPECT_THROW(mergeBakes({b, b}), Error);
   // expandCompressed gives dense rows a version-1/2 consumer understands.
