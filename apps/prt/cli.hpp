@@ -37,6 +37,7 @@ void addValidateCommand(CLI::App& root);
 void addReferenceCommand(CLI::App& root);
 void addViewCommand(CLI::App& root);
 void addMergeCommand(CLI::App& root);
+void addCompressCommand(CLI::App& root);
 void addDemoCommand(CLI::App& root);
 void addWebCommand(CLI::App& root);
 

@@ -53,7 +53,7 @@ void runExport(const ExportArgs& a) {
       list += std::string(list.empty() ? "" : ", ") + toString(x.settings.mode);
     throw Error(a.input, "holds several transfers (" + list + "): choose one with --mode");
   }
-  TransferField field = t->field;
+  TransferField field = t->dense();  // a compressed transfer exports its reconstruction
   if (field.channels == 3) {
     if (!channel)
       throw Error(a.input,

@@ -63,6 +63,20 @@ void describeBake(const std::string& path) {
           "{}0..{}\n",
           toString(s.mode), t.field.bands, t.field.coeffs(), t.field.channels,
           transferAttributePrefix(s.mode), (t.field.stride() + 3) / 4 - 1);
+    if (t.compressed) {
+      const CompressedTransfer& c = *t.compressed;
+      const CpcaStats& cs = t.compressionStats;
+      std::cout << fmt::format(
+          "    compressed: CPCA, {} clusters x {} components (seed {}), {} -> {} ({:.2f}x), "
+          "accessors {}*\n",
+          c.clusters, c.basisCount, t.compression.seed,
+          bytesText(c.vertexCount * c.stride() * sizeof(float)), bytesText(c.bytes()),
+          cs.compressionRatio, transferCompressedPrefix(s.mode));
+      std::cout << fmt::format(
+          "    compression error: relative RMS {:.4e}, SNR {:.2f} dB, squared {:.6e}, max vertex "
+          "{:.4e}; {} iterations, {:.2f} s\n",
+          cs.relativeRms, cs.snrDb, cs.squaredError, cs.maxRowError, cs.iterations, cs.seconds);
+    }
     std::cout << fmt::format("    material {}\n", s.material.spec());
     std::cout << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples,
                              s.bounces, s.seed, toString(s.sampling));

@@ -101,6 +101,7 @@ const char* activity(const std::string& verb) {
   if (verb == "prt reference") return "computing the reference";
   if (verb == "prt view") return "viewing";
   if (verb == "prt merge") return "merging the bakes";
+  if (verb == "prt compress") return "compressing the transfer";
   if (verb == "prt demo") return "running the demo";
   return "reading the command line";
 }
@@ -128,6 +129,7 @@ int main(int argc, char** argv) {
   addReferenceCommand(app);
   addViewCommand(app);
   addMergeCommand(app);
+  addCompressCommand(app);
   addDemoCommand(app);
   addWebCommand(app);
   oneValuePerOption(app);

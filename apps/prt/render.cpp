@@ -24,6 +24,7 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/raytrace/occluder.hpp"
+#include "prt/relight/compressed.hpp"
 #include "prt/relight/glossy.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/camera.hpp"
@@ -107,8 +108,14 @@ void run(const RenderOptions& o) {
         fmt::format("{}: the {} transfer is a vector (diffuse only); the material's glossy lobe "
                     "needs a matrix bake (prt bake --transfer matrix)",
                     o.bake, toString(baked.settings.mode)));
-  TransferField transfer = baked.field;
-  if (o.bands > 0 && o.bands < transfer.bands) transfer = transfer.truncated(o.bands);
+  // Compressed transfer is relit in the compressed space (relight/compressed.hpp) unless --bands
+  // cuts it, which needs the dense rows (the reconstruction, truncated).
+  TransferField transfer = baked.field;  // for a compressed transfer: its shape, no rows
+  const CompressedTransfer* compressed = baked.compressed ? &*baked.compressed : nullptr;
+  if (o.bands > 0 && o.bands < transfer.bands) {
+    transfer = baked.dense().truncated(o.bands);
+    compressed = nullptr;
+  }
   if (o.bands > transfer.bands)
     warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands, transfer.bands,
                      transfer.bands));
@@ -150,7 +157,11 @@ void run(const RenderOptions& o) {
                                : userRotation;
     // Matrix transfer is view-dependent: each vertex is seen from the camera's eye.
     const relight::RelightInfo relit =
-        transfer.isMatrix()
+        compressed
+            ? relight::relightCompressed(*compressed, light, material,
+                                         {bake.mesh.positions, bake.mesh.normals, camera.eye},
+                                         bake.mesh.albedo, radiance, rotation)
+        : transfer.isMatrix()
             ? relight::relightGlossy(transfer, light, material,
                                      {bake.mesh.positions, bake.mesh.normals, camera.eye},
                                      bake.mesh.albedo, radiance, rotation)

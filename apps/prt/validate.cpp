@@ -5,6 +5,8 @@
 //                [--rotate X,Y,Z] [--vertices N] [--seed S] [--mis power|balance]
 //                [--json REPORT.json] [--image error.png] [--image-size WxH]
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -85,8 +87,17 @@ void runValidate(const ValidateArgs& a) {
   vs.maxVertices = a.vertices;
   info("validating " + std::string(toString(bt.settings.mode)) + " transfer (" +
        std::to_string(bt.field.bands) + " bands) of " + a.bake + " under " + a.light);
+  // A compressed transfer is validated as relit: its reconstruction (the compression's own error
+  // against the uncompressed rows is reported from the file beside the truncation error).
+  if (bt.compressed)
+    info(
+        fmt::format("compressed transfer: K {} N {}, relative RMS error {:.3e} against the "
+                    "uncompressed transfer (SNR {:.2f} dB)",
+                    bt.compressed->clusters, bt.compressed->basisCount,
+                    bt.compressionStats.relativeRms, bt.compressionStats.snrDb));
+  const TransferField dense = bt.dense();
   const render::ValidationReport rep = render::validate(
-      file.mesh, *occluder, bt.field, settings, env.env, light, vs, progressBar("reference"));
+      file.mesh, *occluder, dense, settings, env.env, light, vs, progressBar("reference"));
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
   std::snprintf(line, sizeof line,

@@ -98,6 +98,9 @@ void OrbitCamera::zoom(double factor) {
 
 BakeFile Scene::readCheckedBake(const std::string& path) {
   BakeFile bake = readBake(path);
+  // CPCA-compressed transfer (prt compress) is drawn from its reconstruction: the viewer's
+  // shaders take dense rows (relighting in the compressed space on the GPU is future work).
+  bake.expandCompressed();
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);

@@ -28,6 +28,7 @@ using tinygltf::Value;
 
 constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 constexpr int kUint = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+constexpr int kUshort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
 constexpr int kMaxBands = 32;  // sanity bound on files; bakes use far fewer
 
 // ---------------------------------------------------------------------------------------------
@@ -204,6 +205,14 @@ void validateForWriting(const BakeFile& bake, const std::vector<MeshPart>& parts
     if (f.bands < 1 || f.bands > kMaxBands || (f.channels != 1 && f.channels != 3))
       throw Error("bake file: transfer has " + std::to_string(f.bands) + " bands and " +
                   std::to_string(f.channels) + " channels");
+    if (t.compressed) {
+      const CompressedTransfer& c = *t.compressed;
+      if (c.layout != f.layout || c.bands != f.bands || c.channels != f.channels ||
+          c.vertexCount != bake.vertexCount || f.vertexCount != bake.vertexCount)
+        throw Error("bake file: compressed transfer does not match its shape or the vertex range");
+      c.check("bake file");
+      continue;
+    }
     if (f.vertexCount != bake.vertexCount || f.data.size() != f.vertexCount * f.stride())
       throw Error("bake file: transfer rows do not match the vertex range");
   }
@@ -381,6 +390,76 @@ BakeStats parseStats(const Value& o, const std::string& where, const Reader& r) 
   return s;
 }
 
+/// The compressed rows of `bt` (shape already in bt.field) from extras ".compressed" and the
+/// transfer's accessor list [cluster, weights?, means, basis?].
+void readCompressed(const tinygltf::Model& model, const Value& z, const Value& acc,
+                    const std::string& tw, BakedTransfer& bt, const Reader& r) {
+  const std::string zw = tw + ".compressed";
+  if (!z.IsObject() || r.string(z, "method", zw) != "cpca") r.fail(zw + ".method must be \"cpca\"");
+  const TransferField& f = bt.field;
+  const std::size_t n = f.vertexCount, S = f.stride();
+  CompressedTransfer c;
+  c.layout = f.layout;
+  c.bands = f.bands;
+  c.channels = f.channels;
+  c.vertexCount = n;
+  c.clusters = static_cast<int>(r.integer(z, "clusters", zw, 1, std::min<double>(n, 2147483647.0)));
+  c.basisCount = static_cast<int>(r.integer(z, "basisCount", zw, 0, static_cast<double>(S)));
+  bt.compression.clusters = c.clusters;
+  bt.compression.basisCount = c.basisCount;
+  bt.compression.seed = z.Has("seed") ? r.integer(z, "seed", zw) : 0;
+  bt.compression.maxIterations =
+      static_cast<int>(r.numberOr(z, "maxIterations", bt.compression.maxIterations, zw));
+  bt.compression.tolerance = r.numberOr(z, "tolerance", bt.compression.tolerance, zw);
+  const std::size_t K = static_cast<std::size_t>(c.clusters),
+                    N = static_cast<std::size_t>(c.basisCount);
+  const std::size_t want = N > 0 ? 4 : 2;
+  if (!acc.IsArray() || acc.ArrayLen() != want)
+    r.fail(tw + ".accessors must list " + std::to_string(want) +
+           " accessors for compressed transfer with " + std::to_string(N) + " basis vectors");
+  for (std::size_t i = 0; i < want; ++i)
+    if (!acc.Get(static_cast<int>(i)).IsInt())
+      r.fail(tw + ".accessors[" + std::to_string(i) + "] is not an index");
+  auto index = [&](std::size_t i) { return acc.Get(static_cast<int>(i)).Get<int>(); };
+  const std::string what = std::string(toString(bt.settings.mode)) + " compressed transfer";
+  if (K <= 65536) {
+    const auto ids = readAccessor<std::uint16_t>(model, index(0), TINYGLTF_TYPE_SCALAR, 1, kUshort,
+                                                 n, what + " cluster ids", r);
+    c.cluster.assign(ids.begin(), ids.end());
+  } else {
+    c.cluster = readAccessor<std::uint32_t>(model, index(0), TINYGLTF_TYPE_SCALAR, 1, kUint, n,
+                                            what + " cluster ids", r);
+  }
+  std::size_t next = 1;
+  if (N > 0)
+    c.weights = readAccessor<float>(model, index(next++), TINYGLTF_TYPE_SCALAR, 1, kFloat, n * N,
+                                    what + " weights", r);
+  c.means = readAccessor<float>(model, index(next++), TINYGLTF_TYPE_SCALAR, 1, kFloat, K * S,
+                                what + " means", r);
+  if (N > 0)
+    c.basis = readAccessor<float>(model, index(next++), TINYGLTF_TYPE_SCALAR, 1, kFloat, K * N * S,
+                                  what + " basis", r);
+  try {
+    c.check(zw);
+  } catch (const Error& e) {
+    r.fail(e.what());
+  }
+  if (z.Has("stats") && z.Get("stats").IsObject()) {
+    const Value& st = z.Get("stats");
+    const std::string sw = zw + ".stats";
+    CpcaStats& s = bt.compressionStats;
+    s.squaredError = r.numberOr(st, "squaredError", 0, sw);
+    s.signalEnergy = r.numberOr(st, "signalEnergy", 0, sw);
+    s.relativeRms = r.numberOr(st, "relativeRms", 0, sw);
+    s.snrDb = r.numberOr(st, "snrDb", std::numeric_limits<double>::infinity(), sw);
+    s.maxRowError = r.numberOr(st, "maxRowError", 0, sw);
+    s.compressionRatio = r.numberOr(st, "compressionRatio", 0, sw);
+    s.seconds = r.numberOr(st, "seconds", 0, sw);
+    s.iterations = static_cast<int>(r.numberOr(st, "iterations", 0, sw));
+  }
+  bt.compressed = std::move(c);
+}
+
 }  // namespace
 
 std::string transferAttributePrefix(TransferMode mode) {
@@ -404,10 +483,27 @@ void BakeFile::requireComplete(const std::string& file) const {
                         " only (merge the pieces with prt merge first)");
 }
 
+std::string transferCompressedPrefix(TransferMode mode) {
+  std::string m = toString(mode);
+  for (char& c : m) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return "_PRT_" + m + "_CPCA_";
+}
+
 int BakeFile::requiredVersion() const {
-  for (const auto& t : transfers)
-    if (t.field.isMatrix()) return 2;
-  return 1;
+  int v = 1;
+  for (const auto& t : transfers) {
+    if (t.compressed) return 3;
+    if (t.field.isMatrix()) v = 2;
+  }
+  return v;
+}
+
+void BakeFile::expandCompressed() {
+  for (auto& t : transfers)
+    if (t.compressed) {
+      t.field = t.compressed->reconstruct();
+      t.compressed.reset();
+    }
 }
 
 const BakedTransfer* BakeFile::find(TransferMode mode) const {
@@ -487,6 +583,41 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
   for (std::size_t ti = 0; ti < bake.transfers.size(); ++ti) {
     const TransferField& f = bake.transfers[ti].field;
     const std::size_t S = f.stride(), K = (S + 3) / 4, n = f.vertexCount;
+    if (const auto& c = bake.transfers[ti].compressed) {
+      // Compressed (version 3): cluster ids (uint16 when K ≤ 65536, else uint32), N weights per
+      // row, K means and K·N basis vectors of S floats, each one tightly packed SCALAR accessor
+      // named from extras, in this order (weights and basis absent when N = 0).
+      const std::string prefix = transferCompressedPrefix(bake.transfers[ti].settings.mode);
+      auto named = [&](int view, std::size_t count, int type, const std::string& name) {
+        columns[ti].rangeAccessors.push_back(
+            bb.accessor(view, 0, count, TINYGLTF_TYPE_SCALAR, type));
+        model.accessors.back().name = name;
+      };
+      if (c->clusters <= 65536) {
+        const auto* ids = &c->cluster;
+        const int view = bb.view(n * 2, 0, 0, prefix + "CLUSTER", [ids](std::ostream& os) {
+          std::vector<std::uint16_t> block;
+          for (std::size_t v0 = 0; v0 < ids->size(); v0 += 4096) {
+            block.assign(ids->begin() + v0, ids->begin() + std::min(ids->size(), v0 + 4096));
+            os.write(reinterpret_cast<const char*>(block.data()),
+                     static_cast<std::streamsize>(block.size() * 2));
+          }
+        });
+        named(view, n, kUshort, prefix + "CLUSTER");
+      } else {
+        named(bb.view(c->cluster.data(), n * 4, 0, 0, prefix + "CLUSTER"), n, kUint,
+              prefix + "CLUSTER");
+      }
+      if (c->basisCount > 0)
+        named(bb.view(c->weights.data(), c->weights.size() * 4, 0, 0, prefix + "WEIGHTS"),
+              c->weights.size(), kFloat, prefix + "WEIGHTS");
+      named(bb.view(c->means.data(), c->means.size() * 4, 0, 0, prefix + "MEANS"), c->means.size(),
+            kFloat, prefix + "MEANS");
+      if (c->basisCount > 0)
+        named(bb.view(c->basis.data(), c->basis.size() * 4, 0, 0, prefix + "BASIS"),
+              c->basis.size(), kFloat, prefix + "BASIS");
+      continue;
+    }
     if (f.isMatrix()) {
       // Matrices (version 2): B⁴·C floats per vertex are far past the 16 vertex attributes a
       // GPU guarantees, so they are one tightly packed SCALAR float accessor of the rows as
@@ -559,7 +690,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
           bb.accessor(colView, p.firstVertex * 12u, n, TINYGLTF_TYPE_VEC3, kFloat);
     if (bake.complete())
       for (std::size_t ti = 0; ti < bake.transfers.size(); ++ti) {
-        if (bake.transfers[ti].field.isMatrix()) continue;
+        if (bake.transfers[ti].field.isMatrix() || bake.transfers[ti].compressed) continue;
         const std::string prefix = transferAttributePrefix(bake.transfers[ti].settings.mode);
         for (std::size_t k = 0; k < columns[ti].views.size(); ++k)
           prim.attributes[prefix + std::to_string(k)] =
@@ -596,7 +727,29 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
     Value::Object o;
     o["settings"] = settingsJson(t);
     o["stats"] = statsJson(t.stats);
-    if (t.field.isMatrix())
+    if (t.compressed) {
+      const CompressedTransfer& c = *t.compressed;
+      const CpcaStats& cs = t.compressionStats;
+      Value::Object z;
+      z["method"] = str("cpca");
+      z["clusters"] = Value(c.clusters);
+      z["basisCount"] = Value(c.basisCount);
+      z["seed"] = seedValue(t.compression.seed);
+      z["maxIterations"] = Value(t.compression.maxIterations);
+      z["tolerance"] = num(t.compression.tolerance);
+      z["accessorPrefix"] = str(transferCompressedPrefix(t.settings.mode));
+      Value::Object st;
+      st["squaredError"] = num(cs.squaredError);
+      st["signalEnergy"] = num(cs.signalEnergy);
+      st["relativeRms"] = num(cs.relativeRms);
+      if (std::isfinite(cs.snrDb)) st["snrDb"] = num(cs.snrDb);  // absent: exact (infinite)
+      st["maxRowError"] = num(cs.maxRowError);
+      st["compressionRatio"] = num(cs.compressionRatio);
+      st["seconds"] = num(cs.seconds);
+      st["iterations"] = Value(cs.iterations);
+      z["stats"] = Value(std::move(st));
+      o["compressed"] = Value(std::move(z));
+    } else if (t.field.isMatrix())
       o["matrixAccessor"] = str(transferMatrixName(t.settings.mode));
     else
       o["attributePrefix"] = str(transferAttributePrefix(t.settings.mode));
@@ -831,6 +984,14 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
       f.layout = bt.settings.layout;
       const std::size_t S = f.stride(), K = f.isMatrix() ? 1 : (S + 3) / 4;
       const Value& acc = r.member(t, "accessors", tw);
+      if (t.Has("compressed")) {
+        if (bake.formatVersion < 3)
+          r.fail(tw + " is compressed transfer in a version " + std::to_string(bake.formatVersion) +
+                 " file (compression needs version 3)");
+        readCompressed(model, t.Get("compressed"), acc, tw, bt, r);
+        bake.transfers.push_back(std::move(bt));
+        continue;
+      }
       if (f.isMatrix()) {
         if (!acc.IsArray() || acc.ArrayLen() != 1 || !acc.Get(0).IsInt())
           r.fail(tw + ".accessors must list the one accessor of the matrices");
@@ -910,6 +1071,11 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces) {
       throw Error(who + " leaves a gap: vertices " + std::to_string(end) + ".." +
                   std::to_string(p.firstVertex - 1) + " are missing");
     if (p.transfers.size() != out.transfers.size()) throw Error(who + " holds different modes");
+    for (const BakeFile* b : {static_cast<const BakeFile*>(&out), &p})
+      for (const auto& t : b->transfers)
+        if (t.compressed)
+          throw Error(who +
+                      ": compressed transfer cannot be merged (merge the bakes, then compress)");
     for (std::size_t t = 0; t < out.transfers.size(); ++t) {
       BakedTransfer& a = out.transfers[t];
       const BakedTransfer* b = p.find(a.settings.mode, a.field.layout);

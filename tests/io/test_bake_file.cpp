@@ -12,6 +12,7 @@
 #include <random>
 
 #include "common/scratch.hpp"
+#include "prt/compress/cpca.hpp"
 #include "prt/core/error.hpp"
 #include "prt/io/bake_file.hpp"
 
@@ -443,13 +444,13 @@ TEST(BakeFile, NewerFormatVersionIsRejectedWithOneLine) {
   const std::string key = "\"formatVersion\":1";
   const auto at = bytes.find(key);
   ASSERT_NE(at, std::string::npos);
-  bytes[at + key.size() - 1] = '3';  // same length: the container stays valid
+  bytes[at + key.size() - 1] = '4';  // same length: the container stays valid
   try {
     decodeBake(asBytes(bytes), "new.glb");
     FAIL() << "accepted a newer format";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
-                 "new.glb: bake format version 3 is newer than this prtkit understands (2)");
+                 "new.glb: bake format version 4 is newer than this prtkit understands (3)");
   }
 }
 
@@ -542,6 +543,84 @@ TEST(BakeFile, WriterRejectsInconsistentBakes) {
   ASSERT_EQ(r.mesh.parts.size(), 1u);
   EXPECT_EQ(r.mesh.parts[0].vertexCount, b.mesh.vertexCount());
   EXPECT_EQ(r.mesh.triangles, b.mesh.triangles);
+}
+
+// Compressed transfer (version 3): bit-exact round trip of ids, weights, means and bases for a
+// vector and a matrix transfer, uint16 ids, stats kept; a version-2 claim is refused by name.
+TEST(BakeFile, CompressedTransferNeedsVersionThreeAndRoundTripsBitExact) {
+  BakeFile b = sampleBake();
+  b.transfers.push_back(matrixTransfer(TransferMode::Unshadowed, 2, 3, b.vertexCount));
+  for (std::size_t i : {std::size_t(0), std::size_t(2)}) {  // shadowed vector, unshadowed matrix
+    BakedTransfer& t = b.transfers[i];
+    t.compression = {3, i == 0 ? 2 : 0, 77, 10};  // N = 0 (no weights, no basis) for the matrix
+    t.compressed = compressCpca(t.field, t.compression, &t.compressionStats);
+    t.field.data.clear();
+  }
+  const std::string bytes = encodeBake(b);
+  const BakeFile r = decodeBake(asBytes(bytes), "mem.glb");
+  EXPECT_EQ(r.formatVersion, 3);
+  EXPECT_EQ(encodeBake(r), bytes);
+  for (std::size_t i : {std::size_t(0), std::size_t(2)}) {
+    const BakedTransfer &x = b.transfers[i], &y = r.transfers[i];
+    ASSERT_TRUE(y.compressed.has_value());
+    EXPECT_EQ(y.field.layout, x.field.layout);
+    EXPECT_EQ(y.compressed->cluster, x.compressed->cluster);
+    EXPECT_TRUE(sameBits(y.compressed->weights, x.compressed->weights));
+    EXPECT_TRUE(sameBits(y.compressed->means, x.compressed->means));
+    EXPECT_TRUE(sameBits(y.compressed->basis, x.compressed->basis));
+    EXPECT_EQ(y.compression.seed, 77u);
+    EXPECT_EQ(y.compressionStats.squaredError, x.compressionStats.squaredError);
+    EXPECT_EQ(y.compressionStats.iterations, x.compressionStats.iterations);
+    EXPECT_TRUE(sameBits(y.dense().data, x.compressed->reconstruct().data));
+  }
+  EXPECT_FALSE(r.transfers[1].compressed.has_value());
+  const Glb g = splitGlb(bytes);
+  const auto& t0 = g.json["extras"]["prtkit"]["transfers"][0];
+  EXPECT_EQ(t0["compressed"]["clusters"], 3);
+  EXPECT_EQ(t0["accessors"].size(), 4u);
+  EXPECT_EQ(g.json["accessors"][t0["accessors"][0].get<int>()]["componentType"], 5123);  // uint16
+  EXPECT_EQ(g.json["extras"]["prtkit"]["transfers"][2]["accessors"].size(), 2u);
+  // No compressed accessor is a primitive attribute.
+  for (const auto& mesh : g.json["meshes"])
+    for (const auto& [name, index] : mesh["primitives"][0]["attributes"].items())
+      EXPECT_EQ(name.find("_PRT_SHADOWED"), std::string::npos) << name;
+  // A version-2 claim holding compressed transfer is refused, naming the version.
+  std::string edited = bytes;
+  const std::string key = "\"formatVersion\":3";
+  const auto at = edited.find(key);
+  ASSERT_NE(at, std::string::npos);
+  edited[at + key.size() - 1] = '2';
+  try {
+    decodeBake(asBytes(edited), "old.glb");
+    FAIL() << "compressed transfer in a version-2 file was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("needs version 3"), std::string::npos) << e.what();
+  }
+  // Hand-edited shapes are refused with one line naming the file: fewer clusters than the
+  // arrays hold, more basis vectors than the accessor list.
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"clusters\":3", "\"clusters\":2"},
+        {"\"basisCount\":2", "\"basisCount\":1"},
+        {"\"basisCount\":0", "\"basisCount\":1"}}) {
+    std::string bad = bytes;
+    const auto pos = bad.find(from);
+    ASSERT_NE(pos, std::string::npos) << from;
+    bad.replace(pos, from.size(), to);
+    try {
+      decodeBake(asBytes(bad), "bad.glb");
+      FAIL() << to << " was accepted";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("bad.glb: ", 0), 0u) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+  // Compressed pieces are not merged.
+  EXPECT_THROW(mergeBakes({b, b}), Error);
+  // expandCompressed gives dense rows a version-1/2 consumer understands.
+  BakeFile dense = r;
+  dense.expandCompressed();
+  EXPECT_EQ(dense.requiredVersion(), 2);
 }
 
 }  // namespace

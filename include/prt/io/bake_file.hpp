@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "prt/compress/cpca.hpp"
 #include "prt/geometry/mesh.hpp"
 #include "prt/transfer/field.hpp"
 #include "prt/transport/bake.hpp"
@@ -35,7 +36,9 @@ namespace prt {
 /// The bake-file format version this prtkit writes and the newest it reads.
 /// Version 1: vector transfer as vertex attributes. Version 2 adds matrix (glossy) transfer in
 /// accessors named from extras; a bake without matrices is still written as version 1.
-inline constexpr int kBakeFormatVersion = 2;
+/// Version 3 adds CPCA-compressed transfer (cluster ids, weights, cluster means and bases in
+/// accessors named from extras); only a bake that holds compressed transfer is written as 3.
+inline constexpr int kBakeFormatVersion = 3;
 
 /// One transfer stored in a bake file, with the settings and statistics that produced it.
 /// settings.firstVertex / vertexCount equal the file's vertex range.
@@ -43,6 +46,14 @@ struct BakedTransfer {
   BakeSettings settings;  ///< mode and layout equal the field's; (mode, layout) unique in a file
   BakeStats stats;
   TransferField field;  ///< rows for the file's vertex range (field.vertexCount = range count)
+  /// Set when the transfer is stored CPCA-compressed (prt compress): `field` then keeps the
+  /// shape (layout, bands, channels, rows) with no data, and this holds the rows.
+  std::optional<CompressedTransfer> compressed;
+  CpcaOptions compression;     ///< the options that made `compressed`
+  CpcaStats compressionStats;  ///< its error against the uncompressed transfer
+
+  /// The rows as a dense field: `field`, or the reconstruction of `compressed`.
+  TransferField dense() const { return compressed ? compressed->reconstruct() : field; }
 };
 
 struct BakeFile {
@@ -62,8 +73,11 @@ struct BakeFile {
   const BakedTransfer* find(TransferMode mode) const;
   /// The transfer of `mode` and `layout`, or nullptr.
   const BakedTransfer* find(TransferMode mode, TransferLayout layout) const;
-  /// The oldest format version that holds this bake (2 if it has matrices, else 1).
+  /// The oldest format version that holds this bake (3 if it has compressed transfer, else 2 if
+  /// it has matrices, else 1).
   int requiredVersion() const;
+  /// Replaces every compressed transfer by its reconstruction (for consumers of dense rows).
+  void expandCompressed();
 };
 
 /// Serialises to GLB bytes. Throws prt::Error if the bake is inconsistent (row counts, bands,
@@ -95,5 +109,8 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces);
 std::string transferAttributePrefix(TransferMode mode);
 /// The accessor name of a mode's matrix transfer: "_PRT_SHADOWED_M" etc.
 std::string transferMatrixName(TransferMode mode);
+/// The accessor name prefix of a mode's compressed transfer: "_PRT_SHADOWED_CPCA_" etc.
+/// (then CLUSTER, WEIGHTS, MEANS, BASIS).
+std::string transferCompressedPrefix(TransferMode mode);
 
 }  // namespace prt

@@ -1,0 +1,182 @@
+#include "prt/relight/compressed.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "prt/core/error.hpp"
+#include "prt/core/parallel.hpp"
+#include "prt/sh/sh.hpp"
+
+namespace prt::relight {
+
+namespace {
+
+void checkShapes(const CompressedTransfer& t, const PreparedLight& light, std::size_t outSize,
+                 std::size_t albedoSize) {
+  if (light.bands < 1 || light.bands > t.bands)
+    throw Error("relight: prepared light has " + std::to_string(light.bands) +
+                " bands, transfer has " + std::to_string(t.bands));
+  const std::size_t nv = t.vertexCount, N = static_cast<std::size_t>(t.basisCount);
+  if (t.cluster.size() != nv || t.weights.size() != nv * N ||
+      t.means.size() != static_cast<std::size_t>(t.clusters) * t.stride() ||
+      t.basis.size() != static_cast<std::size_t>(t.clusters) * N * t.stride())
+    throw Error("relight: compressed transfer arrays do not match its shape");
+  if (outSize != nv)
+    throw Error("relight: output holds " + std::to_string(outSize) + " values for " +
+                std::to_string(nv) + " vertices");
+  if (albedoSize > 1 && albedoSize != nv)
+    throw Error("relight: " + std::to_string(albedoSize) + " albedo values for " +
+                std::to_string(nv) + " vertices (expected one per vertex, one, or none)");
+}
+
+}  // namespace
+
+ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& light) {
+  const std::size_t C = static_cast<std::size_t>(t.channels),
+                    nB = static_cast<std::size_t>(t.bands * t.bands);
+  const std::size_t nb = static_cast<std::size_t>(light.bands * light.bands);
+  const std::size_t W = static_cast<std::size_t>(t.basisCount) + 1;
+  const float* L = light.interleaved.data();  // (r, g, b) per coefficient
+  ClusterLight p;
+  p.clusters = t.clusters;
+  p.basisCount = t.basisCount;
+  p.coeffs = t.layout == TransferLayout::Matrix ? static_cast<int>(nB) : 1;
+  const std::size_t per = static_cast<std::size_t>(p.coeffs) * 3;
+  p.rgb.assign(static_cast<std::size_t>(t.clusters) * W * per, 0.0f);
+  parallelFor(static_cast<std::size_t>(t.clusters), 4, [&](std::size_t kb, std::size_t ke) {
+    for (std::size_t k = kb; k < ke; ++k)
+      for (std::size_t j = 0; j < W; ++j) {
+        const float* x = j == 0 ? t.mean(k) : t.basisVector(k, j - 1);
+        float* o = p.rgb.data() + (k * W + j) * per;
+        if (t.layout == TransferLayout::Vector) {
+          // Row index (i·C + c); scalar transfer (C = 1) multiplies all three light channels.
+          for (std::size_t i = 0; i < nb; ++i)
+            for (std::size_t c = 0; c < 3; ++c) o[c] += x[i * C + (C == 1 ? 0 : c)] * L[3 * i + c];
+        } else {
+          // (X L_c)_i = Σ_{j<nb} X_{ij} L_{j,c}, entry (i·B² + j)·C + c.
+          for (std::size_t i = 0; i < nB; ++i)
+            for (std::size_t l = 0; l < nb; ++l)
+              for (std::size_t c = 0; c < 3; ++c)
+                o[3 * i + c] += x[(i * nB + l) * C + (C == 1 ? 0 : c)] * L[3 * l + c];
+        }
+      }
+  });
+  return p;
+}
+
+void relightCompressed(const CompressedTransfer& t, const ClusterLight& p,
+                       std::span<const Rgb> albedo, std::span<Rgb> out) {
+  if (t.layout != TransferLayout::Vector || p.coeffs != 1)
+    throw Error("relight: diffuse relighting needs vector transfer (this one holds matrices)");
+  if (p.clusters != t.clusters || p.basisCount != t.basisCount)
+    throw Error("relight: cluster projections were made for another compressed transfer");
+  const std::size_t nv = t.vertexCount, N = static_cast<std::size_t>(t.basisCount);
+  if (out.size() != nv) throw Error("relight: output size does not match the vertex count");
+  // The projections padded to 4 floats (r, g, b, 0) per vector, so the per-vertex sum is one
+  // 4-wide multiply-add per weight (the compiler's SLP vectoriser); same operations in the same
+  // order per channel as the 3-wide form.
+  const std::size_t W4 = 4 * (N + 1);
+  std::vector<float> table(static_cast<std::size_t>(t.clusters) * W4, 0.0f);
+  for (std::size_t q = 0; q < static_cast<std::size_t>(t.clusters) * (N + 1); ++q)
+    for (std::size_t c = 0; c < 3; ++c) table[4 * q + c] = p.rgb[3 * q + c];
+  const float* proj = table.data();
+  const float* w = t.weights.data();
+  const std::uint32_t* id = t.cluster.data();
+  const bool perVertex = albedo.size() == nv && nv > 1;
+  const Rgb uniform = albedo.size() == 1 ? albedo[0] : Rgb(1.0f);
+  parallelFor(nv, 4096, [&](std::size_t b, std::size_t e) {
+    for (std::size_t v = b; v < e; ++v) {
+      const float* q = proj + id[v] * W4;
+      const float* wv = w + v * N;
+      float acc[4] = {q[0], q[1], q[2], q[3]};
+      for (std::size_t j = 0; j < N; ++j) {
+        const float wj = wv[j];
+        const float* qj = q + 4 + 4 * j;
+        for (int c = 0; c < 4; ++c) acc[c] += wj * qj[c];
+      }
+      const Rgb a = perVertex ? albedo[v] : uniform;
+      out[v] = Rgb(acc[0] * a.x, acc[1] * a.y, acc[2] * a.z);
+    }
+  });
+}
+
+void relightCompressed(const CompressedTransfer& t, const PreparedLight& light,
+                       std::span<const Rgb> albedo, std::span<Rgb> out) {
+  if (t.layout != TransferLayout::Vector)
+    throw Error("relight: diffuse relighting needs vector transfer (this one holds matrices)");
+  checkShapes(t, light, out.size(), albedo.size());
+  relightCompressed(t, projectClusters(t, light), albedo, out);
+}
+
+void relightCompressedGlossy(const CompressedTransfer& t, const PreparedLight& light,
+                             const PreparedMaterial& material, const GlossyView& view,
+                             std::span<const Rgb> albedo, std::span<Rgb> out) {
+  if (t.layout != TransferLayout::Matrix)
+    throw Error("relight: glossy relighting needs matrix transfer");
+  checkShapes(t, light, out.size(), albedo.size());
+  const std::size_t nv = t.vertexCount;
+  if (material.bands != t.bands)
+    throw Error("relight: material prepared for " + std::to_string(material.bands) +
+                " bands, transfer has " + std::to_string(t.bands));
+  if (view.positions.size() != nv || view.normals.size() != nv)
+    throw Error("relight: positions and normals must hold one value per vertex (" +
+                std::to_string(nv) + ")");
+  const ClusterLight p = projectClusters(t, light);
+  const int bands = t.bands;
+  const std::size_t nB = static_cast<std::size_t>(bands * bands),
+                    N = static_cast<std::size_t>(t.basisCount);
+  const std::size_t per = 3 * nB, W = N + 1;
+  const bool glossy = !material.glossy.empty();
+  parallelFor(nv, 256, [&](std::size_t b, std::size_t e) {
+    std::vector<float> yn(nB), yr(nB), lp(per);
+    for (std::size_t v = b; v < e; ++v) {
+      // L'_v = (M_k L) + Σ_j w_vj (B_kj L)
+      const float* q = p.rgb.data() + t.cluster[v] * W * per;
+      std::copy_n(q, per, lp.data());
+      for (std::size_t j = 0; j < N; ++j) {
+        const float wj = t.weights[v * N + j];
+        const float* qj = q + (j + 1) * per;
+        for (std::size_t i = 0; i < per; ++i) lp[i] += wj * qj[i];
+      }
+      const Vec3f n = view.normals[v];
+      sh::eval(bands, n, yn.data());
+      if (glossy) {
+        const Vec3f toEye = view.eye - view.positions[v];
+        const float len = length(toEye);
+        sh::eval(bands, reflectView(n, len > 0 ? toEye / len : n), yr.data());
+      }
+      Rgb diff(0.0f), spec(0.0f);
+      for (std::size_t i = 0; i < nB; ++i) {
+        const float di = material.diffuse[i] * yn[i];
+        const float gi = glossy ? material.glossy[i] * yr[i] : 0.0f;
+        for (int c = 0; c < 3; ++c) {
+          diff[c] += di * lp[3 * i + c];
+          if (glossy) spec[c] += gi * lp[3 * i + c];
+        }
+      }
+      const Rgb kd = material.kd                      ? *material.kd
+                     : albedo.size() == nv && nv != 1 ? albedo[v]
+                     : albedo.size() == 1             ? albedo[0]
+                                                      : Rgb(1.0f);
+      out[v] = kd * diff + material.specular * spec;
+    }
+  });
+}
+
+RelightInfo relightCompressed(const CompressedTransfer& t, const sh::RgbSh& light,
+                              const Material& material, const GlossyView& view,
+                              std::span<const Rgb> albedo, std::span<Rgb> out,
+                              const Mat3d& rotation) {
+  RelightInfo info;
+  const int bands = std::min(light.bands, t.bands);
+  const sh::Rotation rot(bands, rotation);
+  const PreparedLight p = prepareLight(light, t.bands, &rot, &info);
+  if (t.layout == TransferLayout::Matrix)
+    relightCompressedGlossy(t, p, prepareMaterial(material, t.bands), view, albedo, out);
+  else
+    relightCompressed(t, p, material.diffuse ? std::span<const Rgb>(&*material.diffuse, 1) : albedo,
+                      out);
+  return info;
+}
+
+}  // namespace prt::relight
