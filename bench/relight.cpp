@@ -14,10 +14,14 @@
 #include <memory>
 #include <random>
 
+#include "baselines.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/relight/relight.hpp"
 
 namespace {
+
+using prt::bench::secondsOf;
+using prt::bench::streamSum;
 
 constexpr std::size_t kVertices = 1 << 20;
 
@@ -54,44 +58,6 @@ Data& data(int bands, int channels) {
     d.albedo.assign(kVertices, prt::Rgb(0.5f));
   }
   return *slot;
-}
-
-// The streaming-read baseline: sum every float of the transfer, 16 independent accumulators so
-// the loop is vectorised without reassociation flags, vertex chunks as relighting uses.
-float streamSum(const prt::TransferField& t) {
-  const std::size_t stride = t.stride();
-  const std::size_t grain = std::max<std::size_t>(256, 65536 / (stride * sizeof(float)) * 4);
-  const std::size_t chunks = (t.vertexCount + grain - 1) / grain;
-  std::vector<float> partial(chunks, 0.0f);
-  prt::parallelFor(chunks, 1, [&](std::size_t cb, std::size_t ce) {
-    for (std::size_t c = cb; c < ce; ++c) {
-      const std::size_t lo = c * grain * stride;
-      const std::size_t hi = std::min(t.vertexCount, (c + 1) * grain) * stride;
-      const float* p = t.data.data();
-      float acc[16] = {};
-      std::size_t i = lo;
-      for (; i + 16 <= hi; i += 16)
-        for (int k = 0; k < 16; ++k) acc[k] += p[i + k];
-      for (; i < hi; ++i) acc[0] += p[i];
-      float s = 0;
-      for (float a : acc) s += a;
-      partial[c] = s;
-    }
-  });
-  float total = 0;
-  for (float p : partial) total += p;
-  return total;
-}
-
-double secondsOf(const std::function<void()>& fn, int reps) {
-  double best = 1e30;
-  for (int r = 0; r < reps; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    fn();
-    best = std::min(best,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return best;
 }
 
 void BM_StreamSum(benchmark::State& state) {

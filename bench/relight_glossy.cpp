@@ -21,12 +21,16 @@
 #include <memory>
 #include <random>
 
+#include "baselines.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/relight/glossy.hpp"
 
 namespace {
+
+using prt::bench::secondsOf;
+using prt::bench::streamSum;
 
 const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
 
@@ -68,29 +72,6 @@ Data& data(int bands) {
   return *slot;
 }
 
-float streamSum(const prt::TransferField& t) {
-  const std::size_t n = t.data.size(), grain = 1 << 16;
-  const std::size_t chunks = (n + grain - 1) / grain;
-  std::vector<float> partial(chunks, 0.0f);
-  prt::parallelFor(chunks, 1, [&](std::size_t cb, std::size_t ce) {
-    for (std::size_t c = cb; c < ce; ++c) {
-      const float* p = t.data.data();
-      float acc[16] = {};
-      std::size_t i = c * grain;
-      const std::size_t hi = std::min(n, (c + 1) * grain);
-      for (; i + 16 <= hi; i += 16)
-        for (int k = 0; k < 16; ++k) acc[k] += p[i + k];
-      for (; i < hi; ++i) acc[0] += p[i];
-      float s = 0;
-      for (float a : acc) s += a;
-      partial[c] = s;
-    }
-  });
-  float total = 0;
-  for (float p : partial) total += p;
-  return total;
-}
-
 /// L' = M L for every vertex with Eigen (row-major B² × B² map times B² × 3).
 void eigenProduct(const prt::TransferField& t, const Eigen::MatrixXf& light,
                   std::vector<float>& out) {
@@ -103,17 +84,6 @@ void eigenProduct(const prt::TransferField& t, const Eigen::MatrixXf& light,
       o.noalias() = m * light;
     }
   });
-}
-
-double secondsOf(const std::function<void()>& fn, int reps) {
-  double best = 1e30;
-  for (int r = 0; r < reps; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    fn();
-    best = std::min(best,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return best;
 }
 
 // range(0): bands; range(1): 1 = glossy lobe + diffuse, 0 = diffuse only (kd, no lobe).
@@ -131,7 +101,8 @@ void BM_RelightGlossy(benchmark::State& state) {
     for (int c = 0; c < 3; ++c) l(i, c) = d.light.c[i][c];
   std::vector<float> eigenOut(d.transfer.vertexCount * nc * 3);
   run();
-  const double stream = secondsOf([&] { benchmark::DoNotOptimize(streamSum(d.transfer)); }, 5);
+  const double stream =
+      secondsOf([&] { benchmark::DoNotOptimize(streamSum(d.transfer.data, 1 << 16)); }, 5);
   const double eigen = secondsOf([&] { eigenProduct(d.transfer, l, eigenOut); }, 5);
   const double relit = secondsOf(run, 5);
   for (auto _ : state) {

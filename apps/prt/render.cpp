@@ -165,10 +165,8 @@ void run(const RenderOptions& o) {
             ? relight::relightGlossy(transfer, light, material,
                                      {bake.mesh.positions, bake.mesh.normals, camera.eye},
                                      bake.mesh.albedo, radiance, rotation)
-            : relight::relight(transfer, light,
-                               material.diffuse ? std::span<const Rgb>(&*material.diffuse, 1)
-                                                : std::span<const Rgb>(bake.mesh.albedo),
-                               radiance, rotation);
+            : relight::relight(transfer, light, material.diffuseOr(bake.mesh.albedo), radiance,
+                               rotation);
     if (!warned && !relit.warning().empty()) warn(relit.warning()), warned = true;
     render::BackgroundFn bg;
     switch (kind) {

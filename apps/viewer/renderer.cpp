@@ -16,6 +16,21 @@ namespace prt::viewer {
 
 namespace {
 
+/// Throws one line when a texture buffer of `texels` RGBA32F texels exceeds this OpenGL's limit.
+void requireTextureBufferTexels(double texels, const char* what, const char* advice) {
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  if (texels > double(maxTexels))
+    throw Error(
+        fmt::format("{} needs {:.0f} texels, more than this OpenGL's texture buffer "
+                    "limit of {} ({})",
+                    what, texels, maxTexels, advice));
+}
+
+}  // namespace
+
+namespace {
+
 // ---- shaders --------------------------------------------------------------------------------
 // The GLSL lives in shaders/ (shared functions prt_*.glsl, this viewer's stages in
 // shaders/viewer/), embedded at configure time (cmake/EmbedShaders.cmake); the web page (web/)
@@ -236,14 +251,8 @@ void Renderer::setGlossyTransfer(const TransferField& t) {
                     "(use --glossy-on cpu)",
                     kMaxGpuGlossyBands, t.bands));
   const int n = t.coeffs(), rowTexels = (n + 3) / 4, vertexTexels = n * rowTexels;
-  GLint maxTexels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  const double texels = double(vertexTexels) * double(t.vertexCount);
-  if (texels > double(maxTexels))
-    throw Error(
-        fmt::format("the glossy transfer needs {:.0f} texels, more than this OpenGL's "
-                    "texture buffer limit of {} (use --glossy-on cpu)",
-                    texels, maxTexels));
+  requireTextureBufferTexels(double(vertexTexels) * double(t.vertexCount), "the glossy transfer",
+                             "use --glossy-on cpu");
   // Row i of vertex v at texels v·n·rowTexels + i·rowTexels, its n entries zero-padded.
   std::vector<float> packed(std::size_t(vertexTexels) * 4 * t.vertexCount, 0.0f);
   for (std::size_t v = 0; v < t.vertexCount; ++v)
@@ -310,14 +319,8 @@ void Renderer::setTransfer(const TransferField& t) {
     throw Error(fmt::format("the transfer has {} channels (1 or 3 expected)", t.channels));
   const int n = t.coeffs();
   const int texelsPerVertex = t.channels == 1 ? paddedCoeffs(t.bands) / 4 : n;
-  GLint maxTexels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  const double texels = double(texelsPerVertex) * double(t.vertexCount);
-  if (texels > double(maxTexels))
-    throw Error(
-        fmt::format("the transfer needs {:.0f} texels, more than this OpenGL's texture "
-                    "buffer limit of {} (use fewer bands)",
-                    texels, maxTexels));
+  requireTextureBufferTexels(double(texelsPerVertex) * double(t.vertexCount), "the transfer",
+                             "use fewer bands");
   std::vector<float> packed(std::size_t(texelsPerVertex) * 4 * t.vertexCount, 0.0f);
   for (std::size_t v = 0; v < t.vertexCount; ++v) {
     const float* src = t.vertex(v);

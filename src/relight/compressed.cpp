@@ -128,7 +128,7 @@ void relightCompressedGlossy(const CompressedTransfer& t, const PreparedLight& l
   const std::size_t per = 3 * nB, W = N + 1;
   const bool glossy = !material.glossy.empty();
   parallelFor(nv, 256, [&](std::size_t b, std::size_t e) {
-    std::vector<float> yn(nB), yr(nB), lp(per);
+    std::vector<float> y(nB), d(nB), g(glossy ? nB : 0), lp(per);
     for (std::size_t v = b; v < e; ++v) {
       // L'_v = (M_k L) + Σ_j w_vj (B_kj L)
       const float* q = p.rgb.data() + t.cluster[v] * W * per;
@@ -138,27 +138,15 @@ void relightCompressedGlossy(const CompressedTransfer& t, const PreparedLight& l
         const float* qj = q + (j + 1) * per;
         for (std::size_t i = 0; i < per; ++i) lp[i] += wj * qj[i];
       }
-      const Vec3f n = view.normals[v];
-      sh::eval(bands, n, yn.data());
-      if (glossy) {
-        const Vec3f toEye = view.eye - view.positions[v];
-        const float len = length(toEye);
-        sh::eval(bands, reflectView(n, len > 0 ? toEye / len : n), yr.data());
-      }
+      material.responses(view.positions[v], view.normals[v], view.eye, d.data(), g.data(),
+                         y.data());
       Rgb diff(0.0f), spec(0.0f);
-      for (std::size_t i = 0; i < nB; ++i) {
-        const float di = material.diffuse[i] * yn[i];
-        const float gi = glossy ? material.glossy[i] * yr[i] : 0.0f;
+      for (std::size_t i = 0; i < nB; ++i)
         for (int c = 0; c < 3; ++c) {
-          diff[c] += di * lp[3 * i + c];
-          if (glossy) spec[c] += gi * lp[3 * i + c];
+          diff[c] += d[i] * lp[3 * i + c];
+          if (glossy) spec[c] += g[i] * lp[3 * i + c];
         }
-      }
-      const Rgb kd = material.kd                      ? *material.kd
-                     : albedo.size() == nv && nv != 1 ? albedo[v]
-                     : albedo.size() == 1             ? albedo[0]
-                                                      : Rgb(1.0f);
-      out[v] = kd * diff + material.specular * spec;
+      out[v] = material.diffuseAt(albedo, v, nv) * diff + material.specular * spec;
     }
   });
 }
@@ -174,8 +162,7 @@ RelightInfo relightCompressed(const CompressedTransfer& t, const sh::RgbSh& ligh
   if (t.layout == TransferLayout::Matrix)
     relightCompressedGlossy(t, p, prepareMaterial(material, t.bands), view, albedo, out);
   else
-    relightCompressed(t, p, material.diffuse ? std::span<const Rgb>(&*material.diffuse, 1) : albedo,
-                      out);
+    relightCompressed(t, p, material.diffuseOr(albedo), out);
   return info;
 }
 

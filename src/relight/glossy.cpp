@@ -31,6 +31,18 @@ PreparedMaterial prepareMaterial(const Material& material, int bands) {
   return p;
 }
 
+void PreparedMaterial::responses(const Vec3f& position, const Vec3f& normal, const Vec3f& eye,
+                                 float* d, float* g, float* scratch) const {
+  const std::size_t nB = diffuse.size();
+  sh::eval(bands, normal, scratch);
+  for (std::size_t i = 0; i < nB; ++i) d[i] = diffuse[i] * scratch[i];
+  if (glossy.empty()) return;
+  const Vec3f toEye = eye - position;
+  const float len = length(toEye);
+  sh::eval(bands, reflectView(normal, len > 0 ? toEye / len : normal), scratch);
+  for (std::size_t i = 0; i < nB; ++i) g[i] = glossy[i] * scratch[i];
+}
+
 namespace {
 
 // u += d_i · row, w += g_i · row over the matrix's rows: the whole per-vertex cost. Compiled for
@@ -162,18 +174,10 @@ void relightGlossy(const TransferField& transfer, const PreparedLight& light,
   const RowsFn fast = pickRows(width, glossy);
 #endif
   parallelFor(nv, grain, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> yn(nB), yr(nB), d(nB), g(glossy ? nB : 0), u(width), w(glossy ? width : 0);
+    std::vector<float> y(nB), d(nB), g(glossy ? nB : 0), u(width), w(glossy ? width : 0);
     for (std::size_t v = begin; v < end; ++v) {
-      const Vec3f n = view.normals[v];
-      sh::eval(bands, n, yn.data());
-      for (std::size_t i = 0; i < nB; ++i) d[i] = material.diffuse[i] * yn[i];
-      if (glossy) {
-        const Vec3f toEye = view.eye - view.positions[v];
-        const float len = length(toEye);
-        const Vec3f vdir = len > 0 ? toEye / len : n;
-        sh::eval(bands, reflectView(n, vdir), yr.data());
-        for (std::size_t i = 0; i < nB; ++i) g[i] = material.glossy[i] * yr[i];
-      }
+      material.responses(view.positions[v], view.normals[v], view.eye, d.data(), g.data(),
+                         y.data());
 #if defined(PRT_GLOSSY_AVX2)
       if (fast)
         fast(M + v * transfer.stride(), nB, rowStride, width, d.data(), glossy ? g.data() : nullptr,
@@ -189,11 +193,7 @@ void relightGlossy(const TransferField& transfer, const PreparedLight& light,
           diff[c] += u[k] * L[3 * j + c];
           if (glossy) spec[c] += w[k] * L[3 * j + c];
         }
-      const Rgb kd = material.kd                      ? *material.kd
-                     : albedo.size() == nv && nv != 1 ? albedo[v]
-                     : albedo.size() == 1             ? albedo[0]
-                                                      : Rgb(1.0f);
-      out[v] = kd * diff + material.specular * spec;
+      out[v] = material.diffuseAt(albedo, v, nv) * diff + material.specular * spec;
     }
   });
 }

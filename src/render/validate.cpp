@@ -203,9 +203,7 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
       relight::relightGlossy(transfer.truncated(b), light.truncated(b), rs.material,
                              {mesh.positions, mesh.normals, *rs.eye}, albedo, all, rs.rotation);
     else
-      relight::relight(transfer.truncated(b), light.truncated(b),
-                       rs.material.diffuse ? std::span<const Rgb>(&*rs.material.diffuse, 1)
-                                           : std::span<const Rgb>(albedo),
+      relight::relight(transfer.truncated(b), light.truncated(b), rs.material.diffuseOr(albedo),
                        all, rs.rotation);
     for (std::size_t i = 0; i < n; ++i) prt[i] = all[verts[i]];
     double floorSq = 0;

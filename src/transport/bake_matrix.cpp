@@ -96,7 +96,8 @@ MatD hemisphereProductZ(int bands) {
 }
 
 /// H(n) = D H_z Dᵀ with D the SH rotation of R = [t b n] (R z = n).
-void hemisphereProduct(const MatD& hz, int bands, const Vec3d& n, MatD& out, MatD& tmp) {
+void hemisphereProduct(const MatD& hz, int bands, const Vec3d& n, MatD& out, MatD& tmp,
+                       MatD& tmpT) {
   Vec3d t, b;
   orthonormalBasis(n, t, b);
   Mat3d r;
@@ -110,8 +111,8 @@ void hemisphereProduct(const MatD& hz, int bands, const Vec3d& n, MatD& out, Mat
   tmp.resize(nc, nc);
   out.resize(nc, nc);
   for (int j = 0; j < nc; ++j) rot.apply(hz.col(j).data(), tmp.col(j).data());  // D H_z
-  const MatD tt = tmp.transpose();                                              // H_z Dᵀ
-  for (int j = 0; j < nc; ++j) rot.apply(tt.col(j).data(), out.col(j).data());  // D H_z Dᵀ
+  tmpT = tmp.transpose();  // H_z Dᵀ (into a reused buffer: no allocation per vertex)
+  for (int j = 0; j < nc; ++j) rot.apply(tmpT.col(j).data(), out.col(j).data());  // D H_z Dᵀ
 }
 
 /// Uniform directions over the hemisphere about n from scrambled Sobol' points.
@@ -153,7 +154,7 @@ struct MatrixContext {
 
 /// Per-thread working storage.
 struct Workspace {
-  MatD h, tmp, total;          // H(n), scratch, Σ over the vertex (double)
+  MatD h, tmp, tmpT, total;    // H(n), scratch (and its transpose), Σ over the vertex (double)
   MatF y, part;                // batch columns Y (nc × 64), float partial P
   std::vector<MatF> z, gpart;  // per channel: Z (nc × 64), float partial G
   std::vector<MatD> gtotal;
@@ -173,7 +174,7 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
   const Mesh& mesh = ctx.mesh;
   const int nc = ctx.nc, channels = ctx.channels;
   const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
-  hemisphereProduct(ctx.hz, ctx.bands, Vec3d(nrm), ws.h, ws.tmp);
+  hemisphereProduct(ctx.hz, ctx.bands, Vec3d(nrm), ws.h, ws.tmp, ws.tmpT);
   auto write = [&](const MatD& m, int c) {
     for (int i = 0; i < nc; ++i)
       for (int j = 0; j < nc; ++j)

@@ -33,6 +33,18 @@ struct PreparedMaterial {
   std::vector<float> glossy;   ///< Λ_l per coefficient i; empty when the material has no lobe
   Rgb specular{0.0f};          ///< ks
   std::optional<Rgb> kd;       ///< material.diffuse
+
+  /// The two per-vertex response vectors of B² floats: d_i = (A_l/π) Y_i(n) into `d` and, for
+  /// a glossy material, g_i = Λ_l Y_i(R) with R the view toward `eye` reflected about n, into
+  /// `g` (untouched otherwise). `scratch` holds B² floats.
+  void responses(const Vec3f& position, const Vec3f& normal, const Vec3f& eye, float* d, float* g,
+                 float* scratch) const;
+  /// kd at vertex v of nv: the material's, else `albedo` per vertex, one for all, or white.
+  Rgb diffuseAt(std::span<const Rgb> albedo, std::size_t v, std::size_t nv) const {
+    if (kd) return *kd;
+    if (albedo.size() == nv && nv != 1) return albedo[v];
+    return albedo.size() == 1 ? albedo[0] : Rgb(1.0f);
+  }
 };
 PreparedMaterial prepareMaterial(const Material& material, int bands);
 

@@ -32,6 +32,7 @@
 // replacing the mesh's own albedo) and `ks` likewise.
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,11 @@ struct Material {
 
   /// True when the glossy term contributes (a lobe and ks > 0).
   bool glossy() const;
+  /// The diffuse colours to relight with: the material's kd (one for all) when it sets one,
+  /// else `perVertex` (the mesh's albedo, possibly empty = white). Views *this.
+  std::span<const Rgb> diffuseOr(std::span<const Rgb> perVertex) const {
+    return diffuse ? std::span<const Rgb>(&*diffuse, 1) : perVertex;
+  }
   /// The spec string that parses back to this material.
   std::string spec() const;
   bool operator==(const Material&) const = default;
