@@ -195,9 +195,12 @@ TEST(Hardening, DeepNestingIsRefusedNotAStackOverflow) {
                 "JSON nested deeper than 256 levels (PRT_MAX_NESTING)");
   // 64 levels, each node listing the next twice: 2^64 paths through a 64-node graph.
   std::string dag;
-  for (int i = 0; i < 64; ++i)
-    dag += (i ? "," : "") + std::string(R"({"children":[)") +
-           (i + 1 < 64 ? std::to_string(i + 1) + "," + std::to_string(i + 1) : "") + "]}";
+  for (int i = 0; i < 64; ++i) {
+    if (i) dag += ',';
+    dag += R"({"children":[)";
+    if (i + 1 < 64) dag += std::to_string(i + 1) + "," + std::to_string(i + 1);
+    dag += "]}";
+  }
   const std::string bomb = dir.write("dag.gltf", gltfWithNodes(dag));
   expectOneLine(finishesWithin(20, "glTF shared-subtree bomb", [&] { loadMesh(bomb); }), bomb,
                 "instantiates more than");
