@@ -69,8 +69,13 @@ void runValidate(const ValidateArgs& a) {
   }
   if (settings.material.glossy() && !bt.field.isMatrix())
     warn(a.bake + ": the " + toString(bt.settings.mode) +
-         " transfer is a vector (diffuse only); validating the diffuse part alone against a "
-         "glossy reference");
+         " transfer is a vector (diffuse only); validating its diffuse part (the reference "
+         "drops the lobe, and its bounces are diffuse too)");
+  if (!a.material.empty() && glossyBounces(bt.settings) &&
+      !(settings.material.lobe == bt.settings.material.lobe &&
+        settings.material.specular == bt.settings.material.specular))
+    warn(a.bake + ": its bounces were baked off " + bt.settings.material.spec() +
+         "; the reference's bounces follow --material, so the two differ by more than error");
   file.requireComplete(a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.field.bands);

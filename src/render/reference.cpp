@@ -265,8 +265,12 @@ double uniform53(Pcg32& rng) {
 
 }  // namespace
 
-// The light a hit h of the ray in direction w sends back along it: ρ(h) ⊙ (one sample of
-// (1/π) ∫ L_in(h, ω') max(n_h·ω', 0) dω' with one bounce less) at a front face, 0 at a back face.
+// The light a hit h of the ray in direction w sends back along it, 0 at a back face. At a front
+// face, one sample of what its surface reflects with one bounce less: ρ(h) ⊙ (1/π) ∫ L_in(h, ω')
+// max(n_h·ω', 0) dω' for a diffuse material; for a glossy one also ks ⊙ ∫ L_in(h, ω') G(R·ω') dω'
+// about R = −w reflected in n_h. Of the two terms one is followed, picked with probability in
+// proportion to its weight (Σ ρ_c against Σ ks_c) and divided by it: unbiased, and the path
+// stays a path instead of a tree.
 Rgb ReferenceIntegrator::frontHit(const Hit& h, const Vec3f& w, int bouncesLeft, Pcg32& rng,
                                   std::uint64_t& rays) const {
   const auto& tri = mesh_.triangles[h.triangle];
@@ -280,8 +284,17 @@ Rgb ReferenceIntegrator::frontHit(const Hit& h, const Vec3f& w, int bouncesLeft,
   const float len = length(nq);
   nq = len > 0 ? nq / len : normalize(ng);
   const Rgb rho = hitAlbedo(h.triangle, h.u, h.v);
-  if (rho.x <= 0 && rho.y <= 0 && rho.z <= 0) return Rgb(0.0f);
-  return rho * incoming(q, nq, bouncesLeft - 1, rng, rays);
+  const double wd = double(rho.x) + rho.y + rho.z;
+  if (!settings_.material.glossy()) {
+    if (wd <= 0) return Rgb(0.0f);
+    return rho * incoming(q, nq, bouncesLeft - 1, rng, rays);
+  }
+  const Rgb ks = settings_.material.specular;
+  const double wg = double(ks.x) + ks.y + ks.z, pd = wd / (wd + wg);
+  if (rng.uniform() < pd)
+    return rho * incoming(q, nq, bouncesLeft - 1, rng, rays) * static_cast<float>(1.0 / pd);
+  const Vec3f r = normalize(reflectView(nq, -w));
+  return ks * glossy(q, nq, r, bouncesLeft - 1, rng, rays) * static_cast<float>(1.0 / (1.0 - pd));
 }
 
 // One sample of (1/π) ∫ L_in(p, ω) max(n·ω, 0) dω: one environment direction and one cosine

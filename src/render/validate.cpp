@@ -124,6 +124,12 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   rs.mode = bake.mode;
   rs.bounces = rep.bounces;
   rs.material = bake.material;
+  // Diffuse (vector) transfer holds the diffuse part only, with diffuse bounces: the reference
+  // renders the same, the lobe dropped (kd kept).
+  if (!transfer.isMatrix()) {
+    rs.material.lobe = {};
+    rs.material.specular = Rgb(0.0f);
+  }
   rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
   // Glossy (matrix) transfer is seen from an eye; its floor has no closed form even unshadowed.
   const bool glossy = transfer.isMatrix();

@@ -40,6 +40,9 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
   if (s.material.diffuse && !(isFinite(*s.material.diffuse) && s.material.diffuse->x >= 0 &&
                               s.material.diffuse->y >= 0 && s.material.diffuse->z >= 0))
     throw Error("albedo must be finite and non-negative");
+  const Rgb ks = s.material.specular;
+  if (!(isFinite(ks) && ks.x >= 0 && ks.y >= 0 && ks.z >= 0))
+    throw Error("specular colour ks must be finite and non-negative");
   if (s.firstVertex >= mesh.vertexCount() || s.vertexCount > mesh.vertexCount() - s.firstVertex)
     throw Error(name, "vertex range [" + std::to_string(s.firstVertex) + ", " +
                           std::to_string(s.firstVertex + s.vertexCount) +
@@ -85,6 +88,11 @@ void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint
 
 namespace prt {
 
+bool glossyBounces(const BakeSettings& s) {
+  return s.layout == TransferLayout::Matrix && s.mode == TransferMode::Interreflected &&
+         s.bounces > 0 && s.material.glossy();
+}
+
 BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   using namespace bakedetail;
   BakeFootprint f;
@@ -93,10 +101,18 @@ BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   const std::size_t count = s.vertexCount ? std::min(s.vertexCount, n - first) : n - first;
   const bool inter = s.mode == TransferMode::Interreflected && s.bounces > 0;
   const Albedo a = resolveAlbedo(mesh, s);
-  f.channels = inter && !a.grey ? 3 : 1;
+  const bool glossy = glossyBounces(s);
+  const Rgb ks = s.material.specular;
+  const bool colouredLobe = glossy && !(ks.x == ks.y && ks.y == ks.z);
+  f.channels = inter && (!a.grey || colouredLobe) ? 3 : 1;
   f.bytesPerVertex = transferBytes(s.layout, s.bands, f.channels, 1);
   f.transferBytes = transferBytes(s.layout, s.bands, f.channels, count);
-  if (inter) {
+  if (glossy) {
+    // The matrices with K − 1 bounces over the whole mesh, and while they are baked those with
+    // K − 2 (each order is baked from the one before and then dropped).
+    const std::size_t mat = transferBytes(TransferLayout::Matrix, s.bands, f.channels, n);
+    f.workingBytes = s.bounces > 1 ? 2 * mat : mat;
+  } else if (inter) {
     // Vector: two full-mesh buffers of the previous and current order. Matrix: the diffuse
     // vector transfer with K − 1 bounces over the whole mesh, plus its own working buffers.
     const std::size_t vec = transferBytes(TransferLayout::Vector, s.bands, f.channels, n);

@@ -17,6 +17,20 @@
 // the SH rotation D(R) (R z = n): H(n) = D H_z Dᵀ. Unshadowed transfer is H(n) itself; an
 // unoccluded vertex comes out exact.
 //
+// Bounces. The light a front-facing hit h sends back toward p is what its surface reflects of
+// the light arriving at h. A diffuse surface reflects ρ(h) (T^{K−1}(h)·L) with T^{K−1} the
+// diffuse vector transfer of one bounce less, whatever the direction; a glossy one (the
+// material's lobe, ks > 0) sends (M^{K−1}(h) L)·r(h, −ω) with
+//
+//   r(h, −ω) = ρ(h) d(n_h) + ks g(R_h(−ω)),   d_i = (A_l/π) Y_i(n_h),  g_i = Λ_l Y_i(R_h(−ω)),
+//
+// R_h(−ω) the direction back toward p reflected in h's normal (prepared_material.hpp): the same
+// exit radiance relighting computes, seen from p. So the bounced term's column is
+// z = M^{K−1}(h)ᵀ r, with M^{K−1} the matrices of K − 1 bounces, baked first over the whole mesh
+// (the recursion ends at the shadowed matrices) and interpolated over the hit triangle as
+// Σ_k b_k M_kᵀ r. Each order draws its own directions (the seed is derived per order), so the
+// orders' errors are independent.
+//
 // Speed. Samples are batched 64 at a time; the blocked ones form the columns of Y (B² × k) and
 // enter as one symmetric rank-k update P += Y Yᵀ (Eigen's selfadjointView::rankUpdate, the
 // lower triangle only), the bounce term as one GEMM G += Y Zᵀ with Z the hit points' bounced
@@ -37,6 +51,7 @@
 #include "prt/core/sampling.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
+#include "prt/transfer/prepared_material.hpp"
 
 namespace prt::bakedetail {
 
@@ -46,6 +61,7 @@ constexpr std::size_t kBatch = 64;
 constexpr int kFlushBatches = 4;  // float rank updates summed before going to double
 constexpr std::size_t kVertexGrain = 2;
 constexpr std::uint64_t kMatrixPass = 0x6d61747269780000ull;  // decorrelates from vector passes
+constexpr std::uint64_t kBounceOrder = 0x626f756e63650000ull;  // one seed per bounce order
 
 using MatF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic>;
 using MatD = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
@@ -148,7 +164,11 @@ struct MatrixContext {
   MatD hz;
   std::unique_ptr<OwenSobol2D> sobol;
   Albedo albedo;
-  const TransferField* bounced = nullptr;  ///< diffuse transfer T^{K−1}, whole mesh (inter)
+  /// The bounced light's source over the whole mesh: diffuse vector transfer T^{K−1}, or for
+  /// glossy bounce surfaces the matrices M^{K−1} (then `glossy` is set). Null without bounces.
+  const TransferField* bounced = nullptr;
+  bool glossy = false;
+  PreparedMaterial kernels;  ///< the material's d and g kernels (glossy bounces)
   std::atomic<std::uint64_t> rays{0};
 };
 
@@ -159,8 +179,16 @@ struct Workspace {
   std::vector<MatF> z, gpart;  // per channel: Z (nc × 64), float partial G
   std::vector<MatD> gtotal;
   std::vector<float> interp;
+  std::vector<float> d, g, scratch, response;  // glossy bounces: d, g, SH scratch, r per channel
   explicit Workspace(int nc, int channels)
-      : total(nc, nc), y(nc, kBatch), part(nc, nc), interp(static_cast<std::size_t>(nc) * 3) {
+      : total(nc, nc),
+        y(nc, kBatch),
+        part(nc, nc),
+        interp(static_cast<std::size_t>(nc) * 3),
+        d(nc),
+        g(nc),
+        scratch(nc),
+        response(static_cast<std::size_t>(nc) * channels) {
     for (int c = 0; c < channels; ++c) {
       z.emplace_back(nc, kBatch);
       gpart.emplace_back(nc, nc);
@@ -168,6 +196,41 @@ struct Workspace {
     }
   }
 };
+
+/// Column `col` of Z for a front-facing hit h of the ray in direction w, glossy bounce surfaces:
+/// z_c = Σ_k b_k M^{K−1}_{k,c}ᵀ r_c with r_c = ρ_c d(n_h) + ks_c g(R_h(−w)) (see the top).
+void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, Workspace& ws,
+                        int col) {
+  const Mesh& mesh = ctx.mesh;
+  const auto& tri = mesh.triangles[h.triangle];
+  const float b[3] = {1.0f - h.u - h.v, h.u, h.v};
+  const Vec3f p0 = mesh.positions[tri[0]], p1 = mesh.positions[tri[1]],
+              p2 = mesh.positions[tri[2]];
+  const Vec3f q = p0 * b[0] + p1 * b[1] + p2 * b[2];
+  Vec3f nq = mesh.normals[tri[0]] * b[0] + mesh.normals[tri[1]] * b[1] + mesh.normals[tri[2]] * b[2];
+  const float len = length(nq);
+  nq = len > 0 ? nq / len : normalize(cross(p1 - p0, p2 - p0));
+  // Seen from one unit back along the ray: the view at h is exactly −w.
+  ctx.kernels.responses(q, nq, q - w, ws.d.data(), ws.g.data(), ws.scratch.data());
+  const Rgb rho = ctx.albedo.at(tri, h.u, h.v);
+  const Rgb ks = ctx.settings.material.specular;
+  const int nc = ctx.nc, bChannels = ctx.bounced->channels;
+  for (int c = 0; c < ctx.channels; ++c) {
+    float* r = ws.response.data() + static_cast<std::size_t>(c) * nc;
+    for (int i = 0; i < nc; ++i) r[i] = rho[c] * ws.d[i] + ks[c] * ws.g[i];
+    float* z = ws.z[c].col(col).data();
+    std::fill_n(z, nc, 0.0f);
+    const int src = bChannels == 1 ? 0 : c;
+    for (int k = 0; k < 3; ++k) {
+      const float* m = ctx.bounced->vertex(tri[k]);
+      for (int i = 0; i < nc; ++i) {
+        const float s = b[k] * r[i];
+        const float* row = m + static_cast<std::size_t>(i) * nc * bChannels + src;
+        for (int jj = 0; jj < nc; ++jj) z[jj] += s * row[static_cast<std::size_t>(jj) * bChannels];
+      }
+    }
+  }
+}
 
 /// One vertex: writes its B² × B² (× C) row to out; returns Var of the M_00 estimator's mean.
 double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws) {
@@ -243,6 +306,10 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
         const int j = front[q];
         sh::eval(ctx.bands, rays[j].dir, ws.y.col(k++).data());
         const Hit& h = hits[j];
+        if (ctx.glossy) {
+          glossyBounceColumn(ctx, h, rays[j].dir, ws, kz++);
+          continue;
+        }
         const auto& tri = mesh.triangles[h.triangle];
         const float b0 = 1.0f - h.u - h.v;
         const float* r0 = ctx.bounced->vertex(tri[0]);
@@ -295,12 +362,24 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
   const std::size_t count = settings.vertexCount ? settings.vertexCount : total - first;
   const bool inter = settings.mode == TransferMode::Interreflected && settings.bounces > 0;
 
-  // The bounced light: the diffuse transfer with K−1 bounces over the whole mesh (hits land
-  // anywhere). It takes the first share of the progress.
-  const double preShare = inter ? 0.3 : 0.0;
+  // The bounced light over the whole mesh (hits land anywhere): the diffuse transfer with K − 1
+  // bounces, or for glossy bounce surfaces the matrices with K − 1 bounces (this function, one
+  // order less). It takes the first share of the progress.
+  const bool glossy = glossyBounces(settings);
+  const double preShare = !inter ? 0.0 : glossy ? double(settings.bounces) / (settings.bounces + 1) : 0.3;
   TransferField bounced;
   BakeStats bounceStats;
-  if (inter) {
+  if (glossy) {
+    BakeSettings ms = settings;
+    ms.firstVertex = 0;
+    ms.vertexCount = 0;
+    ms.bounces = settings.bounces - 1;
+    ms.mode = ms.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
+    ms.seed = deriveSeed(settings.seed, kBounceOrder + static_cast<std::uint64_t>(ms.bounces));
+    ProgressFn sub;
+    if (progressFn) sub = [&](double f) { return progressFn(preShare * f); };
+    bounced = bakeMatrix(mesh, occluder, ms, &bounceStats, sub);
+  } else if (inter) {
     BakeSettings vs = settings;
     vs.layout = TransferLayout::Vector;
     vs.firstVertex = 0;
@@ -322,6 +401,8 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
                     nullptr,
                     resolveAlbedo(mesh, settings),
                     inter ? &bounced : nullptr,
+                    glossy,
+                    glossy ? prepareMaterial(settings.material, settings.bands) : PreparedMaterial{},
                     {}};
   ctx.channels = bakeFootprint(mesh, settings).channels;
   if (settings.mode != TransferMode::Unshadowed)
@@ -348,7 +429,14 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
     st.vertices = count;
     st.rays = ctx.rays.load() + bounceStats.rays;
     st.secondsDirect = seconds(tm);
-    if (inter) {
+    if (glossy) {
+      // The recursion's passes: its shadowed pass is the direct one, this pass the last bounce.
+      st.secondsDirect = bounceStats.secondsDirect;
+      st.secondsBounce = bounceStats.secondsBounce;
+      st.secondsBounce.push_back(seconds(tm));
+      st.raysBounce = bounceStats.raysBounce;
+      st.raysBounce.push_back(ctx.rays.load());
+    } else if (inter) {
       st.secondsBounce = {bounceStats.secondsTotal};
       st.raysBounce = {bounceStats.rays};
     }

@@ -171,6 +171,42 @@ TEST(RelightGlossy, WhiteFurnaceNeverExceedsTheLight) {
   }
 }
 
+// The same furnace with glossy inter-reflection: sphere-plane, kd + ks = 1, two bounces off
+// surfaces of the same material. No surface reflects more than it receives, so under L = 1 no
+// vertex exceeds 1 (up to ringing and the bake's noise); and the bounces do add light where the
+// sphere and the plane face each other.
+TEST(RelightGlossy, WhiteFurnaceWithGlossyBouncesNeverExceedsTheLight) {
+  const Mesh mesh = builtinScene("builtin:sphere-plane?h=0.6&grid=16&subdiv=2");
+  auto occ = makeEmbreeOccluder(mesh);
+  sh::RgbSh white(5);
+  white.c[0] = Rgb(static_cast<float>(std::sqrt(4 * kPi)));
+  const Vec3f eye(0.3f, 2.0f, 4.0f);
+  for (const char* spec : {"phong?exponent=4&ks=0.6&kd=0.4", "ggx?roughness=0.5&ks=0.7&kd=0.3"}) {
+    SCOPED_TRACE(spec);
+    BakeSettings s;
+    s.layout = TransferLayout::Matrix;
+    s.mode = TransferMode::Interreflected;
+    s.bounces = 2;
+    s.bands = 5;
+    s.samples = 1024;
+    s.material = parseMaterial(spec);
+    const TransferField inter = bake(mesh, *occ, s);
+    s.mode = TransferMode::Shadowed;
+    const TransferField direct = bake(mesh, *occ, s);
+    std::vector<Rgb> e(mesh.vertexCount()), e0(mesh.vertexCount());
+    relight::relightGlossy(inter, white, s.material, {mesh.positions, mesh.normals, eye}, {}, e);
+    relight::relightGlossy(direct, white, s.material, {mesh.positions, mesh.normals, eye}, {}, e0);
+    float hi = 0, gain = 0;
+    for (std::size_t v = 0; v < e.size(); ++v) {
+      hi = std::max(hi, e[v].x);
+      gain = std::max(gain, e[v].x - e0[v].x);
+    }
+    std::printf("%s: brightest vertex %.4f, largest gain from the bounces %.4f\n", spec, hi, gain);
+    EXPECT_LE(hi, 1.03f);
+    EXPECT_GT(gain, 0.2f);
+  }
+}
+
 TEST(RelightGlossy, TurningTheLightEqualsTurningTheSceneBack) {
   const Mat3d rot = rotationEulerXYZ(20, 75, -10);
   const Mat3d inv = rot.transposed();

@@ -15,16 +15,18 @@
 //   e(p, v) = kd(p) ⊙ (1/π) ∫ L_in(p, ω) max(n·ω, 0) dω  +  ks ⊙ ∫_{n·ω>0} L_in(p, ω) G(r·ω) dω,
 //   r = 2(n·v)n − v,  v = normalize(eye − p),
 //   L_in(p, ω) = L'(ω)                   if the ray (p, ω) escapes,
-//              = ρ(h)/π ∫ L_in(h, ω') max(n_h·ω', 0) dω'   at its closest hit h if h is a front
-//                                        face and bounces remain (recursively, one bounce less),
+//              = e(h, −ω) with one bounce less   at its closest hit h if h is a front face and
+//                                        bounces remain: the same material seen from p,
+//                                        kd = ρ(h) (recursively),
 //              = 0                       otherwise (back faces block and send nothing),
 //
 // matching transport::bake's conventions (docs/transport.md): unshadowed mode drops V (but keeps
 // n·ω > 0 in both terms); the offset origin p + n·rayOffset(p); kd(p) and the bounce albedo ρ =
 // Material::diffuse, else the mesh's per-vertex albedo (interpolated at a hit), else 1; the
 // shading normal at a hit is the barycentric interpolation of the vertex normals. Surfaces the
-// light bounces off are diffuse (the glossy lobe is seen only at the first vertex, as in the
-// bake's glossy transfer matrices). G is Material::lobe.value, the same zonal lobe PRT convolves
+// light bounces off have the same material: glossy ones reflect about −ω mirrored in n_h, as in
+// the bake's glossy transfer matrices (a vector bake's bounces are diffuse; validation then
+// drops the lobe from the reference). G is Material::lobe.value, the same zonal lobe PRT convolves
 // with; Fresnel, masking-shadowing and the (n·ω) of a BRDF-times-cosine are omitted on both sides
 // so that PRT and reference differ only by band limit and noise. (The bake interpolates the
 // *transfer* of the hit triangle's vertices instead of integrating at the hit: that
@@ -57,8 +59,10 @@
 //   environment ω_e:  w(p_env; G, p_h) · L V G / p_env
 //   lobe ω_g:         w(G; p_env, p_h) · L V                        (G / p_lobe = 1)
 //   horizon ω_h:      w(p_h; p_env, G) · L V G / p_h
-// and where ω_g or ω_h hits a front face, instead ρ(h) ⊙ (1/π)∫ L_in(h) cos (one bounce less)
-// times G/p and w(p; 0, other) (the environment strategy cannot reach surfaces).
+// and where ω_g or ω_h hits a front face, instead the light h reflects toward p (one bounce less)
+// times G/p and w(p; 0, other) (the environment strategy cannot reach surfaces). At a glossy hit
+// one of its two terms, diffuse or glossy, is followed, chosen in proportion to Σρ_c : Σks_c
+// and divided by that probability (unbiased; the path does not branch).
 //
 // One sample of e is X = kd ⊙ D + ks ⊙ S, D and S one diffuse and one glossy sample from two
 // PCG32 streams of the same vertex (the diffuse stream is the one a diffuse-only material draws,

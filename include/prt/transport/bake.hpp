@@ -11,9 +11,13 @@
 //
 // Matrices (TransferLayout::Matrix), the light arriving at p as a linear map of the source light:
 //   M⁰_ij(p) = ∫_{n·ω>0} Y_i(ω) V(p,ω) Y_j(ω) dω                  (unshadowed: V = 1)
-//   M_ij(p)  = M⁰_ij(p) + ∫_{n·ω>0} Y_i(ω) ρ(h) T_j^{K−1}(h) [front face of h seen] dω
-// for K bounces, with T^{K−1} the diffuse vector transfer with K−1 bounces: the light a diffuse
-// surface at h sends toward p (glossy-to-glossy bounces are not modelled).
+//   M_ij(p)  = M⁰_ij(p) + ∫_{n·ω>0} Y_i(ω) z_j(h, −ω) [front face of h seen] dω
+// for K bounces, with z the light the surface at h = h(p,ω) sends back toward p per unit of
+// source light: for a diffuse material z = ρ(h) T^{K−1}(h), the diffuse vector transfer with
+// K−1 bounces; for a glossy one (material lobe, ks > 0) z = M^{K−1}(h)ᵀ (ρ(h) d(n_h) +
+// ks g(R_h(−ω))), the matrices with K−1 bounces seen through the material's diffuse and lobe
+// kernels (prt/transfer/prepared_material.hpp) from p. Vector bakes treat every bounce surface
+// as diffuse (kd only): a vector cannot carry the direction the light leaves in.
 //
 // Determinism: every vertex draws its own sample set from (seed, global vertex index, bounce),
 // so the transfer of vertex v depends on the inputs and the seed only — never on the thread
@@ -61,8 +65,9 @@ struct BakeSettings {
   std::uint64_t seed = 0;
   Sampling sampling = Sampling::CosineSobol;
   /// The surface. Its diffuse colour (material.diffuse, else mesh.albedo, else 1) is the albedo
-  /// of the bounces; its lobe is not used by the bake (it is applied at relighting) but is
-  /// stored with the bake as the default for relighting.
+  /// of the bounces. Its lobe and ks shape the bounces of an inter-reflected matrix bake (the
+  /// light glossy surfaces send toward each other); otherwise the lobe is applied at relighting
+  /// only. Either way it is stored with the bake as the default for relighting.
   Material material;
   /// The vertex range to bake: [firstVertex, firstVertex + vertexCount); vertexCount 0 means
   /// "to the last vertex". The result holds the range's vertices only (row 0 = firstVertex).
@@ -87,6 +92,13 @@ struct BakeStats {
   double stdErrConstMean = 0, stdErrConstMax = 0;
 };
 
+/// True when the bake's bounces follow the material's lobe: an inter-reflected matrix bake (with
+/// bounces) of a glossy material. Its transfer then holds that lobe and ks in the light the
+/// surfaces send each other, so relighting with another material changes the surface at each
+/// vertex but not that light (a new bake changes both). A vector bake's bounces are diffuse: it
+/// cannot hold the direction light leaves in.
+bool glossyBounces(const BakeSettings& settings);
+
 /// What a bake will hold in memory, known before it starts (the transfer dominates: 4·B⁴ bytes
 /// per vertex and channel for matrices).
 struct BakeFootprint {
@@ -101,8 +113,9 @@ inline constexpr std::size_t kMaxTransferFileBytes =
     (std::size_t(1) << 32) - (std::size_t(1) << 26);
 
 /// Bakes the transfer of mesh (whose triangles `occluder` was built from) under `settings`.
-/// Channels: 1, unless the mode is Interreflected and some bounce albedo is not grey, then 3
-/// (the hit albedos are folded into the bounces; the albedo at the vertex itself is not).
+/// Channels: 1, unless the mode is Interreflected and some bounce albedo (or, for glossy
+/// bounces, ks) is not grey, then 3 (the hit albedos are folded into the bounces; the albedo at
+/// the vertex itself is not).
 /// Throws prt::Error on bad settings or mesh, or when the footprint would not fit in this
 /// machine's memory or a bake file (the message states the figure); prt::Cancelled if
 /// `progress` returns false.
