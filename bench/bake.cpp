@@ -11,6 +11,10 @@
 //     BM_Matrix/SCENE/BANDS          glossy transfer matrices, shadowed, 256 samples, against the
 //                                    vector bake and raw Embree (the vector bake's rays) in the
 //                                    same run: ns per sample of each; matrix/vector, matrix/raw.
+//     BM_MatrixBounce/SCENE/BANDS    inter-reflected matrices, 1 bounce, 256 samples: diffuse
+//                                    bounce surfaces (lambert; the vector pre-pass) and glossy
+//                                    ones (phong; the shadowed matrices first) against the
+//                                    shadowed matrix bake, same run: ns per sample and ratios.
 //   bench_bake --equal-error         RMS error of T₀ against a 65536-sample bake at 64…4096
 //                                    samples, cosine-Sobol' vs uniform random.
 //
@@ -38,6 +42,7 @@
 #include "prt/geometry/builtin.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/raytrace/occluder.hpp"
+#include "prt/transfer/material.hpp"
 #include "prt/transport/bake.hpp"
 
 namespace {
@@ -274,6 +279,49 @@ void BM_Matrix(benchmark::State& state, const std::string& name) {
   state.counters["matrix/vector"] = matrixSeconds / vectorSeconds;
   state.counters["matrix/raw"] = matrixSeconds / rawSeconds;
 }
+
+void BM_MatrixBounce(benchmark::State& state, const std::string& name) {
+  Scene* s = scene(name);
+  if (!s) {
+    state.SkipWithError((std::string(kBunny) + " not found: bunny case skipped").c_str());
+    return;
+  }
+  prt::BakeSettings settings;
+  settings.layout = prt::TransferLayout::Matrix;
+  settings.bands = static_cast<int>(state.range(0));
+  settings.samples = 256;
+  settings.seed = 7;
+  settings.bounces = 1;
+  double direct = 0, diffuse = 0, glossy = 0, samples = 0;
+  for (auto _ : state) {
+    prt::BakeStats sd, sl, sg;
+    settings.mode = prt::TransferMode::Shadowed;
+    settings.material = prt::parseMaterial("lambert?kd=0.5");
+    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sd).data.data());
+    settings.mode = prt::TransferMode::Interreflected;
+    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sl).data.data());
+    settings.material = prt::parseMaterial("phong?exponent=8&ks=0.5&kd=0.5");
+    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sg).data.data());
+    direct += sd.secondsTotal;
+    diffuse += sl.secondsTotal;
+    glossy += sg.secondsTotal;
+    samples += double(s->mesh.vertexCount()) * settings.samples;
+    state.SetIterationTime(sg.secondsTotal);
+  }
+  const double threads = prt::maxThreads();
+  state.counters["vertices"] = double(s->mesh.vertexCount());
+  state.counters["shadowed_ns"] = direct * threads / samples * 1e9;
+  state.counters["diffuse_bounce_ns"] = diffuse * threads / samples * 1e9;
+  state.counters["glossy_bounce_ns"] = glossy * threads / samples * 1e9;
+  state.counters["diffuse/shadowed"] = diffuse / direct;
+  state.counters["glossy/shadowed"] = glossy / direct;
+}
+
+BENCHMARK_CAPTURE(BM_MatrixBounce, bunny, std::string("bunny"))
+    ->Arg(5)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
 
 BENCHMARK_CAPTURE(BM_Matrix, bunny, std::string("bunny"))
     ->Arg(5)

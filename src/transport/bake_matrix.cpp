@@ -65,6 +65,7 @@ constexpr std::uint64_t kBounceOrder = 0x626f756e63650000ull;  // one seed per b
 
 using MatF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic>;
 using MatD = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
+using RowMatF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 /// Gauss–Legendre nodes and weights on [0, 1] (Newton on P_n, Golub–Welsch-free).
 void gaussLegendre01(int n, std::vector<double>& x, std::vector<double>& w) {
@@ -218,15 +219,20 @@ void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, 
   for (int c = 0; c < ctx.channels; ++c) {
     float* r = ws.response.data() + static_cast<std::size_t>(c) * nc;
     for (int i = 0; i < nc; ++i) r[i] = rho[c] * ws.d[i] + ks[c] * ws.g[i];
-    float* z = ws.z[c].col(col).data();
-    std::fill_n(z, nc, 0.0f);
+    auto z = ws.z[c].col(col);
+    z.setZero();
+    const Eigen::Map<const Eigen::VectorXf> rc(r, nc);
     const int src = bChannels == 1 ? 0 : c;
     for (int k = 0; k < 3; ++k) {
-      const float* m = ctx.bounced->vertex(tri[k]);
-      for (int i = 0; i < nc; ++i) {
-        const float s = b[k] * r[i];
-        const float* row = m + static_cast<std::size_t>(i) * nc * bChannels + src;
-        for (int jj = 0; jj < nc; ++jj) z[jj] += s * row[static_cast<std::size_t>(jj) * bChannels];
+      // M_k row-major (row i = arriving coefficient, column j = source), channels interleaved.
+      const float* m = ctx.bounced->vertex(tri[k]) + src;
+      if (bChannels == 1) {
+        const Eigen::Map<const RowMatF> mk(m, nc, nc);
+        z.noalias() += b[k] * (mk.transpose() * rc);
+      } else {
+        const Eigen::Map<const RowMatF, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>> mk(
+            m, nc, nc, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(nc * bChannels, bChannels));
+        z.noalias() += b[k] * (mk.transpose() * rc);
       }
     }
   }
