@@ -11,8 +11,9 @@
 // per-vertex error is shown in false colour beside the per-band validation table. A turntable of
 // the light rotating about +Y closes each environment. index.html shows it all with the numbers.
 //
-// Glossy rows: the scene is also baked as shadowed transfer *matrices* (Sloan, Kautz & Snyder
-// 2002, §6; --glossy-bands, default 5: B⁴ = 625 floats per vertex) and relit with a glossy
+// Glossy rows: the scene is also baked as inter-reflected transfer *matrices* (Sloan, Kautz &
+// Snyder 2002, §6; --glossy-bands, default 5: B⁴ = 625 floats per vertex; --bounces bounces off
+// surfaces of the same glossy material) and relit with a glossy
 // material (--glossy, default a Phong lobe) seen from the stills' camera, e(p, v) with
 // v = normalize(eye − p) per vertex (relight::relightGlossy, as prt render); the brute-force
 // reference evaluates the same lobe with no SH (render/reference.hpp), and the table adds the
@@ -305,13 +306,15 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
          "<code>glossy.glb</code> ("
       << fmt::format("{:.0f}", glossy->bytes / 1e6) << " MB: a " << a.glossyBands * a.glossyBands
       << "×" << a.glossyBands * a.glossyBands
-      << " matrix per vertex) holds shadowed transfer matrices M<sub>p</sub>, L'<sub>p</sub> = "
-         "M<sub>p</sub>L the light "
-         "arriving at p; the material <code>"
+      << " matrix per vertex) holds inter-reflected transfer matrices M<sub>p</sub>, L'<sub>p</sub> "
+         "= M<sub>p</sub>L the light arriving at p, shadowed and bounced "
+      << a.bounces
+      << " time(s) off surfaces of the material <code>"
       << htmlEscape(glossy->material.spec())
-      << "</code> is applied at relighting time, each vertex seen from the stills' camera "
+      << "</code> (glossy bounces: what a surface sends toward p depends on the direction); the "
+         "material at p is applied at relighting time, each vertex seen from the stills' camera "
          "(<code>prt view glossy.glb</code> relights it live, <code>prt render glossy.glb "
-         "--material ...</code> with another lobe). Its reference uses the same lobe with no SH, "
+         "--material ...</code> with another lobe at p). Its reference uses the same lobe, at p and at every bounce, with no SH, "
          "so the error is SH truncation of visibility, light <i>and</i> lobe (the table's last "
          "column: the lobe's energy beyond b bands) plus noise.</p>\n";
   h << "<p>Files: <code>scene.glb</code> (the bake; any glTF viewer opens it as a mesh), "
@@ -470,7 +473,7 @@ void runDemo(const DemoArgs& a) {
   writeBake(file("scene.glb"), bake);
   const double bakeSeconds = since(tb);
 
-  // The glossy bake: shadowed transfer matrices, in a file of their own.
+  // The glossy bake: inter-reflected transfer matrices (glossy bounces), in a file of their own.
   std::optional<GlossyBake> glossy;
   if (glossyMaterial) {
     const auto tg = Clock::now();
@@ -481,7 +484,8 @@ void runDemo(const DemoArgs& a) {
     g.generator = bake.generator;
     g.vertexCount = bake.vertexCount;
     BakedTransfer t;
-    t.settings.mode = TransferMode::Shadowed;
+    t.settings.mode = TransferMode::Interreflected;
+    t.settings.bounces = a.bounces;
     t.settings.layout = TransferLayout::Matrix;
     t.settings.bands = a.glossyBands;
     t.settings.samples = a.glossySamples;
