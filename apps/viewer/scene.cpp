@@ -200,9 +200,7 @@ Mat3d Scene::lightRotation() const {
 
 void Scene::dragLight(double dx, double dy) {
   const double k = kDragDegreesPerPixel * kPi / 180.0;
-  const render::Camera c = orbit.camera();
-  const Vec3d forward = normalize(Vec3d(c.target - c.eye));
-  const Vec3d right = normalize(cross(forward, Vec3d(c.up)));
+  const Vec3d right = Vec3d(render::cameraBasis(orbit.camera(), 1, 1).right);
   userRotation_ =
       rotationAxisAngle({0, 1, 0}, dx * k) * rotationAxisAngle(right, dy * k) * userRotation_;
 }
