@@ -41,6 +41,13 @@ done
 web_packages() {
   local web
   web="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/web"
+  # A worktree may link web/node_modules to another checkout's: npm ci would empty that folder
+  # (it deletes node_modules through the link), so a link is used as it is, never reinstalled.
+  if [[ -L "$web/node_modules" ]]; then
+    [[ -f "$web/node_modules/three/package.json" ]] ||
+      echo "setup: web/node_modules is a link to a folder without the packages; run npm ci where it points" >&2
+    return 0
+  fi
   if [[ -f "$web/node_modules/three/package.json" && -f "$web/node_modules/lil-gui/package.json" &&
         -f "$web/node_modules/esbuild/package.json" &&
         "$web/node_modules/.package-lock.json" -nt "$web/package-lock.json" ]]; then

@@ -196,15 +196,24 @@ void writeWebViewer(const WebOptions& a) {
   int bands = 0;
   for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.field.bands);
 
-  // --camera: keys not given come from the default framing (render::frameMesh at 640x480).
+  // The camera, from the library's numbers only (docs/conventions.md, "Camera"): the default
+  // framing (render::meshFraming: the bounding sphere, view direction, up, fov, margin), which
+  // the page turns into frameCamera's camera for its canvas, and --camera's eye, target, up and
+  // fov (keys not given come from the default framing at 640x480), which it uses as they are.
+  const auto vec = [](const Vec3f& v) {
+    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", v.x, v.y, v.z);
+  };
+  const render::Framing framing = render::meshFraming(bake.mesh);
+  const std::string framingJson = fmt::format(
+      "{{\"centre\": {}, \"radius\": {:.9g}, \"direction\": {}, \"up\": {}, \"fov\": {:.9g}, "
+      "\"margin\": {:.9g}}}",
+      vec(framing.centre), framing.radius, vec(framing.direction), vec(framing.up), framing.fovY,
+      framing.margin);
   std::string cameraJson = "null";
   if (!a.camera.empty()) {
-    const render::Camera c = render::parseCamera(a.camera, render::frameMesh(bake.mesh, 640, 480));
-    cameraJson = fmt::format(
-        "{{\"eye\": [{:.9g}, {:.9g}, {:.9g}], \"target\": [{:.9g}, {:.9g}, {:.9g}], \"up\": "
-        "[{:.9g}, {:.9g}, {:.9g}], \"fov\": {:.9g}}}",
-        c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y, c.up.z,
-        c.fovY);
+    const render::Camera c = render::parseCamera(a.camera, render::frameCamera(framing, 640, 480));
+    cameraJson = fmt::format("{{\"eye\": {}, \"target\": {}, \"up\": {}, \"fov\": {:.9g}}}",
+                             vec(c.eye), vec(c.target), vec(c.up), c.fovY);
   }
 
   std::vector<WebEnvironment> envs;
@@ -219,7 +228,7 @@ void writeWebViewer(const WebOptions& a) {
   js << "\"view\": {\"rotate\": [" << euler[0] << ", " << euler[1] << ", " << euler[2]
      << "], \"exposure\": " << a.exposure << ", \"tonemap\": " << jsonString(a.toneMap)
      << ", \"mode\": " << jsonString(a.mode) << ", \"bands\": " << a.bands
-     << ", \"camera\": " << cameraJson << "},\n";
+     << ", \"camera\": " << cameraJson << ", \"framing\": " << framingJson << "},\n";
   js << "\"bake\": {\"name\": " << jsonString(fs::path(a.bake).filename().string())
      << ", \"glb\": \"" << base64(glb.data(), glb.size()) << "\"},\n";
   js << "\"environments\": [\n";

@@ -389,29 +389,18 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   const int w = f.width, h = f.height;
   resize(w, h);
 
-  // Camera frame exactly as render::RayGenerator builds it.
+  // The library's camera frame and matrices (render/camera.hpp), as RayGenerator uses them.
   const render::Camera& c = f.camera;
-  const Vec3f forward = normalize(c.target - c.eye);
-  const Vec3f right = normalize(cross(forward, c.up));
-  const Vec3f up = cross(right, forward);
-  const float tanY = std::tan(0.5f * c.fovY * kPif / 180.0f);
-  const float tanX = tanY * float(w) / float(h);
+  const render::CameraBasis basis = render::cameraBasis(c, w, h);
+  const Vec3f &forward = basis.forward, &right = basis.right, &up = basis.up;
+  const float tanX = basis.tanX, tanY = basis.tanY;
   // Clip planes around the bounding sphere: depth d of its centre, everything within d ± r.
   const float d = dot(centre_ - c.eye, forward);
   const float farZ = std::max(d + 1.01f * radius_, 1e-3f * radius_);
   const float nearZ = std::max(d - 1.01f * radius_, 1e-4f * farZ);
-  // Row-major view-projection: x_clip = (p−eye)·right / tanX, y_clip = (p−eye)·up / tanY,
-  // w_clip = z = (p−eye)·forward, z_clip = A z + B with A = (f+n)/(f−n), B = −2fn/(f−n), so
-  // ndc = project() of RayGenerator and depth −1..1 between the planes.
-  const float A = (farZ + nearZ) / (farZ - nearZ), B = -2.0f * farZ * nearZ / (farZ - nearZ);
-  const Vec3f rows[4] = {right / tanX, up / tanY, forward * A, forward};
-  const float offs[4] = {-dot(right, c.eye) / tanX, -dot(up, c.eye) / tanY,
-                         -A * dot(forward, c.eye) + B, -dot(forward, c.eye)};
-  float viewProj[16];  // column-major for GL
-  for (int r = 0; r < 4; ++r) {
-    viewProj[0 + r] = rows[r].x, viewProj[4 + r] = rows[r].y, viewProj[8 + r] = rows[r].z;
-    viewProj[12 + r] = offs[r];
-  }
+  const render::Mat4f viewProjM =
+      render::multiply(render::projectionMatrix(c, w, h, nearZ, farZ), render::viewMatrix(c));
+  const float* viewProj = viewProjM.data();  // column-major for GL
 
   glBindFramebuffer(GL_FRAMEBUFFER, msFbo_);
   glViewport(0, 0, w, h);

@@ -50,48 +50,22 @@ int richness(TransferMode m) {
 
 // ---- OrbitCamera ------------------------------------------------------------------------------
 
-OrbitCamera::OrbitCamera(const render::Camera& start) : start_(start) {
-  target_ = Vec3d(start.target);
-  const Vec3d d = Vec3d(start.eye) - target_;
-  distance_ = std::max(length(d), 1e-9);
-  const Vec3d u = d / distance_;
-  elevation_ = std::asin(std::clamp(u.y, -1.0, 1.0));
-  azimuth_ = std::atan2(u.x, u.z);
-}
-
-render::Camera OrbitCamera::camera() const {
-  if (!moved_) return start_;
-  // Direction from target to eye: azimuth about +Y from +Z, elevation above the XZ plane.
-  const Vec3d dir{std::cos(elevation_) * std::sin(azimuth_), std::sin(elevation_),
-                  std::cos(elevation_) * std::cos(azimuth_)};
-  render::Camera c = start_;
-  c.target = Vec3f(target_);
-  c.eye = Vec3f(target_ + dir * distance_);
-  c.up = {0.0f, 1.0f, 0.0f};
-  return c;
-}
-
-void OrbitCamera::orbit(double dAz, double dEl) {
-  moved_ = true;
-  azimuth_ += dAz;
-  const double limit = 89.0 * kPi / 180.0;
-  elevation_ = std::clamp(elevation_ + dEl, -limit, limit);
+void OrbitCamera::orbit(double dYaw, double dPitch) {
+  orbit_.yaw += dYaw;
+  orbit_.pitch = render::clampPitch(start_, orbit_.pitch + dPitch);
 }
 
 void OrbitCamera::pan(double dx, double dy) {
   const render::Camera c = camera();
-  moved_ = true;
-  const Vec3d forward = normalize(Vec3d(c.target - c.eye));
-  const Vec3d right = normalize(cross(forward, Vec3d(c.up)));
-  const Vec3d up = cross(right, forward);
+  const render::CameraBasis b = render::cameraBasis(c, 1, 1);
   // The view is 2 d tan(fovY/2) tall at the target.
-  const double height = 2.0 * distance_ * std::tan(0.5 * c.fovY * kPi / 180.0);
-  target_ += (right * -dx + up * dy) * height;
+  const double height = 2.0 * length(Vec3d(c.eye) - Vec3d(c.target)) * double(b.tanY);
+  orbit_.pan += (Vec3d(b.right) * -dx + Vec3d(b.up) * dy) * height;
 }
 
 void OrbitCamera::zoom(double factor) {
-  moved_ = true;
-  distance_ = std::max(distance_ * factor, 1e-6);
+  const double d0 = length(Vec3d(start_.eye) - Vec3d(start_.target));
+  orbit_.scale = std::max(orbit_.scale * factor, 1e-6 / std::max(d0, 1e-12));
 }
 
 // ---- Scene --------------------------------------------------------------------------------------
@@ -226,9 +200,7 @@ Mat3d Scene::lightRotation() const {
 
 void Scene::dragLight(double dx, double dy) {
   const double k = kDragDegreesPerPixel * kPi / 180.0;
-  const render::Camera c = orbit.camera();
-  const Vec3d forward = normalize(Vec3d(c.target - c.eye));
-  const Vec3d right = normalize(cross(forward, Vec3d(c.up)));
+  const Vec3d right = Vec3d(render::cameraBasis(orbit.camera(), 1, 1).right);
   userRotation_ =
       rotationAxisAngle({0, 1, 0}, dx * k) * rotationAxisAngle(right, dy * k) * userRotation_;
 }

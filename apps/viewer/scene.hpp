@@ -46,25 +46,28 @@ struct EnvironmentEntry {
   sh::RgbSh light;          ///< at the bake's bands: projected, or the file's cut to them
 };
 
-/// Orbit camera about a target, +Y up. Until moved it returns its starting camera unchanged (so
-/// the default view equals prt render's framing bit for bit).
+/// Orbit camera: the library's camera (render::frameMesh's framing, or --camera) plus the mouse's
+/// yaw, pitch, distance and pan as a render::Orbit; its view is render::viewMatrix of camera().
+/// The zero orbit is the starting camera bit for bit, so prt view frames as prt render does by
+/// construction (docs/conventions.md, "Camera").
 class OrbitCamera {
  public:
   OrbitCamera() = default;
-  explicit OrbitCamera(const render::Camera& start);
-  render::Camera camera() const;
-  void orbit(double dAzimuthRad, double dElevationRad);
+  explicit OrbitCamera(const render::Camera& start) : start_(start) {}
+  render::Camera camera() const { return render::orbitCamera(start_, orbit_); }
+  /// World → eye space of camera() (column-major, OpenGL).
+  render::Mat4f view() const { return render::viewMatrix(camera()); }
+  /// Yaw about the camera's up axis through the target, pitch about its right axis (clamped).
+  void orbit(double dYawRad, double dPitchRad);
   /// Moves the target in the image plane by (dx, dy) × the view height at the target.
   void pan(double dx, double dy);
   /// Distance *= factor.
   void zoom(double factor);
-  void reset() { *this = OrbitCamera(start_); }
+  void reset() { orbit_ = {}; }
 
  private:
   render::Camera start_;
-  bool moved_ = false;
-  Vec3d target_;
-  double distance_ = 1, azimuth_ = 0, elevation_ = 0;
+  render::Orbit orbit_;
 };
 
 class Scene {

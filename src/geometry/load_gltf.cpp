@@ -30,6 +30,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
+#include "prt/gltf/accessor.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 
@@ -123,62 +124,24 @@ Mat4 localMatrix(const tinygltf::Node& n) {
   return t * r * s;
 }
 
+/// The model's accessors (through the one checked reader, prt/gltf/accessor.hpp) and its base
+/// colour textures.
 class Reader {
  public:
   Reader(const std::string& label, const tinygltf::Model& model, LoadReport& report)
-      : label_(label), model_(model), report_(report) {}
+      : label_(label), model_(model), report_(report), accessors_(label, model) {}
 
-  /// Accessor `index` as `count` × `comps` floats (normalised integers mapped per §3.6.2.4).
-  std::vector<float> floats(int index, int wantComps, const char* what) {
-    const tinygltf::Accessor& a = accessor(index, what);
-    const int comps = tinygltf::GetNumComponentsInType(a.type);
-    if (comps != wantComps && !(wantComps == 3 && comps == 4 && std::string(what) == "COLOR_0"))
-      fail(std::string(what) + " has " + std::to_string(comps) + " components, expected " +
-           std::to_string(wantComps));
-    const auto [data, stride] = span(a, comps, what);  // checks the count against the bytes first
-    std::vector<float> out(a.count * comps);
-    for (std::size_t i = 0; i < a.count; ++i)
-      for (int c = 0; c < comps; ++c) {
-        const unsigned char* p =
-            data + i * stride + c * tinygltf::GetComponentSizeInBytes(a.componentType);
-        out[i * comps + c] = component(
-            p, a.componentType,
-            a.normalized || a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ? true : false);
-      }
-    return out;
+  /// Accessor `index` as `count` × `comps` floats (normalised integers mapped per §3.11).
+  std::vector<float> floats(int index, int comps, const char* what) {
+    return accessors_.floats(index, comps, what);
   }
-
-  std::vector<std::uint32_t> indices(int index) {
-    const tinygltf::Accessor& a = accessor(index, "indices");
-    if (a.type != TINYGLTF_TYPE_SCALAR) fail("indices accessor is not scalar");
-    const auto [data, stride] = span(a, 1, "indices");  // count checked against the bytes
-    std::vector<std::uint32_t> out(a.count);
-    for (std::size_t i = 0; i < a.count; ++i) {
-      const unsigned char* p = data + i * stride;
-      switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-          out[i] = p[0];
-          break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          std::uint16_t x;
-          std::memcpy(&x, p, 2);
-          out[i] = x;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-          std::uint32_t x;
-          std::memcpy(&x, p, 4);
-          out[i] = x;
-          break;
-        }
-        default:
-          fail("indices have a non-integer component type");
-      }
-    }
-    return out;
+  /// COLOR_0: RGB or RGBA (the alpha is read and ignored).
+  std::vector<float> colours(int index, int& comps) {
+    comps = accessors_.components(index, "COLOR_0") == 4 ? 4 : 3;
+    return accessors_.floats(index, comps, "COLOR_0");
   }
-
-  std::size_t count(int index, const char* what) { return accessor(index, what).count; }
+  std::vector<std::uint32_t> indices(int index) { return accessors_.indices(index, "indices"); }
+  std::size_t count(int index, const char* what) { return accessors_.count(index, what); }
 
   /// The base colour texture of image `img`, linear, decoded once.
   const image::Image* texture(int tex, const std::filesystem::path& dir) {
@@ -223,81 +186,10 @@ class Reader {
   [[noreturn]] void fail(const std::string& msg) const { throw Error(label_, msg); }
 
  private:
-  const tinygltf::Accessor& accessor(int index, const char* what) {
-    if (index < 0 || index >= int(model_.accessors.size()))
-      fail(std::string(what) + " refers to accessor " + std::to_string(index) + " (file has " +
-           std::to_string(model_.accessors.size()) + ")");
-    const tinygltf::Accessor& a = model_.accessors[index];
-    if (a.sparse.isSparse) fail(std::string(what) + ": sparse accessors are not supported");
-    return a;
-  }
-
-  /// Start of the accessor's data and its stride, bounds-checked against the buffer.
-  std::pair<const unsigned char*, std::size_t> span(const tinygltf::Accessor& a, int comps,
-                                                    const char* what) {
-    if (a.bufferView < 0 || a.bufferView >= int(model_.bufferViews.size()))
-      fail(std::string(what) + " has no buffer view");
-    const tinygltf::BufferView& bv = model_.bufferViews[a.bufferView];
-    if (bv.buffer < 0 || bv.buffer >= int(model_.buffers.size()))
-      fail(std::string(what) + ": buffer view refers to a missing buffer");
-    const auto& buf = model_.buffers[bv.buffer].data;
-    const int csize = tinygltf::GetComponentSizeInBytes(a.componentType);
-    if (csize <= 0) fail(std::string(what) + " has an invalid component type");
-    const std::size_t elem = std::size_t(csize) * comps;
-    const std::size_t stride = bv.byteStride ? bv.byteStride : elem;
-    if (stride < elem && a.count > 1)
-      fail(std::string(what) + ": byteStride " + std::to_string(stride) +
-           " is smaller than an element (" + std::to_string(elem) + " bytes)");
-    // Counts and offsets come from the file: compare in a way that cannot overflow.
-    const std::uint64_t count = a.count;
-    if (count > buf.size())
-      fail(std::string(what) + ": accessor count " + std::to_string(count) + " exceeds the " +
-           std::to_string(buf.size()) + " bytes of its buffer");
-    if (bv.byteOffset > buf.size() || a.byteOffset > buf.size())
-      fail(std::string(what) + ": accessor runs past the end of its buffer (truncated file?)");
-    const std::size_t start = bv.byteOffset + a.byteOffset;
-    const std::uint64_t need = count == 0 ? 0 : std::uint64_t(stride) * (count - 1) + elem;
-    if (start > buf.size() || need > buf.size() - start || a.byteOffset + need > bv.byteLength)
-      fail(std::string(what) + ": accessor runs past the end of its buffer (truncated file?)");
-    return {buf.data() + start, stride};
-  }
-
-  static float component(const unsigned char* p, int type, bool normalise) {
-    switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-        float x;
-        std::memcpy(&x, p, 4);
-        return x;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalise ? p[0] / 255.0f : p[0];
-      case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        std::int8_t x;
-        std::memcpy(&x, p, 1);
-        return normalise ? std::max(x / 127.0f, -1.0f) : x;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        std::uint16_t x;
-        std::memcpy(&x, p, 2);
-        return normalise ? x / 65535.0f : x;
-      }
-      case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        std::int16_t x;
-        std::memcpy(&x, p, 2);
-        return normalise ? std::max(x / 32767.0f, -1.0f) : x;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        std::uint32_t x;
-        std::memcpy(&x, p, 4);
-        return float(x);
-      }
-    }
-    return 0;
-  }
-
   const std::string& label_;
   const tinygltf::Model& model_;
   LoadReport& report_;
+  gltf::AccessorReader accessors_;
   std::map<int, image::Image> images_;
 };
 
@@ -443,10 +335,7 @@ Mesh readGltfBytes(const std::string& path, std::span<const unsigned char> bytes
       }
       const int colAcc = attr("COLOR_0");
       int colComps = 0;
-      if (colAcc >= 0) {
-        col = rd.floats(colAcc, 3, "COLOR_0");
-        colComps = int(col.size() / std::max<std::size_t>(1, rd.count(colAcc, "COLOR_0")));
-      }
+      if (colAcc >= 0) col = rd.colours(colAcc, colComps);
       const tinygltf::Material* mat =
           prim.material >= 0 && prim.material < int(model.materials.size())
               ? &model.materials[prim.material]

@@ -19,6 +19,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
+#include "prt/gltf/accessor.hpp"
 
 namespace prt {
 
@@ -286,40 +287,6 @@ void checkGlbContainer(std::span<const unsigned char> b, const Reader& r) {
   }
 }
 
-/// Reads `n` elements of `comps` components of type `componentType` from accessor `index`,
-/// checking every reference and bound.
-template <typename T>
-std::vector<T> readAccessor(const tinygltf::Model& m, int index, int type, int comps,
-                            int componentType, std::size_t n, const std::string& what,
-                            const Reader& r) {
-  if (index < 0 || static_cast<std::size_t>(index) >= m.accessors.size())
-    r.fail(what + ": accessor " + std::to_string(index) + " does not exist");
-  const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(index)];
-  if (a.sparse.isSparse) r.fail(what + ": sparse accessors are not supported");
-  if (a.type != type || a.componentType != componentType || a.normalized)
-    r.fail(what + ": accessor " + std::to_string(index) + " has the wrong type");
-  if (a.count != n)
-    r.fail(what + ": accessor " + std::to_string(index) + " has " + std::to_string(a.count) +
-           " elements, expected " + std::to_string(n));
-  if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= m.bufferViews.size())
-    r.fail(what + ": accessor " + std::to_string(index) + " has no valid bufferView");
-  const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
-  if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size())
-    r.fail(what + ": bufferView " + std::to_string(a.bufferView) + " has no valid buffer");
-  const auto& data = m.buffers[static_cast<std::size_t>(v.buffer)].data;
-  const std::size_t elem = sizeof(T) * static_cast<std::size_t>(comps);
-  const std::size_t stride = v.byteStride ? v.byteStride : elem;
-  if (stride < elem || v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)
-    r.fail(what + ": bufferView " + std::to_string(a.bufferView) + " lies outside its buffer");
-  if (n > 0 && (a.byteOffset > v.byteLength || (n - 1) > (v.byteLength - a.byteOffset) / stride ||
-                a.byteOffset + (n - 1) * stride + elem > v.byteLength))
-    r.fail(what + ": accessor " + std::to_string(index) + " runs past its bufferView");
-  std::vector<T> out(n * static_cast<std::size_t>(comps));
-  const unsigned char* base = data.data() + v.byteOffset + a.byteOffset;
-  for (std::size_t i = 0; i < n; ++i) std::memcpy(out.data() + i * comps, base + i * stride, elem);
-  return out;
-}
-
 void requireFinite(const std::vector<float>& x, const std::string& what, const Reader& r) {
   for (std::size_t i = 0; i < x.size(); ++i)
     if (!std::isfinite(x[i]))
@@ -392,7 +359,7 @@ BakeStats parseStats(const Value& o, const std::string& where, const Reader& r) 
 
 /// The compressed rows of `bt` (shape already in bt.field) from extras ".compressed" and the
 /// transfer's accessor list [cluster, weights?, means, basis?].
-void readCompressed(const tinygltf::Model& model, const Value& z, const Value& acc,
+void readCompressed(const gltf::AccessorReader& ar, const Value& z, const Value& acc,
                     const std::string& tw, BakedTransfer& bt, const Reader& r) {
   const std::string zw = tw + ".compressed";
   if (!z.IsObject() || r.string(z, "method", zw) != "cpca") r.fail(zw + ".method must be \"cpca\"");
@@ -423,22 +390,15 @@ void readCompressed(const tinygltf::Model& model, const Value& z, const Value& a
   auto index = [&](std::size_t i) { return acc.Get(static_cast<int>(i)).Get<int>(); };
   const std::string what = std::string(toString(bt.settings.mode)) + " compressed transfer";
   if (K <= 65536) {
-    const auto ids = readAccessor<std::uint16_t>(model, index(0), TINYGLTF_TYPE_SCALAR, 1, kUshort,
-                                                 n, what + " cluster ids", r);
+    const auto ids = ar.exact<std::uint16_t>(index(0), 1, kUshort, n, what + " cluster ids");
     c.cluster.assign(ids.begin(), ids.end());
   } else {
-    c.cluster = readAccessor<std::uint32_t>(model, index(0), TINYGLTF_TYPE_SCALAR, 1, kUint, n,
-                                            what + " cluster ids", r);
+    c.cluster = ar.exact<std::uint32_t>(index(0), 1, kUint, n, what + " cluster ids");
   }
   std::size_t next = 1;
-  if (N > 0)
-    c.weights = readAccessor<float>(model, index(next++), TINYGLTF_TYPE_SCALAR, 1, kFloat, n * N,
-                                    what + " weights", r);
-  c.means = readAccessor<float>(model, index(next++), TINYGLTF_TYPE_SCALAR, 1, kFloat, K * S,
-                                what + " means", r);
-  if (N > 0)
-    c.basis = readAccessor<float>(model, index(next++), TINYGLTF_TYPE_SCALAR, 1, kFloat, K * N * S,
-                                  what + " basis", r);
+  if (N > 0) c.weights = ar.exact<float>(index(next++), 1, kFloat, n * N, what + " weights");
+  c.means = ar.exact<float>(index(next++), 1, kFloat, K * S, what + " means");
+  if (N > 0) c.basis = ar.exact<float>(index(next++), 1, kFloat, K * N * S, what + " basis");
   try {
     c.check(zw);
   } catch (const Error& e) {
@@ -843,6 +803,7 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
       r.fail("invalid glTF: " + (first.empty() ? std::string("parse error") : first));
     }
   }
+  const gltf::AccessorReader ar(name, model);
   if (!model.extras.IsObject() || !model.extras.Has("prtkit") ||
       !model.extras.Get("prtkit").IsObject())
     r.fail("not a prtkit bake file (a glTF without extras.prtkit)");
@@ -892,10 +853,8 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
     part.vertexCount = static_cast<std::uint32_t>(n);
     part.firstTriangle = static_cast<std::uint32_t>(mesh.triangles.size());
 
-    auto pos =
-        readAccessor<float>(model, pa, TINYGLTF_TYPE_VEC3, 3, kFloat, n, what + " POSITION", r);
-    auto nrm = readAccessor<float>(model, attr("NORMAL"), TINYGLTF_TYPE_VEC3, 3, kFloat, n,
-                                   what + " NORMAL", r);
+    auto pos = ar.exact<float>(pa, 3, kFloat, n, what + " POSITION");
+    auto nrm = ar.exact<float>(attr("NORMAL"), 3, kFloat, n, what + " NORMAL");
     requireFinite(pos, what + " POSITION", r);
     requireFinite(nrm, what + " NORMAL", r);
     for (std::size_t v = 0; v < n; ++v) {
@@ -908,13 +867,11 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
     anyUv = hasUv;
     anyColor = hasColor;
     if (hasUv) {
-      auto uv = readAccessor<float>(model, attr("TEXCOORD_0"), TINYGLTF_TYPE_VEC2, 2, kFloat, n,
-                                    what + " TEXCOORD_0", r);
+      auto uv = ar.exact<float>(attr("TEXCOORD_0"), 2, kFloat, n, what + " TEXCOORD_0");
       for (std::size_t v = 0; v < n; ++v) mesh.uvs.push_back({uv[2 * v], uv[2 * v + 1]});
     }
     if (hasColor) {
-      auto c = readAccessor<float>(model, attr("COLOR_0"), TINYGLTF_TYPE_VEC3, 3, kFloat, n,
-                                   what + " COLOR_0", r);
+      auto c = ar.exact<float>(attr("COLOR_0"), 3, kFloat, n, what + " COLOR_0");
       requireFinite(c, what + " COLOR_0", r);
       for (std::size_t v = 0; v < n; ++v)
         mesh.albedo.emplace_back(c[3 * v], c[3 * v + 1], c[3 * v + 2]);
@@ -926,8 +883,7 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
       r.fail(what + ": index count " + std::to_string(ni) + " is not a positive multiple of 3");
     if (mesh.triangles.size() + ni / 3 > T)
       r.fail(what + " has more triangles than extras.prtkit.triangleCount");
-    auto idx = readAccessor<std::uint32_t>(model, p.indices, TINYGLTF_TYPE_SCALAR, 1, kUint, ni,
-                                           what + " indices", r);
+    auto idx = ar.exact<std::uint32_t>(p.indices, 1, kUint, ni, what + " indices");
     for (std::size_t t = 0; t < ni / 3; ++t) {
       std::array<std::uint32_t, 3> tri;
       for (int k = 0; k < 3; ++k) {
@@ -988,17 +944,16 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
         if (bake.formatVersion < 3)
           r.fail(tw + " is compressed transfer in a version " + std::to_string(bake.formatVersion) +
                  " file (compression needs version 3)");
-        readCompressed(model, t.Get("compressed"), acc, tw, bt, r);
+        readCompressed(ar, t.Get("compressed"), acc, tw, bt, r);
         bake.transfers.push_back(std::move(bt));
         continue;
       }
       if (f.isMatrix()) {
         if (!acc.IsArray() || acc.ArrayLen() != 1 || !acc.Get(0).IsInt())
           r.fail(tw + ".accessors must list the one accessor of the matrices");
-        // readAccessor checks the declared count against the bytes present before allocating.
-        f.data = readAccessor<float>(model, acc.Get(0).Get<int>(), TINYGLTF_TYPE_SCALAR, 1, kFloat,
-                                     f.vertexCount * S,
-                                     std::string(toString(bt.settings.mode)) + " matrices", r);
+        // The reader checks the declared count against the bytes present before allocating.
+        f.data = ar.exact<float>(acc.Get(0).Get<int>(), 1, kFloat, f.vertexCount * S,
+                                 std::string(toString(bt.settings.mode)) + " matrices");
         requireFinite(f.data, std::string(toString(bt.settings.mode)) + " matrices", r);
         bake.transfers.push_back(std::move(bt));
         continue;
@@ -1010,9 +965,9 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
       for (std::size_t k = 0; k < K; ++k) {
         const Value& a = acc.Get(static_cast<int>(k));
         if (!a.IsInt()) r.fail(tw + ".accessors[" + std::to_string(k) + "] is not an index");
-        auto col = readAccessor<float>(
-            model, a.Get<int>(), TINYGLTF_TYPE_VEC4, 4, kFloat, f.vertexCount,
-            std::string(toString(bt.settings.mode)) + " transfer column " + std::to_string(k), r);
+        auto col = ar.exact<float>(
+            a.Get<int>(), 4, kFloat, f.vertexCount,
+            std::string(toString(bt.settings.mode)) + " transfer column " + std::to_string(k));
         requireFinite(col, std::string(toString(bt.settings.mode)) + " transfer", r);
         for (std::size_t v = 0; v < f.vertexCount; ++v)
           for (std::size_t j = 0; j < 4 && 4 * k + j < S; ++j)

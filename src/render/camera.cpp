@@ -8,34 +8,138 @@
 
 namespace prt::render {
 
+CameraBasis cameraBasis(const Camera& camera, int width, int height) {
+  PRT_CHECK(width > 0 && height > 0, "image size must be positive");
+  CameraBasis b;
+  b.eye = camera.eye;
+  b.forward = normalize(camera.target - camera.eye);
+  b.right = normalize(cross(b.forward, camera.up));
+  b.up = cross(b.right, b.forward);
+  b.tanY = std::tan(0.5f * camera.fovY * kPif / 180.0f);
+  b.tanX = b.tanY * float(width) / float(height);
+  return b;
+}
+
+Mat4f viewMatrix(const Camera& camera) {
+  const CameraBasis b = cameraBasis(camera, 1, 1);
+  // Rows: right, up', −forward; translation −R·eye.
+  const Vec3f rows[3] = {b.right, b.up, -b.forward};
+  Mat4f m{};
+  for (int r = 0; r < 3; ++r) {
+    m[0 + r] = rows[r].x, m[4 + r] = rows[r].y, m[8 + r] = rows[r].z;
+    m[12 + r] = -dot(rows[r], b.eye);
+  }
+  m[15] = 1.0f;
+  return m;
+}
+
+Mat4f projectionMatrix(const Camera& camera, int width, int height, float nearZ, float farZ) {
+  PRT_CHECK(nearZ > 0.0f && farZ > nearZ, "clip planes must satisfy 0 < near < far");
+  const CameraBasis b = cameraBasis(camera, width, height);
+  // x_clip = x_eye / tanX, y_clip = y_eye / tanY, w_clip = −z_eye (the depth along forward),
+  // z_clip = A z + B w with A = (f + n)/(n − f), B = 2 f n/(n − f): ndc depth −1 at n, +1 at f.
+  Mat4f m{};
+  m[0] = 1.0f / b.tanX;
+  m[5] = 1.0f / b.tanY;
+  m[10] = (farZ + nearZ) / (nearZ - farZ);
+  m[11] = -1.0f;
+  m[14] = 2.0f * farZ * nearZ / (nearZ - farZ);
+  return m;
+}
+
+Mat4f multiply(const Mat4f& a, const Mat4f& b) {
+  Mat4f m{};
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) {
+      float s = 0.0f;
+      for (int k = 0; k < 4; ++k) s += a[k * 4 + r] * b[c * 4 + k];
+      m[c * 4 + r] = s;
+    }
+  return m;
+}
+
+namespace {
+
+/// v rotated by `angle` about the unit `axis` (Rodrigues). An angle of 0 returns v exactly.
+Vec3d rotateAbout(const Vec3d& v, const Vec3d& axis, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1.0 - c));
+}
+
+/// The elevation of eye − target above the plane orthogonal to up, in radians.
+double elevation(const Camera& camera) {
+  const Vec3d d = normalize(Vec3d(camera.eye) - Vec3d(camera.target));
+  return std::asin(std::clamp(dot(d, normalize(Vec3d(camera.up))), -1.0, 1.0));
+}
+
+}  // namespace
+
+double clampPitch(const Camera& camera, double pitch) {
+  const double limit = kMaxOrbitElevationDegrees * kPi / 180.0, e = elevation(camera);
+  if (pitch > 0) return std::min(pitch, std::max(0.0, limit - e));
+  if (pitch < 0) return std::max(pitch, std::min(0.0, -limit - e));
+  return pitch;
+}
+
+Camera orbitCamera(const Camera& camera, const Orbit& orbit) {
+  // In double, from the offset eye − target (exact for floats of similar magnitude), so that the
+  // zero orbit returns the camera bit for bit: each step multiplies by cos 0 = 1, adds sin 0 = 0.
+  const Vec3d target = Vec3d(camera.target);
+  const Vec3d axis = normalize(Vec3d(camera.up));
+  Vec3d offset = rotateAbout(Vec3d(camera.eye) - target, axis, orbit.yaw);
+  const double pitch = clampPitch(camera, orbit.pitch);
+  const Vec3d side = cross(-offset, axis);  // the right axis after the yaw
+  if (pitch != 0 && length(side) > 0) offset = rotateAbout(offset, normalize(side), -pitch);
+  Camera c = camera;
+  c.target = Vec3f(target + orbit.pan);
+  c.eye = Vec3f(target + orbit.pan + offset * orbit.scale);
+  return c;
+}
+
 Vec3f defaultViewDirection() {
   return normalize(Vec3f(0.34f, 0.42f, 0.84f));
 }
 
-Camera frameSphere(const Vec3f& centre, float radius, int width, int height, float fovY,
-                   const Vec3f& viewDir, float margin) {
+Camera frameCamera(const Framing& f, int width, int height) {
   PRT_CHECK(width > 0 && height > 0, "image size must be positive");
-  const double halfY = 0.5 * fovY * kPi / 180.0;
+  const double halfY = 0.5 * f.fovY * kPi / 180.0;
   const double halfX = std::atan(std::tan(halfY) * double(width) / double(height));
   const double half = std::min(halfY, halfX);
-  const double r = std::max(double(radius), 1e-6);
+  const double r = std::max(double(f.radius), 1e-6);
   // The cone of half-angle `half` from the eye is tangent to the sphere at distance r / sin(half).
-  const double d = margin * r / std::sin(half);
+  const double d = f.margin * r / std::sin(half);
   Camera c;
-  c.target = centre;
-  c.eye = centre + normalize(viewDir) * float(d);
-  c.up = {0.0f, 1.0f, 0.0f};
-  c.fovY = fovY;
+  c.target = f.centre;
+  c.eye = f.centre + normalize(f.direction) * float(d);
+  c.up = f.up;
+  c.fovY = f.fovY;
   return c;
 }
 
-Camera frameMesh(const Mesh& mesh, int width, int height) {
+Camera frameSphere(const Vec3f& centre, float radius, int width, int height, float fovY,
+                   const Vec3f& viewDir, float margin) {
+  Framing f;
+  f.centre = centre;
+  f.radius = radius;
+  f.direction = viewDir;
+  f.fovY = fovY;
+  f.margin = margin;
+  return frameCamera(f, width, height);
+}
+
+Framing meshFraming(const Mesh& mesh) {
   // A tighter bounding sphere than the box's half-diagonal: same centre, radius to the farthest
   // vertex (a unit sphere gets radius 1, not √3).
-  const Vec3f c = computeBounds(mesh).centre();
+  Framing f;
+  f.centre = computeBounds(mesh).centre();
   float r2 = 0.0f;
-  for (const Vec3f& p : mesh.positions) r2 = std::max(r2, dot(p - c, p - c));
-  return frameSphere(c, std::sqrt(r2), width, height);
+  for (const Vec3f& p : mesh.positions) r2 = std::max(r2, dot(p - f.centre, p - f.centre));
+  f.radius = std::sqrt(r2);
+  return f;
+}
+
+Camera frameMesh(const Mesh& mesh, int width, int height) {
+  return frameCamera(meshFraming(mesh), width, height);
 }
 
 namespace {
@@ -93,12 +197,9 @@ Camera parseCamera(const std::string& spec, const Camera& base) {
 
 RayGenerator::RayGenerator(const Camera& camera, int width, int height)
     : eye_(camera.eye), width_(width), height_(height) {
-  PRT_CHECK(width > 0 && height > 0, "image size must be positive");
-  forward_ = normalize(camera.target - camera.eye);
-  right_ = normalize(cross(forward_, camera.up));
-  up_ = cross(right_, forward_);
-  tanY_ = std::tan(0.5f * camera.fovY * kPif / 180.0f);
-  tanX_ = tanY_ * float(width) / float(height);
+  const CameraBasis b = cameraBasis(camera, width, height);
+  forward_ = b.forward, right_ = b.right, up_ = b.up;
+  tanY_ = b.tanY, tanX_ = b.tanX;
 }
 
 Ray RayGenerator::ray(float px, float py) const {

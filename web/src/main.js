@@ -232,11 +232,14 @@ async function main() {
     }
   }
 
-  /** The camera prt web was given (--camera), else the mesh framed as render::frameMesh does
-   *  for a width × height image. */
+  /** The camera prt web was given (--camera), else the library's framing (render::meshFraming,
+   *  written by prt web) for a width × height canvas, as render::frameCamera: the bounding
+   *  sphere grown by `margin` fits the narrower field of view (docs/conventions.md, "Camera").
+   *  A dropped bake is framed with its own sphere (bake.js, as meshFraming computes it). */
   function frameCamera(w, h) {
     const given = data.view && data.view.camera;
-    if (given && data.bake.name === bake.name) {
+    const written = data.bake.name === bake.name;
+    if (given && written) {
       camera.fov = given.fov;
       camera.up.fromArray(given.up);
       camera.position.fromArray(given.eye);
@@ -244,15 +247,16 @@ async function main() {
       if (controls) controls.target.fromArray(given.target), controls.update();
       return;
     }
-    const fovY = 40, halfY = (fovY / 2) * Math.PI / 180;
-    const halfX = Math.atan(Math.tan(halfY) * w / h);
-    const d = (1.05 * bake.radius) / Math.sin(Math.min(halfX, halfY));
-    const dir = new THREE.Vector3(0.34, 0.42, 0.84).normalize();
-    camera.fov = fovY;
-    camera.up.set(0, 1, 0);
-    camera.position.copy(bake.centre).addScaledVector(dir, d);
-    camera.lookAt(bake.centre);
-    if (controls) controls.target.copy(bake.centre), controls.update();
+    const f = data.view.framing;
+    const centre = written ? new THREE.Vector3().fromArray(f.centre) : bake.centre;
+    const radius = Math.max(written ? f.radius : bake.radius, 1e-6);
+    const halfY = (f.fov / 2) * Math.PI / 180, halfX = Math.atan(Math.tan(halfY) * w / h);
+    const d = (f.margin * radius) / Math.sin(Math.min(halfX, halfY));
+    camera.fov = f.fov;
+    camera.up.fromArray(f.up);
+    camera.position.copy(centre).addScaledVector(new THREE.Vector3().fromArray(f.direction).normalize(), d);
+    camera.lookAt(centre);
+    if (controls) controls.target.copy(centre), controls.update();
   }
 
   /** Puts a parsed bake on screen; throws (leaving the old one) if the lights cannot serve it. */
