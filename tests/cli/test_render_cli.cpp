@@ -152,7 +152,7 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
   for (const char* needle :
        {"unshadowed", "shadowed", "interreflected", "builtin:sky", "builtin:constant?value=0.5",
         "truncation floor", "energy-weighted",
-        "glossy: shadowed transfer matrices, phong?exponent=4", "lobe energy &gt; b", "glossy.glb"})
+        "glossy: interreflected transfer matrices, phong?exponent=4", "lobe energy &gt; b", "glossy.glb"})
     EXPECT_NE(html.find(needle), std::string::npos) << needle;
   for (const char* file :
        {"scene.glb", "lights/sky.json", "lights/constant.json", "img/sky_shadowed_prt.png",
