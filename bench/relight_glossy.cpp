@@ -5,6 +5,8 @@
 //   * vs_eigen: Eigen's matrix product L' = M_p [L_r L_g L_b] per vertex (a Map over the same
 //     data, B² × B² times B² × 3), the plain formulation of Sloan et al. 2002 §6, parallel in the
 //     same chunks (it computes less: no view, no lobe, no diffuse part).
+//   BM_RelightGlossyLightOnly: the light turning under a still eye, from the view-collapsed vector
+//     transfer (relight::viewTransfer), against relighting the matrices every frame.
 // The mesh is the Stanford bunny (glmark2-data, 35k vertices) when installed, else a builtin
 // sphere of 41k vertices; the transfer is synthetic (relighting cost does not depend on values).
 //   bench_relight_glossy --benchmark_counters_tabular=true
@@ -117,6 +119,36 @@ void BM_RelightGlossy(benchmark::State& state) {
   state.counters["vs_eigen"] = eigen / relit;
   state.counters["stream_GBps"] = bytes / stream * 1e-9;
 }
+
+// A light that turns under a still eye: the matrices collapsed once for the view
+// (relight::viewTransfer, the cost of one full frame), then per frame a vector relighting of
+// 3·B² floats per vertex. Counters: light_only_ms per frame, collapse_ms once, and the speed-up
+// over relighting the matrices each frame (full_ms, same run).
+void BM_RelightGlossyLightOnly(benchmark::State& state) {
+  Data& d = data(int(state.range(0)));
+  const prt::Material material = prt::parseMaterial("phong?exponent=16&ks=0.5&kd=0.5");
+  const auto light = prt::relight::prepareLight(d.light, d.transfer.bands);
+  const auto mat = prt::relight::prepareMaterial(material, d.transfer.bands);
+  const prt::relight::GlossyView view{d.mesh.positions, d.mesh.normals, prt::Vec3f(0, 1, 3)};
+  prt::TransferField t;
+  const double collapse =
+      secondsOf([&] { t = prt::relight::viewTransfer(d.transfer, mat, view, {}); }, 3);
+  const double full =
+      secondsOf([&] { prt::relight::relightGlossy(d.transfer, light, mat, view, {}, d.out); }, 5);
+  auto run = [&] { prt::relight::relight(t, light, {}, d.out); };
+  const double lightOnly = secondsOf(run, 20);
+  for (auto _ : state) {
+    run();
+    benchmark::ClobberMemory();
+  }
+  state.counters["vertices"] = double(d.transfer.vertexCount);
+  state.counters["light_only_ms"] = lightOnly * 1e3;
+  state.counters["collapse_ms"] = collapse * 1e3;
+  state.counters["full_ms"] = full * 1e3;
+  state.counters["speedup"] = full / lightOnly;
+}
+
+BENCHMARK(BM_RelightGlossyLightOnly)->Arg(5)->Arg(9)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK(BM_RelightGlossy)
     ->Args({3, 1})

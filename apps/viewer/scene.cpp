@@ -274,10 +274,10 @@ void SceneView::relightGlossy(const Scene& scene, const render::Camera& camera,
   const int b = scene.bands();
   const bool sameRotation =
       std::equal(&rotation.m[0][0], &rotation.m[0][0] + 9, &glossyRotation_.m[0][0]);
-  if (glossyTransfer_ == scene.transferVersion && glossyBands_ == b &&
-      glossyMaterialVersion_ == scene.materialVersion && glossyLightVersion_ == light_ &&
-      sameRotation && glossyEye_ == camera.eye)
-    return;
+  const bool sameView = glossyTransfer_ == scene.transferVersion && glossyBands_ == b &&
+                        glossyMaterialVersion_ == scene.materialVersion && glossyEye_ == camera.eye;
+  if (sameView && glossyLightVersion_ == light_ && sameRotation) return;
+  if (!sameView) glossyViewValid_ = false;
   const auto t0 = std::chrono::steady_clock::now();
   const TransferField& full = scene.transfer().field;
   if (glossyTransfer_ != scene.transferVersion || glossyBands_ != b) {
@@ -300,8 +300,19 @@ void SceneView::relightGlossy(const Scene& scene, const render::Camera& camera,
   radiance_.resize(mesh.vertexCount());
   // Exactly prt render's call: each vertex seen from the camera's eye, the mesh's albedo as kd
   // unless the material sets one.
-  relight::relightGlossy(field, glossyLight_, glossyMaterial_,
-                         {mesh.positions, mesh.normals, camera.eye}, mesh.albedo, radiance_);
+  const relight::GlossyView view{mesh.positions, mesh.normals, camera.eye};
+  if (sameView) {
+    // Only the light changed: collapse the matrices for this eye once (a frame's work), then
+    // every further light-only frame is a vector relighting.
+    if (!glossyViewValid_) {
+      glossyView_ = relight::viewTransfer(field, glossyMaterial_, view, mesh.albedo);
+      glossyViewValid_ = true;
+    }
+    relight::relight(glossyView_, glossyLight_, {}, radiance_);
+    ++glossyLightOnly_;
+  } else {
+    relight::relightGlossy(field, glossyLight_, glossyMaterial_, view, mesh.albedo, radiance_);
+  }
   renderer_.setRadiance(radiance_);
   glossyTransfer_ = scene.transferVersion, glossyBands_ = b;
   glossyMaterialVersion_ = scene.materialVersion, glossyLightVersion_ = light_;

@@ -169,12 +169,17 @@ class SceneView {
   double lastGlossySeconds() const { return glossySeconds_; }
   /// Glossy relightings so far (frames where something view- or light-dependent changed).
   int glossyRelights() const { return glossyRelights_; }
+  /// Of those, the ones served from the view-collapsed transfer (only the light had changed).
+  int glossyLightOnlyRelights() const { return glossyLightOnly_; }
   /// The last glossy relighting's per-vertex exit radiance (what the shader shows).
   const std::vector<Rgb>& glossyRadiance() const { return radiance_; }
 
  private:
   /// Matrix transfer: relights on the CPU into the renderer's radiance buffer when the light,
-  /// eye, bands, material or transfer differ from the last time.
+  /// eye, bands, material or transfer differ from the last time. When only the light changed
+  /// (it turns under a still camera), from the matrices collapsed for this eye
+  /// (relight::viewTransfer, built on the first such frame): a vector relighting, 28× less work
+  /// at 5 bands (docs/performance.md).
   void relightGlossy(const Scene& scene, const render::Camera& camera, const Mat3d& rotation);
 
   Renderer renderer_;
@@ -185,6 +190,9 @@ class SceneView {
   // Glossy state: the transfer cut to the shown bands, the prepared material, the radiance, and
   // what they were computed for.
   TransferField glossyField_;
+  TransferField glossyView_;  ///< viewTransfer for the current eye and material, if valid
+  bool glossyViewValid_ = false;
+  int glossyLightOnly_ = 0;
   relight::PreparedMaterial glossyMaterial_;
   relight::PreparedLight glossyLight_;
   std::vector<Rgb> radiance_;

@@ -106,9 +106,11 @@ RowsFn pickRows(std::size_t width, bool glossy) {
 
 }  // namespace
 
-void relightGlossy(const TransferField& transfer, const PreparedLight& light,
-                   const PreparedMaterial& material, const GlossyView& view,
-                   std::span<const Rgb> albedo, std::span<Rgb> out) {
+namespace {
+
+/// Checks shared by the kernels over matrix transfer (light bands checked by the caller).
+void checkGlossyInputs(const TransferField& transfer, const PreparedMaterial& material,
+                       const GlossyView& view, std::span<const Rgb> albedo) {
   const std::size_t nv = transfer.vertexCount;
   if (!transfer.isMatrix()) throw Error("relight: glossy relighting needs matrix transfer");
   if (transfer.channels != 1 && transfer.channels != 3)
@@ -116,33 +118,33 @@ void relightGlossy(const TransferField& transfer, const PreparedLight& light,
   if (transfer.data.size() != nv * transfer.stride())
     throw Error("relight: transfer holds " + std::to_string(transfer.data.size()) +
                 " floats, expected " + std::to_string(nv * transfer.stride()));
-  if (light.bands < 1 || light.bands > transfer.bands)
-    throw Error("relight: prepared light has " + std::to_string(light.bands) +
-                " bands, transfer has " + std::to_string(transfer.bands));
   if (material.bands != transfer.bands)
     throw Error("relight: material prepared for " + std::to_string(material.bands) +
                 " bands, transfer has " + std::to_string(transfer.bands));
-  if (view.positions.size() != nv || view.normals.size() != nv || out.size() != nv)
-    throw Error("relight: positions, normals and output must hold one value per vertex (" +
+  if (view.positions.size() != nv || view.normals.size() != nv)
+    throw Error("relight: positions and normals must hold one value per vertex (" +
                 std::to_string(nv) + ")");
   if (!albedo.empty() && albedo.size() != 1 && albedo.size() != nv)
     throw Error("relight: " + std::to_string(albedo.size()) + " albedo values for " +
                 std::to_string(nv) + " vertices (expected one per vertex, one, or none)");
+}
 
-  const int bands = transfer.bands;
-  const std::size_t nB = static_cast<std::size_t>(bands * bands);
-  const std::size_t nb = static_cast<std::size_t>(light.bands * light.bands);
+/// The one pass over the matrices: for every vertex v, in parallel, u = M_vᵀ d and w = M_vᵀ g
+/// over the first `columns` source coefficients (u, w: columns × channels floats, channel
+/// fastest; w empty without a lobe), handed to visit(v, u, w). Allocation-free per vertex.
+template <class Visit>
+void forEachResponse(const TransferField& transfer, const PreparedMaterial& material,
+                     const GlossyView& view, std::size_t columns, const Visit& visit) {
+  const std::size_t nB = static_cast<std::size_t>(transfer.bands * transfer.bands);
   const std::size_t ch = static_cast<std::size_t>(transfer.channels);
-  const std::size_t width = nb * ch, rowStride = nB * ch;
+  const std::size_t width = columns * ch, rowStride = nB * ch;
   const bool glossy = !material.glossy.empty();
-  const float* L = light.interleaved.data();  // (r, g, b) per coefficient
   const float* M = transfer.data.data();
   const std::size_t grain = std::max<std::size_t>(16, 16384 / (nB * nB * ch));
-
 #if defined(PRT_GLOSSY_AVX2)
   const RowsFn fast = pickRows(width, glossy);
 #endif
-  parallelFor(nv, grain, [&](std::size_t begin, std::size_t end) {
+  parallelFor(transfer.vertexCount, grain, [&](std::size_t begin, std::size_t end) {
     std::vector<float> y(nB), d(nB), g(glossy ? nB : 0), u(width), w(glossy ? width : 0);
     for (std::size_t v = begin; v < end; ++v) {
       material.responses(view.positions[v], view.normals[v], view.eye, d.data(), g.data(),
@@ -155,16 +157,60 @@ void relightGlossy(const TransferField& transfer, const PreparedLight& light,
 #endif
         accumulateRows(M + v * transfer.stride(), nB, rowStride, width, d.data(),
                        glossy ? g.data() : nullptr, u.data(), w.data());
-      Rgb diff(0.0f), spec(0.0f);
-      for (std::size_t j = 0; j < nb; ++j)
-        for (std::size_t c = 0; c < 3; ++c) {
-          const std::size_t k = j * ch + (ch == 1 ? 0 : c);
-          diff[c] += u[k] * L[3 * j + c];
-          if (glossy) spec[c] += w[k] * L[3 * j + c];
-        }
-      out[v] = material.diffuseAt(albedo, v, nv) * diff + material.specular * spec;
+      visit(v, u, w);
     }
   });
+}
+
+}  // namespace
+
+void relightGlossy(const TransferField& transfer, const PreparedLight& light,
+                   const PreparedMaterial& material, const GlossyView& view,
+                   std::span<const Rgb> albedo, std::span<Rgb> out) {
+  checkGlossyInputs(transfer, material, view, albedo);
+  const std::size_t nv = transfer.vertexCount;
+  if (light.bands < 1 || light.bands > transfer.bands)
+    throw Error("relight: prepared light has " + std::to_string(light.bands) +
+                " bands, transfer has " + std::to_string(transfer.bands));
+  if (out.size() != nv)
+    throw Error("relight: output must hold one value per vertex (" + std::to_string(nv) + ")");
+  const std::size_t nb = static_cast<std::size_t>(light.bands * light.bands);
+  const std::size_t ch = static_cast<std::size_t>(transfer.channels);
+  const bool glossy = !material.glossy.empty();
+  const float* L = light.interleaved.data();  // (r, g, b) per coefficient
+  forEachResponse(transfer, material, view, nb,
+                  [&](std::size_t v, const std::vector<float>& u, const std::vector<float>& w) {
+                    Rgb diff(0.0f), spec(0.0f);
+                    for (std::size_t j = 0; j < nb; ++j)
+                      for (std::size_t c = 0; c < 3; ++c) {
+                        const std::size_t k = j * ch + (ch == 1 ? 0 : c);
+                        diff[c] += u[k] * L[3 * j + c];
+                        if (glossy) spec[c] += w[k] * L[3 * j + c];
+                      }
+                    out[v] = material.diffuseAt(albedo, v, nv) * diff + material.specular * spec;
+                  });
+}
+
+TransferField viewTransfer(const TransferField& transfer, const PreparedMaterial& material,
+                           const GlossyView& view, std::span<const Rgb> albedo) {
+  checkGlossyInputs(transfer, material, view, albedo);
+  const std::size_t nv = transfer.vertexCount;
+  const std::size_t nB = static_cast<std::size_t>(transfer.bands * transfer.bands);
+  const std::size_t ch = static_cast<std::size_t>(transfer.channels);
+  const bool glossy = !material.glossy.empty();
+  TransferField t = TransferField::zeros(TransferLayout::Vector, transfer.bands, 3, nv);
+  forEachResponse(transfer, material, view, nB,
+                  [&](std::size_t v, const std::vector<float>& u, const std::vector<float>& w) {
+                    const Rgb kd = material.diffuseAt(albedo, v, nv);
+                    float* row = t.vertex(v);
+                    for (std::size_t j = 0; j < nB; ++j)
+                      for (std::size_t c = 0; c < 3; ++c) {
+                        const std::size_t k = j * ch + (ch == 1 ? 0 : c);
+                        row[3 * j + c] =
+                            kd[c] * u[k] + (glossy ? material.specular[c] * w[k] : 0.0f);
+                      }
+                  });
+  return t;
 }
 
 RelightInfo relightGlossy(const TransferField& transfer, const sh::RgbSh& light,

@@ -256,13 +256,20 @@ TEST(Scene, GlossyRadianceIsRenderRelightAndFollowsLightEyeAndMaterial) {
   s.dragLight(40, -25);
   view.prepare(s, 64, 48);
   EXPECT_LT(maxDiff(expected()), 1e-5);
+  // Only the light changed (same eye): served from the view-collapsed transfer, twice.
+  EXPECT_EQ(view.glossyLightOnlyRelights(), 1);
+  s.dragLight(-70, 10);
+  view.prepare(s, 64, 48);
+  EXPECT_EQ(view.glossyLightOnlyRelights(), 2);
+  EXPECT_LT(maxDiff(expected()), 1e-5);
   s.setMaterial(parseMaterial("ggx?roughness=0.3&ks=0.6&kd=0.2"));
   view.prepare(s, 64, 48);
   EXPECT_LT(maxDiff(expected()), 1e-5);
-  EXPECT_EQ(view.glossyRelights(), 4);
+  EXPECT_EQ(view.glossyRelights(), 5);
+  EXPECT_EQ(view.glossyLightOnlyRelights(), 2);  // a new material is not a light-only change
   s.setBands(2);
   view.prepare(s, 64, 48);
-  EXPECT_EQ(view.glossyRelights(), 5);
+  EXPECT_EQ(view.glossyRelights(), 6);
   {
     const Mesh& m = s.bake().mesh;
     std::vector<Rgb> out(m.vertexCount());

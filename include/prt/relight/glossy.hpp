@@ -46,6 +46,16 @@ void relightGlossy(const TransferField& transfer, const PreparedLight& light,
                    const PreparedMaterial& material, const GlossyView& view,
                    std::span<const Rgb> albedo, std::span<Rgb> out);
 
+/// The glossy transfer seen from one eye, collapsed to a vector transfer (3 channels): per vertex
+/// and colour channel c,
+///   t_c(p) = kd_c(p) M_pᵀ d(p) + ks_c M_pᵀ g(p, v)
+/// so that relight(t, L, white) equals relightGlossy(transfer, L, material, view, albedo) for
+/// every light L (any band count up to the transfer's). One pass over the matrices — a frame's
+/// work — when the eye, the material or the transfer changes; after that a light that turns
+/// costs one vector relighting (3·B² floats per vertex instead of B⁴·C). Throws prt::Error on mismatched sizes.
+TransferField viewTransfer(const TransferField& transfer, const PreparedMaterial& material,
+                           const GlossyView& view, std::span<const Rgb> albedo);
+
 /// Convenience: rotates the light by `rotation` (a lobe along d moves to R d), prepares light and
 /// material, runs the kernel.
 RelightInfo relightGlossy(const TransferField& transfer, const sh::RgbSh& light,
