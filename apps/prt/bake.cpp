@@ -169,13 +169,15 @@ void runBake(const BakeArgs& a) {
                      bytesText(fp.bytesPerVertex), bytesText(fp.transferBytes),
                      fp.workingBytes ? " + " + bytesText(fp.workingBytes) + " working" : ""));
     if (glossyBounces(s))
-      info(fmt::format("{} {}: the bounces follow the material's lobe ({}): {} matrix passes over "
-                       "the whole mesh",
-                       toString(mode), toString(layout), material.spec(), s.bounces + 1));
+      info(
+          fmt::format("{} {}: the bounces follow the material's lobe ({}): {} matrix passes over "
+                      "the whole mesh",
+                      toString(mode), toString(layout), material.spec(), s.bounces + 1));
     else if (s.bounces > 0 && material.glossy())
-      info(fmt::format("{} {}: its bounces treat every surface as diffuse (kd); --transfer matrix "
-                       "bounces the light off the lobe too",
-                       toString(mode), toString(layout)));
+      info(
+          fmt::format("{} {}: its bounces treat every surface as diffuse (kd); --transfer matrix "
+                      "bounces the light off the lobe too",
+                      toString(mode), toString(layout)));
     if (fp.transferBytes > kMaxTransferFileBytes)
       throw Error(a.output,
                   fmt::format("{} {} transfer of {} vertices at {} bands is {}, more "

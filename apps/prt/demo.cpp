@@ -306,15 +306,16 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
          "<code>glossy.glb</code> ("
       << fmt::format("{:.0f}", glossy->bytes / 1e6) << " MB: a " << a.glossyBands * a.glossyBands
       << "×" << a.glossyBands * a.glossyBands
-      << " matrix per vertex) holds inter-reflected transfer matrices M<sub>p</sub>, L'<sub>p</sub> "
+      << " matrix per vertex) holds inter-reflected transfer matrices M<sub>p</sub>, "
+         "L'<sub>p</sub> "
          "= M<sub>p</sub>L the light arriving at p, shadowed and bounced "
-      << a.bounces
-      << " time(s) off surfaces of the material <code>"
+      << a.bounces << " time(s) off surfaces of the material <code>"
       << htmlEscape(glossy->material.spec())
       << "</code> (glossy bounces: what a surface sends toward p depends on the direction); the "
          "material at p is applied at relighting time, each vertex seen from the stills' camera "
          "(<code>prt view glossy.glb</code> relights it live, <code>prt render glossy.glb "
-         "--material ...</code> with another lobe at p). Its reference uses the same lobe, at p and at every bounce, with no SH, "
+         "--material ...</code> with another lobe at p). Its reference uses the same lobe, at p "
+         "and at every bounce, with no SH, "
          "so the error is SH truncation of visibility, light <i>and</i> lobe (the table's last "
          "column: the lobe's energy beyond b bands) plus noise.</p>\n";
   h << "<p>Files: <code>scene.glb</code> (the bake; any glTF viewer opens it as a mesh), "

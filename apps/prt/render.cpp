@@ -106,9 +106,10 @@ void run(const RenderOptions& o) {
   if (!o.material.empty() && glossyBounces(baked.settings) &&
       !(material.lobe == baked.settings.material.lobe &&
         material.specular == baked.settings.material.specular))
-    warn(fmt::format("{}: its bounces were baked off {}; --material changes the surface at each "
-                     "vertex, not the light the surfaces send each other (bake again for both)",
-                     o.bake, baked.settings.material.spec()));
+    warn(
+        fmt::format("{}: its bounces were baked off {}; --material changes the surface at each "
+                    "vertex, not the light the surfaces send each other (bake again for both)",
+                    o.bake, baked.settings.material.spec()));
   if (material.glossy() && !baked.field.isMatrix())
     warn(
         fmt::format("{}: the {} transfer is a vector (diffuse only); the material's glossy lobe "

@@ -60,7 +60,7 @@ namespace {
 constexpr std::size_t kBatch = 64;
 constexpr int kFlushBatches = 4;  // float rank updates summed before going to double
 constexpr std::size_t kVertexGrain = 2;
-constexpr std::uint64_t kMatrixPass = 0x6d61747269780000ull;  // decorrelates from vector passes
+constexpr std::uint64_t kMatrixPass = 0x6d61747269780000ull;   // decorrelates from vector passes
 constexpr std::uint64_t kBounceOrder = 0x626f756e63650000ull;  // one seed per bounce order
 
 using MatF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic>;
@@ -205,10 +205,10 @@ void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, 
   const Mesh& mesh = ctx.mesh;
   const auto& tri = mesh.triangles[h.triangle];
   const float b[3] = {1.0f - h.u - h.v, h.u, h.v};
-  const Vec3f p0 = mesh.positions[tri[0]], p1 = mesh.positions[tri[1]],
-              p2 = mesh.positions[tri[2]];
+  const Vec3f p0 = mesh.positions[tri[0]], p1 = mesh.positions[tri[1]], p2 = mesh.positions[tri[2]];
   const Vec3f q = p0 * b[0] + p1 * b[1] + p2 * b[2];
-  Vec3f nq = mesh.normals[tri[0]] * b[0] + mesh.normals[tri[1]] * b[1] + mesh.normals[tri[2]] * b[2];
+  Vec3f nq =
+      mesh.normals[tri[0]] * b[0] + mesh.normals[tri[1]] * b[1] + mesh.normals[tri[2]] * b[2];
   const float len = length(nq);
   nq = len > 0 ? nq / len : normalize(cross(p1 - p0, p2 - p0));
   // Seen from one unit back along the ray: the view at h is exactly −w.
@@ -372,7 +372,9 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
   // bounces, or for glossy bounce surfaces the matrices with K − 1 bounces (this function, one
   // order less). It takes the first share of the progress.
   const bool glossy = glossyBounces(settings);
-  const double preShare = !inter ? 0.0 : glossy ? double(settings.bounces) / (settings.bounces + 1) : 0.3;
+  const double preShare = !inter   ? 0.0
+                          : glossy ? double(settings.bounces) / (settings.bounces + 1)
+                                   : 0.3;
   TransferField bounced;
   BakeStats bounceStats;
   if (glossy) {
@@ -397,19 +399,20 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
     bounced = prt::bake(mesh, occluder, vs, &bounceStats, sub);
   }
 
-  MatrixContext ctx{mesh,
-                    occluder,
-                    settings,
-                    settings.bands,
-                    settings.bands * settings.bands,
-                    1,
-                    hemisphereProductZ(settings.bands),
-                    nullptr,
-                    resolveAlbedo(mesh, settings),
-                    inter ? &bounced : nullptr,
-                    glossy,
-                    glossy ? prepareMaterial(settings.material, settings.bands) : PreparedMaterial{},
-                    {}};
+  MatrixContext ctx{
+      mesh,
+      occluder,
+      settings,
+      settings.bands,
+      settings.bands * settings.bands,
+      1,
+      hemisphereProductZ(settings.bands),
+      nullptr,
+      resolveAlbedo(mesh, settings),
+      inter ? &bounced : nullptr,
+      glossy,
+      glossy ? prepareMaterial(settings.material, settings.bands) : PreparedMaterial{},
+      {}};
   ctx.channels = bakeFootprint(mesh, settings).channels;
   if (settings.mode != TransferMode::Unshadowed)
     ctx.sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(settings.samples));

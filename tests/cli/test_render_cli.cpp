@@ -149,10 +149,10 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
   ASSERT_EQ(r.rc, 0) << r.err;
   const std::filesystem::path d = dir_ / "out/demo";
   const std::string html = slurp(d / "index.html");
-  for (const char* needle :
-       {"unshadowed", "shadowed", "interreflected", "builtin:sky", "builtin:constant?value=0.5",
-        "truncation floor", "energy-weighted",
-        "glossy: interreflected transfer matrices, phong?exponent=4", "lobe energy &gt; b", "glossy.glb"})
+  for (const char* needle : {"unshadowed", "shadowed", "interreflected", "builtin:sky",
+                             "builtin:constant?value=0.5", "truncation floor", "energy-weighted",
+                             "glossy: interreflected transfer matrices, phong?exponent=4",
+                             "lobe energy &gt; b", "glossy.glb"})
     EXPECT_NE(html.find(needle), std::string::npos) << needle;
   for (const char* file :
        {"scene.glb", "lights/sky.json", "lights/constant.json", "img/sky_shadowed_prt.png",

@@ -159,8 +159,8 @@ TEST(RelightGlossy, ViewTransferRelightsLikeTheMatrices) {
   for (std::size_t k = 0; k < scene.m.data.size(); ++k)
     for (int c = 0; c < 3; ++c) rgb.data[3 * k + c] = scene.m.data[k] * (0.5f + 0.25f * c);
   const relight::GlossyView view{scene.mesh.positions, scene.mesh.normals, eye};
-  for (const char* spec : {"phong?exponent=12&ks=0.3,0.4,0.5", "ggx?roughness=0.4&ks=0.2&kd=0.6",
-                           "lambert"}) {
+  for (const char* spec :
+       {"phong?exponent=12&ks=0.3,0.4,0.5", "ggx?roughness=0.4&ks=0.2&kd=0.6", "lambert"}) {
     SCOPED_TRACE(spec);
     const Material mat = parseMaterial(spec);
     for (const TransferField* m : {&scene.m, &rgb}) {
@@ -174,8 +174,8 @@ TEST(RelightGlossy, ViewTransferRelightsLikeTheMatrices) {
         const std::vector<Rgb> out = relight::relight(t, light, {}, turn);
         const sh::RgbSh turned = sh::Rotation(lightBands, turn).apply(light);
         for (std::size_t v = 0; v < out.size(); ++v) {
-          const Rgb want = naive(*m, v, turned, mat, scene.mesh.positions[v],
-                                 scene.mesh.normals[v], eye, scene.mesh.albedo[v]);
+          const Rgb want = naive(*m, v, turned, mat, scene.mesh.positions[v], scene.mesh.normals[v],
+                                 eye, scene.mesh.albedo[v]);
           for (int c = 0; c < 3; ++c)
             ASSERT_NEAR(out[v][c], want[c], 1e-4 * (1 + std::abs(want[c])))
                 << "vertex " << v << " light bands " << lightBands;

@@ -176,9 +176,10 @@ TEST(Validate, GlossyBouncesAgreeWithTheGlossyReference) {
   const ValidationReport without = validate(s.mesh, *s.occ, old, s.bake, env, light, vs);
   ASSERT_EQ(rep.rows.size(), 1u);
   const BandRow& r = rep.rows[0];
-  std::printf("glossy bounces 6 bands: rel RMSE %.4f (diffuse bounce surfaces %.4f) floor %.4f "
-              "ref noise %.4f\n",
-              r.relRmse, without.rows[0].relRmse, r.floor, r.refStdErr);
+  std::printf(
+      "glossy bounces 6 bands: rel RMSE %.4f (diffuse bounce surfaces %.4f) floor %.4f "
+      "ref noise %.4f\n",
+      r.relRmse, without.rows[0].relRmse, r.floor, r.refStdErr);
   EXPECT_LT(r.relRmse, 0.05);
   EXPECT_LT(r.relRmse, r.floor + 3 * r.refStdErr + 0.01);
   EXPECT_GT(without.rows[0].relRmse, 2 * r.relRmse);

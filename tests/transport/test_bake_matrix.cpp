@@ -174,28 +174,28 @@ TEST(BakeMatrix, ColouredBouncesGiveRgbMatrices) {
 TEST(BakeMatrix, IdenticalForAnyThreadCountAndRange) {
   Scene scene("builtin:sphere-plane?grid=16&subdiv=1");
   for (const char* material : {"lambert", "phong?exponent=4&ks=0.5&kd=0.5"}) {
-  SCOPED_TRACE(material);
-  BakeSettings s = matrixSettings(TransferMode::Interreflected, 3, 128);
-  s.bounces = 2;
-  s.material = parseMaterial(material);
-  TransferField one, two;
-  {
-    ThreadLimit limit(1);
-    one = bake(scene.mesh, *scene.occluder, s);
-  }
-  {
-    ThreadLimit limit(2);
-    two = bake(scene.mesh, *scene.occluder, s);
-  }
-  EXPECT_EQ(one.data, two.data);
-  BakeSettings r = s;
-  r.firstVertex = 50;
-  r.vertexCount = 40;
-  const TransferField part = bake(scene.mesh, *scene.occluder, r);
-  ASSERT_EQ(part.vertexCount, 40u);
-  for (std::size_t v = 0; v < 40; ++v)
-    for (std::size_t k = 0; k < part.stride(); ++k)
-      ASSERT_EQ(part.vertex(v)[k], one.vertex(50 + v)[k]);
+    SCOPED_TRACE(material);
+    BakeSettings s = matrixSettings(TransferMode::Interreflected, 3, 128);
+    s.bounces = 2;
+    s.material = parseMaterial(material);
+    TransferField one, two;
+    {
+      ThreadLimit limit(1);
+      one = bake(scene.mesh, *scene.occluder, s);
+    }
+    {
+      ThreadLimit limit(2);
+      two = bake(scene.mesh, *scene.occluder, s);
+    }
+    EXPECT_EQ(one.data, two.data);
+    BakeSettings r = s;
+    r.firstVertex = 50;
+    r.vertexCount = 40;
+    const TransferField part = bake(scene.mesh, *scene.occluder, r);
+    ASSERT_EQ(part.vertexCount, 40u);
+    for (std::size_t v = 0; v < 40; ++v)
+      for (std::size_t k = 0; k < part.stride(); ++k)
+        ASSERT_EQ(part.vertex(v)[k], one.vertex(50 + v)[k]);
   }
 }
 

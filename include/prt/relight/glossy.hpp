@@ -52,7 +52,8 @@ void relightGlossy(const TransferField& transfer, const PreparedLight& light,
 /// so that relight(t, L, white) equals relightGlossy(transfer, L, material, view, albedo) for
 /// every light L (any band count up to the transfer's). One pass over the matrices — a frame's
 /// work — when the eye, the material or the transfer changes; after that a light that turns
-/// costs one vector relighting (3·B² floats per vertex instead of B⁴·C). Throws prt::Error on mismatched sizes.
+/// costs one vector relighting (3·B² floats per vertex instead of B⁴·C). Throws prt::Error on
+/// mismatched sizes.
 TransferField viewTransfer(const TransferField& transfer, const PreparedMaterial& material,
                            const GlossyView& view, std::span<const Rgb> albedo);
 
