@@ -183,11 +183,19 @@ void writeWebViewer(const WebOptions& a) {
   // The bake: validated here (one clear line now rather than on the page), copied verbatim.
   const std::vector<unsigned char> glb = readFileBytes(a.bake);
   const BakeFile bake = decodeBake(glb, a.bake);
-  // The page draws vector (diffuse) transfer, bake format version 1; glossy matrices (version 2)
-  // are refused here, as the page refuses such a file dropped on it.
-  if (bake.formatVersion != 1)
-    throw Error(a.bake, fmt::format("bake format version {}: the browser viewer draws version 1 "
-                                    "(diffuse vector transfer) only",
+  // The page draws vector (diffuse) transfer, dense (version 1) or CPCA-compressed (version 3,
+  // relit in the compressed space); glossy matrices, dense or compressed, are refused here, as
+  // the page refuses such a file dropped on it.
+  for (const BakedTransfer& t : bake.transfers)
+    if (t.field.isMatrix())
+      throw Error(a.bake,
+                  fmt::format("the {} transfer holds glossy matrices{}; the browser viewer "
+                              "draws vector (diffuse) transfer only, dense or compressed "
+                              "(view it with prt view)",
+                              toString(t.settings.mode), t.compressed ? " (CPCA-compressed)" : ""));
+  if (bake.formatVersion != 1 && bake.formatVersion != 3)
+    throw Error(a.bake, fmt::format("bake format version {}: the browser viewer draws versions 1 "
+                                    "and 3 (diffuse vector transfer, dense or compressed) only",
                                     bake.formatVersion));
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");

@@ -3,7 +3,8 @@
 //   * its first frame (?screenshot) matches prt render of the same bake, light, rotation and
 //     default view: RMSE < 0.02 on displayed [0, 1] colour; a turned light must not match;
 //   * its SH rotation (web/src/sh.js under node) equals sh::Rotation to 1e-5 for 3, 5, 9 bands;
-//   * bad dropped files leave the scene (bake, environments, pixels) as it was and say why.
+//   * bad dropped files leave the scene (bake, environments, pixels) as it was and say why;
+//   * CPCA-compressed bakes (version 3) are relit in the compressed space and match prt render.
 // Each test skips, saying why, where chromium, node or the built page is missing.
 
 #include <gtest/gtest.h>
@@ -259,6 +260,46 @@ TEST(Web, GivenCameraMatchesPrtRender) {
   EXPECT_GT(displayedRmse(pageFrame("env=1&mode=shadowed"), path("cam.png")), 4 * kMatch);
 }
 
+// CPCA-compressed transfer (prt compress, bake version 3): the page keeps it compressed (ids and
+// weights per vertex in a data texture), projects the rotated light onto the K(N+1) cluster
+// vectors in JS each frame and sums N weighted values per vertex in the shader; prt render
+// relights the same compressed rows on the CPU. Both transfers of the Cornell box compressed:
+// RGB inter-reflected with N = 5 (two texels per vertex), scalar shadowed with N = 2 (one).
+TEST(Web, CompressedFirstFrameMatchesPrtRender) {
+  PRT_REQUIRE_PAGE();
+  Result r = prt("-q compress cornell.glb --mode interreflected --clusters 24 --pca 5 -o c1.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q compress c1.glb --mode shadowed --clusters 16 --pca 2 -o cpca.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q web cpca.glb --env builtin:sky --env builtin:studio -o page_cpca");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  struct Case {
+    std::string render, query, compressed;
+  };
+  for (const Case& c :
+       {Case{"--light builtin:studio --rotate 20,-30,10 --mode interreflected",
+             "env=1&rotate=20,-30,10&mode=interreflected", "24x5, 32 bytes per vertex"},
+        Case{"--light builtin:sky --rotate 0,70,0 --mode shadowed --bands 3",
+             "env=0&rotate=0,70,0&mode=shadowed&bands=3", "16x2, 16 bytes per vertex"}}) {
+    SCOPED_TRACE(c.query);
+    r = prt("-q render cpca.glb --size 320x240 " + c.render + " -o cpca.png");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    std::string log;
+    const std::string json = runPage(path("page_cpca"), "screenshot&size=320x240&" + c.query, &log);
+    ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
+    EXPECT_EQ(jsonField(json, "compressed"), c.compressed);
+    const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("cpca.png"));
+    EXPECT_LT(e, kMatch);
+    EXPECT_LT(quantile90, kInterior);
+    std::cout << "page vs prt render, compressed " << c.compressed << ": RMSE " << e
+              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+  }
+  // The comparison can fail: the compressed page under another rotation is far off.
+  const std::string json = runPage(
+      path("page_cpca"), "screenshot&size=320x240&env=0&rotate=0,160,0&mode=shadowed&bands=3");
+  EXPECT_GT(displayedRmse(unbase64(jsonField(json, "rgb")), path("cpca.png")), 4 * kMatch);
+}
+
 TEST(Web, MeshWithoutAlbedoMatchesPrtRender) {
   // An OBJ has no per-vertex albedo: no COLOR_0 in the bake, white in relight and in the page.
   PRT_REQUIRE_PAGE();
@@ -411,6 +452,23 @@ TEST(Web, CliRefusesWhatThePageCannotShow) {
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.err.find("prt web: error: "), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(path("nope/prt-data.js")));
+  // Glossy matrices, dense or compressed: named, with what to use instead.
+  r =
+      prt("-q bake 'builtin:sphere?subdiv=1' --mode unshadowed --transfer matrix --bands 2 "
+          "--samples 16 -o m.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q compress m.glb --clusters 2 --pca 1 -o mc.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const char* glossy : {"m.glb", "mc.glb"}) {
+    r = prt(std::string("web ") + glossy + " -o nope");
+    EXPECT_EQ(r.rc, 1);
+    EXPECT_NE(r.err.find(std::string(glossy) + ": the unshadowed transfer holds glossy matrices"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_NE(r.err.find("(CPCA-compressed)"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("nope/prt-data.js")));
   r = prt("web missing.glb -o nope --tonemap sepia");
   EXPECT_EQ(r.rc, 1);
