@@ -65,9 +65,9 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
     for (double g : steady(glossyMs))
       if (g > 0) relit.push_back(g);
     std::printf(
-        "glossy relighting (CPU relightGlossy + radiance upload): median %.3f ms over "
+        "glossy relighting (CPU %s + radiance upload): median %.3f ms over "
         "%zu relit frames\n",
-        median(relit), relit.size());
+        compressed ? "relightCompressedGlossy" : "relightGlossy", median(relit), relit.size());
   }
   std::printf("light upload (%s, %zu bytes): median %.2f us\n",
               compressed && (!field.isMatrix() || glossyOnGpu) ? "cluster table, glBufferData"

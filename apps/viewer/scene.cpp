@@ -307,6 +307,11 @@ std::string SceneView::uploadSummary(const Scene& scene) const {
   const TransferField& shape = scene.transfer().field;
   const std::size_t dense = denseBytesPerVertex(shape, glossyOnGpu);
   const CompressedTransfer* c = scene.compressed();
+  if (!c && shape.isMatrix() && !glossyOnGpu)
+    return fmt::format(
+        "dense matrices relit on the CPU (relightGlossy): {} bytes of radiance per "
+        "vertex per relit frame",
+        dense);
   if (!c) return fmt::format("dense transfer: {} bytes per vertex uploaded", dense);
   if (!renderer_.compressed())
     return fmt::format(
