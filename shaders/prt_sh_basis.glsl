@@ -1,4 +1,5 @@
-// Used by the desktop viewer's glossy vertex shaders (viewer/glossy.vert, compressedGlossy.vert).
+// Used by the glossy vertex shaders: the desktop viewer's viewer/glossy.vert and
+// viewer/compressedGlossy.vert, and the web page's compressedGlossy.vert.
 // The real SH basis without its normalisation N_lm (folded into uDiffuse/uGlossy): with
 // A_m + i B_m = (x + i y)^m and P̃_l^m = P_l^m / ρ^m (Condon–Shortley phase, ρ = sqrt(x² + y²)),
 //   m > 0: P̃_l^m(z) A_m,   m < 0: P̃_l^|m|(z) B_|m|,   m = 0: P_l(z);

@@ -11,6 +11,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/relight/cluster_table.hpp"
+#include "prt/relight/glossy_shader.hpp"
 #include "prt_viewer_shaders.hpp"
 
 namespace prt::viewer {
@@ -332,20 +333,10 @@ void Renderer::setGlossyTransfer(const TransferField& t) {
 
 void Renderer::setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
                                  std::optional<Rgb> kd, Rgb ks) {
-  // The SH normalisation N_lm the shader's basis leaves out: sqrt((2l+1)/4π · (l−|m|)!/(l+|m|)!),
-  // times √2 for m ≠ 0 (real SH).
-  glossyDiffuse_.assign(64, 0.0f);
-  glossyLobe_.assign(64, 0.0f);
-  for (int l = 0; l < kMaxGpuGlossyBands; ++l)
-    for (int m = -l; m <= l; ++m) {
-      const int i = l * (l + 1) + m, am = std::abs(m);
-      double ratio = 1.0;  // (l−|m|)! / (l+|m|)!
-      for (int k = l - am + 1; k <= l + am; ++k) ratio /= k;
-      double norm = std::sqrt((2 * l + 1) / (4 * kPi) * ratio);
-      if (m != 0) norm *= std::sqrt(2.0);
-      if (std::size_t(i) < diffuse.size()) glossyDiffuse_[i] = float(diffuse[i] * norm);
-      if (std::size_t(i) < glossy.size()) glossyLobe_[i] = float(glossy[i] * norm);
-    }
+  // The SH normalisation N_lm the shader's basis leaves out (prt/relight/glossy_shader.hpp).
+  const std::array<float, 64> d = relight::shaderKernel(diffuse), g = relight::shaderKernel(glossy);
+  glossyDiffuse_.assign(d.begin(), d.end());
+  glossyLobe_.assign(g.begin(), g.end());
   glossyKd_ = kd;
   glossyKs_ = ks;
 }

@@ -41,6 +41,7 @@
 #include "prt/geometry/mesh.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
+#include "prt/relight/glossy_shader.hpp"
 #include "prt/relight/light_packer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/transfer/field.hpp"
@@ -56,7 +57,7 @@ inline constexpr int kMaxViewerCoeffs = relight::kMaxPackedCoeffs;
 enum class BackgroundMode { Env, Sh, None };
 
 /// Bands the vertex-shader glossy path evaluates (its SH arrays hold 64 coefficients).
-inline constexpr int kMaxGpuGlossyBands = 8;
+inline constexpr int kMaxGpuGlossyBands = relight::kMaxShaderGlossyBands;
 
 struct FrameParams {
   render::Camera camera;

@@ -11,6 +11,8 @@ import { packWeights, readCompressed } from './compressed.js';
 // compress), which the page relights in the compressed space (compressed.js). Version 2 files
 // hold glossy matrices, which the page does not draw.
 export const kFormatVersions = [1, 3];
+// Bands of the glossy shader's SH arrays (64 coefficients; relight/glossy_shader.hpp).
+export const kMaxGlossyBands = 8;
 
 const kModeNames = { unshadowed: 'UNSHADOWED', shadowed: 'SHADOWED', interreflected: 'INTERREFLECTED' };
 
@@ -57,10 +59,15 @@ export async function parseBake(buffer, name, limits) {
     if (!Number.isInteger(bands) || bands < 1 || bands > limits.maxBands)
       fail(name, `the ${mode} transfer has ${bands} bands; this page draws 1..${limits.maxBands} here (the light must fit in the vertex shader's uniforms)`);
     if (channels !== 1 && channels !== 3) fail(name, `the ${mode} transfer has ${channels} channels (1 or 3 expected)`);
-    if ((s.layout || 'vector') !== 'vector')
-      fail(name, `the ${mode} transfer holds glossy matrices (layout ${s.layout}); this page draws vector (diffuse) transfer only, dense or CPCA-compressed`);
+    const matrix = (s.layout || 'vector') === 'matrix';
+    if (!matrix && (s.layout || 'vector') !== 'vector') fail(name, `the ${mode} transfer has an unknown layout '${s.layout}'`);
+    // Glossy matrices only CPCA-compressed: 16·⌈(N+1)/4⌉ bytes per vertex instead of 4·B⁴.
+    if (matrix && !t.compressed)
+      fail(name, `the ${mode} transfer holds dense glossy matrices; this page draws them CPCA-compressed only (prt compress)`);
+    if (matrix && bands > kMaxGlossyBands)
+      fail(name, `the ${mode} transfer's glossy matrices have ${bands} bands; this page draws 1..${kMaxGlossyBands}`);
     const n = bands * bands;
-    const entry = { mode, bands, channels, prefix: `_prt_${kModeNames[mode].toLowerCase()}_t`,
+    const entry = { mode, bands, channels, matrix, prefix: `_prt_${kModeNames[mode].toLowerCase()}_t`,
                     attributes: Math.ceil((n * channels) / 4),
                     texelsPerVertex: channels === 1 ? Math.ceil(n / 4) : n, compressed: null };
     if (t.compressed) entry.compressed = await readCompressed(gltf, json, t, entry, prt.vertexCount, name);
@@ -125,7 +132,10 @@ export async function parseBake(buffer, name, limits) {
     }
     // The transfer attributes are in the textures now; drop them so they are not uploaded.
     for (const t of modes) if (!t.compressed) for (let k = 0; k < t.attributes; ++k) g.deleteAttribute(t.prefix + k);
-    for (const a of Object.keys(g.attributes)) if (a !== 'position' && a !== 'color') g.deleteAttribute(a);
+    // Normals stay for glossy matrices (the lobe about the reflected view).
+    const keep = ['position', 'color'].concat(modes.some((t) => t.matrix) ? ['normal'] : []);
+    for (const a of Object.keys(g.attributes)) if (!keep.includes(a)) g.deleteAttribute(a);
+    if (modes.some((t) => t.matrix) && !g.getAttribute('normal')) fail(name, `part '${m.name}' has no normals (glossy transfer needs them)`);
     parts.push(part);
   }
   if (vertices !== prt.vertexCount) fail(name, `has ${vertices} vertices but extras.prtkit says ${prt.vertexCount}`);

@@ -7,7 +7,9 @@
 //                      and basis, c_k = M_k·L', d_kj = B_kj·L' (K(N+1)·b²·3 multiply-adds),
 //                      texel k(N+1) + j = (r, g, b, 0), j = 0 the mean;
 //   per vertex, GPU:   R(v) = albedo(v) ⊙ (c_k + Σ_j w_j d_kj)   (shaders/prt_compressed.glsl).
-// Vector (diffuse) transfer only: bake.js refuses matrices.
+// Glossy matrices (Q = B² values per cluster vector): the table holds L'_kj = B_kj L' (texel
+// (k(N+1) + j)·B² + i), and the vertex shader forms L'_v = L'_k0 + Σ_j w_j L'_kj and shades it
+// (shaders/compressedGlossy.vert, as prt view --glossy-on gpu).
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
@@ -22,7 +24,8 @@ export async function readCompressed(gltf, json, t, shape, vertexCount, name) {
   const c = t.compressed;
   const what = `the ${shape.mode} transfer's compressed form`;
   if (!c || c.method !== 'cpca') fail(name, `${what} is not CPCA (method ${c && c.method})`);
-  const K = c.clusters, N = c.basisCount, D = shape.bands * shape.bands * shape.channels;
+  const n = shape.bands * shape.bands;
+  const K = c.clusters, N = c.basisCount, D = (shape.matrix ? n * n : n) * shape.channels;
   if (!Number.isInteger(K) || K < 1 || K > vertexCount || K >= 1 << 24)
     fail(name, `${what} has ${K} clusters (1..${Math.min(vertexCount, (1 << 24) - 1)} expected)`);
   if (!Number.isInteger(N) || N < 0 || N > D) fail(name, `${what} has ${N} basis vectors (0..${D} expected)`);
@@ -48,6 +51,7 @@ export async function readCompressed(gltf, json, t, shape, vertexCount, name) {
   for (const [part, arr] of [['WEIGHTS', weights], ['MEANS', means], ['BASIS', basis]])
     for (let i = 0; i < arr.length; ++i) if (!Number.isFinite(arr[i])) fail(name, `${prefix}${part}: value ${i} is not finite`);
   return { clusters: K, basisCount: N, stride: D, texelsPerVertex: Math.ceil((N + 1) / 4),
+           coeffs: shape.matrix ? n : 1, bands: shape.bands,
            cluster, weights, means, basis };
 }
 
@@ -74,7 +78,7 @@ export function packWeights(c, first, count, limits, name, mode) {
 
 /** The per-frame cluster table's image (filled by projectClusters). */
 export function clusterTableImage(c, limits, name, mode) {
-  return textureShape(c.clusters * (c.basisCount + 1), limits, name, `the ${mode} transfer's cluster table`);
+  return textureShape(c.clusters * (c.basisCount + 1) * c.coeffs, limits, name, `the ${mode} transfer's cluster table`);
 }
 
 /**
@@ -83,6 +87,7 @@ export function clusterTableImage(c, limits, name, mode) {
  * x_i = x[i·C + c] (C = 1: the same value for the three channels). `light` holds b² (r, g, b).
  */
 export function projectClusters(c, bands, channels, light, out) {
+  if (c.coeffs > 1) return projectClusterMatrices(c, bands, channels, light, out);
   const D = c.stride, N = c.basisCount, W = N + 1, nb = bands * bands;
   for (let k = 0; k < c.clusters; ++k)
     for (let j = 0; j < W; ++j) {
@@ -102,5 +107,32 @@ export function projectClusters(c, bands, channels, light, out) {
       }
       const q = 4 * (k * W + j);
       out[q] = r, out[q + 1] = g, out[q + 2] = b, out[q + 3] = 0;
+    }
+}
+
+/**
+ * The matrix form: texel (k(N+1) + j)·B² + i = (X L')_i = Σ_{l<b²} X[(i·B² + l)·C + c] L'_l,c for
+ * every row i < B² (the shader sums rows i < b²), X = M_k or B_k,j−1.
+ */
+function projectClusterMatrices(c, bands, channels, light, out) {
+  const D = c.stride, N = c.basisCount, W = N + 1, nB = c.coeffs, nb = bands * bands, C = channels;
+  for (let k = 0; k < c.clusters; ++k)
+    for (let j = 0; j < W; ++j) {
+      const x = j === 0 ? c.means : c.basis, o = j === 0 ? k * D : (k * N + j - 1) * D;
+      for (let i = 0; i < nB; ++i) {
+        let r = 0, g = 0, b = 0;
+        const row = o + i * nB * C;
+        for (let l = 0; l < nb; ++l) {
+          const e = row + l * C;
+          if (C === 1) {
+            const t = x[e];
+            r += t * light[3 * l], g += t * light[3 * l + 1], b += t * light[3 * l + 2];
+          } else {
+            r += x[e] * light[3 * l], g += x[e + 1] * light[3 * l + 1], b += x[e + 2] * light[3 * l + 2];
+          }
+        }
+        const q = 4 * ((k * W + j) * nB + i);
+        out[q] = r, out[q + 1] = g, out[q + 2] = b, out[q + 3] = 0;
+      }
     }
 }

@@ -19,6 +19,7 @@ import { axisAngle, evalSh, mul3, rotateLight, rotationEulerXYZ } from './sh.js'
 import { clusterTableImage, projectClusters } from './compressed.js';
 import meshVert from './shaders/mesh.vert';
 import compressedVert from './shaders/compressed.vert';
+import compressedGlossyVert from './shaders/compressedGlossy.vert';
 import meshFrag from './shaders/mesh.frag';
 import fullscreenVert from './shaders/fullscreen.vert';
 import backgroundFrag from './shaders/background.frag';
@@ -237,9 +238,20 @@ async function main() {
         },
         side: THREE.DoubleSide,
       });
+      const glossyMaterial = !b.transfers.some((t) => t.matrix) ? null : new THREE.RawShaderMaterial({
+        glslVersion: THREE.GLSL3, vertexShader: compressedGlossyVert, fragmentShader: meshFrag, defines,
+        uniforms: {
+          uWeights: { value: null }, uWeightsWidth: { value: 1 }, uClusters: { value: null },
+          uClustersWidth: { value: 1 }, uTexelsPerVertex: { value: 1 }, uBasisCount: { value: 0 },
+          uBands: { value: 1 }, uCoeffs: { value: 1 }, uDiffuse: { value: new Float32Array(64) },
+          uGlossy: { value: new Float32Array(64) }, uKd: { value: new THREE.Vector3() },
+          uKs: { value: new THREE.Vector3() }, uEye: { value: new THREE.Vector3() }, uHasKd: { value: false },
+        },
+        side: THREE.DoubleSide,
+      });
       const mesh = new THREE.Mesh(p.geometry, material);
       mesh.frustumCulled = false;
-      mesh.userData = { textures, dense: material, compressed: compressedMaterial };
+      mesh.userData = { textures, dense: material, compressed: compressedMaterial, glossy: glossyMaterial };
       return mesh;
     });
     return { meshes, light, tables };
@@ -251,6 +263,7 @@ async function main() {
       m.geometry.dispose();
       m.userData.dense.dispose();
       if (m.userData.compressed) m.userData.compressed.dispose();
+      if (m.userData.glossy) m.userData.glossy.dispose();
       for (const t of Object.values(m.userData.textures)) t.texture.dispose();
     }
     for (const t of Object.values(clusterTables)) t.texture.dispose();
@@ -284,6 +297,14 @@ async function main() {
     const short = envs.filter((e) => e.bands < b.maxBands);
     if (short.length)
       throw new Error(`${b.name}: the bake has ${b.maxBands} bands but the light ${short[0].name} only ${short[0].bands}; the transfer's upper bands would see no light (write the page for this bake with prt web)`);
+    // Compressed glossy matrices shade with the bake's material, which prt web prepared (its
+    // kernels) into prt-data.js: only for the page's own bake.
+    for (const t of b.transfers)
+      if (t.matrix) {
+        const g = b.name === data.bake.name && data.glossy && data.glossy[t.mode];
+        if (!g) throw new Error(`${b.name}: the ${t.mode} transfer is compressed glossy, whose material comes with the page (write the page for this bake with prt web)`);
+        t.material = g;
+      }
     const built = buildBake(b);
     disposeBake();
     bake = b;
@@ -346,8 +367,18 @@ async function main() {
       table.texture.needsUpdate = true;
     }
     for (const m of parts) {
-      m.material = t.compressed ? m.userData.compressed : m.userData.dense;
+      m.material = t.matrix ? m.userData.glossy : t.compressed ? m.userData.compressed : m.userData.dense;
       const tex = m.userData.textures[t.mode], u = m.material.uniforms;
+      if (t.matrix) {
+        // The shaded bands (≤ 8), the material's kernels, kd (else the albedo), ks, the eye.
+        u.uBands.value = Math.min(b, 8);
+        u.uCoeffs.value = t.compressed.coeffs;
+        u.uDiffuse.value.set(t.material.diffuse);
+        u.uGlossy.value.set(t.material.lobe);
+        u.uHasKd.value = !!t.material.kd;
+        if (t.material.kd) u.uKd.value.fromArray(t.material.kd);
+        u.uKs.value.fromArray(t.material.ks);
+      }
       if (t.compressed) {
         const table = clusterTables[t.mode];
         u.uWeights.value = tex.texture;
@@ -373,6 +404,8 @@ async function main() {
     camera.near = Math.max(d - 1.01 * bake.radius, 1e-4 * camera.far);
     camera.updateProjectionMatrix();
     camera.updateMatrixWorld();
+    // Glossy: each vertex seen from the camera's eye (the parts are in world space).
+    for (const m of parts) if (m.userData.glossy) m.userData.glossy.uniforms.uEye.value.copy(camera.position);
     const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();
     const up = new THREE.Vector3().crossVectors(right, forward);
     const tanY = Math.tan((camera.fov / 2) * Math.PI / 180), tanX = tanY * w / h;
@@ -587,9 +620,10 @@ async function main() {
     const t = transfer();
     hud.textContent = `${bake.name}  ${bake.triangles} triangles, ${bake.vertices} vertices\n` +
       `${t.mode}, ${Math.min(state.bands, t.bands)} of ${t.bands} bands, ${t.channels === 3 ? 'RGB' : 'scalar'}\n` +
+      (t.matrix ? `glossy ${t.material.material}, toward the eye\n` : '') +
       (t.compressed ? `relit compressed: CPCA ${t.compressed.clusters} x ${t.compressed.basisCount}, ` +
-        `${16 * t.compressed.texelsPerVertex} bytes/vertex (dense ${16 * t.texelsPerVertex}), ` +
-        `${16 * t.compressed.clusters * (t.compressed.basisCount + 1)} bytes of cluster table per frame\n` : '') +
+        `${16 * t.compressed.texelsPerVertex} bytes/vertex (dense ${t.matrix ? 16 * t.bands * t.bands * Math.ceil(t.bands * t.bands / 4) : 16 * t.texelsPerVertex}), ` +
+        `${16 * t.compressed.clusters * (t.compressed.basisCount + 1) * t.compressed.coeffs} bytes of cluster table per frame\n` : '') +
       `frame ${smooth.toFixed(1)} ms (${(1000 / smooth).toFixed(0)} fps)\n${rendererName}`;
     if (!query.has('test')) requestAnimationFrame(loop);
   }
