@@ -14,6 +14,7 @@
 #include "prt/core/sampling.hpp"
 #include "prt/relight/cluster_table.hpp"
 #include "prt/relight/compressed.hpp"
+#include "prt/relight/glossy_shader.hpp"
 #include "prt/relight/relight.hpp"
 
 namespace prt {
@@ -126,6 +127,21 @@ TEST(ClusterTable, RefusesIdsFloatsCannotHold) {
   CompressedTransfer c;
   c.clusters = (1 << 24) + 1;
   EXPECT_THROW(relight::packCompressedVertices(c), Error);
+}
+
+// The glossy kernels for the shaders (prt/relight/glossy_shader.hpp) carry the SH normalisation
+// N_lm their unnormalised basis (P̃_l^|m| times A_m or B_m) leaves out; a kernel of ones gives
+// N_lm itself. With the shader's P̃_1^1 = −1, P_2 = (3z² − 1)/2, P̃_2^1 = −3z, P̃_2^2 = 3 these
+// must rebuild sh.hpp's constants: N_00 = 0.282095; N_1m = 0.488603 (Y_11 = −0.488603 x);
+// N_20 = 0.630783 (= 2 · 0.315392); N_2±1 = 0.364174 (= 1.092548 / 3); N_2±2 = 0.182091
+// (Y_22 = 0.546274 (x² − y²) = N · 3 (x² − y²)).
+TEST(GlossyShader, KernelsCarryTheShNormalisation) {
+  const std::vector<float> ones(9, 1.0f);
+  const std::array<float, 64> k = relight::shaderKernel(ones);
+  const double want[9] = {0.282095,     0.488603,     0.488603,     0.488603,    0.546274 / 3,
+                          1.092548 / 3, 2 * 0.315392, 1.092548 / 3, 0.546274 / 3};
+  for (int i = 0; i < 9; ++i) EXPECT_NEAR(k[i], want[i], 2e-6) << i;
+  for (int i = 9; i < 64; ++i) EXPECT_EQ(k[i], 0.0f) << i;  // past the kernel's bands
 }
 
 }  // namespace
