@@ -316,7 +316,7 @@ TEST(Web, CompressedGlossyFirstFrameMatchesPrtRender) {
   const std::string cam = "eye=0.4,1.3,2.3;target=0,0.8,0;fov=45";
   r = prt("-q web gc.glb --env builtin:sky --env builtin:studio --camera '" + cam + "' -o page_g");
   ASSERT_EQ(r.rc, 0) << r.err;
-  for (const std::string& rot : {"0,0,0", "20,70,0"}) {
+  for (const std::string rot : {"0,0,0", "20,70,0"}) {
     SCOPED_TRACE(rot);
     r = prt("-q render gc.glb --light builtin:studio --rotate " + rot + " --camera '" + cam +
             "' --exposure -1 --size 320x240 -o g.png");
