@@ -5,9 +5,14 @@
 // (relight::prepareLight: builds a Rotation, allocates both layouts), which the viewer does not
 // use per frame. The GL upload itself (glBufferSubData of the block) is timed by
 // `prt view --headless --stats`; see docs/viewer.md.
+// CPCA-compressed transfer adds, per frame, the light's projection onto every cluster's mean and
+// basis (relight::projectClusters, K(N+1)·b²·3 multiply-adds) and its packing into the
+// cluster table the shader reads (relight::packClusterTable): BM_ViewerClusterTable, K = 64 and
+// 256, N = 8, vectors at 9 bands (the table the viewer uploads: 16·K(N+1) bytes).
 // Run: build-viewer/bench/bench_viewer_frame --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
+#include "prt/relight/cluster_table.hpp"
 #include "prt/relight/light_packer.hpp"
 #include "prt/relight/relight.hpp"
 
@@ -49,6 +54,43 @@ void BM_PrepareLightBaseline(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PrepareLightBaseline)->Arg(3)->Arg(9)->Unit(benchmark::kMicrosecond);
+
+void BM_ViewerClusterTable(benchmark::State& state) {
+  const int bands = 9, K = int(state.range(0)), N = 8;
+  prt::CompressedTransfer t;
+  t.layout = prt::TransferLayout::Vector;
+  t.bands = bands;
+  t.channels = 1;
+  t.clusters = K;
+  t.basisCount = N;
+  t.vertexCount = std::size_t(K);
+  t.cluster.resize(t.vertexCount);
+  for (std::size_t v = 0; v < t.vertexCount; ++v) t.cluster[v] = std::uint32_t(v);
+  t.weights.assign(t.vertexCount * N, 0.1f);
+  t.means.resize(std::size_t(K) * t.stride());
+  t.basis.resize(std::size_t(K) * N * t.stride());
+  for (std::size_t i = 0; i < t.means.size(); ++i) t.means[i] = 1.0f / float(1 + i % 81);
+  for (std::size_t i = 0; i < t.basis.size(); ++i) t.basis[i] = float(i % 7) * 0.01f;
+  prt::relight::LightPacker packer;
+  packer.setLight(light(bands));
+  const prt::Mat3d user = prt::rotationEulerXYZ(20, 30, 40);
+  prt::relight::PreparedLight l;
+  l.bands = bands;
+  l.interleaved.resize(3 * bands * bands);
+  std::vector<float> table;
+  double spin = 0;
+  for (auto _ : state) {
+    spin += 0.01;
+    packer.pack(prt::rotationAxisAngle({0, 1, 0}, spin) * user, bands);
+    for (int i = 0; i < bands * bands; ++i)
+      for (int c = 0; c < 3; ++c) l.interleaved[3 * i + c] = packer.coefficient(i)[c];
+    prt::relight::packClusterTable(prt::relight::projectClusters(t, l), table);
+    benchmark::DoNotOptimize(table.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["table_bytes"] = double(sizeof(float) * table.size());
+}
+BENCHMARK(BM_ViewerClusterTable)->Arg(64)->Arg(256)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

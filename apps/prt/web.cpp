@@ -31,6 +31,8 @@
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/relight/glossy.hpp"
+#include "prt/relight/glossy_shader.hpp"
 #include "prt/render/camera.hpp"
 #include "web.hpp"
 
@@ -183,11 +185,25 @@ void writeWebViewer(const WebOptions& a) {
   // The bake: validated here (one clear line now rather than on the page), copied verbatim.
   const std::vector<unsigned char> glb = readFileBytes(a.bake);
   const BakeFile bake = decodeBake(glb, a.bake);
-  // The page draws vector (diffuse) transfer, bake format version 1; glossy matrices (version 2)
-  // are refused here, as the page refuses such a file dropped on it.
-  if (bake.formatVersion != 1)
-    throw Error(a.bake, fmt::format("bake format version {}: the browser viewer draws version 1 "
-                                    "(diffuse vector transfer) only",
+  // The page draws vector (diffuse) transfer, dense (version 1) or CPCA-compressed (version 3,
+  // relit in the compressed space), and glossy matrices CPCA-compressed (per vertex 16·⌈(N+1)/4⌉
+  // bytes instead of 4·B⁴); dense matrices (2.5 KB per vertex at 5 bands) are refused here, as
+  // the page refuses such a file dropped on it.
+  for (const BakedTransfer& t : bake.transfers) {
+    if (t.field.isMatrix() && !t.compressed)
+      throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices; the browser "
+                                      "viewer draws them CPCA-compressed only (prt compress), or "
+                                      "view them with prt view",
+                                      toString(t.settings.mode)));
+    if (t.field.isMatrix() && t.field.bands > relight::kMaxShaderGlossyBands)
+      throw Error(a.bake, fmt::format("the {} transfer's glossy matrices have {} bands; the "
+                                      "browser viewer draws 1..{}",
+                                      toString(t.settings.mode), t.field.bands,
+                                      relight::kMaxShaderGlossyBands));
+  }
+  if (bake.formatVersion != 1 && bake.formatVersion != 3)
+    throw Error(a.bake, fmt::format("bake format version {}: the browser viewer draws versions 1 "
+                                    "and 3 (diffuse vector transfer, dense or compressed) only",
                                     bake.formatVersion));
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
@@ -231,6 +247,31 @@ void writeWebViewer(const WebOptions& a) {
      << ", \"camera\": " << cameraJson << ", \"framing\": " << framingJson << "},\n";
   js << "\"bake\": {\"name\": " << jsonString(fs::path(a.bake).filename().string())
      << ", \"glb\": \"" << base64(glb.data(), glb.size()) << "\"},\n";
+  // Compressed glossy matrices: the bake's material as the page's shader takes it (kernels times
+  // the SH normalisation its basis leaves out, relight/glossy_shader.hpp), per mode.
+  js << "\"glossy\": {";
+  bool firstGlossy = true;
+  for (const BakedTransfer& t : bake.transfers) {
+    if (!t.field.isMatrix()) continue;
+    const relight::PreparedMaterial pm =
+        relight::prepareMaterial(t.settings.material, t.field.bands);
+    const auto list = [](const std::array<float, 64>& k) {
+      std::string out;
+      for (std::size_t i = 0; i < k.size(); ++i)
+        out += fmt::format("{}{:.9g}", i ? ", " : "", k[i]);
+      return out;
+    };
+    js << (firstGlossy ? "" : ", ") << jsonString(toString(t.settings.mode))
+       << ": {\"material\": " << jsonString(t.settings.material.spec()) << ", \"diffuse\": ["
+       << list(relight::shaderKernel(pm.diffuse)) << "], \"lobe\": ["
+       << list(relight::shaderKernel(pm.glossy)) << "], \"kd\": "
+       << (pm.kd ? fmt::format("[{:.9g}, {:.9g}, {:.9g}]", pm.kd->x, pm.kd->y, pm.kd->z) : "null")
+       << ", \"ks\": "
+       << fmt::format("[{:.9g}, {:.9g}, {:.9g}]", pm.specular.x, pm.specular.y, pm.specular.z)
+       << "}";
+    firstGlossy = false;
+  }
+  js << "},\n";
   js << "\"environments\": [\n";
   for (std::size_t k = 0; k < envs.size(); ++k) {
     const WebEnvironment& e = envs[k];

@@ -37,7 +37,7 @@ std::vector<double> steady(const std::vector<double>& v) {
 }  // namespace
 
 void FrameStats::print(const std::string& renderer, const Scene& scene, int width, int height,
-                       std::size_t lightBytes) const {
+                       std::size_t lightBytes, const std::string& upload) const {
   if (frameMs.empty()) return;
   std::printf("renderer: %s\n", renderer.c_str());
   const TransferField& field = scene.transfer().field;
@@ -45,12 +45,17 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
               scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(), scene.bands(),
               scene.bakeBands(), toString(scene.transfer().settings.mode), toString(field.layout),
               field.channels == 3 ? "RGB" : "scalar", scene.material().spec().c_str());
+  std::printf("transfer upload: %s\n", upload.c_str());
   std::printf("frames: %zu at %dx%d; first frame %.2f ms (uploads)\n", frameMs.size(), width,
               height, frameMs.front());
   std::printf("frame time (draw + glFinish): median %.3f ms, min %.3f ms\n",
               median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
+  const bool compressed = scene.compressed() != nullptr;
   std::printf("CPU per frame (light rotation + packing%s): median %.4f ms\n",
-              field.isMatrix() ? " + glossy relighting" : "", median(steady(cpuMs)));
+              compressed && (!field.isMatrix() || glossyOnGpu) ? " + cluster projections"
+              : field.isMatrix()                               ? " + glossy relighting"
+                                                               : "",
+              median(steady(cpuMs)));
   if (field.isMatrix() && glossyOnGpu) {
     std::printf(
         "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
@@ -60,12 +65,14 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
     for (double g : steady(glossyMs))
       if (g > 0) relit.push_back(g);
     std::printf(
-        "glossy relighting (CPU relightGlossy + radiance upload): median %.3f ms over "
+        "glossy relighting (CPU %s + radiance upload): median %.3f ms over "
         "%zu relit frames\n",
-        median(relit), relit.size());
+        compressed ? "relightCompressedGlossy" : "relightGlossy", median(relit), relit.size());
   }
-  std::printf("light upload (glBufferSubData, %zu bytes): median %.2f us\n", lightBytes,
-              median(steady(uploadUs)));
+  std::printf("light upload (%s, %zu bytes): median %.2f us\n",
+              compressed && (!field.isMatrix() || glossyOnGpu) ? "cluster table, glBufferData"
+                                                               : "glBufferSubData",
+              lightBytes, median(steady(uploadUs)));
 }
 
 }  // namespace prt::viewer

@@ -24,8 +24,9 @@ struct FrameStats {
     glossyMs.push_back(glossy);
   }
   /// Prints the summary on stdout.
+  /// `upload`: SceneView::uploadSummary.
   void print(const std::string& renderer, const Scene& scene, int width, int height,
-             std::size_t lightBytes) const;
+             std::size_t lightBytes, const std::string& upload) const;
 };
 
 }  // namespace prt::viewer

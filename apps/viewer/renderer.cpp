@@ -10,6 +10,8 @@
 #include <string>
 
 #include "prt/core/error.hpp"
+#include "prt/relight/cluster_table.hpp"
+#include "prt/relight/glossy_shader.hpp"
 #include "prt_viewer_shaders.hpp"
 
 namespace prt::viewer {
@@ -126,6 +128,12 @@ image::Image readPixels(int w, int h, GLenum type) {
 
 }  // namespace
 
+std::size_t denseBytesPerVertex(const TransferField& t, bool glossyOnGpu) {
+  const std::size_t n = std::size_t(t.bands) * t.bands;
+  if (t.isMatrix()) return glossyOnGpu ? 16 * n * ((n + 3) / 4) : sizeof(Rgb);
+  return t.channels == 1 ? 16 * ((n + 3) / 4) : 16 * n;
+}
+
 // ---- OffscreenTarget ------------------------------------------------------------------------
 
 OffscreenTarget::OffscreenTarget(int width, int height) : width_(width), height_(height) {
@@ -158,6 +166,10 @@ Renderer::Renderer() {
       link(glsl330(kShaderFullscreenVert), glsl330(kShaderBackgroundFrag), "background");
   toneProgram_ = link(glsl330(kShaderFullscreenVert), glsl330(kShaderToneFrag), "tone map");
   glossyProgram_ = link(glsl330(kShaderGlossyVert), glsl330(kShaderMeshFrag), "glossy mesh");
+  compressedProgram_ =
+      link(glsl330(kShaderCompressedVert), glsl330(kShaderMeshFrag), "compressed mesh");
+  compressedGlossyProgram_ = link(glsl330(kShaderCompressedGlossyVert), glsl330(kShaderMeshFrag),
+                                  "compressed glossy mesh");
   glUniformBlockBinding(meshProgram_, glGetUniformBlockIndex(meshProgram_, "Light"), 0);
   glUniformBlockBinding(glossyProgram_, glGetUniformBlockIndex(glossyProgram_, "Light"), 0);
   glGenVertexArrays(1, &vao_);
@@ -175,13 +187,15 @@ Renderer::Renderer() {
 }
 
 Renderer::~Renderer() {
-  const GLuint programs[] = {meshProgram_, backgroundProgram_, toneProgram_, glossyProgram_};
+  const GLuint programs[] = {meshProgram_,   backgroundProgram_, toneProgram_,
+                             glossyProgram_, compressedProgram_, compressedGlossyProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
-  const GLuint buffers[] = {positions_, albedo_,   indices_, transferBuffer_,
-                            lightUbo_,  radiance_, normals_};
-  glDeleteBuffers(7, buffers);
-  const GLuint textures[] = {transferTexture_, envTexture_, shTexture_, msColour_, resolveColour_};
-  glDeleteTextures(5, textures);
+  const GLuint buffers[] = {positions_, albedo_,  indices_,       transferBuffer_, lightUbo_,
+                            radiance_,  normals_, weightsBuffer_, clusterBuffer_};
+  glDeleteBuffers(9, buffers);
+  const GLuint textures[] = {transferTexture_, envTexture_,     shTexture_,     msColour_,
+                             resolveColour_,   weightsTexture_, clusterTexture_};
+  glDeleteTextures(7, textures);
   glDeleteRenderbuffers(1, &msDepth_);
   const GLuint fbos[] = {msFbo_, resolveFbo_};
   glDeleteFramebuffers(2, fbos);
@@ -239,6 +253,49 @@ void Renderer::setMesh(const Mesh& mesh) {
 void Renderer::setDirectRadiance() {
   direct_ = true;
   glossyGpu_ = false;
+  compressed_ = false;
+}
+
+namespace {
+
+/// (Re)fills texture buffer `texture` over `buffer` with RGBA32F texels.
+void uploadTextureBuffer(GLuint& buffer, GLuint& texture, std::span<const float> rgba,
+                         GLenum usage) {
+  if (!buffer) glGenBuffers(1, &buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+  // Orphan and refill: a previous frame may still be reading the old contents.
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(sizeof(float) * rgba.size()), rgba.data(), usage);
+  if (!texture) glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_BUFFER, texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+}
+
+}  // namespace
+
+void Renderer::setCompressedTransfer(const CompressedTransfer& t) {
+  const bool matrix = t.layout == TransferLayout::Matrix;
+  if (t.bands < 1 || t.bands > (matrix ? kMaxGpuGlossyBands : kMaxViewerBands))
+    throw Error(fmt::format("the compressed {} transfer has {} bands; the viewer draws 1..{}{}",
+                            matrix ? "matrix" : "vector", t.bands,
+                            matrix ? kMaxGpuGlossyBands : kMaxViewerBands,
+                            matrix ? " in the vertex shader (use --glossy-on cpu)" : ""));
+  if (t.vertexCount != vertices_)
+    throw Error(fmt::format("the compressed transfer has {} rows for {} vertices", t.vertexCount,
+                            vertices_));
+  const relight::CompressedVertexTexels packed = relight::packCompressedVertices(t);
+  requireTextureBufferTexels(double(packed.texelsPerVertex) * double(t.vertexCount),
+                             "the compressed transfer's weights", "use fewer PCA vectors");
+  const double tableTexels =
+      double(t.clusters) * (t.basisCount + 1) * (matrix ? double(t.bands) * t.bands : 1.0);
+  requireTextureBufferTexels(tableTexels, "the per-frame cluster table", "use fewer clusters");
+  uploadTextureBuffer(weightsBuffer_, weightsTexture_, packed.rgba, GL_STATIC_DRAW);
+  compressed_ = true;
+  direct_ = glossyGpu_ = false;
+  compressedBasis_ = t.basisCount;
+  compressedCoeffs_ = matrix ? t.bands * t.bands : 1;
+  compressedTexels_ = std::size_t(packed.texelsPerVertex);
+  transferBands_ = t.bands;
 }
 
 void Renderer::setGlossyTransfer(const TransferField& t) {
@@ -268,7 +325,7 @@ void Renderer::setGlossyTransfer(const TransferField& t) {
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transferBuffer_);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   glossyGpu_ = true;
-  direct_ = false;
+  direct_ = compressed_ = false;
   transferBands_ = t.bands;
   transferChannels_ = 1;
   transferStride_ = rowTexels;  // texels per row; a vertex is n rows
@@ -276,20 +333,10 @@ void Renderer::setGlossyTransfer(const TransferField& t) {
 
 void Renderer::setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
                                  std::optional<Rgb> kd, Rgb ks) {
-  // The SH normalisation N_lm the shader's basis leaves out: sqrt((2l+1)/4π · (l−|m|)!/(l+|m|)!),
-  // times √2 for m ≠ 0 (real SH).
-  glossyDiffuse_.assign(64, 0.0f);
-  glossyLobe_.assign(64, 0.0f);
-  for (int l = 0; l < kMaxGpuGlossyBands; ++l)
-    for (int m = -l; m <= l; ++m) {
-      const int i = l * (l + 1) + m, am = std::abs(m);
-      double ratio = 1.0;  // (l−|m|)! / (l+|m|)!
-      for (int k = l - am + 1; k <= l + am; ++k) ratio /= k;
-      double norm = std::sqrt((2 * l + 1) / (4 * kPi) * ratio);
-      if (m != 0) norm *= std::sqrt(2.0);
-      if (std::size_t(i) < diffuse.size()) glossyDiffuse_[i] = float(diffuse[i] * norm);
-      if (std::size_t(i) < glossy.size()) glossyLobe_[i] = float(glossy[i] * norm);
-    }
+  // The SH normalisation N_lm the shader's basis leaves out (prt/relight/glossy_shader.hpp).
+  const std::array<float, 64> d = relight::shaderKernel(diffuse), g = relight::shaderKernel(glossy);
+  glossyDiffuse_.assign(d.begin(), d.end());
+  glossyLobe_.assign(g.begin(), g.end());
   glossyKd_ = kd;
   glossyKs_ = ks;
 }
@@ -337,7 +384,7 @@ void Renderer::setTransfer(const TransferField& t) {
   glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transferBuffer_);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
-  direct_ = false;
+  direct_ = compressed_ = false;
   transferBands_ = t.bands;
   transferChannels_ = t.channels;
   transferStride_ = texelsPerVertex;
@@ -382,6 +429,16 @@ void Renderer::resize(int w, int h) {
     throw Error(fmt::format("cannot create a {}x{} float framebuffer", w, h));
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   fbWidth_ = w, fbHeight_ = h;
+}
+
+void Renderer::setGlossyUniforms(unsigned p, const Vec3f& eye) const {
+  glUniform1fv(loc(p, "uDiffuse"), 64, glossyDiffuse_.data());
+  glUniform1fv(loc(p, "uGlossy"), 64, glossyLobe_.data());
+  const Rgb kd = glossyKd_.value_or(Rgb(1.0f));
+  glUniform3f(loc(p, "uKd"), kd.x, kd.y, kd.z);
+  glUniform1i(loc(p, "uHasKd"), glossyKd_.has_value());
+  glUniform3f(loc(p, "uKs"), glossyKs_.x, glossyKs_.y, glossyKs_.z);
+  uniform3(p, "uEye", eye);
 }
 
 void Renderer::draw(const FrameParams& f, unsigned target) {
@@ -430,7 +487,37 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   }
 
   // (b) the relit mesh.
-  if (triangles_ > 0 && glossyGpu_) {
+  if (triangles_ > 0 && compressed_) {
+    const bool matrix = compressedCoeffs_ > 1;
+    PRT_CHECK(!f.clusterTable.empty(), "compressed transfer needs FrameParams.clusterTable");
+    const auto t0 = std::chrono::steady_clock::now();
+    uploadTextureBuffer(clusterBuffer_, clusterTexture_, f.clusterTable, GL_STREAM_DRAW);
+    clusterTableBytes_ = sizeof(float) * f.clusterTable.size();
+    uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const GLuint p = matrix ? compressedGlossyProgram_ : compressedProgram_;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(p);
+    glUniformMatrix4fv(loc(p, "uViewProj"), 1, GL_FALSE, viewProj);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, weightsTexture_);
+    glUniform1i(loc(p, "uWeights"), 1);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_BUFFER, clusterTexture_);
+    glUniform1i(loc(p, "uClusters"), 2);
+    glUniform1i(loc(p, "uTexelsPerVertex"), int(compressedTexels_));
+    glUniform1i(loc(p, "uBasisCount"), compressedBasis_);
+    if (matrix) {
+      glUniform1i(loc(p, "uBands"),
+                  std::min({f.light->bands(), transferBands_, kMaxGpuGlossyBands}));
+      glUniform1i(loc(p, "uCoeffs"), compressedCoeffs_);
+      setGlossyUniforms(p, c.eye);
+    }
+    glBindVertexArray(vao_);
+    glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_DEPTH_TEST);
+    glActiveTexture(GL_TEXTURE0);
+  } else if (triangles_ > 0 && glossyGpu_) {
     const auto t0 = std::chrono::steady_clock::now();
     glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(f.light->bytes()), f.light->data());
@@ -448,13 +535,7 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     glUniform1i(loc(p, "uBands"), b);
     glUniform1i(loc(p, "uRowTexels"), transferStride_);
     glUniform1i(loc(p, "uVertexTexels"), transferStride_ * transferBands_ * transferBands_);
-    glUniform1fv(loc(p, "uDiffuse"), 64, glossyDiffuse_.data());
-    glUniform1fv(loc(p, "uGlossy"), 64, glossyLobe_.data());
-    const Rgb kd = glossyKd_.value_or(Rgb(1.0f));
-    glUniform3f(loc(p, "uKd"), kd.x, kd.y, kd.z);
-    glUniform1i(loc(p, "uHasKd"), glossyKd_.has_value());
-    glUniform3f(loc(p, "uKs"), glossyKs_.x, glossyKs_.y, glossyKs_.z);
-    uniform3(p, "uEye", c.eye);
+    setGlossyUniforms(p, c.eye);
     glBindVertexArray(vao_);
     glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
     glDisable(GL_DEPTH_TEST);

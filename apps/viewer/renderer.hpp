@@ -22,16 +22,26 @@
 //           the shader dots four coefficients per fetch with four light vec4s;
 //   RGB:    one texel (r, g, b, 0) per coefficient, texels v·B² + i.
 // Truncating to b < B bands only shortens the shader's loop: nothing is re-uploaded.
+//
+// CPCA-compressed transfer (prt compress) is relit in the compressed space, as Sloan et al. 2003
+// do on the GPU: per vertex, a texture buffer holds the cluster id and N weights (16·⌈(N+1)/4⌉
+// bytes, uploaded once); per frame, the CPU projects the rotated light onto every cluster's mean
+// and basis (relight::projectClusters, K(N+1) dot products, or K(N+1) matrix-vector products of
+// B² for glossy matrices) and uploads the table to a second texture buffer; the vertex shader
+// sums c_k + Σ_j w_j d_kj (shaders/viewer/compressed.vert) or forms L'_v = L'_k0 + Σ_j w_j L'_kj
+// and shades it as glossy.vert (compressedGlossy.vert). Layouts: prt/relight/cluster_table.hpp.
 
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
 
+#include "prt/compress/cpca.hpp"
 #include "prt/core/vec.hpp"
 #include "prt/geometry/mesh.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
+#include "prt/relight/glossy_shader.hpp"
 #include "prt/relight/light_packer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/transfer/field.hpp"
@@ -47,17 +57,25 @@ inline constexpr int kMaxViewerCoeffs = relight::kMaxPackedCoeffs;
 enum class BackgroundMode { Env, Sh, None };
 
 /// Bands the vertex-shader glossy path evaluates (its SH arrays hold 64 coefficients).
-inline constexpr int kMaxGpuGlossyBands = 8;
+inline constexpr int kMaxGpuGlossyBands = relight::kMaxShaderGlossyBands;
 
 struct FrameParams {
   render::Camera camera;
   int width = 640, height = 480;
   Mat3d lightRotation = Mat3d::identity();  ///< R: the environment as drawn behind the mesh
   const LightPacker* light = nullptr;       ///< packed D(R) L at the bands to draw with
+  /// Compressed transfer only: this frame's cluster projections of D(R) L as RGBA texels
+  /// (relight::packClusterTable), uploaded by draw.
+  std::span<const float> clusterTable;
   BackgroundMode background = BackgroundMode::Env;
   float exposureStops = 0.0f;
   image::ToneMap toneMap = image::ToneMap::Aces;
 };
+
+/// Bytes per vertex the dense paths upload for a transfer of this shape: scalar vectors
+/// 16·⌈B²/4⌉, RGB vectors 16·B², matrices in the vertex shader (--glossy-on gpu)
+/// 16·B²·⌈B²/4⌉, matrices relit on the CPU 12 (the exit radiance, again on every relit frame).
+std::size_t denseBytesPerVertex(const TransferField& shape, bool glossyOnGpu);
 
 /// An RGBA8 colour framebuffer object for offscreen display output (headless mode).
 class OffscreenTarget {
@@ -105,6 +123,18 @@ class Renderer {
   /// relight::PreparedMaterial, at least b² of them), kd (unset: the mesh's albedo) and ks.
   void setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
                          std::optional<Rgb> kd, Rgb ks);
+  /// Uploads CPCA-compressed transfer (one row per mesh vertex): the per-vertex cluster ids and
+  /// weights (relight::packCompressedVertices). Vectors are relit by compressed.vert; matrices
+  /// by compressedGlossy.vert with setGlossyMaterial's kernels. Each frame then needs
+  /// FrameParams::clusterTable. Throws prt::Error for matrices of more than kMaxGpuGlossyBands
+  /// bands or data over the texture-buffer limit.
+  void setCompressedTransfer(const CompressedTransfer& transfer);
+  /// True while the transfer drawn is compressed (setCompressedTransfer).
+  bool compressed() const { return compressed_; }
+  /// Bytes per vertex the compressed transfer uploaded (16·⌈(N+1)/4⌉), 0 when not compressed.
+  std::size_t compressedBytesPerVertex() const { return compressed_ ? 16 * compressedTexels_ : 0; }
+  /// Bytes of the last cluster table uploaded (the per-frame upload of compressed transfer).
+  std::size_t clusterTableBytes() const { return clusterTableBytes_; }
   /// The lat-long images behind BackgroundMode::Env and ::Sh (linear RGB).
   void setEnvironmentImage(const image::Image& latLong);
   void setShImage(const image::Image& latLong);
@@ -114,14 +144,23 @@ class Renderer {
   /// The last frame's resolved linear radiance (top row first).
   image::Image readLinear() const;
 
-  /// Seconds the last draw spent uploading the light block (CPU side of the copy).
+  /// Seconds the last draw spent uploading the light block, and for compressed transfer the
+  /// cluster table (CPU side of the copies).
   double lastUploadSeconds() const { return uploadSeconds_; }
   std::size_t triangleCount() const { return triangles_; }
 
  private:
   void resize(int width, int height);
 
+  /// Sets the glossy kernels, kd, ks and eye uniforms of a glossy program.
+  void setGlossyUniforms(unsigned program, const Vec3f& eye) const;
+
   unsigned meshProgram_ = 0, backgroundProgram_ = 0, toneProgram_ = 0, glossyProgram_ = 0;
+  unsigned compressedProgram_ = 0, compressedGlossyProgram_ = 0;
+  unsigned weightsBuffer_ = 0, weightsTexture_ = 0, clusterBuffer_ = 0, clusterTexture_ = 0;
+  bool compressed_ = false;
+  int compressedBasis_ = 0, compressedCoeffs_ = 1;
+  std::size_t compressedTexels_ = 0, clusterTableBytes_ = 0;
   unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0, normals_ = 0;
   unsigned transferBuffer_ = 0, transferTexture_ = 0, lightUbo_ = 0, radiance_ = 0;
   unsigned envTexture_ = 0, shTexture_ = 0;

@@ -71,10 +71,9 @@ void OrbitCamera::zoom(double factor) {
 // ---- Scene --------------------------------------------------------------------------------------
 
 BakeFile Scene::readCheckedBake(const std::string& path) {
+  // CPCA-compressed transfer (prt compress) stays compressed: it is relit in the compressed
+  // space (SceneView); `field` keeps its shape (layout, bands, channels) for the checks below.
   BakeFile bake = readBake(path);
-  // CPCA-compressed transfer (prt compress) is drawn from its reconstruction: the viewer's
-  // shaders take dense rows (relighting in the compressed space on the GPU is future work).
-  bake.expandCompressed();
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
@@ -217,9 +216,13 @@ image::Image Scene::shBackground() const {
 
 FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   if (mesh_ != scene.meshVersion) renderer_.setMesh(scene.bake().mesh), mesh_ = scene.meshVersion;
+  const bool matrix = scene.transfer().field.isMatrix();
   if (transfer_ != scene.transferVersion) {
+    // Compressed transfer: its ids and weights (vectors, and matrices relit on the GPU).
+    compressedOnGpu_ = scene.compressed() && (!matrix || glossyOnGpu);
+    if (compressedOnGpu_) renderer_.setCompressedTransfer(*scene.compressed()), gpuMaterial_ = -1;
     // Matrix transfer is relit on the CPU (relightGlossy below): nothing to upload for it.
-    if (scene.transfer().field.isMatrix() && glossyOnGpu)
+    else if (scene.transfer().field.isMatrix() && glossyOnGpu)
       renderer_.setGlossyTransfer(scene.transfer().field), gpuMaterial_ = -1;
     else if (scene.transfer().field.isMatrix())
       renderer_.setDirectRadiance();
@@ -250,7 +253,10 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   f.lightRotation = scene.lightRotation();
   packer_.pack(f.lightRotation, scene.bands());
   glossySeconds_ = 0;
-  if (scene.transfer().field.isMatrix() && glossyOnGpu) {
+  if (compressedOnGpu_) {
+    projectCompressed(scene);
+    f.clusterTable = clusterTable_;
+  } else if (matrix && glossyOnGpu) {
     if (gpuMaterial_ != scene.materialVersion) {
       // The kernels depend on l only, so the transfer's band count serves every b ≤ B.
       const relight::PreparedMaterial pm =
@@ -258,7 +264,7 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
       renderer_.setGlossyMaterial(pm.diffuse, pm.glossy, pm.kd, pm.specular);
       gpuMaterial_ = scene.materialVersion;
     }
-  } else if (scene.transfer().field.isMatrix()) {
+  } else if (matrix) {
     relightGlossy(scene, f.camera, f.lightRotation);
   }
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -267,6 +273,50 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   f.exposureStops = scene.exposureStops;
   f.toneMap = scene.toneMap;
   return f;
+}
+
+std::string SceneView::uploadSummary(const Scene& scene) const {
+  const TransferField& shape = scene.transfer().field;
+  const std::size_t dense = denseBytesPerVertex(shape, glossyOnGpu);
+  const CompressedTransfer* c = scene.compressed();
+  if (!c && shape.isMatrix() && !glossyOnGpu)
+    return fmt::format(
+        "dense matrices relit on the CPU (relightGlossy): {} bytes of radiance per "
+        "vertex per relit frame",
+        dense);
+  if (!c) return fmt::format("dense transfer: {} bytes per vertex uploaded", dense);
+  if (!renderer_.compressed())
+    return fmt::format(
+        "compressed (CPCA {} x {}), relit on the CPU (relightCompressedGlossy): "
+        "{} bytes of radiance per vertex per relit frame",
+        c->clusters, c->basisCount, sizeof(Rgb));
+  return fmt::format(
+      "relit compressed (CPCA {} x {}): {} bytes per vertex uploaded once "
+      "(dense: {}), {} bytes of cluster table per frame",
+      c->clusters, c->basisCount, renderer_.compressedBytesPerVertex(), dense,
+      renderer_.clusterTableBytes());
+}
+
+const relight::PreparedLight& SceneView::packedLight(int b) {
+  glossyLight_.bands = b;
+  glossyLight_.interleaved.resize(std::size_t(3 * b * b));
+  for (int i = 0; i < b * b; ++i) {
+    const Rgb c = packer_.coefficient(i);
+    for (int k = 0; k < 3; ++k) glossyLight_.interleaved[std::size_t(3 * i + k)] = c[k];
+  }
+  return glossyLight_;
+}
+
+void SceneView::projectCompressed(const Scene& scene) {
+  const CompressedTransfer& t = *scene.compressed();
+  if (t.layout == TransferLayout::Matrix && gpuMaterial_ != scene.materialVersion) {
+    const relight::PreparedMaterial pm = relight::prepareMaterial(scene.material(), t.bands);
+    renderer_.setGlossyMaterial(pm.diffuse, pm.glossy, pm.kd, pm.specular);
+    gpuMaterial_ = scene.materialVersion;
+  }
+  // K(N+1) projections of D(R) L cut to the shown bands (projectClusters uses the leading b²
+  // coefficients: vectors T·L over them, matrices the leading b² columns).
+  relight::packClusterTable(relight::projectClusters(t, packedLight(scene.bands())), clusterTable_);
 }
 
 void SceneView::relightGlossy(const Scene& scene, const render::Camera& camera,
@@ -280,28 +330,38 @@ void SceneView::relightGlossy(const Scene& scene, const render::Camera& camera,
   if (!sameView) glossyViewValid_ = false;
   const auto t0 = std::chrono::steady_clock::now();
   const TransferField& full = scene.transfer().field;
+  const CompressedTransfer* compressed = scene.compressed();
   if (glossyTransfer_ != scene.transferVersion || glossyBands_ != b) {
     // Fewer bands than baked: the leading b² × b² block of every matrix (exact, as prt render
     // --bands); kept so later frames only relight.
-    glossyField_ = b < full.bands ? full.truncated(b) : TransferField{};
+    glossyField_ = b < full.bands && !compressed ? full.truncated(b) : TransferField{};
     glossyMaterialVersion_ = -1;
   }
   const TransferField& field = b < full.bands ? glossyField_ : full;
-  if (glossyMaterialVersion_ != scene.materialVersion)
-    glossyMaterial_ = relight::prepareMaterial(scene.material(), b);
-  // The light D(R) L the packer just rotated, in relight's (r, g, b) per coefficient layout.
-  glossyLight_.bands = b;
-  glossyLight_.interleaved.resize(std::size_t(3 * b * b));
-  for (int i = 0; i < b * b; ++i) {
-    const Rgb c = packer_.coefficient(i);
-    for (int k = 0; k < 3; ++k) glossyLight_.interleaved[std::size_t(3 * i + k)] = c[k];
+  if (glossyMaterialVersion_ != scene.materialVersion) {
+    if (compressed) {
+      // Compressed rows cannot be cut per band: the kernels of rows i ≥ b² are zeroed instead
+      // (and the light is cut to b bands), which sums exactly the leading b² × b² block.
+      glossyMaterial_ = relight::prepareMaterial(scene.material(), full.bands);
+      for (std::size_t i = std::size_t(b * b); i < glossyMaterial_.diffuse.size(); ++i) {
+        glossyMaterial_.diffuse[i] = 0.0f;
+        if (!glossyMaterial_.glossy.empty()) glossyMaterial_.glossy[i] = 0.0f;
+      }
+    } else {
+      glossyMaterial_ = relight::prepareMaterial(scene.material(), b);
+    }
   }
+  // The light D(R) L the packer just rotated.
+  packedLight(b);
   const Mesh& mesh = scene.bake().mesh;
   radiance_.resize(mesh.vertexCount());
   // Exactly prt render's call: each vertex seen from the camera's eye, the mesh's albedo as kd
   // unless the material sets one.
   const relight::GlossyView view{mesh.positions, mesh.normals, camera.eye};
-  if (sameView) {
+  if (compressed) {
+    relight::relightCompressedGlossy(*compressed, glossyLight_, glossyMaterial_, view, mesh.albedo,
+                                     radiance_);
+  } else if (sameView) {
     // Only the light changed: collapse the matrices for this eye once (a frame's work), then
     // every further light-only frame is a vector relighting.
     if (!glossyViewValid_) {

@@ -16,6 +16,14 @@
 // radiance buffer the shader only displays, and only on frames where the light rotation, the
 // eye, the bands, the material or the environment changed. Why the CPU and not the vertex
 // shader (a B⁴ matrix per vertex in a texture buffer): docs/viewer.md, "Glossy transfer".
+//
+// CPCA-compressed transfer (prt compress, bake file version 3) is drawn from its compressed form,
+// never expanded: each frame SceneView projects the rotated light onto every cluster's mean and
+// basis (relight::projectClusters, the step prt render runs too) and hands the table to the
+// renderer, whose vertex shader sums N weighted cluster values per vertex (renderer.hpp).
+// Compressed matrices follow --glossy-on: on the GPU that table holds B² values per cluster
+// vector and compressedGlossy.vert shades them; on the CPU relight::relightCompressedGlossy
+// relights into the radiance buffer, as for dense matrices.
 
 #include <optional>
 #include <string>
@@ -25,6 +33,7 @@
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/relight/cluster_table.hpp"
 #include "prt/relight/glossy.hpp"
 #include "prt/relight/light_packer.hpp"
 #include "prt/render/camera.hpp"
@@ -97,6 +106,11 @@ class Scene {
   const std::string& bakeName() const { return bakeName_; }
   const std::vector<EnvironmentEntry>& environments() const { return envs_; }
   const BakedTransfer& transfer() const { return bake_.transfers[transfer_]; }
+  /// The shown transfer's compressed form, or nullptr when it is dense.
+  const CompressedTransfer* compressed() const {
+    const auto& c = transfer().compressed;
+    return c ? &*c : nullptr;
+  }
   int transferIndex() const { return transfer_; }
   int environmentIndex() const { return env_; }
   int bakeBands() const { return bakeBands_; }
@@ -173,6 +187,18 @@ class SceneView {
   int glossyLightOnlyRelights() const { return glossyLightOnly_; }
   /// The last glossy relighting's per-vertex exit radiance (what the shader shows).
   const std::vector<Rgb>& glossyRadiance() const { return radiance_; }
+  /// One line on what the shown transfer costs the GPU, after a prepare: for compressed
+  /// transfer "relit compressed (CPCA K x N): B bytes per vertex uploaded once (dense: D), T
+  /// bytes of cluster table per frame" (or, for matrices relit on the CPU, that it is), else
+  /// the dense bytes per vertex.
+  std::string uploadSummary(const Scene& scene) const;
+  /// Bytes the renderer uploads per frame for the light: the packed block, or for compressed
+  /// transfer on the GPU the cluster table.
+  std::size_t lightUploadBytes() const {
+    return renderer_.compressed() ? renderer_.clusterTableBytes() : packer_.bytes();
+  }
+  /// Compressed transfer drawn on the GPU: this frame's cluster table (relight/cluster_table.hpp).
+  const std::vector<float>& clusterTable() const { return clusterTable_; }
 
  private:
   /// Matrix transfer: relights on the CPU into the renderer's radiance buffer when the light,
@@ -181,6 +207,11 @@ class SceneView {
   /// (relight::viewTransfer, built on the first such frame): a vector relighting, 28× less work
   /// at 5 bands (docs/performance.md).
   void relightGlossy(const Scene& scene, const render::Camera& camera, const Mat3d& rotation);
+  /// The packer's rotated light at `bands` in relight's (r, g, b) per coefficient layout.
+  const relight::PreparedLight& packedLight(int bands);
+  /// Compressed transfer on the GPU: projects the packed light onto the clusters into
+  /// clusterTable_ (and, for matrices, uploads the glossy kernels when the material changed).
+  void projectCompressed(const Scene& scene);
 
   Renderer renderer_;
   LightPacker packer_;
@@ -196,6 +227,8 @@ class SceneView {
   relight::PreparedMaterial glossyMaterial_;
   relight::PreparedLight glossyLight_;
   std::vector<Rgb> radiance_;
+  std::vector<float> clusterTable_;
+  bool compressedOnGpu_ = false;
   int glossyTransfer_ = -1, glossyMaterialVersion_ = -1, glossyBands_ = -1,
       glossyLightVersion_ = -1;
   Mat3d glossyRotation_;

@@ -128,7 +128,9 @@ void runHeadless(Scene& scene, const Options& o, const Output& out) {
                          o.height, scene.bands(), toString(scene.transfer().settings.mode),
                          toString(scene.transfer().field.layout), scene.material().spec()));
   }
-  if (o.stats) stats.print(context.description(), scene, o.width, o.height, view.packer().bytes());
+  if (o.stats)
+    stats.print(context.description(), scene, o.width, o.height, view.lightUploadBytes(),
+                view.uploadSummary(scene));
 }
 
 }  // namespace

@@ -46,6 +46,7 @@ struct Ui {
   std::deque<Message> messages;
   double frameMs = 0.0, cpuMs = 0.0;  // exponentially smoothed
   std::string renderer;
+  std::string upload;  // SceneView::uploadSummary of the last frame
 
   void post(const std::string& text, bool error, const Output& out) {
     (error ? out.warn : out.info)(text);
@@ -106,12 +107,21 @@ struct Ui {
     ImGui::Text("frame %.2f ms (%.0f fps), light CPU %.3f ms", frameMs,
                 frameMs > 0 ? 1000.0 / frameMs : 0.0, cpuMs);
     ImGui::TextDisabled("%s", renderer.c_str());
+    // Compressed transfer: K, N and what it uploads per vertex against the dense rows.
+    if (scene.compressed()) {
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 26.0f);
+      ImGui::TextUnformatted(upload.c_str());
+      ImGui::PopTextWrapPos();
+    }
     ImGui::Separator();
 
     const auto& transfers = scene.bake().transfers;
     const auto label = [](const BakedTransfer& t) {
-      return fmt::format("{} {} ({})", toString(t.settings.mode), toString(t.field.layout),
-                         t.field.channels == 3 ? "RGB" : "scalar");
+      return fmt::format("{} {} ({}){}", toString(t.settings.mode), toString(t.field.layout),
+                         t.field.channels == 3 ? "RGB" : "scalar",
+                         t.compressed ? fmt::format(", CPCA {}x{}", t.compressed->clusters,
+                                                    t.compressed->basisCount)
+                                      : "");
     };
     if (ImGui::BeginCombo("transfer", label(scene.transfer()).c_str())) {
       for (int k = 0; k < int(transfers.size()); ++k) {
@@ -243,6 +253,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
         const double cpu = view.lastLightSeconds() * 1e3;
         ui.cpuMs = ui.cpuMs == 0 ? cpu : 0.9 * ui.cpuMs + 0.1 * cpu;
         view.renderer().draw(f, 0);
+        ui.upload = view.uploadSummary(scene);
         if (o.stats) {
           glFinish();  // only when asked: it stalls the pipeline
           stats.add(std::chrono::duration<double, std::milli>(Clock::now() - t0).count(), cpu,
@@ -270,7 +281,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
   if (o.stats) {
     int fbw = 0, fbh = 0;
     glfwGetFramebufferSize(w, &fbw, &fbh);
-    stats.print(ui.renderer, scene, fbw, fbh, view.packer().bytes());
+    stats.print(ui.renderer, scene, fbw, fbh, view.lightUploadBytes(), view.uploadSummary(scene));
   }
 }
 

@@ -29,6 +29,28 @@ void checkShapes(const CompressedTransfer& t, const PreparedLight& light, std::s
                 std::to_string(nv) + " vertices (expected one per vertex, one, or none)");
 }
 
+/// Σ_{i<n} a_i b_i with eight running sums (a fixed order, so the compiler vectorises it without
+/// reassociating: the result does not depend on the machine).
+float dot8(const float* a, const float* b, std::size_t n) {
+  float acc[8] = {};
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (std::size_t u = 0; u < 8; ++u) acc[u] += a[i + u] * b[i + u];
+  for (std::size_t u = 0; i < n; ++i, ++u) acc[u] += a[i] * b[i];
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
+/// out_c = Σ_{i<n} x_{3i+c} L_{3i+c}: twelve running sums (four per channel), fixed order.
+void rgbDot(const float* x, const float* L, std::size_t n, float* out) {
+  float acc[12] = {};
+  const std::size_t m = 3 * n;
+  std::size_t j = 0;
+  for (; j + 12 <= m; j += 12)
+    for (std::size_t u = 0; u < 12; ++u) acc[u] += x[j + u] * L[j + u];
+  for (std::size_t u = 0; j < m; ++j, ++u) acc[u] += x[j] * L[j];
+  for (std::size_t c = 0; c < 3; ++c) out[c] = (acc[c] + acc[c + 3]) + (acc[c + 6] + acc[c + 9]);
+}
+
 }  // namespace
 
 ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& light) {
@@ -37,6 +59,10 @@ ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& l
   const std::size_t nb = static_cast<std::size_t>(light.bands * light.bands);
   const std::size_t W = static_cast<std::size_t>(t.basisCount) + 1;
   const float* L = light.interleaved.data();  // (r, g, b) per coefficient
+  // Scalar vectors: the light's channels apart, so each projection is three contiguous dots.
+  std::vector<float> planar(C == 1 && t.layout == TransferLayout::Vector ? 3 * nb : 0);
+  for (std::size_t i = 0; i < planar.size() / 3; ++i)
+    for (std::size_t c = 0; c < 3; ++c) planar[c * nb + i] = L[3 * i + c];
   ClusterLight p;
   p.clusters = t.clusters;
   p.basisCount = t.basisCount;
@@ -48,10 +74,13 @@ ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& l
       for (std::size_t j = 0; j < W; ++j) {
         const float* x = j == 0 ? t.mean(k) : t.basisVector(k, j - 1);
         float* o = p.rgb.data() + (k * W + j) * per;
-        if (t.layout == TransferLayout::Vector) {
-          // Row index (i·C + c); scalar transfer (C = 1) multiplies all three light channels.
-          for (std::size_t i = 0; i < nb; ++i)
-            for (std::size_t c = 0; c < 3; ++c) o[c] += x[i * C + (C == 1 ? 0 : c)] * L[3 * i + c];
+        if (t.layout == TransferLayout::Vector && C == 1) {
+          // o_c = Σ_{i<nb} x_i L_{i,c}: scalar transfer multiplies all three light channels.
+          for (std::size_t c = 0; c < 3; ++c) o[c] = dot8(x, planar.data() + c * nb, nb);
+        } else if (t.layout == TransferLayout::Vector) {
+          // RGB rows (i·3 + c) against the interleaved light: one elementwise product of 3·nb
+          // floats, summed per channel.
+          rgbDot(x, L, nb, o);
         } else {
           // (X L_c)_i = Σ_{j<nb} X_{ij} L_{j,c}, entry (i·B² + j)·C + c.
           for (std::size_t i = 0; i < nB; ++i)

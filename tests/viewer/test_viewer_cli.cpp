@@ -147,6 +147,60 @@ TEST(ViewCli, GlossyOnGpuMatchesRender) {
   EXPECT_LT(displayedRmse(path("g.png"), path("render.png")), kMatch);
 }
 
+// CPCA-compressed transfer (bake version 3) is relit in the compressed space on the GPU: per
+// frame the cluster projections on the CPU, per vertex N weighted sums in the vertex shader.
+// prt render relights the same compressed rows on the CPU (relightCompressed), so a matching
+// frame meets the same thresholds as a dense one.
+TEST(ViewCli, CompressedVectorBakeMatchesRender) {
+  PRT_REQUIRE_HEADLESS_GL();
+  EXPECT_LT(compareWithRender(compressedSphereBake(), ""), kMatch);
+  EXPECT_LT(compareWithRender(compressedSphereBake(), "--rotate 10,80,0 --bands 2"), kMatch);
+  EXPECT_LT(compareWithRender(compressedCornellBake(), "--mode interreflected"), kMatch);
+  // The shadowed transfer of the same file is dense and still drawn by the dense path.
+  EXPECT_LT(compareWithRender(compressedCornellBake(), "--mode shadowed"), kMatch);
+  // The comparison can fail: the compressed frame under a turned light is far off.
+  const Result r = prt("-q render '" + compressedCornellBake() + "' " + std::string(kSize) +
+                       " --mode interreflected -o render.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Result v = prt("view '" + compressedCornellBake() + "' --headless " + std::string(kSize) +
+                       " --mode interreflected --rotate 0,120,0 --stats --screenshot turned.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_GT(displayedRmse(path("turned.png"), path("render.png")), 4 * kMatch);
+  // --stats says it relit compressed, and what it uploaded: N = 5 weights and the id are two
+  // RGBA32F texels (32 bytes) per vertex against 16 texels (256 bytes) of dense RGB 4-band rows;
+  // the table is K(N+1) = 144 texels.
+  EXPECT_NE(v.out.find("relit compressed (CPCA 24 x 5): 32 bytes per vertex uploaded once "
+                       "(dense: 256), 2304 bytes of cluster table per frame"),
+            std::string::npos)
+      << v.out;
+  // A dense bake says so.
+  const Result d = prt("view '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
+                       " --stats --screenshot dense.png");
+  ASSERT_EQ(d.rc, 0) << d.err;
+  EXPECT_NE(d.out.find("dense transfer: 48 bytes per vertex"), std::string::npos) << d.out;
+}
+
+// Compressed glossy matrices: on the CPU by relightCompressedGlossy (the default), or in the
+// vertex shader (--glossy-on gpu) from per-cluster L'_kj = B_kj L' tables. Both against prt
+// render of the same compressed bake.
+TEST(ViewCli, CompressedGlossyBakeMatchesRenderOnCpuAndGpu) {
+  PRT_REQUIRE_HEADLESS_GL();
+  const std::string turned = "--rotate 20,70,0 --camera 'eye=-2.5,1.2,2;target=0,0.3,0;fov=40'";
+  const std::string close = "--exposure -1 --camera 'eye=0.4,1.3,2.3;target=0,0.8,0;fov=45'";
+  for (const std::string on : {"cpu", "gpu"}) {
+    SCOPED_TRACE(on);
+    EXPECT_LT(compareWithRender(compressedGlossyBake(), "", "--glossy-on " + on), kMatch);
+    EXPECT_LT(compareWithRender(compressedGlossyBake(), turned, "--glossy-on " + on), kMatch);
+    EXPECT_LT(compareWithRender(compressedGlossyBake(), close, "--glossy-on " + on), kMatch);
+  }
+  // The comparison can fail: the lobe left out (a diffuse material) is far off close up.
+  const Result d =
+      prt("-q view '" + compressedGlossyBake() + "' --headless " + std::string(kSize) + " " +
+          close + " --glossy-on gpu --material 'lambert?kd=0.4' --screenshot diffuse.png");
+  ASSERT_EQ(d.rc, 0) << d.err;
+  EXPECT_GT(displayedRmse(path("diffuse.png"), path("render.png")), 2 * kMatch);
+}
+
 TEST(ViewCli, GlossyRelitEveryFrameAsLightAndCameraMove) {
   PRT_REQUIRE_HEADLESS_GL();
   // Frame 31 of a 180°/s spin is the light turned 90° about +Y (see AutoRotation... above): the

@@ -94,6 +94,33 @@ inline const std::string& glossyBake() {
   return p;
 }
 
+/// CPCA-compressed copies (prt compress, bake version 3), coarse enough that the compressed
+/// frame differs visibly from the dense source's: the sphere over the plane (scalar, K 16,
+/// N 4: one texel of id + weights per vertex), the Cornell box's RGB inter-reflected transfer
+/// (K 24, N 5: two texels; its shadowed transfer stays dense in the same file) and the glossy
+/// matrices (K 8, N 3).
+inline std::string compressedCopy(const std::string& source, const std::string& name,
+                                  const std::string& args) {
+  const Result r = prt("-q compress '" + source + "' " + args + " -o " + name);
+  EXPECT_EQ(r.rc, 0) << r.err;
+  return path(name);
+}
+inline const std::string& compressedSphereBake() {
+  static const std::string p =
+      compressedCopy(spherePlaneBake(), "sphere-cpca.glb", "--clusters 16 --pca 4");
+  return p;
+}
+inline const std::string& compressedCornellBake() {
+  static const std::string p = compressedCopy(cornellBake(), "cornell-cpca.glb",
+                                              "--mode interreflected --clusters 24 --pca 5");
+  return p;
+}
+inline const std::string& compressedGlossyBake() {
+  static const std::string p =
+      compressedCopy(glossyBake(), "glossy-cpca.glb", "--clusters 8 --pca 3");
+  return p;
+}
+
 /// A PNG as displayed: sRGB-encoded values in [0, 1].
 inline image::Image readDisplayed(const std::string& file) {
   image::Image img = image::readImage(file);

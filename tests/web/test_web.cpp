@@ -3,7 +3,9 @@
 //   * its first frame (?screenshot) matches prt render of the same bake, light, rotation and
 //     default view: RMSE < 0.02 on displayed [0, 1] colour; a turned light must not match;
 //   * its SH rotation (web/src/sh.js under node) equals sh::Rotation to 1e-5 for 3, 5, 9 bands;
-//   * bad dropped files leave the scene (bake, environments, pixels) as it was and say why.
+//   * bad dropped files leave the scene (bake, environments, pixels) as it was and say why;
+//   * CPCA-compressed bakes (version 3), diffuse vectors and glossy matrices, are relit in the
+//     compressed space and match prt render.
 // Each test skips, saying why, where chromium, node or the built page is missing.
 
 #include <gtest/gtest.h>
@@ -259,6 +261,87 @@ TEST(Web, GivenCameraMatchesPrtRender) {
   EXPECT_GT(displayedRmse(pageFrame("env=1&mode=shadowed"), path("cam.png")), 4 * kMatch);
 }
 
+// CPCA-compressed transfer (prt compress, bake version 3): the page keeps it compressed (ids and
+// weights per vertex in a data texture), projects the rotated light onto the K(N+1) cluster
+// vectors in JS each frame and sums N weighted values per vertex in the shader; prt render
+// relights the same compressed rows on the CPU. Both transfers of the Cornell box compressed:
+// RGB inter-reflected with N = 5 (two texels per vertex), scalar shadowed with N = 2 (one).
+TEST(Web, CompressedFirstFrameMatchesPrtRender) {
+  PRT_REQUIRE_PAGE();
+  Result r = prt("-q compress cornell.glb --mode interreflected --clusters 24 --pca 5 -o c1.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q compress c1.glb --mode shadowed --clusters 16 --pca 2 -o cpca.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q web cpca.glb --env builtin:sky --env builtin:studio -o page_cpca");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  struct Case {
+    std::string render, query, compressed;
+  };
+  for (const Case& c :
+       {Case{"--light builtin:studio --rotate 20,-30,10 --mode interreflected",
+             "env=1&rotate=20,-30,10&mode=interreflected", "24x5, 32 bytes per vertex"},
+        Case{"--light builtin:sky --rotate 0,70,0 --mode shadowed --bands 3",
+             "env=0&rotate=0,70,0&mode=shadowed&bands=3", "16x2, 16 bytes per vertex"}}) {
+    SCOPED_TRACE(c.query);
+    r = prt("-q render cpca.glb --size 320x240 " + c.render + " -o cpca.png");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    std::string log;
+    const std::string json = runPage(path("page_cpca"), "screenshot&size=320x240&" + c.query, &log);
+    ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
+    EXPECT_EQ(jsonField(json, "compressed"), c.compressed);
+    const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("cpca.png"));
+    EXPECT_LT(e, kMatch);
+    EXPECT_LT(quantile90, kInterior);
+    std::cout << "page vs prt render, compressed " << c.compressed << ": RMSE " << e
+              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+  }
+  // The comparison can fail: the compressed page under another rotation is far off.
+  const std::string json = runPage(
+      path("page_cpca"), "screenshot&size=320x240&env=0&rotate=0,160,0&mode=shadowed&bands=3");
+  EXPECT_GT(displayedRmse(unbase64(jsonField(json, "rgb")), path("cpca.png")), 4 * kMatch);
+}
+
+// CPCA-compressed glossy matrices: the page projects the light onto every cluster's mean and
+// basis matrices in JS (B² RGB values each), and the vertex shader forms L'_v and shades it with
+// the bake's material (kernels from prt web) toward the camera's eye, as prt view --glossy-on
+// gpu; prt render relights the same compressed matrices on the CPU.
+TEST(Web, CompressedGlossyFirstFrameMatchesPrtRender) {
+  PRT_REQUIRE_PAGE();
+  Result r =
+      prt("-q bake 'builtin:sphere-plane?size=1.5&grid=40&subdiv=3' --mode shadowed --transfer "
+          "matrix --bands 4 --samples 64 --material 'phong?exponent=8&ks=0.6&kd=0.4' -o g.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q compress g.glb --clusters 8 --pca 3 -o gc.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string cam = "eye=0.4,1.3,2.3;target=0,0.8,0;fov=45";
+  r = prt("-q web gc.glb --env builtin:sky --env builtin:studio --camera '" + cam + "' -o page_g");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const std::string rot : {"0,0,0", "20,70,0"}) {
+    SCOPED_TRACE(rot);
+    r = prt("-q render gc.glb --light builtin:studio --rotate " + rot + " --camera '" + cam +
+            "' --exposure -1 --size 320x240 -o g.png");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    std::string log;
+    const std::string json =
+        runPage(path("page_g"), "screenshot&size=320x240&env=1&exposure=-1&rotate=" + rot, &log);
+    ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
+    EXPECT_EQ(jsonField(json, "compressed"), "8x3, 16 bytes per vertex");
+    const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("g.png"));
+    EXPECT_LT(e, kMatch);
+    EXPECT_LT(quantile90, kInterior);
+    std::cout << "page vs prt render, compressed glossy, rotate " << rot << ": RMSE " << e
+              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+  }
+  // The comparison can fail: close up the lobe is a large part of the image, so the diffuse
+  // part alone (render with a lambert material) is far off.
+  r = prt("-q render gc.glb --light builtin:studio --rotate 20,70,0 --camera '" + cam +
+          "' --exposure -1 --material 'lambert?kd=0.4' --size 320x240 -o d.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string json =
+      runPage(path("page_g"), "screenshot&size=320x240&env=1&exposure=-1&rotate=20,70,0");
+  EXPECT_GT(displayedRmse(unbase64(jsonField(json, "rgb")), path("d.png")), 2 * kMatch);
+}
+
 TEST(Web, MeshWithoutAlbedoMatchesPrtRender) {
   // An OBJ has no per-vertex albedo: no COLOR_0 in the bake, white in relight and in the page.
   PRT_REQUIRE_PAGE();
@@ -410,6 +493,19 @@ TEST(Web, CliRefusesWhatThePageCannotShow) {
   Result r = prt("web notabake.glb -o nope");
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.err.find("prt web: error: "), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(path("nope/prt-data.js")));
+  // Dense glossy matrices: named, with what to use instead (compressed ones are drawn).
+  r =
+      prt("-q bake 'builtin:sphere?subdiv=1' --mode unshadowed --transfer matrix --bands 2 "
+          "--samples 16 -o m.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("web m.glb -o nope");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("m.glb: the unshadowed transfer holds dense glossy matrices; the browser "
+                       "viewer draws them CPCA-compressed only (prt compress)"),
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(path("nope/prt-data.js")));
   r = prt("web missing.glb -o nope --tonemap sepia");

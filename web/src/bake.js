@@ -5,7 +5,14 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 
-export const kFormatVersion = 1;
+import { packWeights, readCompressed } from './compressed.js';
+
+// Version 1: vector transfer as vertex attributes; 3 adds CPCA-compressed transfer (prt
+// compress), which the page relights in the compressed space (compressed.js). Version 2 files
+// hold glossy matrices, which the page does not draw.
+export const kFormatVersions = [1, 3];
+// Bands of the glossy shader's SH arrays (64 coefficients; relight/glossy_shader.hpp).
+export const kMaxGlossyBands = 8;
 
 const kModeNames = { unshadowed: 'UNSHADOWED', shadowed: 'SHADOWED', interreflected: 'INTERREFLECTED' };
 
@@ -35,8 +42,8 @@ export async function parseBake(buffer, name, limits) {
   const json = gltf.parser.json;
   const prt = json.extras && json.extras.prtkit;
   if (!prt) fail(name, 'is a glTF file but not a prtkit bake (no extras.prtkit; write one with prt bake)');
-  if (prt.formatVersion !== kFormatVersion)
-    fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads version ${kFormatVersion}: diffuse vector transfer)`);
+  if (!kFormatVersions.includes(prt.formatVersion))
+    fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads versions 1 and 3: diffuse vector transfer, dense or CPCA-compressed)`);
   const transfers = Array.isArray(prt.transfers) ? prt.transfers : [];
   if (transfers.length === 0) fail(name, 'the bake holds no transfer (bake it with prt bake --mode ...)');
   const range = prt.vertexRange || {};
@@ -52,10 +59,19 @@ export async function parseBake(buffer, name, limits) {
     if (!Number.isInteger(bands) || bands < 1 || bands > limits.maxBands)
       fail(name, `the ${mode} transfer has ${bands} bands; this page draws 1..${limits.maxBands} here (the light must fit in the vertex shader's uniforms)`);
     if (channels !== 1 && channels !== 3) fail(name, `the ${mode} transfer has ${channels} channels (1 or 3 expected)`);
+    const matrix = (s.layout || 'vector') === 'matrix';
+    if (!matrix && (s.layout || 'vector') !== 'vector') fail(name, `the ${mode} transfer has an unknown layout '${s.layout}'`);
+    // Glossy matrices only CPCA-compressed: 16·⌈(N+1)/4⌉ bytes per vertex instead of 4·B⁴.
+    if (matrix && !t.compressed)
+      fail(name, `the ${mode} transfer holds dense glossy matrices; this page draws them CPCA-compressed only (prt compress)`);
+    if (matrix && bands > kMaxGlossyBands)
+      fail(name, `the ${mode} transfer's glossy matrices have ${bands} bands; this page draws 1..${kMaxGlossyBands}`);
     const n = bands * bands;
-    modes.push({ mode, bands, channels, prefix: `_prt_${kModeNames[mode].toLowerCase()}_t`,
-                 attributes: Math.ceil((n * channels) / 4),
-                 texelsPerVertex: channels === 1 ? Math.ceil(n / 4) : n });
+    const entry = { mode, bands, channels, matrix, prefix: `_prt_${kModeNames[mode].toLowerCase()}_t`,
+                    attributes: Math.ceil((n * channels) / 4),
+                    texelsPerVertex: channels === 1 ? Math.ceil(n / 4) : n, compressed: null };
+    if (t.compressed) entry.compressed = await readCompressed(gltf, json, t, entry, prt.vertexCount, name);
+    modes.push(entry);
   }
 
   const meshes = [];
@@ -75,7 +91,16 @@ export async function parseBake(buffer, name, limits) {
     lo.min(g.boundingBox.min);
     hi.max(g.boundingBox.max);
     const part = { geometry: g, hasAlbedo: !!g.getAttribute('color'), texels: {} };
+    // The part's first vertex in the file's (global) order: its POSITION window's offset.
+    const assoc = gltf.parser.associations.get(m);
+    const posAccessor = assoc && json.meshes[assoc.meshes].primitives[assoc.primitives || 0].attributes.POSITION;
+    const first = posAccessor !== undefined ? (json.accessors[posAccessor].byteOffset || 0) / 12 : -1;
     for (const t of modes) {
+      if (t.compressed) {
+        if (!(first >= 0 && first + V <= prt.vertexCount)) fail(name, `part '${m.name}' has no place in the vertex order`);
+        part.texels[t.mode] = packWeights(t.compressed, first, V, limits, name, t.mode);
+        continue;
+      }
       const data = new Float32Array(V * t.texelsPerVertex * 4);
       const attrs = [];
       for (let k = 0; k < t.attributes; ++k) {
@@ -106,8 +131,11 @@ export async function parseBake(buffer, name, limits) {
       part.texels[t.mode] = { data: padded, width: W, height: H };
     }
     // The transfer attributes are in the textures now; drop them so they are not uploaded.
-    for (const t of modes) for (let k = 0; k < t.attributes; ++k) g.deleteAttribute(t.prefix + k);
-    for (const a of Object.keys(g.attributes)) if (a !== 'position' && a !== 'color') g.deleteAttribute(a);
+    for (const t of modes) if (!t.compressed) for (let k = 0; k < t.attributes; ++k) g.deleteAttribute(t.prefix + k);
+    // Normals stay for glossy matrices (the lobe about the reflected view).
+    const keep = ['position', 'color'].concat(modes.some((t) => t.matrix) ? ['normal'] : []);
+    for (const a of Object.keys(g.attributes)) if (!keep.includes(a)) g.deleteAttribute(a);
+    if (modes.some((t) => t.matrix) && !g.getAttribute('normal')) fail(name, `part '${m.name}' has no normals (glossy transfer needs them)`);
     parts.push(part);
   }
   if (vertices !== prt.vertexCount) fail(name, `has ${vertices} vertices but extras.prtkit says ${prt.vertexCount}`);

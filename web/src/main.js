@@ -4,6 +4,9 @@
 // the light's first b bands are rotated on the CPU (sh.js), packed as vec4 uL[i] = (r, g, b, 0),
 // and the mesh's vertex shader sums T_i L'_i from a data texture (shaders/prt_relight.glsl);
 // the background, the relit mesh, then exposure + tone map + sRGB (shaders/prt_display.glsl).
+// CPCA-compressed transfer (bake version 3) is relit in the compressed space: per frame the
+// rotated light is projected onto the K(N+1) cluster vectors here (compressed.js) and the vertex
+// shader sums N weighted cluster values (shaders/prt_compressed.glsl).
 //
 // Test hooks (tests/web, docs/web.md): ?screenshot renders one frame at a fixed size and writes
 // its pixels into <pre id="prt-test">; ?bench=N times N frames; ?test=drop drops bad files.
@@ -13,7 +16,10 @@ import GUI from 'lil-gui';
 
 import { parseBake, parseLightJson, parseLightTxt } from './bake.js';
 import { axisAngle, evalSh, mul3, rotateLight, rotationEulerXYZ } from './sh.js';
+import { clusterTableImage, projectClusters } from './compressed.js';
 import meshVert from './shaders/mesh.vert';
+import compressedVert from './shaders/compressed.vert';
+import compressedGlossyVert from './shaders/compressedGlossy.vert';
 import meshFrag from './shaders/mesh.frag';
 import fullscreenVert from './shaders/fullscreen.vert';
 import backgroundFrag from './shaders/background.frag';
@@ -191,45 +197,76 @@ async function main() {
   let bake = null;        // the parsed bake on screen
   let parts = [];         // THREE.Mesh per part
   let lightUniform = null;
+  let clusterTables = {};  // mode → { image, texture, width }: compressed transfers' per-frame tables
 
   /** Builds the GPU side of a parsed bake; returns { meshes, light } without touching the scene. */
   function buildBake(b) {
     const vec4s = Math.ceil((b.maxBands * b.maxBands) / 4) * 4;
     const light = { value: new Float32Array(vec4s * 4) };
+    const dataTexture = (x) => {
+      const tex = new THREE.DataTexture(x.data, x.width, x.height, THREE.RGBAFormat, THREE.FloatType);
+      tex.minFilter = tex.magFilter = THREE.NearestFilter;
+      tex.generateMipmaps = false;
+      tex.needsUpdate = true;
+      return tex;
+    };
+    // Compressed transfers: one cluster table per transfer, shared by the parts, refilled per frame.
+    const tables = {};
+    for (const t of b.transfers)
+      if (t.compressed) {
+        const img = clusterTableImage(t.compressed, limits, b.name, t.mode);
+        tables[t.mode] = { image: img, texture: dataTexture(img), width: img.width };
+      }
     const meshes = b.parts.map((p) => {
       const textures = {};
-      for (const t of b.transfers) {
-        const x = p.texels[t.mode];
-        const tex = new THREE.DataTexture(x.data, x.width, x.height, THREE.RGBAFormat, THREE.FloatType);
-        tex.minFilter = tex.magFilter = THREE.NearestFilter;
-        tex.generateMipmaps = false;
-        tex.needsUpdate = true;
-        textures[t.mode] = { texture: tex, width: x.width };
-      }
+      for (const t of b.transfers) textures[t.mode] = { texture: dataTexture(p.texels[t.mode]), width: p.texels[t.mode].width };
+      const defines = p.hasAlbedo ? { PRT_HAS_ALBEDO: 1 } : {};
       const material = new THREE.RawShaderMaterial({
         glslVersion: THREE.GLSL3, vertexShader: meshVert, fragmentShader: meshFrag,
-        defines: Object.assign({ PRT_LIGHT_VEC4S: vec4s }, p.hasAlbedo ? { PRT_HAS_ALBEDO: 1 } : {}),
+        defines: Object.assign({ PRT_LIGHT_VEC4S: vec4s }, defines),
         uniforms: {
           uTransfer: { value: null }, uTexWidth: { value: 1 }, uTexelsPerVertex: { value: 1 },
           uCount: { value: 0 }, uRgb: { value: false }, uL: light,
         },
         side: THREE.DoubleSide,
       });
+      const compressedMaterial = !b.transfers.some((t) => t.compressed) ? null : new THREE.RawShaderMaterial({
+        glslVersion: THREE.GLSL3, vertexShader: compressedVert, fragmentShader: meshFrag, defines,
+        uniforms: {
+          uWeights: { value: null }, uWeightsWidth: { value: 1 }, uClusters: { value: null },
+          uClustersWidth: { value: 1 }, uTexelsPerVertex: { value: 1 }, uBasisCount: { value: 0 },
+        },
+        side: THREE.DoubleSide,
+      });
+      const glossyMaterial = !b.transfers.some((t) => t.matrix) ? null : new THREE.RawShaderMaterial({
+        glslVersion: THREE.GLSL3, vertexShader: compressedGlossyVert, fragmentShader: meshFrag, defines,
+        uniforms: {
+          uWeights: { value: null }, uWeightsWidth: { value: 1 }, uClusters: { value: null },
+          uClustersWidth: { value: 1 }, uTexelsPerVertex: { value: 1 }, uBasisCount: { value: 0 },
+          uBands: { value: 1 }, uCoeffs: { value: 1 }, uDiffuse: { value: new Float32Array(64) },
+          uGlossy: { value: new Float32Array(64) }, uKd: { value: new THREE.Vector3() },
+          uKs: { value: new THREE.Vector3() }, uEye: { value: new THREE.Vector3() }, uHasKd: { value: false },
+        },
+        side: THREE.DoubleSide,
+      });
       const mesh = new THREE.Mesh(p.geometry, material);
       mesh.frustumCulled = false;
-      mesh.userData.textures = textures;
+      mesh.userData = { textures, dense: material, compressed: compressedMaterial, glossy: glossyMaterial };
       return mesh;
     });
-    return { meshes, light };
+    return { meshes, light, tables };
   }
 
   function disposeBake() {
     for (const m of parts) {
       scene.remove(m);
       m.geometry.dispose();
-      m.material.dispose();
+      m.userData.dense.dispose();
+      if (m.userData.compressed) m.userData.compressed.dispose();
+      if (m.userData.glossy) m.userData.glossy.dispose();
       for (const t of Object.values(m.userData.textures)) t.texture.dispose();
     }
+    for (const t of Object.values(clusterTables)) t.texture.dispose();
   }
 
   /** The camera prt web was given (--camera), else the library's framing (render::meshFraming,
@@ -264,11 +301,20 @@ async function main() {
     const short = envs.filter((e) => e.bands < b.maxBands);
     if (short.length)
       throw new Error(`${b.name}: the bake has ${b.maxBands} bands but the light ${short[0].name} only ${short[0].bands}; the transfer's upper bands would see no light (write the page for this bake with prt web)`);
+    // Compressed glossy matrices shade with the bake's material, which prt web prepared (its
+    // kernels) into prt-data.js: only for the page's own bake.
+    for (const t of b.transfers)
+      if (t.matrix) {
+        const g = b.name === data.bake.name && data.glossy && data.glossy[t.mode];
+        if (!g) throw new Error(`${b.name}: the ${t.mode} transfer is compressed glossy, whose material comes with the page (write the page for this bake with prt web)`);
+        t.material = g;
+      }
     const built = buildBake(b);
     disposeBake();
     bake = b;
     parts = built.meshes;
     lightUniform = built.light;
+    clusterTables = built.tables;
     for (const m of parts) scene.add(m);
     if (!bake.transfers.some((t) => t.mode === state.mode)) state.mode = bake.transfers[0].mode;
     const maxB = transfer().bands;
@@ -318,8 +364,35 @@ async function main() {
     const L = lightUniform.value;
     L.fill(0);
     for (let i = 0; i < b * b; ++i) L[4 * i] = rotated[3 * i], L[4 * i + 1] = rotated[3 * i + 1], L[4 * i + 2] = rotated[3 * i + 2];
+    if (t.compressed) {
+      // The once-per-frame step: K(N+1) projections of L' (b bands), then N sums per vertex.
+      const table = clusterTables[t.mode];
+      projectClusters(t.compressed, b, t.channels, rotated, table.image.data);
+      table.texture.needsUpdate = true;
+    }
     for (const m of parts) {
+      m.material = t.matrix ? m.userData.glossy : t.compressed ? m.userData.compressed : m.userData.dense;
       const tex = m.userData.textures[t.mode], u = m.material.uniforms;
+      if (t.matrix) {
+        // The shaded bands (≤ 8), the material's kernels, kd (else the albedo), ks, the eye.
+        u.uBands.value = Math.min(b, 8);
+        u.uCoeffs.value = t.compressed.coeffs;
+        u.uDiffuse.value.set(t.material.diffuse);
+        u.uGlossy.value.set(t.material.lobe);
+        u.uHasKd.value = !!t.material.kd;
+        if (t.material.kd) u.uKd.value.fromArray(t.material.kd);
+        u.uKs.value.fromArray(t.material.ks);
+      }
+      if (t.compressed) {
+        const table = clusterTables[t.mode];
+        u.uWeights.value = tex.texture;
+        u.uWeightsWidth.value = tex.width;
+        u.uClusters.value = table.texture;
+        u.uClustersWidth.value = table.width;
+        u.uTexelsPerVertex.value = t.compressed.texelsPerVertex;
+        u.uBasisCount.value = t.compressed.basisCount;
+        continue;
+      }
       u.uTransfer.value = tex.texture;
       u.uTexWidth.value = tex.width;
       u.uTexelsPerVertex.value = t.texelsPerVertex;
@@ -335,6 +408,8 @@ async function main() {
     camera.near = Math.max(d - 1.01 * bake.radius, 1e-4 * camera.far);
     camera.updateProjectionMatrix();
     camera.updateMatrixWorld();
+    // Glossy: each vertex seen from the camera's eye (the parts are in world space).
+    for (const m of parts) if (m.userData.glossy) m.userData.glossy.uniforms.uEye.value.copy(camera.position);
     const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();
     const up = new THREE.Vector3().crossVectors(right, forward);
     const tanY = Math.tan((camera.fov / 2) * Math.PI / 180), tanX = tanY * w / h;
@@ -390,7 +465,10 @@ async function main() {
     renderer.setSize(fixedW, fixedH);
     frameCamera(fixedW, fixedH);
     const rgb = readFrame(fixedW, fixedH);
-    return report({ ok: true, width: fixedW, height: fixedH, renderer: rendererName, rgb: bytesBase64(rgb) });
+    const c = transfer().compressed;
+    return report({ ok: true, width: fixedW, height: fixedH, renderer: rendererName, mode: state.mode,
+                    compressed: c ? `${c.clusters}x${c.basisCount}, ${16 * c.texelsPerVertex} bytes per vertex` : 'no',
+                    rgb: bytesBase64(rgb) });
   }
   if (query.has('bench')) {
     const n = Math.max(1, Number(query.get('bench')) || 20);
@@ -411,7 +489,7 @@ async function main() {
     }
     times.sort((a, b) => a - b);
     return report({ ok: true, frames: n, medianMs: times[n >> 1], minMs: times[0], bands: state.bands,
-                    mode: state.mode, vertices: bake.vertices, triangles: bake.triangles,
+                    mode: state.mode, compressed: !!transfer().compressed, vertices: bake.vertices, triangles: bake.triangles,
                     width: fixedW, height: fixedH, renderer: rendererName });
   }
 
@@ -546,6 +624,10 @@ async function main() {
     const t = transfer();
     hud.textContent = `${bake.name}  ${bake.triangles} triangles, ${bake.vertices} vertices\n` +
       `${t.mode}, ${Math.min(state.bands, t.bands)} of ${t.bands} bands, ${t.channels === 3 ? 'RGB' : 'scalar'}\n` +
+      (t.matrix ? `glossy ${t.material.material}, toward the eye\n` : '') +
+      (t.compressed ? `relit compressed: CPCA ${t.compressed.clusters} x ${t.compressed.basisCount}, ` +
+        `${16 * t.compressed.texelsPerVertex} bytes/vertex (dense ${t.matrix ? 16 * t.bands * t.bands * Math.ceil(t.bands * t.bands / 4) : 16 * t.texelsPerVertex}), ` +
+        `${16 * t.compressed.clusters * (t.compressed.basisCount + 1) * t.compressed.coeffs} bytes of cluster table per frame\n` : '') +
       `frame ${smooth.toFixed(1)} ms (${(1000 / smooth).toFixed(0)} fps)\n${rendererName}`;
     if (!query.has('test')) requestAnimationFrame(loop);
   }
