@@ -1,7 +1,10 @@
 #include "prt/relight/compressed.hpp"
 
+#include "compressed_internal.hpp"
+
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
@@ -9,10 +12,8 @@
 
 namespace prt::relight {
 
-namespace {
-
-void checkShapes(const CompressedTransfer& t, const PreparedLight& light, std::size_t outSize,
-                 std::size_t albedoSize) {
+void checkCompressedShapes(const CompressedTransfer& t, const PreparedLight& light,
+                           std::size_t outSize, std::size_t albedoSize) {
   if (light.bands < 1 || light.bands > t.bands)
     throw Error("relight: prepared light has " + std::to_string(light.bands) +
                 " bands, transfer has " + std::to_string(t.bands));
@@ -29,7 +30,44 @@ void checkShapes(const CompressedTransfer& t, const PreparedLight& light, std::s
                 std::to_string(nv) + " vertices (expected one per vertex, one, or none)");
 }
 
+namespace {
+
+#if defined(__GNUC__) && !defined(__clang__)
+#define PRT_PROJECT_CLONES [[gnu::target_clones("arch=haswell", "default")]]
+#else
+#define PRT_PROJECT_CLONES
+#endif
+// o[3i + c] = Σ_{l<nb} X_il L_lc for one scalar B² × B² matrix X (the glossy per-frame step,
+// K(N+1) matrices): each row against the three light planes (`pad` floats each, zero past nb)
+// in eight independent lanes, so the loop vectorises without reassociating a sum (the lanes are
+// added in a fixed order at the end: the result does not depend on the thread count).
+// Compiled for AVX2 and the baseline, picked at load time.
+PRT_PROJECT_CLONES void projectScalarMatrix(const float* x, std::size_t nB, std::size_t nb,
+                                            const float* planes, std::size_t pad, float* o) {
+  for (std::size_t i = 0; i < nB; ++i) {
+    const float* row = x + i * nB;
+    float acc[3][8] = {};
+    std::size_t l = 0;
+    for (; l + 8 <= nb; l += 8)
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 8; ++k) acc[c][k] += row[l + k] * planes[c * pad + l + k];
+    for (int k = 0; l + k < nb; ++k)  // the last nb mod 8 columns
+      for (int c = 0; c < 3; ++c) acc[c][k] += row[l + k] * planes[c * pad + l + k];
+    for (int c = 0; c < 3; ++c)
+      o[3 * i + c] = ((acc[c][0] + acc[c][1]) + (acc[c][2] + acc[c][3])) +
+                     ((acc[c][4] + acc[c][5]) + (acc[c][6] + acc[c][7]));
+  }
+}
+
 }  // namespace
+
+AlignedFloats alignedZeros(std::size_t n) {
+  const std::size_t bytes = std::max<std::size_t>(32, (n * sizeof(float) + 31) & ~std::size_t(31));
+  float* p = static_cast<float*>(std::aligned_alloc(32, bytes));
+  if (!p) throw Error("relight: out of memory (" + std::to_string(bytes) + " bytes)");
+  std::fill_n(p, bytes / sizeof(float), 0.0f);
+  return AlignedFloats(p);
+}
 
 ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& light) {
   const std::size_t C = static_cast<std::size_t>(t.channels),
@@ -43,6 +81,11 @@ ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& l
   p.coeffs = t.layout == TransferLayout::Matrix ? static_cast<int>(nB) : 1;
   const std::size_t per = static_cast<std::size_t>(p.coeffs) * 3;
   p.rgb.assign(static_cast<std::size_t>(t.clusters) * W * per, 0.0f);
+  // The light as three zero-padded planes for the scalar-matrix products.
+  const std::size_t pad = (nb + 7) & ~std::size_t(7);
+  std::vector<float> planes(3 * pad, 0.0f);
+  for (std::size_t l = 0; l < nb; ++l)
+    for (std::size_t c = 0; c < 3; ++c) planes[c * pad + l] = L[3 * l + c];
   parallelFor(static_cast<std::size_t>(t.clusters), 4, [&](std::size_t kb, std::size_t ke) {
     for (std::size_t k = kb; k < ke; ++k)
       for (std::size_t j = 0; j < W; ++j) {
@@ -52,6 +95,8 @@ ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& l
           // Row index (i·C + c); scalar transfer (C = 1) multiplies all three light channels.
           for (std::size_t i = 0; i < nb; ++i)
             for (std::size_t c = 0; c < 3; ++c) o[c] += x[i * C + (C == 1 ? 0 : c)] * L[3 * i + c];
+        } else if (C == 1) {
+          projectScalarMatrix(x, nB, nb, planes.data(), pad, o);
         } else {
           // (X L_c)_i = Σ_{j<nb} X_{ij} L_{j,c}, entry (i·B² + j)·C + c.
           for (std::size_t i = 0; i < nB; ++i)
@@ -64,91 +109,12 @@ ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& l
   return p;
 }
 
-void relightCompressed(const CompressedTransfer& t, const ClusterLight& p,
-                       std::span<const Rgb> albedo, std::span<Rgb> out) {
-  if (t.layout != TransferLayout::Vector || p.coeffs != 1)
-    throw Error("relight: diffuse relighting needs vector transfer (this one holds matrices)");
-  if (p.clusters != t.clusters || p.basisCount != t.basisCount)
-    throw Error("relight: cluster projections were made for another compressed transfer");
-  const std::size_t nv = t.vertexCount, N = static_cast<std::size_t>(t.basisCount);
-  if (out.size() != nv) throw Error("relight: output size does not match the vertex count");
-  // The projections padded to 4 floats (r, g, b, 0) per vector, so the per-vertex sum is one
-  // 4-wide multiply-add per weight (the compiler's SLP vectoriser); same operations in the same
-  // order per channel as the 3-wide form.
-  const std::size_t W4 = 4 * (N + 1);
-  std::vector<float> table(static_cast<std::size_t>(t.clusters) * W4, 0.0f);
-  for (std::size_t q = 0; q < static_cast<std::size_t>(t.clusters) * (N + 1); ++q)
-    for (std::size_t c = 0; c < 3; ++c) table[4 * q + c] = p.rgb[3 * q + c];
-  const float* proj = table.data();
-  const float* w = t.weights.data();
-  const std::uint32_t* id = t.cluster.data();
-  const bool perVertex = albedo.size() == nv && nv > 1;
-  const Rgb uniform = albedo.size() == 1 ? albedo[0] : Rgb(1.0f);
-  parallelFor(nv, 4096, [&](std::size_t b, std::size_t e) {
-    for (std::size_t v = b; v < e; ++v) {
-      const float* q = proj + id[v] * W4;
-      const float* wv = w + v * N;
-      float acc[4] = {q[0], q[1], q[2], q[3]};
-      for (std::size_t j = 0; j < N; ++j) {
-        const float wj = wv[j];
-        const float* qj = q + 4 + 4 * j;
-        for (int c = 0; c < 4; ++c) acc[c] += wj * qj[c];
-      }
-      const Rgb a = perVertex ? albedo[v] : uniform;
-      out[v] = Rgb(acc[0] * a.x, acc[1] * a.y, acc[2] * a.z);
-    }
-  });
-}
-
 void relightCompressed(const CompressedTransfer& t, const PreparedLight& light,
                        std::span<const Rgb> albedo, std::span<Rgb> out) {
   if (t.layout != TransferLayout::Vector)
     throw Error("relight: diffuse relighting needs vector transfer (this one holds matrices)");
-  checkShapes(t, light, out.size(), albedo.size());
+  checkCompressedShapes(t, light, out.size(), albedo.size());
   relightCompressed(t, projectClusters(t, light), albedo, out);
-}
-
-void relightCompressedGlossy(const CompressedTransfer& t, const PreparedLight& light,
-                             const PreparedMaterial& material, const GlossyView& view,
-                             std::span<const Rgb> albedo, std::span<Rgb> out) {
-  if (t.layout != TransferLayout::Matrix)
-    throw Error("relight: glossy relighting needs matrix transfer");
-  checkShapes(t, light, out.size(), albedo.size());
-  const std::size_t nv = t.vertexCount;
-  if (material.bands != t.bands)
-    throw Error("relight: material prepared for " + std::to_string(material.bands) +
-                " bands, transfer has " + std::to_string(t.bands));
-  if (view.positions.size() != nv || view.normals.size() != nv)
-    throw Error("relight: positions and normals must hold one value per vertex (" +
-                std::to_string(nv) + ")");
-  const ClusterLight p = projectClusters(t, light);
-  const int bands = t.bands;
-  const std::size_t nB = static_cast<std::size_t>(bands * bands),
-                    N = static_cast<std::size_t>(t.basisCount);
-  const std::size_t per = 3 * nB, W = N + 1;
-  const bool glossy = !material.glossy.empty();
-  parallelFor(nv, 256, [&](std::size_t b, std::size_t e) {
-    std::vector<float> y(nB), d(nB), g(glossy ? nB : 0), lp(per);
-    for (std::size_t v = b; v < e; ++v) {
-      // L'_v = (M_k L) + Σ_j w_vj (B_kj L)
-      const float* q = p.rgb.data() + t.cluster[v] * W * per;
-      std::copy_n(q, per, lp.data());
-      for (std::size_t j = 0; j < N; ++j) {
-        const float wj = t.weights[v * N + j];
-        const float* qj = q + (j + 1) * per;
-        for (std::size_t i = 0; i < per; ++i) lp[i] += wj * qj[i];
-      }
-      material.responses(view.positions[v], view.normals[v], view.eye, d.data(), g.data(),
-                         y.data());
-      Rgb diff(0.0f), spec(0.0f);
-      for (std::size_t i = 0; i < nB; ++i)
-        for (int c = 0; c < 3; ++c) {
-          diff[c] += d[i] * lp[3 * i + c];
-          if (glossy) spec[c] += g[i] * lp[3 * i + c];
-        }
-      out[v] = material.diffuseAt(albedo, v, nv) * diff + material.specular * spec;
-    }
-  });
 }
 
 RelightInfo relightCompressed(const CompressedTransfer& t, const sh::RgbSh& light,
