@@ -51,14 +51,6 @@ void projectScalarMatrix(const float* x, std::size_t nB, std::size_t nb, const f
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-bool haveAvx2Fma() {
-  static const bool yes = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  }();
-  return yes;
-}
-
 __attribute__((target("avx2,fma"))) inline float sumLanes(__m256 v) {
   const __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
   const __m128 h = _mm_add_ps(s, _mm_movehl_ps(s, s));
@@ -102,6 +94,18 @@ __attribute__((target("avx2,fma"))) void projectScalarMatrixAvx2(const float* x,
 
 }  // namespace
 
+bool cpuHasAvx2Fma() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const bool yes = [] {
+    __builtin_cpu_init();  // safe even before libgcc's own constructor ran
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }();
+  return yes;
+#else
+  return false;
+#endif
+}
+
 AlignedFloats alignedZeros(std::size_t n) {
   const std::size_t bytes = std::max<std::size_t>(32, (n * sizeof(float) + 31) & ~std::size_t(31));
   float* p = static_cast<float*>(std::aligned_alloc(32, bytes));
@@ -138,7 +142,7 @@ ClusterLight projectClusters(const CompressedTransfer& t, const PreparedLight& l
             for (std::size_t c = 0; c < 3; ++c) o[c] += x[i * C + (C == 1 ? 0 : c)] * L[3 * i + c];
         } else if (C == 1) {
 #if defined(__x86_64__) && defined(__GNUC__)
-          if (haveAvx2Fma())
+          if (cpuHasAvx2Fma())
             projectScalarMatrixAvx2(x, nB, nb, planes.data(), pad, o);
           else
 #endif

@@ -89,14 +89,6 @@ void diffusePortable(const DiffuseFrame& f, std::size_t begin, std::size_t end) 
 }
 
 #if defined(PRT_COMPRESSED_AVX2)
-bool haveAvx2Fma() {
-  static const bool yes = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  }();
-  return yes;
-}
-
 // (r, g, b, 0) of one vertex, before the albedo.
 [[gnu::always_inline]] inline __attribute__((target("avx2,fma"))) __m128 vertexSum(
     const DiffuseFrame& f, std::size_t v, __m256i pairIndex) {
@@ -185,7 +177,7 @@ constexpr std::size_t kStreamOutputBytes = std::size_t(4) << 20;
 
 bool compressedSimdAvailable() {
 #if defined(PRT_COMPRESSED_AVX2)
-  return haveAvx2Fma();
+  return cpuHasAvx2Fma();
 #else
   return false;
 #endif
@@ -235,7 +227,7 @@ void relightCompressed(const CompressedTransfer& t, const ClusterLight& p,
   using RangeFn = void (*)(const DiffuseFrame&, std::size_t, std::size_t);
   RangeFn fn = &diffusePortable;
 #if defined(PRT_COMPRESSED_AVX2)
-  if (kernel == CompressedKernel::Auto && haveAvx2Fma())
+  if (kernel == CompressedKernel::Auto && cpuHasAvx2Fma())
     fn = f.stream ? &diffuseAvx2<true> : &diffuseAvx2<false>;
 #else
   (void)kernel;

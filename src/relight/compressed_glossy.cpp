@@ -90,14 +90,6 @@ void glossyPortable(const GlossyFrame& f, std::size_t b, std::size_t e) {
 }
 
 #if defined(PRT_COMPRESSED_GLOSSY_AVX2)
-bool haveAvx2Fma() {
-  static const bool yes = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  }();
-  return yes;
-}
-
 __attribute__((target("avx2,fma"))) inline float horizontalSum(__m256 x) {
   const __m128 s = _mm_add_ps(_mm256_castps256_ps128(x), _mm256_extractf128_ps(x, 1));
   const __m128 h = _mm_add_ps(s, _mm_movehl_ps(s, s));
@@ -232,7 +224,8 @@ GlossyRangeFn pickGlossyAvx2(int bands) {
   static constexpr GlossyRangeFn table[] = {&glossyAvx2<1>, &glossyAvx2<2>, &glossyAvx2<3>,
                                             &glossyAvx2<4>, &glossyAvx2<5>, &glossyAvx2<6>,
                                             &glossyAvx2<7>, &glossyAvx2<8>, &glossyAvx2<9>};
-  return bands >= 1 && bands <= int(std::size(table)) && haveAvx2Fma() ? table[bands - 1] : nullptr;
+  return bands >= 1 && bands <= int(std::size(table)) && cpuHasAvx2Fma() ? table[bands - 1]
+                                                                         : nullptr;
 }
 #endif
 

@@ -16,6 +16,9 @@ namespace prt::relight {
 void checkCompressedShapes(const CompressedTransfer& t, const PreparedLight& light,
                            std::size_t outSize, std::size_t albedoSize);
 
+/// Whether this CPU runs AVX2 and FMA (the compressed kernels' SIMD paths), checked once.
+bool cpuHasAvx2Fma();
+
 struct AlignedFree {
   void operator()(float* p) const { std::free(p); }
 };
