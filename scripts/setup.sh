@@ -7,7 +7,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config git
-  libembree-dev libtbb-dev libeigen3-dev
+  libembree-dev libtbb-dev libeigen3-dev libspectra-dev
   libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libopenexr-dev zlib1g-dev
   libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -5,6 +5,7 @@
 // vectors; all sums over rows run in row order inside fixed chunks so the result does not depend
 // on the thread count.
 
+#include <Spectra/SymEigsSolver.h>
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -79,6 +80,59 @@ std::vector<std::size_t> seedCentres(const float* x, std::size_t n, std::size_t 
 
 /// Per cluster: mean and N orthonormal principal directions of the member rows (double
 /// arithmetic, members in row order). Directions beyond the cluster's rank are zero.
+/// The symmetric operator of a cluster's PCA applied without forming the matrix: with Xc the
+/// m × D mean-centred rows, y = Xcᵀ(Xc x) (the D × D covariance, up to a factor) or, for the
+/// Gram ("snapshot") form, y = Xc(Xcᵀ x) (m × m). 4mD flops per product, against the mD² (or
+/// m²D) of forming the matrix — at 9 bands' matrices (D = 6561) forming it is out of reach.
+/// The interface is Spectra's (Scalar, rows, cols, perform_op).
+class CentredProductOp {
+ public:
+  using Scalar = double;
+  CentredProductOp(const MatrixXdR& xc, bool gram) : xc_(xc), gram_(gram) {
+    tmp_.resize(gram ? xc.cols() : xc.rows());
+  }
+  Eigen::Index rows() const { return gram_ ? xc_.rows() : xc_.cols(); }
+  Eigen::Index cols() const { return rows(); }
+  void perform_op(const double* in, double* out) const {
+    const Eigen::Map<const Eigen::VectorXd> x(in, rows());
+    Eigen::Map<Eigen::VectorXd> y(out, rows());
+    if (gram_) {
+      tmp_.noalias() = xc_.transpose() * x;
+      y.noalias() = xc_ * tmp_;
+    } else {
+      tmp_.noalias() = xc_ * x;
+      y.noalias() = xc_.transpose() * tmp_;
+    }
+  }
+
+ private:
+  const MatrixXdR& xc_;
+  bool gram_;
+  mutable Eigen::VectorXd tmp_;
+};
+
+/// Operators of this order or smaller are solved whole (Eigen's SelfAdjointEigenSolver, O(n³)
+/// but with no iteration to converge); larger ones by Lanczos for the top N only.
+constexpr Eigen::Index kDenseEigenMax = 128;
+
+/// The top `count` eigenpairs (eigenvalues descending, eigenvectors as columns) of the
+/// operator, by Spectra's implicitly restarted Lanczos (SymEigsSolver; its starting vector is
+/// a fixed-seed pseudo-random one, so the result is deterministic). Returns false when it does
+/// not converge (the caller then solves the whole matrix).
+bool topEigenpairs(CentredProductOp& op, int count, Eigen::VectorXd& values,
+                   Eigen::MatrixXd& vectors) {
+  const Eigen::Index n = op.rows();
+  const Eigen::Index ncv =
+      std::min<Eigen::Index>(n, std::max<Eigen::Index>(2 * count + 1, count + 20));
+  Spectra::SymEigsSolver<CentredProductOp> eigs(op, count, ncv);
+  eigs.init();
+  eigs.compute(Spectra::SortRule::LargestAlge, 1000, 1e-10);
+  if (eigs.info() != Spectra::CompInfo::Successful) return false;
+  values = eigs.eigenvalues();
+  vectors = eigs.eigenvectors();
+  return true;
+}
+
 void fitClusters(const float* x, std::size_t n, std::size_t D, int K, int N,
                  const std::vector<std::uint32_t>& assign, std::vector<float>& means,
                  std::vector<float>& basis) {
@@ -107,6 +161,25 @@ void fitClusters(const float* x, std::size_t n, std::size_t D, int K, int N,
       for (std::size_t r = 0; r < m; ++r)
         for (std::size_t i = 0; i < D; ++i) xc(r, i) = x[mem[r] * D + i] - mean[i];
       float* bk = basis.data() + k * static_cast<std::size_t>(N) * D;
+      // Large operators: the top N by Lanczos, on the covariance (m ≥ D) or the Gram matrix.
+      const bool gram = m < D;
+      const Eigen::Index order = static_cast<Eigen::Index>(std::min(m, D));
+      if (order > kDenseEigenMax && N < order) {
+        CentredProductOp op(xc, gram);
+        Eigen::VectorXd values;
+        Eigen::MatrixXd vectors;
+        if (topEigenpairs(op, N, values, vectors)) {
+          const double top = std::max(values[0], 0.0);
+          for (int j = 0; j < N; ++j) {
+            if (!(values[j] > 1e-12 * top)) break;  // rank reached: the rest stay zero
+            Eigen::VectorXd v = vectors.col(j);
+            if (gram) v = xc.transpose() * v;  // B = Xcᵀu / |Xcᵀu|
+            v.normalize();
+            for (std::size_t i = 0; i < D; ++i) bk[j * D + i] = static_cast<float>(v[i]);
+          }
+          continue;
+        }
+      }
       if (m >= D) {
         // Covariance (unnormalised: the eigenvectors are the same) Cᵀ = Xcᵀ Xc, D × D.
         Eigen::MatrixXd cov = xc.transpose() * xc;

@@ -91,6 +91,36 @@ TEST(Cpca, OneClusterEqualsPcaBySvd) {
   }
 }
 
+TEST(Cpca, LanczosPathsEqualPcaBySvd) {
+  // Operators larger than 128 are solved for their top N only (Spectra's Lanczos): the D × D
+  // covariance when the cluster has at least D rows, else the m × m Gram matrix. D = 9²·3 = 243;
+  // 700 rows take the covariance path, 180 the Gram path (180 > 128 both ways).
+  for (std::size_t rows : {700, 180}) {
+    const TransferField f = clusteredField(TransferLayout::Vector, 9, 3, rows, 3, 8);
+    const std::size_t D = f.stride(), n = f.vertexCount;
+    ASSERT_EQ(D, 243u);
+    Eigen::MatrixXd X(n, D);
+    for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t i = 0; i < D; ++i) X(p, i) = f.vertex(p)[i];
+    X.rowwise() -= X.colwise().mean();
+    Eigen::BDCSVD<Eigen::MatrixXd> svd(X, Eigen::ComputeThinV);
+    const Eigen::VectorXd sigma = svd.singularValues();
+    for (int N : {1, 3, 8}) {
+      CpcaStats s;
+      const CompressedTransfer c = compressCpca(f, {1, N, 0, 30}, &s);
+      double expected = 0;
+      for (Eigen::Index i = N; i < sigma.size(); ++i) expected += sigma[i] * sigma[i];
+      EXPECT_NEAR(s.squaredError, expected, 1e-4 * expected) << rows << " rows, N = " << N;
+      if (N == 8) continue;  // beyond the rank-3 structure the noise directions are near-degenerate
+      Eigen::MatrixXd B(N, D);
+      for (int j = 0; j < N; ++j)
+        for (std::size_t i = 0; i < D; ++i) B(j, i) = c.basisVector(0, j)[i];
+      const Eigen::MatrixXd V = svd.matrixV().leftCols(N);
+      EXPECT_LT((B.transpose() * B - V * V.transpose()).norm(), 1e-4) << rows << " rows, N = " << N;
+    }
+  }
+}
+
 TEST(Cpca, ErrorNeverIncreasesWithBasisSize) {
   const TransferField f = clusteredField(TransferLayout::Vector, 4, 1, 1000, 6, 4);
   // K = 1: nested PCA subspaces, independent runs.
@@ -148,6 +178,16 @@ TEST(Cpca, BitIdenticalForAnyThreadCount) {
   EXPECT_EQ(a.weights, b.weights);
   EXPECT_EQ(a.means, b.means);
   EXPECT_EQ(a.basis, b.basis);
+  // The same where clusters are large enough for the Lanczos path (D = 243, ~500 rows each).
+  const TransferField big = clusteredField(TransferLayout::Vector, 9, 3, 2000, 4, 7);
+  auto runBig = [&](int threads) {
+    ThreadLimit limit(threads);
+    return compressCpca(big, {4, 5, 42, 30});
+  };
+  const CompressedTransfer c = runBig(1), d = runBig(4);
+  EXPECT_EQ(c.cluster, d.cluster);
+  EXPECT_EQ(c.weights, d.weights);
+  EXPECT_EQ(c.basis, d.basis);
   // And the seed matters.
   const CompressedTransfer other = compressCpca(f, {16, 3, 43, 0});
   const CompressedTransfer same = compressCpca(f, {16, 3, 42, 0});

@@ -16,7 +16,8 @@
 //   0. seed K clusters by k-means++ (Arthur & Vassilvitskii 2007) from a Pcg32 stream of `seed`;
 //   1. per cluster, mean and top-N eigenvectors of the covariance (D×D, SelfAdjointEigenSolver)
 //      or, when the cluster has fewer rows m than D, of the m×m Gram matrix (the "snapshot"
-//      trick: B = Xcᵀu / |Xcᵀu|);
+//      trick: B = Xcᵀu / |Xcᵀu|); above order 128 only the top N, by Lanczos (Spectra), with
+//      the matrix applied as products with the centred rows, never formed;
 //   2. reassign every row to the cluster whose mean + basis reconstructs it with least squared
 //      error |x − M_k|² − Σ_j (B_kj·(x − M_k))², keeping its cluster on ties;
 //   3. repeat until no row moves, a pass lowers the total error by less than `tolerance`

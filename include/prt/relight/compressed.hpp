@@ -37,10 +37,26 @@ void relightCompressed(const CompressedTransfer& transfer, const PreparedLight& 
 void relightCompressed(const CompressedTransfer& transfer, const ClusterLight& projected,
                        std::span<const Rgb> albedo, std::span<Rgb> out);
 
+/// Which implementation of a compressed-relighting kernel runs: the fastest this CPU supports
+/// (AVX2+FMA where present, picked at run time), or the portable one — for tests that compare
+/// the two and for measuring. Both equal relighting the reconstruction up to float rounding.
+enum class CompressedKernel { Auto, Portable };
+/// The diffuse kernel with an explicit implementation choice (layout:
+/// src/relight/compressed_diffuse.cpp).
+void relightCompressed(const CompressedTransfer& transfer, const ClusterLight& projected,
+                       std::span<const Rgb> albedo, std::span<Rgb> out, CompressedKernel kernel);
+/// Whether CompressedKernel::Auto picks a SIMD kernel on this CPU.
+bool compressedSimdAvailable();
+
 /// Glossy (matrix) kernel, as relightGlossy (glossy.hpp) on the reconstructed matrices.
 void relightCompressedGlossy(const CompressedTransfer& transfer, const PreparedLight& light,
                              const PreparedMaterial& material, const GlossyView& view,
                              std::span<const Rgb> albedo, std::span<Rgb> out);
+/// The same with an explicit implementation choice (layout: src/relight/compressed_glossy.cpp).
+void relightCompressedGlossy(const CompressedTransfer& transfer, const PreparedLight& light,
+                             const PreparedMaterial& material, const GlossyView& view,
+                             std::span<const Rgb> albedo, std::span<Rgb> out,
+                             CompressedKernel kernel);
 
 /// Convenience, as relight() and relightGlossy(): rotates the light by `rotation`, prepares it
 /// (and the material) and runs the kernel for the transfer's layout. For vectors the material's
