@@ -204,7 +204,7 @@ class SceneView {
   /// Matrix transfer: relights on the CPU into the renderer's radiance buffer when the light,
   /// eye, bands, material or transfer differ from the last time. When only the light changed
   /// (it turns under a still camera), from the matrices collapsed for this eye
-  /// (relight::viewTransfer, built on the first such frame): a vector relighting, 28× less work
+  /// (relight::viewTransfer, built on the first such frame): a vector relighting, 23× less work
   /// at 5 bands (docs/performance.md).
   void relightGlossy(const Scene& scene, const render::Camera& camera, const Mat3d& rotation);
   /// The packer's rotated light at `bands` in relight's (r, g, b) per coefficient layout.
