@@ -25,6 +25,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "material_option.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -100,8 +101,7 @@ void runReference(const ReferenceArgs& a) {
   checkWritable(a.output);
   const Mat3d rotation = parseRotation(a.rotate);
   const render::MisHeuristic mis = parseMis(a.mis);
-  std::optional<Material> material;
-  if (!a.material.empty()) material = parseMaterial(a.material);
+  if (!a.material.empty()) parseMaterial(a.material);  // a bad spec fails before the bake is read
   std::optional<Vec3f> eye;
   if (!a.eye.empty()) {
     const std::vector<double> e = parseNumberList(a.eye, "--eye");
@@ -120,12 +120,9 @@ void runReference(const ReferenceArgs& a) {
   rs.bounces = bt.settings.mode == TransferMode::Interreflected ? bt.settings.bounces : 0;
   // The bake stores its material (bake file version 2 keeps the whole spec); --material replaces
   // it, keeping the bake's kd unless it names its own.
-  rs.material = bt.settings.material;
-  if (material) {
-    const std::optional<Rgb> bakeKd = rs.material.diffuse;
-    rs.material = *material;
-    if (!rs.material.diffuse) rs.material.diffuse = bakeKd;
-  }
+  rs.material = materialOption(a.material, bt.settings, a.bake,
+                               "the reference follows --material at every bounce, the bake "
+                               "does not");
   // The default view: the eye of `prt render`'s default camera (its default --size 640x480).
   rs.eye = eye ? *eye : render::frameMesh(file.mesh, 640, 480).eye;
   rs.seed = a.seed;

@@ -16,6 +16,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "material_option.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -102,14 +103,9 @@ void run(const RenderOptions& o) {
   const BakedTransfer& baked = pickTransfer(bake, o.mode, o.bake, o.transfer);
   // The material: --material, else the one the bake stored.
   const Material material =
-      o.material.empty() ? baked.settings.material : parseMaterial(o.material);
-  if (!o.material.empty() && glossyBounces(baked.settings) &&
-      !(material.lobe == baked.settings.material.lobe &&
-        material.specular == baked.settings.material.specular))
-    warn(
-        fmt::format("{}: its bounces were baked off {}; --material changes the surface at each "
-                    "vertex, not the light the surfaces send each other (bake again for both)",
-                    o.bake, baked.settings.material.spec()));
+      materialOption(o.material, baked.settings, o.bake,
+                     "--material changes the surface at each vertex, not the light the surfaces "
+                     "send each other (bake again for both)");
   if (material.glossy() && !baked.field.isMatrix())
     warn(
         fmt::format("{}: the {} transfer is a vector (diffuse only); the material's glossy lobe "

@@ -14,6 +14,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "material_option.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -62,20 +63,13 @@ void runValidate(const ValidateArgs& a) {
   const BakedTransfer& bt = pickTransfer(file, a.mode, a.bake, a.transfer);
   // The material: the bake's, or --material (keeping the bake's kd unless it names one).
   BakeSettings settings = bt.settings;
-  if (!a.material.empty()) {
-    const std::optional<Rgb> bakeKd = settings.material.diffuse;
-    settings.material = parseMaterial(a.material);
-    if (!settings.material.diffuse) settings.material.diffuse = bakeKd;
-  }
+  settings.material = materialOption(a.material, bt.settings, a.bake,
+                                     "the reference's bounces follow --material, so the two "
+                                     "differ by more than error");
   if (settings.material.glossy() && !bt.field.isMatrix())
     warn(a.bake + ": the " + toString(bt.settings.mode) +
          " transfer is a vector (diffuse only); validating its diffuse part (the reference "
          "drops the lobe, and its bounces are diffuse too)");
-  if (!a.material.empty() && glossyBounces(bt.settings) &&
-      !(settings.material.lobe == bt.settings.material.lobe &&
-        settings.material.specular == bt.settings.material.specular))
-    warn(a.bake + ": its bounces were baked off " + bt.settings.material.spec() +
-         "; the reference's bounces follow --material, so the two differ by more than error");
   file.requireComplete(a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.field.bands);

@@ -23,6 +23,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "material_option.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -178,6 +179,7 @@ void writeWebViewer(const WebOptions& a) {
     throw Error("--background-width must be an even number of pixels in 8..8192");
   if (a.bands < 0 || a.bands > sh::kMaxBands)
     throw Error(fmt::format("--bands must be 1..{}", sh::kMaxBands));
+  if (!a.material.empty()) parseMaterial(a.material);
   const fs::path assets = findAssets();
   if (fs::exists(a.output) && !fs::is_directory(a.output))
     throw Error(a.output, "exists and is not a folder (-o names the folder to write)");
@@ -247,14 +249,18 @@ void writeWebViewer(const WebOptions& a) {
      << ", \"camera\": " << cameraJson << ", \"framing\": " << framingJson << "},\n";
   js << "\"bake\": {\"name\": " << jsonString(fs::path(a.bake).filename().string())
      << ", \"glb\": \"" << base64(glb.data(), glb.size()) << "\"},\n";
-  // Compressed glossy matrices: the bake's material as the page's shader takes it (kernels times
-  // the SH normalisation its basis leaves out, relight/glossy_shader.hpp), per mode.
+  // Compressed glossy matrices: the bake's material (or --material) as the page's shader takes it
+  // (kernels times the SH normalisation its basis leaves out, relight/glossy_shader.hpp), per
+  // mode.
   js << "\"glossy\": {";
   bool firstGlossy = true;
   for (const BakedTransfer& t : bake.transfers) {
     if (!t.field.isMatrix()) continue;
-    const relight::PreparedMaterial pm =
-        relight::prepareMaterial(t.settings.material, t.field.bands);
+    const Material material =
+        materialOption(a.material, t.settings, a.bake,
+                       "the page shades each vertex with --material, the bounced light keeps the "
+                       "bake's");
+    const relight::PreparedMaterial pm = relight::prepareMaterial(material, t.field.bands);
     const auto list = [](const std::array<float, 64>& k) {
       std::string out;
       for (std::size_t i = 0; i < k.size(); ++i)
@@ -262,7 +268,7 @@ void writeWebViewer(const WebOptions& a) {
       return out;
     };
     js << (firstGlossy ? "" : ", ") << jsonString(toString(t.settings.mode))
-       << ": {\"material\": " << jsonString(t.settings.material.spec()) << ", \"diffuse\": ["
+       << ": {\"material\": " << jsonString(material.spec()) << ", \"diffuse\": ["
        << list(relight::shaderKernel(pm.diffuse)) << "], \"lobe\": ["
        << list(relight::shaderKernel(pm.glossy)) << "], \"kd\": "
        << (pm.kd ? fmt::format("[{:.9g}, {:.9g}, {:.9g}]", pm.kd->x, pm.kd->y, pm.kd->z) : "null")
@@ -312,6 +318,9 @@ void addWebCommand(CLI::App& root) {
                   "Initial camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (as prt render; "
                   "default: framed)");
   cmd->add_option("--mode", args->mode, "Initial transfer mode");
+  cmd->add_option("--material", args->material,
+                  "Material for glossy (matrix) transfer instead of the bake's: lambert, "
+                  "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5 (kd left out: the bake's)");
   cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
   cmd->add_option("--exposure", args->exposure, "Initial exposure in stops");
   cmd->add_option("--tonemap", args->toneMap, "Initial tone map: aces, reinhard, clamp")

@@ -13,6 +13,7 @@ struct WebOptions {
   std::string rotate;             ///< initial light rotation "X,Y,Z" degrees
   std::string camera;             ///< initial camera, prt render's --camera syntax ("" = framed)
   std::string mode;               ///< initial transfer mode ("" = the richest)
+  std::string material;           ///< glossy matrices' material ("" = the bake's)
   std::string toneMap = "aces";
   float exposure = 0.0f;
   int bands = 0;  ///< initial band count (0 = the bake's)

@@ -340,6 +340,24 @@ TEST(Web, CompressedGlossyFirstFrameMatchesPrtRender) {
   const std::string json =
       runPage(path("page_g"), "screenshot&size=320x240&env=1&exposure=-1&rotate=20,70,0");
   EXPECT_GT(displayedRmse(unbase64(jsonField(json, "rgb")), path("d.png")), 2 * kMatch);
+  // Another lobe (prt web --material, as prt render --material): the page shades with it, and
+  // still matches prt render with the same material — which the bake's material does not.
+  const std::string ggx = "--material 'ggx?roughness=0.35&ks=1&kd=0.05'";
+  r = prt("-q web gc.glb --env builtin:studio --camera '" + cam + "' " + ggx + " -o page_m");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render gc.glb --light builtin:studio --rotate 20,70,0 --camera '" + cam +
+          "' --exposure -1 " + ggx + " --size 320x240 -o m.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string jm =
+      runPage(path("page_m"), "screenshot&size=320x240&env=0&exposure=-1&rotate=20,70,0");
+  ASSERT_NE(jm.find("\"ok\":true"), std::string::npos) << jm;
+  const double em = displayedRmse(unbase64(jsonField(jm, "rgb")), path("m.png"));
+  std::cout << "page vs prt render, --material ggx: RMSE " << em << "\n";
+  EXPECT_LT(em, kMatch);
+  r = prt("-q render gc.glb --light builtin:studio --rotate 20,70,0 --camera '" + cam +
+          "' --exposure -1 --size 320x240 -o b.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_GT(displayedRmse(unbase64(jsonField(jm, "rgb")), path("b.png")), 2 * kMatch);
 }
 
 TEST(Web, MeshWithoutAlbedoMatchesPrtRender) {
