@@ -4,8 +4,8 @@
 
 namespace prt::cli {
 
-Material materialOption(const std::string& spec, const BakeSettings& baked,
-                        const std::string& file, const std::string& consequence) {
+Material materialOption(const std::string& spec, const BakeSettings& baked, const std::string& file,
+                        const std::string& consequence) {
   if (spec.empty()) return baked.material;
   Material m = parseMaterial(spec);
   if (!m.diffuse) m.diffuse = baked.material.diffuse;

@@ -14,7 +14,7 @@ namespace prt::cli {
 /// an inter-reflected matrix bake's bounces were baked with (glossyBounces), warns, naming
 /// `file`: the light the surfaces send each other keeps the baked material, the surface at each
 /// vertex takes the new one. `consequence` ends that warning (what it means for this verb).
-Material materialOption(const std::string& spec, const BakeSettings& baked,
-                        const std::string& file, const std::string& consequence);
+Material materialOption(const std::string& spec, const BakeSettings& baked, const std::string& file,
+                        const std::string& consequence);
 
 }  // namespace prt::cli

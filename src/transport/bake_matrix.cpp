@@ -299,21 +299,27 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
           m.add(0.0);
           continue;
         }
-        m.add(2.0 * kPi * y00sq);
         const auto& tri = mesh.triangles[hits[j].triangle];
         const Vec3f p0 = mesh.positions[tri[0]];
         const Vec3f ng = cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
-        if (dot(ng, rays[j].dir) < 0.0f)
-          front[nf++] = j;
-        else
+        if (dot(ng, rays[j].dir) < 0.0f) {
+          front[nf++] = j;  // its sample of M_00 once its bounce column is known (below)
+        } else {
           back[nb++] = j;
+          m.add(2.0 * kPi * y00sq);
+        }
       }
       for (int q = 0; q < nf; ++q) {
         const int j = front[q];
         sh::eval(ctx.bands, rays[j].dir, ws.y.col(k++).data());
         const Hit& h = hits[j];
+        // Its sample of M_00's estimator: blocked (2π Y00²) less the bounce (2π Y00 z_0).
+        const auto addSample = [&](int col) {
+          m.add(2.0 * kPi * (y00sq - std::sqrt(y00sq) * ws.z[0](0, col)));
+        };
         if (ctx.glossy) {
-          glossyBounceColumn(ctx, h, rays[j].dir, ws, kz++);
+          glossyBounceColumn(ctx, h, rays[j].dir, ws, kz);
+          addSample(kz++);
           continue;
         }
         const auto& tri = mesh.triangles[h.triangle];
@@ -329,7 +335,7 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
           const int src = bChannels == 1 ? 0 : c;
           for (int i = 0; i < nc; ++i) zc[i] = rho[c] * ws.interp[i * bChannels + src];
         }
-        ++kz;
+        addSample(kz++);
       }
       for (int q = 0; q < nb; ++q) sh::eval(ctx.bands, rays[back[q]].dir, ws.y.col(k++).data());
     }
@@ -354,7 +360,8 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
     if (inter) ws.tmp += scale * ws.gtotal[c];
     write(ws.tmp, c);
   }
-  // M_00 = H_00 − mean(2π Y00² [blocked]) (+ the bounce, whose variance is not counted here).
+  // M_00 = H_00 − mean(2π Y00² [blocked] − 2π Y00 z_0 [front-face hit]): this pass's variance,
+  // bounce included (the lower orders' own noise reaches it through z and is not counted).
   return m.varianceOfMean(n);
 }
 
