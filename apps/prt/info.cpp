@@ -77,7 +77,8 @@ void describeBake(const std::string& path) {
           "{:.4e}; {} iterations, {:.2f} s\n",
           cs.relativeRms, cs.snrDb, cs.squaredError, cs.maxRowError, cs.iterations, cs.seconds);
     }
-    std::cout << fmt::format("    material {}\n", s.material.spec());
+    std::cout << fmt::format("    material {}{}\n", s.material.spec(),
+                             glossyBounces(s) ? " (the bounces follow its lobe)" : "");
     std::cout << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples,
                              s.bounces, s.seed, toString(s.sampling));
     if (s.material.diffuse)
