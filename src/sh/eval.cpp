@@ -32,9 +32,14 @@ template <int... B>
 constexpr std::array<EvalFn<float>, sizeof...(B)> makeTableF(std::integer_sequence<int, B...>) {
   return {&evalFloat<B + 1>...};
 }
+template <int B>
+void evalDouble(double x, double y, double z, double* out) {
+  evalFixed<B, double>(x, y, z, out);
+}
+
 template <int... B>
 constexpr std::array<EvalFn<double>, sizeof...(B)> makeTableD(std::integer_sequence<int, B...>) {
-  return {&evalFixed<B + 1, double>...};
+  return {&evalDouble<B + 1>...};
 }
 
 template <typename T>

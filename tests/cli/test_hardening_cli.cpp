@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -217,7 +218,12 @@ TEST_F(HardeningCli, ErrorsAreOneShortLine) {
   EXPECT_EQ(lines(big.err), 1u);
   EXPECT_LT(big.err.size(), 420u) << big.err.substr(0, 500);
   EXPECT_NE(big.err.find("huge.json"), std::string::npos) << big.err.substr(0, 500);
-  // Out of memory: a named activity, not "std::bad_alloc".
+  // Out of memory: a named activity, not "std::bad_alloc". (Under AddressSanitizer, whose shadow
+  // memory no `ulimit -v` can hold, the limit cannot be set: that part is left out there.)
+#if defined(__SANITIZE_ADDRESS__)
+  std::printf("out-of-memory case skipped: ulimit -v cannot hold AddressSanitizer's shadow\n");
+  return;
+#endif
   ASSERT_EQ(prt(std::string("-q bake ") + kSphere + " --mode shadowed --samples 8 -o b.glb").rc, 0);
   const Result oom =
       prt("-q render b.glb --size 16384x16384 --spp 1 -o out/x.exr", "ulimit -v 1500000; ");

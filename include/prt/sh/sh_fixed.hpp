@@ -63,11 +63,17 @@ constexpr PolyTables makePolyTables() {
 
 inline constexpr PolyTables kPoly = makePolyTables();
 
+// T goes by const reference through every function here (free for float and double once
+// inlined): with a SIMD lane type T (relight/compressed_glossy.cpp's eight floats) a caller
+// compiled for AVX2 and a copy of these templates compiled for the baseline disagree on how a
+// 32-byte value is passed (GCC's -Wpsabi note), which corrupts the arguments wherever the
+// compiler chooses not to inline (seen in the sanitizer build).
+
 // Column m = M of the triangle: N_l^M for l = M..B-1, multiplied by (c, s) = (x + i y)^M.
 template <int B, int M, typename T, typename O>
-inline void evalColumn(T z, T c, T s, O* out) {
+inline void evalColumn(const T& z, const T& c, const T& s, O* out) {
   T p2 = T(kPoly.diag[M]);
-  auto store = [&](int l, T p) {
+  auto store = [&](int l, const T& p) {
     if constexpr (M == 0) {
       out[l * (l + 1)] = O(p);
     } else {
@@ -90,7 +96,8 @@ inline void evalColumn(T z, T c, T s, O* out) {
 }
 
 template <int B, typename T, typename O, int... M>
-inline void evalColumns(T x, T y, T z, O* out, std::integer_sequence<int, M...>) {
+inline void evalColumns(const T& x, const T& y, const T& z, O* out,
+                        std::integer_sequence<int, M...>) {
   T c = T(1), s = T(0);
   // Left-to-right comma fold: column M, then advance (c, s) to (x + i y)^{M+1}.
   ((evalColumn<B, M>(z, c, s, out),
@@ -109,7 +116,7 @@ namespace prt::sh {
 /// All B² values at unit direction (x, y, z), for a compile-time band count B (1..kMaxBands),
 /// computed in T's precision.
 template <int B, typename T>
-inline void evalFixed(T x, T y, T z, T* out) {
+inline void evalFixed(const T& x, const T& y, const T& z, T* out) {
   static_assert(B >= 1 && B <= kMaxBands);
   detail::evalColumns<B>(x, y, z, out, std::make_integer_sequence<int, B>{});
 }
