@@ -458,9 +458,8 @@ TEST(Web, ShRotationMatchesLibrary) {
 TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
   PRT_REQUIRE_PAGE();
   std::string log;
-  // Chromium's virtual time (--virtual-time-budget) does not wait for Blob reads, so on a busy
-  // machine the DOM can be dumped before the page's drops finish reading their files: the page
-  // then reports nothing at all (never a wrong result). Such an empty run is retried, twice.
+  // The page hands its test files to the drop handler in memory (main.js, dropTest: Chromium's
+  // virtual time does not wait for Blob reads). An empty report would still be retried, twice.
   std::string json;
   for (int attempt = 0; attempt < 3 && json.empty(); ++attempt)
     json = runPage(webFolder(nullptr), "test=drop", &log);
