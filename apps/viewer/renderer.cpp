@@ -203,22 +203,43 @@ Renderer::~Renderer() {
   glDeleteVertexArrays(2, vaos);
 }
 
+namespace {
+
+/// (Re)fills texture buffer `texture` over `buffer` with RGBA32F texels.
+void uploadTextureBuffer(GLuint& buffer, GLuint& texture, std::span<const float> rgba,
+                         GLenum usage) {
+  if (!buffer) glGenBuffers(1, &buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+  // Orphan and refill: a previous frame may still be reading the old contents.
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(sizeof(float) * rgba.size()), rgba.data(), usage);
+  if (!texture) glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_BUFFER, texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+}
+
+static_assert(sizeof(Vec3f) == 3 * sizeof(float) && sizeof(Rgb) == 3 * sizeof(float));
+
+/// (Re)fills vertex buffer `buffer` with `count` 3-float values and points attribute `location`
+/// of the bound vertex array at it.
+void uploadVertexAttribute(GLuint& buffer, GLuint location, const void* data, std::size_t count,
+                           GLenum usage) {
+  if (!buffer) glGenBuffers(1, &buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sizeof(float) * 3 * count), data, usage);
+  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, sizeof(float) * 3, nullptr);
+  glEnableVertexAttribArray(location);
+}
+
+}  // namespace
+
 void Renderer::setMesh(const Mesh& mesh) {
   glBindVertexArray(vao_);
-  if (!positions_) glGenBuffers(1, &positions_);
-  glBindBuffer(GL_ARRAY_BUFFER, positions_);
-  glBufferData(GL_ARRAY_BUFFER, sizeof(Vec3f) * mesh.positions.size(), mesh.positions.data(),
-               GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
-  glEnableVertexAttribArray(0);
+  uploadVertexAttribute(positions_, 0, mesh.positions.data(), mesh.positions.size(),
+                        GL_STATIC_DRAW);
   hasAlbedo_ = mesh.albedo.size() == mesh.positions.size() && !mesh.albedo.empty();
   if (hasAlbedo_) {
-    if (!albedo_) glGenBuffers(1, &albedo_);
-    glBindBuffer(GL_ARRAY_BUFFER, albedo_);
-    glBufferData(GL_ARRAY_BUFFER, sizeof(Rgb) * mesh.albedo.size(), mesh.albedo.data(),
-                 GL_STATIC_DRAW);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Rgb), nullptr);
-    glEnableVertexAttribArray(1);
+    uploadVertexAttribute(albedo_, 1, mesh.albedo.data(), mesh.albedo.size(), GL_STATIC_DRAW);
   } else {
     // relight's rule: a single albedo applies to all vertices, none means white.
     const Rgb a = mesh.albedo.size() == 1 ? mesh.albedo[0] : Rgb(1.0f);
@@ -226,12 +247,7 @@ void Renderer::setMesh(const Mesh& mesh) {
     glVertexAttrib3f(1, a.x, a.y, a.z);
   }
   if (mesh.normals.size() == mesh.positions.size()) {
-    if (!normals_) glGenBuffers(1, &normals_);
-    glBindBuffer(GL_ARRAY_BUFFER, normals_);
-    glBufferData(GL_ARRAY_BUFFER, sizeof(Vec3f) * mesh.normals.size(), mesh.normals.data(),
-                 GL_STATIC_DRAW);
-    glVertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
-    glEnableVertexAttribArray(3);
+    uploadVertexAttribute(normals_, 3, mesh.normals.data(), mesh.normals.size(), GL_STATIC_DRAW);
   } else {
     glDisableVertexAttribArray(3);
     glVertexAttrib3f(3, 0.0f, 1.0f, 0.0f);
@@ -256,22 +272,6 @@ void Renderer::setDirectRadiance() {
   compressed_ = false;
 }
 
-namespace {
-
-/// (Re)fills texture buffer `texture` over `buffer` with RGBA32F texels.
-void uploadTextureBuffer(GLuint& buffer, GLuint& texture, std::span<const float> rgba,
-                         GLenum usage) {
-  if (!buffer) glGenBuffers(1, &buffer);
-  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
-  // Orphan and refill: a previous frame may still be reading the old contents.
-  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(sizeof(float) * rgba.size()), rgba.data(), usage);
-  if (!texture) glGenTextures(1, &texture);
-  glBindTexture(GL_TEXTURE_BUFFER, texture);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, buffer);
-  glBindBuffer(GL_TEXTURE_BUFFER, 0);
-}
-
-}  // namespace
 
 void Renderer::setCompressedTransfer(const CompressedTransfer& t) {
   const bool matrix = t.layout == TransferLayout::Matrix;
@@ -317,13 +317,7 @@ void Renderer::setGlossyTransfer(const TransferField& t) {
       const float* src = t.vertex(v) + std::size_t(i) * n;
       std::copy(src, src + n, packed.data() + (v * vertexTexels + std::size_t(i) * rowTexels) * 4);
     }
-  if (!transferBuffer_) glGenBuffers(1, &transferBuffer_);
-  glBindBuffer(GL_TEXTURE_BUFFER, transferBuffer_);
-  glBufferData(GL_TEXTURE_BUFFER, sizeof(float) * packed.size(), packed.data(), GL_STATIC_DRAW);
-  if (!transferTexture_) glGenTextures(1, &transferTexture_);
-  glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transferBuffer_);
-  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  uploadTextureBuffer(transferBuffer_, transferTexture_, packed, GL_STATIC_DRAW);
   glossyGpu_ = true;
   direct_ = compressed_ = false;
   transferBands_ = t.bands;
@@ -344,13 +338,8 @@ void Renderer::setGlossyMaterial(std::span<const float> diffuse, std::span<const
 void Renderer::setRadiance(std::span<const Rgb> radiance) {
   PRT_CHECK(radiance.size() == vertices_, "setRadiance needs one value per vertex");
   glBindVertexArray(vao_);
-  if (!radiance_) glGenBuffers(1, &radiance_);
-  glBindBuffer(GL_ARRAY_BUFFER, radiance_);
   // Orphan and refill: the previous frame may still be reading the old contents.
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sizeof(Rgb) * radiance.size()), radiance.data(),
-               GL_STREAM_DRAW);
-  glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(Rgb), nullptr);
-  glEnableVertexAttribArray(2);
+  uploadVertexAttribute(radiance_, 2, radiance.data(), radiance.size(), GL_STREAM_DRAW);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   hasRadiance_ = true;
@@ -377,13 +366,7 @@ void Renderer::setTransfer(const TransferField& t) {
     else
       for (int i = 0; i < n; ++i) std::copy(src + 3 * i, src + 3 * i + 3, dst + 4 * i);
   }
-  if (!transferBuffer_) glGenBuffers(1, &transferBuffer_);
-  glBindBuffer(GL_TEXTURE_BUFFER, transferBuffer_);
-  glBufferData(GL_TEXTURE_BUFFER, sizeof(float) * packed.size(), packed.data(), GL_STATIC_DRAW);
-  if (!transferTexture_) glGenTextures(1, &transferTexture_);
-  glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transferBuffer_);
-  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  uploadTextureBuffer(transferBuffer_, transferTexture_, packed, GL_STATIC_DRAW);
   direct_ = compressed_ = false;
   transferBands_ = t.bands;
   transferChannels_ = t.channels;
