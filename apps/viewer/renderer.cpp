@@ -272,7 +272,6 @@ void Renderer::setDirectRadiance() {
   compressed_ = false;
 }
 
-
 void Renderer::setCompressedTransfer(const CompressedTransfer& t) {
   const bool matrix = t.layout == TransferLayout::Matrix;
   if (t.bands < 1 || t.bands > (matrix ? kMaxGpuGlossyBands : kMaxViewerBands))

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "common/random_data.hpp"
 #include "prt/compress/cpca.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/sampling.hpp"
@@ -20,20 +21,8 @@
 namespace prt {
 namespace {
 
-TransferField randomField(TransferLayout layout, int bands, int channels, std::size_t rows,
-                          std::uint64_t seed) {
-  TransferField f = TransferField::zeros(layout, bands, channels, rows);
-  Pcg32 rng(seed);
-  for (float& x : f.data) x = rng.uniform() - 0.3f;
-  return f;
-}
-
-sh::RgbSh randomLight(int bands, std::uint64_t seed) {
-  sh::RgbSh l(bands);
-  Pcg32 rng(seed);
-  for (Rgb& c : l.c) c = Rgb(rng.uniform(), rng.uniform(), rng.uniform());
-  return l;
-}
+using testdata::randomField;
+using testdata::randomLight;
 
 TEST(ClusterTable, VertexTexelsHoldIdAndWeightsInTheirSlots) {
   for (int N : {0, 3, 4, 7}) {

@@ -15,6 +15,7 @@
 #include <numeric>
 #include <vector>
 
+#include "common/random_data.hpp"
 #include "prt/compress/cpca.hpp"
 #include "prt/core/sampling.hpp"
 #include "prt/relight/compressed.hpp"
@@ -23,6 +24,8 @@
 
 namespace prt {
 namespace {
+
+using testdata::randomLight;
 
 CompressedTransfer randomCompressed(int bands, int channels, std::size_t rows, int K, int N,
                                     std::uint64_t seed,
@@ -44,13 +47,6 @@ CompressedTransfer randomCompressed(int bands, int channels, std::size_t rows, i
   c.basis.resize(K * N * c.stride());
   for (float& b : c.basis) b = rng.uniform() - 0.5f;
   return c;
-}
-
-sh::RgbSh randomLight(int bands, std::uint64_t seed) {
-  sh::RgbSh l(bands);
-  Pcg32 rng(seed);
-  for (Rgb& c : l.c) c = Rgb(rng.uniform(), rng.uniform(), rng.uniform());
-  return l;
 }
 
 // max |a − b| over all values, relative to max |b|.
