@@ -59,4 +59,34 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
+/// One scratch folder for a whole test program, for fixtures its tests share:
+/// <tmp>/prt_test_<program>_<pid>, created empty on first use (the first call's `program`
+/// names it). Remove it at the end with `registerProgramScratchCleanup()`.
+inline const std::filesystem::path& programScratch(const std::string& program) {
+  static const std::filesystem::path dir = [&program] {
+    std::filesystem::path d = std::filesystem::temp_directory_path() /
+                              ("prt_test_" + program + "_" + std::to_string(::getpid()));
+    std::error_code ec;
+    std::filesystem::remove_all(d, ec);
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+/// Registers a gtest environment that removes programScratch's folder when the program's tests
+/// are done; call it from a namespace-scope initialiser (before RUN_ALL_TESTS). Returns true.
+inline bool registerProgramScratchCleanup(const std::string& program) {
+  struct Cleanup : ::testing::Environment {
+    std::string program;
+    explicit Cleanup(std::string p) : program(std::move(p)) {}
+    void TearDown() override {
+      std::error_code ec;
+      std::filesystem::remove_all(programScratch(program), ec);
+    }
+  };
+  ::testing::AddGlobalTestEnvironment(new Cleanup(program));
+  return true;
+}
+
 }  // namespace prt::testing

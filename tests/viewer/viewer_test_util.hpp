@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli/cli_harness.hpp"
+#include "common/scratch.hpp"
 #include "context.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
@@ -28,26 +29,11 @@ namespace fs = std::filesystem;
 using prt::testing::Result;
 using prt::testing::slurp;
 
-/// A per-program scratch folder holding the fixtures below.
+/// A per-program scratch folder holding the fixtures below, removed when the tests are done.
 inline const fs::path& scratch() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("prt_test_viewer_" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
+  return prt::testing::programScratch("viewer");
 }
-
-/// Removes the scratch folder when the program's tests are done.
-struct ScratchCleanup : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(scratch(), ec);
-  }
-};
-inline const bool kScratchCleanupRegistered =
-    (::testing::AddGlobalTestEnvironment(new ScratchCleanup), true);
+inline const bool kScratchCleanupRegistered = prt::testing::registerProgramScratchCleanup("viewer");
 
 /// Runs `[prefix] prt ARGS` in the scratch folder.
 inline Result prt(const std::string& args, const std::string& prefix = "") {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "cli/cli_harness.hpp"
+#include "common/scratch.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/sh/rotate.hpp"
@@ -34,22 +35,9 @@ namespace fs = std::filesystem;
 using prt::testing::Result;
 
 const fs::path& scratch() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("prt_test_web_" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
+  return prt::testing::programScratch("web");
 }
-
-struct ScratchCleanup : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(scratch(), ec);
-  }
-};
-const bool kCleanup = (::testing::AddGlobalTestEnvironment(new ScratchCleanup), true);
+const bool kCleanup = prt::testing::registerProgramScratchCleanup("web");
 
 Result prt(const std::string& args) {
   return prt::testing::runPrt(scratch(), args);
