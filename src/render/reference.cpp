@@ -265,6 +265,25 @@ double uniform53(Pcg32& rng) {
 
 }  // namespace
 
+// One environment direction w (world, the environment turned by the rotation) with its density
+// pe and radiance le, from three draws of rng; false where the environment has no light.
+bool ReferenceIntegrator::sampleEnvironment(Pcg32& rng, Vec3f& w, double& pe, Rgb& le) const {
+  const double u0 = uniform53(rng);
+  const float u1 = rng.uniform(), u2 = rng.uniform();
+  Vec3f d;
+  if (!sampler_.sample(u0, u1, u2, d, pe, le)) return false;
+  w = Vec3f(settings_.rotation * Vec3d(d));
+  return true;
+}
+
+// True when nothing blocks the ray (origin, w); unshadowed mode never looks (and casts no ray).
+bool ReferenceIntegrator::unblocked(const Vec3f& origin, const Vec3f& w,
+                                    std::uint64_t& rays) const {
+  if (settings_.mode == TransferMode::Unshadowed) return true;
+  ++rays;
+  return !occluder_.occluded(Ray{origin, w, 0.0f, std::numeric_limits<float>::infinity()});
+}
+
 // The light a hit h of the ray in direction w sends back along it, 0 at a back face. At a front
 // face, one sample of what its surface reflects with one bounce less: ρ(h) ⊙ (1/π) ∫ L_in(h, ω')
 // max(n_h·ω', 0) dω' for a diffuse material; for a glossy one also ks ⊙ ∫ L_in(h, ω') G(R·ω') dω'
@@ -313,25 +332,15 @@ Rgb ReferenceIntegrator::incoming(const Vec3f& p, const Vec3f& n, int bouncesLef
 
   // (a) Environment sample.
   {
-    const double u0 = uniform53(rng);
-    const float u1 = rng.uniform(), u2 = rng.uniform();
-    Vec3f d;
+    Vec3f w;
     double pe;
     Rgb le;
-    if (sampler_.sample(u0, u1, u2, d, pe, le)) {
-      const Vec3f w = Vec3f(settings_.rotation * Vec3d(d));
+    if (sampleEnvironment(rng, w, pe, le)) {
       const double c = dot(n, w);
-      if (c > 0) {
-        bool blocked = false;
-        if (shadowed) {
-          ++rays;
-          blocked = occluder_.occluded(Ray{origin, w, 0.0f, inf});
-        }
-        if (!blocked) {
-          const double pc = c / kPi;
-          const double f = misWeight(pe, pc) * (c / kPi) / pe;
-          result += le * static_cast<float>(f);
-        }
+      if (c > 0 && unblocked(origin, w, rays)) {
+        const double pc = c / kPi;
+        const double f = misWeight(pe, pc) * (c / kPi) / pe;
+        result += le * static_cast<float>(f);
       }
     }
   }
@@ -440,22 +449,13 @@ Rgb ReferenceIntegrator::glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, 
 
   // (a) Environment sample: L V G / p_env, weighted by w(p_env; p_lobe = G, p_horizon).
   {
-    const double u0 = uniform53(rng);
-    const float u1 = rng.uniform(), u2 = rng.uniform();
-    Vec3f d;
+    Vec3f w;
     double pe;
     Rgb le;
-    if (sampler_.sample(u0, u1, u2, d, pe, le)) {
-      const Vec3f w = Vec3f(settings_.rotation * Vec3d(d));
+    if (sampleEnvironment(rng, w, pe, le)) {
       const double g = lobe.value(dot(Vec3d(r), Vec3d(w)));
-      if (dot(n, w) > 0 && g > 0) {
-        bool blocked = false;
-        if (shadowed) {
-          ++rays;
-          blocked = occluder_.occluded(Ray{origin, w, 0.0f, inf});
-        }
-        if (!blocked) result += le * static_cast<float>(misWeight(pe, g, horizonPdf(w)) * g / pe);
-      }
+      if (dot(n, w) > 0 && g > 0 && unblocked(origin, w, rays))
+        result += le * static_cast<float>(misWeight(pe, g, horizonPdf(w)) * g / pe);
     }
   }
 

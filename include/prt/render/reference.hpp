@@ -190,6 +190,8 @@ class ReferenceIntegrator {
                std::uint64_t& rays) const;
   Rgb glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, int bounces, Pcg32& rng,
              std::uint64_t& rays) const;
+  bool sampleEnvironment(Pcg32& rng, Vec3f& w, double& pe, Rgb& le) const;
+  bool unblocked(const Vec3f& origin, const Vec3f& w, std::uint64_t& rays) const;
   Rgb frontHit(const Hit& h, const Vec3f& w, int bouncesLeft, Pcg32& rng,
                std::uint64_t& rays) const;
   /// The heuristic's weight of strategy a among those with densities pa, pb, pc.
