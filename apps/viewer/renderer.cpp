@@ -469,6 +469,20 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   }
 
   // (b) the relit mesh.
+  // The light block, timed (the per-frame upload the stats report), and a mesh program's state.
+  const auto uploadLight = [&] {
+    const auto t0 = std::chrono::steady_clock::now();
+    glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(f.light->bytes()), f.light->data());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, lightUbo_);
+    uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  const auto beginMesh = [&](GLuint program) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(program);
+    glUniformMatrix4fv(loc(program, "uViewProj"), 1, GL_FALSE, viewProj);
+  };
   if (triangles_ > 0 && compressed_) {
     const bool matrix = compressedCoeffs_ > 1;
     PRT_CHECK(!f.clusterTable.empty(), "compressed transfer needs FrameParams.clusterTable");
@@ -477,10 +491,7 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     clusterTableBytes_ = sizeof(float) * f.clusterTable.size();
     uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const GLuint p = matrix ? compressedGlossyProgram_ : compressedProgram_;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glUseProgram(p);
-    glUniformMatrix4fv(loc(p, "uViewProj"), 1, GL_FALSE, viewProj);
+    beginMesh(p);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, weightsTexture_);
     glUniform1i(loc(p, "uWeights"), 1);
@@ -500,17 +511,10 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     glDisable(GL_DEPTH_TEST);
     glActiveTexture(GL_TEXTURE0);
   } else if (triangles_ > 0 && glossyGpu_) {
-    const auto t0 = std::chrono::steady_clock::now();
-    glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
-    glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(f.light->bytes()), f.light->data());
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, lightUbo_);
-    uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    uploadLight();
     const int b = std::min({f.light->bands(), transferBands_, kMaxGpuGlossyBands});
     const GLuint p = glossyProgram_;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glUseProgram(p);
-    glUniformMatrix4fv(loc(p, "uViewProj"), 1, GL_FALSE, viewProj);
+    beginMesh(p);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
     glUniform1i(loc(p, "uTransfer"), 1);
@@ -522,16 +526,9 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
     glDisable(GL_DEPTH_TEST);
   } else if (triangles_ > 0 && (direct_ ? hasRadiance_ : transferTexture_ != 0)) {
-    const auto t0 = std::chrono::steady_clock::now();
-    glBindBuffer(GL_UNIFORM_BUFFER, lightUbo_);
-    glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(f.light->bytes()), f.light->data());
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, lightUbo_);
-    uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    uploadLight();
     const int b = std::min(f.light->bands(), transferBands_);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glUseProgram(meshProgram_);
-    glUniformMatrix4fv(loc(meshProgram_, "uViewProj"), 1, GL_FALSE, viewProj);
+    beginMesh(meshProgram_);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
     glUniform1i(loc(meshProgram_, "uTransfer"), 1);
