@@ -285,10 +285,10 @@ ResolvedOutput resolveOutput(const std::string& path) {
   if (viaProc ? ::stat(path.c_str(), &st) != 0 : ::lstat(target.c_str(), &st) != 0) {
     if (viaProc) throw Error(path, "cannot be opened (" + why(errno) + ")");
     if (!target.has_filename()) throw Error(path, "names a folder; expected a file name");
-    return {OutputKind::File, t};  // not there yet (or its folder is missing: checkWritable)
+    return {OutputKind::File, t, link};  // not there yet (or its folder is missing: checkWritable)
   }
-  if (S_ISREG(st.st_mode)) return {viaProc ? OutputKind::Special : OutputKind::File, t};
-  if (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode)) return {OutputKind::Special, t};
+  if (S_ISREG(st.st_mode)) return {viaProc ? OutputKind::Special : OutputKind::File, t, link};
+  if (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode)) return {OutputKind::Special, t, link};
   if (S_ISDIR(st.st_mode))
     throw Error(path, link ? "links to the directory " + t : "is a directory");
   const std::string what = S_ISBLK(st.st_mode) ? "a block device" : "a socket";
@@ -310,7 +310,8 @@ void checkWritable(const std::string& path) {
       throw Error(path, "cannot be written (" + why(errno) + ")");
     return;
   }
-  const fs::path t(r.target);
+  // The folder the temporary goes in: the link target's, else the one the user named.
+  const fs::path t(r.viaLink ? r.target : path);
   const fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec))

@@ -40,6 +40,7 @@ enum class OutputKind {
 struct ResolvedOutput {
   OutputKind kind = OutputKind::File;
   std::string target;
+  bool viaLink = false;  ///< reached through a symbolic link
 };
 
 /// Resolves `path` by the policy above; throws Error naming it for a folder, a block device, a
