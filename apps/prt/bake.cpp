@@ -102,7 +102,8 @@ void runBake(const BakeArgs& a) {
   Material material;
   if (!a.material.empty()) material = parseMaterial(a.material);
   if (albedo) material.diffuse = albedo;
-  if (fileExtension(a.output) != "glb") throw Error(a.output + ": the bake file must end in .glb");
+  if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
+    throw Error(a.output + ": the bake file must end in .glb");
   std::vector<NamedPath> inputs;
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});
   checkOutputs({{"-o", a.output}}, inputs);

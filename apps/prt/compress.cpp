@@ -111,8 +111,10 @@ std::vector<int> parseClusterList(const std::string& s, std::size_t rows) {
 
 void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   const bool sweeping = !a.sweep.empty();
+  // The tables go to standard output, unless the bake does (-o -).
+  std::ostream& table = isStandardOutput(a.output) ? std::cerr : std::cout;
   if (a.output.empty() && !sweeping) throw Error("prt compress needs -o OUTPUT.glb (or --sweep)");
-  if (!a.output.empty() && fileExtension(a.output) != "glb")
+  if (!a.output.empty() && fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
     throw Error(a.output + ": the bake file must end in .glb");
   if (sweeping && fileExtension(a.sweep) != "png")
     throw Error(a.sweep + ": --sweep writes a PNG plot (name it .png)");
@@ -152,15 +154,15 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
     const auto pts =
         sweepCpca(field, ks, maxN, opt, sweeping ? 0 : a.targetError, progressBar("sweeping"));
     if (sweeping) {
-      std::cout << fmt::format("{:>7} {:>4} {:>12} {:>10} {:>9} {:>9} {:>8}  {}\n", "K", "N",
-                               "bytes/vertex", "rel. RMS", "SNR dB", "ratio", "seconds", "colour");
+      table << fmt::format("{:>7} {:>4} {:>12} {:>10} {:>9} {:>9} {:>8}  {}\n", "K", "N",
+                           "bytes/vertex", "rel. RMS", "SNR dB", "ratio", "seconds", "colour");
       int series = -1, lastK = -1;
       for (const auto& p : pts) {
         if (p.clusters != lastK) ++series, lastK = p.clusters;
-        std::cout << fmt::format("{:>7} {:>4} {:>12.2f} {:>10.3e} {:>9.2f} {:>9.2f} {:>8.2f}  {}\n",
-                                 p.clusters, p.basisCount, static_cast<double>(p.bytes) / rows,
-                                 p.stats.relativeRms, p.stats.snrDb, p.stats.compressionRatio,
-                                 p.stats.seconds, kColourNames[series % 8]);
+        table << fmt::format("{:>7} {:>4} {:>12.2f} {:>10.3e} {:>9.2f} {:>9.2f} {:>8.2f}  {}\n",
+                             p.clusters, p.basisCount, static_cast<double>(p.bytes) / rows,
+                             p.stats.relativeRms, p.stats.snrDb, p.stats.compressionRatio,
+                             p.stats.seconds, kColourNames[series % 8]);
       }
       image::WriteOptions wo;
       wo.toneMap = image::ToneMap::Clamp;
@@ -194,7 +196,7 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   CpcaStats stats;
   Transfer c = chain ? compressCpcaChain(field, opt, stats, progressBar("compressing"))
                      : compressCpca(field, opt, &stats, nullptr, progressBar("compressing"));
-  std::cout << fmt::format(
+  table << fmt::format(
       "K {} N {}: relative RMS error {:.4e}, SNR {:.2f} dB, squared error {:.6e}, max vertex "
       "error {:.4e}, {} -> {} bytes (ratio {:.2f}), {} iterations, {:.2f} s\n",
       opt.clusters, opt.basisCount, stats.relativeRms, stats.snrDb, stats.squaredError,

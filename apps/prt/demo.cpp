@@ -407,8 +407,8 @@ void runDemo(const DemoArgs& a) {
     std::vector<NamedPath> inputs = {{"--mesh", a.mesh == "auto" ? "" : a.mesh}};
     for (const std::string& e : envSpecs) inputs.push_back({"--env", e});
     checkOutputFolder({"-o", a.output}, inputs);
-    checkOutputFolder({"-o", a.output + ".partial"}, inputs);
   }
+  checkFolderReplaceable(a.output, "prt demo");
 
   // Inputs first: a bad mesh or environment fails before anything is written.
   const Scene scene = makeScene(a.mesh);
@@ -422,26 +422,16 @@ void runDemo(const DemoArgs& a) {
                          e.stats[k].nonFinitePixels, e.stats[k].negativePixels));
   }
 
-  // The output folder is built beside its final name and renamed into place at the end, so a
-  // failed or cancelled demo leaves no half-made folder (an earlier complete one is replaced
-  // only once the new one is complete).
+  // The output folder is built beside its final name and renamed into place at the end
+  // (FolderOutput), so a failed or cancelled demo leaves no half-made folder (an earlier complete
+  // one is replaced only once the new one is complete).
   const fs::path out = fs::absolute(a.output);
-  const fs::path tmp = out.parent_path() / (out.filename().string() + ".partial");
+  FolderOutput folder(a.output, "prt demo");
+  const fs::path tmp = folder.path();
   std::error_code ec;
-  if (fs::exists(out, ec) && !fs::exists(out / "index.html", ec))
-    throw Error(out.string(), "exists and is not a prt demo folder; not replacing it");
-  fs::remove_all(tmp, ec);
   if (!fs::create_directories(tmp / "img", ec) || !fs::create_directories(tmp / "lights", ec) ||
       !fs::create_directories(tmp / "validation", ec))
     throw Error(out.string(), "cannot create the output folder (" + ec.message() + ")");
-  struct Cleanup {
-    fs::path dir;
-    bool keep = false;
-    ~Cleanup() {
-      std::error_code e;
-      if (!keep) fs::remove_all(dir, e);
-    }
-  } cleanup{tmp};
   const auto file = [&](const std::string& rel) { return (tmp / rel).string(); };
 
   info(fmt::format("demo: {} ({} vertices, {} triangles)", scene.description,
@@ -641,13 +631,7 @@ void runDemo(const DemoArgs& a) {
              glossy ? &*glossy : nullptr);
 
   // Into place: replace an earlier demo folder only now that the new one is complete.
-  if (fs::exists(out)) {
-    fs::remove_all(out, ec);
-    if (ec) throw Error(out.string(), "cannot replace the earlier demo (" + ec.message() + ")");
-  }
-  fs::rename(tmp, out, ec);
-  if (ec) throw Error(out.string(), "cannot move the demo into place (" + ec.message() + ")");
-  cleanup.keep = true;
+  folder.commit();
   info(
       fmt::format("demo: finished in {:.0f} s; open {}", since(t0), (out / "index.html").string()));
 }

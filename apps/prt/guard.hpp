@@ -5,7 +5,9 @@
 //  * numeric options are range-checked with one message shape ("--bands 0: must be 1..16"),
 //    non-finite values rejected, negative values for unsigned options refused before CLI11
 //    wraps them;
-//  * anything we echo is one short line (oneLine), whatever a file or an exception holds.
+//  * anything we echo is one short line (oneLine), whatever a file or an exception holds;
+//  * "-o -" (standard output, prt/core/file.hpp) is refused in one line by a verb whose output
+//    is not one stream (refuseStandardOutput).
 
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
 
 namespace prt::cli {
 
@@ -74,7 +77,8 @@ inline void checkOutputs(const std::vector<NamedPath>& outputs,
     const NamedPath& o = outputs[k];
     if (detail::isSpec(o.path)) continue;
     for (const NamedPath& in : inputs)
-      if (!detail::isSpec(in.path) && detail::sameFile(o.path, in.path))
+      if (!isStandardOutput(o.path) && !detail::isSpec(in.path) &&
+          detail::sameFile(o.path, in.path))
         throw Error(o.path,
                     o.option + " would overwrite the input " + in.path +
                         (in.option.empty() || in.option == "input" ? "" : " (" + in.option + ")") +
@@ -92,6 +96,13 @@ inline void checkOutputFolder(const NamedPath& folder, const std::vector<NamedPa
       throw Error(folder.path, folder.option +
                                    " folder would be replaced, and it holds the input " + in.path +
                                    "; choose another output folder");
+}
+
+/// For an output that cannot be one stream (a folder, several files): "-o -" refused in one
+/// line, "-o -: WHY; name a file".
+inline void refuseStandardOutput(const NamedPath& output, const std::string& why) {
+  if (isStandardOutput(output.path))
+    throw Error(output.option + " -: " + why + "; name a file instead of - (standard output)");
 }
 
 /// One short line: control characters (newlines, tabs, escapes) become spaces, runs of spaces

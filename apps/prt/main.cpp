@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "guard.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/version.hpp"
 
@@ -132,6 +133,10 @@ int main(int argc, char** argv) {
   oneValuePerOption(app);
 
   std::signal(SIGINT, onSigint);
+  // What the writers did besides writing (a stale temporary of a killed run removed): always
+  // said, as it touched the disk.
+  prt::setFileNoteHandler(
+      [](const std::string& line) { std::cerr << "prt: note: " << oneLine(line) << '\n'; });
   std::unique_ptr<prt::ThreadLimit> limit;
   app.parse_complete_callback([&] { limit = std::make_unique<prt::ThreadLimit>(g.threads); });
 

@@ -30,7 +30,8 @@ struct MergeArgs {
 
 void runMerge(const MergeArgs& a) {
   if (a.inputs.size() < 2) throw Error("prt merge needs at least two bake files");
-  if (fileExtension(a.output) != "glb") throw Error(a.output + ": the bake file must end in .glb");
+  if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
+    throw Error(a.output + ": the bake file must end in .glb");
   std::vector<NamedPath> inputs;
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});
   checkOutputs({{"-o", a.output}}, inputs);

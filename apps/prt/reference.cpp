@@ -96,7 +96,7 @@ std::string toBinary(const render::ReferenceResult& r) {
 
 void runReference(const ReferenceArgs& a) {
   if (a.samples < 1) throw Error("--samples must be at least 1");
-  const std::string ext = fileExtension(a.output);
+  const std::string ext = isStandardOutput(a.output) ? "json" : fileExtension(a.output);
   if (ext != "json" && ext != "bin") throw Error(a.output, "output must be .json or .bin");
   checkOutputs({{"-o", a.output}}, {{"input", a.bake}, {"--light", a.light}});
   checkWritable(a.output);
@@ -138,7 +138,7 @@ void runReference(const ReferenceArgs& a) {
         throw Error(a.light, "the radiance at vertex " + std::to_string(r.vertices[i]) +
                                  " is not finite (the environment is too bright for 32-bit "
                                  "floats); nothing written");
-  if (fileExtension(a.output) == "json")
+  if (ext == "json")
     writeFileAtomically(a.output, toJson(r, a, rs));
   else
     writeFileAtomically(a.output, toBinary(r));

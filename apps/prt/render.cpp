@@ -53,7 +53,7 @@ struct RenderOptions {
 
 void checkOutput(const std::string& path, const char* what) {
   const std::string ext = fileExtension(path);
-  if (ext != "png" && ext != "exr" && ext != "hdr")
+  if (ext != "png" && ext != "exr" && ext != "hdr" && !isStandardOutput(path))
     throw Error(path + ": " + what + " must be .png, .exr or .hdr");
   checkWritable(path);
 }
@@ -79,6 +79,8 @@ void run(const RenderOptions& o) {
   write.toneMap = image::parseToneMap(o.tonemap);
   write.exposureStops = o.exposure;
   if (o.turntable < 0) throw Error("--turntable must be a positive frame count");
+  if (o.turntable > 0)
+    refuseStandardOutput({"-o", o.output}, "--turntable writes numbered frames beside -o");
   checkOutput(o.output, "the output");
   if (!o.contactSheet.empty()) {
     if (o.turntable == 0) throw Error("--contact-sheet needs --turntable N");
@@ -133,6 +135,9 @@ void run(const RenderOptions& o) {
 
   const int frames = o.turntable > 0 ? o.turntable : 1;
   std::vector<image::Image> sheet;
+  // All or nothing: the frames and the contact sheet wait in temporaries until the last is made.
+  OutputBatch batch;
+  const char* did = o.turntable > 0 ? "rendered" : "wrote";
   for (int k = 0; k < frames; ++k) {
     // Turntable: the environment turns about +Y after the user's rotation.
     const Mat3d rotation = o.turntable > 0
@@ -161,13 +166,16 @@ void run(const RenderOptions& o) {
     const std::string path = o.turntable > 0 ? framePath(o.output, k) : o.output;
     image::writeImage(path, img, write);
     if (!o.contactSheet.empty()) sheet.push_back(std::move(img));
-    info(fmt::format("wrote {} ({}x{}, {} spp, {} bands, {} transfer, {})", path, frame.width,
+    info(fmt::format("{} {} ({}x{}, {} spp, {} bands, {} transfer, {})", did, path, frame.width,
                      frame.height, frame.spp, relit.bands, baked.describe(), material.spec()));
   }
-  if (!o.contactSheet.empty()) {
+  if (!o.contactSheet.empty())
     image::writeImage(o.contactSheet, render::contactSheet(sheet), write);
-    info("wrote " + o.contactSheet);
-  }
+  batch.commit();
+  if (o.turntable > 0)
+    info(fmt::format("wrote {} frames {}..{}{}", frames, framePath(o.output, 0),
+                     framePath(o.output, frames - 1),
+                     o.contactSheet.empty() ? "" : " and " + o.contactSheet));
 }
 
 }  // namespace

@@ -58,6 +58,7 @@ void runValidate(const ValidateArgs& a) {
       throw Error(a.image, "--image must be .png or .exr");
     checkWritable(a.image);
   }
+  refuseStandardOutput({"--json", a.json}, "the table is printed on standard output");
   if (!a.json.empty()) checkWritable(a.json);
   checkOutputs({{"--json", a.json}, {"--image", a.image}},
                {{"input", a.bake}, {"--light", a.light}});

@@ -23,6 +23,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "guard.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -176,8 +177,14 @@ void writeWebViewer(const WebOptions& a) {
     throw Error(fmt::format("--bands must be 1..{}", bands::kMaxLibrary));
   if (!a.material.empty()) parseMaterial(a.material);
   const fs::path assets = findAssets();
-  if (fs::exists(a.output) && !fs::is_directory(a.output))
-    throw Error(a.output, "exists and is not a folder (-o names the folder to write)");
+  // The folder is written as a whole (FolderOutput) and replaces only an empty folder or one
+  // prt web made; no input may lie inside it.
+  {
+    std::vector<NamedPath> inputs = {{"input", a.bake}};
+    for (const std::string& e : a.envs) inputs.push_back({"--env", e});
+    checkOutputFolder({"-o", a.output}, inputs);
+  }
+  checkFolderReplaceable(a.output, "prt web");
 
   // The bake: validated here (one clear line now rather than on the page), copied verbatim.
   const std::vector<unsigned char> glb = readFileBytes(a.bake);
@@ -288,12 +295,12 @@ void writeWebViewer(const WebOptions& a) {
   }
   js << "]};\n";
 
-  fs::create_directories(a.output);
   const fs::path out(a.output);
+  FolderOutput folder(a.output, "prt web");
   for (const char* f : {"index.html", "prt-web.js", "THIRD_PARTY_LICENSES.txt"})
-    if (fs::is_regular_file(assets / f))
-      writeFileAtomically((out / f).string(), readText(assets / f));
-  writeFileAtomically((out / "prt-data.js").string(), js.str());
+    if (fs::is_regular_file(assets / f)) folder.write(f, readText(assets / f));
+  folder.write("prt-data.js", js.str());
+  folder.commit();
   info(fmt::format("wrote {} (open {} in a browser; {} environment(s), {} bands)", a.output,
                    (out / "index.html").string(), envs.size(), bands));
 }

@@ -558,7 +558,7 @@ std::string exrBytes(const std::string& path, const Image& img) {
 }  // namespace
 
 void writeImage(const std::string& path, const Image& img, const WriteOptions& options) {
-  const std::string ext = fileExtension(path);
+  const std::string ext = isStandardOutput(path) ? "png" : fileExtension(path);
   if (img.empty()) throw Error(path, "refusing to write an empty image");
   if (ext == "png") {
     std::vector<std::uint8_t> bytes(img.size() * 3);

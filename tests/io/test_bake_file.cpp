@@ -518,8 +518,9 @@ TEST(BakeFile, TruncatedOrCorruptFilesThrowNeverCrash) {
       const BakeFile r = decodeBake(asBytes(bad), "bad.glb");
       for (const auto& t : r.transfers) {
         EXPECT_EQ(t.transfer.rows(), r.rows());
-        if (!t.transfer.compressed())
+        if (!t.transfer.compressed()) {
           EXPECT_EQ(t.transfer.values().size(), r.rows().count * t.transfer.stride());
+        }
       }
     } catch (const Error&) {
     }

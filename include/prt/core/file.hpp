@@ -1,18 +1,65 @@
 #pragma once
-// Writing outputs safely: everything goes to a temporary file beside the destination and is
-// renamed into place only when complete, so a failure never leaves a half-written result.
+// Reading inputs and writing outputs without ever destroying anything (docs/robustness.md,
+// "Writers that never destroy"). One policy for every output path, decided by resolveOutput:
+//
+//   "-"                          standard output, written once the whole output is made
+//   a regular file, or none yet  written to a temporary beside it, renamed into place when
+//                                complete (an existing file's permission bits are kept)
+//   a symbolic link (a chain)    followed to its final target, which is written as above (the
+//                                temporary beside the target), so the link stays a link
+//   a FIFO, a character device   opened and written directly once the whole output is made:
+//                                never replaced, never removed (/dev/null stays /dev/null)
+//   a link into /proc            the open file it names, written directly, appended to
+//   (/dev/stdout, /dev/fd/N)     (a shell's "> file" left it empty, ">> file" keeps it)
+//   a folder, a block device,    refused with an Error naming the path
+//   a socket
+//
+// Temporaries are named .NAME.prt-tmp-PID-RANDOM (partial folders .NAME.prt-partial-PID-RANDOM)
+// beside the target, so one killed mid-write is recognisably ours: the next write to the same
+// target removes those whose process no longer runs and reports each through the note handler.
+// Nothing else is ever removed: not another name, not a symbolic link, not a live process's.
 
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace prt {
 
-/// Calls write(stream) on a temporary file beside `path`, then renames it to `path`.
-/// On any exception the temporary is removed and the exception rethrown.
+/// What an output path names, and so how it is written.
+enum class OutputKind {
+  Stdout,   ///< "-": standard output
+  File,     ///< a regular file, or none yet: temporary beside it, then rename
+  Special,  ///< a FIFO, a character device, an open file named through /proc: written directly
+};
+
+/// An output path resolved once: its kind and the file actually written (the end of a symbolic
+/// link chain; "-" for standard output).
+struct ResolvedOutput {
+  OutputKind kind = OutputKind::File;
+  std::string target;
+  bool viaLink = false;  ///< reached through a symbolic link
+};
+
+/// Resolves `path` by the policy above; throws Error naming it for a folder, a block device, a
+/// socket, a link loop or an empty path.
+ResolvedOutput resolveOutput(const std::string& path);
+/// True for "-", the name of standard output wherever an output path is taken.
+inline bool isStandardOutput(const std::string& path) {
+  return path == "-";
+}
+
+/// Receives one line about something the writers did besides writing ("removed stale temporary
+/// ..."); the library never prints. Returns the previous handler. None is set by default.
+using FileNoteFn = std::function<void(const std::string&)>;
+FileNoteFn setFileNoteHandler(FileNoteFn handler);
+
+/// Writes an output by the policy above: calls write(stream) and puts the result at `path`
+/// only when write returned and every byte was stored. On any failure nothing is left behind
+/// and an Error naming `path` (or write's own exception) is thrown.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 /// Same for a byte buffer.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
@@ -22,9 +69,76 @@ std::vector<unsigned char> readFileBytes(const std::string& path);
 /// The same with a cap of the caller's (a format's own limit), named `capName` in the refusal.
 std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t maxBytes,
                                          const char* capName);
-/// Throws Error naming `path` if its directory does not exist or is not writable.
+/// Throws Error naming `path` if it cannot be written by the policy above: its directory (the
+/// link target's, for a symbolic link) does not exist or is not writable, or it is refused.
 void checkWritable(const std::string& path);
 /// Lower-case extension without the dot ("hdr", "exr", "gz"); "" if none.
 std::string fileExtension(const std::string& path);
+
+/// Removes the temporaries and partial folders of our naming beside `target` whose process
+/// no longer runs, reporting each through the note handler; returns how many. The writers call
+/// it for every target they write; exposed for tests.
+int removeStaleTemporaries(const std::string& target);
+
+/// Several outputs all or nothing. While a batch is alive on this thread, writeFileAtomically
+/// leaves each output complete in its temporary (standard output and special files: in
+/// memory); commit() moves them all into place, in the order written. A batch destroyed
+/// without commit removes them, so a failure part-way writes none of the outputs.
+class OutputBatch {
+ public:
+  OutputBatch();
+  ~OutputBatch();
+  OutputBatch(const OutputBatch&) = delete;
+  OutputBatch& operator=(const OutputBatch&) = delete;
+  /// Moves every output into place. If a rename fails (rare: the temporaries sit beside their
+  /// targets), the outputs not yet moved are removed and an Error naming the file is thrown.
+  void commit();
+
+  struct Pending;  ///< one output waiting for commit (internal)
+
+ private:
+  std::vector<Pending> pending_;
+  OutputBatch* previous_;
+  bool committed_ = false;
+  friend void writeFileAtomically(const std::string&, const std::function<void(std::ostream&)>&);
+};
+
+/// A folder written as a whole. The files go into a partial folder beside `destination`
+/// (.NAME.prt-partial-PID-RANDOM); commit() marks it as made by `maker` (a file `.prt-output`
+/// whose first line is `maker`, e.g. "prt web") and renames it into place, replacing an earlier
+/// folder in one step. Destroyed without commit, the partial folder is removed: a failure never
+/// leaves a half-made folder, and an earlier one stays as it was.
+class FolderOutput {
+ public:
+  /// Checks `destination` (checkFolderReplaceable), creates its parent folders if missing and
+  /// the partial folder.
+  FolderOutput(const std::string& destination, const std::string& maker);
+  ~FolderOutput();
+  FolderOutput(const FolderOutput&) = delete;
+  FolderOutput& operator=(const FolderOutput&) = delete;
+
+  /// The partial folder, to write into.
+  const std::string& path() const { return partial_; }
+  /// `relative` inside the partial folder.
+  std::string file(const std::string& relative) const;
+  /// Writes `relative` inside the partial folder (writeFileAtomically); an error names the file
+  /// as it will be, DESTINATION/relative.
+  void write(const std::string& relative, std::string_view bytes) const;
+  /// Moves the folder into place. Throws Error naming the destination on failure (the partial
+  /// folder is then removed and an earlier folder is left as it was).
+  void commit();
+
+  /// The name of the mark a made folder holds.
+  static constexpr const char* kMarkName = ".prt-output";
+
+ private:
+  std::string given_, destination_, partial_, maker_;
+  bool committed_ = false;
+};
+
+/// Throws Error naming `destination` unless a FolderOutput may replace it: it does not exist,
+/// is an empty folder, or is a folder whose mark names `maker`. Refused: standard output, a path
+/// that is not a folder, a non-empty folder `maker` did not make. Writes nothing.
+void checkFolderReplaceable(const std::string& destination, const std::string& maker);
 
 }  // namespace prt

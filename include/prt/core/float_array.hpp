@@ -29,6 +29,8 @@ class FloatArray {
   bool empty() const { return size_ == 0; }
   const float* data() const { return data_; }
   std::span<const float> span() const { return {data_, size_}; }
+  const float* begin() const { return data_; }
+  const float* end() const { return data_ + size_; }
   const float& operator[](std::size_t i) const { return data_[i]; }
   /// Writable storage: copies first when the storage is shared with another array or is a view.
   float* mutableData();

@@ -62,7 +62,8 @@ struct WriteOptions {
   ToneMap toneMap = ToneMap::Aces;  ///< PNG only
   float exposureStops = 0.0f;       ///< PNG only: multiply by 2^exposure before tone mapping
 };
-/// Writes by extension (png, exr, hdr) atomically; throws prt::Error("PATH: ...") on failure.
+/// Writes by extension (png, exr, hdr; "-", standard output, gets PNG) by the output policy of
+/// prt/core/file.hpp; throws prt::Error("PATH: ...") on failure.
 void writeImage(const std::string& path, const Image& img, const WriteOptions& options = {});
 
 }  // namespace prt::image
