@@ -198,7 +198,7 @@ TEST(Validate, ShadowedFloorIsTheErrorOfAPerfectTransfer) {
   vs.maxVertices = 250;
   const ValidationReport rep = validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs);
   ASSERT_EQ(rep.rows.size(), 5u);
-  EXPECT_EQ(rep.floorMethod, "residual reference");
+  EXPECT_EQ(rep.floorMethod, kFloorMethod);
   EXPECT_EQ(rep.floorVertices, 250u);
   EXPECT_GT(rep.floorRays, 0u);
   for (const BandRow& r : rep.rows) {
@@ -213,7 +213,7 @@ TEST(Validate, ShadowedFloorIsTheErrorOfAPerfectTransfer) {
 
   Scene u = bakeScene("builtin:sphere-plane?grid=24&subdiv=3", TransferMode::Unshadowed, 5, 0);
   const ValidationReport unshadowed = validate(u.mesh, *u.occ, u.transfer, u.bake, env, light, vs);
-  EXPECT_EQ(unshadowed.floorMethod, "irradiance quadrature");
+  EXPECT_EQ(unshadowed.floorMethod, kFloorMethod);
   EXPECT_EQ(unshadowed.floorRays, 0u);
   EXPECT_LT(unshadowed.rows[2].floor, 0.03);  // irradiance is nearly 3-band (R&H 2001)
   EXPECT_GT(rep.rows[2].floor, 1.5 * unshadowed.rows[2].floor);
