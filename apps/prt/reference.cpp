@@ -166,9 +166,10 @@ void addReferenceCommand(CLI::App& root) {
                   "Estimate a deterministic random subset of N vertices (0: all)")
       ->check(unsignedInt(UINT32_MAX));
   cmd->add_option("--material", a->material,
-                  "Material: lambert, phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.04, each "
-                  "with optional kd=r,g,b (default: the bake's material; kd left out: the "
-                  "bake's)");
+                  std::string("Material: lambert, phong?exponent=32&ks=0.5, "
+                              "ggx?roughness=0.3&ks=0.04, each with optional kd=r,g,b (default: "
+                              "the bake's material; kd left out: the bake's). ") +
+                      kGgxHelp);
   cmd->add_option("--eye", a->eye,
                   "Camera position X,Y,Z for a glossy material's view directions (default: the "
                   "eye of prt render's default camera)");

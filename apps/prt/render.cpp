@@ -228,9 +228,10 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--transfer", opts->transfer,
                   "Layout to use when the bake holds both: vector or matrix (default: matrix)");
   cmd->add_option("--material", opts->material,
-                  "Relight with this material instead of the bake's: lambert, "
-                  "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5 (kd=r,g,b sets the diffuse "
-                  "colour); the lobe needs a matrix bake");
+                  std::string("Relight with this material instead of the bake's: lambert, "
+                              "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5 (kd=r,g,b sets "
+                              "the diffuse colour); the lobe needs a matrix bake. ") +
+                      kGgxHelp);
   cmd->add_option("--bands", opts->bands, "Use at most this many SH bands (default: all)")
       ->check(intRange(1, sh::kMaxBands));
   cmd->add_option("--background", opts->background,

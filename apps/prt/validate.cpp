@@ -166,9 +166,11 @@ void addValidateCommand(CLI::App& root) {
   cmd->add_option("--transfer", a->transfer,
                   "Layout when the bake holds both: vector or matrix (default: matrix)");
   cmd->add_option("--material", a->material,
-                  "Material for both PRT and reference (default: the bake's): lambert, "
-                  "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5; glossy surfaces are seen "
-                  "from the eye of prt render's default camera");
+                  std::string("Material for both PRT and reference (default: the bake's): "
+                              "lambert, phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5; "
+                              "glossy surfaces are seen from the eye of prt render's default "
+                              "camera. ") +
+                      kGgxHelp);
   cmd->add_option("--reference-samples", a->samples, "Reference samples per vertex")
       ->check(intRange(1, 1 << 24))
       ->capture_default_str();

@@ -10,6 +10,7 @@
 #include "cli.hpp"
 #include "guard.hpp"
 #include "prt/core/error.hpp"
+#include "prt/transfer/material.hpp"
 
 #ifdef PRT_HAVE_VIEWER
 #include "viewer.hpp"
@@ -82,9 +83,10 @@ void addViewCommand(CLI::App& root) {
                   "framing)");
   cmd->add_option("--mode", a->mode, "Transfer mode to start with (default: the richest)");
   cmd->add_option("--material", a->material,
-                  "Relight with this material instead of the bake's: lambert, "
-                  "'phong?exponent=32&ks=0.5', 'ggx?roughness=0.3&ks=0.04' (glossy needs a "
-                  "matrix bake)");
+                  std::string("Relight with this material instead of the bake's: lambert, "
+                              "'phong?exponent=32&ks=0.5', 'ggx?roughness=0.3&ks=0.04' (glossy "
+                              "needs a matrix bake). ") +
+                      kGgxHelp);
   cmd->add_option("--glossy-on", a->glossyOn,
                   "Where glossy (matrix) transfer is relit: cpu (relightGlossy into a vertex "
                   "buffer) or gpu (the vertex shader, scalar matrices up to 8 bands)")
