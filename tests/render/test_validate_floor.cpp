@@ -265,7 +265,7 @@ TEST(ValidateFloor, NegativeRadianceShareAndTheWindow) {
   EXPECT_GT(plain.rows[1].negativeShare, kNegativeShareWarning);
   const std::string json = reportJson(windowed), table = formatTable(windowed);
   for (const char* key : {"\"negativeShare\"", "\"negativeVertices\"", "\"window\": \"hanning\"",
-                          "\"lightTruncationFloor\"", "\"unexplainedSq\"",
+                          "\"lightTruncationFloor\"", "\"unexplainedSq\"", "\"explained\"",
                           "\"unexplainedSqStdErr\"", "\"floorMethod\": \"exact band-limited"})
     EXPECT_NE(json.find(key), std::string::npos) << key;
   for (const char* col : {"negative", "explained", "truncation floor"})

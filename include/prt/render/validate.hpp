@@ -65,6 +65,10 @@ struct BandRow {
   double lightFloor = 0;
   /// rel RMSE² − floor² − ref std err² over the floor's vertices, and its standard error.
   double unexplainedSq = 0, unexplainedSqStdErr = 0;
+  /// sqrt(floor² + ref std err²) / rel RMSE over the floor's vertices: near 1 when truncation
+  /// and the reference's noise account for the error; well below 1, the bake's own error (its
+  /// noise, or a bug) shows.
+  double explained = 1;
   /// Share of the validated (glossy: eye-facing) vertices with a negative channel.
   double negativeShare = 0;
   /// Glossy materials: the fraction of the lobe's energy beyond `bands` (GlossyLobe::energyBeyond),
