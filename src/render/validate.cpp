@@ -14,7 +14,6 @@
 #include "prt/relight/relight.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/sh/convolve.hpp"
-#include "prt/sh/rotate.hpp"
 
 namespace prt::render {
 
