@@ -279,9 +279,8 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
       }
       noise += noiseSq(i);
     }
-    r.explained = errSq > 0 ? std::sqrt(std::max(0.0, fSq + noise / double(nf)) /
-                                        (errSq / double(nf)))
-                            : 1.0;
+    r.explained =
+        errSq > 0 ? std::sqrt(std::max(0.0, fSq + noise / double(nf)) / (errSq / double(nf))) : 1.0;
     // What the lobe itself loses at b bands: its zonal energy beyond b (0 for a diffuse surface).
     r.lobeEnergyBeyond = rs.material.glossy() ? rs.material.lobe.energyBeyond(b) : 0.0;
     std::vector<float> err(n);
