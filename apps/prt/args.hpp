@@ -11,6 +11,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/vec.hpp"
 #include "prt/render/reference.hpp"
+#include "prt/sh/convolve.hpp"
 
 namespace prt::cli {
 
@@ -58,6 +59,15 @@ inline render::MisHeuristic parseMis(const std::string& s) {
   if (s == "power") return render::MisHeuristic::Power;
   if (s == "balance") return render::MisHeuristic::Balance;
   throw Error("--mis '" + s + "': expected power or balance");
+}
+
+/// --window: none | hanning | lanczos | dering (prt light, prt validate).
+inline sh::Window parseWindow(const std::string& s) {
+  if (s == "none") return sh::Window::None;
+  if (s == "hanning") return sh::Window::Hanning;
+  if (s == "lanczos") return sh::Window::Lanczos;
+  if (s == "dering") return sh::Window::Dering;
+  throw Error("--window must be none, hanning, lanczos or dering, got '" + s + "'");
 }
 
 }  // namespace prt::cli

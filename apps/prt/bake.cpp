@@ -242,8 +242,7 @@ void addBakeCommand(CLI::App& root) {
                   "vector (diffuse, B² per vertex) | matrix (glossy, B² x B² per vertex)")
       ->capture_default_str();
   cmd->add_option("--material", args->material,
-                  "Surface: lambert | phong?exponent=32&ks=0.5 | ggx?roughness=0.3&ks=0.5, with "
-                  "kd=r,g,b (diffuse colour); stored as the default for relighting")
+                  "Surface (stored as the default for relighting): " + materialGrammar())
       ->capture_default_str();
   cmd->add_option("--range", args->range,
                   "Bake only vertices FIRST:END (split bakes; merge later)");

@@ -26,6 +26,7 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/io/games202_transport.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/transfer/material.hpp"
 
 namespace prt::cli {
 
@@ -86,6 +87,7 @@ void describeBake(const std::string& path) {
     }
     std::cout << fmt::format("    material {}{}\n", s.material.spec(),
                              s.glossyBounces(x.layout()) ? " (the bounces follow its lobe)" : "");
+    std::cout << fmt::format("      ({})\n", describe(s.material.lobe));
     std::cout << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples,
                              s.bounces, s.seed, toString(s.sampling));
     if (s.material.diffuse)

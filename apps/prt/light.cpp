@@ -75,15 +75,7 @@ void runLight(const LightOptions& o) {
   if (format != "json" && format != "games202")
     throw Error("--format must be json or games202, got '" + format + "'");
   const std::array<double, 3> rot = parseEulerDegrees(o.rotate);
-  const sh::Window window = o.window == "none"      ? sh::Window::None
-                            : o.window == "hanning" ? sh::Window::Hanning
-                            : o.window == "lanczos" ? sh::Window::Lanczos
-                            : o.window == "dering"
-                                ? sh::Window::Dering
-                                : throw Error(
-                                      "--window must be none, hanning, lanczos or dering, "
-                                      "got '" +
-                                      o.window + "'");
+  const sh::Window window = parseWindow(o.window);
   const image::ToneMap tone = image::parseToneMap(o.toneMap);
   checkOutputs({{"-o", o.output}, {"--preview", o.preview}}, {{"input", o.input}});
   checkWritable(o.output);

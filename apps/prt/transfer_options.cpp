@@ -28,12 +28,21 @@ const BakedTransfer& pickTransfer(const BakeFile& bake, const TransferChoice& c,
   return prt::pickTransfer(bake, m, l, file);
 }
 
+const std::string& materialGrammar() {
+  static const std::string g = std::string(
+                                   "lambert, 'phong?exponent=32&ks=0.5' or "
+                                   "'ggx?roughness=0.3&ks=0.5', each with kd=r,g,b for the "
+                                   "diffuse colour. ") +
+                               kGgxHelp;
+  return g;
+}
+
 void addMaterialOption(CLI::App* cmd, std::string& spec, const std::string& what) {
   cmd->add_option("--material", spec,
                   "Material " + what +
-                      " instead of the bake's: lambert, 'phong?exponent=32&ks=0.5' or "
-                      "'ggx?roughness=0.3&ks=0.5', each with kd=r,g,b for the diffuse colour "
-                      "(left out: the bake's); the lobe needs a matrix bake");
+                      " instead of the bake's (kd left out: the bake's; the lobe needs a matrix "
+                      "bake): " +
+                      materialGrammar());
 }
 
 Material materialOption(const std::string& spec, const BakedTransfer& baked,

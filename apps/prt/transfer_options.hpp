@@ -23,6 +23,8 @@ void addTransferChoice(CLI::App* cmd, TransferChoice& choice, const std::string&
 const BakedTransfer& pickTransfer(const BakeFile& bake, const TransferChoice& choice,
                                   const std::string& file);
 
+/// What a material spec may say, for --material's help: the three lobes, kd, what ggx is.
+const std::string& materialGrammar();
 /// Adds --material to `cmd`; `what` ends its help (what the material is for in this verb).
 void addMaterialOption(CLI::App* cmd, std::string& spec, const std::string& what);
 /// The bake's material when `spec` is empty; else `spec` parsed (prt::Error on a bad one),

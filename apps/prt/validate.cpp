@@ -2,7 +2,7 @@
 // per band count (render/validate.hpp; docs/validation.md).
 //
 //   prt validate BAKE.glb --light ENV [--mode M] [--reference-samples N] [--bands-list 1,2,..]
-//                [--rotate X,Y,Z] [--vertices N] [--seed S] [--mis power|balance]
+//                [--rotate X,Y,Z] [--vertices N] [--seed S] [--mis power|balance] [--window W]
 //                [--json REPORT.json] [--image error.png] [--image-size WxH]
 
 #include <fmt/format.h>
@@ -32,7 +32,7 @@ namespace prt::cli {
 namespace {
 
 struct ValidateArgs {
-  std::string bake, light, json, image, imageSize = "640x480", mis = "power";
+  std::string bake, light, json, image, imageSize = "640x480", mis = "power", window = "none";
   int samples = 1024;
   std::string bandsList, rotate, material;
   TransferChoice transfer;
@@ -87,6 +87,7 @@ void runValidate(const ValidateArgs& a) {
   vs.reference.eye = render::frameMesh(file.mesh, 640, 480).eye;
   vs.bandsList = bands;
   vs.maxVertices = a.vertices;
+  vs.window = parseWindow(a.window);
   info("validating " + bt.describe() + " transfer (" + std::to_string(bt.transfer.bands()) +
        " bands) of " + a.bake + " under " + a.light);
   // A compressed transfer is validated as relit, in the compressed space (the compression's own
@@ -107,18 +108,25 @@ void runValidate(const ValidateArgs& a) {
                 static_cast<unsigned long long>(rep.reference.rays), rep.reference.seconds,
                 toString(rep.mode), rep.bounces);
   info(line);
-  if (rep.floorRays > 0)
-    std::snprintf(line, sizeof line,
-                  "truncation floor: the reference with the residual light L - L_b, %zu vertices x "
-                  "%d samples per band count, %llu rays, %.2f s",
-                  rep.floorVertices, a.samples, static_cast<unsigned long long>(rep.floorRays),
-                  rep.floorSeconds);
-  else
-    std::snprintf(line, sizeof line,
-                  "truncation floor: band-limited vs. quadrature irradiance, %zu vertices",
-                  rep.floorVertices);
+  std::snprintf(line, sizeof line,
+                "truncation floor: %s from the reference's samples, %zu vertices x %d samples, "
+                "%llu rays, %.2f s",
+                rep.floorMethod.c_str(), rep.floorVertices, a.samples,
+                static_cast<unsigned long long>(rep.floorRays), rep.floorSeconds);
   info(line);
   std::cout << render::formatTable(rep) << std::flush;
+  for (const render::BandRow& r : rep.rows)
+    if (r.negativeShare > render::kNegativeShareWarning)
+      warn(
+          fmt::format("{} bands: {:.1f}% of {} validated vertices{} relight to negative radiance "
+                      "(SH ringing); {}",
+                      r.bands, 100 * r.negativeShare, rep.negativeVertices,
+                      bt.transfer.layout() == TransferLayout::Matrix ? " facing the eye" : "",
+                      a.window == "none" ? "window the light: --window hanning|lanczos|dering "
+                                           "(prt light --window for light files)"
+                                         : "the light is windowed (" + a.window +
+                                               "): the rest rings in the transfer and the "
+                                               "lobe, which more bands hold"));
 
   if (!a.json.empty()) writeFileAtomically(a.json, render::reportJson(rep));
 
@@ -169,6 +177,10 @@ void addValidateCommand(CLI::App& root) {
       ->check(unsignedInt(UINT32_MAX));
   cmd->add_option("--seed", a->seed, "Reference seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();
+  cmd->add_option("--window", a->window,
+                  "Window the light against ringing at each band count: none | hanning | "
+                  "lanczos | dering")
+      ->capture_default_str();
   cmd->add_option("--json", a->json, "Write the table as JSON");
   cmd->add_option("--image", a->image, "Write a false-colour per-vertex error image (.png/.exr)");
   cmd->add_option("--image-size", a->imageSize, "Error image size WxH")->capture_default_str();

@@ -10,6 +10,7 @@
 #include "cli.hpp"
 #include "guard.hpp"
 #include "prt/core/error.hpp"
+#include "transfer_options.hpp"
 
 #ifdef PRT_HAVE_VIEWER
 #include "viewer.hpp"
@@ -81,10 +82,7 @@ void addViewCommand(CLI::App& root) {
                   "Camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (default: prt render's "
                   "framing)");
   cmd->add_option("--mode", a->mode, "Transfer mode to start with (default: the richest)");
-  cmd->add_option("--material", a->material,
-                  "Relight with this material instead of the bake's: lambert, "
-                  "'phong?exponent=32&ks=0.5', 'ggx?roughness=0.3&ks=0.04' (glossy needs a "
-                  "matrix bake)");
+  addMaterialOption(cmd, a->material, "to relight with");
   cmd->add_option("--glossy-on", a->glossyOn,
                   "Where glossy (matrix) transfer is relit: cpu (relightGlossy into a vertex "
                   "buffer) or gpu (the vertex shader, scalar matrices up to 8 bands)")

@@ -319,9 +319,7 @@ void addWebCommand(CLI::App& root) {
                   "Initial camera 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (as prt render; "
                   "default: framed)");
   cmd->add_option("--mode", args->mode, "Initial transfer mode");
-  cmd->add_option("--material", args->material,
-                  "Material for glossy (matrix) transfer instead of the bake's: lambert, "
-                  "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5 (kd left out: the bake's)");
+  addMaterialOption(cmd, args->material, "for glossy (matrix) transfer");
   cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
   cmd->add_option("--exposure", args->exposure, "Initial exposure in stops");
   cmd->add_option("--tonemap", args->toneMap, "Initial tone map: aces, reinhard, clamp")

@@ -13,7 +13,6 @@
 #include "prt/relight/relight.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/sh/convolve.hpp"
-#include "prt/sh/rotate.hpp"
 
 namespace prt::render {
 
@@ -46,33 +45,40 @@ double sumSq(const Rgb& c) {
   return double(c.x) * c.x + double(c.y) * c.y + double(c.z) * c.z;
 }
 
-/// The environment minus its b-band SH reconstruction, texel by texel: L_k − Σ_i L_b,i Y_i(ω_k)
-/// at each texel centre ω_k (signed), in the same layout, so the reference integrates it as it
-/// integrates L.
-envmap::Environment residualEnvironment(const envmap::Environment& env, const sh::RgbSh& lb) {
-  std::vector<image::Image> imgs = env.images();
-  const std::size_t n = env.texelCount();
-  const std::size_t perImage = imgs.empty() ? 0 : imgs[0].size();
-  parallelFor(n, 4096, [&](std::size_t b, std::size_t e) {
-    std::vector<float> y(static_cast<std::size_t>(lb.bands) * lb.bands);
-    for (std::size_t k = b; k < e; ++k) {
-      const envmap::Texel t = env.texel(k);
-      Vec3d r(t.radiance);
-      if (t.solidAngle > 0) {
-        sh::eval(lb.bands, t.direction, y.data());
-        for (std::size_t i = 0; i < y.size(); ++i) r -= Vec3d(lb.c[i]) * double(y[i]);
-      }
-      const bool cube = env.kind() == envmap::Environment::Kind::Cube;
-      imgs[cube ? k / perImage : 0].pixels[cube ? k % perImage : k] = Rgb(r);
-    }
-  });
-  switch (env.kind()) {
-    case envmap::Environment::Kind::Cube:
-      return envmap::Environment::cube({imgs[0], imgs[1], imgs[2], imgs[3], imgs[4], imgs[5]});
-    case envmap::Environment::Kind::Probe:
-      return envmap::Environment::probe(imgs[0]);
-    default:  // lat-long, and an analytic environment's texel lat-long
-      return envmap::Environment::latLong(imgs[0]);
+/// The light PRT relights with at b bands: the first b² coefficients of `light`, windowed at b
+/// bands as `prt light --bands b --window W` would; `factors` receives the window's per-band
+/// factors (1 without one).
+sh::RgbSh lightAt(const sh::RgbSh& light, int b, sh::Window window, std::vector<double>& factors) {
+  sh::RgbSh lb = light.truncated(b);
+  switch (window) {
+    case sh::Window::None:
+      factors.assign(static_cast<std::size_t>(b), 1.0);
+      break;
+    case sh::Window::Hanning:
+      factors = sh::hanningWindow(b);
+      sh::convolveZonal(lb, factors);
+      break;
+    case sh::Window::Lanczos:
+      factors = sh::lanczosWindow(b);
+      sh::convolveZonal(lb, factors);
+      break;
+    case sh::Window::Dering:
+      factors = sh::dering(lb).window;
+      break;
+  }
+  return lb;
+}
+
+const char* windowName(sh::Window w) {
+  switch (w) {
+    case sh::Window::Hanning:
+      return "hanning";
+    case sh::Window::Lanczos:
+      return "lanczos";
+    case sh::Window::Dering:
+      return "dering";
+    default:
+      return "none";
   }
 }
 
@@ -123,6 +129,7 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   rs.mode = bake.mode;
   rs.bounces = rep.bounces;
   rs.material = bake.material;
+  rs.bandLimit.reset();
   // Diffuse (vector) transfer holds the diffuse part only, with diffuse bounces: the reference
   // renders the same, the lobe dropped (kd kept).
   if (!transfer.isMatrix()) {
@@ -130,17 +137,27 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     rs.material.specular = Rgb(0.0f);
   }
   rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
-  // Glossy (matrix) transfer is seen from an eye; its floor has no closed form even unshadowed.
+  // Glossy (matrix) transfer is seen from an eye.
   const bool glossy = transfer.isMatrix();
   if (glossy && !rs.eye)
     throw Error("validating glossy (matrix) transfer needs the eye the reference and PRT share");
-  const bool residualFloor = bake.mode != TransferMode::Unshadowed || glossy;
-  // Progress: the reference, then (shadowed, inter-reflected) one residual run per band count
-  // over the floor subset, in proportion to their vertex counts.
+
+  // The floor's vertices: an even stride of at most settings.floorVertices of the validated
+  // ones (an RMS over vertices; a thousand estimate it to a few per cent of itself).
   const std::size_t nMain = rs.vertices.size();
-  const std::size_t nFloorRuns =
-      residualFloor ? kept.size() * std::min(nMain, settings.floorVertices) : 0;
-  const double mainShare = double(nMain) / double(nMain + nFloorRuns);
+  const std::size_t stride =
+      (nMain + settings.floorVertices - 1) / std::max<std::size_t>(settings.floorVertices, 1);
+  std::vector<std::uint32_t> floorVerts;
+  std::vector<std::size_t> floorIdx;  // positions in the validated vertices
+  for (std::size_t i = 0; i < nMain; i += std::max<std::size_t>(stride, 1)) {
+    floorVerts.push_back(rs.vertices[i]);
+    floorIdx.push_back(i);
+  }
+  const std::size_t nf = floorVerts.size();
+
+  // Progress: the reference, then the band-limited run over the floor's vertices (about twice
+  // the reference's work per vertex), in proportion.
+  const double mainShare = double(nMain) / double(nMain + 2 * nf);
   const auto part = [&](double lo, double hi) -> ProgressFn {
     if (!progress) return {};
     return [&progress, lo, hi](double f) { return progress(lo + (hi - lo) * f); };
@@ -154,109 +171,117 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   for (const Rgb& c : ref) meanRef += (double(c.x) + c.y + c.z) / 3.0;
   meanRef /= std::max<std::size_t>(n, 1);
   const double eps = 1e-2 * meanRef * meanRef + 1e-30;
+  // Per vertex and channel, the weight of relative RMSE: 1 / (R_ref² + ε).
+  const auto weight = [&](std::size_t i, int c) {
+    return 1.0 / (double(ref[i][c]) * ref[i][c] + eps);
+  };
+  // The reference's noise in the rel RMSE metric: what an exact transfer's rel RMSE would be.
+  const auto noiseSq = [&](std::size_t i) {
+    double s = 0;
+    for (int c = 0; c < 3; ++c)
+      s += double(rep.reference.stdError[i][c]) * rep.reference.stdError[i][c] * weight(i, c);
+    return s / 3.0;
+  };
+  double refNoiseSq = 0;
+  for (std::size_t i = 0; i < n; ++i) refNoiseSq += noiseSq(i);
+  const double refStd = std::sqrt(refNoiseSq / double(std::max<std::size_t>(n, 1)));
 
-  double refStd = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    refStd += std::sqrt(sumSq(rep.reference.stdError[i]) / (sumSq(ref[i]) + 3 * eps));
-  refStd /= std::max<std::size_t>(n, 1);
+  // The b-band lights PRT relights with, and the same as band limits for the floor.
+  std::vector<sh::RgbSh> lights;
+  BandLimitSettings bl;
+  bl.light = light;
+  bl.truncateKernel = glossy;
+  for (int b : kept) {
+    BandLimit lim;
+    lim.bands = b;
+    lights.push_back(lightAt(light, b, settings.window, lim.window));
+    bl.limits.push_back(std::move(lim));
+  }
+  rep.window = windowName(settings.window);
 
-  // The truncation floor: the error a perfect b-band transfer would still have. A perfect
-  // transfer relights exactly the b-band light L_b (T·L_b is the transport of L_b), so its error
-  // is R(L) − R(L_b) = R(L − L_b) by linearity. It is taken over an evenly strided subset of at
-  // most settings.floorVertices of the validated vertices (an RMS over vertices; a thousand
-  // estimate it to a few per cent of itself).
-  //  * unshadowed: R is the clamped-cosine irradiance, R(L) by quadrature over the texels and
-  //    R(L_b) = ρ Σ Λ_l L_lm Y_lm(n)/π in closed form (Ramamoorthi & Hanrahan 2001): exact;
-  //  * shadowed, inter-reflected: the reference itself run with the residual environment L − L_b
-  //    (same transport, visibility and bounces, same samples), whose squared estimate is
-  //    debiased by its own squared standard error, so the floor covers visibility too.
-  const std::size_t stride =
-      (n + settings.floorVertices - 1) / std::max<std::size_t>(settings.floorVertices, 1);
-  std::vector<std::uint32_t> floorVerts;
-  std::vector<std::size_t> floorIdx;  // positions in `verts`
-  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(stride, 1)) {
-    floorVerts.push_back(verts[i]);
-    floorIdx.push_back(i);
-  }
-  const std::size_t nf = floorVerts.size();
-  std::vector<Rgb> floorRef(nf);
-  if (!residualFloor) {
-    const EnvironmentSampler sampler(env);
-    parallelFor(nf, 4, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        const std::uint32_t v = floorVerts[i];
-        const Rgb a = mesh.hasAlbedo() ? mesh.albedo[v] : Rgb(1.0f);
-        floorRef[i] = a * sampler.irradianceQuadrature(mesh.normals[v], rs.rotation) *
-                      static_cast<float>(1.0 / kPi);
-      }
-    });
-  }
-  rep.floorMethod = residualFloor ? "residual reference" : "irradiance quadrature";
+  // The truncation floor: the error of exact band-limited relighting, e_b − e per floor vertex
+  // and band count from the reference's own samples (reference.hpp), in one run for all band
+  // counts. Its radiance is the reference's at those vertices, bit for bit.
+  ReferenceSettings fr = rs;
+  fr.vertices = floorVerts;
+  fr.bandLimit = std::move(bl);
+  const ReferenceResult floorRun = renderReference(mesh, occluder, env, fr, part(mainShare, 1.0));
+  rep.floorMethod = kFloorMethod;
   rep.floorVertices = nf;
-  const sh::RgbSh rotatedLight = sh::Rotation(light.bands, rs.rotation).apply(light);
-  const std::vector<double> lambda = sh::clampedCosineKernel(rep.bands);
-  std::size_t floorRun = 0;
+  rep.floorRays = floorRun.rays;
+  rep.floorSeconds = floorRun.seconds;
+
+  // Vertices whose negative radiance counts: for glossy transfer those facing the eye.
+  std::vector<char> counted(n, 1);
+  if (glossy)
+    for (std::size_t i = 0; i < n; ++i)
+      counted[i] = dot(mesh.normals[verts[i]], *rs.eye - mesh.positions[verts[i]]) > 0;
+  rep.negativeVertices = static_cast<std::size_t>(std::count(counted.begin(), counted.end(), 1));
+  const double negativeBelow = -1e-3 * meanRef;
 
   std::vector<Rgb> albedo;
   if (mesh.hasAlbedo()) albedo = mesh.albedo;
   std::vector<Rgb> prt(n);
-  std::vector<float> y(static_cast<std::size_t>(rep.bands) * rep.bands);
-  for (int b : kept) {
+  const std::size_t lanes = kept.size();
+  for (std::size_t k = 0; k < lanes; ++k) {
+    const int b = kept[k];
     // PRT radiance at b bands (relight rotates the light itself).
     std::vector<Rgb> all(nv);
-    relight::relight(transfer.cut(b), light.truncated(b), rs.material,
+    relight::relight(transfer.cut(b), lights[k], rs.material,
                      {mesh.positions, mesh.normals, albedo}, rs.eye ? *rs.eye : Vec3f(0.0f), all,
                      rs.rotation);
     for (std::size_t i = 0; i < n; ++i) prt[i] = all[verts[i]];
-    double floorSq = 0;
-    if (!residualFloor) {
-      // Unshadowed band-limited irradiance E_b(n) = Σ_{l<b} Λ_l L_lm Y_lm(n), radiance ρ E_b / π.
-      std::vector<Rgb> floorTest(nf);
-      for (std::size_t i = 0; i < nf; ++i) {
-        const std::uint32_t v = floorVerts[i];
-        sh::eval(b, mesh.normals[v], y.data());
-        Vec3d e(0.0);
-        for (int l = 0; l < b; ++l)
-          for (int m = -l; m <= l; ++m) {
-            const int k = l * (l + 1) + m;
-            e += Vec3d(rotatedLight.c[k]) * (lambda[l] * y[k]);
-          }
-        const Rgb a = mesh.hasAlbedo() ? mesh.albedo[v] : Rgb(1.0f);
-        floorTest[i] = a * Rgb(e * (1.0 / kPi));
-      }
-      const double f = relativeRmse(row(floorTest), row(floorRef), eps);
-      floorSq = f * f;
-    } else {
-      ReferenceSettings fr = rs;
-      fr.vertices = floorVerts;
-      const double lo = mainShare + (1 - mainShare) * double(floorRun) / double(kept.size());
-      const double hi = mainShare + (1 - mainShare) * double(floorRun + 1) / double(kept.size());
-      ++floorRun;
-      const ReferenceResult res = renderReference(
-          mesh, occluder, residualEnvironment(env, light.truncated(b)), fr, part(lo, hi));
-      rep.floorRays += res.rays;
-      rep.floorSeconds += res.seconds;
-      // The same metric as rel RMSE, with R(L − L_b) for the difference: E[x̂²] = x² + se², so
-      // x̂² − se² estimates x² without the reference noise inflating the floor.
+
+    // floor² = mean over the floor's vertices of Σ_c (x̂² − se²)/(R_ref² + ε)/3 for x = e_b − e:
+    // E[x̂²] = x² + se², so its noise does not inflate it. Alongside, per vertex, what the
+    // identity rel RMSE² = floor² + noise² leaves over: (R_b − R_ref)² − (x̂² − se²) − se_ref².
+    const auto floorSq = [&](Estimate BandLimitedEstimate::*part, std::vector<double>* rest) {
       double sum = 0;
-      for (std::size_t i = 0; i < nf; ++i) {
-        const Rgb& r0 = ref[floorIdx[i]];
+      for (std::size_t j = 0; j < nf; ++j) {
+        const std::size_t i = floorIdx[j];
+        const Estimate& e = floorRun.bandLimited[j * lanes + k].*part;
+        double f = 0, a = 0;
         for (int c = 0; c < 3; ++c) {
-          const double x = res.radiance[i][c], se = res.stdError[i][c];
-          sum += (x * x - se * se) / (double(r0[c]) * r0[c] + eps);
+          const double x = e.mean[c], se = e.stdError[c], d = double(prt[i][c]) - ref[i][c];
+          f += (x * x - se * se) * weight(i, c) / 3.0;
+          a += d * d * weight(i, c) / 3.0;
         }
+        sum += f;
+        if (rest) (*rest)[j] = a - f - noiseSq(i);
       }
-      floorSq = std::max(0.0, sum / (3.0 * double(std::max<std::size_t>(nf, 1))));
-    }
+      return sum / double(std::max<std::size_t>(nf, 1));
+    };
+    std::vector<double> rest(nf);
+    const double fSq = floorSq(&BandLimitedEstimate::difference, &rest);
+    const double lightSq = floorSq(&BandLimitedEstimate::light, nullptr);
+
     BandRow r;
     r.bands = b;
     r.relRmse = relativeRmse(row(prt), row(ref), eps);
-    r.floor = std::sqrt(floorSq);
+    r.floor = std::sqrt(std::max(0.0, fSq));
+    r.lightFloor = std::sqrt(std::max(0.0, lightSq));
     r.refStdErr = refStd;
+    double restMean = 0, restVar = 0, errSq = 0, noise = 0;
+    for (double x : rest) restMean += x / double(std::max<std::size_t>(nf, 1));
+    for (double x : rest) restVar += (x - restMean) * (x - restMean);
+    r.unexplainedSq = restMean;
+    r.unexplainedSqStdErr = nf > 1 ? std::sqrt(restVar / double(nf - 1) / double(nf)) : 0.0;
+    // The same over the floor's vertices only, so that the three share their vertices.
+    for (std::size_t j = 0; j < nf; ++j) {
+      const std::size_t i = floorIdx[j];
+      for (int c = 0; c < 3; ++c) {
+        const double d = double(prt[i][c]) - ref[i][c];
+        errSq += d * d * weight(i, c) / 3.0;
+      }
+      noise += noiseSq(i);
+    }
+    r.explained =
+        errSq > 0 ? std::sqrt(std::max(0.0, fSq + noise / double(nf)) / (errSq / double(nf))) : 1.0;
     // What the lobe itself loses at b bands: its zonal energy beyond b (0 for a diffuse surface).
     r.lobeEnergyBeyond = rs.material.glossy() ? rs.material.lobe.energyBeyond(b) : 0.0;
     std::vector<float> err(n);
     double sum = 0, mx = 0, diffEnergy = 0, refEnergy = 0;
+    std::size_t negative = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const double d2 = sumSq(prt[i] - ref[i]), r2 = sumSq(ref[i]);
       const double e = std::sqrt(d2 / (r2 + 3 * eps));
@@ -265,12 +290,15 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
       mx = std::max(mx, e);
       diffEnergy += d2;
       refEnergy += r2;
+      if (counted[i] && std::min({prt[i].x, prt[i].y, prt[i].z}) < negativeBelow) ++negative;
     }
     // Energy-weighted: ‖R_b − R_ref‖ / ‖R_ref‖ over all vertices and channels, i.e. e(p)² weighted
     // by each vertex's share of the reference energy (no ε): bright vertices count most.
     r.energyRel = refEnergy > 0 ? std::sqrt(diffEnergy / refEnergy) : 0.0;
     r.meanRel = sum / std::max<std::size_t>(n, 1);
     r.maxRel = mx;
+    r.negativeShare =
+        rep.negativeVertices > 0 ? double(negative) / double(rep.negativeVertices) : 0.0;
     rep.rows.push_back(r);
     rep.vertexError = std::move(err);
   }
@@ -279,20 +307,22 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
 
 std::string formatTable(const ValidationReport& rep) {
   std::ostringstream os;
-  char line[200];
+  char line[300];
   const bool lobe = !rep.rows.empty() && rep.rows.front().lobeEnergyBeyond > 0;
-  std::snprintf(line, sizeof line, "%5s | %9s | %15s | %12s | %11s | %16s | %11s%s\n", "bands",
-                "rel RMSE", "energy-weighted", "mean rel err", "max rel err", "truncation floor",
-                "ref std err", lobe ? " | lobe energy > B" : "");
+  std::snprintf(line, sizeof line, "%5s | %9s | %15s | %12s | %11s | %16s | %11s | %9s | %8s%s\n",
+                "bands", "rel RMSE", "energy-weighted", "mean rel err", "max rel err",
+                "truncation floor", "ref std err", "explained", "negative",
+                lobe ? " | lobe energy > B" : "");
   os << line;
   os << "------+-----------+-----------------+--------------+-------------+------------------+----"
-        "--------"
+        "---------+-----------+----------"
      << (lobe ? "+------------------" : "") << "\n";
   for (const BandRow& r : rep.rows) {
     std::snprintf(line, sizeof line,
-                  "%5d | %8.3f%% | %14.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%%", r.bands,
-                  100 * r.relRmse, 100 * r.energyRel, 100 * r.meanRel, 100 * r.maxRel,
-                  100 * r.floor, 100 * r.refStdErr);
+                  "%5d | %8.3f%% | %14.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%% | "
+                  "%8.1f%% | %7.2f%%",
+                  r.bands, 100 * r.relRmse, 100 * r.energyRel, 100 * r.meanRel, 100 * r.maxRel,
+                  100 * r.floor, 100 * r.refStdErr, 100 * r.explained, 100 * r.negativeShare);
     os << line;
     if (lobe) {
       std::snprintf(line, sizeof line, " | %15.3f%%", 100 * r.lobeEnergyBeyond);
@@ -347,6 +377,8 @@ std::string reportJson(const ValidationReport& rep, int indent) {
   os << i1 << "\"floorVertices\": " << rep.floorVertices << "," << nl;
   os << i1 << "\"floorRays\": " << rep.floorRays << "," << nl;
   os << i1 << "\"floorSeconds\": " << num(rep.floorSeconds) << "," << nl;
+  os << i1 << "\"window\": " << jsonString(rep.window) << "," << nl;
+  os << i1 << "\"negativeVertices\": " << rep.negativeVertices << "," << nl;
   os << i1 << "\"warnings\": [";
   for (std::size_t k = 0; k < rep.warnings.size(); ++k)
     os << (k ? ", " : "") << jsonString(rep.warnings[k]);
@@ -362,6 +394,11 @@ std::string reportJson(const ValidationReport& rep, int indent) {
     os << i3 << "\"maxRelErr\": " << num(r.maxRel) << "," << nl;
     os << i3 << "\"truncationFloor\": " << num(r.floor) << "," << nl;
     os << i3 << "\"refStdErr\": " << num(r.refStdErr) << "," << nl;
+    os << i3 << "\"lightTruncationFloor\": " << num(r.lightFloor) << "," << nl;
+    os << i3 << "\"explained\": " << num(r.explained) << "," << nl;
+    os << i3 << "\"unexplainedSq\": " << num(r.unexplainedSq) << "," << nl;
+    os << i3 << "\"unexplainedSqStdErr\": " << num(r.unexplainedSqStdErr) << "," << nl;
+    os << i3 << "\"negativeShare\": " << num(r.negativeShare) << "," << nl;
     os << i3 << "\"lobeEnergyBeyond\": " << num(r.lobeEnergyBeyond) << nl;
     os << i2 << "}" << (k + 1 < rep.rows.size() ? "," : "") << nl;
   }

@@ -101,6 +101,22 @@ double GlossyLobe::energyBeyond(int bands) const {
   return std::clamp(1.0 - held / total, 0.0, 1.0);
 }
 
+std::string describe(const GlossyLobe& lobe) {
+  switch (lobe.kind) {
+    case LobeKind::None:
+      return "Lambertian (no lobe)";
+    case LobeKind::Phong:
+      return "normalised Phong lobe (s+1)/(2 pi) cos^s about the reflected view, s = " +
+             number(lobe.exponent) + " (no Fresnel)";
+    case LobeKind::Ggx:
+      return "GGX-shaped lobe symmetric about the reflected view: the normal-incidence GGX NDF, "
+             "alpha = roughness^2 = " +
+             number(lobe.roughness * lobe.roughness) +
+             " (no Fresnel, masking or 1/(4 n.l n.v): not a microfacet BRDF)";
+  }
+  return "";
+}
+
 bool Material::glossy() const {
   return lobe.kind != LobeKind::None && (specular.x > 0 || specular.y > 0 || specular.z > 0);
 }

@@ -52,7 +52,7 @@ Scene bakeScene(const std::string& name, TransferMode mode, int bands, int bounc
 
 // The acceptance case: shadowed diffuse PRT at 5 bands on sphere-plane under a smooth
 // environment is within 3% relative RMSE of the reference; fewer bands are worse, and the
-// floor (band-limited irradiance vs. exact) falls with the band count.
+// floor (exact band-limited relighting against the reference) falls with the band count.
 TEST(Validate, ShadowedSpherePlaneUnderSmoothLight) {
   const Scene s = bakeScene("builtin:sphere-plane?grid=24&subdiv=3", TransferMode::Shadowed, 5, 0);
   const Environment env = smoothEnv();
@@ -185,10 +185,10 @@ TEST(Validate, GlossyBouncesAgreeWithTheGlossyReference) {
   EXPECT_GT(without.rows[0].relRmse, 2 * r.relRmse);
 }
 
-// The floor of shadowed transfer is the reference run with the residual light L − L_b, so it
-// covers visibility: it is what a perfect b-band transfer would still miss. Where truncation
-// dominates (few bands) the bake's error sits on it; it is never far below the error; and it is
-// larger than the unshadowed floor of the same scene (shadows need more bands than irradiance).
+// The floor of shadowed transfer is the error of exact band-limited relighting, visibility
+// included: what a perfect b-band transfer would still miss. Where truncation dominates (few
+// bands) the bake's error sits on it; it is never far below the error; and it is larger than the
+// unshadowed floor of the same scene (shadows need more bands than irradiance).
 TEST(Validate, ShadowedFloorIsTheErrorOfAPerfectTransfer) {
   const Scene s = bakeScene("builtin:sphere-plane?grid=24&subdiv=3", TransferMode::Shadowed, 5, 0);
   const Environment env = smoothEnv();
@@ -198,7 +198,7 @@ TEST(Validate, ShadowedFloorIsTheErrorOfAPerfectTransfer) {
   vs.maxVertices = 250;
   const ValidationReport rep = validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs);
   ASSERT_EQ(rep.rows.size(), 5u);
-  EXPECT_EQ(rep.floorMethod, "residual reference");
+  EXPECT_EQ(rep.floorMethod, kFloorMethod);
   EXPECT_EQ(rep.floorVertices, 250u);
   EXPECT_GT(rep.floorRays, 0u);
   for (const BandRow& r : rep.rows) {
@@ -213,16 +213,16 @@ TEST(Validate, ShadowedFloorIsTheErrorOfAPerfectTransfer) {
 
   Scene u = bakeScene("builtin:sphere-plane?grid=24&subdiv=3", TransferMode::Unshadowed, 5, 0);
   const ValidationReport unshadowed = validate(u.mesh, *u.occ, u.transfer, u.bake, env, light, vs);
-  EXPECT_EQ(unshadowed.floorMethod, "irradiance quadrature");
+  EXPECT_EQ(unshadowed.floorMethod, kFloorMethod);
   EXPECT_EQ(unshadowed.floorRays, 0u);
   EXPECT_LT(unshadowed.rows[2].floor, 0.03);  // irradiance is nearly 3-band (R&H 2001)
   EXPECT_GT(rep.rows[2].floor, 1.5 * unshadowed.rows[2].floor);
   for (std::size_t k = 0; k < rep.rows.size(); ++k)
     std::printf(
         "bands %d: shadowed rel RMSE %.4f floor %.4f (ref std err %.4f); unshadowed "
-        "rel RMSE %.4f floor %.4f\n",
+        "rel RMSE %.4f floor %.4f (ref std err %.4f)\n",
         rep.rows[k].bands, rep.rows[k].relRmse, rep.rows[k].floor, rep.rows[k].refStdErr,
-        unshadowed.rows[k].relRmse, unshadowed.rows[k].floor);
+        unshadowed.rows[k].relRmse, unshadowed.rows[k].floor, unshadowed.rows[k].refStdErr);
 }
 
 // The energy-weighted error is ‖R_b − R_ref‖ / ‖R_ref‖: a transfer that doubles every radiance

@@ -70,9 +70,32 @@
 // variance then includes it). Each vertex draws its streams from (seed,
 // vertex index), so results do not depend on the thread count, and the per-vertex standard
 // error sqrt(s²(X)/N) per channel is an honest i.i.d. error bar for the whole of e.
+//
+// Exact band-limited relighting (ReferenceSettings::bandLimit; validation's truncation floor,
+// validate.hpp, docs/validation.md). PRT with a noise-free b-band transfer computes
+//   vector transfer:  e_b = ∫ K L_in[L_b] dω                (T_i exact: only the light is cut)
+//   matrix transfer:  e_b = ∫_{n·ω>0} K_b L_in[L_b] dω      (d, g and M L cut to b bands too)
+// with K(ω) = kd max(n·ω, 0)/π + ks G(r·ω) the reference's kernel at p, L_in[L_b] the light
+// arriving at p when the source is the b-band light L_b(ω) = Σ_{i<b²} w_l L_i Y_i(Rᵀω) (w a
+// window, 1 by default) and K_b = kd Σ_{l<b} (A_l/π)(2l+1)/(4π) P_l(n·ω) + ks Σ_{l<b} Λ_l
+// (2l+1)/(4π) P_l(r·ω) its b-band projection (addition theorem: dᵀY(ω), gᵀY(ω)). Split
+//   e_b − e = (e[L_b] − e) − ∫_{n·ω>0} (K − K_b) L_in[L_b] dω:
+//  * the light part, e[L_b] − e, from the reference's own samples: every path is traced once
+//    and carries, beside its radiance under L, its radiance under each L_b (`Lanes`: at an
+//    escape L_b is evaluated from the SH, everything else — directions, MIS weights, hits, the
+//    choice of term at a glossy hit — is shared). As L_b → L the two estimates' noise cancels;
+//  * the kernel part (matrix transfer only), by its own MIS of a uniform hemisphere direction
+//    (density 1/2π: K_b rings over the whole hemisphere, where the lobe has no density), the
+//    lobe about r and, when r is below the horizon, the horizon lobe, from a third stream; its
+//    paths carry the same band-limited lanes.
+// Each sample gives one value of e_b − e per band limit, so the standard error of the
+// difference comes from the same samples. Bounce hits keep the exact kernels (a matrix bake's
+// hits use its own band count's kernels: that, like interpolating transfer across a hit
+// triangle, is the bake's discretisation, not truncation at b).
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -83,6 +106,7 @@
 #include "prt/envmap/environment.hpp"
 #include "prt/geometry/mesh.hpp"
 #include "prt/raytrace/occluder.hpp"
+#include "prt/sh/sh.hpp"
 #include "prt/transfer/bake_settings.hpp"
 #include "prt/transfer/material.hpp"
 
@@ -140,6 +164,21 @@ class EnvironmentSampler {
 
 enum class MisHeuristic { Balance, Power };
 
+/// One band-limited light: L cut to `bands`, band l scaled by window[l] (empty: 1).
+struct BandLimit {
+  int bands = 0;
+  std::vector<double> window;
+};
+
+/// Exact band-limited relighting estimated beside the reference (see the top of this file).
+struct BandLimitSettings {
+  sh::RgbSh light;                ///< the SH light PRT relights with (environment frame)
+  std::vector<BandLimit> limits;  ///< one lane each, at most sh::kMaxBands
+  /// Matrix (glossy) transfer: the cosine and lobe kernels at the vertex and the transferred
+  /// light are cut to b bands too. False for vector transfer (exact cosine kernel).
+  bool truncateKernel = false;
+};
+
 struct ReferenceSettings {
   /// Samples per vertex (each: an environment and a cosine direction, and when glossy an
   /// environment and a lobe direction).
@@ -155,6 +194,9 @@ struct ReferenceSettings {
   MisHeuristic heuristic = MisHeuristic::Power;
   /// The vertices to estimate (global indices); empty: every vertex.
   std::vector<std::uint32_t> vertices;
+  /// When set, also e_b − e per band limit (ReferenceResult::bandLimited); the radiance is the
+  /// same, bit for bit (the band-limited lanes draw no random numbers of the main streams).
+  std::optional<BandLimitSettings> bandLimit;
 };
 
 /// One estimate: the mean and its standard error sqrt(s²/N), per channel.
@@ -163,10 +205,20 @@ struct Estimate {
   Rgb stdError;
 };
 
+/// The band-limited estimates at one vertex for one band limit b (same samples as e's).
+struct BandLimitedEstimate {
+  Estimate radiance;    ///< e_b: the exact band-limited relighting, what a noise-free bake gives
+  Estimate difference;  ///< e_b − e (its error bar from the per-sample differences)
+  Estimate light;       ///< e[L_b] − e: the light cut alone, exact kernels (= difference for
+                        ///< vector transfer)
+};
+
 struct ReferenceResult {
   std::vector<std::uint32_t> vertices;  ///< the vertices estimated (global indices)
   std::vector<Rgb> radiance;            ///< exit radiance R(p), one per entry of `vertices`
   std::vector<Rgb> stdError;            ///< its standard error, per channel
+  /// With settings.bandLimit, at [i·K + k] for vertex entry i and limit k of K.
+  std::vector<BandLimitedEstimate> bandLimited;
   std::uint64_t rays = 0;
   double seconds = 0;
 };
@@ -184,16 +236,33 @@ class ReferenceIntegrator {
   /// the rays cast.
   Estimate estimate(const Vec3f& p, const Vec3f& n, const Vec3f& v, const Rgb& kd, int samples,
                     std::uint64_t seed, std::uint64_t* rays = nullptr) const;
+  /// estimate() (the same value, bit for bit) and, from the same samples, the estimates of
+  /// each band limit k of settings.bandLimit (required) into out[k].
+  Estimate estimateBandLimited(const Vec3f& p, const Vec3f& n, const Vec3f& v, const Rgb& kd,
+                               int samples, std::uint64_t seed, std::span<BandLimitedEstimate> out,
+                               std::uint64_t* rays = nullptr) const;
 
  private:
-  Rgb incoming(const Vec3f& p, const Vec3f& n, int bouncesLeft, Pcg32& rng,
-               std::uint64_t& rays) const;
-  Rgb glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, int bounces, Pcg32& rng,
+  struct Lanes;          ///< a path's radiance under L and under each band-limited light
+  struct BandLimitData;  ///< the lanes' light and kernel coefficients
+
+  template <class R>
+  R incoming(const Vec3f& p, const Vec3f& n, int bouncesLeft, Pcg32& rng,
              std::uint64_t& rays) const;
-  bool sampleEnvironment(Pcg32& rng, Vec3f& w, double& pe, Rgb& le) const;
+  template <class R>
+  R glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, int bounces, Pcg32& rng,
+           std::uint64_t& rays) const;
+  template <class R>
+  R frontHit(const Hit& h, const Vec3f& w, int bouncesLeft, Pcg32& rng, std::uint64_t& rays) const;
+  /// The environment's radiance along an escaping ray, `texel` in direction `envDir`
+  /// (environment frame): the texel itself, or for Lanes also each L_b(envDir).
+  template <class R>
+  R sky(const Vec3f& envDir, const Rgb& texel) const;
+  /// One sample of ∫_{n·ω>0} (K − K_b)(ω) L_in[L_b](ω) dω per band limit, into out[k].
+  void kernelResidual(const Vec3f& p, const Vec3f& n, const Vec3f& r, const Rgb& kd, int bounces,
+                      Pcg32& rng, std::uint64_t& rays, Rgb* out) const;
+  bool sampleEnvironment(Pcg32& rng, Vec3f& w, Vec3f& envDir, double& pe, Rgb& le) const;
   bool unblocked(const Vec3f& origin, const Vec3f& w, std::uint64_t& rays) const;
-  Rgb frontHit(const Hit& h, const Vec3f& w, int bouncesLeft, Pcg32& rng,
-               std::uint64_t& rays) const;
   /// The heuristic's weight of strategy a among those with densities pa, pb, pc.
   double misWeight(double pa, double pb, double pc = 0.0) const;
   Rgb hitAlbedo(std::uint32_t tri, float u, float v) const;
@@ -202,13 +271,15 @@ class ReferenceIntegrator {
   const Occluder& occluder_;
   const EnvironmentSampler& sampler_;
   ReferenceSettings settings_;
-  Mat3d rotT_;  ///< Rᵀ: world → environment frame
+  Mat3d rotT_;                                 ///< Rᵀ: world → environment frame
+  std::shared_ptr<const BandLimitData> band_;  ///< set with settings.bandLimit
 };
 
 /// Per-vertex reference radiance e(p, v), v = normalize(eye − p). kd: material.diffuse, else the
 /// mesh's albedo, else 1. Parallel over vertices, progress per vertex; throws prt::Error on bad
 /// settings (samples < 1 or > 2^24, bounces out of 0..16, vertex index out of range, a glossy
-/// material without an eye) and prt::Cancelled.
+/// material without an eye, a band limit beyond the light or sh::kMaxBands of them) and
+/// prt::Cancelled.
 ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder,
                                 const envmap::Environment& env, const ReferenceSettings& settings,
                                 const ProgressFn& progress = {});

@@ -10,18 +10,24 @@
 //   energy-weighted  sqrt( Σ_p Σ_c d_pc² / Σ_p Σ_c R_ref,pc² )        (‖d‖ / ‖R_ref‖, no ε)
 //   mean / max       mean and maximum over p of
 //                    e(p) = sqrt( Σ_c d_pc² / Σ_c (R_ref,pc² + ε) )
-//   truncation floor the rel RMSE a perfect b-band transfer would still have: R(L) − R(L_b) =
-//                    R(L − L_b) by linearity. Unshadowed: the clamped-cosine irradiance of the
-//                    b-band light (Λ_l L_lm, Ramamoorthi & Hanrahan 2001) against the texel
-//                    quadrature of the irradiance (exact). Shadowed and inter-reflected: the
-//                    reference run with the residual environment L − L_b (visibility and
-//                    bounces included), x̂² − se² per channel so its noise does not inflate it.
-//                    Over an even stride of at most `floorVertices` of the validated vertices.
-//   ref std err      mean over vertices of the reference's relative standard error
-//                    sqrt(Σ_c se_c²) / sqrt(Σ_c (R_ref,c² + ε))
-// Read it as error ≈ floor + (the transfer's noise and discretisation) + (the reference's
-// noise): a PRT error near the floor is SH truncation; one near the reference's standard error
-// is below what this comparison can resolve.
+//   truncation floor the rel RMSE of exact band-limited relighting — what PRT with a noise-free
+//                    b-band transfer gives — against the reference: the same metric with
+//                    e_b − e for the difference, e_b − e estimated per vertex from the
+//                    reference's own samples (reference.hpp: the light cut to b bands along
+//                    every path, and for matrix transfer the cosine and lobe kernels and the
+//                    transferred light cut too), x̂² − se² per channel so its noise does not
+//                    inflate it. Over an even stride of at most `floorVertices` of the
+//                    validated vertices.
+//   ref std err      the reference's noise in the same metric:
+//                    sqrt( 1/(3N) Σ_p Σ_c se_pc² / (R_ref,pc² + ε) )
+// so that, for a noise-free bake, E[rel RMSE²] = floor² + (ref std err)² (docs/validation.md
+// derives it): `unexplainedSq` = rel RMSE² − floor² − ref std err² (over the floor's vertices)
+// is then 0 within `unexplainedSqStdErr`, its standard error over vertices; what stands above
+// it is the bake's own error (its noise, its interpolation at bounce hits) or a bug.
+//   negative         the share of validated vertices (for glossy transfer, of those facing the
+//                    eye: the others are not seen from it) whose PRT radiance is negative in
+//                    some channel (below −10⁻³ m, so that rounding does not count): SH
+//                    ringing, which a window on the light (ValidateSettings::window) tames.
 
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +35,7 @@
 #include <vector>
 
 #include "prt/render/reference.hpp"
+#include "prt/sh/convolve.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transport/bake.hpp"
 
@@ -39,17 +46,38 @@ struct ValidateSettings {
   std::vector<int> bandsList;   ///< band counts to tabulate; empty: 1..B
   std::size_t maxVertices = 0;  ///< 0: every vertex; else a deterministic random subset
   /// Vertices over which the truncation floor is taken (an even stride of the validated ones);
-  /// shadowed and inter-reflected floors cost one reference run over them per band count.
+  /// it costs one band-limited reference run over them for all band counts (about the
+  /// reference's own cost per vertex for vector transfer, twice it for matrices).
   std::size_t floorVertices = 1024;
+  /// A window on the light against ringing, applied at each band count b to the b-band light
+  /// (as `prt light --bands b --window W` would) for PRT and the floor alike.
+  sh::Window window = sh::Window::None;
 };
+
+/// Above this share of negative-radiance vertices a row calls for a window on the light.
+inline constexpr double kNegativeShareWarning = 0.05;
 
 struct BandRow {
   int bands = 0;
   double relRmse = 0, energyRel = 0, meanRel = 0, maxRel = 0, floor = 0, refStdErr = 0;
+  /// The floor with the light alone cut (exact kernels): for matrix transfer, what a floor
+  /// that ignores the truncation of the transferred light would say; = floor for vectors.
+  double lightFloor = 0;
+  /// rel RMSE² − floor² − ref std err² over the floor's vertices, and its standard error.
+  double unexplainedSq = 0, unexplainedSqStdErr = 0;
+  /// sqrt(floor² + ref std err²) / rel RMSE over the floor's vertices: near 1 when truncation
+  /// and the reference's noise account for the error; well below 1, the bake's own error (its
+  /// noise, or a bug) shows.
+  double explained = 1;
+  /// Share of the validated (glossy: eye-facing) vertices with a negative channel.
+  double negativeShare = 0;
   /// Glossy materials: the fraction of the lobe's energy beyond `bands` (GlossyLobe::energyBeyond),
   /// what no b-band transfer can hold however exact; 0 for diffuse surfaces.
   double lobeEnergyBeyond = 0;
 };
+
+/// What the floor is, in one phrase (the report's floorMethod; the CLI's label).
+inline constexpr const char* kFloorMethod = "exact band-limited relighting";
 
 struct ValidationReport {
   TransferMode mode = TransferMode::Shadowed;
@@ -59,10 +87,12 @@ struct ValidationReport {
   ReferenceResult reference;       ///< over the validated vertices
   std::vector<BandRow> rows;       ///< one per band count, ascending
   std::vector<float> vertexError;  ///< e(p) at the last row's band count, per validated vertex
-  std::string floorMethod;         ///< "irradiance quadrature" or "residual reference"
+  std::string floorMethod;         ///< kFloorMethod
   std::size_t floorVertices = 0;   ///< vertices the floor was taken over
-  std::uint64_t floorRays = 0;     ///< rays of the residual runs (shadowed, inter-reflected)
+  std::uint64_t floorRays = 0;     ///< rays of the band-limited run
   double floorSeconds = 0;
+  std::string window = "none";       ///< the window on the light
+  std::size_t negativeVertices = 0;  ///< the vertices negativeShare counts among
 };
 
 /// A deterministic random subset of `count` of [0, n) (all when count is 0 or ≥ n), sorted.

@@ -16,10 +16,14 @@
 //
 // Lobes (each normalised: ∫ G dω = 1, so Λ_0 = 1 and a white furnace returns ks):
 //   * phong:  G(t) = (s + 1)/(2π) · max(t, 0)^s                       (s = exponent)
-//   * ggx:    the GGX/Trowbridge–Reitz NDF D(h) (α = roughness²) carried to reflected
-//             directions at normal incidence: ω at angle θ from R has half vector at θ/2 and
-//             G(cos θ) = D(θ/2)/4 (the Jacobian dω/dh = 4 h·v). The usual zonal fit of a
-//             microfacet lobe (Fresnel and masking omitted, so it conserves energy exactly).
+//   * ggx:    a GGX-shaped lobe symmetric about R — NOT a microfacet BRDF. The GGX/Trowbridge–
+//             Reitz NDF D(h) (α = roughness²) as seen at normal incidence, carried to reflected
+//             directions: ω at angle θ from R has half vector at θ/2 and G(cos θ) = D(θ/2)/4
+//             (the Jacobian dω/dh = 4 h·v). The same shape at every view angle: no Fresnel, no
+//             masking-shadowing, no 1/(4 n·l n·v) and no n·l, so it conserves energy exactly
+//             and is zonal (one Λ_l per band). A standard microfacet BRDF (Walter et al. 2007:
+//             D F G / (4 n·l n·v), times n·l) stretches and brightens toward grazing views —
+//             docs/transport.md measures the difference (the name stays `ggx`: files store it).
 // The brute-force reference (render/reference) evaluates the same G, so PRT and reference
 // differ only by band limit and noise.
 //
@@ -89,6 +93,14 @@ struct Material {
 /// Parses a spec string (see above); throws prt::Error("SPEC: ...") on anything unknown or out
 /// of range.
 Material parseMaterial(const std::string& spec);
+
+/// What the `ggx` spec is, in one plain-text line for --help texts.
+inline constexpr const char* kGgxHelp =
+    "ggx: a GGX-shaped lobe symmetric about the reflected view (normal-incidence GGX NDF; no "
+    "Fresnel, masking or 1/(4 cos cos): not a microfacet BRDF)";
+
+/// One line saying what `lobe` is (prt info): its shape, its parameter, what it leaves out.
+std::string describe(const GlossyLobe& lobe);
 
 /// The reflected view direction R = 2(n·v)n − v for unit n and v (v points away from the
 /// surface, toward the eye).
