@@ -2,15 +2,15 @@
 
 #include <cmath>
 
+#include "prt/core/quadrature.hpp"
+
 namespace prt::envmap {
 
 std::vector<double> capLegendreIntegrals(int bands, double halfAngle) {
   const double x = std::cos(halfAngle);
-  // P_0..P_bands at x by Bonnet's recurrence (l+1) P_{l+1} = (2l+1) x P_l − l P_{l−1}.
+  // P_0..P_bands at x; ∫_x^1 P_l = (P_{l−1} − P_{l+1}) / (2l + 1).
   std::vector<double> p(static_cast<std::size_t>(bands) + 1);
-  p[0] = 1;
-  if (bands >= 1) p[1] = x;
-  for (int l = 1; l < bands; ++l) p[l + 1] = ((2 * l + 1) * x * p[l] - l * p[l - 1]) / (l + 1);
+  legendrePolynomials(bands + 1, x, p.data());
   std::vector<double> out(bands);
   out[0] = 1 - x;
   for (int l = 1; l < bands; ++l) out[l] = (p[l - 1] - p[l + 1]) / (2 * l + 1);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "prt/core/error.hpp"
+#include "prt/core/quadrature.hpp"
 
 namespace prt::envmap {
 
@@ -124,12 +125,9 @@ namespace {
 // G(r)/r² → π²/2 at r = 0, so the integrand is bounded; it has a kink where r crosses 1, so the
 // edge is split there and each smooth piece integrated by 8-point Gauss–Legendre.
 double edgeFlux(double x0, double y0, double x1, double y1) {
-  static constexpr double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                                   -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
-                                   0.7966664774136267,  0.9602898564975363};
-  static constexpr double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
-                                   0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
-                                   0.2223810344533745, 0.1012285362903763};
+  static const QuadratureRule rule = gaussLegendre(8);
+  const std::vector<double>& gx = rule.nodes;
+  const std::vector<double>& gw = rule.weights;
   const double dx = x1 - x0, dy = y1 - y0;
   const double cr = x0 * dy - y0 * dx;  // x dy − y dx = cr dτ along p(τ) = p0 + τ (p1 − p0)
   if (cr == 0) return 0;

@@ -15,6 +15,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
+#include "prt/core/quadrature.hpp"
 #include "prt/envmap/layout.hpp"
 #include "prt/image/color.hpp"
 #include "prt/sh/convolve.hpp"
@@ -344,13 +345,6 @@ double uniform53(Pcg32& rng) {
   return double((hi << 26) | lo) * 0x1p-53;
 }
 
-/// P_0(t) .. P_{n−1}(t) into p: (l+1) P_{l+1} = (2l+1) t P_l − l P_{l−1}.
-void legendre(int n, double t, double* p) {
-  if (n > 0) p[0] = 1.0;
-  if (n > 1) p[1] = t;
-  for (int l = 1; l + 1 < n; ++l) p[l + 1] = ((2 * l + 1) * t * p[l] - l * p[l - 1]) / (l + 1);
-}
-
 }  // namespace
 
 template <>
@@ -664,9 +658,9 @@ void ReferenceIntegrator::kernelResidual(const Vec3f& p, const Vec3f& n, const V
     const double weight = misWeight(pa, pb, pc) / pa;
     const int nb = bd.lightBands;
     std::array<double, sh::kMaxBands> pn{}, pr{};
-    legendre(nb, cn, pn.data());
+    legendrePolynomials(nb, cn, pn.data());
     const double cr = dot(Vec3d(r), Vec3d(w));
-    if (gloss) legendre(nb, cr, pr.data());
+    if (gloss) legendrePolynomials(nb, cr, pr.data());
     const double c = cn / kPi, g = gloss ? lobe.value(cr) : 0.0;
     // Partial sums over bands: lane k takes those up to its b_k (lanes in any order).
     std::array<double, sh::kMaxBands + 1> cb{}, gb{};

@@ -7,34 +7,14 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
+#include "prt/core/quadrature.hpp"
 
 namespace prt::sh {
 
 SphereQuadrature gaussLegendreSphere(int n) {
-  if (n < 1 || n > 4096)
-    throw Error("quadrature order must be in 1..4096, got " + std::to_string(n));
-  // Gauss–Legendre nodes z_i (roots of P_n) by Newton from Tricomi's initial guess
-  // cos(π (i + 3/4) / (n + 1/2)); weights w_i = 2 / ((1 - z²) P_n'(z)²), Σ w_i = 2.
-  std::vector<double> z(n), w(n);
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double dp = 1;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = x;  // P_0, P_1
-      for (int k = 2; k <= n; ++k) {
-        const double pk = ((2.0 * k - 1) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = pk;
-      }
-      const double pn = n == 1 ? x : p1, pm = n == 1 ? 1 : p0;  // P_n, P_{n-1}
-      dp = n * (x * pn - pm) / (x * x - 1);                     // P_n'
-      const double dx = pn / dp;
-      x -= dx;
-      if (std::fabs(dx) < 1e-16) break;
-    }
-    z[i] = x;
-    w[i] = 2.0 / ((1 - x * x) * dp * dp);
-  }
+  const QuadratureRule rule = gaussLegendre(n);
+  const std::vector<double>& z = rule.nodes;
+  const std::vector<double>& w = rule.weights;
   // φ: 2n equally spaced nodes, offset half a step, each 2π / (2n).
   const int nphi = 2 * n;
   SphereQuadrature q;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "prt/core/error.hpp"
+#include "prt/core/quadrature.hpp"
 #include "prt/core/spec.hpp"
 
 namespace prt {
@@ -69,17 +70,8 @@ std::vector<double> GlossyLobe::zonal(int bands) const {
   integrateOverSphere(*this, [&](double t, double w) {
     const double gw = value(t) * w;
     norm += gw;
-    // Legendre recurrence: (l+1) P_{l+1} = (2l+1) t P_l − l P_{l−1}.
-    double p0 = 1.0, p1 = t;
-    for (int l = 0; l < bands; ++l) {
-      const double pl = l == 0 ? p0 : p1;
-      lambda[l] += gw * pl;
-      if (l >= 1) {
-        const double next = ((2 * l + 1) * t * p1 - l * p0) / (l + 1);
-        p0 = p1;
-        p1 = next;
-      }
-    }
+    legendrePolynomials(bands, t, p.data());
+    for (int l = 0; l < bands; ++l) lambda[l] += gw * p[l];
   });
   // Λ_0 = ∫ G dω = 1 analytically; dividing by the quadrature's value makes it exact.
   for (double& x : lambda) x /= norm;

@@ -48,6 +48,7 @@
 #include "bake_common.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
+#include "prt/core/quadrature.hpp"
 #include "prt/core/sampling.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
@@ -67,35 +68,13 @@ using MatF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic>;
 using MatD = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
 using RowMatF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// Gauss–Legendre nodes and weights on [0, 1] (Newton on P_n, Golub–Welsch-free).
-void gaussLegendre01(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.resize(n);
-  w.resize(n);
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-15) break;
-    }
-    x[i] = 0.5 * (z + 1);
-    w[i] = 1.0 / ((1 - z * z) * dp * dp);  // 2/((1−z²)P'²) halved for [0, 1]
-  }
-}
-
 MatD hemisphereProductZ(int bands) {
   // Y_i Y_j restricted to one m is a polynomial of degree ≤ 2(B−1) in cos θ times a
   // trigonometric polynomial of degree ≤ 2(B−1) in φ: B Gauss points and 4B φ steps are exact.
   const int nc = bands * bands;
-  std::vector<double> t, w;
-  gaussLegendre01(bands + 1, t, w);
+  const QuadratureRule rule = gaussLegendre(bands + 1, 0.0, 1.0);
+  const std::vector<double>& t = rule.nodes;
+  const std::vector<double>& w = rule.weights;
   const int nphi = 4 * bands;
   MatD h = MatD::Zero(nc, nc);
   std::vector<double> y(nc);
