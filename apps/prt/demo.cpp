@@ -184,7 +184,7 @@ float objectExposure(std::span<const Rgb> radiance) {
   if (lum.empty()) return 0;
   const auto mid = lum.begin() + static_cast<std::ptrdiff_t>(lum.size() / 2);
   std::nth_element(lum.begin(), mid, lum.end());
-  return *mid > 0 ? std::log2(0.3f / *mid) : 0.0f;
+  return *mid > 0 ? image::clampExposure(std::log2(0.3f / *mid)) : 0.0f;
 }
 
 /// The image as the PNG will show it, still linear: tone mapped (with exposure) and clamped, so

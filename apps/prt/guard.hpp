@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "prt/core/error.hpp"
+#include "prt/image/color.hpp"
 
 namespace prt::cli {
 
@@ -180,6 +181,11 @@ inline CLI::Validator finite(double lo = -HUGE_VAL, double hi = HUGE_VAL) {
         return {};
       },
       "NUMBER", "Finite");
+}
+
+/// An --exposure in stops: finite and within the library's one limit (image::kMaxExposureStops).
+inline CLI::Validator exposureStops() {
+  return finite(-image::kMaxExposureStops, image::kMaxExposureStops);
 }
 
 /// Every value option of every verb takes exactly one value per occurrence, so repeatable

@@ -218,7 +218,7 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--size", opts->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--spp", opts->spp, "Stratified samples per pixel")->capture_default_str();
   cmd->add_option("--exposure", opts->exposure, "Exposure in stops (PNG)")
-      ->check(finite(-64, 64))
+      ->check(exposureStops())
       ->capture_default_str();
   cmd->add_option("--tonemap", opts->tonemap, "Tone map for PNG: aces, reinhard, clamp")
       ->capture_default_str();
