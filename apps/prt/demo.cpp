@@ -419,10 +419,7 @@ void runDemo(const DemoArgs& a) {
   for (const std::string& spec : envSpecs) {
     envs.push_back(envmap::loadEnvironment(spec));
     const envmap::LoadedEnvironment& e = envs.back();
-    for (std::size_t k = 0; k < e.stats.size(); ++k)
-      if (e.stats[k].nonFinitePixels + e.stats[k].negativePixels > 0)
-        info(fmt::format("{}: {} non-finite and {} negative pixels set to 0", e.files[k],
-                         e.stats[k].nonFinitePixels, e.stats[k].negativePixels));
+    for (const std::string& w : envmap::repairWarnings(e)) info(w);
   }
 
   // The output folder is built beside its final name and renamed into place at the end, so a

@@ -132,10 +132,7 @@ void run(const RenderOptions& o) {
     light = io::readLight(o.light).coefficients;
   } else {
     envmap::LoadedEnvironment loaded = envmap::loadEnvironment(o.light);
-    for (std::size_t k = 0; k < loaded.stats.size(); ++k)
-      if (loaded.stats[k].nonFinitePixels + loaded.stats[k].negativePixels > 0)
-        warn(fmt::format("{}: {} non-finite and {} negative pixels set to 0", loaded.files[k],
-                         loaded.stats[k].nonFinitePixels, loaded.stats[k].negativePixels));
+    for (const std::string& w : envmap::repairWarnings(loaded)) warn(w);
     env = std::move(loaded.env);
     light = envmap::projectEnvironment(*env, transfer.bands, progressBar("projecting"));
   }
@@ -171,6 +168,7 @@ void run(const RenderOptions& o) {
             : relight::relight(transfer, light, material.diffuseOr(bake.mesh.albedo), radiance,
                                rotation);
     if (!warned && !relit.warning().empty()) warn(relit.warning()), warned = true;
+    render::checkFiniteRadiance(radiance, o.bake);
     render::BackgroundFn bg;
     switch (kind) {
       case render::Background::Env:

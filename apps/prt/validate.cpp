@@ -72,6 +72,7 @@ void runValidate(const ValidateArgs& a) {
          "drops the lobe, and its bounces are diffuse too)");
   file.requireComplete(a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
+  for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.field.bands);
   auto occluder = makeEmbreeOccluder(file.mesh);
 
@@ -84,6 +85,7 @@ void runValidate(const ValidateArgs& a) {
   vs.reference.eye = render::frameMesh(file.mesh, 640, 480).eye;
   vs.bandsList = bands;
   vs.maxVertices = a.vertices;
+  vs.bakeName = a.bake;
   info("validating " + std::string(toString(bt.settings.mode)) + " transfer (" +
        std::to_string(bt.field.bands) + " bands) of " + a.bake + " under " + a.light);
   // A compressed transfer is validated as relit: its reconstruction (the compression's own error

@@ -125,10 +125,7 @@ WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
     return e;
   }
   envmap::LoadedEnvironment loaded = envmap::loadEnvironment(spec);
-  for (std::size_t k = 0; k < loaded.stats.size(); ++k)
-    if (loaded.stats[k].nonFinitePixels + loaded.stats[k].negativePixels > 0)
-      warn(fmt::format("{}: {} non-finite and {} negative pixels set to 0", loaded.files[k],
-                       loaded.stats[k].nonFinitePixels, loaded.stats[k].negativePixels));
+  for (const std::string& w : envmap::repairWarnings(loaded)) warn(w);
   e.light = envmap::projectEnvironment(loaded.env, bands, progressBar("projecting"));
   e.background = envmap::renderEnvironment(loaded.env, width);
   return e;

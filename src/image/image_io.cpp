@@ -460,6 +460,7 @@ ReadStats sanitize(Image& img) {
     s.nonFinitePixels += nonFinite;
     s.negativePixels += negative;
   }
+  s.pixels = img.pixels.size();
   return s;
 }
 

@@ -150,6 +150,20 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   const auto& verts = rep.reference.vertices;
   const std::size_t n = verts.size();
   const std::vector<Rgb>& ref = rep.reference.radiance;
+  // A non-finite reference (radiance beyond float range) leaves nothing to compare against:
+  // refuse it rather than tabulate inf % and NaN %.
+  for (std::size_t i = 0; i < n; ++i)
+    if (!isFinite(ref[i]) || !isFinite(rep.reference.stdError[i]))
+      throw Error(env.source(), "the reference radiance at vertex " + std::to_string(verts[i]) +
+                                    " is not finite (the environment is too bright for 32-bit "
+                                    "floats); nothing to validate against");
+  double refTotal = 0;
+  for (const Rgb& c : ref) refTotal += sumSq(c);
+  rep.referenceIsZero = !(refTotal > 0);
+  if (rep.referenceIsZero)
+    rep.warnings.push_back(
+        "the reference is zero at every validated vertex (a black environment?): relative "
+        "errors are undefined (n/a)");
 
   double meanRef = 0;
   for (const Rgb& c : ref) meanRef += (double(c.x) + c.y + c.z) / 3.0;
@@ -211,7 +225,14 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     else
       relight::relight(transfer.truncated(b), light.truncated(b), rs.material.diffuseOr(albedo),
                        all, rs.rotation);
-    for (std::size_t i = 0; i < n; ++i) prt[i] = all[verts[i]];
+    for (std::size_t i = 0; i < n; ++i) {
+      prt[i] = all[verts[i]];
+      if (!isFinite(prt[i]))
+        throw Error(settings.bakeName,
+                    "the PRT radiance at vertex " + std::to_string(verts[i]) +
+                        " is not finite at " + std::to_string(b) +
+                        " bands (the transfer times the light overflows 32-bit floats)");
+    }
     double floorSq = 0;
     if (!residualFloor) {
       // Unshadowed band-limited irradiance E_b(n) = Σ_{l<b} Λ_l L_lm Y_lm(n), radiance ρ E_b / π.
@@ -275,6 +296,12 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     r.energyRel = refEnergy > 0 ? std::sqrt(diffEnergy / refEnergy) : 0.0;
     r.meanRel = sum / std::max<std::size_t>(n, 1);
     r.maxRel = mx;
+    if (rep.referenceIsZero) {
+      // Relative to nothing: undefined, not 0 % (and not the 1e32 % that ε alone would give).
+      const double na = std::numeric_limits<double>::quiet_NaN();
+      r.relRmse = r.energyRel = r.meanRel = r.maxRel = r.floor = r.refStdErr = na;
+      std::fill(err.begin(), err.end(), 0.0f);
+    }
     rep.rows.push_back(r);
     rep.vertexError = std::move(err);
   }
@@ -292,18 +319,26 @@ std::string formatTable(const ValidationReport& rep) {
   os << "------+-----------+-----------------+--------------+-------------+------------------+----"
         "--------"
      << (lobe ? "+------------------" : "") << "\n";
+  // A percentage, or "n/a" where it is undefined (a zero reference): never "inf%" or "-nan%".
+  const auto pct = [](double v, int width) {
+    char cell[48];
+    if (std::isfinite(v))
+      std::snprintf(cell, sizeof cell, "%*.3f%%", width, 100 * v);
+    else
+      std::snprintf(cell, sizeof cell, "%*s", width + 1, "n/a");
+    return std::string(cell);
+  };
   for (const BandRow& r : rep.rows) {
-    std::snprintf(line, sizeof line,
-                  "%5d | %8.3f%% | %14.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%%", r.bands,
-                  100 * r.relRmse, 100 * r.energyRel, 100 * r.meanRel, 100 * r.maxRel,
-                  100 * r.floor, 100 * r.refStdErr);
+    std::snprintf(line, sizeof line, "%5d | %s | %s | %s | %s | %s | %s", r.bands,
+                  pct(r.relRmse, 8).c_str(), pct(r.energyRel, 14).c_str(),
+                  pct(r.meanRel, 11).c_str(), pct(r.maxRel, 10).c_str(), pct(r.floor, 15).c_str(),
+                  pct(r.refStdErr, 10).c_str());
     os << line;
-    if (lobe) {
-      std::snprintf(line, sizeof line, " | %15.3f%%", 100 * r.lobeEnergyBeyond);
-      os << line;
-    }
+    if (lobe) os << " | " << pct(r.lobeEnergyBeyond, 15);
     os << "\n";
   }
+  if (rep.referenceIsZero)
+    os << "n/a: the reference is zero at every validated vertex; relative errors are undefined\n";
   return os.str();
 }
 
@@ -351,6 +386,7 @@ std::string reportJson(const ValidationReport& rep, int indent) {
   os << i1 << "\"floorVertices\": " << rep.floorVertices << "," << nl;
   os << i1 << "\"floorRays\": " << rep.floorRays << "," << nl;
   os << i1 << "\"floorSeconds\": " << num(rep.floorSeconds) << "," << nl;
+  os << i1 << "\"referenceIsZero\": " << (rep.referenceIsZero ? "true" : "false") << "," << nl;
   os << i1 << "\"warnings\": [";
   for (std::size_t k = 0; k < rep.warnings.size(); ++k)
     os << (k ? ", " : "") << jsonString(rep.warnings[k]);

@@ -83,5 +83,52 @@ TEST_F(ReadersCli, OneExposureLimitEverywhere) {
   }
 }
 
+TEST_F(ReadersCli, ValidateAndReferenceNeverTabulateGarbage) {
+  ASSERT_EQ(prt(std::string("-q bake ") + kSphere + " --mode unshadowed --samples 16 -o b.glb").rc,
+            0);
+  // An all-NaN environment: nothing to validate against (it validated at 0.000 %).
+  image::Image nan(16, 8);
+  for (Rgb& p : nan.pixels) p = Rgb(std::nanf(""));
+  image::writeImage(path("nan.exr"), nan);
+  for (const std::string& verb : {std::string("validate b.glb --light nan.exr --json out/r.json"),
+                                  std::string("reference b.glb --light nan.exr -o out/r.json"),
+                                  std::string("render b.glb --light nan.exr -o out/x.png"),
+                                  std::string("light nan.exr -o out/l.json")})
+    expectCleanFailure(verb, "nan.exr: every pixel (128) is NaN or infinite");
+  // Some NaN pixels: said, by validate and reference as by render.
+  nan.pixels[3] = Rgb(1.0f);
+  for (std::size_t i = 4; i < nan.pixels.size(); ++i) nan.pixels[i] = Rgb(0.5f);
+  image::writeImage(path("some.exr"), nan);
+  for (const std::string& verb :
+       {std::string("validate b.glb --light some.exr --reference-samples 8 --vertices 5"),
+        std::string("reference b.glb --light some.exr --samples 8 --vertices 5 -o "
+                    "r.json")}) {
+    const Result r = prt("-q " + verb);
+    EXPECT_EQ(r.rc, 0) << r.err;
+    EXPECT_NE(r.err.find("some.exr: 3 non-finite and 0 negative pixels set to 0"),
+              std::string::npos)
+        << verb << ": " << r.err;
+  }
+  // A black environment: the relative errors are undefined, said as such.
+  image::Image black(16, 8);
+  image::writeImage(path("black.exr"), black);
+  const Result r =
+      prt("-q validate b.glb --light black.exr --reference-samples 8 --vertices 5 --json v.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("n/a"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("inf"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("0.000%"), std::string::npos) << r.out;
+  EXPECT_NE(slurp(dir_ / "v.json").find("\"referenceIsZero\": true"), std::string::npos);
+  // Too bright to project: refused naming the file (the message named none).
+  std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 16\n";
+  for (int i = 0; i < 16 * 8; ++i) hdr += std::string(4, '\xff');
+  write("bright.hdr", hdr);
+  expectCleanFailure("render b.glb --light bright.hdr -o out/x.png",
+                     "bright.hdr: projecting the environment onto SH overflowed");
+  expectCleanFailure("validate b.glb --light bright.hdr --json out/v.json",
+                     "bright.hdr: projecting the environment onto SH overflowed");
+}
+
 }  // namespace
 }  // namespace prt

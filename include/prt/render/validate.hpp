@@ -41,6 +41,8 @@ struct ValidateSettings {
   /// Vertices over which the truncation floor is taken (an even stride of the validated ones);
   /// shadowed and inter-reflected floors cost one reference run over them per band count.
   std::size_t floorVertices = 1024;
+  /// The bake file the transfer came from, named when its relighting overflows.
+  std::string bakeName;
 };
 
 struct BandRow {
@@ -63,6 +65,9 @@ struct ValidationReport {
   std::size_t floorVertices = 0;   ///< vertices the floor was taken over
   std::uint64_t floorRays = 0;     ///< rays of the residual runs (shadowed, inter-reflected)
   double floorSeconds = 0;
+  /// The reference is 0 at every validated vertex (a black environment): relative errors are
+  /// undefined, and the rows hold NaN for them (formatTable prints "n/a", reportJson null).
+  bool referenceIsZero = false;
 };
 
 /// A deterministic random subset of `count` of [0, n) (all when count is 0 or ≥ n), sorted.
