@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "guard.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/core/parallel.hpp"
 
 #ifndef PRT_VERSION
@@ -139,6 +140,9 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] { limit = std::make_unique<prt::ThreadLimit>(g.threads); });
 
   try {
+    // The PRT_MAX_* variables are read once, here: a bad one is refused at once, whatever the
+    // verb and whether or not it would have consulted the limit.
+    prt::limits();
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version

