@@ -56,7 +56,12 @@ void writeFileAtomically(const std::string& path, std::string_view bytes) {
 
 std::vector<unsigned char> readFileBytes(const std::string& path) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw Error(path, "is a directory, expected a file");
+  const fs::file_status st = fs::status(path, ec);
+  if (fs::is_directory(st)) throw Error(path, "is a directory, expected a file");
+  // A FIFO with no writer would block in open() forever, and a pipe or device has no size to
+  // check against the cap: only regular files are read.
+  if (fs::exists(st) && !fs::is_regular_file(st))
+    throw Error(path, "is not a regular file (a pipe, device or socket); give a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open (does it exist and is it readable?)");
   in.seekg(0, std::ios::end);

@@ -50,6 +50,23 @@ TEST(ReadersCore, CoordinateCapStopsWhereEmbreeStops) {
   setLimits(saved);
 }
 
+TEST(ReadersCore, FifoIsRefusedNotWaitedFor) {
+  prt::testing::ScratchDir dir;
+  const std::string fifo = dir / "light.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // No writer: open() on the FIFO would block forever; a regression ends the program with a
+  // failure instead of hanging it.
+  const std::string e =
+      test::finishesWithin(10, "readFileBytes on a FIFO", [&] { readFileBytes(fifo); });
+  EXPECT_EQ(e, fifo + ": is not a regular file (a pipe, device or socket); give a file");
+  EXPECT_NE(errorOf([] { readFileBytes("/dev/null"); }).find("not a regular file"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { readFileBytes(dir.path().string()); }).find("is a directory"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { readFileBytes(dir / "missing.bin"); }).find("cannot open"),
+            std::string::npos);
+}
+
 TEST(ReadersCore, InternalErrorsNameSourcesRelativeToTheTree) {
   const std::string e = errorOf([] { PRT_CHECK(1 + 1 == 3, "arithmetic"); });
   EXPECT_NE(e.find("internal error: arithmetic"), std::string::npos) << e;

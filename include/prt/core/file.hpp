@@ -15,7 +15,8 @@ namespace prt {
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 /// Same for a byte buffer.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
-/// Reads a whole file; throws Error("path: cannot open ...") on failure.
+/// Reads a whole regular file (never a pipe, device or socket: a FIFO would block in open());
+/// throws Error("path: cannot open ...") on failure.
 std::vector<unsigned char> readFileBytes(const std::string& path);
 /// Throws Error naming `path` if its directory does not exist or is not writable.
 void checkWritable(const std::string& path);
