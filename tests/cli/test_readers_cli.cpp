@@ -191,5 +191,53 @@ TEST_F(ReadersCli, CoordinateOverrideStopsWhereEmbreeStops) {
   }
 }
 
+// --- item 9: silent repairs -----------------------------------------------------------------
+
+TEST_F(ReadersCli, SilentRepairsAreRefusedByName) {
+  // MTL numbers tinyobjloader read as 0.
+  write("m.obj", "mtllib m.mtl\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write("m.mtl", "newmtl a\nKd nan 0.5 0.5\n");
+  expectCleanFailure("bake m.obj --mode unshadowed --samples 16 -o out/b.glb",
+                     "m.mtl: line 2: Kd 'nan'");
+  write("m.mtl", "newmtl a\nKd 0.5 0.5 0.5\nKs 0.5 0.5 0.5\nNs nan\n");
+  expectCleanFailure("bake m.obj --mode unshadowed --samples 16 -o out/b.glb",
+                     "m.mtl: line 4: Ns 'nan'");
+  // A material key given twice.
+  ASSERT_EQ(prt(std::string("-q bake ") + kSphere +
+                " --mode unshadowed --transfer matrix "
+                "--bands 2 --samples 16 -o g.glb")
+                .rc,
+            0);
+  expectCleanFailure("render g.glb --material 'phong?exponent=16&exponent=32' -o out/x.png",
+                     "parameter 'exponent' is given twice");
+  // A FIFO with no writer: refused at once instead of hanging in open() (timeout(1) turns a
+  // regression into a failure, exit 124, instead of a hung test).
+  ASSERT_EQ(::mkfifo(path("pipe.json").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo(path("pipe.ply").c_str(), 0600), 0);
+  for (const char* verb : {"render g.glb --light pipe.json -o out/x.png", "info pipe.json",
+                           "bake pipe.ply --mode unshadowed -o out/b.glb"}) {
+    SCOPED_TRACE(verb);
+    const Result r = prt(std::string("-q ") + verb, "timeout 20 ");
+    EXPECT_EQ(r.rc, 1) << r.err;
+    EXPECT_NE(r.err.find(": is not a regular file (a pipe, device or socket)"), std::string::npos)
+        << r.err;
+  }
+  // PRT_MAX_VERTICES applies to bakes and builtin scenes as to mesh files.
+  {
+    const Result r = prt("-q render g.glb -o out/x.png", "PRT_MAX_VERTICES=10 ");
+    EXPECT_EQ(r.rc, 1);
+    EXPECT_NE(r.err.find("g.glb: vertex count 42 exceeds the limit of 10 (PRT_MAX_VERTICES)"),
+              std::string::npos)
+        << r.err;
+    const Result b = prt(std::string("-q bake ") + kSphere + " --mode unshadowed -o out/b.glb",
+                         "PRT_MAX_VERTICES=10 ");
+    EXPECT_EQ(b.rc, 1);
+    EXPECT_NE(b.err.find("vertex count 42 exceeds the limit of 10 (PRT_MAX_VERTICES)"),
+              std::string::npos)
+        << b.err;
+    EXPECT_TRUE(fs::is_empty(dir_ / "out"));
+  }
+}
+
 }  // namespace
 }  // namespace prt

@@ -50,6 +50,17 @@ TEST(ReadersCore, CoordinateCapStopsWhereEmbreeStops) {
   setLimits(saved);
 }
 
+TEST(ReadersCore, SpecKeyGivenTwiceIsRefused) {
+  const std::string e = errorOf([] { Spec("phong?exponent=16&exponent=32"); });
+  EXPECT_EQ(e, "phong?exponent=16&exponent=32: parameter 'exponent' is given twice");
+  EXPECT_NE(errorOf([] {
+              Spec("builtin:sphere?subdiv=1&r=2&subdiv=1", "builtin:");
+            }).find("'subdiv' is given twice"),
+            std::string::npos);
+  Spec ok("phong?exponent=16&ks=0.5");
+  EXPECT_EQ(ok.number("exponent", 1, 0, 100), 16);
+}
+
 TEST(ReadersCore, FifoIsRefusedNotWaitedFor) {
   prt::testing::ScratchDir dir;
   const std::string fifo = dir / "light.json";

@@ -105,5 +105,43 @@ TEST(MeshReaders, OffGzipBombStopsAtTheHeader) {
   }
 }
 
+TEST(MeshReaders, VertexAndTriangleCapsApplyToBuiltinScenesBeforeTheyAreBuilt) {
+  for (const std::string scene : {"builtin:sphere?subdiv=3", "builtin:sphere-plane?grid=7&subdiv=1",
+                                  "builtin:plane?grid=9", "builtin:cornell?grid=11"}) {
+    SCOPED_TRACE(scene);
+    const Mesh m = builtinScene(scene);
+    Limits l = limits();
+    // The prediction is exact: the scene's own counts pass, one fewer is refused.
+    l.maxVertices = m.vertexCount();
+    l.maxTriangles = m.triangleCount();
+    {
+      ScopedLimits s(l);
+      EXPECT_NO_THROW(loadMesh(scene));
+    }
+    l.maxVertices = m.vertexCount() - 1;
+    {
+      ScopedLimits s(l);
+      const std::string e = errorOf([&] { loadMesh(scene); });
+      EXPECT_EQ(e, scene + ": vertex count " + std::to_string(m.vertexCount()) +
+                       " exceeds the limit of " + std::to_string(l.maxVertices) +
+                       " (PRT_MAX_VERTICES)");
+    }
+    l.maxVertices = m.vertexCount();
+    l.maxTriangles = m.triangleCount() - 1;
+    {
+      ScopedLimits s(l);
+      EXPECT_NE(errorOf([&] { loadMesh(scene); }).find("(PRT_MAX_TRIANGLES)"), std::string::npos);
+    }
+  }
+  // Refused before anything is built: the largest plane (4 M vertices) under a small cap.
+  Limits l = limits();
+  l.maxVertices = 1000;
+  ScopedLimits s(l);
+  PeakAllocation peak;
+  EXPECT_NE(errorOf([] { loadMesh("builtin:plane?grid=2000"); }).find("PRT_MAX_VERTICES"),
+            std::string::npos);
+  EXPECT_LT(peak.bytes(), 1u << 16);
+}
+
 }  // namespace
 }  // namespace prt
