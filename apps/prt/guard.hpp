@@ -7,6 +7,7 @@
 //    wraps them;
 //  * anything we echo is one short line (oneLine), whatever a file or an exception holds.
 
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdint>
@@ -93,6 +94,28 @@ inline void checkOutputFolder(const NamedPath& folder, const std::vector<NamedPa
       throw Error(folder.path, folder.option +
                                    " folder would be replaced, and it holds the input " + in.path +
                                    "; choose another output folder");
+}
+
+/// For an output folder that is created if missing: the nearest part of its path that exists
+/// must be a folder in which folders can be made — checked before any work, so `prt web b.glb
+/// -o notes.txt/page` says so at once instead of failing in create_directories after the work.
+/// access() says yes to root everywhere (and /proc takes no folders), so a probe folder is made
+/// and removed at once: what mkdir will say later.
+inline void checkFolderWritable(const std::string& folder, const char* option) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path p = fs::absolute(folder, ec);
+  if (ec) throw Error(folder, std::string(option) + " folder: " + ec.message());
+  while (!fs::exists(p, ec) && p.has_parent_path() && p.parent_path() != p) p = p.parent_path();
+  if (!fs::is_directory(p, ec))
+    throw Error(folder, std::string(option) + " folder cannot be created: " + p.string() +
+                            " is not a folder");
+  const fs::path probe = p / (".prt-write-test-" + std::to_string(::getpid()));
+  fs::create_directory(probe, ec);
+  if (ec)
+    throw Error(folder, std::string(option) + " folder cannot be written: " + p.string() + " (" +
+                            ec.message() + ")");
+  fs::remove(probe, ec);
 }
 
 /// One short line: control characters (newlines, tabs, escapes) become spaces, runs of spaces

@@ -104,6 +104,7 @@ const char* activity(const std::string& verb) {
   if (verb == "prt merge") return "merging the bakes";
   if (verb == "prt compress") return "compressing the transfer";
   if (verb == "prt demo") return "running the demo";
+  if (verb == "prt web") return "writing the browser viewer";
   return "reading the command line";
 }
 

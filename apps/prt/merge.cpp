@@ -40,6 +40,14 @@ void runMerge(const MergeArgs& a) {
   std::vector<std::pair<BakeFile, std::string>> pieces;
   pieces.reserve(a.inputs.size());
   for (const std::string& in : a.inputs) pieces.emplace_back(readBake(in), in);
+  // Compressed transfer cannot be merged: name the piece that holds it (mergeBakes sees two
+  // bakes and names the later one whichever is compressed).
+  for (const auto& [piece, name] : pieces)
+    for (const BakedTransfer& t : piece.transfers)
+      if (t.compressed)
+        throw Error(name, std::string("holds compressed ") + toString(t.settings.mode) +
+                              " transfer, which cannot be merged (merge the uncompressed pieces, "
+                              "then compress)");
   std::stable_sort(pieces.begin(), pieces.end(), [](const auto& x, const auto& y) {
     return x.first.firstVertex < y.first.firstVertex;
   });

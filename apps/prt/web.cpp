@@ -181,6 +181,7 @@ void writeWebViewer(const WebOptions& a) {
   const fs::path assets = findAssets();
   if (fs::exists(a.output) && !fs::is_directory(a.output))
     throw Error(a.output, "exists and is not a folder (-o names the folder to write)");
+  checkFolderWritable(a.output, "-o");
 
   // The bake: validated here (one clear line now rather than on the page), copied verbatim.
   const std::vector<unsigned char> glb = readFileBytes(a.bake);

@@ -239,5 +239,40 @@ TEST_F(ReadersCli, SilentRepairsAreRefusedByName) {
   }
 }
 
+// --- item 10: messages that name the file -----------------------------------------------------
+
+TEST_F(ReadersCli, MessagesNameTheFileTheUserGave) {
+  ASSERT_EQ(prt(std::string("-q bake ") + kSphere + " --mode unshadowed --samples 16 -o b.glb").rc,
+            0);
+  // prt web into a place that cannot hold a folder: said before any work, naming it.
+  write("notes.txt", "x");
+  const Result w = prt("-q web b.glb -o notes.txt/page");
+  if (w.err.find("assets") == std::string::npos) {
+    EXPECT_EQ(w.rc, 1);
+    EXPECT_NE(w.err.find("prt web: error: notes.txt/page: -o folder cannot be created: "),
+              std::string::npos)
+        << w.err;
+    EXPECT_NE(w.err.find("notes.txt is not a folder"), std::string::npos) << w.err;
+    EXPECT_EQ(w.err.find("reading the command line"), std::string::npos) << w.err;
+    const Result p = prt("-q web b.glb -o /proc/prt-no-such/page");
+    EXPECT_EQ(p.rc, 1);
+    EXPECT_NE(p.err.find("/proc/prt-no-such/page: -o folder cannot be written: /proc"),
+              std::string::npos)
+        << p.err;
+  }
+  // merge: the compressed piece is the one named, whichever position it has.
+  ASSERT_EQ(prt(std::string("-q bake ") + kSphere +
+                " --mode unshadowed --samples 16 --range 0:21 -o p1.glb")
+                .rc,
+            0);
+  ASSERT_EQ(prt(std::string("-q bake ") + kSphere +
+                " --mode unshadowed --samples 16 --range 21:42 -o p2.glb")
+                .rc,
+            0);
+  ASSERT_EQ(prt("-q compress p1.glb --clusters 2 --pca 1 -o c1.glb").rc, 0);
+  expectCleanFailure("merge c1.glb p2.glb -o out/m.glb", "c1.glb: holds compressed unshadowed");
+  expectCleanFailure("merge p2.glb c1.glb -o out/m.glb", "c1.glb: holds compressed unshadowed");
+}
+
 }  // namespace
 }  // namespace prt
