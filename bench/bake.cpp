@@ -199,7 +199,7 @@ void BM_Shadowed(benchmark::State& state, const std::string& name) {
   for (auto _ : state) {
     const RawTimes raw = traceRaw(name, settings.samples, settings.seed);
     auto t = prt::bake(s->mesh, *s->occluder, settings, &stats);
-    benchmark::DoNotOptimize(t.data.data());
+    benchmark::DoNotOptimize(t.values().data());
     bakeSeconds += stats.secondsDirect;
     bakeRaysCount += stats.rays;
     rawSingle += raw.single;
@@ -233,7 +233,7 @@ void BM_Interreflected(benchmark::State& state, const std::string& name) {
   prt::BakeStats stats;
   for (auto _ : state) {
     auto t = prt::bake(s->mesh, *s->occluder, settings, &stats);
-    benchmark::DoNotOptimize(t.data.data());
+    benchmark::DoNotOptimize(t.values().data());
     state.SetIterationTime(stats.secondsTotal);
   }
   state.counters["direct_s"] = stats.secondsDirect;
@@ -262,8 +262,8 @@ void BM_Matrix(benchmark::State& state, const std::string& name) {
     auto v = prt::bake(s->mesh, *s->occluder, settings, &vs);
     settings.layout = prt::TransferLayout::Matrix;
     auto m = prt::bake(s->mesh, *s->occluder, settings, &ms);
-    benchmark::DoNotOptimize(v.data.data());
-    benchmark::DoNotOptimize(m.data.data());
+    benchmark::DoNotOptimize(v.values().data());
+    benchmark::DoNotOptimize(m.values().data());
     matrixSeconds += ms.secondsTotal;
     vectorSeconds += vs.secondsTotal;
     rawSeconds += std::min(raw.single, raw.stream);
@@ -297,11 +297,11 @@ void BM_MatrixBounce(benchmark::State& state, const std::string& name) {
     prt::BakeStats sd, sl, sg;
     settings.mode = prt::TransferMode::Shadowed;
     settings.material = prt::parseMaterial("lambert?kd=0.5");
-    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sd).data.data());
+    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sd).values().data());
     settings.mode = prt::TransferMode::Interreflected;
-    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sl).data.data());
+    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sl).values().data());
     settings.material = prt::parseMaterial("phong?exponent=8&ks=0.5&kd=0.5");
-    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sg).data.data());
+    benchmark::DoNotOptimize(prt::bake(s->mesh, *s->occluder, settings, &sg).values().data());
     direct += sd.secondsTotal;
     diffuse += sl.secondsTotal;
     glossy += sg.secondsTotal;
@@ -360,15 +360,15 @@ BENCHMARK_CAPTURE(BM_Interreflected, sphere_plane, std::string("sphere-plane"))
 
 // ---- Equal-error study -------------------------------------------------------------------
 
-double rmsT0(const prt::TransferField& a, const prt::TransferField& ref) {
+double rmsT0(const prt::Transfer& a, const prt::Transfer& ref) {
   // In radiance units under L = 1: √(4π) T₀.
   const double k = std::sqrt(4.0 * prt::kPi);
   double s = 0;
-  for (std::size_t v = 0; v < a.vertexCount; ++v) {
-    const double d = (a.vertex(v)[0] - ref.vertex(v)[0]) * k;
+  for (std::size_t v = 0; v < a.rowCount(); ++v) {
+    const double d = (a.row(v)[0] - ref.row(v)[0]) * k;
     s += d * d;
   }
-  return std::sqrt(s / double(a.vertexCount));
+  return std::sqrt(s / double(a.rowCount()));
 }
 
 int equalError() {
@@ -388,13 +388,13 @@ int equalError() {
     prt::BakeSettings s;
     s.mode = prt::TransferMode::Shadowed;
     s.bands = 1;
-    s.vertexCount = c.vertices;
+    s.rows.count = c.vertices;
     s.samples = 65536;
     s.seed = 1;  // the reference uses its own seed: its error is independent of the others
     const auto ref = prt::bake(mesh, *occ, s);
     std::printf(
         "\n%s: %zu vertices, RMS error of sqrt(4pi) T0 vs a 65536-sample cosine-Sobol bake\n",
-        c.label.c_str(), ref.vertexCount);
+        c.label.c_str(), ref.rowCount());
     std::printf("%8s %14s %14s %10s %22s\n", "samples", "cosine-Sobol", "uniform-random", "ratio",
                 "uniform N for Sobol err");
     std::vector<std::pair<int, double>> uniformErr;

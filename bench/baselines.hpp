@@ -5,16 +5,17 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "prt/core/parallel.hpp"
-#include "prt/transfer/field.hpp"
+#include "prt/transfer/transfer.hpp"
 
 namespace prt::bench {
 
 // The streaming-read baseline: sum every float of `data` in chunks of `grain` floats, 16
 // independent accumulators so the loop is vectorised without reassociation flags.
-inline float streamSum(const std::vector<float>& data, std::size_t grain) {
+inline float streamSum(std::span<const float> data, std::size_t grain) {
   const std::size_t n = data.size();
   const std::size_t chunks = (n + grain - 1) / grain;
   std::vector<float> partial(chunks, 0.0f);
@@ -38,10 +39,10 @@ inline float streamSum(const std::vector<float>& data, std::size_t grain) {
 }
 
 /// The same over a transfer, in the vertex chunks vector relighting uses.
-inline float streamSum(const prt::TransferField& t) {
+inline float streamSum(const prt::Transfer& t) {
   const std::size_t stride = t.stride();
   const std::size_t grain = std::max<std::size_t>(256, 65536 / (stride * sizeof(float)) * 4);
-  return streamSum(t.data, grain * stride);
+  return streamSum(t.values().span(), grain * stride);
 }
 
 inline double secondsOf(const std::function<void()>& fn, int reps) {

@@ -29,12 +29,12 @@
 
 #include "baselines.hpp"
 #include "prt/compress/cpca.hpp"
+#include "prt/core/cpu.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/relight/compressed.hpp"
-#include "prt/relight/glossy.hpp"
+#include "prt/relight/cluster_projection.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/transport/bake.hpp"
 
@@ -42,12 +42,26 @@ namespace {
 
 constexpr std::size_t kVertices = 1 << 20;
 
+prt::CpcaOptions options(int clusters, int basis) {
+  prt::CpcaOptions o;
+  o.clusters = clusters, o.basisCount = basis, o.seed = 1, o.maxIterations = 30;
+  return o;
+}
+
+/// The vector kernels through the one entry point, with the light prepared (a frame loop's
+/// call; for compressed rows the per-frame cluster projections are inside).
+void relightVectors(const prt::Transfer& t, const prt::relight::PreparedLight& light,
+                    std::span<const prt::Rgb> albedo, std::span<prt::Rgb> out) {
+  prt::relight::relightPrepared(t, light, prt::PreparedMaterial{}, {{}, {}, albedo},
+                                prt::Vec3f(0.0f), out);
+}
+
 struct Fixture {
-  prt::TransferField bake;  // ~200k rows, 9 bands, scalar
-  prt::CompressedTransfer compressed;
+  prt::Transfer bake;  // ~200k rows, 9 bands, scalar
+  prt::Transfer compressed;
   prt::CpcaStats stats;
-  prt::TransferField dense1M;
-  prt::CompressedTransfer compressed1M;
+  prt::Transfer dense1M;
+  prt::Transfer compressed1M;
   prt::sh::RgbSh light{9};
   std::vector<prt::Rgb> albedo, out;
 };
@@ -62,13 +76,14 @@ Fixture& fixture() {
   s.mode = prt::TransferMode::Shadowed;
   s.bands = 9;
   s.samples = 128;
-  s.vertexCount = mesh.vertexCount();
   f->bake = prt::bake(mesh, *occ, s);
   // Tile the rows to 2^20 vertices (dense and compressed alike).
-  const std::size_t n = f->bake.vertexCount, D = f->bake.stride();
-  f->dense1M = prt::TransferField::zeros(prt::TransferLayout::Vector, 9, 1, kVertices);
-  for (std::size_t v = 0; v < kVertices; ++v)
-    std::copy_n(f->bake.vertex(v % n), D, f->dense1M.vertex(v));
+  const std::size_t n = f->bake.rowCount(), D = f->bake.stride();
+  prt::TransferShape shape = f->bake.shape();
+  shape.rows.count = kVertices;
+  f->dense1M = prt::Transfer::zeros(shape);
+  float* dense = f->dense1M.mutableValues();
+  for (std::size_t v = 0; v < kVertices; ++v) std::copy_n(f->bake.row(v % n), D, dense + v * D);
   for (int i = 0; i < 81; ++i)
     f->light.c[i] = prt::Rgb(1.0f / (1 + i), 0.8f / (1 + i), 0.6f / (1 + i));
   f->albedo.assign(kVertices, prt::Rgb(0.7f));
@@ -77,27 +92,27 @@ Fixture& fixture() {
 }
 
 void compressOnce(Fixture& f) {
-  if (!f.compressed.cluster.empty()) return;
-  f.compressed = prt::compressCpca(f.bake, {256, 8, 1, 30}, &f.stats);
-  const std::size_t n = f.bake.vertexCount, N = 8;
-  prt::CompressedTransfer& c = f.compressed1M;
-  c = f.compressed;
-  c.vertexCount = kVertices;
+  if (f.compressed.compressed()) return;
+  f.compressed = prt::compressCpca(f.bake, options(256, 8), &f.stats);
+  const std::size_t n = f.bake.rowCount(), N = 8;
+  prt::CpcaRows c = f.compressed.cpca();
   c.cluster.resize(kVertices);
-  c.weights.resize(kVertices * N);
-  for (std::size_t v = n; v < kVertices; ++v) {
-    c.cluster[v] = f.compressed.cluster[v % n];
-    std::copy_n(f.compressed.weights.data() + (v % n) * N, N, c.weights.data() + v * N);
+  std::vector<float> weights(kVertices * N);
+  for (std::size_t v = 0; v < kVertices; ++v) {
+    c.cluster[v] = f.compressed.cpca().cluster[v % n];
+    std::copy_n(f.compressed.cpca().weights.data() + (v % n) * N, N, weights.data() + v * N);
   }
+  c.weights = prt::FloatArray(std::move(weights));
+  f.compressed1M = prt::Transfer::cpca(f.dense1M.shape(), std::move(c));
 }
 
 void BM_Compress(benchmark::State& state) {
   Fixture& f = fixture();
   for (auto _ : state) {
-    f.compressed.cluster.clear();
+    f.compressed = prt::Transfer();
     compressOnce(f);
   }
-  state.counters["rows"] = static_cast<double>(f.bake.vertexCount);
+  state.counters["rows"] = static_cast<double>(f.bake.rowCount());
   state.counters["seconds"] = f.stats.seconds;
   state.counters["iterations"] = f.stats.iterations;
   state.counters["rel_rms"] = f.stats.relativeRms;
@@ -111,10 +126,10 @@ void BM_RelightDense(benchmark::State& state) {
   Fixture& f = fixture();
   const prt::relight::PreparedLight p = prt::relight::prepareLight(f.light, 9);
   for (auto _ : state) {
-    prt::relight::relight(f.dense1M, p, f.albedo, f.out);
+    relightVectors(f.dense1M, p, f.albedo, f.out);
     benchmark::DoNotOptimize(f.out.data());
   }
-  state.SetBytesProcessed(state.iterations() * f.dense1M.data.size() * 4);
+  state.SetBytesProcessed(state.iterations() * f.dense1M.values().size() * 4);
 }
 BENCHMARK(BM_RelightDense)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -122,18 +137,18 @@ void BM_RelightCompressed(benchmark::State& state) {
   Fixture& f = fixture();
   compressOnce(f);
   const prt::relight::PreparedLight p = prt::relight::prepareLight(f.light, 9);
-  auto compressedFrame = [&](prt::relight::CompressedKernel kernel) {
+  auto compressedFrame = [&](prt::Simd simd) {
     // Projections included: a frame under a new light pays for them.
-    const prt::relight::ClusterLight projected = prt::relight::projectClusters(f.compressed1M, p);
-    prt::relight::relightCompressed(f.compressed1M, projected, f.albedo, f.out, kernel);
+    const prt::ScopedSimd policy(simd);
+    relightVectors(f.compressed1M, p, f.albedo, f.out);
     benchmark::DoNotOptimize(f.out.data());
   };
-  for (auto _ : state) compressedFrame(prt::relight::CompressedKernel::Auto);
+  for (auto _ : state) compressedFrame(prt::Simd::Auto);
   // Equal error: the fewest bands b whose truncation error sqrt(Σ_{i ≥ b²} T_i² / Σ T_i²) over
   // the bake is at most the compression's relative RMS error.
   std::vector<double> energy(81, 0.0);
-  for (std::size_t v = 0; v < f.bake.vertexCount; ++v)
-    for (int i = 0; i < 81; ++i) energy[i] += double(f.bake.vertex(v)[i]) * f.bake.vertex(v)[i];
+  for (std::size_t v = 0; v < f.bake.rowCount(); ++v)
+    for (int i = 0; i < 81; ++i) energy[i] += double(f.bake.row(v)[i]) * f.bake.row(v)[i];
   double total = 0;
   for (double e : energy) total += e;
   int b = 9;
@@ -145,25 +160,23 @@ void BM_RelightCompressed(benchmark::State& state) {
       break;
     }
   }
-  const prt::TransferField cut = f.dense1M.truncated(b);
+  const prt::Transfer cut = f.dense1M.cut(b);
   const prt::relight::PreparedLight pb = prt::relight::prepareLight(f.light, b);
   // Same-run ratios: the kernels take turns, round after round, and each keeps its best round,
   // so a burst of load from other jobs on the shared cores hits all of them alike.
   double tc = 1e30, tp = 1e30, td = 1e30, te = 1e30, tproj = 1e30;
   for (int round = 0; round < 8; ++round) {
-    tc = std::min(tc, prt::bench::secondsOf(
-                          [&] { compressedFrame(prt::relight::CompressedKernel::Auto); }, 3));
+    tc = std::min(tc, prt::bench::secondsOf([&] { compressedFrame(prt::Simd::Auto); }, 3));
     td = std::min(td, prt::bench::secondsOf(
                           [&] {
-                            prt::relight::relight(f.dense1M, p, f.albedo, f.out);
+                            relightVectors(f.dense1M, p, f.albedo, f.out);
                             benchmark::DoNotOptimize(f.out.data());
                           },
                           3));
-    tp = std::min(tp, prt::bench::secondsOf(
-                          [&] { compressedFrame(prt::relight::CompressedKernel::Portable); }, 3));
+    tp = std::min(tp, prt::bench::secondsOf([&] { compressedFrame(prt::Simd::Portable); }, 3));
     te = std::min(te, prt::bench::secondsOf(
                           [&] {
-                            prt::relight::relight(cut, pb, f.albedo, f.out);
+                            relightVectors(cut, pb, f.albedo, f.out);
                             benchmark::DoNotOptimize(f.out.data());
                           },
                           3));
@@ -179,7 +192,7 @@ void BM_RelightCompressed(benchmark::State& state) {
   state.counters["project_ms"] = tproj * 1e3;
   state.counters["vs_dense"] = td / tc;
   state.counters["vs_dense_portable"] = td / tp;
-  state.counters["simd"] = prt::relight::compressedSimdAvailable();
+  state.counters["simd"] = prt::simdAvx2Fma();
   state.counters["equal_err_bands"] = b;
   state.counters["vs_equal_err"] = te / tc;
   state.counters["rel_rms"] = f.stats.relativeRms;
@@ -195,8 +208,8 @@ const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
 struct GlossyFixture {
   prt::Mesh mesh;
   bool bunny = false;
-  prt::TransferField bake;  // matrices, 5 bands, scalar
-  prt::CompressedTransfer compressed;
+  prt::Transfer bake;  // matrices, 5 bands, scalar
+  prt::Transfer compressed;
   prt::CpcaStats stats;
   prt::sh::RgbSh light{5};
   std::vector<prt::Rgb> out;
@@ -227,16 +240,18 @@ GlossyFixture& glossyFixture() {
 void BM_RelightCompressedGlossy(benchmark::State& state) {
   GlossyFixture& f = glossyFixture();
   const int K = static_cast<int>(state.range(0)), N = static_cast<int>(state.range(1));
-  if (f.compressed.clusters != K || f.compressed.basisCount != N)
-    f.compressed = prt::compressCpca(f.bake, {K, N, 1, 30}, &f.stats);
+  if (!f.compressed.compressed() || f.compressed.cpca().clusters != K ||
+      f.compressed.cpca().basisCount != N)
+    f.compressed = prt::compressCpca(f.bake, options(K, N), &f.stats);
   state.counters["compress_s"] = f.stats.seconds;
   state.counters["compress_passes"] = f.stats.iterations;
   const prt::Material material = prt::parseMaterial("phong?exponent=16&ks=0.5&kd=0.5");
   const auto light = prt::relight::prepareLight(f.light, 5);
-  const auto mat = prt::relight::prepareMaterial(material, 5);
-  const prt::relight::GlossyView view{f.mesh.positions, f.mesh.normals, prt::Vec3f(0, 1, 3)};
+  const auto mat = prt::prepareMaterial(material, 5);
+  const prt::relight::Surface surface{f.mesh.positions, f.mesh.normals, {}};
+  const prt::Vec3f eye(0, 1, 3);
   auto compressedFrame = [&] {  // the per-frame cluster projections included
-    prt::relight::relightCompressedGlossy(f.compressed, light, mat, view, {}, f.out);
+    prt::relight::relightPrepared(f.compressed, light, mat, surface, eye, f.out);
     benchmark::ClobberMemory();
   };
   for (auto _ : state) compressedFrame();
@@ -245,8 +260,8 @@ void BM_RelightCompressedGlossy(benchmark::State& state) {
   const std::size_t nB = 25;
   double total = 0;
   std::vector<double> kept(6, 0.0);  // kept[b]: energy of the leading b² × b² block
-  for (std::size_t v = 0; v < f.bake.vertexCount; ++v) {
-    const float* m = f.bake.vertex(v);
+  for (std::size_t v = 0; v < f.bake.rowCount(); ++v) {
+    const float* m = f.bake.row(v);
     for (std::size_t i = 0; i < nB; ++i)
       for (std::size_t j = 0; j < nB; ++j) {
         const double e = double(m[i * nB + j]) * m[i * nB + j];
@@ -261,12 +276,12 @@ void BM_RelightCompressedGlossy(benchmark::State& state) {
       b = k;
       break;
     }
-  const prt::TransferField cut = f.bake.truncated(b);
+  const prt::Transfer cut = f.bake.cut(b);
   const auto lightB = prt::relight::prepareLight(f.light, b);
-  const auto matB = prt::relight::prepareMaterial(material, b);
-  auto denseFrame = [&](const prt::TransferField& t, const prt::relight::PreparedLight& l,
-                        const prt::relight::PreparedMaterial& m) {
-    prt::relight::relightGlossy(t, l, m, view, {}, f.out);
+  const auto matB = prt::prepareMaterial(material, b);
+  auto denseFrame = [&](const prt::Transfer& t, const prt::relight::PreparedLight& l,
+                        const prt::PreparedMaterial& m) {
+    prt::relight::relightPrepared(t, l, m, surface, eye, f.out);
     benchmark::ClobberMemory();
   };
   double tc = 1e30, td = 1e30, te = 1e30, tproj = 1e30;
@@ -283,7 +298,7 @@ void BM_RelightCompressedGlossy(benchmark::State& state) {
     te = std::min(te, prt::bench::secondsOf([&] { denseFrame(cut, lightB, matB); }, 5));
   }
   state.counters["bunny"] = f.bunny;
-  state.counters["vertices"] = static_cast<double>(f.bake.vertexCount);
+  state.counters["vertices"] = static_cast<double>(f.bake.rowCount());
   state.counters["frame_ms"] = tc * 1e3;
   state.counters["dense_ms"] = td * 1e3;
   state.counters["project_ms"] = tproj * 1e3;

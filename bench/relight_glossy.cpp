@@ -1,4 +1,5 @@
-// Glossy relighting (relight::relightGlossy) against the bounds of the machine, same run:
+// Glossy relighting (relight::relightPrepared of dense matrices) against the bounds of the machine,
+// same run:
 //   * vs_stream: a vectorised streaming read of the same matrix bytes (memory bandwidth) —
 //     relighting reads each vertex's B⁴ floats once and does 2 FMAs per float, so bandwidth is
 //     the ceiling on a CPU with two or more FMA units per core;
@@ -27,7 +28,8 @@
 #include "prt/core/parallel.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/geometry/load.hpp"
-#include "prt/relight/glossy.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/relight/view_transfer.hpp"
 
 namespace {
 
@@ -38,7 +40,7 @@ const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
 
 struct Data {
   prt::Mesh mesh;
-  prt::TransferField transfer;
+  prt::Transfer transfer;
   prt::sh::RgbSh light;
   std::vector<prt::Rgb> out;
 };
@@ -59,11 +61,15 @@ Data& data(int bands) {
     slot = std::make_unique<Data>();
     Data& d = *slot;
     d.mesh = mesh();
-    d.transfer =
-        prt::TransferField::zeros(prt::TransferLayout::Matrix, bands, 1, d.mesh.vertexCount());
-    prt::parallelFor(d.transfer.data.size(), 1 << 16, [&](std::size_t b, std::size_t e) {
+    prt::TransferShape shape;
+    shape.layout = prt::TransferLayout::Matrix;
+    shape.bands = bands;
+    shape.rows.count = d.mesh.vertexCount();
+    d.transfer = prt::Transfer::zeros(shape);
+    float* values = d.transfer.mutableValues();
+    prt::parallelFor(d.transfer.values().size(), 1 << 16, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i)
-        d.transfer.data[i] = float((i * 2654435761u) % 1000) * 1e-3f - 0.5f;
+        values[i] = float((i * 2654435761u) % 1000) * 1e-3f - 0.5f;
     });
     d.light = prt::sh::RgbSh(bands);
     std::mt19937 rng(1);
@@ -75,13 +81,12 @@ Data& data(int bands) {
 }
 
 /// L' = M L for every vertex with Eigen (row-major B² × B² map times B² × 3).
-void eigenProduct(const prt::TransferField& t, const Eigen::MatrixXf& light,
-                  std::vector<float>& out) {
+void eigenProduct(const prt::Transfer& t, const Eigen::MatrixXf& light, std::vector<float>& out) {
   const int nc = t.coeffs();
   using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  prt::parallelFor(t.vertexCount, 64, [&](std::size_t b, std::size_t e) {
+  prt::parallelFor(t.rowCount(), 64, [&](std::size_t b, std::size_t e) {
     for (std::size_t v = b; v < e; ++v) {
-      Eigen::Map<const RowMajor> m(t.vertex(v), nc, nc);
+      Eigen::Map<const RowMajor> m(t.row(v), nc, nc);
       Eigen::Map<Eigen::MatrixXf> o(out.data() + v * nc * 3, nc, 3);
       o.noalias() = m * light;
     }
@@ -93,27 +98,28 @@ void BM_RelightGlossy(benchmark::State& state) {
   Data& d = data(int(state.range(0)));
   const prt::Material material =
       prt::parseMaterial(state.range(1) ? "phong?exponent=16&ks=0.5&kd=0.5" : "lambert");
-  const auto light = prt::relight::prepareLight(d.light, d.transfer.bands);
-  const auto mat = prt::relight::prepareMaterial(material, d.transfer.bands);
-  const prt::relight::GlossyView view{d.mesh.positions, d.mesh.normals, prt::Vec3f(0, 1, 3)};
-  auto run = [&] { prt::relight::relightGlossy(d.transfer, light, mat, view, {}, d.out); };
+  const auto light = prt::relight::prepareLight(d.light, d.transfer.bands());
+  const auto mat = prt::prepareMaterial(material, d.transfer.bands());
+  const prt::relight::Surface surface{d.mesh.positions, d.mesh.normals, {}};
+  const prt::Vec3f eye(0, 1, 3);
+  auto run = [&] { prt::relight::relightPrepared(d.transfer, light, mat, surface, eye, d.out); };
   const int nc = d.transfer.coeffs();
   Eigen::MatrixXf l(nc, 3);
   for (int i = 0; i < nc; ++i)
     for (int c = 0; c < 3; ++c) l(i, c) = d.light.c[i][c];
-  std::vector<float> eigenOut(d.transfer.vertexCount * nc * 3);
+  std::vector<float> eigenOut(d.transfer.rowCount() * nc * 3);
   run();
-  const double stream =
-      secondsOf([&] { benchmark::DoNotOptimize(streamSum(d.transfer.data, 1 << 16)); }, 5);
+  const double stream = secondsOf(
+      [&] { benchmark::DoNotOptimize(streamSum(d.transfer.values().span(), 1 << 16)); }, 5);
   const double eigen = secondsOf([&] { eigenProduct(d.transfer, l, eigenOut); }, 5);
   const double relit = secondsOf(run, 5);
   for (auto _ : state) {
     run();
     benchmark::ClobberMemory();
   }
-  const double bytes = double(d.transfer.data.size()) * 4;
+  const double bytes = double(d.transfer.values().size()) * 4;
   state.SetBytesProcessed(std::int64_t(state.iterations()) * std::int64_t(bytes));
-  state.counters["vertices"] = double(d.transfer.vertexCount);
+  state.counters["vertices"] = double(d.transfer.rowCount());
   state.counters["frame_ms"] = relit * 1e3;
   state.counters["vs_stream"] = stream / relit;
   state.counters["vs_eigen"] = eigen / relit;
@@ -127,21 +133,24 @@ void BM_RelightGlossy(benchmark::State& state) {
 void BM_RelightGlossyLightOnly(benchmark::State& state) {
   Data& d = data(int(state.range(0)));
   const prt::Material material = prt::parseMaterial("phong?exponent=16&ks=0.5&kd=0.5");
-  const auto light = prt::relight::prepareLight(d.light, d.transfer.bands);
-  const auto mat = prt::relight::prepareMaterial(material, d.transfer.bands);
-  const prt::relight::GlossyView view{d.mesh.positions, d.mesh.normals, prt::Vec3f(0, 1, 3)};
-  prt::TransferField t;
+  const auto light = prt::relight::prepareLight(d.light, d.transfer.bands());
+  const auto mat = prt::prepareMaterial(material, d.transfer.bands());
+  const prt::relight::Surface surface{d.mesh.positions, d.mesh.normals, {}};
+  const prt::Vec3f eye(0, 1, 3);
+  prt::Transfer t;
   const double collapse =
-      secondsOf([&] { t = prt::relight::viewTransfer(d.transfer, mat, view, {}); }, 3);
-  const double full =
-      secondsOf([&] { prt::relight::relightGlossy(d.transfer, light, mat, view, {}, d.out); }, 20);
-  auto run = [&] { prt::relight::relight(t, light, {}, d.out); };
+      secondsOf([&] { t = prt::relight::viewTransfer(d.transfer, mat, surface, eye); }, 3);
+  const double full = secondsOf(
+      [&] { prt::relight::relightPrepared(d.transfer, light, mat, surface, eye, d.out); }, 20);
+  auto run = [&] {
+    prt::relight::relightPrepared(t, light, prt::PreparedMaterial{}, {}, eye, d.out);
+  };
   const double lightOnly = secondsOf(run, 20);
   for (auto _ : state) {
     run();
     benchmark::ClobberMemory();
   }
-  state.counters["vertices"] = double(d.transfer.vertexCount);
+  state.counters["vertices"] = double(d.transfer.rowCount());
   state.counters["light_only_ms"] = lightOnly * 1e3;
   state.counters["collapse_ms"] = collapse * 1e3;
   state.counters["full_ms"] = full * 1e3;

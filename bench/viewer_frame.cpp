@@ -12,9 +12,9 @@
 // Run: build-viewer/bench/bench_viewer_frame --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
-#include "prt/relight/cluster_table.hpp"
-#include "prt/relight/light_packer.hpp"
+#include "prt/relight/cluster_projection.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/relight/shader_transfer.hpp"
 
 namespace {
 
@@ -57,33 +57,30 @@ BENCHMARK(BM_PrepareLightBaseline)->Arg(3)->Arg(9)->Unit(benchmark::kMicrosecond
 
 void BM_ViewerClusterTable(benchmark::State& state) {
   const int bands = 9, K = int(state.range(0)), N = 8;
-  prt::CompressedTransfer t;
-  t.layout = prt::TransferLayout::Vector;
-  t.bands = bands;
-  t.channels = 1;
-  t.clusters = K;
-  t.basisCount = N;
-  t.vertexCount = std::size_t(K);
-  t.cluster.resize(t.vertexCount);
-  for (std::size_t v = 0; v < t.vertexCount; ++v) t.cluster[v] = std::uint32_t(v);
-  t.weights.assign(t.vertexCount * N, 0.1f);
-  t.means.resize(std::size_t(K) * t.stride());
-  t.basis.resize(std::size_t(K) * N * t.stride());
-  for (std::size_t i = 0; i < t.means.size(); ++i) t.means[i] = 1.0f / float(1 + i % 81);
-  for (std::size_t i = 0; i < t.basis.size(); ++i) t.basis[i] = float(i % 7) * 0.01f;
+  prt::TransferShape shape;
+  shape.bands = bands;
+  shape.rows.count = std::size_t(K);
+  prt::CpcaRows c;
+  c.clusters = K;
+  c.basisCount = N;
+  for (int v = 0; v < K; ++v) c.cluster.push_back(std::uint32_t(v));
+  c.weights = prt::FloatArray(std::vector<float>(std::size_t(K) * N, 0.1f));
+  std::vector<float> means(std::size_t(K) * shape.stride()), basis(means.size() * N);
+  for (std::size_t i = 0; i < means.size(); ++i) means[i] = 1.0f / float(1 + i % 81);
+  for (std::size_t i = 0; i < basis.size(); ++i) basis[i] = float(i % 7) * 0.01f;
+  c.means = prt::FloatArray(std::move(means));
+  c.basis = prt::FloatArray(std::move(basis));
+  const prt::Transfer t = prt::Transfer::cpca(shape, std::move(c));
   prt::relight::LightPacker packer;
   packer.setLight(light(bands));
   const prt::Mat3d user = prt::rotationEulerXYZ(20, 30, 40);
-  prt::relight::PreparedLight l;
-  l.bands = bands;
-  l.interleaved.resize(3 * bands * bands);
   std::vector<float> table;
   double spin = 0;
   for (auto _ : state) {
     spin += 0.01;
+    // What SceneView::prepare does for a compressed transfer on the GPU.
     packer.pack(prt::rotationAxisAngle({0, 1, 0}, spin) * user, bands);
-    for (int i = 0; i < bands * bands; ++i)
-      for (int c = 0; c < 3; ++c) l.interleaved[3 * i + c] = packer.coefficient(i)[c];
+    const prt::relight::PreparedLight l = prt::relight::prepareLight(packer.rotated(), bands);
     prt::relight::packClusterTable(prt::relight::projectClusters(t, l), table);
     benchmark::DoNotOptimize(table.data());
     benchmark::ClobberMemory();

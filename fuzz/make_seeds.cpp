@@ -90,23 +90,24 @@ const char* kGltf = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[
 std::string bakeSeed(prt::TransferLayout layout, int bands, bool compressed) {
   prt::BakeFile file;
   file.mesh = prt::builtinScene("builtin:sphere?subdiv=0");
-  file.vertexCount = file.mesh.vertexCount();
   file.generator = "prtkit make_seeds";
   const auto occluder = prt::makeEmbreeOccluder(file.mesh);
-  prt::BakedTransfer t;
-  t.settings.mode = prt::TransferMode::Unshadowed;
-  t.settings.layout = layout;
-  t.settings.bands = bands;
-  t.settings.samples = 16;
-  t.settings.vertexCount = file.vertexCount;
+  prt::BakeSettings s;
+  s.mode = prt::TransferMode::Unshadowed;
+  s.layout = layout;
+  s.bands = bands;
+  s.samples = 16;
   if (layout == prt::TransferLayout::Matrix)
-    t.settings.material = prt::parseMaterial("phong?exponent=8&ks=0.5");
-  t.field = prt::bake(file.mesh, *occluder, t.settings, &t.stats);
+    s.material = prt::parseMaterial("phong?exponent=8&ks=0.5");
+  prt::BakedTransfer t;
+  t.recipe = s;
+  t.transfer = prt::bake(file.mesh, *occluder, s, &t.stats);
   if (compressed) {
-    t.compression.clusters = 2;
-    t.compression.basisCount = 1;
-    t.compressed = prt::compressCpca(t.field, t.compression, &t.compressionStats);
-    t.field.data.clear();
+    prt::CpcaOptions o;
+    o.clusters = 2;
+    o.basisCount = 1;
+    t.compression.fit = o;
+    t.transfer = prt::compressCpca(t.transfer, o, &t.compression.stats);
   }
   file.transfers.push_back(std::move(t));
   return prt::encodeBake(file);

@@ -10,7 +10,6 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/vec.hpp"
-#include "prt/io/bake_file.hpp"
 #include "prt/render/reference.hpp"
 
 namespace prt::cli {
@@ -59,16 +58,6 @@ inline render::MisHeuristic parseMis(const std::string& s) {
   if (s == "power") return render::MisHeuristic::Power;
   if (s == "balance") return render::MisHeuristic::Balance;
   throw Error("--mis '" + s + "': expected power or balance");
-}
-
-/// The transfer of `mode` ("" = the richest, see prt::pickTransfer) and `layout` ("" = any).
-inline const BakedTransfer& pickTransfer(const BakeFile& bake, const std::string& mode,
-                                         const std::string& file, const std::string& layout = "") {
-  std::optional<TransferMode> m;
-  std::optional<TransferLayout> l;
-  if (!mode.empty()) m = parseTransferMode(mode);
-  if (!layout.empty()) l = parseTransferLayout(layout);
-  return prt::pickTransfer(bake, m, l, file);
 }
 
 }  // namespace prt::cli

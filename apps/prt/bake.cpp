@@ -13,6 +13,7 @@
 
 #include "cli.hpp"
 #include "guard.hpp"
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/units.hpp"
@@ -20,10 +21,7 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transport/bake.hpp"
-
-#ifndef PRT_VERSION
-#define PRT_VERSION "dev"
-#endif
+#include "transfer_options.hpp"
 
 namespace prt::cli {
 
@@ -59,8 +57,7 @@ Rgb parseAlbedo(const std::string& s) {
 }
 
 /// "a:b" → [a, b); "a:" → [a, end).
-void parseRange(const std::string& s, std::size_t vertices, std::size_t& first,
-                std::size_t& count) {
+RowRange parseRange(const std::string& s, std::size_t vertices) {
   const auto colon = s.find(':');
   auto num = [&](const std::string& t) -> std::size_t {
     if (t.empty() || t.find_first_not_of("0123456789") != std::string::npos)
@@ -70,12 +67,12 @@ void parseRange(const std::string& s, std::size_t vertices, std::size_t& first,
     return std::stoull(t);
   };
   if (colon == std::string::npos) throw Error("--range '" + s + "': expected FIRST:END");
-  first = num(s.substr(0, colon));
+  const std::size_t first = num(s.substr(0, colon));
   const std::size_t end = colon + 1 == s.size() ? vertices : num(s.substr(colon + 1));
   if (first >= end || end > vertices)
     throw Error(
         fmt::format("--range {}: must satisfy FIRST < END <= {} (the vertex count)", s, vertices));
-  count = end - first;
+  return {first, end - first};
 }
 
 std::string seconds(double s) {
@@ -92,7 +89,8 @@ void runBake(const BakeArgs& a) {
       if (seen == mode) throw Error("--mode " + m + " given twice");
     modes.push_back(mode);
   }
-  if (a.bands < 1 || a.bands > 16) throw Error(fmt::format("--bands {}: must be 1..16", a.bands));
+  if (a.bands < 1 || a.bands > bands::kMaxBake)
+    throw Error(fmt::format("--bands {}: must be 1..{}", a.bands, bands::kMaxBake));
   if (a.samples < 1 || a.samples > kMaxBakeSamples)
     throw Error(fmt::format("--samples {}: must be 1..{}", a.samples, kMaxBakeSamples));
   if (a.bounces < 0 || a.bounces > kMaxBounces)
@@ -117,18 +115,11 @@ void runBake(const BakeArgs& a) {
   for (const auto& w : report.warnings) warn(w);
   // Without --material, the file's own glossy surface (MTL Ks/Ns, glTF metallic-roughness).
   if (a.material.empty() && file.mesh.gloss) {
-    const SurfaceGloss& g = *file.mesh.gloss;
-    const auto clamp01 = [](float x) { return std::clamp(x, 0.0f, 1.0f); };
-    const std::string ks = fmt::format("{},{},{}", clamp01(g.specular.x), clamp01(g.specular.y),
-                                       clamp01(g.specular.z));
-    const std::string spec =
-        g.model == SurfaceGloss::Model::Phong
-            ? fmt::format("phong?exponent={}&ks={}", std::clamp(g.exponent, 0.0f, 1e4f), ks)
-            : fmt::format("ggx?roughness={}&ks={}", std::clamp(g.roughness, 0.03f, 1.0f), ks);
     const std::optional<Rgb> kd = material.diffuse;
-    material = parseMaterial(spec);
+    material = materialFromGloss(*file.mesh.gloss);
     material.diffuse = kd;
-    info(fmt::format("material from {} ('{}'): {}", file.mesh.source, g.material, material.spec()));
+    info(fmt::format("material from {} ('{}'): {}", file.mesh.source, file.mesh.gloss->material,
+                     material.spec()));
   }
   // --albedo (or --material kd=...) replaces the mesh's own albedo in the mesh the bake stores, so
   // every consumer of the file (render, reference, validate, the viewer) relights with the albedo
@@ -137,10 +128,8 @@ void runBake(const BakeArgs& a) {
   const Mesh& mesh = file.mesh;
   const double loadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  file.generator = std::string("prtkit ") + PRT_VERSION;
-  file.firstVertex = 0;
-  file.vertexCount = mesh.vertexCount();
-  if (!a.range.empty()) parseRange(a.range, mesh.vertexCount(), file.firstVertex, file.vertexCount);
+  const RowRange rows =
+      a.range.empty() ? RowRange{0, mesh.vertexCount()} : parseRange(a.range, mesh.vertexCount());
 
   const auto t1 = std::chrono::steady_clock::now();
   const auto occluder = makeEmbreeOccluder(mesh);
@@ -151,24 +140,23 @@ void runBake(const BakeArgs& a) {
                    seconds(loadSeconds), seconds(bvhSeconds)));
 
   for (TransferMode mode : modes) {
-    BakedTransfer t;
-    t.settings.layout = layout;
-    BakeSettings& s = t.settings;
+    BakeSettings s;
+    s.layout = layout;
     s.mode = mode;
     s.bands = a.bands;
     s.samples = static_cast<int>(a.samples);
-    s.bounces = mode == TransferMode::Interreflected ? a.bounces : 0;
+    s.bounces = a.bounces;
+    s.bounces = s.effectiveBounces();  // what the file records: 0 unless inter-reflected
     s.seed = a.seed;
     s.sampling = sampling;
     s.material = material;
-    s.firstVertex = file.firstVertex;
-    s.vertexCount = file.vertexCount;
+    s.rows = rows;
     // State the memory before the work, and refuse what a bake file cannot hold.
     const BakeFootprint fp = bakeFootprint(mesh, s);
     info(fmt::format("{} {}: {} per vertex, {} in all{}", toString(mode), toString(layout),
                      bytesText(fp.bytesPerVertex), bytesText(fp.transferBytes),
                      fp.workingBytes ? " + " + bytesText(fp.workingBytes) + " working" : ""));
-    if (glossyBounces(s))
+    if (s.glossyBounces(layout))
       info(
           fmt::format("{} {}: the bounces follow the material's lobe ({}): {} matrix passes over "
                       "the whole mesh",
@@ -178,14 +166,17 @@ void runBake(const BakeArgs& a) {
           fmt::format("{} {}: its bounces treat every surface as diffuse (kd); --transfer matrix "
                       "bounces the light off the lobe too",
                       toString(mode), toString(layout)));
-    if (fp.transferBytes > kMaxTransferFileBytes)
-      throw Error(a.output,
-                  fmt::format("{} {} transfer of {} vertices at {} bands is {}, more "
-                              "than a bake file holds ({}); use fewer bands or split "
-                              "the bake with --range",
-                              toString(mode), toString(layout), file.vertexCount, a.bands,
-                              bytesText(fp.transferBytes), bytesText(kMaxTransferFileBytes)));
-    t.field =
+    // The mesh and the JSON take a little of the file too: a margin of 64 MiB.
+    const std::uint64_t fileRoom = kMaxBakeFileBytes - (std::uint64_t(1) << 26);
+    if (fp.transferBytes > fileRoom)
+      throw Error(a.output, fmt::format("{} {} transfer of {} vertices at {} bands is {}, more "
+                                        "than a bake file holds ({}); use fewer bands or split "
+                                        "the bake with --range",
+                                        toString(mode), toString(layout), rows.count, a.bands,
+                                        bytesText(fp.transferBytes), bytesText(fileRoom)));
+    BakedTransfer t;
+    t.recipe = s;
+    t.transfer =
         bake(mesh, *occluder, s, &t.stats, progressBar(std::string("bake ") + toString(mode)));
     const BakeStats& st = t.stats;
     info(fmt::format("{}: {} rays in {} ({:.3g} Mrays/s, {} threads); direct {}{}", toString(mode),
@@ -200,21 +191,22 @@ void runBake(const BakeArgs& a) {
         fmt::format("{}: Monte Carlo std. error of T00 mean {:.2e} max {:.2e}; of white-sky "
                     "radiance mean {:.2e} max {:.2e}; {} channel(s)",
                     toString(mode), st.stdErrT0Mean, st.stdErrT0Max, st.stdErrConstMean,
-                    st.stdErrConstMax, t.field.channels));
+                    st.stdErrConstMax, t.transfer.channels()));
     // Never write a bake no reader can use: a non-finite coefficient (an absurd material albedo
     // amplified by the bounces, coordinates beyond float range) fails here, with the vertex.
-    const std::size_t stride = t.field.stride();
-    for (std::size_t k = 0; k < t.field.data.size(); ++k)
-      if (!std::isfinite(t.field.data[k]))
+    const std::size_t stride = t.transfer.stride();
+    const FloatArray& values = t.transfer.values();
+    for (std::size_t k = 0; k < values.size(); ++k)
+      if (!std::isfinite(values[k]))
         throw Error(mesh.source,
                     fmt::format("{} transfer of vertex {} is not finite (check the material "
                                 "albedos and coordinates); nothing written",
-                                toString(mode), file.firstVertex + k / stride));
+                                toString(mode), rows.first + k / stride));
     file.transfers.push_back(std::move(t));
   }
   writeBake(a.output, file);
-  info(fmt::format("wrote {} ({}{} vertices {}..{})", a.output, file.complete() ? "" : "partial: ",
-                   file.vertexCount, file.firstVertex, file.firstVertex + file.vertexCount - 1));
+  info(fmt::format("wrote {} ({}{} vertices {}..{})", a.output,
+                   file.complete() ? "" : "partial: ", rows.count, rows.first, rows.end() - 1));
 }
 
 }  // namespace

@@ -23,13 +23,15 @@
 #include "prt/image/image.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
+#include "transfer_options.hpp"
 
 namespace prt::cli {
 
 namespace {
 
 struct CompressArgs {
-  std::string bake, output, mode, transfer, sweep, sweepClusters = "1,4,16,64,256";
+  std::string bake, output, sweep, sweepClusters = "1,4,16,64,256";
+  TransferChoice transfer;
   int clusters = 64, basis = 8, iterations = 30, maxBasis = 16;
   std::uint64_t seed = 0;
   double targetError = 0, tolerance = 1e-3;
@@ -107,22 +109,6 @@ std::vector<int> parseClusterList(const std::string& s, std::size_t rows) {
   return out;
 }
 
-/// Compresses with the warm-started chain N = 0..basis (what the sweep measures), so a (K, N)
-/// picked from a sweep is reproduced exactly.
-CompressedTransfer compressChain(const TransferField& f, const CpcaOptions& o, CpcaStats& stats) {
-  CompressedTransfer prev;
-  double seconds = 0;
-  for (int n = 0; n <= o.basisCount; ++n) {
-    CpcaOptions step = o;
-    step.basisCount = n;
-    CompressedTransfer c = compressCpca(f, step, &stats, n > 0 ? &prev : nullptr);
-    seconds += stats.seconds;
-    prev = std::move(c);
-  }
-  stats.seconds = seconds;
-  return prev;
-}
-
 void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   const bool sweeping = !a.sweep.empty();
   if (a.output.empty() && !sweeping) throw Error("prt compress needs -o OUTPUT.glb (or --sweep)");
@@ -137,30 +123,34 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   if (sweeping) checkWritable(a.sweep);
 
   BakeFile bake = readBake(a.bake);
-  const BakedTransfer& picked = pickTransfer(bake, a.mode, a.bake, a.transfer);
-  if (picked.compressed)
-    throw Error(a.bake, fmt::format("the {} {} transfer is already compressed",
-                                    toString(picked.settings.mode), toString(picked.field.layout)));
-  const TransferField& field = picked.field;
-  const std::size_t D = field.stride(), rows = field.vertexCount;
+  const BakedTransfer& picked = pickTransfer(bake, a.transfer, a.bake);
+  if (picked.transfer.compressed())
+    throw Error(a.bake, "the " + picked.describe() + " transfer is already compressed");
+  const Transfer& field = picked.transfer;
+  const std::size_t D = field.stride(), rows = field.rowCount();
   if (a.basis > static_cast<int>(D))
     throw Error(fmt::format("--pca {}: the {} transfer has only {} values per vertex", a.basis,
-                            toString(field.layout), D));
+                            toString(field.layout()), D));
   if (static_cast<std::size_t>(a.clusters) > rows)
     throw Error(fmt::format("--clusters {}: the bake has only {} vertices", a.clusters, rows));
   info(
       fmt::format("{}: {} {} transfer, {} bands x {} channel(s) = {} values per vertex, {} "
                   "vertices",
-                  a.bake, toString(picked.settings.mode), toString(field.layout), field.bands,
-                  field.channels, D, rows));
+                  a.bake, toString(picked.mode()), toString(field.layout()), field.bands(),
+                  field.channels(), D, rows));
 
-  CpcaOptions opt{a.clusters, a.basis, a.seed, a.iterations, a.tolerance};
+  CpcaOptions opt;
+  opt.clusters = a.clusters;
+  opt.basisCount = a.basis;
+  opt.seed = a.seed;
+  opt.maxIterations = a.iterations;
+  opt.tolerance = a.tolerance;
   bool chain = false;
   if (sweeping || a.targetError > 0) {
     const std::vector<int> ks = parseClusterList(a.sweepClusters, rows);
     const int maxN = std::min<int>(a.maxBasis, static_cast<int>(D));
-    const auto pts = sweepCpca(field, ks, maxN, a.seed, a.iterations, a.tolerance,
-                               sweeping ? 0 : a.targetError, progressBar("sweeping"));
+    const auto pts =
+        sweepCpca(field, ks, maxN, opt, sweeping ? 0 : a.targetError, progressBar("sweeping"));
     if (sweeping) {
       std::cout << fmt::format("{:>7} {:>4} {:>12} {:>10} {:>9} {:>9} {:>8}  {}\n", "K", "N",
                                "bytes/vertex", "rel. RMS", "SNR dB", "ratio", "seconds", "colour");
@@ -202,9 +192,8 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   }
 
   CpcaStats stats;
-  CompressedTransfer c =
-      chain ? compressChain(field, opt, stats)
-            : compressCpca(field, opt, &stats, nullptr, progressBar("compressing"));
+  Transfer c = chain ? compressCpcaChain(field, opt, stats, progressBar("compressing"))
+                     : compressCpca(field, opt, &stats, nullptr, progressBar("compressing"));
   std::cout << fmt::format(
       "K {} N {}: relative RMS error {:.4e}, SNR {:.2f} dB, squared error {:.6e}, max vertex "
       "error {:.4e}, {} -> {} bytes (ratio {:.2f}), {} iterations, {:.2f} s\n",
@@ -213,11 +202,8 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
       stats.seconds);
   for (BakedTransfer& t : bake.transfers)
     if (&t == &picked) {
-      t.compressed = std::move(c);
-      t.compression = opt;
-      t.compressionStats = stats;
-      t.field.data.clear();
-      t.field.data.shrink_to_fit();
+      t.transfer = std::move(c);
+      t.compression = {opt, stats};
     }
   writeBake(a.output, bake);
   info(fmt::format("wrote {}", a.output));
@@ -236,8 +222,7 @@ void addCompressCommand(CLI::App& root) {
   auto* n = cmd->add_option("--pca", args->basis, "Principal components N per cluster (0 = VQ)")
                 ->check(intRange(0, 1 << 20))
                 ->capture_default_str();
-  cmd->add_option("--mode", args->mode, "Transfer mode to compress (default: the richest)");
-  cmd->add_option("--transfer", args->transfer, "vector | matrix (default: matrix if present)");
+  addTransferChoice(cmd, args->transfer, "to compress");
   cmd->add_option("--seed", args->seed, "Seed of the initial clusters")
       ->check(unsignedInt())
       ->capture_default_str();

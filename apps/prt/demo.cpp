@@ -38,6 +38,7 @@
 #include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/version.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
@@ -49,17 +50,13 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/relight/glossy.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/relight/relighter.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transport/bake.hpp"
 #include "web.hpp"
-
-#ifndef PRT_VERSION
-#define PRT_VERSION "dev"
-#endif
 
 namespace prt::cli {
 
@@ -275,14 +272,14 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
        "T<sub>00</sub> (mean)</th></tr>\n";
   for (const BakedTransfer& t : bake.transfers) {
     if (t.stats.rays == 0) {  // unshadowed: the clamped-cosine lobe in closed form
-      h << "<tr><td>" << toString(t.settings.mode)
+      h << "<tr><td>" << toString(t.mode())
         << "</td><td colspan=\"4\" style=\"text-align:left\">exact: the clamped-cosine lobe "
            "about the normal, in closed form (no rays)</td></tr>\n";
       continue;
     }
     h << fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{:.2f} s</td><td>{:.1f}</td><td>{:.2e}</td></tr>\n",
-        toString(t.settings.mode), t.stats.rays, t.stats.secondsTotal, t.stats.raysPerSecond / 1e6,
+        toString(t.mode()), t.stats.rays, t.stats.secondsTotal, t.stats.raysPerSecond / 1e6,
         t.stats.stdErrT0Mean);
   }
   if (glossy) {
@@ -290,7 +287,7 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
     h << fmt::format(
         "<tr><td>glossy ({} matrices, {} bands, {} samples)</td><td>{}</td><td>{:.2f} s</td>"
         "<td>{:.1f}</td><td>{:.2e}</td></tr>\n",
-        toString(t.settings.mode), t.settings.bands, t.settings.samples, t.stats.rays,
+        toString(t.mode()), t.transfer.bands(), t.recipe.samples, t.stats.rays,
         t.stats.secondsTotal, t.stats.raysPerSecond / 1e6, t.stats.stdErrT0Mean);
   }
   h << "</table>\n";
@@ -369,7 +366,7 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
         << "\");setInterval(()=>{i=(i+1)%f.length;im.src=f[i];},150);})();</script>\n";
     }
   }
-  h << "<p>Made by <code>prt demo</code> (prtkit " << PRT_VERSION
+  h << "<p>Made by <code>prt demo</code> (prtkit " << kVersion
     << "). Relative error per vertex: sqrt(Σ<sub>c</sub>(R<sub>PRT</sub>−R<sub>ref</sub>)² / "
        "Σ<sub>c</sub>(R<sub>ref</sub>² + ε)); energy-weighted: ‖R<sub>PRT</sub>−R<sub>ref</sub>‖ / "
        "‖R<sub>ref</sub>‖ over all vertices; the truncation floor is the error a perfect "
@@ -451,19 +448,19 @@ void runDemo(const DemoArgs& a) {
   const auto tb = Clock::now();
   BakeFile bake;
   bake.mesh = scene.mesh;
-  bake.generator = std::string("prtkit ") + PRT_VERSION;
-  bake.vertexCount = bake.mesh.vertexCount();
   const auto occluder = makeEmbreeOccluder(bake.mesh);
   for (TransferMode mode :
        {TransferMode::Unshadowed, TransferMode::Shadowed, TransferMode::Interreflected}) {
+    BakeSettings s;
+    s.mode = mode;
+    s.bands = a.bands;
+    s.samples = a.samples;
+    s.bounces = a.bounces;
+    s.bounces = s.effectiveBounces();
     BakedTransfer t;
-    t.settings.mode = mode;
-    t.settings.bands = a.bands;
-    t.settings.samples = a.samples;
-    t.settings.bounces = mode == TransferMode::Interreflected ? a.bounces : 0;
-    t.settings.vertexCount = bake.vertexCount;
-    t.field = prt::bake(bake.mesh, *occluder, t.settings, &t.stats,
-                        progressBar(std::string("bake ") + toString(mode)));
+    t.recipe = s;
+    t.transfer = prt::bake(bake.mesh, *occluder, s, &t.stats,
+                           progressBar(std::string("bake ") + toString(mode)));
     info(fmt::format("demo: baked {} in {:.2f} s ({} rays)", toString(mode), t.stats.secondsTotal,
                      t.stats.rays));
     bake.transfers.push_back(std::move(t));
@@ -479,17 +476,16 @@ void runDemo(const DemoArgs& a) {
     glossy->material = *glossyMaterial;
     BakeFile& g = glossy->file;
     g.mesh = bake.mesh;
-    g.generator = bake.generator;
-    g.vertexCount = bake.vertexCount;
+    BakeSettings s;
+    s.mode = TransferMode::Interreflected;
+    s.bounces = a.bounces;
+    s.layout = TransferLayout::Matrix;
+    s.bands = a.glossyBands;
+    s.samples = a.glossySamples;
+    s.material = *glossyMaterial;
     BakedTransfer t;
-    t.settings.mode = TransferMode::Interreflected;
-    t.settings.bounces = a.bounces;
-    t.settings.layout = TransferLayout::Matrix;
-    t.settings.bands = a.glossyBands;
-    t.settings.samples = a.glossySamples;
-    t.settings.material = *glossyMaterial;
-    t.settings.vertexCount = g.vertexCount;
-    t.field = prt::bake(g.mesh, *occluder, t.settings, &t.stats, progressBar("bake glossy"));
+    t.recipe = s;
+    t.transfer = prt::bake(g.mesh, *occluder, s, &t.stats, progressBar("bake glossy"));
     g.transfers.push_back(std::move(t));
     writeBake(file("glossy.glb"), g);
     glossy->bytes = fs::file_size(file("glossy.glb"));
@@ -514,7 +510,7 @@ void runDemo(const DemoArgs& a) {
     lf.coefficients = light;
     lf.source = L.spec;
     lf.layout = envs[li].layout;
-    lf.prtkitVersion = PRT_VERSION;
+    lf.prtkitVersion = kVersion;
     io::writeLightJson(file("lights/" + L.name + ".json"), lf);
     const image::Image panels = envmap::previewPanels(env, light, 512);
     L.preview = "lights/" + L.name + "_preview.png";
@@ -535,25 +531,21 @@ void runDemo(const DemoArgs& a) {
       const BakedTransfer& bt = *btp;
       const auto tm = Clock::now();
       ModeResult m;
-      m.mode = bt.settings.mode;
-      m.glossy = bt.field.isMatrix();
+      m.mode = bt.mode();
+      m.glossy = bt.transfer.isMatrix();
       const std::string key = m.glossy ? "glossy" : toString(m.mode);
       render::ValidateSettings vs;
       vs.reference.samples = m.glossy ? a.glossyReferenceSamples : a.referenceSamples;
       // Glossy: PRT and reference see each vertex from the stills' camera.
       if (m.glossy) vs.reference.eye = camera.eye;
       const sh::RgbSh& lightHere = m.glossy ? glossyLight : light;
-      m.report = render::validate(bake.mesh, *occluder, bt.field, bt.settings, env, lightHere, vs,
+      m.report = render::validate(bake.mesh, *occluder, bt.transfer, bt.recipe, env, lightHere, vs,
                                   progressBar(fmt::format("reference {} {}", L.name, key)));
       writeFileAtomically(file(fmt::format("validation/{}_{}.json", L.name, key)),
                           render::reportJson(m.report));
-      std::vector<Rgb> relit(bake.mesh.vertexCount());
-      if (m.glossy)
-        relight::relightGlossy(bt.field, lightHere, bt.settings.material,
-                               {bake.mesh.positions, bake.mesh.normals, camera.eye},
-                               bake.mesh.albedo, relit);
-      else
-        relit = relight::relight(bt.field, light, bake.mesh.albedo);
+      const std::vector<Rgb> relit =
+          relight::relight(bt.transfer, lightHere, bt.recipe.material,
+                           {bake.mesh.positions, bake.mesh.normals, bake.mesh.albedo}, camera.eye);
       // One exposure per environment, from its unshadowed (brightest) relighting, so every picture
       // under it compares directly.
       if (m.mode == TransferMode::Unshadowed) L.exposure = objectExposure(relit);
@@ -603,10 +595,12 @@ void runDemo(const DemoArgs& a) {
       const render::Camera cam =
           render::frameSphere(scene.centre, scene.radius, small.width, small.height);
       std::vector<image::Image> sheet;
-      std::vector<Rgb> relit(bake.mesh.vertexCount());
+      relight::Relighter relighter(bt.transfer,
+                                   {bake.mesh.positions, bake.mesh.normals, bake.mesh.albedo});
+      relighter.setMaterial(bt.recipe.material);
       for (int k = 0; k < a.frames; ++k) {
         const Mat3d rot = rotationAxisAngle({0, 1, 0}, 2 * kPi * k / a.frames);
-        relight::relight(bt.field, light, bake.mesh.albedo, relit, rot);
+        const std::span<const Rgb> relit = relighter.relight(light, rot, cam.eye);
         image::Image img = render::renderRelit(bake.mesh, *occluder, relit, cam, small,
                                                render::environmentBackground(env, rot));
         const std::string name = fmt::format("img/{}_turn_{:02d}.png", L.name, k);

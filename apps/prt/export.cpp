@@ -10,6 +10,7 @@
 #include "prt/core/file.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/games202_transport.hpp"
+#include "prt/relight/view_transfer.hpp"
 
 namespace prt::cli {
 
@@ -43,32 +44,44 @@ void runExport(const ExportArgs& a) {
   if (bake.transfers.empty()) throw Error(a.input, "holds no transfer");
   const BakedTransfer* t = nullptr;
   if (!a.mode.empty()) {
-    t = bake.find(parseTransferMode(a.mode));
+    // A vector of the mode before a matrix: transport.txt holds vectors.
+    const TransferMode m = parseTransferMode(a.mode);
+    t = bake.find(m, TransferLayout::Vector);
+    if (!t) t = bake.find(m);
     if (!t) throw Error(a.input, "holds no " + a.mode + " transfer");
   } else if (bake.transfers.size() == 1) {
     t = &bake.transfers[0];
   } else {
     std::string list;
     for (const auto& x : bake.transfers)
-      list += std::string(list.empty() ? "" : ", ") + toString(x.settings.mode);
+      list += std::string(list.empty() ? "" : ", ") + x.describe();
     throw Error(a.input, "holds several transfers (" + list + "): choose one with --mode");
   }
-  TransferField field = t->dense();  // a compressed transfer exports its reconstruction
-  if (field.channels == 3) {
+  // transport.txt holds diffuse vectors: a compressed transfer exports its reconstruction, a
+  // matrix its diffuse part t = Mᵀd(n) (what a diffuse surface relights with; never a row of M).
+  Transfer field = t->transfer.toDense();
+  if (field.isMatrix()) {
+    field = relight::diffuseTransfer(field, bake.mesh.normals);
+    info(
+        fmt::format("{}: the {} transfer holds matrices; exporting their diffuse part "
+                    "(transfer = Mᵀ d(n), the clamped cosine about each normal)",
+                    a.input, toString(t->mode())));
+  }
+  if (field.channels() == 3) {
     if (!channel)
       throw Error(a.input,
-                  std::string("the ") + toString(t->settings.mode) +
+                  std::string("the ") + toString(t->mode()) +
                       " transfer is RGB (coloured inter-reflection) and transport.txt holds one "
                       "value per coefficient: pick --channel luminance, r, g or b");
     field = selectChannel(field, *channel);
   }
-  if (field.bands != 3)
+  if (field.bands() != 3)
     warn(fmt::format("{} bands: the course's shaders expect 3 bands (9 coefficients per line)",
-                     field.bands));
+                     field.bands()));
   writeGames202Transport(a.output, field, bake.mesh, layout);
   info(fmt::format(
       "wrote {} ({} transfer, {} bands, header {} vertices, {} lines)", a.output,
-      toString(t->settings.mode), field.bands, bake.mesh.vertexCount(),
+      toString(t->mode()), field.bands(), bake.mesh.vertexCount(),
       layout == Games202Layout::Faces ? 3 * bake.mesh.triangleCount() : bake.mesh.vertexCount()));
 }
 

@@ -31,6 +31,16 @@ namespace prt::cli {
 
 namespace {
 
+/// How a transfer is stored, in one line.
+std::string storage(const BakedTransfer& t) {
+  const Transfer& x = t.transfer;
+  const TransferMode mode = t.mode();
+  if (x.compressed())
+    return fmt::format("CPCA-compressed, accessors {}*", transferCompressedPrefix(mode));
+  if (x.isMatrix()) return fmt::format("accessor {}", transferMatrixName(mode));
+  return fmt::format("attributes {}0..{}", transferAttributePrefix(mode), (x.stride() + 3) / 4 - 1);
+}
+
 void describeBake(const std::string& path) {
   const BakeFile b = readBake(path);
   const Mesh& m = b.mesh;
@@ -44,41 +54,38 @@ void describeBake(const std::string& path) {
   std::cout << '\n';
   std::cout << fmt::format("attributes  normals{}{}\n", m.uvs.empty() ? "" : ", uvs",
                            m.albedo.empty() ? "" : ", albedo");
-  std::cout << fmt::format("range       vertices {}..{} ({})\n", b.firstVertex,
-                           b.firstVertex + b.vertexCount - 1,
+  const RowRange rows = b.rows();
+  std::cout << fmt::format("range       vertices {}..{} ({})\n", rows.first, rows.end() - 1,
                            b.complete() ? "complete" : "partial: merge before use");
   std::cout << fmt::format("transfers   {}\n", b.transfers.size());
   for (const auto& t : b.transfers) {
-    const BakeSettings& s = t.settings;
+    const BakeRecipe& s = t.recipe;
     const BakeStats& st = t.stats;
-    if (t.field.isMatrix())
+    const Transfer& x = t.transfer;
+    const std::size_t dense = x.stride() * sizeof(float);
+    if (x.isMatrix())
       std::cout << fmt::format(
-          "  {}: matrix (glossy), {} bands ({}x{} per vertex) x {} channel(s), {} per vertex, "
-          "accessor {}\n",
-          toString(s.mode), t.field.bands, t.field.coeffs(), t.field.coeffs(), t.field.channels,
-          bytesText(t.field.stride() * sizeof(float)), transferMatrixName(s.mode));
+          "  {}: matrix (glossy), {} bands ({}x{} per vertex) x {} channel(s), {} per vertex, {}\n",
+          toString(s.mode), x.bands(), x.coeffs(), x.coeffs(), x.channels(), bytesText(dense),
+          storage(t));
     else
       std::cout << fmt::format(
-          "  {}: vector (diffuse), {} bands ({} coefficients) x {} channel(s), attributes "
-          "{}0..{}\n",
-          toString(s.mode), t.field.bands, t.field.coeffs(), t.field.channels,
-          transferAttributePrefix(s.mode), (t.field.stride() + 3) / 4 - 1);
-    if (t.compressed) {
-      const CompressedTransfer& c = *t.compressed;
-      const CpcaStats& cs = t.compressionStats;
+          "  {}: vector (diffuse), {} bands ({} coefficients) x {} channel(s), {}\n",
+          toString(s.mode), x.bands(), x.coeffs(), x.channels(), storage(t));
+    if (x.compressed()) {
+      const CpcaRecord& c = t.compression;
       std::cout << fmt::format(
-          "    compressed: CPCA, {} clusters x {} components (seed {}), {} -> {} ({:.2f}x), "
-          "accessors {}*\n",
-          c.clusters, c.basisCount, t.compression.seed,
-          bytesText(c.vertexCount * c.stride() * sizeof(float)), bytesText(c.bytes()),
-          cs.compressionRatio, transferCompressedPrefix(s.mode));
+          "    compressed: CPCA, {} clusters x {} components (seed {}), {} -> {} ({:.2f}x)\n",
+          x.cpca().clusters, x.cpca().basisCount, c.fit.seed, bytesText(x.shape().denseBytes()),
+          bytesText(x.bytes()), c.stats.compressionRatio);
       std::cout << fmt::format(
           "    compression error: relative RMS {:.4e}, SNR {:.2f} dB, squared {:.6e}, max vertex "
           "{:.4e}; {} iterations, {:.2f} s\n",
-          cs.relativeRms, cs.snrDb, cs.squaredError, cs.maxRowError, cs.iterations, cs.seconds);
+          c.stats.relativeRms, c.stats.snrDb, c.stats.squaredError, c.stats.maxRowError,
+          c.stats.iterations, c.stats.seconds);
     }
     std::cout << fmt::format("    material {}{}\n", s.material.spec(),
-                             glossyBounces(s) ? " (the bounces follow its lobe)" : "");
+                             s.glossyBounces(x.layout()) ? " (the bounces follow its lobe)" : "");
     std::cout << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples,
                              s.bounces, s.seed, toString(s.sampling));
     if (s.material.diffuse)

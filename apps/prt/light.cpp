@@ -16,6 +16,7 @@
 #include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/version.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
@@ -24,10 +25,6 @@
 #include "prt/io/light_file.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/rotate.hpp"
-
-#ifndef PRT_VERSION
-#define PRT_VERSION "dev"
-#endif
 
 namespace prt::cli {
 
@@ -181,7 +178,7 @@ void runLight(const LightOptions& o) {
     lf.layout = loaded.layout;
     lf.window = o.window;
     lf.rotationDeg = rot;
-    lf.prtkitVersion = PRT_VERSION;
+    lf.prtkitVersion = kVersion;
     io::writeLightJson(o.output, lf);
   }
   info("wrote " + o.output + (o.preview.empty() ? "" : " and " + o.preview));

@@ -15,10 +15,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/limits.hpp"
 #include "prt/core/parallel.hpp"
-
-#ifndef PRT_VERSION
-#define PRT_VERSION "dev"
-#endif
+#include "prt/core/version.hpp"
 
 namespace prt::cli {
 
@@ -115,7 +112,7 @@ int main(int argc, char** argv) {
   CLI::App app{"prtkit: precomputed radiance transfer — bake, relight, render, validate", "prt"};
   app.require_subcommand(1);
   app.fallthrough();  // -j, -q, -v also after the verb: prt bake ... -q
-  app.set_version_flag("--version", std::string("prt ") + PRT_VERSION);
+  app.set_version_flag("--version", std::string("prt ") + prt::kVersion);
   auto& g = globals();
   app.add_option("-j,--threads", g.threads, "Worker threads (0 = all cores)")
       ->check(intRange(0, 4096));

@@ -17,7 +17,7 @@
 #include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
-#include "prt/io/bake_file.hpp"
+#include "prt/io/bake_merge.hpp"
 
 namespace prt::cli {
 
@@ -39,17 +39,16 @@ void runMerge(const MergeArgs& a) {
   // file that does not fit ("part1.glb: overlaps the previous range ...").
   std::vector<std::pair<BakeFile, std::string>> pieces;
   pieces.reserve(a.inputs.size());
-  for (const std::string& in : a.inputs) pieces.emplace_back(readBake(in), in);
-  // Compressed transfer cannot be merged: name the piece that holds it (mergeBakes sees two
-  // bakes and names the later one whichever is compressed).
-  for (const auto& [piece, name] : pieces)
-    for (const BakedTransfer& t : piece.transfers)
-      if (t.compressed)
-        throw Error(name, std::string("holds compressed ") + toString(t.settings.mode) +
-                              " transfer, which cannot be merged (merge the uncompressed pieces, "
-                              "then compress)");
+  for (const std::string& in : a.inputs) {
+    pieces.emplace_back(readBake(in), in);
+    for (const BakedTransfer& t : pieces.back().first.transfers)
+      if (t.transfer.compressed())
+        throw Error(in, "holds compressed transfer (" + t.describe() +
+                            "), which cannot be merged: merge the uncompressed pieces, then "
+                            "compress");
+  }
   std::stable_sort(pieces.begin(), pieces.end(), [](const auto& x, const auto& y) {
-    return x.first.firstVertex < y.first.firstVertex;
+    return x.first.rows().first < y.first.rows().first;
   });
   BakeFile merged = std::move(pieces.front().first);
   for (std::size_t k = 1; k < pieces.size(); ++k) {
@@ -67,9 +66,10 @@ void runMerge(const MergeArgs& a) {
     }
   }
   writeBake(a.output, merged);
-  info(fmt::format("wrote {} ({} vertices {}..{}{}, {} mode(s))", a.output, merged.vertexCount,
-                   merged.firstVertex, merged.firstVertex + merged.vertexCount - 1,
-                   merged.complete() ? ", complete" : ", still partial", merged.transfers.size()));
+  const RowRange rows = merged.rows();
+  info(fmt::format("wrote {} ({} vertices {}..{}{}, {} mode(s))", a.output, rows.count, rows.first,
+                   rows.end() - 1, merged.complete() ? ", complete" : ", still partial",
+                   merged.transfers.size()));
 }
 
 }  // namespace

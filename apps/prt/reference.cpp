@@ -25,7 +25,6 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
-#include "material_option.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -34,13 +33,15 @@
 #include "prt/render/reference.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transfer/material.hpp"
+#include "transfer_options.hpp"
 
 namespace prt::cli {
 
 namespace {
 
 struct ReferenceArgs {
-  std::string bake, light, mode, output, rotate, material, eye, mis = "power";
+  std::string bake, light, output, rotate, material, eye, mis = "power";
+  TransferChoice transfer;
   int samples = 1024;
   std::size_t vertices = 0;
   std::uint64_t seed = 0;
@@ -110,18 +111,18 @@ void runReference(const ReferenceArgs& a) {
   }
 
   const BakeFile file = readBake(a.bake);
-  const BakedTransfer& bt = pickTransfer(file, a.mode, a.bake);
+  const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   auto occluder = makeEmbreeOccluder(file.mesh);
 
   render::ReferenceSettings rs;
   rs.samples = a.samples;
-  rs.mode = bt.settings.mode;
-  rs.bounces = bt.settings.mode == TransferMode::Interreflected ? bt.settings.bounces : 0;
+  rs.mode = bt.mode();
+  rs.bounces = bt.recipe.effectiveBounces();
   // The bake stores its material (bake file version 2 keeps the whole spec); --material replaces
   // it, keeping the bake's kd unless it names its own.
-  rs.material = materialOption(a.material, bt.settings, a.bake,
+  rs.material = materialOption(a.material, bt, a.bake,
                                "the reference follows --material at every bounce, the bake "
                                "does not");
   // The default view: the eye of `prt render`'s default camera (its default --size 640x480).
@@ -158,7 +159,7 @@ void addReferenceCommand(CLI::App& root) {
   cmd->add_option("bake", a->bake, "Bake file (.glb): its mesh and transport settings")->required();
   cmd->add_option("--light", a->light, "Environment: image, face folder or builtin:NAME")
       ->required();
-  cmd->add_option("--mode", a->mode, "Transport settings of this transfer of the bake");
+  addTransferChoice(cmd, a->transfer, "whose transport the reference follows");
   cmd->add_option("--samples", a->samples, "Samples per vertex")
       ->check(intRange(1, 1 << 24))
       ->capture_default_str();
@@ -166,10 +167,7 @@ void addReferenceCommand(CLI::App& root) {
   cmd->add_option("--vertices", a->vertices,
                   "Estimate a deterministic random subset of N vertices (0: all)")
       ->check(unsignedInt(UINT32_MAX));
-  cmd->add_option("--material", a->material,
-                  "Material: lambert, phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.04, each "
-                  "with optional kd=r,g,b (default: the bake's material; kd left out: the "
-                  "bake's)");
+  addMaterialOption(cmd, a->material, "the reference renders");
   cmd->add_option("--eye", a->eye,
                   "Camera position X,Y,Z for a glossy material's view directions (default: the "
                   "eye of prt render's default camera)");

@@ -16,20 +16,17 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
-#include "material_option.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
-#include "prt/envmap/load.hpp"
-#include "prt/envmap/project.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
-#include "prt/io/light_file.hpp"
+#include "prt/io/lighting.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/relight/compressed.hpp"
-#include "prt/relight/glossy.hpp"
-#include "prt/relight/relight.hpp"
+#include "prt/relight/relighter.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/render/primary.hpp"
 #include "prt/render/render.hpp"
+#include "transfer_options.hpp"
 
 namespace prt::cli {
 
@@ -44,8 +41,7 @@ struct RenderOptions {
   int spp = 4;
   float exposure = 0.0f;
   std::string tonemap = "aces";
-  std::string mode;
-  std::string transfer;
+  TransferChoice transfer;
   std::string material;
   int bands = 0;
   std::string background = "env";
@@ -100,42 +96,30 @@ void run(const RenderOptions& o) {
 
   const BakeFile bake = readBake(o.bake);
   bake.requireComplete(o.bake);
-  const BakedTransfer& baked = pickTransfer(bake, o.mode, o.bake, o.transfer);
+  const BakedTransfer& baked = pickTransfer(bake, o.transfer, o.bake);
   // The material: --material, else the one the bake stored.
   const Material material =
-      materialOption(o.material, baked.settings, o.bake,
+      materialOption(o.material, baked, o.bake,
                      "--material changes the surface at each vertex, not the light the surfaces "
                      "send each other (bake again for both)");
-  if (material.glossy() && !baked.field.isMatrix())
-    warn(
-        fmt::format("{}: the {} transfer is a vector (diffuse only); the material's glossy lobe "
-                    "needs a matrix bake (prt bake --transfer matrix)",
-                    o.bake, toString(baked.settings.mode)));
-  // Compressed transfer is relit in the compressed space (relight/compressed.hpp) unless --bands
-  // cuts it, which needs the dense rows (the reconstruction, truncated).
-  TransferField transfer = baked.field;  // for a compressed transfer: its shape, no rows
-  const CompressedTransfer* compressed = baked.compressed ? &*baked.compressed : nullptr;
-  if (o.bands > 0 && o.bands < transfer.bands) {
-    transfer = baked.dense().truncated(o.bands);
-    compressed = nullptr;
-  }
-  if (o.bands > transfer.bands)
-    warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands, transfer.bands,
-                     transfer.bands));
+  warnLobeOnVectors(material, baked, o.bake,
+                    "the material's glossy lobe needs a matrix bake (prt bake --transfer matrix)");
+  // Every frame through one relighter: the transfer cut to --bands once (Transfer::cut, the same
+  // answer for dense and compressed rows), light-only frames of matrices from the view-collapsed
+  // transfer.
+  relight::Relighter relighter(baked.transfer,
+                               {bake.mesh.positions, bake.mesh.normals, bake.mesh.albedo});
+  relighter.setMaterial(material);
+  if (o.bands > baked.transfer.bands())
+    warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands,
+                     baked.transfer.bands(), baked.transfer.bands()));
+  if (o.bands > 0) relighter.setBands(std::min(o.bands, baked.transfer.bands()));
 
   // The light: an SH light file, or an environment projected to the transfer's bands.
-  sh::RgbSh light;
-  std::optional<envmap::Environment> env;
-  if (io::isLightFile(o.light)) {
-    // An SH light file: no environment image, so the background is its SH reconstruction.
-    // relight() reconciles its bands with the transfer's (and says so when they differ).
-    light = io::readLight(o.light).coefficients;
-  } else {
-    envmap::LoadedEnvironment loaded = envmap::loadEnvironment(o.light);
-    for (const std::string& w : envmap::repairWarnings(loaded)) warn(w);
-    env = std::move(loaded.env);
-    light = envmap::projectEnvironment(*env, transfer.bands, progressBar("projecting"));
-  }
+  const io::Lighting lighting =
+      io::loadLighting(o.light, relighter.bands(), progressBar("projecting"));
+  for (const std::string& w : lighting.warnings) warn(w);
+  const sh::RgbSh& light = lighting.coefficients;
 
   const auto occluder = makeEmbreeOccluder(bake.mesh);
   render::Camera camera = render::frameMesh(bake.mesh, frame.width, frame.height);
@@ -144,35 +128,24 @@ void run(const RenderOptions& o) {
     warn("the camera is inside the mesh; the image will show its inside");
 
   render::Background kind = bgKind;
-  if (kind == render::Background::Env && !env) kind = render::Background::Sh;  // light file
+  if (kind == render::Background::Env && lighting.isShFile())
+    kind = render::Background::Sh;  // a light file has no image
 
   const int frames = o.turntable > 0 ? o.turntable : 1;
   std::vector<image::Image> sheet;
-  std::vector<Rgb> radiance(transfer.vertexCount);
-  bool warned = false;
   for (int k = 0; k < frames; ++k) {
     // Turntable: the environment turns about +Y after the user's rotation.
     const Mat3d rotation = o.turntable > 0
                                ? rotationAxisAngle({0, 1, 0}, 2 * kPi * k / frames) * userRotation
                                : userRotation;
     // Matrix transfer is view-dependent: each vertex is seen from the camera's eye.
-    const relight::RelightInfo relit =
-        compressed
-            ? relight::relightCompressed(*compressed, light, material,
-                                         {bake.mesh.positions, bake.mesh.normals, camera.eye},
-                                         bake.mesh.albedo, radiance, rotation)
-        : transfer.isMatrix()
-            ? relight::relightGlossy(transfer, light, material,
-                                     {bake.mesh.positions, bake.mesh.normals, camera.eye},
-                                     bake.mesh.albedo, radiance, rotation)
-            : relight::relight(transfer, light, material.diffuseOr(bake.mesh.albedo), radiance,
-                               rotation);
-    if (!warned && !relit.warning().empty()) warn(relit.warning()), warned = true;
+    relight::RelightInfo relit;
+    const std::span<const Rgb> radiance = relighter.relight(light, rotation, camera.eye, &relit);
     render::checkFiniteRadiance(radiance, o.bake);
     render::BackgroundFn bg;
     switch (kind) {
       case render::Background::Env:
-        bg = render::environmentBackground(*env, rotation);
+        bg = render::environmentBackground(*lighting.image, rotation);
         break;
       case render::Background::Sh:
         bg = render::shBackground(light, rotation);
@@ -189,9 +162,8 @@ void run(const RenderOptions& o) {
     const std::string path = o.turntable > 0 ? framePath(o.output, k) : o.output;
     image::writeImage(path, img, write);
     if (!o.contactSheet.empty()) sheet.push_back(std::move(img));
-    info(fmt::format("wrote {} ({}x{}, {} spp, {} bands, {} {} transfer, {})", path, frame.width,
-                     frame.height, frame.spp, relit.bands, toString(baked.settings.mode),
-                     toString(transfer.layout), material.spec()));
+    info(fmt::format("wrote {} ({}x{}, {} spp, {} bands, {} transfer, {})", path, frame.width,
+                     frame.height, frame.spp, relit.bands, baked.describe(), material.spec()));
   }
   if (!o.contactSheet.empty()) {
     image::writeImage(o.contactSheet, render::contactSheet(sheet), write);
@@ -220,15 +192,8 @@ void addRenderCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--tonemap", opts->tonemap, "Tone map for PNG: aces, reinhard, clamp")
       ->capture_default_str();
-  cmd->add_option("--mode", opts->mode,
-                  "Transfer to use: unshadowed, shadowed, interreflected (default: the richest in "
-                  "the bake)");
-  cmd->add_option("--transfer", opts->transfer,
-                  "Layout to use when the bake holds both: vector or matrix (default: matrix)");
-  cmd->add_option("--material", opts->material,
-                  "Relight with this material instead of the bake's: lambert, "
-                  "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5 (kd=r,g,b sets the diffuse "
-                  "colour); the lobe needs a matrix bake");
+  addTransferChoice(cmd, opts->transfer, "to relight");
+  addMaterialOption(cmd, opts->material, "to relight with");
   cmd->add_option("--bands", opts->bands, "Use at most this many SH bands (default: all)")
       ->check(intRange(1, sh::kMaxBands));
   cmd->add_option("--background", opts->background,

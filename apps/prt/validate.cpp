@@ -14,7 +14,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
-#include "material_option.hpp"
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
@@ -25,15 +25,17 @@
 #include "prt/render/metrics.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
+#include "transfer_options.hpp"
 
 namespace prt::cli {
 
 namespace {
 
 struct ValidateArgs {
-  std::string bake, light, mode, json, image, imageSize = "640x480", mis = "power";
+  std::string bake, light, json, image, imageSize = "640x480", mis = "power";
   int samples = 1024;
-  std::string bandsList, rotate, material, transfer;
+  std::string bandsList, rotate, material;
+  TransferChoice transfer;
   std::size_t vertices = 0;
   std::uint64_t seed = 0;
 };
@@ -43,8 +45,9 @@ void runValidate(const ValidateArgs& a) {
   std::vector<int> bands;
   if (!a.bandsList.empty())
     for (double b : parseNumberList(a.bandsList, "--bands-list")) {
-      if (b != static_cast<int>(b) || b < 1 || b > 32)
-        throw Error("--bands-list: band counts are integers in 1..32");
+      if (b != static_cast<int>(b) || b < 1 || b > bands::kMaxLibrary)
+        throw Error(
+            fmt::format("--bands-list: band counts are integers in 1..{}", bands::kMaxLibrary));
       bands.push_back(static_cast<int>(b));
     }
   const Mat3d rotation = parseRotation(a.rotate);
@@ -60,20 +63,19 @@ void runValidate(const ValidateArgs& a) {
                {{"input", a.bake}, {"--light", a.light}});
 
   const BakeFile file = readBake(a.bake);
-  const BakedTransfer& bt = pickTransfer(file, a.mode, a.bake, a.transfer);
+  const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   // The material: the bake's, or --material (keeping the bake's kd unless it names one).
-  BakeSettings settings = bt.settings;
-  settings.material = materialOption(a.material, bt.settings, a.bake,
-                                     "the reference's bounces follow --material, so the two "
-                                     "differ by more than error");
-  if (settings.material.glossy() && !bt.field.isMatrix())
-    warn(a.bake + ": the " + toString(bt.settings.mode) +
-         " transfer is a vector (diffuse only); validating its diffuse part (the reference "
-         "drops the lobe, and its bounces are diffuse too)");
+  BakeRecipe recipe = bt.recipe;
+  recipe.material = materialOption(a.material, bt, a.bake,
+                                   "the reference's bounces follow --material, so the two "
+                                   "differ by more than error");
+  warnLobeOnVectors(recipe.material, bt, a.bake,
+                    "validating its diffuse part (the reference drops the lobe, and its bounces "
+                    "are diffuse too)");
   file.requireComplete(a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
-  const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.field.bands);
+  const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.transfer.bands());
   auto occluder = makeEmbreeOccluder(file.mesh);
 
   render::ValidateSettings vs;
@@ -86,19 +88,18 @@ void runValidate(const ValidateArgs& a) {
   vs.bandsList = bands;
   vs.maxVertices = a.vertices;
   vs.bakeName = a.bake;
-  info("validating " + std::string(toString(bt.settings.mode)) + " transfer (" +
-       std::to_string(bt.field.bands) + " bands) of " + a.bake + " under " + a.light);
-  // A compressed transfer is validated as relit: its reconstruction (the compression's own error
-  // against the uncompressed rows is reported from the file beside the truncation error).
-  if (bt.compressed)
+  info("validating " + bt.describe() + " transfer (" + std::to_string(bt.transfer.bands()) +
+       " bands) of " + a.bake + " under " + a.light);
+  // A compressed transfer is validated as relit, in the compressed space (the compression's own
+  // error against the uncompressed rows is reported from the file beside the truncation error).
+  if (bt.transfer.compressed())
     info(
         fmt::format("compressed transfer: K {} N {}, relative RMS error {:.3e} against the "
                     "uncompressed transfer (SNR {:.2f} dB)",
-                    bt.compressed->clusters, bt.compressed->basisCount,
-                    bt.compressionStats.relativeRms, bt.compressionStats.snrDb));
-  const TransferField dense = bt.dense();
+                    bt.transfer.cpca().clusters, bt.transfer.cpca().basisCount,
+                    bt.compression.stats.relativeRms, bt.compression.stats.snrDb));
   const render::ValidationReport rep = render::validate(
-      file.mesh, *occluder, dense, settings, env.env, light, vs, progressBar("reference"));
+      file.mesh, *occluder, bt.transfer, recipe, env.env, light, vs, progressBar("reference"));
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
   std::snprintf(line, sizeof line,
@@ -154,15 +155,10 @@ void addValidateCommand(CLI::App& root) {
   cmd->add_option("bake", a->bake, "Bake file (.glb)")->required();
   cmd->add_option("--light", a->light, "Environment: image, face folder or builtin:NAME")
       ->required();
-  cmd->add_option("--mode", a->mode,
-                  "Transfer to validate when the bake holds several "
-                  "(unshadowed|shadowed|interreflected; default: the most complete)");
-  cmd->add_option("--transfer", a->transfer,
-                  "Layout when the bake holds both: vector or matrix (default: matrix)");
-  cmd->add_option("--material", a->material,
-                  "Material for both PRT and reference (default: the bake's): lambert, "
-                  "phong?exponent=32&ks=0.5, ggx?roughness=0.3&ks=0.5; glossy surfaces are seen "
-                  "from the eye of prt render's default camera");
+  addTransferChoice(cmd, a->transfer, "to validate");
+  addMaterialOption(cmd, a->material,
+                    "for both PRT and the reference (glossy surfaces are seen from the eye of "
+                    "prt render's default camera)");
   cmd->add_option("--reference-samples", a->samples, "Reference samples per vertex")
       ->check(intRange(1, 1 << 24))
       ->capture_default_str();

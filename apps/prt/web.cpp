@@ -24,18 +24,20 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
-#include "material_option.hpp"
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/version.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
-#include "prt/io/light_file.hpp"
-#include "prt/relight/glossy.hpp"
-#include "prt/relight/glossy_shader.hpp"
+#include "prt/io/lighting.hpp"
+#include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/transfer/prepared_material.hpp"
+#include "transfer_options.hpp"
 #include "web.hpp"
 
 namespace prt::cli {
@@ -111,23 +113,19 @@ struct WebEnvironment {
 };
 
 WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
+  io::Lighting l = io::loadLighting(spec, bands, progressBar("projecting"));
+  for (const std::string& w : l.warnings) warn(w);
   WebEnvironment e;
   e.name = spec;
-  if (io::isLightFile(spec)) {
-    const sh::RgbSh source = io::readLight(spec).coefficients;
-    if (source.bands < bands)
-      throw Error(spec, fmt::format("the light has {} bands but the bake {}; the transfer's upper "
-                                    "bands would see no light (write it with prt light --bands {})",
-                                    source.bands, bands, bands));
-    e.light = source.truncated(bands);
-    e.background = envmap::renderSh(source, width);
+  // The page always reads the bake's bands: a light with fewer is padded with zeros (the
+  // transfer's upper bands see no light, as the warning says).
+  e.light = io::padded(l.coefficients, bands);
+  if (l.isShFile()) {
+    e.background = envmap::renderSh(l.coefficients, width);
     for (Rgb& p : e.background.pixels) p = max(p, Rgb(0.0f));
-    return e;
+  } else {
+    e.background = envmap::renderEnvironment(*l.image, width);
   }
-  envmap::LoadedEnvironment loaded = envmap::loadEnvironment(spec);
-  for (const std::string& w : envmap::repairWarnings(loaded)) warn(w);
-  e.light = envmap::projectEnvironment(loaded.env, bands, progressBar("projecting"));
-  e.background = envmap::renderEnvironment(loaded.env, width);
   return e;
 }
 
@@ -175,8 +173,8 @@ void writeWebViewer(const WebOptions& a) {
   image::checkExposure(a.exposure, "--exposure");
   if (a.backgroundWidth < 8 || a.backgroundWidth > 8192 || a.backgroundWidth % 2)
     throw Error("--background-width must be an even number of pixels in 8..8192");
-  if (a.bands < 0 || a.bands > sh::kMaxBands)
-    throw Error(fmt::format("--bands must be 1..{}", sh::kMaxBands));
+  if (a.bands < 0 || a.bands > bands::kMaxLibrary)
+    throw Error(fmt::format("--bands must be 1..{}", bands::kMaxLibrary));
   if (!a.material.empty()) parseMaterial(a.material);
   const fs::path assets = findAssets();
   if (fs::exists(a.output) && !fs::is_directory(a.output))
@@ -190,28 +188,27 @@ void writeWebViewer(const WebOptions& a) {
   // relit in the compressed space), and glossy matrices CPCA-compressed (per vertex 16·⌈(N+1)/4⌉
   // bytes instead of 4·B⁴); dense matrices (2.5 KB per vertex at 5 bands) are refused here, as
   // the page refuses such a file dropped on it.
+  // The page draws what the GPU paths of relight/shader_transfer.hpp draw with matrices on the
+  // GPU: vectors (dense or compressed) and compressed matrices; dense matrices (2.5 KB per vertex
+  // at 5 bands) are refused here, as the page refuses such a file dropped on it.
   for (const BakedTransfer& t : bake.transfers) {
-    if (t.field.isMatrix() && !t.compressed)
+    if (t.transfer.isMatrix() && !t.transfer.compressed())
       throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices; the browser "
                                       "viewer draws them CPCA-compressed only (prt compress), or "
                                       "view them with prt view",
-                                      toString(t.settings.mode)));
-    if (t.field.isMatrix() && t.field.bands > relight::kMaxShaderGlossyBands)
-      throw Error(a.bake, fmt::format("the {} transfer's glossy matrices have {} bands; the "
-                                      "browser viewer draws 1..{}",
-                                      toString(t.settings.mode), t.field.bands,
-                                      relight::kMaxShaderGlossyBands));
+                                      toString(t.mode())));
+    try {
+      relight::shaderPath(t.transfer, true);
+    } catch (const Error& e) {
+      throw Error(a.bake, std::string(e.what()) + " (" + t.describe() + ")");
+    }
   }
-  if (bake.formatVersion != 1 && bake.formatVersion != 3)
-    throw Error(a.bake, fmt::format("bake format version {}: the browser viewer draws versions 1 "
-                                    "and 3 (diffuse vector transfer, dense or compressed) only",
-                                    bake.formatVersion));
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(a.bake);
-  if (!a.mode.empty()) pickTransfer(bake, a.mode, a.bake);
+  if (!a.mode.empty()) prt::pickTransfer(bake, parseTransferMode(a.mode), {}, a.bake);
   int bands = 0;
-  for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.field.bands);
+  for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.transfer.bands());
 
   // The camera, from the library's numbers only (docs/conventions.md, "Camera"): the default
   // framing (render::meshFraming: the bounding sphere, view direction, up, fov, margin), which
@@ -239,9 +236,9 @@ void writeWebViewer(const WebOptions& a) {
   for (const std::string& s : specs) envs.push_back(loadEnvironment(s, bands, a.backgroundWidth));
 
   std::ostringstream js;
-  js << "// Written by prt web (prtkit " << PRT_VERSION << "): the bake and its lights, read by "
+  js << "// Written by prt web (" << kGenerator << "): the bake and its lights, read by "
      << "prt-web.js.\nwindow.PRT_DATA = {\n";
-  js << "\"generator\": " << jsonString(std::string("prtkit ") + PRT_VERSION) << ",\n";
+  js << "\"generator\": " << jsonString(kGenerator) << ",\n";
   js << "\"view\": {\"rotate\": [" << euler[0] << ", " << euler[1] << ", " << euler[2]
      << "], \"exposure\": " << a.exposure << ", \"tonemap\": " << jsonString(a.toneMap)
      << ", \"mode\": " << jsonString(a.mode) << ", \"bands\": " << a.bands
@@ -256,19 +253,19 @@ void writeWebViewer(const WebOptions& a) {
   js << "\"glossy\": {";
   bool firstGlossy = true;
   for (const BakedTransfer& t : bake.transfers) {
-    if (!t.field.isMatrix()) continue;
+    if (!t.transfer.isMatrix()) continue;
     const Material material =
-        materialOption(a.material, t.settings, a.bake,
+        materialOption(a.material, t, a.bake,
                        "the page shades each vertex with --material, the bounced light keeps the "
                        "bake's");
-    const relight::PreparedMaterial pm = relight::prepareMaterial(material, t.field.bands);
+    const PreparedMaterial pm = prepareMaterial(material, t.transfer.bands());
     const auto list = [](const std::array<float, 64>& k) {
       std::string out;
       for (std::size_t i = 0; i < k.size(); ++i)
         out += fmt::format("{}{:.9g}", i ? ", " : "", k[i]);
       return out;
     };
-    js << (firstGlossy ? "" : ", ") << jsonString(toString(t.settings.mode))
+    js << (firstGlossy ? "" : ", ") << jsonString(toString(t.mode()))
        << ": {\"material\": " << jsonString(material.spec()) << ", \"diffuse\": ["
        << list(relight::shaderKernel(pm.diffuse)) << "], \"lobe\": ["
        << list(relight::shaderKernel(pm.glossy)) << "], \"kd\": "

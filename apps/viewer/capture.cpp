@@ -39,40 +39,40 @@ std::vector<double> steady(const std::vector<double>& v) {
 void FrameStats::print(const std::string& renderer, const Scene& scene, int width, int height,
                        std::size_t lightBytes, const std::string& upload) const {
   if (frameMs.empty()) return;
+  using relight::ShaderPath;
   std::printf("renderer: %s\n", renderer.c_str());
-  const TransferField& field = scene.transfer().field;
-  std::printf("scene: %zu triangles, %zu vertices, %d of %d bands, %s %s transfer (%s), %s\n",
+  const Transfer& t = scene.transfer().transfer;
+  std::printf("scene: %zu triangles, %zu vertices, %d of %d bands, %s transfer (%s), %s\n",
               scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(), scene.bands(),
-              scene.bakeBands(), toString(scene.transfer().settings.mode), toString(field.layout),
-              field.channels == 3 ? "RGB" : "scalar", scene.material().spec().c_str());
+              scene.bakeBands(), scene.transfer().describe().c_str(),
+              t.channels() == 3 ? "RGB" : "scalar", scene.material().spec().c_str());
   std::printf("transfer upload: %s\n", upload.c_str());
   std::printf("frames: %zu at %dx%d; first frame %.2f ms (uploads)\n", frameMs.size(), width,
               height, frameMs.front());
   std::printf("frame time (draw + glFinish): median %.3f ms, min %.3f ms\n",
               median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
-  const bool compressed = scene.compressed() != nullptr;
+  const bool table = path == ShaderPath::CpcaVector || path == ShaderPath::CpcaMatrix;
   std::printf("CPU per frame (light rotation + packing%s): median %.4f ms\n",
-              compressed && (!field.isMatrix() || glossyOnGpu) ? " + cluster projections"
-              : field.isMatrix()                               ? " + glossy relighting"
-                                                               : "",
+              table                             ? " + cluster projections"
+              : path == ShaderPath::CpuRadiance ? " + CPU relighting"
+                                                : "",
               median(steady(cpuMs)));
-  if (field.isMatrix() && glossyOnGpu) {
+  if (path == ShaderPath::DenseMatrix || path == ShaderPath::CpcaMatrix) {
     std::printf(
         "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
-  } else if (field.isMatrix()) {
+  } else if (path == ShaderPath::CpuRadiance) {
     // Only the frames that relit (light, eye, bands or material changed).
     std::vector<double> relit;
-    for (double g : steady(glossyMs))
+    for (double g : steady(relightMs))
       if (g > 0) relit.push_back(g);
     std::printf(
-        "glossy relighting (CPU %s + radiance upload): median %.3f ms over "
+        "glossy relighting (CPU relight::Relighter + radiance upload): median %.3f ms over "
         "%zu relit frames\n",
-        compressed ? "relightCompressedGlossy" : "relightGlossy", median(relit), relit.size());
+        median(relit), relit.size());
   }
   std::printf("light upload (%s, %zu bytes): median %.2f us\n",
-              compressed && (!field.isMatrix() || glossyOnGpu) ? "cluster table, glBufferData"
-                                                               : "glBufferSubData",
-              lightBytes, median(steady(uploadUs)));
+              table ? "cluster table, glBufferData" : "glBufferSubData", lightBytes,
+              median(steady(uploadUs)));
 }
 
 }  // namespace prt::viewer

@@ -16,12 +16,12 @@ void writeScreenshot(const std::string& path, const image::Image& encoded,
 
 /// Per-frame timings in milliseconds; the first frame (uploads) is reported apart.
 struct FrameStats {
-  std::vector<double> frameMs, cpuMs, uploadUs, glossyMs;
-  bool glossyOnGpu = false;  ///< matrix transfer relit in the vertex shader (no CPU relighting)
-  /// `glossy`: the CPU relighting of matrix transfer this frame (0 when none ran).
-  void add(double frame, double cpu, double upload, double glossy = 0.0) {
+  std::vector<double> frameMs, cpuMs, uploadUs, relightMs;
+  relight::ShaderPath path = relight::ShaderPath::DenseVector;  ///< how the transfer was drawn
+  /// `relight`: the CPU relighting this frame (0 when none ran).
+  void add(double frame, double cpu, double upload, double relight = 0.0) {
     frameMs.push_back(frame), cpuMs.push_back(cpu), uploadUs.push_back(upload);
-    glossyMs.push_back(glossy);
+    relightMs.push_back(relight);
   }
   /// Prints the summary on stdout.
   /// `upload`: SceneView::uploadSummary.

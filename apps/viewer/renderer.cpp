@@ -10,8 +10,7 @@
 #include <string>
 
 #include "prt/core/error.hpp"
-#include "prt/relight/cluster_table.hpp"
-#include "prt/relight/glossy_shader.hpp"
+#include "prt/relight/shader_transfer.hpp"
 #include "prt_viewer_shaders.hpp"
 
 namespace prt::viewer {
@@ -128,12 +127,6 @@ image::Image readPixels(int w, int h, GLenum type) {
 
 }  // namespace
 
-std::size_t denseBytesPerVertex(const TransferField& t, bool glossyOnGpu) {
-  const std::size_t n = std::size_t(t.bands) * t.bands;
-  if (t.isMatrix()) return glossyOnGpu ? 16 * n * ((n + 3) / 4) : sizeof(Rgb);
-  return t.channels == 1 ? 16 * ((n + 3) / 4) : 16 * n;
-}
-
 // ---- OffscreenTarget ------------------------------------------------------------------------
 
 OffscreenTarget::OffscreenTarget(int width, int height) : width_(width), height_(height) {
@@ -190,12 +183,12 @@ Renderer::~Renderer() {
   const GLuint programs[] = {meshProgram_,   backgroundProgram_, toneProgram_,
                              glossyProgram_, compressedProgram_, compressedGlossyProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
-  const GLuint buffers[] = {positions_, albedo_,  indices_,       transferBuffer_, lightUbo_,
-                            radiance_,  normals_, weightsBuffer_, clusterBuffer_};
-  glDeleteBuffers(9, buffers);
-  const GLuint textures[] = {transferTexture_, envTexture_,     shTexture_,     msColour_,
-                             resolveColour_,   weightsTexture_, clusterTexture_};
-  glDeleteTextures(7, textures);
+  const GLuint buffers[] = {positions_, albedo_,   indices_, transferBuffer_,
+                            lightUbo_,  radiance_, normals_, clusterBuffer_};
+  glDeleteBuffers(8, buffers);
+  const GLuint textures[] = {transferTexture_, envTexture_,    shTexture_,
+                             msColour_,        resolveColour_, clusterTexture_};
+  glDeleteTextures(6, textures);
   glDeleteRenderbuffers(1, &msDepth_);
   const GLuint fbos[] = {msFbo_, resolveFbo_};
   glDeleteFramebuffers(2, fbos);
@@ -260,73 +253,43 @@ void Renderer::setMesh(const Mesh& mesh) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   triangles_ = mesh.triangleCount();
   vertices_ = mesh.vertexCount();
-  hasRadiance_ = false;  // the radiance buffer, if any, was for another mesh
+  hasRadiance_ = hasTransfer_ = false;  // the radiance and transfer were for another mesh
   const Bounds b = computeBounds(mesh);
   centre_ = b.centre();
   radius_ = std::max(b.radius(), 1e-6f);
 }
 
-void Renderer::setDirectRadiance() {
-  direct_ = true;
-  glossyGpu_ = false;
-  compressed_ = false;
-}
-
-void Renderer::setCompressedTransfer(const CompressedTransfer& t) {
-  const bool matrix = t.layout == TransferLayout::Matrix;
-  if (t.bands < 1 || t.bands > (matrix ? kMaxGpuGlossyBands : kMaxViewerBands))
-    throw Error(fmt::format("the compressed {} transfer has {} bands; the viewer draws 1..{}{}",
-                            matrix ? "matrix" : "vector", t.bands,
-                            matrix ? kMaxGpuGlossyBands : kMaxViewerBands,
-                            matrix ? " in the vertex shader (use --glossy-on cpu)" : ""));
-  if (t.vertexCount != vertices_)
-    throw Error(fmt::format("the compressed transfer has {} rows for {} vertices", t.vertexCount,
-                            vertices_));
-  const relight::CompressedVertexTexels packed = relight::packCompressedVertices(t);
-  requireTextureBufferTexels(double(packed.texelsPerVertex) * double(t.vertexCount),
-                             "the compressed transfer's weights", "use fewer PCA vectors");
-  const double tableTexels =
-      double(t.clusters) * (t.basisCount + 1) * (matrix ? double(t.bands) * t.bands : 1.0);
-  requireTextureBufferTexels(tableTexels, "the per-frame cluster table", "use fewer clusters");
-  uploadTextureBuffer(weightsBuffer_, weightsTexture_, packed.rgba, GL_STATIC_DRAW);
-  compressed_ = true;
-  direct_ = glossyGpu_ = false;
-  compressedBasis_ = t.basisCount;
-  compressedCoeffs_ = matrix ? t.bands * t.bands : 1;
-  compressedTexels_ = std::size_t(packed.texelsPerVertex);
-  transferBands_ = t.bands;
-}
-
-void Renderer::setGlossyTransfer(const TransferField& t) {
-  PRT_CHECK(t.isMatrix(), "setGlossyTransfer needs matrix transfer");
-  if (t.channels != 1)
-    throw Error("the vertex-shader glossy path takes scalar matrices only (use --glossy-on cpu)");
-  if (t.bands < 1 || t.bands > kMaxGpuGlossyBands)
+void Renderer::setTransfer(const relight::ShaderRows& rows, const TransferShape& shape,
+                           int clusters, int basisCount) {
+  using relight::ShaderPath;
+  const double texels = double(rows.texelsPerRow) * double(shape.rowCount());
+  const bool compressed =
+      rows.path == ShaderPath::CpcaVector || rows.path == ShaderPath::CpcaMatrix;
+  if (shape.rowCount() != vertices_)
     throw Error(
-        fmt::format("the vertex-shader glossy path draws 1..{} bands, the transfer has {} "
-                    "(use --glossy-on cpu)",
-                    kMaxGpuGlossyBands, t.bands));
-  const int n = t.coeffs(), rowTexels = (n + 3) / 4, vertexTexels = n * rowTexels;
-  requireTextureBufferTexels(double(vertexTexels) * double(t.vertexCount), "the glossy transfer",
-                             "use --glossy-on cpu");
-  // Row i of vertex v at texels v·n·rowTexels + i·rowTexels, its n entries zero-padded.
-  std::vector<float> packed(std::size_t(vertexTexels) * 4 * t.vertexCount, 0.0f);
-  for (std::size_t v = 0; v < t.vertexCount; ++v)
-    for (int i = 0; i < n; ++i) {
-      const float* src = t.vertex(v) + std::size_t(i) * n;
-      std::copy(src, src + n, packed.data() + (v * vertexTexels + std::size_t(i) * rowTexels) * 4);
-    }
-  uploadTextureBuffer(transferBuffer_, transferTexture_, packed, GL_STATIC_DRAW);
-  glossyGpu_ = true;
-  direct_ = compressed_ = false;
-  transferBands_ = t.bands;
-  transferChannels_ = 1;
-  transferStride_ = rowTexels;  // texels per row; a vertex is n rows
+        fmt::format("the transfer has {} rows for {} vertices", shape.rowCount(), vertices_));
+  if (rows.path != ShaderPath::CpuRadiance) {
+    requireTextureBufferTexels(texels,
+                               compressed ? "the compressed transfer's weights" : "the transfer",
+                               compressed ? "use fewer PCA vectors" : "use fewer bands");
+    uploadTextureBuffer(transferBuffer_, transferTexture_, rows.rgba, GL_STATIC_DRAW);
+  }
+  if (compressed) {
+    const double tableTexels = double(clusters) * (basisCount + 1) *
+                               (rows.path == ShaderPath::CpcaMatrix ? double(shape.coeffs()) : 1.0);
+    requireTextureBufferTexels(tableTexels, "the per-frame cluster table", "use fewer clusters");
+  }
+  path_ = rows.path;
+  texelsPerRow_ = rows.texelsPerRow;
+  basisCount_ = basisCount;
+  transferBands_ = shape.bands;
+  transferChannels_ = shape.channels;
+  hasTransfer_ = true;
 }
 
 void Renderer::setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
                                  std::optional<Rgb> kd, Rgb ks) {
-  // The SH normalisation N_lm the shader's basis leaves out (prt/relight/glossy_shader.hpp).
+  // The SH normalisation N_lm the shader's basis leaves out (relight::shaderKernel).
   const std::array<float, 64> d = relight::shaderKernel(diffuse), g = relight::shaderKernel(glossy);
   glossyDiffuse_.assign(d.begin(), d.end());
   glossyLobe_.assign(g.begin(), g.end());
@@ -342,34 +305,6 @@ void Renderer::setRadiance(std::span<const Rgb> radiance) {
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   hasRadiance_ = true;
-}
-
-void Renderer::setTransfer(const TransferField& t) {
-  PRT_CHECK(!t.isMatrix(), "matrix transfer: setRadiance or setGlossyTransfer");
-  glossyGpu_ = false;
-  if (t.bands < 1 || t.bands > kMaxViewerBands)
-    throw Error(
-        fmt::format("the transfer has {} bands; the viewer draws 1..{}", t.bands, kMaxViewerBands));
-  if (t.channels != 1 && t.channels != 3)
-    throw Error(fmt::format("the transfer has {} channels (1 or 3 expected)", t.channels));
-  const int n = t.coeffs();
-  const int texelsPerVertex = t.channels == 1 ? paddedCoeffs(t.bands) / 4 : n;
-  requireTextureBufferTexels(double(texelsPerVertex) * double(t.vertexCount), "the transfer",
-                             "use fewer bands");
-  std::vector<float> packed(std::size_t(texelsPerVertex) * 4 * t.vertexCount, 0.0f);
-  for (std::size_t v = 0; v < t.vertexCount; ++v) {
-    const float* src = t.vertex(v);
-    float* dst = packed.data() + v * texelsPerVertex * 4;
-    if (t.channels == 1)
-      std::copy(src, src + n, dst);
-    else
-      for (int i = 0; i < n; ++i) std::copy(src + 3 * i, src + 3 * i + 3, dst + 4 * i);
-  }
-  uploadTextureBuffer(transferBuffer_, transferTexture_, packed, GL_STATIC_DRAW);
-  direct_ = compressed_ = false;
-  transferBands_ = t.bands;
-  transferChannels_ = t.channels;
-  transferStride_ = texelsPerVertex;
 }
 
 void Renderer::setEnvironmentImage(const image::Image& img) {
@@ -483,64 +418,70 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     glUseProgram(program);
     glUniformMatrix4fv(loc(program, "uViewProj"), 1, GL_FALSE, viewProj);
   };
-  if (triangles_ > 0 && compressed_) {
-    const bool matrix = compressedCoeffs_ > 1;
-    PRT_CHECK(!f.clusterTable.empty(), "compressed transfer needs FrameParams.clusterTable");
-    const auto t0 = std::chrono::steady_clock::now();
-    uploadTextureBuffer(clusterBuffer_, clusterTexture_, f.clusterTable, GL_STREAM_DRAW);
-    clusterTableBytes_ = sizeof(float) * f.clusterTable.size();
-    uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const GLuint p = matrix ? compressedGlossyProgram_ : compressedProgram_;
+  using relight::ShaderPath;
+  const int b = std::min(f.bands, transferBands_);
+  const bool drawable =
+      triangles_ > 0 && hasTransfer_ && (path_ != ShaderPath::CpuRadiance || hasRadiance_);
+  if (drawable) {
+    // The program of the path and its per-vertex texels; then what the path needs per frame.
+    const GLuint p = path_ == ShaderPath::DenseMatrix  ? glossyProgram_
+                     : path_ == ShaderPath::CpcaVector ? compressedProgram_
+                     : path_ == ShaderPath::CpcaMatrix ? compressedGlossyProgram_
+                                                       : meshProgram_;
+    const bool compressed = path_ == ShaderPath::CpcaVector || path_ == ShaderPath::CpcaMatrix;
+    if (compressed) {
+      PRT_CHECK(!f.clusterTable.empty(), "compressed transfer needs FrameParams.clusterTable");
+      const auto t0 = std::chrono::steady_clock::now();
+      uploadTextureBuffer(clusterBuffer_, clusterTexture_, f.clusterTable, GL_STREAM_DRAW);
+      clusterTableBytes_ = sizeof(float) * f.clusterTable.size();
+      uploadSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    } else {
+      uploadLight();
+    }
     beginMesh(p);
     glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_BUFFER, weightsTexture_);
-    glUniform1i(loc(p, "uWeights"), 1);
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_BUFFER, clusterTexture_);
-    glUniform1i(loc(p, "uClusters"), 2);
-    glUniform1i(loc(p, "uTexelsPerVertex"), int(compressedTexels_));
-    glUniform1i(loc(p, "uBasisCount"), compressedBasis_);
-    if (matrix) {
-      glUniform1i(loc(p, "uBands"),
-                  std::min({f.light->bands(), transferBands_, kMaxGpuGlossyBands}));
-      glUniform1i(loc(p, "uCoeffs"), compressedCoeffs_);
-      setGlossyUniforms(p, c.eye);
+    glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
+    switch (path_) {
+      case ShaderPath::DenseVector:
+      case ShaderPath::CpuRadiance: {
+        const bool direct = path_ == ShaderPath::CpuRadiance;
+        glUniform1i(loc(p, "uTransfer"), 1);
+        glUniform1i(loc(p, "uTexelsPerVertex"), texelsPerRow_);
+        glUniform1i(loc(p, "uRgb"), transferChannels_ == 3);
+        glUniform1i(loc(p, "uCount"), direct                   ? 0
+                                      : transferChannels_ == 3 ? b * b
+                                                               : paddedCoeffs(b) / 4);
+        glUniform1i(loc(p, "uDirect"), direct);
+        break;
+      }
+      case ShaderPath::DenseMatrix:
+        glUniform1i(loc(p, "uTransfer"), 1);
+        glUniform1i(loc(p, "uBands"), std::min(b, bands::kMaxShaderGlossy));
+        glUniform1i(loc(p, "uRowTexels"), texelsPerRow_ / (transferBands_ * transferBands_));
+        glUniform1i(loc(p, "uVertexTexels"), texelsPerRow_);
+        setGlossyUniforms(p, c.eye);
+        break;
+      case ShaderPath::CpcaVector:
+      case ShaderPath::CpcaMatrix:
+        glUniform1i(loc(p, "uWeights"), 1);
+        glActiveTexture(GL_TEXTURE2);
+        glBindTexture(GL_TEXTURE_BUFFER, clusterTexture_);
+        glUniform1i(loc(p, "uClusters"), 2);
+        glUniform1i(loc(p, "uTexelsPerVertex"), texelsPerRow_);
+        glUniform1i(loc(p, "uBasisCount"), basisCount_);
+        if (path_ == ShaderPath::CpcaMatrix) {
+          // The table was projected from the transfer cut to the shown bands: b² values per
+          // cluster vector.
+          glUniform1i(loc(p, "uBands"), std::min(b, bands::kMaxShaderGlossy));
+          glUniform1i(loc(p, "uCoeffs"), b * b);
+          setGlossyUniforms(p, c.eye);
+        }
+        break;
     }
     glBindVertexArray(vao_);
     glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
     glDisable(GL_DEPTH_TEST);
     glActiveTexture(GL_TEXTURE0);
-  } else if (triangles_ > 0 && glossyGpu_) {
-    uploadLight();
-    const int b = std::min({f.light->bands(), transferBands_, kMaxGpuGlossyBands});
-    const GLuint p = glossyProgram_;
-    beginMesh(p);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
-    glUniform1i(loc(p, "uTransfer"), 1);
-    glUniform1i(loc(p, "uBands"), b);
-    glUniform1i(loc(p, "uRowTexels"), transferStride_);
-    glUniform1i(loc(p, "uVertexTexels"), transferStride_ * transferBands_ * transferBands_);
-    setGlossyUniforms(p, c.eye);
-    glBindVertexArray(vao_);
-    glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
-    glDisable(GL_DEPTH_TEST);
-  } else if (triangles_ > 0 && (direct_ ? hasRadiance_ : transferTexture_ != 0)) {
-    uploadLight();
-    const int b = std::min(f.light->bands(), transferBands_);
-    beginMesh(meshProgram_);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
-    glUniform1i(loc(meshProgram_, "uTransfer"), 1);
-    glUniform1i(loc(meshProgram_, "uTexelsPerVertex"), transferStride_);
-    glUniform1i(loc(meshProgram_, "uRgb"), transferChannels_ == 3);
-    glUniform1i(loc(meshProgram_, "uCount"), direct_                  ? 0
-                                             : transferChannels_ == 3 ? b * b
-                                                                      : paddedCoeffs(b) / 4);
-    glUniform1i(loc(meshProgram_, "uDirect"), direct_);
-    glBindVertexArray(vao_);
-    glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
-    glDisable(GL_DEPTH_TEST);
   }
 
   // (2) resolve, (3) tone map into the target.

@@ -17,65 +17,53 @@
 //  3. A full-screen pass applies exposure 2^stops, the tone map and the sRGB encode
 //     (image::toneMap, image::linearToSrgb: the same formulas in GLSL) into the target.
 //
-// Transfer layout in the texture buffer (GL_RGBA32F texels):
-//   scalar: vertex v's B² coefficients zero-padded to P = roundUp4(B²), texels v·P/4 .. ;
-//           the shader dots four coefficients per fetch with four light vec4s;
-//   RGB:    one texel (r, g, b, 0) per coefficient, texels v·B² + i.
-// Truncating to b < B bands only shortens the shader's loop: nothing is re-uploaded.
-//
-// CPCA-compressed transfer (prt compress) is relit in the compressed space, as Sloan et al. 2003
-// do on the GPU: per vertex, a texture buffer holds the cluster id and N weights (16·⌈(N+1)/4⌉
-// bytes, uploaded once); per frame, the CPU projects the rotated light onto every cluster's mean
-// and basis (relight::projectClusters, K(N+1) dot products, or K(N+1) matrix-vector products of
-// B² for glossy matrices) and uploads the table to a second texture buffer; the vertex shader
-// sums c_k + Σ_j w_j d_kj (shaders/viewer/compressed.vert) or forms L'_v = L'_k0 + Σ_j w_j L'_kj
-// and shades it as glossy.vert (compressedGlossy.vert). Layouts: prt/relight/cluster_table.hpp.
+// The transfer arrives through one upload path, setTransfer(relight::ShaderRows): the library
+// packs it for the path that draws it (relight/shader_transfer.hpp has every layout) and the
+// renderer puts the texels in a texture buffer and picks the program:
+//   DenseVector  mesh.vert              per-vertex coefficients against the light block
+//   DenseMatrix  glossy.vert            per-vertex matrices (--glossy-on gpu)
+//   CpcaVector   compressed.vert        ids + weights, the per-frame cluster table
+//   CpcaMatrix   compressedGlossy.vert  ids + weights, the cluster table of B² values
+//   CpuRadiance  mesh.vert (uDirect)    exit radiance relit on the CPU (setRadiance)
+// Truncating to b < B bands only shortens the shaders' loops: nothing is re-uploaded.
 
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
 
-#include "prt/compress/cpca.hpp"
+#include "prt/core/band_limits.hpp"
 #include "prt/core/vec.hpp"
 #include "prt/geometry/mesh.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
-#include "prt/relight/glossy_shader.hpp"
-#include "prt/relight/light_packer.hpp"
+#include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
-#include "prt/transfer/field.hpp"
+#include "prt/transfer/transfer.hpp"
 
 namespace prt::viewer {
 
-// The light packing lives in the library (prt/relight/light_packer.hpp); the viewer's names.
+// The light packing lives in the library (prt/relight/shader_transfer.hpp); the viewer's names.
 using relight::LightPacker;
 using relight::paddedCoeffs;
-inline constexpr int kMaxViewerBands = relight::kMaxPackedBands;
+inline constexpr int kMaxViewerBands = bands::kMaxPackedLight;
 inline constexpr int kMaxViewerCoeffs = relight::kMaxPackedCoeffs;
 
 enum class BackgroundMode { Env, Sh, None };
-
-/// Bands the vertex-shader glossy path evaluates (its SH arrays hold 64 coefficients).
-inline constexpr int kMaxGpuGlossyBands = relight::kMaxShaderGlossyBands;
 
 struct FrameParams {
   render::Camera camera;
   int width = 640, height = 480;
   Mat3d lightRotation = Mat3d::identity();  ///< R: the environment as drawn behind the mesh
   const LightPacker* light = nullptr;       ///< packed D(R) L at the bands to draw with
+  int bands = 0;                            ///< the bands shown (≤ the light's and transfer's)
   /// Compressed transfer only: this frame's cluster projections of D(R) L as RGBA texels
-  /// (relight::packClusterTable), uploaded by draw.
+  /// (relight::packClusterTable) at the shown bands, uploaded by draw.
   std::span<const float> clusterTable;
   BackgroundMode background = BackgroundMode::Env;
   float exposureStops = 0.0f;
   image::ToneMap toneMap = image::ToneMap::Aces;
 };
-
-/// Bytes per vertex the dense paths upload for a transfer of this shape: scalar vectors
-/// 16·⌈B²/4⌉, RGB vectors 16·B², matrices in the vertex shader (--glossy-on gpu)
-/// 16·B²·⌈B²/4⌉, matrices relit on the CPU 12 (the exit radiance, again on every relit frame).
-std::size_t denseBytesPerVertex(const TransferField& shape, bool glossyOnGpu);
 
 /// An RGBA8 colour framebuffer object for offscreen display output (headless mode).
 class OffscreenTarget {
@@ -106,33 +94,23 @@ class Renderer {
 
   /// Uploads positions, albedo (white when the mesh has none) and triangles.
   void setMesh(const Mesh& mesh);
-  /// Uploads a transfer with one row per mesh vertex. Throws prt::Error when it does not fit
-  /// the driver's texture-buffer limit or its bands exceed kMaxViewerBands.
-  void setTransfer(const TransferField& transfer);
-  /// Draws per-vertex radiance from setRadiance instead of relighting a transfer in the shader
-  /// (glossy transfer, relit on the CPU); until the next setTransfer.
-  void setDirectRadiance();
-  /// Uploads exit radiance, one value per mesh vertex (albedo already applied).
+  /// The one upload path: the per-vertex texels of a transfer packed for `rows.path`
+  /// (relight::packShaderRows) over `shape` (bands, channels); `clusters` and `basisCount` for
+  /// the compressed paths. CpuRadiance uploads nothing: each relit frame comes by setRadiance.
+  /// Throws prt::Error when the texels exceed the driver's texture-buffer limit.
+  void setTransfer(const relight::ShaderRows& rows, const TransferShape& shape, int clusters = 0,
+                   int basisCount = 0);
+  /// Uploads exit radiance, one value per mesh vertex (albedo already applied): what the
+  /// CpuRadiance path draws.
   void setRadiance(std::span<const Rgb> radiance);
-  /// The other glossy path (prt view --glossy-on gpu): uploads scalar transfer matrices (rows
-  /// padded to a multiple of four) and relights them in the vertex shader (shaders/viewer/
-  /// glossy.vert). Throws prt::Error for RGB matrices, more than kMaxGpuGlossyBands bands or a
-  /// transfer over the texture-buffer limit.
-  void setGlossyTransfer(const TransferField& transfer);
-  /// The material for setGlossyTransfer's shader: per-coefficient kernels (A_l/π and Λ_l, as
-  /// relight::PreparedMaterial, at least b² of them), kd (unset: the mesh's albedo) and ks.
+  /// The material for the glossy programs: per-coefficient kernels (A_l/π and Λ_l, as
+  /// PreparedMaterial, at least b² of them), kd (unset: the mesh's albedo) and ks.
   void setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
                          std::optional<Rgb> kd, Rgb ks);
-  /// Uploads CPCA-compressed transfer (one row per mesh vertex): the per-vertex cluster ids and
-  /// weights (relight::packCompressedVertices). Vectors are relit by compressed.vert; matrices
-  /// by compressedGlossy.vert with setGlossyMaterial's kernels. Each frame then needs
-  /// FrameParams::clusterTable. Throws prt::Error for matrices of more than kMaxGpuGlossyBands
-  /// bands or data over the texture-buffer limit.
-  void setCompressedTransfer(const CompressedTransfer& transfer);
-  /// True while the transfer drawn is compressed (setCompressedTransfer).
-  bool compressed() const { return compressed_; }
-  /// Bytes per vertex the compressed transfer uploaded (16·⌈(N+1)/4⌉), 0 when not compressed.
-  std::size_t compressedBytesPerVertex() const { return compressed_ ? 16 * compressedTexels_ : 0; }
+  /// How the transfer uploaded is drawn.
+  relight::ShaderPath path() const { return path_; }
+  /// Bytes per vertex the transfer uploaded once (16 per texel).
+  std::size_t bytesPerVertex() const { return 16 * std::size_t(texelsPerRow_); }
   /// Bytes of the last cluster table uploaded (the per-frame upload of compressed transfer).
   std::size_t clusterTableBytes() const { return clusterTableBytes_; }
   /// The lat-long images behind BackgroundMode::Env and ::Sh (linear RGB).
@@ -157,21 +135,21 @@ class Renderer {
 
   unsigned meshProgram_ = 0, backgroundProgram_ = 0, toneProgram_ = 0, glossyProgram_ = 0;
   unsigned compressedProgram_ = 0, compressedGlossyProgram_ = 0;
-  unsigned weightsBuffer_ = 0, weightsTexture_ = 0, clusterBuffer_ = 0, clusterTexture_ = 0;
-  bool compressed_ = false;
-  int compressedBasis_ = 0, compressedCoeffs_ = 1;
-  std::size_t compressedTexels_ = 0, clusterTableBytes_ = 0;
+  unsigned clusterBuffer_ = 0, clusterTexture_ = 0;
+  std::size_t clusterTableBytes_ = 0;
   unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0, normals_ = 0;
   unsigned transferBuffer_ = 0, transferTexture_ = 0, lightUbo_ = 0, radiance_ = 0;
   unsigned envTexture_ = 0, shTexture_ = 0;
   unsigned msFbo_ = 0, msColour_ = 0, msDepth_ = 0, resolveFbo_ = 0, resolveColour_ = 0;
   int fbWidth_ = 0, fbHeight_ = 0;
-  bool hasAlbedo_ = false, direct_ = false, hasRadiance_ = false, glossyGpu_ = false;
+  bool hasAlbedo_ = false, hasTransfer_ = false, hasRadiance_ = false;
+  relight::ShaderPath path_ = relight::ShaderPath::DenseVector;
+  int texelsPerRow_ = 0, basisCount_ = 0;
   // Kernels × the SH normalisation, 64 each.
   std::vector<float> glossyDiffuse_ = std::vector<float>(64), glossyLobe_ = std::vector<float>(64);
   std::optional<Rgb> glossyKd_;
   Rgb glossyKs_{0.0f};
-  int transferBands_ = 0, transferChannels_ = 1, transferStride_ = 0;
+  int transferBands_ = 0, transferChannels_ = 1;
   std::size_t triangles_ = 0, vertices_ = 0;
   Vec3f centre_{0.0f};
   float radius_ = 1.0f;

@@ -9,33 +9,32 @@
 // Δx pixels turns the environment about world +Y by Δx · kDragDegreesPerPixel; vertically, about
 // the camera's right axis.
 //
-// Glossy (matrix) transfer is view-dependent, e(p, v) with v = normalize(eye − p) per vertex
-// (prt/relight/glossy.hpp), so it cannot be a fixed per-vertex vector dotted with the light in
-// the vertex shader. SceneView relights it on the CPU with the library's kernel,
-// relight::relightGlossy — the very code prt render runs, with the orbit camera's eye — into a
-// radiance buffer the shader only displays, and only on frames where the light rotation, the
-// eye, the bands, the material or the environment changed. Why the CPU and not the vertex
-// shader (a B⁴ matrix per vertex in a texture buffer): docs/viewer.md, "Glossy transfer".
+// How a transfer is drawn is the library's one dispatch (relight::shaderPath, shader_transfer.hpp):
+// dense and compressed vectors and compressed matrices in the vertex shader from per-vertex
+// texels uploaded once; dense matrices on the CPU (relight::Relighter, the code prt render
+// runs, with the orbit camera's eye) into a radiance buffer the shader only displays, or with
+// --glossy-on gpu in the vertex shader. Why the CPU by default: docs/viewer.md, "Glossy
+// transfer".
 //
-// CPCA-compressed transfer (prt compress, bake file version 3) is drawn from its compressed form,
-// never expanded: each frame SceneView projects the rotated light onto every cluster's mean and
-// basis (relight::projectClusters, the step prt render runs too) and hands the table to the
-// renderer, whose vertex shader sums N weighted cluster values per vertex (renderer.hpp).
-// Compressed matrices follow --glossy-on: on the GPU that table holds B² values per cluster
-// vector and compressedGlossy.vert shades them; on the CPU relight::relightCompressedGlossy
-// relights into the radiance buffer, as for dense matrices.
+// What is drawn is one value, DrawState: the bake, the transfer, the band count, the material,
+// the environment and the background. A SceneView keeps the state its GPU buffers were made
+// from and, each frame, uploads what differs from the scene's; the light rotation, the camera,
+// exposure and tone map are per-frame parameters.
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <functional>
+#include <memory>
+
 #include "prt/envmap/environment.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
 #include "prt/io/bake_file.hpp"
-#include "prt/relight/cluster_table.hpp"
-#include "prt/relight/glossy.hpp"
-#include "prt/relight/light_packer.hpp"
+#include "prt/io/lighting.hpp"
+#include "prt/relight/relighter.hpp"
+#include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/transfer/material.hpp"
 #include "renderer.hpp"
@@ -45,14 +44,25 @@ namespace prt::viewer {
 inline constexpr double kDragDegreesPerPixel = 0.25;
 
 /// One light to choose from: an environment (image, face folder, builtin), or an SH light file
-/// (.json, or the course's light.txt), whose "image" is its SH reconstruction.
+/// (.json, or the course's light.txt), whose "image" is its SH reconstruction — loaded by
+/// io::loadLighting, the rules every verb shares.
 struct EnvironmentEntry {
-  std::string name;         ///< as given (path or builtin:NAME)
-  bool isShFile = false;    ///< an SH light file: no image, `source` holds its coefficients
-  envmap::Environment env;  ///< (environments only)
-  sh::RgbSh source;         ///< (SH files only) the coefficients as read
-  image::Image latLong;     ///< the background: the environment, or the SH file's reconstruction
-  sh::RgbSh light;          ///< at the bake's bands: projected, or the file's cut to them
+  std::string name;       ///< as given (path or builtin:NAME)
+  io::Lighting lighting;  ///< the environment or the file's coefficients, at the bake's bands
+  image::Image latLong;   ///< the background: the environment, or the SH file's reconstruction
+  sh::RgbSh light;        ///< at the bake's bands (padded with zeros when the file has fewer)
+};
+
+/// What is drawn: everything a SceneView uploads when it changes. Shared pointers keep the bake
+/// and the environment alive while a view holds the state, so identity comparisons are sound.
+struct DrawState {
+  std::shared_ptr<const BakeFile> bake;
+  const BakedTransfer* transfer = nullptr;  ///< one of bake->transfers
+  int bands = 0;                            ///< shown, ≤ the transfer's
+  Material material;
+  std::shared_ptr<const EnvironmentEntry> environment;
+  BackgroundMode background = BackgroundMode::Env;
+  bool operator==(const DrawState&) const = default;
 };
 
 /// Orbit camera: the library's camera (render::frameMesh's framing, or --camera) plus the mouse's
@@ -85,14 +95,13 @@ class Scene {
   /// Throws prt::Error("FILE: problem").
   static BakeFile readCheckedBake(const std::string& path);
   /// Loads an environment (image, face folder, builtin:NAME) and projects it to `bands`, or
-  /// reads an SH light file (.json, .txt) and cuts it to `bands`. Throws prt::Error("FILE: ...")
-  /// when unreadable, or when an SH light has fewer bands than `bands` (the transfer's upper
-  /// bands would see no light: project the environment at the bake's bands instead).
+  /// reads an SH light file (.json, .txt) and cuts or pads it to `bands` (io::loadLighting's
+  /// rules; its warnings in the entry). Throws prt::Error("FILE: ...") when unreadable.
   static EnvironmentEntry loadEnvironment(const std::string& spec, int bands);
 
-  /// Replaces the bake (environments are re-projected when the band count changes), picks the
-  /// transfer as prt render does (pickTransfer: the richest mode, a matrix before a vector) and
-  /// the full band count, takes that transfer's material (unless one was set with
+  /// Replaces the bake (environments are re-projected when the band count changes), lists its
+  /// transfers in prt::transferPreference's order and shows the first (what prt render picks by
+  /// default) at its full band count with its material (unless one was set with
   /// overrideMaterial), resets the camera to the default framing of a width × height view.
   void setBake(BakeFile bake, const std::string& name, int width, int height);
   void addEnvironment(EnvironmentEntry entry);
@@ -102,28 +111,31 @@ class Scene {
   /// unchanged on failure.
   std::string loadDropped(const std::string& path, int width, int height);
 
-  const BakeFile& bake() const { return bake_; }
+  const BakeFile& bake() const { return *bake_; }
   const std::string& bakeName() const { return bakeName_; }
-  const std::vector<EnvironmentEntry>& environments() const { return envs_; }
-  const BakedTransfer& transfer() const { return bake_.transfers[transfer_]; }
-  /// The shown transfer's compressed form, or nullptr when it is dense.
-  const CompressedTransfer* compressed() const {
-    const auto& c = transfer().compressed;
-    return c ? &*c : nullptr;
-  }
+  std::size_t environmentCount() const { return envs_.size(); }
+  const EnvironmentEntry& environment(std::size_t k) const { return *envs_[k]; }
+  /// The transfers in the order the panel lists them (prt::transferPreference).
+  std::size_t transferCount() const { return order_.size(); }
+  const BakedTransfer& transferAt(std::size_t k) const { return bake_->transfers[order_[k]]; }
+  /// The shown transfer.
+  const BakedTransfer& transfer() const { return transferAt(transfer_); }
   int transferIndex() const { return transfer_; }
   int environmentIndex() const { return env_; }
   int bakeBands() const { return bakeBands_; }
   int bands() const { return bands_; }
 
-  /// Selects transfer k; its material comes with it unless overrideMaterial was called.
+  /// Selects transfer k of the panel's list; its material comes with it unless
+  /// overrideMaterial was called.
   void selectTransfer(int k);
+  /// Selects the first transfer of `mode` in the list (prt::Error naming the bake if none).
+  void selectMode(TransferMode mode);
   void selectEnvironment(int k);
 
   /// The material relighting uses (glossy lobe and ks apply to matrix transfer only).
   const Material& material() const { return material_; }
   /// Sets the material live (the panel's sliders); it stays until the next transfer selection.
-  void setMaterial(const Material& m);
+  void setMaterial(const Material& m) { material_ = m; }
   /// As prt view --material: this material for every transfer from now on.
   void overrideMaterial(const Material& m) { materialOverride_ = m, setMaterial(m); }
   /// Clamps to 1..bake bands.
@@ -140,6 +152,9 @@ class Scene {
   /// clamped at 0) as a lat-long image: the background for BackgroundMode::Sh.
   image::Image shBackground() const;
 
+  /// What is drawn now.
+  DrawState drawState() const;
+
   OrbitCamera orbit;
   BackgroundMode background = BackgroundMode::Env;
   float exposureStops = 0.0f;
@@ -147,14 +162,14 @@ class Scene {
   bool autoRotate = false;
   double spinDegreesPerSecond = 30.0;
 
-  /// Bumped whenever the mesh/transfer, the environment image or the SH background change, so a
-  /// renderer knows what to re-upload.
-  int meshVersion = 0, transferVersion = 0, envVersion = 0, shVersion = 0, materialVersion = 0;
+  /// Output for warnings the scene meets (a light with too few bands); none by default.
+  std::function<void(const std::string&)> warn;
 
  private:
-  BakeFile bake_;
+  std::shared_ptr<const BakeFile> bake_ = std::make_shared<const BakeFile>();
   std::string bakeName_;
-  std::vector<EnvironmentEntry> envs_;
+  std::vector<std::size_t> order_;
+  std::vector<std::shared_ptr<const EnvironmentEntry>> envs_;
   int transfer_ = 0, env_ = 0, bakeBands_ = 0, bands_ = 0;
   Mat3d userRotation_ = Mat3d::identity();
   double spinRad_ = 0;
@@ -162,77 +177,55 @@ class Scene {
   std::optional<Material> materialOverride_;
 };
 
-/// Keeps a Renderer and a LightPacker in step with a Scene: uploads what changed (by the
-/// scene's version counters), then packs the light for this frame. Needs a current context.
+/// Keeps a Renderer in step with a Scene: uploads what differs between the scene's DrawState and
+/// the one its buffers hold, then makes this frame's light (rotated and packed, the cluster
+/// table of compressed transfer, or the CPU relighting of matrices). Needs a current context.
 class SceneView {
  public:
   SceneView() = default;
-  /// Relight glossy (matrix) transfer in the vertex shader instead of on the CPU (prt view
+  /// Relight dense glossy (matrix) transfer in the vertex shader instead of on the CPU (prt view
   /// --glossy-on gpu); set before the first prepare.
   bool glossyOnGpu = false;
-  /// Uploads what changed since the last call and returns this frame's parameters (the light
-  /// rotated and packed: the per-frame CPU work).
+  /// Uploads what changed since the last call and returns this frame's parameters.
   FrameParams prepare(const Scene& scene, int width, int height);
   Renderer& renderer() { return renderer_; }
   const LightPacker& packer() const { return packer_; }
+  /// How the shown transfer is drawn (after a prepare).
+  relight::ShaderPath path() const { return path_; }
   /// Seconds the last prepare spent on the per-frame light work (rotation + packing, plus the
-  /// glossy relighting when it ran).
+  /// cluster projections or the CPU relighting when they ran).
   double lastLightSeconds() const { return lightSeconds_; }
-  /// Seconds the last glossy relighting took (relightGlossy + radiance upload); 0 when the last
-  /// prepare did not relight (vector transfer, or nothing changed).
-  double lastGlossySeconds() const { return glossySeconds_; }
-  /// Glossy relightings so far (frames where something view- or light-dependent changed).
-  int glossyRelights() const { return glossyRelights_; }
+  /// Seconds the last CPU relighting took (relighting + radiance upload); 0 when the last
+  /// prepare did not relight on the CPU.
+  double lastRelightSeconds() const { return relightSeconds_; }
+  /// CPU relightings so far (frames where something view- or light-dependent changed).
+  int cpuRelights() const { return relighter_.frames(); }
   /// Of those, the ones served from the view-collapsed transfer (only the light had changed).
-  int glossyLightOnlyRelights() const { return glossyLightOnly_; }
-  /// The last glossy relighting's per-vertex exit radiance (what the shader shows).
-  const std::vector<Rgb>& glossyRadiance() const { return radiance_; }
-  /// One line on what the shown transfer costs the GPU, after a prepare: for compressed
-  /// transfer "relit compressed (CPCA K x N): B bytes per vertex uploaded once (dense: D), T
-  /// bytes of cluster table per frame" (or, for matrices relit on the CPU, that it is), else
-  /// the dense bytes per vertex.
+  int cpuLightOnlyRelights() const { return relighter_.lightOnlyFrames(); }
+  /// The last CPU relighting's per-vertex exit radiance (what the shader shows).
+  std::span<const Rgb> cpuRadiance() const { return relighter_.radiance(); }
+  /// One line on what the shown transfer costs the GPU, after a prepare: what is uploaded once
+  /// per vertex (against the dense rows) and per frame.
   std::string uploadSummary(const Scene& scene) const;
-  /// Bytes the renderer uploads per frame for the light: the packed block, or for compressed
-  /// transfer on the GPU the cluster table.
-  std::size_t lightUploadBytes() const {
-    return renderer_.compressed() ? renderer_.clusterTableBytes() : packer_.bytes();
-  }
-  /// Compressed transfer drawn on the GPU: this frame's cluster table (relight/cluster_table.hpp).
+  /// Bytes the renderer uploads per frame for the light: the packed block, the cluster table, or
+  /// the CPU-relit radiance.
+  std::size_t lightUploadBytes() const;
+  /// Compressed transfer: this frame's cluster table (relight/shader_transfer.hpp).
   const std::vector<float>& clusterTable() const { return clusterTable_; }
 
  private:
-  /// Matrix transfer: relights on the CPU into the renderer's radiance buffer when the light,
-  /// eye, bands, material or transfer differ from the last time. When only the light changed
-  /// (it turns under a still camera), from the matrices collapsed for this eye
-  /// (relight::viewTransfer, built on the first such frame): a vector relighting, 23× less work
-  /// at 5 bands (docs/performance.md).
-  void relightGlossy(const Scene& scene, const render::Camera& camera, const Mat3d& rotation);
-  /// The packer's rotated light at `bands` in relight's (r, g, b) per coefficient layout.
-  const relight::PreparedLight& packedLight(int bands);
-  /// Compressed transfer on the GPU: projects the packed light onto the clusters into
-  /// clusterTable_ (and, for matrices, uploads the glossy kernels when the material changed).
-  void projectCompressed(const Scene& scene);
+  /// The transfer-dependent part of an upload: the path, the per-vertex texels, the relighter.
+  void setTransfer(const DrawState& now);
 
   Renderer renderer_;
   LightPacker packer_;
-  int mesh_ = -1, transfer_ = -1, env_ = -1, light_ = -1, sh_ = -1;
-  double lightSeconds_ = 0, glossySeconds_ = 0;
-  int glossyRelights_ = 0, gpuMaterial_ = -1;
-  // Glossy state: the transfer cut to the shown bands, the prepared material, the radiance, and
-  // what they were computed for.
-  TransferField glossyField_;
-  TransferField glossyView_;  ///< viewTransfer for the current eye and material, if valid
-  bool glossyViewValid_ = false;
-  int glossyLightOnly_ = 0;
-  relight::PreparedMaterial glossyMaterial_;
-  relight::PreparedLight glossyLight_;
-  std::vector<Rgb> radiance_;
+  DrawState drawn_;  ///< what the GPU buffers hold
+  bool shImageValid_ = false;
+  relight::ShaderPath path_ = relight::ShaderPath::DenseVector;
+  Transfer shown_;  ///< the transfer cut to the shown bands (compressed projections)
+  relight::Relighter relighter_;
   std::vector<float> clusterTable_;
-  bool compressedOnGpu_ = false;
-  int glossyTransfer_ = -1, glossyMaterialVersion_ = -1, glossyBands_ = -1,
-      glossyLightVersion_ = -1;
-  Mat3d glossyRotation_;
-  Vec3f glossyEye_{0.0f};
+  double lightSeconds_ = 0, relightSeconds_ = 0;
 };
 
 }  // namespace prt::viewer

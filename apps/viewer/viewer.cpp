@@ -59,26 +59,14 @@ void checkOptions(const Options& o) {
 Scene loadScene(const Options& o, const Output& out) {
   Scene scene;
   if (!o.material.empty()) scene.overrideMaterial(parseMaterial(o.material));
-  BakeFile bake = Scene::readCheckedBake(o.bake);
-  std::optional<TransferMode> mode;
-  if (!o.mode.empty()) {
-    mode = parseTransferMode(o.mode);
-    if (!bake.find(*mode)) {
-      std::vector<std::string> names;
-      for (const BakedTransfer& t : bake.transfers) names.emplace_back(toString(t.settings.mode));
-      throw Error(o.bake, fmt::format("no {} transfer in the bake (it has {})", toString(*mode),
-                                      fmt::join(names, ", ")));
-    }
-  }
-  scene.setBake(std::move(bake), o.bake, o.width, o.height);
-  if (mode)
-    for (int k = 0; k < int(scene.bake().transfers.size()); ++k)
-      if (scene.bake().transfers[k].settings.mode == *mode) scene.selectTransfer(k);
-  if (scene.material().glossy() && !scene.transfer().field.isMatrix())
+  scene.warn = out.warn;
+  scene.setBake(Scene::readCheckedBake(o.bake), o.bake, o.width, o.height);
+  if (!o.mode.empty()) scene.selectMode(parseTransferMode(o.mode));
+  if (scene.material().glossy() && !scene.transfer().transfer.isMatrix())
     out.warn(
         fmt::format("{}: the {} transfer is a vector (diffuse only); the material's glossy "
                     "lobe needs a matrix bake (prt bake --transfer matrix)",
-                    o.bake, toString(scene.transfer().settings.mode)));
+                    o.bake, toString(scene.transfer().mode())));
   if (o.bands > scene.bakeBands())
     out.warn(fmt::format("--bands {} asked for, but the bake has only {} bands: showing {}",
                          o.bands, scene.bakeBands(), scene.bakeBands()));
@@ -110,7 +98,6 @@ void runHeadless(Scene& scene, const Options& o, const Output& out) {
   view.glossyOnGpu = o.glossyOnGpu;
   OffscreenTarget target(o.width, o.height);
   FrameStats stats;
-  stats.glossyOnGpu = o.glossyOnGpu;
   for (int k = 0; k < std::max(o.frames, 1); ++k) {
     const auto t0 = Clock::now();
     const FrameParams f = view.prepare(scene, o.width, o.height);
@@ -118,20 +105,22 @@ void runHeadless(Scene& scene, const Options& o, const Output& out) {
     view.renderer().draw(f, target.fbo());
     glFinish();
     stats.add(msSince(t0), cpu, view.renderer().lastUploadSeconds() * 1e6,
-              view.lastGlossySeconds() * 1e3);
+              view.lastRelightSeconds() * 1e3);
     scene.advanceSpin(1.0 / 60.0);  // headless frames are 1/60 s apart
   }
   if (GLenum e = glGetError(); e != GL_NO_ERROR)
     throw Error(fmt::format("OpenGL error 0x{:x} while rendering", e));
   if (!o.screenshot.empty()) {
     writeScreenshot(o.screenshot, target.readEncoded(), view.renderer().readLinear());
-    out.info(fmt::format("wrote {} ({}x{}, {} bands, {} {} transfer, {})", o.screenshot, o.width,
-                         o.height, scene.bands(), toString(scene.transfer().settings.mode),
-                         toString(scene.transfer().field.layout), scene.material().spec()));
+    out.info(fmt::format("wrote {} ({}x{}, {} bands, {} transfer, {})", o.screenshot, o.width,
+                         o.height, scene.bands(), scene.transfer().describe(),
+                         scene.material().spec()));
   }
-  if (o.stats)
+  if (o.stats) {
+    stats.path = view.path();
     stats.print(context.description(), scene, o.width, o.height, view.lightUploadBytes(),
                 view.uploadSummary(scene));
+  }
 }
 
 }  // namespace

@@ -59,7 +59,7 @@ struct Ui {
   /// a change costs one CPU relighting, no re-bake). Vector transfer shows kd only.
   static void materialPanel(Scene& scene) {
     Material m = scene.material();
-    if (!scene.transfer().field.isMatrix()) {
+    if (!scene.transfer().transfer.isMatrix()) {
       ImGui::TextDisabled("material: diffuse (vector transfer)");
       return;
     }
@@ -69,9 +69,12 @@ struct Ui {
     if (ImGui::Combo("lobe", &kind, kinds, 3)) {
       m.lobe.kind = LobeKind(kind);
       // parseMaterial's defaults for a lobe chosen here first.
-      if (m.lobe.kind == LobeKind::Phong && m.lobe.exponent <= 0) m.lobe.exponent = 32;
-      if (m.lobe.kind == LobeKind::Ggx && m.lobe.roughness <= 0) m.lobe.roughness = 0.3;
-      if (m.lobe.kind != LobeKind::None && m.specular == Rgb(0.0f)) m.specular = Rgb(0.5f);
+      if (m.lobe.kind == LobeKind::Phong && m.lobe.exponent <= 0)
+        m.lobe.exponent = kDefaultPhongExponent;
+      if (m.lobe.kind == LobeKind::Ggx && m.lobe.roughness <= 0)
+        m.lobe.roughness = kDefaultGgxRoughness;
+      if (m.lobe.kind != LobeKind::None && m.specular == Rgb(0.0f))
+        m.specular = Rgb(kDefaultSpecular);
       changed = true;
     }
     if (m.lobe.kind == LobeKind::Phong) {
@@ -80,9 +83,8 @@ struct Ui {
         m.lobe.exponent = std::max(double(s), 0.0), changed = true;
     } else if (m.lobe.kind == LobeKind::Ggx) {
       float r = float(m.lobe.roughness);
-      // 0.03: parseMaterial's lower limit (narrower lobes need more than 32 bands).
-      if (ImGui::SliderFloat("roughness", &r, 0.03f, 1.0f, "%.3f"))
-        m.lobe.roughness = std::clamp(double(r), 0.03, 1.0), changed = true;
+      if (ImGui::SliderFloat("roughness", &r, float(kMinGgxRoughness), 1.0f, "%.3f"))
+        m.lobe.roughness = std::clamp(double(r), kMinGgxRoughness, 1.0), changed = true;
     }
     if (m.lobe.kind != LobeKind::None) {
       float ks[3] = {m.specular.x, m.specular.y, m.specular.z};
@@ -109,36 +111,34 @@ struct Ui {
                 frameMs > 0 ? 1000.0 / frameMs : 0.0, cpuMs);
     ImGui::TextDisabled("%s", renderer.c_str());
     // Compressed transfer: K, N and what it uploads per vertex against the dense rows.
-    if (scene.compressed()) {
+    if (scene.transfer().transfer.compressed()) {
       ImGui::PushTextWrapPos(ImGui::GetFontSize() * 26.0f);
       ImGui::TextUnformatted(upload.c_str());
       ImGui::PopTextWrapPos();
     }
     ImGui::Separator();
 
-    const auto& transfers = scene.bake().transfers;
     const auto label = [](const BakedTransfer& t) {
-      return fmt::format("{} {} ({}){}", toString(t.settings.mode), toString(t.field.layout),
-                         t.field.channels == 3 ? "RGB" : "scalar",
-                         t.compressed ? fmt::format(", CPCA {}x{}", t.compressed->clusters,
-                                                    t.compressed->basisCount)
-                                      : "");
+      const Transfer& x = t.transfer;
+      return fmt::format("{} {} ({}){}", toString(t.mode()), toString(x.layout()),
+                         x.channels() == 3 ? "RGB" : "scalar",
+                         x.compressed()
+                             ? fmt::format(", CPCA {}x{}", x.cpca().clusters, x.cpca().basisCount)
+                             : "");
     };
     if (ImGui::BeginCombo("transfer", label(scene.transfer()).c_str())) {
-      for (int k = 0; k < int(transfers.size()); ++k) {
-        const auto& t = transfers[k];
-        if (ImGui::Selectable(label(t).c_str(), k == scene.transferIndex()))
+      for (int k = 0; k < int(scene.transferCount()); ++k)
+        if (ImGui::Selectable(label(scene.transferAt(k)).c_str(), k == scene.transferIndex()))
           scene.selectTransfer(k);
-      }
       ImGui::EndCombo();
     }
     int bands = scene.bands();
     if (ImGui::SliderInt("bands", &bands, 1, scene.bakeBands())) scene.setBands(bands);
     materialPanel(scene);
-    const auto& envs = scene.environments();
-    if (ImGui::BeginCombo("environment", envs[scene.environmentIndex()].name.c_str())) {
-      for (int k = 0; k < int(envs.size()); ++k)
-        if (ImGui::Selectable(envs[k].name.c_str(), k == scene.environmentIndex()))
+    if (ImGui::BeginCombo("environment",
+                          scene.environment(scene.environmentIndex()).name.c_str())) {
+      for (int k = 0; k < int(scene.environmentCount()); ++k)
+        if (ImGui::Selectable(scene.environment(k).name.c_str(), k == scene.environmentIndex()))
           scene.selectEnvironment(k);
       ImGui::EndCombo();
     }
@@ -193,7 +193,7 @@ void handleInput(Scene& scene, int height) {
     if (ImGui::IsKeyPressed(GLFW_KEY_LEFT_BRACKET)) scene.setBands(scene.bands() - 1);
     if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT_BRACKET)) scene.setBands(scene.bands() + 1);
     if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false))
-      scene.selectEnvironment((scene.environmentIndex() + 1) % int(scene.environments().size()));
+      scene.selectEnvironment((scene.environmentIndex() + 1) % int(scene.environmentCount()));
   }
 }
 
@@ -224,7 +224,6 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
   ui.renderer = window.renderer();
   out.info("prt view: " + ui.renderer);
   FrameStats stats;
-  stats.glossyOnGpu = o.glossyOnGpu;
   auto last = Clock::now();
   for (int frame = 0; !glfwWindowShouldClose(w); ++frame) {
     glfwPollEvents();
@@ -260,7 +259,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
         if (o.stats) {
           glFinish();  // only when asked: it stalls the pipeline
           stats.add(std::chrono::duration<double, std::milli>(Clock::now() - t0).count(), cpu,
-                    view.renderer().lastUploadSeconds() * 1e6, view.lastGlossySeconds() * 1e3);
+                    view.renderer().lastUploadSeconds() * 1e6, view.lastRelightSeconds() * 1e3);
         }
       } catch (const Error& e) {
         // A transfer the GPU cannot hold: say so and go back to the first one.
@@ -284,6 +283,7 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
   if (o.stats) {
     int fbw = 0, fbh = 0;
     glfwGetFramebufferSize(w, &fbw, &fbh);
+    stats.path = view.path();
     stats.print(ui.renderer, scene, fbw, fbh, view.lightUploadBytes(), view.uploadSummary(scene));
   }
 }

@@ -336,57 +336,11 @@ std::size_t refillEmpty(int K, std::vector<std::uint32_t>& assign, std::vector<f
 
 }  // namespace
 
-void CompressedTransfer::reconstructRow(std::size_t v, float* out) const {
-  const std::size_t D = stride(), k = cluster[v];
-  const float* m = mean(k);
-  for (std::size_t i = 0; i < D; ++i) {
-    float s = m[i];
-    for (int j = 0; j < basisCount; ++j)
-      s += weights[v * static_cast<std::size_t>(basisCount) + j] * basisVector(k, j)[i];
-    out[i] = s;
-  }
-}
-
-TransferField CompressedTransfer::reconstruct() const {
-  TransferField f = TransferField::zeros(layout, bands, channels, vertexCount);
-  f.domain = domain;
-  parallelFor(vertexCount, 1024, [&](std::size_t b, std::size_t e) {
-    for (std::size_t v = b; v < e; ++v) reconstructRow(v, f.vertex(v));
-  });
-  return f;
-}
-
-std::size_t CompressedTransfer::bytes() const {
-  const std::size_t id = clusters <= 65536 ? 2 : 4;
-  return vertexCount * (id + 4 * static_cast<std::size_t>(basisCount)) +
-         4 * static_cast<std::size_t>(clusters) * (static_cast<std::size_t>(basisCount) + 1) *
-             stride();
-}
-
-void CompressedTransfer::check(const std::string& what) const {
-  const std::size_t D = stride(), K = static_cast<std::size_t>(clusters),
-                    N = static_cast<std::size_t>(basisCount);
-  if (bands < 1 || (channels != 1 && channels != 3))
-    throw Error(what, "compressed transfer has " + std::to_string(bands) + " bands and " +
-                          std::to_string(channels) + " channels");
-  if (clusters < 1 || basisCount < 0 || N > D)
-    throw Error(what, "compressed transfer has " + std::to_string(clusters) + " clusters and " +
-                          std::to_string(basisCount) + " basis vectors (dimension " +
-                          std::to_string(D) + ")");
-  if (cluster.size() != vertexCount || weights.size() != vertexCount * N || means.size() != K * D ||
-      basis.size() != K * N * D)
-    throw Error(what, "compressed transfer arrays do not match its shape");
-  for (std::size_t v = 0; v < vertexCount; ++v)
-    if (cluster[v] >= K)
-      throw Error(what, "vertex " + std::to_string(v) + " names cluster " +
-                            std::to_string(cluster[v]) + " of " + std::to_string(K));
-  for (const auto* a : {&weights, &means, &basis})
-    for (float f : *a)
-      if (!std::isfinite(f)) throw Error(what, "compressed transfer holds a non-finite value");
-}
-
-CpcaStats measureCpca(const TransferField& field, const CompressedTransfer& c) {
-  const std::size_t D = field.stride(), n = field.vertexCount;
+CpcaStats measureCpca(const Transfer& field, const Transfer& c) {
+  if (field.compressed()) throw Error("compress: the source transfer must be dense");
+  if (field.shape() != c.shape())
+    throw Error("compress: the compressed transfer has another shape than its source");
+  const std::size_t D = field.stride(), n = field.rowCount();
   struct Acc {
     double err = 0, energy = 0, maxRow = 0;
   };
@@ -398,9 +352,9 @@ CpcaStats measureCpca(const TransferField& field, const CompressedTransfer& c) {
           c.reconstructRow(v, row.data());
           double rowErr = 0;
           for (std::size_t i = 0; i < D; ++i) {
-            const double t = double(field.vertex(v)[i]) - row[i];
+            const double t = double(field.row(v)[i]) - row[i];
             rowErr += t * t;
-            acc.energy += double(field.vertex(v)[i]) * field.vertex(v)[i];
+            acc.energy += double(field.row(v)[i]) * field.row(v)[i];
           }
           acc.err += rowErr;
           acc.maxRow = std::max(acc.maxRow, std::sqrt(rowErr));
@@ -422,13 +376,12 @@ CpcaStats measureCpca(const TransferField& field, const CompressedTransfer& c) {
   return s;
 }
 
-CompressedTransfer compressCpca(const TransferField& field, const CpcaOptions& o, CpcaStats* stats,
-                                const CompressedTransfer* start, const ProgressFn& progress) {
+Transfer compressCpca(const Transfer& field, const CpcaOptions& o, CpcaStats* stats,
+                      const Transfer* start, const ProgressFn& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::size_t n = field.vertexCount, D = field.stride();
-  if (field.data.size() != n * D || n == 0)
-    throw Error("compress: the transfer holds " + std::to_string(field.data.size()) +
-                " floats for " + std::to_string(n) + " rows of " + std::to_string(D));
+  if (field.compressed()) throw Error("compress: the transfer is already compressed");
+  const std::size_t n = field.rowCount(), D = field.stride();
+  if (n == 0) throw Error("compress: the transfer has no rows");
   if (o.clusters < 1 || static_cast<std::size_t>(o.clusters) > n)
     throw Error("compress: " + std::to_string(o.clusters) + " clusters for " + std::to_string(n) +
                 " rows (need 1 to the row count)");
@@ -437,24 +390,19 @@ CompressedTransfer compressCpca(const TransferField& field, const CpcaOptions& o
                 " basis vectors (need 0 to the row dimension, " + std::to_string(D) + ")");
   if (o.maxIterations < 0) throw Error("compress: negative iteration count");
   const int K = o.clusters, N = o.basisCount;
-  const float* x = field.data.data();
+  const float* x = field.values().data();
 
-  CompressedTransfer c;
-  c.layout = field.layout;
-  c.domain = field.domain;
-  c.bands = field.bands;
-  c.channels = field.channels;
-  c.vertexCount = n;
-  c.clusters = K;
-  c.basisCount = N;
-  std::vector<std::uint32_t>& assign = c.cluster;
+  // The fit's working arrays; they become the transfer's CPCA rows at the end.
+  struct {
+    std::vector<float> means, basis, weights;
+  } c;
+  std::vector<std::uint32_t> assign;
   std::vector<float> rowError(n, 0.0f);
 
   if (start) {
-    if (start->vertexCount != n || start->stride() != D || start->clusters != K ||
-        start->cluster.size() != n)
+    if (!start->compressed() || start->shape() != field.shape() || start->cpca().clusters != K)
       throw Error("compress: the warm start has another shape or cluster count");
-    assign = start->cluster;
+    assign = start->cpca().cluster;
   } else {
     // Seed: the k-means++ centres as means, no basis; one reassignment = nearest centre.
     const std::vector<std::size_t> centres = seedCentres(x, n, D, K, o.seed);
@@ -499,30 +447,40 @@ CompressedTransfer compressCpca(const TransferField& field, const CpcaOptions& o
         }
       }
     });
+  CpcaRows rows;
+  rows.clusters = K;
+  rows.basisCount = N;
+  rows.cluster = std::move(assign);
+  rows.weights = FloatArray(std::move(c.weights));
+  rows.means = FloatArray(std::move(c.means));
+  rows.basis = FloatArray(std::move(c.basis));
+  Transfer out = Transfer::cpca(field.shape(), std::move(rows));
   if (stats) {
-    *stats = measureCpca(field, c);
+    *stats = measureCpca(field, out);
     stats->iterations = it;
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
-  return c;
+  return out;
 }
 
-std::vector<CpcaSweepPoint> sweepCpca(const TransferField& field, const std::vector<int>& clusters,
-                                      int maxBasis, std::uint64_t seed, int maxIterations,
-                                      double tolerance, double stopAtError,
+std::vector<CpcaSweepPoint> sweepCpca(const Transfer& field, const std::vector<int>& clusters,
+                                      int maxBasis, const CpcaFit& fit, double stopAtError,
                                       const ProgressFn& progress) {
   std::vector<CpcaSweepPoint> points;
   const double total = static_cast<double>(clusters.size()) * (maxBasis + 1);
   std::size_t done = 0;
   for (int K : clusters) {
-    CompressedTransfer prev;
+    Transfer prev;
     for (int N = 0; N <= maxBasis; ++N, ++done) {
       if (progress && !progress(done / total)) throw Cancelled();
       CpcaSweepPoint p;
       p.clusters = K;
       p.basisCount = N;
-      CompressedTransfer c = compressCpca(field, {K, N, seed, maxIterations, tolerance}, &p.stats,
-                                          N > 0 ? &prev : nullptr);
+      CpcaOptions o;
+      static_cast<CpcaFit&>(o) = fit;
+      o.clusters = K;
+      o.basisCount = N;
+      Transfer c = compressCpca(field, o, &p.stats, N > 0 ? &prev : nullptr);
       p.bytes = c.bytes();
       points.push_back(p);
       prev = std::move(c);
@@ -533,6 +491,22 @@ std::vector<CpcaSweepPoint> sweepCpca(const TransferField& field, const std::vec
     }
   }
   return points;
+}
+
+Transfer compressCpcaChain(const Transfer& source, const CpcaOptions& o, CpcaStats& stats,
+                           const ProgressFn& progress) {
+  Transfer prev;
+  double seconds = 0;
+  for (int n = 0; n <= o.basisCount; ++n) {
+    if (progress && !progress(static_cast<double>(n) / (o.basisCount + 1))) throw Cancelled();
+    CpcaOptions step = o;
+    step.basisCount = n;
+    Transfer c = compressCpca(source, step, &stats, n > 0 ? &prev : nullptr);
+    seconds += stats.seconds;
+    prev = std::move(c);
+  }
+  stats.seconds = seconds;
+  return prev;
 }
 
 }  // namespace prt

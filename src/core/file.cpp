@@ -55,6 +55,11 @@ void writeFileAtomically(const std::string& path, std::string_view bytes) {
 }
 
 std::vector<unsigned char> readFileBytes(const std::string& path) {
+  return readFileBytes(path, limits().maxFileBytes, "PRT_MAX_FILE_BYTES");
+}
+
+std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t maxBytes,
+                                         const char* capName) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (fs::is_directory(st)) throw Error(path, "is a directory, expected a file");
@@ -67,8 +72,7 @@ std::vector<unsigned char> readFileBytes(const std::string& path) {
   in.seekg(0, std::ios::end);
   const auto size = in.tellg();
   if (size < 0) throw Error(path, "cannot read");
-  checkLimit(path, "file size", static_cast<std::uint64_t>(size), limits().maxFileBytes,
-             "PRT_MAX_FILE_BYTES");
+  checkLimit(path, "file size", static_cast<std::uint64_t>(size), maxBytes, capName);
   in.seekg(0, std::ios::beg);
   std::vector<unsigned char> data(static_cast<std::size_t>(size));
   if (size > 0 && !in.read(reinterpret_cast<char*>(data.data()), size))

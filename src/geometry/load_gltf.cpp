@@ -129,7 +129,7 @@ Mat4 localMatrix(const tinygltf::Node& n) {
 class Reader {
  public:
   Reader(const std::string& label, const tinygltf::Model& model, LoadReport& report)
-      : label_(label), model_(model), report_(report), accessors_(label, model) {}
+      : label_(label), model_(model), report_(report), accessors_(label, gltf::documentOf(model)) {}
 
   /// Accessor `index` as `count` × `comps` floats (normalised integers mapped per §3.11).
   std::vector<float> floats(int index, int comps, const char* what) {

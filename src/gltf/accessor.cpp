@@ -1,8 +1,10 @@
 #include "prt/gltf/accessor.hpp"
 
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <limits>
 
 #include "prt/core/error.hpp"
 
@@ -11,11 +13,27 @@ namespace prt::gltf {
 namespace {
 
 /// The glTF `type` of an element of `components` components that we read: SCALAR or VECn.
-int vectorType(int components) {
-  return components == 1 ? TINYGLTF_TYPE_SCALAR : components;
+std::string vectorType(int components) {
+  return components == 1 ? "SCALAR" : "VEC" + std::to_string(components);
 }
 
-std::string typeName(int type) {
+/// Components of a glTF element type; 0 for a name glTF does not define.
+int componentsOf(const std::string& type) {
+  if (type == "SCALAR") return 1;
+  if (type == "VEC2") return 2;
+  if (type == "VEC3") return 3;
+  if (type == "VEC4" || type == "MAT2") return 4;
+  if (type == "MAT3") return 9;
+  if (type == "MAT4") return 16;
+  return 0;
+}
+
+std::string typeName(const std::string& type) {
+  return componentsOf(type) ? type : "type '" + type.substr(0, 40) + "'";
+}
+
+/// tinygltf's type code as glTF's name.
+std::string tinygltfType(int type) {
   switch (type) {
     case TINYGLTF_TYPE_SCALAR:
       return "SCALAR";
@@ -32,7 +50,7 @@ std::string typeName(int type) {
     case TINYGLTF_TYPE_MAT4:
       return "MAT4";
   }
-  return "type " + std::to_string(type);
+  return "code " + std::to_string(type);
 }
 
 std::string componentName(int componentType) {
@@ -104,41 +122,119 @@ std::size_t componentSize(int componentType) {
   return 0;
 }
 
-AccessorReader::AccessorReader(std::string label, const tinygltf::Model& model)
-    : label_(std::move(label)), model_(model) {}
+Document documentOf(const tinygltf::Model& model) {
+  Document d;
+  for (const tinygltf::Accessor& a : model.accessors) {
+    Document::Accessor x;
+    x.bufferView = a.bufferView;
+    x.byteOffset = a.byteOffset;
+    x.count = a.count;
+    x.type = tinygltfType(a.type);
+    x.componentType = a.componentType;
+    x.normalized = a.normalized;
+    x.sparse = a.sparse.isSparse;
+    d.accessors.push_back(std::move(x));
+  }
+  for (const tinygltf::BufferView& v : model.bufferViews)
+    d.bufferViews.push_back({v.buffer, v.byteOffset, v.byteLength, v.byteStride});
+  for (const tinygltf::Buffer& b : model.buffers) d.buffers.emplace_back(b.data);
+  return d;
+}
+
+Document documentOf(const nlohmann::json& gltf, std::span<const unsigned char> bin,
+                    const std::string& label) {
+  using nlohmann::json;
+  // A member read as the type glTF gives it; absent members keep their default.
+  const auto integer = [&](const json& o, const char* key, std::size_t fallback,
+                           const std::string& where) -> std::size_t {
+    if (!o.contains(key)) return fallback;
+    const json& v = o[key];
+    if (!v.is_number_unsigned())
+      throw Error(label, where + "." + key + " is not a non-negative integer");
+    return v.get<std::size_t>();
+  };
+  const auto index = [&](const json& o, const char* key, const std::string& where) -> int {
+    const std::size_t i = integer(o, key, std::size_t(-1), where);
+    return i > std::size_t(std::numeric_limits<int>::max()) ? -1 : static_cast<int>(i);
+  };
+  const auto array = [&](const char* key) -> const json& {
+    static const json empty = json::array();
+    if (!gltf.contains(key)) return empty;
+    if (!gltf[key].is_array()) throw Error(label, std::string(key) + " is not an array");
+    return gltf[key];
+  };
+  Document d;
+  const json& accessors = array("accessors");
+  for (std::size_t i = 0; i < accessors.size(); ++i) {
+    const json& a = accessors[i];
+    const std::string where = "accessors[" + std::to_string(i) + "]";
+    if (!a.is_object()) throw Error(label, where + " is not an object");
+    Document::Accessor x;
+    x.bufferView = index(a, "bufferView", where);
+    x.byteOffset = integer(a, "byteOffset", 0, where);
+    x.count = integer(a, "count", 0, where);
+    x.componentType = static_cast<int>(integer(a, "componentType", 0, where));
+    if (a.contains("type")) {
+      if (!a["type"].is_string()) throw Error(label, where + ".type is not a string");
+      x.type = a["type"].get<std::string>();
+    }
+    if (a.contains("normalized")) {
+      if (!a["normalized"].is_boolean()) throw Error(label, where + ".normalized is not a boolean");
+      x.normalized = a["normalized"].get<bool>();
+    }
+    x.sparse = a.contains("sparse");
+    d.accessors.push_back(std::move(x));
+  }
+  const json& views = array("bufferViews");
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const json& v = views[i];
+    const std::string where = "bufferViews[" + std::to_string(i) + "]";
+    if (!v.is_object()) throw Error(label, where + " is not an object");
+    d.bufferViews.push_back({index(v, "buffer", where), integer(v, "byteOffset", 0, where),
+                             integer(v, "byteLength", 0, where),
+                             integer(v, "byteStride", 0, where)});
+  }
+  const json& buffers = array("buffers");
+  for (std::size_t i = 0; i < buffers.size(); ++i) {
+    if (i > 0 || (buffers[i].is_object() && buffers[i].contains("uri")))
+      d.buffers.emplace_back();  // not the binary chunk: no bytes (a bake never refers out)
+    else
+      d.buffers.push_back(bin.first(
+          std::min<std::size_t>(bin.size(), integer(buffers[i], "byteLength", 0, "buffers[0]"))));
+  }
+  return d;
+}
+
+AccessorReader::AccessorReader(std::string label, Document document)
+    : label_(std::move(label)), doc_(std::move(document)) {}
 
 void AccessorReader::fail(const std::string& msg) const {
   throw Error(label_, msg);
 }
 
-namespace {
-
-const tinygltf::Accessor& accessorAt(const AccessorReader& r, const tinygltf::Model& m, int index,
-                                     const std::string& what) {
-  if (index < 0 || std::size_t(index) >= m.accessors.size())
-    r.fail(what + ": accessor " + std::to_string(index) + " does not exist (the file has " +
-           std::to_string(m.accessors.size()) + ")");
-  const tinygltf::Accessor& a = m.accessors[std::size_t(index)];
-  if (a.sparse.isSparse) r.fail(what + ": sparse accessors are not supported");
+const Document::Accessor& AccessorReader::accessorAt(int index, const std::string& what) const {
+  if (index < 0 || std::size_t(index) >= doc_.accessors.size())
+    fail(what + ": accessor " + std::to_string(index) + " does not exist (the file has " +
+         std::to_string(doc_.accessors.size()) + ")");
+  const Document::Accessor& a = doc_.accessors[std::size_t(index)];
+  if (a.sparse) fail(what + ": sparse accessors are not supported");
   return a;
 }
 
-}  // namespace
-
 std::size_t AccessorReader::count(int index, const std::string& what) const {
-  return accessorAt(*this, model_, index, what).count;
+  return accessorAt(index, what).count;
 }
 
 int AccessorReader::components(int index, const std::string& what) const {
-  const tinygltf::Accessor& a = accessorAt(*this, model_, index, what);
-  const int comps = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
+  const Document::Accessor& a = accessorAt(index, what);
+  const int comps = componentsOf(a.type);
   if (comps <= 0)
     fail(what + ": accessor " + std::to_string(index) + " has an invalid " + typeName(a.type));
   return comps;
 }
 
 AccessorSpan AccessorReader::span(int index, const std::string& what) const {
-  const tinygltf::Accessor& a = accessorAt(*this, model_, index, what);
+  const Document::Accessor& a = accessorAt(index, what);
   const std::string acc = "accessor " + std::to_string(index);
   AccessorSpan s;
   s.components = components(index, what);
@@ -146,13 +242,13 @@ AccessorSpan AccessorReader::span(int index, const std::string& what) const {
   s.normalized = a.normalized;
   const std::size_t csize = componentSize(a.componentType);
   if (csize == 0) fail(what + ": " + acc + " has an invalid " + componentName(a.componentType));
-  if (a.bufferView < 0 || std::size_t(a.bufferView) >= model_.bufferViews.size())
+  if (a.bufferView < 0 || std::size_t(a.bufferView) >= doc_.bufferViews.size())
     fail(what + ": " + acc + " has no valid bufferView");
   const std::string view = "bufferView " + std::to_string(a.bufferView);
-  const tinygltf::BufferView& v = model_.bufferViews[std::size_t(a.bufferView)];
-  if (v.buffer < 0 || std::size_t(v.buffer) >= model_.buffers.size())
+  const Document::BufferView& v = doc_.bufferViews[std::size_t(a.bufferView)];
+  if (v.buffer < 0 || std::size_t(v.buffer) >= doc_.buffers.size())
     fail(what + ": " + view + " has no valid buffer");
-  const std::vector<unsigned char>& buf = model_.buffers[std::size_t(v.buffer)].data;
+  const std::span<const unsigned char> buf = doc_.buffers[std::size_t(v.buffer)];
   // Offsets, lengths, strides and counts come from the file: every comparison below is written
   // so that it cannot overflow (subtract from a bound already checked, or divide).
   if (v.byteOffset > buf.size() || v.byteLength > buf.size() - v.byteOffset)
@@ -185,7 +281,7 @@ AccessorSpan AccessorReader::span(int index, const std::string& what) const {
 
 std::vector<float> AccessorReader::floats(int index, int want, const std::string& what) const {
   const AccessorSpan s = span(index, what);  // checks the index
-  const int type = model_.accessors[std::size_t(index)].type;
+  const std::string& type = doc_.accessors[std::size_t(index)].type;
   if (s.components != want || type != vectorType(want))
     fail(what + " has " + std::to_string(s.components) + " components (" + typeName(type) +
          "), expected " + std::to_string(want) + " (" + typeName(vectorType(want)) + ")");
@@ -202,7 +298,7 @@ std::vector<float> AccessorReader::floats(int index, int want, const std::string
 
 std::vector<std::uint32_t> AccessorReader::indices(int index, const std::string& what) const {
   const AccessorSpan s = span(index, what);
-  if (model_.accessors[std::size_t(index)].type != TINYGLTF_TYPE_SCALAR)
+  if (doc_.accessors[std::size_t(index)].type != "SCALAR")
     fail(what + ": accessor " + std::to_string(index) + " is not SCALAR");
   std::vector<std::uint32_t> out(s.count);
   for (std::size_t i = 0; i < s.count; ++i) {
@@ -235,7 +331,7 @@ AccessorSpan AccessorReader::spanExact(int index, int components, int componentT
                                        std::size_t count, const std::string& what,
                                        std::size_t valueSize) const {
   PRT_CHECK(valueSize == componentSize(componentType), "exact<T>: T does not fit the component");
-  const tinygltf::Accessor& a = accessorAt(*this, model_, index, what);
+  const Document::Accessor& a = accessorAt(index, what);
   const std::string acc = "accessor " + std::to_string(index);
   if (a.type != vectorType(components) || a.componentType != componentType || a.normalized)
     fail(what + ": " + acc + " is " + typeName(a.type) + " of " + componentName(a.componentType) +

@@ -33,18 +33,18 @@ ChannelSelect parseChannelSelect(const std::string& s) {
   throw Error("unknown channel '" + s + "' (expected luminance, r, g or b)");
 }
 
-TransferField selectChannel(const TransferField& field, ChannelSelect channel) {
-  if (field.channels == 1) return field;
-  PRT_CHECK(field.channels == 3, "transfer must have 1 or 3 channels");
-  TransferField out;
-  out.bands = field.bands;
-  out.channels = 1;
-  out.vertexCount = field.vertexCount;
-  const std::size_t n = static_cast<std::size_t>(field.coeffs());
-  out.data.resize(field.vertexCount * n);
-  for (std::size_t v = 0; v < field.vertexCount; ++v)
+Transfer selectChannel(const Transfer& field, ChannelSelect channel) {
+  if (field.channels() == 1) return field;
+  PRT_CHECK(field.channels() == 3, "transfer must have 1 or 3 channels");
+  PRT_CHECK(!field.compressed(), "selectChannel of compressed rows");
+  TransferShape shape = field.shape();
+  shape.channels = 1;
+  Transfer out = Transfer::zeros(shape);
+  float* dst = out.mutableValues();
+  const std::size_t n = field.stride() / 3;
+  for (std::size_t v = 0; v < field.rowCount(); ++v)
     for (std::size_t i = 0; i < n; ++i) {
-      const float* c = field.vertex(v) + i * 3;
+      const float* c = field.row(v) + i * 3;
       float x = 0;
       switch (channel) {
         case ChannelSelect::Luminance:
@@ -60,20 +60,23 @@ TransferField selectChannel(const TransferField& field, ChannelSelect channel) {
           x = c[2];
           break;
       }
-      out.vertex(v)[i] = x;
+      dst[v * n + i] = x;
     }
   return out;
 }
 
-std::string formatGames202Transport(const TransferField& field, const Mesh& mesh,
+std::string formatGames202Transport(const Transfer& field, const Mesh& mesh,
                                     Games202Layout layout) {
-  if (field.channels != 1)
+  if (field.isMatrix() || field.compressed())
+    throw Error(std::string("transport.txt holds dense diffuse vectors; this transfer is ") +
+                (field.isMatrix() ? "a matrix (export its diffuse part)" : "compressed") +
+                " (reduce it first)");
+  if (field.channels() != 1)
     throw Error(
         "transport.txt holds scalar transfer only; this transfer is RGB (reduce it to one "
         "channel first)");
-  if (field.vertexCount != mesh.vertexCount() ||
-      field.data.size() != field.vertexCount * field.stride())
-    throw Error("transport.txt: the transfer covers " + std::to_string(field.vertexCount) +
+  if (field.rowCount() != mesh.vertexCount() || field.rows().first != 0)
+    throw Error("transport.txt: the transfer covers " + std::to_string(field.rowCount()) +
                 " vertices, the mesh has " + std::to_string(mesh.vertexCount()));
   const std::size_t n = static_cast<std::size_t>(field.coeffs());
   std::string out = std::to_string(mesh.vertexCount());
@@ -81,8 +84,7 @@ std::string formatGames202Transport(const TransferField& field, const Mesh& mesh
   char buf[32];
   auto row = [&](std::size_t v) {
     for (std::size_t i = 0; i < n; ++i) {
-      const int len =
-          std::snprintf(buf, sizeof buf, "%.9g ", static_cast<double>(field.vertex(v)[i]));
+      const int len = std::snprintf(buf, sizeof buf, "%.9g ", static_cast<double>(field.row(v)[i]));
       out.append(buf, static_cast<std::size_t>(len));
     }
     out += '\n';
@@ -102,7 +104,7 @@ std::string formatGames202Transport(const TransferField& field, const Mesh& mesh
   return out;
 }
 
-void writeGames202Transport(const std::string& path, const TransferField& field, const Mesh& mesh,
+void writeGames202Transport(const std::string& path, const Transfer& field, const Mesh& mesh,
                             Games202Layout layout) {
   std::string text;
   try {

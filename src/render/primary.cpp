@@ -55,4 +55,25 @@ image::Image tracePrimary(const Camera& camera, const FrameSettings& settings,
   return img;
 }
 
+bool eyeInsideMesh(const Mesh& mesh, const Occluder& occluder, const Vec3f& eye) {
+  // 64 well-spread directions (Fibonacci sphere); count back-face against front-face hits.
+  const int n = 64;
+  int back = 0, front = 0;
+  for (int k = 0; k < n; ++k) {
+    const float z = 1.0f - (2.0f * k + 1.0f) / n;
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float phi = 2.399963f * k;  // golden angle
+    Ray ray;
+    ray.origin = eye;
+    ray.dir = Vec3f(r * std::cos(phi), z, r * std::sin(phi));
+    const Hit h = occluder.intersect(ray);
+    if (!h.hit) continue;
+    const auto& t = mesh.triangles[h.triangle];
+    const Vec3f ng = cross(mesh.positions[t[1]] - mesh.positions[t[0]],
+                           mesh.positions[t[2]] - mesh.positions[t[0]]);
+    (dot(ng, ray.dir) > 0.0f ? back : front)++;
+  }
+  return back > front && back >= n / 2;
+}
+
 }  // namespace prt::render

@@ -10,7 +10,6 @@
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
-#include "prt/relight/glossy.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/sh/convolve.hpp"
@@ -79,26 +78,26 @@ envmap::Environment residualEnvironment(const envmap::Environment& env, const sh
 
 }  // namespace
 
-ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const TransferField& transfer,
-                          const BakeSettings& bake, const envmap::Environment& env,
+ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+                          const BakeRecipe& bake, const envmap::Environment& env,
                           const sh::RgbSh& light, const ValidateSettings& settings,
                           const ProgressFn& progress) {
   const std::size_t nv = mesh.vertexCount();
-  if (transfer.vertexCount != nv)
-    throw Error(mesh.source, "transfer has " + std::to_string(transfer.vertexCount) +
+  if (transfer.rowCount() != nv)
+    throw Error(mesh.source, "transfer has " + std::to_string(transfer.rowCount()) +
                                  " vertices, mesh has " + std::to_string(nv) +
                                  " (validation needs a complete bake)");
-  if (light.bands < 1 || transfer.bands < 1) throw Error("light or transfer has no bands");
+  if (light.bands < 1 || transfer.bands() < 1) throw Error("light or transfer has no bands");
 
   ValidationReport rep;
   rep.mode = bake.mode;
-  rep.bounces = bake.mode == TransferMode::Interreflected ? bake.bounces : 0;
-  rep.transferBands = transfer.bands;
+  rep.bounces = bake.effectiveBounces();
+  rep.transferBands = transfer.bands();
   rep.lightBands = light.bands;
-  rep.bands = std::min(transfer.bands, light.bands);
-  if (light.bands != transfer.bands)
+  rep.bands = std::min(transfer.bands(), light.bands);
+  if (light.bands != transfer.bands())
     rep.warnings.push_back("light has " + std::to_string(light.bands) + " bands, transfer " +
-                           std::to_string(transfer.bands) + ": validating up to " +
+                           std::to_string(transfer.bands()) + ": validating up to " +
                            std::to_string(rep.bands) + " bands");
 
   std::vector<int> bands = settings.bandsList;
@@ -219,12 +218,9 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   for (int b : kept) {
     // PRT radiance at b bands (relight rotates the light itself).
     std::vector<Rgb> all(nv);
-    if (glossy)
-      relight::relightGlossy(transfer.truncated(b), light.truncated(b), rs.material,
-                             {mesh.positions, mesh.normals, *rs.eye}, albedo, all, rs.rotation);
-    else
-      relight::relight(transfer.truncated(b), light.truncated(b), rs.material.diffuseOr(albedo),
-                       all, rs.rotation);
+    relight::relight(transfer.cut(b), light.truncated(b), rs.material,
+                     {mesh.positions, mesh.normals, albedo}, rs.eye ? *rs.eye : Vec3f(0.0f), all,
+                     rs.rotation);
     for (std::size_t i = 0; i < n; ++i) {
       prt[i] = all[verts[i]];
       if (!isFinite(prt[i]))

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <type_traits>
 
@@ -147,18 +148,23 @@ void evalReference(int bands, const Vec3d& dir, double* out) {
         p = ((2.0 * l - 1) * ct * p1 - (l + m - 1.0) * p2) / (l - m);
       p2 = p1;
       p1 = p;
-      // K_lm = sqrt((2l+1)/(4π) (l-m)!/(l+m)!)
-      double ratio = 1;
-      for (int k = l - m + 1; k <= l + m; ++k) ratio /= k;
-      const double k = std::sqrt((2.0 * l + 1) / (4.0 * kPi) * ratio);
+      const double k = normalization(l, m);  // √2 K_lm for m > 0
       if (m == 0) {
         out[index(l, 0)] = k * p;
       } else {
-        out[index(l, m)] = std::sqrt(2.0) * k * p * std::cos(m * phi);
-        out[index(l, -m)] = std::sqrt(2.0) * k * p * std::sin(m * phi);
+        out[index(l, m)] = k * p * std::cos(m * phi);
+        out[index(l, -m)] = k * p * std::sin(m * phi);
       }
     }
   }
+}
+
+double normalization(int l, int m) {
+  const int am = std::abs(m);
+  double ratio = 1;  // (l−|m|)! / (l+|m|)!
+  for (int k = l - am + 1; k <= l + am; ++k) ratio /= k;
+  const double k = std::sqrt((2.0 * l + 1) / (4.0 * kPi) * ratio);
+  return m == 0 ? k : std::sqrt(2.0) * k;
 }
 
 RgbSh RgbSh::truncated(int b) const {

@@ -1,8 +1,8 @@
 #include "prt/transfer/material.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <sstream>
 
 #include "prt/core/error.hpp"
 #include "prt/core/spec.hpp"
@@ -10,9 +10,6 @@
 namespace prt {
 
 namespace {
-
-constexpr double kMaxExponent = 1e4;
-constexpr double kMinRoughness = 0.03;  // α ≥ 9e-4: narrower lobes need more than 32 bands anyway
 
 /// Angular width (radians) of the lobe's peak, to pick a quadrature step that resolves it.
 double lobeWidth(const GlossyLobe& g) {
@@ -33,11 +30,12 @@ void integrateOverSphere(const GlossyLobe& g, F&& f) {
   }
 }
 
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
+/// The shortest text that reads back as exactly x.
+template <typename T>
+std::string number(T x) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
 }
 
 std::string colour(const Rgb& c) {
@@ -137,12 +135,12 @@ Material parseMaterial(const std::string& text) {
     m.lobe.kind = LobeKind::None;
   } else if (name == "phong") {
     m.lobe.kind = LobeKind::Phong;
-    m.lobe.exponent = spec.number("exponent", 32.0, 0.0, kMaxExponent);
-    m.specular = spec.colour("ks", Rgb(0.5f), 0.0, 1.0);
+    m.lobe.exponent = spec.number("exponent", kDefaultPhongExponent, 0.0, kMaxPhongExponent);
+    m.specular = spec.colour("ks", Rgb(kDefaultSpecular), 0.0, 1.0);
   } else if (name == "ggx") {
     m.lobe.kind = LobeKind::Ggx;
-    m.lobe.roughness = spec.number("roughness", 0.3, kMinRoughness, 1.0);
-    m.specular = spec.colour("ks", Rgb(0.5f), 0.0, 1.0);
+    m.lobe.roughness = spec.number("roughness", kDefaultGgxRoughness, kMinGgxRoughness, 1.0);
+    m.specular = spec.colour("ks", Rgb(kDefaultSpecular), 0.0, 1.0);
   } else {
     throw Error(text, "unknown material '" + name + "' (known: lambert, phong, ggx)");
   }

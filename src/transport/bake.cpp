@@ -33,22 +33,6 @@
 
 namespace prt {
 
-const char* toString(Sampling sampling) {
-  switch (sampling) {
-    case Sampling::CosineSobol:
-      return "cosine-sobol";
-    case Sampling::UniformRandom:
-      return "uniform-random";
-  }
-  return "?";
-}
-
-Sampling parseSampling(const std::string& s) {
-  if (s == "sobol" || s == "cosine-sobol") return Sampling::CosineSobol;
-  if (s == "uniform" || s == "uniform-random") return Sampling::UniformRandom;
-  throw Error("unknown sampling '" + s + "' (expected cosine-sobol or uniform-random)");
-}
-
 namespace {
 
 using namespace bakedetail;
@@ -142,7 +126,7 @@ struct Context {
   int nc;  // B²
   ShEval eval;
   std::unique_ptr<OwenSobol2D> sobol;
-  Albedo albedo;
+  BounceAlbedo albedo;
   std::vector<double> lobe;  ///< A_l/π of the clamped cosine, l = 0..B-1
   std::atomic<std::uint64_t> rays{0};
 };
@@ -313,18 +297,18 @@ double bounceVertex(Context& ctx, std::size_t v, int pass, const float* prev, in
 
 }  // namespace
 
-TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
-                   BakeStats* stats, const ProgressFn& progressFn) {
+Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+              BakeStats* stats, const ProgressFn& progressFn) {
   validateBake(mesh, settings);
   checkFootprint(mesh, settings, bakeFootprint(mesh, settings));
   if (settings.layout == TransferLayout::Matrix)
     return bakeMatrix(mesh, occluder, settings, stats, progressFn);
   const auto start = Clock::now();
   const std::size_t n = mesh.vertexCount();
-  const std::size_t first = settings.firstVertex;
-  const std::size_t count = settings.vertexCount ? settings.vertexCount : n - first;
-  const bool inter = settings.mode == TransferMode::Interreflected && settings.bounces > 0;
-  const int bounces = inter ? settings.bounces : 0;
+  const RowRange rows = bakeRows(mesh, settings);
+  const std::size_t first = rows.first, count = rows.count;
+  const int bounces = settings.effectiveBounces();
+  const bool inter = bounces > 0;
 
   Context ctx{mesh,
               occluder,
@@ -340,11 +324,15 @@ TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSetting
   const int nc = ctx.nc;
   const int channels = inter && !ctx.albedo.grey ? 3 : 1;
 
-  TransferField out;
-  out.bands = settings.bands;
-  out.channels = channels;
-  out.vertexCount = count;
-  out.data.assign(count * out.stride(), 0.0f);
+  TransferShape shape;
+  shape.layout = TransferLayout::Vector;
+  shape.bands = settings.bands;
+  shape.channels = channels;
+  shape.rows = rows;
+  Transfer out = Transfer::zeros(shape);
+  float* const outData = out.mutableValues();
+  const std::size_t outStride = shape.stride();
+  const auto outRow = [&](std::size_t r) { return outData + r * outStride; };
 
   // Work: the direct pass and all but the last bounce cover the whole mesh when inter-reflecting
   // (hit points fall anywhere); the last pass covers the range only.
@@ -376,7 +364,7 @@ TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSetting
   if (!inter) {
     run(first, first + count, static_cast<std::size_t>(nc),
         [&](std::size_t v, Accumulator& acc, std::vector<float>& y) {
-          variance[v - first] = directVertex(ctx, v, out.vertex(v - first), acc, y);
+          variance[v - first] = directVertex(ctx, v, outRow(v - first), acc, y);
         });
   } else {
     prev.assign(n * nc, 0.0f);
@@ -387,8 +375,7 @@ TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSetting
     // Output starts as T⁰ (broadcast to every channel of an RGB transfer).
     for (std::size_t r = 0; r < count; ++r)
       for (int i = 0; i < nc; ++i)
-        for (int c = 0; c < channels; ++c)
-          out.vertex(r)[i * channels + c] = prev[(first + r) * nc + i];
+        for (int c = 0; c < channels; ++c) outRow(r)[i * channels + c] = prev[(first + r) * nc + i];
   }
   st.secondsDirect = seconds(t0);
   const std::uint64_t directRays = ctx.rays.load();
@@ -404,7 +391,7 @@ TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSetting
       run(first, first + count, scratch,
           [&](std::size_t v, Accumulator& acc, std::vector<float>& t) {
             variance[v - first] += bounceVertex(ctx, v, k, prev.data(), prevChannels,
-                                                out.vertex(v - first), channels, true, acc, t);
+                                                outRow(v - first), channels, true, acc, t);
           });
     } else {
       cur.assign(n * static_cast<std::size_t>(nc) * channels, 0.0f);
@@ -414,7 +401,7 @@ TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSetting
       });
       const std::size_t stride = static_cast<std::size_t>(nc) * channels;
       for (std::size_t r = 0; r < count; ++r) {
-        float* o = out.vertex(r);
+        float* o = outRow(r);
         const float* c = cur.data() + (first + r) * stride;
         for (std::size_t i = 0; i < stride; ++i) o[i] += c[i];
       }
@@ -433,7 +420,7 @@ TransferField bake(const Mesh& mesh, const Occluder& occluder, const BakeSetting
       for (double b : st.secondsBounce) s += b;
       return s;
     }();
-    st.raysPerSecond = traceSeconds > 0 ? double(st.rays) / traceSeconds : 0.0;
+    st.raysPerSecond = raysPerSecondOf(st.rays, traceSeconds);
     double sumT0 = 0, maxT0 = 0;
     for (double var : variance) {
       const double se = std::sqrt(var);

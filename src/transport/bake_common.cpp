@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/units.hpp"
 #include "prt/sh/sh.hpp"
@@ -30,7 +31,8 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
         throw Error(name, "triangle " + std::to_string(t) + " references vertex " +
                               std::to_string(i) + " (mesh has " +
                               std::to_string(mesh.vertexCount()) + ")");
-  sh::checkBands(s.bands);
+  if (s.bands < 1 || s.bands > bands::kMaxBake)
+    throw Error(bands::bandLimitMessage("the bake", s.bands, "baking", bands::kMaxBake));
   if (s.samples < 1 || s.samples > kMaxBakeSamples)
     throw Error("samples must be in 1.." + std::to_string(kMaxBakeSamples) + ", got " +
                 std::to_string(s.samples));
@@ -43,15 +45,20 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
   const Rgb ks = s.material.specular;
   if (!(isFinite(ks) && ks.x >= 0 && ks.y >= 0 && ks.z >= 0))
     throw Error("specular colour ks must be finite and non-negative");
-  if (s.firstVertex >= mesh.vertexCount() || s.vertexCount > mesh.vertexCount() - s.firstVertex)
-    throw Error(name, "vertex range [" + std::to_string(s.firstVertex) + ", " +
-                          std::to_string(s.firstVertex + s.vertexCount) +
-                          ") is outside the mesh (" + std::to_string(mesh.vertexCount()) +
-                          " vertices)");
+  if (s.rows.first >= mesh.vertexCount() || s.rows.count > mesh.vertexCount() - s.rows.first)
+    throw Error(name, "vertex range [" + std::to_string(s.rows.first) + ", " +
+                          std::to_string(s.rows.first + s.rows.count) + ") is outside the mesh (" +
+                          std::to_string(mesh.vertexCount()) + " vertices)");
 }
 
-Albedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s) {
-  Albedo a;
+RowRange bakeRows(const Mesh& mesh, const BakeSettings& s) {
+  const std::size_t n = mesh.vertexCount();
+  const std::size_t first = std::min(s.rows.first, n);
+  return {first, s.rows.count ? std::min(s.rows.count, n - first) : n - first};
+}
+
+BounceAlbedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s) {
+  BounceAlbedo a;
   if (s.material.diffuse) {
     a.uniform = *s.material.diffuse;
     a.grey = a.uniform.x == a.uniform.y && a.uniform.y == a.uniform.z;
@@ -88,34 +95,34 @@ void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint
 
 namespace prt {
 
-bool glossyBounces(const BakeSettings& s) {
-  return s.layout == TransferLayout::Matrix && s.mode == TransferMode::Interreflected &&
-         s.bounces > 0 && s.material.glossy();
-}
-
 BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   using namespace bakedetail;
   BakeFootprint f;
   const std::size_t n = mesh.vertexCount();
-  const std::size_t first = std::min(s.firstVertex, n);
-  const std::size_t count = s.vertexCount ? std::min(s.vertexCount, n - first) : n - first;
-  const bool inter = s.mode == TransferMode::Interreflected && s.bounces > 0;
-  const Albedo a = resolveAlbedo(mesh, s);
-  const bool glossy = glossyBounces(s);
+  const std::size_t count = bakeRows(mesh, s).count;
+  const bool inter = s.effectiveBounces() > 0;
+  const BounceAlbedo a = resolveAlbedo(mesh, s);
+  const bool glossy = s.glossyBounces(s.layout);
   const Rgb ks = s.material.specular;
   const bool colouredLobe = glossy && !(ks.x == ks.y && ks.y == ks.z);
   f.channels = inter && (!a.grey || colouredLobe) ? 3 : 1;
-  f.bytesPerVertex = transferBytes(s.layout, s.bands, f.channels, 1);
-  f.transferBytes = transferBytes(s.layout, s.bands, f.channels, count);
+  const auto bytes = [&](TransferLayout layout, std::size_t rows) {
+    TransferShape shape;
+    shape.layout = layout, shape.bands = s.bands, shape.channels = f.channels;
+    shape.rows.count = rows;
+    return shape.denseBytes();
+  };
+  f.bytesPerVertex = bytes(s.layout, 1);
+  f.transferBytes = bytes(s.layout, count);
   if (glossy) {
     // The matrices with K − 1 bounces over the whole mesh, and while they are baked those with
     // K − 2 (each order is baked from the one before and then dropped).
-    const std::size_t mat = transferBytes(TransferLayout::Matrix, s.bands, f.channels, n);
+    const std::size_t mat = bytes(TransferLayout::Matrix, n);
     f.workingBytes = s.bounces > 1 ? 2 * mat : mat;
   } else if (inter) {
     // Vector: two full-mesh buffers of the previous and current order. Matrix: the diffuse
     // vector transfer with K − 1 bounces over the whole mesh, plus its own working buffers.
-    const std::size_t vec = transferBytes(TransferLayout::Vector, s.bands, f.channels, n);
+    const std::size_t vec = bytes(TransferLayout::Vector, n);
     f.workingBytes = s.layout == TransferLayout::Matrix ? 3 * vec : 2 * vec;
   }
   return f;

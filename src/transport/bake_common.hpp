@@ -19,7 +19,7 @@ inline double seconds(Clock::time_point since) {
 }
 
 /// Albedo used for the bounces: uniform or per vertex, interpolated at hits.
-struct Albedo {
+struct BounceAlbedo {
   bool perVertex = false;
   bool grey = true;
   Rgb uniform{1.0f};
@@ -50,15 +50,17 @@ struct Moments {
 
 /// Throws prt::Error naming the first problem with the mesh or the settings.
 void validateBake(const Mesh& mesh, const BakeSettings& s);
+/// The vertices a bake covers: settings.rows with count 0 meaning "to the last vertex".
+RowRange bakeRows(const Mesh& mesh, const BakeSettings& s);
 /// The bounce albedo: the material's diffuse colour, else the mesh's, else white.
-Albedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s);
+BounceAlbedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s);
 
 std::size_t physicalMemoryBytes();
 /// Throws prt::Error stating the figure when the bake would not fit in this machine's memory.
 void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint& f);
 
 /// The matrix (glossy) bake; bake() dispatches here for TransferLayout::Matrix.
-TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
-                         BakeStats* stats, const ProgressFn& progress);
+Transfer bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+                    BakeStats* stats, const ProgressFn& progress);
 
 }  // namespace prt::bakedetail

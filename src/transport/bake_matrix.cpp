@@ -164,10 +164,10 @@ struct MatrixContext {
   int bands, nc, channels;
   MatD hz;
   std::unique_ptr<OwenSobol2D> sobol;
-  Albedo albedo;
+  BounceAlbedo albedo;
   /// The bounced light's source over the whole mesh: diffuse vector transfer T^{K−1}, or for
   /// glossy bounce surfaces the matrices M^{K−1} (then `glossy` is set). Null without bounces.
-  const TransferField* bounced = nullptr;
+  const Transfer* bounced = nullptr;
   bool glossy = false;
   PreparedMaterial kernels;  ///< the material's d and g kernels (glossy bounces)
   std::atomic<std::uint64_t> rays{0};
@@ -215,7 +215,7 @@ void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, 
   ctx.kernels.responses(q, nq, q - w, ws.d.data(), ws.g.data(), ws.scratch.data());
   const Rgb rho = ctx.albedo.at(tri, h.u, h.v);
   const Rgb ks = ctx.settings.material.specular;
-  const int nc = ctx.nc, bChannels = ctx.bounced->channels;
+  const int nc = ctx.nc, bChannels = ctx.bounced->channels();
   for (int c = 0; c < ctx.channels; ++c) {
     float* r = ws.response.data() + static_cast<std::size_t>(c) * nc;
     for (int i = 0; i < nc; ++i) r[i] = rho[c] * ws.d[i] + ks[c] * ws.g[i];
@@ -225,7 +225,7 @@ void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, 
     const int src = bChannels == 1 ? 0 : c;
     for (int k = 0; k < 3; ++k) {
       // M_k row-major (row i = arriving coefficient, column j = source), channels interleaved.
-      const float* m = ctx.bounced->vertex(tri[k]) + src;
+      const float* m = ctx.bounced->row(tri[k]) + src;
       if (bChannels == 1) {
         const Eigen::Map<const RowMatF> mk(m, nc, nc);
         z.noalias() += b[k] * (mk.transpose() * rc);
@@ -264,7 +264,7 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
     ws.gpart[c].setZero();
   }
   const std::size_t bStride = ctx.bounced ? ctx.bounced->stride() : 0;
-  const int bChannels = ctx.bounced ? ctx.bounced->channels : 1;
+  const int bChannels = ctx.bounced ? ctx.bounced->channels() : 1;
 
   std::array<Ray, kBatch> rays;
   std::array<std::uint8_t, kBatch> blocked;
@@ -324,9 +324,9 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
         }
         const auto& tri = mesh.triangles[h.triangle];
         const float b0 = 1.0f - h.u - h.v;
-        const float* r0 = ctx.bounced->vertex(tri[0]);
-        const float* r1 = ctx.bounced->vertex(tri[1]);
-        const float* r2 = ctx.bounced->vertex(tri[2]);
+        const float* r0 = ctx.bounced->row(tri[0]);
+        const float* r1 = ctx.bounced->row(tri[1]);
+        const float* r2 = ctx.bounced->row(tri[2]);
         for (std::size_t i = 0; i < bStride; ++i)
           ws.interp[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
         const Rgb rho = ctx.albedo.at(tri, h.u, h.v);
@@ -367,27 +367,25 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
 
 }  // namespace
 
-TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
-                         BakeStats* stats, const ProgressFn& progressFn) {
+Transfer bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+                    BakeStats* stats, const ProgressFn& progressFn) {
   const auto start = Clock::now();
-  const std::size_t total = mesh.vertexCount();
-  const std::size_t first = settings.firstVertex;
-  const std::size_t count = settings.vertexCount ? settings.vertexCount : total - first;
-  const bool inter = settings.mode == TransferMode::Interreflected && settings.bounces > 0;
+  const RowRange rows = bakeRows(mesh, settings);
+  const std::size_t first = rows.first, count = rows.count;
+  const bool inter = settings.effectiveBounces() > 0;
 
   // The bounced light over the whole mesh (hits land anywhere): the diffuse transfer with K − 1
   // bounces, or for glossy bounce surfaces the matrices with K − 1 bounces (this function, one
   // order less). It takes the first share of the progress.
-  const bool glossy = glossyBounces(settings);
+  const bool glossy = settings.glossyBounces(settings.layout);
   const double preShare = !inter   ? 0.0
                           : glossy ? double(settings.bounces) / (settings.bounces + 1)
                                    : 0.3;
-  TransferField bounced;
+  Transfer bounced;
   BakeStats bounceStats;
   if (glossy) {
     BakeSettings ms = settings;
-    ms.firstVertex = 0;
-    ms.vertexCount = 0;
+    ms.rows = {};
     ms.bounces = settings.bounces - 1;
     ms.mode = ms.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
     ms.seed = deriveSeed(settings.seed, kBounceOrder + static_cast<std::uint64_t>(ms.bounces));
@@ -397,8 +395,7 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
   } else if (inter) {
     BakeSettings vs = settings;
     vs.layout = TransferLayout::Vector;
-    vs.firstVertex = 0;
-    vs.vertexCount = 0;
+    vs.rows = {};
     vs.bounces = settings.bounces - 1;
     vs.mode = vs.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
     ProgressFn sub;
@@ -424,8 +421,13 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
   if (settings.mode != TransferMode::Unshadowed)
     ctx.sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(settings.samples));
 
-  TransferField out =
-      TransferField::zeros(TransferLayout::Matrix, settings.bands, ctx.channels, count);
+  TransferShape shape;
+  shape.layout = TransferLayout::Matrix;
+  shape.bands = settings.bands;
+  shape.channels = ctx.channels;
+  shape.rows = rows;
+  Transfer out = Transfer::zeros(shape);
+  float* const outData = out.mutableValues();
   ProgressFn mainFn;
   if (progressFn) mainFn = [&](double f) { return progressFn(preShare + (1 - preShare) * f); };
   Progress progress(mainFn, count);
@@ -435,7 +437,7 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
     progress.check();
     Workspace ws(ctx.nc, ctx.channels);
     for (std::size_t r = b; r < e; ++r)
-      variance[r] = matrixVertex(ctx, first + r, out.vertex(r), ws);
+      variance[r] = matrixVertex(ctx, first + r, outData + r * shape.stride(), ws);
     progress.advance(e - b);
   });
 
@@ -457,7 +459,7 @@ TransferField bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeS
       st.raysBounce = {bounceStats.rays};
     }
     st.secondsTotal = seconds(start);
-    st.raysPerSecond = st.secondsTotal > 0 ? double(st.rays) / st.secondsTotal : 0.0;
+    st.raysPerSecond = raysPerSecondOf(st.rays, st.secondsTotal);
     double sum = 0, mx = 0;
     for (double var : variance) {
       sum += std::sqrt(var);

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/random_data.hpp"
+
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -12,6 +14,7 @@
 
 #include "cli_harness.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/bake_merge.hpp"
 #include "prt/io/games202_transport.hpp"
 
 namespace fs = std::filesystem;
@@ -55,9 +58,9 @@ TEST_F(BakeCli, BakeInfoExportSphere) {
   ASSERT_EQ(b.transfers.size(), 2u);
   const BakedTransfer* sh = b.find(TransferMode::Shadowed);
   ASSERT_NE(sh, nullptr);
-  EXPECT_EQ(sh->field.bands, 3);
-  EXPECT_EQ(sh->settings.samples, 64);
-  EXPECT_EQ(sh->settings.seed, 7u);
+  EXPECT_EQ(sh->transfer.bands(), 3);
+  EXPECT_EQ(sh->recipe.samples, 64);
+  EXPECT_EQ(sh->recipe.seed, 7u);
   EXPECT_EQ(sh->stats.rays, 162u * 64u);  // one ray per sample per vertex (a convex sphere)
 
   r = prt("info out/s.glb");
@@ -66,7 +69,8 @@ TEST_F(BakeCli, BakeInfoExportSphere) {
   EXPECT_NE(r.out.find("320"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("shadowed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("unshadowed"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("format version 1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("format version " + std::to_string(kBakeFormatVersion)), std::string::npos)
+      << r.out;
 
   // Several modes: export must be told which.
   r = prt("-q export out/s.glb --format games202 -o out/t.txt");
@@ -84,8 +88,9 @@ TEST_F(BakeCli, BakeInfoExportSphere) {
   r = prt("export out/s.glb --mode shadowed --layout vertices -o out/v.txt");
   ASSERT_EQ(r.rc, 0) << r.err;
   const Games202Transport v = readGames202Transport(path("out/v.txt"));
-  ASSERT_EQ(v.rows.size(), sh->field.data.size());
-  EXPECT_EQ(std::memcmp(v.rows.data(), sh->field.data.data(), v.rows.size() * 4), 0)
+  ASSERT_EQ(v.rows.size(), testdata::valuesOf(sh->transfer).size());
+  EXPECT_EQ(std::memcmp(v.rows.data(), testdata::valuesOf(sh->transfer).data(), v.rows.size() * 4),
+            0)
       << "text export must round-trip the floats exactly";
 
   r = prt("info out/t.txt");
@@ -111,8 +116,8 @@ TEST_F(BakeCli, PartialRangeBake) {
   ASSERT_EQ(r.rc, 0) << r.err;
   const BakeFile p = readBake(path("out/p.glb"));
   EXPECT_FALSE(p.complete());
-  EXPECT_EQ(p.firstVertex, 100u);
-  EXPECT_EQ(p.vertexCount, 62u);
+  EXPECT_EQ(p.rows().first, 100u);
+  EXPECT_EQ(p.rows().count, 62u);
   r = prt(
       "-q bake builtin:sphere?subdiv=2 --mode shadowed --samples 16 --range 0:100 -o out/q.glb");
   ASSERT_EQ(r.rc, 0) << r.err;
@@ -122,7 +127,8 @@ TEST_F(BakeCli, PartialRangeBake) {
   const BakeFile merged = mergeBakes({p, readBake(path("out/q.glb"))});
   const BakeFile full = readBake(path("out/full.glb"));
   ASSERT_TRUE(merged.complete());
-  EXPECT_EQ(merged.transfers[0].field.data, full.transfers[0].field.data);
+  EXPECT_EQ(testdata::valuesOf(merged.transfers[0].transfer),
+            testdata::valuesOf(full.transfers[0].transfer));
   // A partial bake cannot be exported.
   r = prt("-q export out/p.glb -o out/t.txt");
   EXPECT_NE(r.rc, 0);
@@ -198,9 +204,9 @@ TEST_F(GlossyCli, MatrixBakeFromMtlSpecularRendersAndValidates) {
   EXPECT_NE(r.err.find("shadowed matrix: 324 B per vertex"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("material from"), std::string::npos) << r.err;
   const BakeFile b = readBake(path("out/g.glb"));
-  EXPECT_EQ(b.formatVersion, 2);
+  EXPECT_EQ(b.formatVersion, kBakeFormatVersion);
   ASSERT_EQ(b.transfers.size(), 1u);
-  const Material& m = b.transfers[0].settings.material;
+  const Material& m = b.transfers[0].recipe.material;
   EXPECT_EQ(m.lobe.kind, LobeKind::Phong);
   EXPECT_FLOAT_EQ(float(m.lobe.exponent), 40.0f);
   EXPECT_FLOAT_EQ(m.specular.x, 0.25f);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/random_data.hpp"
+
 #include <algorithm>
 #include <filesystem>
 #include <string>
@@ -33,16 +35,18 @@ TEST_F(CompressCli, CompressInfoRenderSweepTarget) {
 
   const BakeFile src = readBake(path("b.glb"));
   const BakeFile out = readBake(path("c.glb"));
-  EXPECT_EQ(out.formatVersion, 3);
+  EXPECT_EQ(out.formatVersion, kBakeFormatVersion);
   ASSERT_EQ(out.transfers.size(), 1u);
   const BakedTransfer& t = out.transfers[0];
-  ASSERT_TRUE(t.compressed.has_value());
+  ASSERT_TRUE(t.transfer.compressed());
   // The same compression in process: bit-identical (deterministic for the seed, any threads).
   CpcaStats s;
-  const CompressedTransfer ref = compressCpca(src.transfers[0].field, {8, 3, 5, 30}, &s);
-  EXPECT_EQ(t.compressed->cluster, ref.cluster);
-  EXPECT_EQ(t.compressed->weights, ref.weights);
-  EXPECT_EQ(t.compressionStats.squaredError, s.squaredError);
+  CpcaOptions o;
+  o.clusters = 8, o.basisCount = 3, o.seed = 5, o.maxIterations = 30;
+  const Transfer ref = compressCpca(src.transfers[0].transfer, o, &s);
+  EXPECT_EQ(t.transfer.cpca().cluster, ref.cpca().cluster);
+  EXPECT_EQ(testdata::valuesOf(t.transfer), testdata::valuesOf(ref));
+  EXPECT_EQ(t.compression.stats.squaredError, s.squaredError);
 
   const Result i = prt("info c.glb");
   ASSERT_EQ(i.rc, 0) << i.err;
@@ -54,9 +58,9 @@ TEST_F(CompressCli, CompressInfoRenderSweepTarget) {
   const Result tg = prt("compress b.glb --target-error 0.02 --sweep-clusters 1,4,16 -o t.glb");
   ASSERT_EQ(tg.rc, 0) << tg.err;
   const BakeFile tb = readBake(path("t.glb"));
-  EXPECT_LE(tb.transfers[0].compressionStats.relativeRms, 0.02);
+  EXPECT_LE(tb.transfers[0].compression.stats.relativeRms, 0.02);
   // Measured afresh against the source, not trusted from the file.
-  EXPECT_LE(measureCpca(src.transfers[0].field, *tb.transfers[0].compressed).relativeRms, 0.02);
+  EXPECT_LE(measureCpca(src.transfers[0].transfer, tb.transfers[0].transfer).relativeRms, 0.02);
 
   const Result sw = prt("compress b.glb --sweep s.png --sweep-clusters 1,4 --max-pca 3");
   ASSERT_EQ(sw.rc, 0) << sw.err;

@@ -270,8 +270,8 @@ TEST_F(ReadersCli, MessagesNameTheFileTheUserGave) {
                 .rc,
             0);
   ASSERT_EQ(prt("-q compress p1.glb --clusters 2 --pca 1 -o c1.glb").rc, 0);
-  expectCleanFailure("merge c1.glb p2.glb -o out/m.glb", "c1.glb: holds compressed unshadowed");
-  expectCleanFailure("merge p2.glb c1.glb -o out/m.glb", "c1.glb: holds compressed unshadowed");
+  expectCleanFailure("merge c1.glb p2.glb -o out/m.glb", "c1.glb: holds compressed transfer");
+  expectCleanFailure("merge p2.glb c1.glb -o out/m.glb", "c1.glb: holds compressed transfer");
 }
 
 }  // namespace

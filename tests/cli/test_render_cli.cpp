@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/random_data.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -115,7 +117,8 @@ TEST_F(RenderCli, MergeJoinsSplitBakesExactly) {
   const BakeFile merged = readBake(path("out/m.glb"));
   EXPECT_TRUE(merged.complete());
   ASSERT_EQ(merged.transfers.size(), 1u);
-  EXPECT_EQ(merged.transfers[0].field.data, full.transfers[0].field.data);
+  EXPECT_EQ(testdata::valuesOf(merged.transfers[0].transfer),
+            testdata::valuesOf(full.transfers[0].transfer));
   std::filesystem::remove(path("out/m.glb"));
 
   // Gaps, overlaps, other meshes, other settings, bad arguments.
@@ -167,9 +170,9 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
   // is the lobe's zonal energy beyond b bands (falls with b; exponent 4 keeps some beyond 3).
   const BakeFile glossy = readBake((d / "glossy.glb").string());
   ASSERT_EQ(glossy.transfers.size(), 1u);
-  EXPECT_TRUE(glossy.transfers[0].field.isMatrix());
-  EXPECT_EQ(glossy.transfers[0].field.bands, 3);
-  EXPECT_EQ(glossy.transfers[0].settings.material.spec(), "phong?exponent=4&ks=0.5&kd=0.5");
+  EXPECT_TRUE(glossy.transfers[0].transfer.isMatrix());
+  EXPECT_EQ(glossy.transfers[0].transfer.bands(), 3);
+  EXPECT_EQ(glossy.transfers[0].recipe.material.spec(), "phong?exponent=4&ks=0.5&kd=0.5");
   const std::string v = slurp(d / "validation/sky_glossy.json");
   std::vector<double> lobe;
   for (std::size_t at = v.find("\"lobeEnergyBeyond\": "); at != std::string::npos;

@@ -45,7 +45,24 @@ struct Fixture {
     model.accessors.push_back(a);
     return int(model.accessors.size() - 1);
   }
-  AccessorReader reader() const { return AccessorReader("f.gltf", model); }
+  /// A reader over the model as it is when a read is made (so that `f.reader().floats(f.add(..))`
+  /// sees the accessor its argument adds: the reader is made after the arguments).
+  struct Reader {
+    const Fixture& f;
+    AccessorReader now() const { return AccessorReader("f.gltf", documentOf(f.model)); }
+    std::vector<float> floats(int i, int c, const std::string& w) const {
+      return now().floats(i, c, w);
+    }
+    std::vector<std::uint32_t> indices(int i, const std::string& w) const {
+      return now().indices(i, w);
+    }
+    std::size_t count(int i, const std::string& w) const { return now().count(i, w); }
+    template <typename T>
+    std::vector<T> exact(int i, int c, int type, std::size_t n, const std::string& w) const {
+      return now().exact<T>(i, c, type, n, w);
+    }
+  };
+  Reader reader() const { return Reader{*this}; }
 };
 
 template <typename T>
@@ -169,7 +186,7 @@ TEST(GltfAccessor, ByteStrideInterleavesElements) {
   Fixture f(bytesOf(v), 24);
   const int pos = f.add(TINYGLTF_TYPE_VEC3, kFloat, 3, 0);
   const int nrm = f.add(TINYGLTF_TYPE_VEC3, kFloat, 3, 12);
-  const AccessorReader r = f.reader();
+  const AccessorReader r = f.reader().now();
   EXPECT_EQ(r.floats(pos, 3, "POSITION"), (std::vector<float>{0, 10, 20, 1, 11, 21, 2, 12, 22}));
   EXPECT_EQ(r.floats(nrm, 3, "NORMAL"), (std::vector<float>{0, 1, 0, 0, 1, -1, 0, 1, -2}));
   EXPECT_EQ(r.exact<float>(nrm, 3, kFloat, 3, "NORMAL"), r.floats(nrm, 3, "NORMAL"));
@@ -270,7 +287,7 @@ TEST(GltfAccessor, WrongShapesAndIndicesAreRefused) {
   Fixture f(bytesOf<float>({1, 2, 3, 4, 5, 6, 7, 8}));
   const int vec4 = f.add(TINYGLTF_TYPE_VEC4, kFloat, 2);
   const int mat2 = f.add(TINYGLTF_TYPE_MAT2, kFloat, 2);
-  const AccessorReader r = f.reader();
+  const AccessorReader r = f.reader().now();
   expectError(errorOf([&] { r.floats(vec4, 3, "NORMAL"); }),
               "NORMAL has 4 components (VEC4), expected 3 (VEC3)");
   // MAT2 has four components too, but is not a VEC4.

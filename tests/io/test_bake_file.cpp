@@ -11,10 +11,12 @@
 #include <filesystem>
 #include <random>
 
+#include "common/random_data.hpp"
 #include "common/scratch.hpp"
 #include "prt/compress/cpca.hpp"
 #include "prt/core/error.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/bake_merge.hpp"
 
 namespace prt {
 namespace {
@@ -36,33 +38,30 @@ Mesh twoPartMesh() {
   return m;
 }
 
-TransferField randomField(int bands, int channels, std::size_t n, unsigned seed) {
-  TransferField f;
-  f.bands = bands;
-  f.channels = channels;
-  f.vertexCount = n;
-  f.data.resize(n * f.stride());
+Transfer randomField(int bands, int channels, std::size_t first, std::size_t n, unsigned seed) {
+  TransferShape shape = testdata::shapeOf(TransferLayout::Vector, bands, channels, n);
+  shape.rows.first = first;
+  Transfer f = Transfer::zeros(shape);
+  float* x = f.mutableValues();
+  const std::size_t size = f.values().size();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-2.0f, 2.0f);
-  for (float& x : f.data) x = u(rng);
+  for (std::size_t i = 0; i < size; ++i) x[i] = u(rng);
   // Values that a lossy text path would alter.
-  f.data[0] = 1.0f / 3.0f;
-  if (f.data.size() > 2) f.data[1] = -0.0f, f.data[2] = 1e-40f;  // negative zero, subnormal
+  x[0] = 1.0f / 3.0f;
+  if (size > 2) x[1] = -0.0f, x[2] = 1e-40f;  // negative zero, subnormal
   return f;
 }
 
 BakedTransfer transfer(TransferMode mode, int bands, int channels, std::size_t first, std::size_t n,
                        unsigned seed) {
   BakedTransfer t;
-  t.settings.mode = mode;
-  t.settings.bands = bands;
-  t.settings.samples = 4096;
-  t.settings.bounces = mode == TransferMode::Interreflected ? 2 : 0;
-  t.settings.seed = (std::uint64_t(1) << 60) + 12345;  // beyond 2^53: stored as a string
-  t.settings.sampling = Sampling::UniformRandom;
-  t.settings.material.diffuse = Rgb(0.25f, 0.5f, 0.75f);
-  t.settings.firstVertex = first;
-  t.settings.vertexCount = n;
+  t.recipe.mode = mode;
+  t.recipe.samples = 4096;
+  t.recipe.bounces = mode == TransferMode::Interreflected ? 2 : 0;
+  t.recipe.seed = (std::uint64_t(1) << 60) + 12345;  // beyond 2^53: stored as a string
+  t.recipe.sampling = Sampling::UniformRandom;
+  t.recipe.material.diffuse = Rgb(0.25f, 0.5f, 0.75f);
   t.stats.rays = (std::uint64_t(1) << 40) + 7;  // beyond 32 bits
   t.stats.raysPerSecond = 1.5e8;
   t.stats.secondsTotal = 12.5;
@@ -75,19 +74,18 @@ BakedTransfer transfer(TransferMode mode, int bands, int channels, std::size_t f
   t.stats.stdErrT0Max = 4e-3;
   t.stats.stdErrConstMean = 2e-3;
   t.stats.stdErrConstMax = 8e-3;
-  t.field = randomField(bands, channels, n, seed);
+  t.transfer = randomField(bands, channels, first, n, seed);
   return t;
 }
 
 BakeFile sampleBake() {
   BakeFile b;
   b.mesh = twoPartMesh();
-  b.firstVertex = 0;
-  b.vertexCount = b.mesh.vertexCount();
   b.generator = "prtkit test";
   // Scalar 3 bands (9 floats: 3 VEC4 columns, the last padded), RGB 4 bands (48: 12 columns).
-  b.transfers.push_back(transfer(TransferMode::Shadowed, 3, 1, 0, b.vertexCount, 1));
-  b.transfers.push_back(transfer(TransferMode::Interreflected, 4, 3, 0, b.vertexCount, 2));
+  const std::size_t V = b.mesh.vertexCount();
+  b.transfers.push_back(transfer(TransferMode::Shadowed, 3, 1, 0, V, 1));
+  b.transfers.push_back(transfer(TransferMode::Interreflected, 4, 3, 0, V, 2));
   return b;
 }
 
@@ -95,10 +93,19 @@ std::span<const unsigned char> asBytes(const std::string& s) {
   return {reinterpret_cast<const unsigned char*>(s.data()), s.size()};
 }
 
-bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
-  // (memcmp of two empty vectors may be handed null pointers: undefined, so not asked.)
+bool sameBits(const FloatArray& a, const FloatArray& b) {
+  // (memcmp of two empty arrays may be handed null pointers: undefined, so not asked.)
   return a.size() == b.size() &&
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+
+/// Same shape and representation, and every number the same bits.
+bool sameTransfer(const Transfer& a, const Transfer& b) {
+  if (!(a.shape() == b.shape()) || a.representation() != b.representation()) return false;
+  if (!a.compressed()) return sameBits(a.values(), b.values());
+  const CpcaRows &x = a.cpca(), &y = b.cpca();
+  return x.clusters == y.clusters && x.basisCount == y.basisCount && x.cluster == y.cluster &&
+         sameBits(x.weights, y.weights) && sameBits(x.means, y.means) && sameBits(x.basis, y.basis);
 }
 
 void expectSameBake(const BakeFile& a, const BakeFile& b) {
@@ -119,22 +126,17 @@ void expectSameBake(const BakeFile& a, const BakeFile& b) {
     EXPECT_EQ(a.mesh.parts[i].firstTriangle, b.mesh.parts[i].firstTriangle);
     EXPECT_EQ(a.mesh.parts[i].triangleCount, b.mesh.parts[i].triangleCount);
   }
-  EXPECT_EQ(a.firstVertex, b.firstVertex);
-  EXPECT_EQ(a.vertexCount, b.vertexCount);
+  EXPECT_EQ(a.rows(), b.rows());
   ASSERT_EQ(a.transfers.size(), b.transfers.size());
   for (std::size_t i = 0; i < a.transfers.size(); ++i) {
     const auto &x = a.transfers[i], &y = b.transfers[i];
-    EXPECT_EQ(x.settings.mode, y.settings.mode);
-    EXPECT_EQ(x.settings.bands, y.settings.bands);
-    EXPECT_EQ(x.settings.samples, y.settings.samples);
-    EXPECT_EQ(x.settings.bounces, y.settings.bounces);
-    EXPECT_EQ(x.settings.seed, y.settings.seed);
-    EXPECT_EQ(x.settings.sampling, y.settings.sampling);
-    EXPECT_EQ(x.settings.material, y.settings.material);
-    EXPECT_EQ(x.settings.layout, y.settings.layout);
-    EXPECT_EQ(x.field.layout, y.field.layout);
-    EXPECT_EQ(x.settings.firstVertex, y.settings.firstVertex);
-    EXPECT_EQ(x.settings.vertexCount, y.settings.vertexCount);
+    EXPECT_EQ(x.recipe.mode, y.recipe.mode);
+    EXPECT_EQ(x.recipe.samples, y.recipe.samples);
+    EXPECT_EQ(x.recipe.bounces, y.recipe.bounces);
+    EXPECT_EQ(x.recipe.seed, y.recipe.seed);
+    EXPECT_EQ(x.recipe.sampling, y.recipe.sampling);
+    EXPECT_EQ(x.recipe.material, y.recipe.material);
+    EXPECT_EQ(x.recipe, y.recipe);
     EXPECT_EQ(x.stats.rays, y.stats.rays);
     EXPECT_EQ(x.stats.raysPerSecond, y.stats.raysPerSecond);
     EXPECT_EQ(x.stats.secondsTotal, y.stats.secondsTotal);
@@ -142,10 +144,8 @@ void expectSameBake(const BakeFile& a, const BakeFile& b) {
     EXPECT_EQ(x.stats.raysBounce, y.stats.raysBounce);
     EXPECT_EQ(x.stats.stdErrT0Mean, y.stats.stdErrT0Mean);
     EXPECT_EQ(x.stats.stdErrConstMax, y.stats.stdErrConstMax);
-    EXPECT_EQ(x.field.bands, y.field.bands);
-    EXPECT_EQ(x.field.channels, y.field.channels);
-    EXPECT_EQ(x.field.vertexCount, y.field.vertexCount);
-    EXPECT_TRUE(sameBits(x.field.data, y.field.data)) << "transfer " << i << " floats differ";
+    EXPECT_EQ(x.transfer.shape(), y.transfer.shape());
+    EXPECT_TRUE(sameTransfer(x.transfer, y.transfer)) << "transfer " << i << " floats differ";
   }
 }
 
@@ -172,7 +172,7 @@ TEST(BakeFile, RoundTripIsBitExact) {
   const BakeFile b = sampleBake();
   const std::string bytes = encodeBake(b);
   const BakeFile r = decodeBake(asBytes(bytes), "mem.glb");
-  EXPECT_EQ(r.formatVersion, 1);  // vectors only: still version 1, for older readers
+  EXPECT_EQ(r.formatVersion, kBakeFormatVersion);
   EXPECT_EQ(r.generator, "prtkit test");
   EXPECT_EQ(r.mesh.source, "test-mesh");
   EXPECT_TRUE(r.complete());
@@ -213,23 +213,24 @@ TEST(BakeFile, ExternalFilesAreNeverOpened) {
 
 BakedTransfer matrixTransfer(TransferMode mode, int bands, int channels, std::size_t n) {
   BakedTransfer t = transfer(mode, bands, channels, 0, n, 9);
-  t.settings.layout = TransferLayout::Matrix;
-  t.settings.material = parseMaterial("ggx?roughness=0.35&ks=0.25,0.5,0.75&kd=0.5");
-  TransferField f = TransferField::zeros(TransferLayout::Matrix, bands, channels, n);
-  for (std::size_t k = 0; k < f.data.size(); ++k)
-    f.data[k] = static_cast<float>(std::sin(0.37 * double(k)) / 3.0);
-  t.field = std::move(f);
+  t.recipe.material = parseMaterial("ggx?roughness=0.35&ks=0.25,0.5,0.75&kd=0.5");
+  Transfer f = Transfer::zeros(testdata::shapeOf(TransferLayout::Matrix, bands, channels, n));
+  float* x = f.mutableValues();
+  for (std::size_t k = 0; k < f.values().size(); ++k)
+    x[k] = static_cast<float>(std::sin(0.37 * double(k)) / 3.0);
+  t.transfer = std::move(f);
   return t;
 }
 
-TEST(BakeFile, MatricesNeedVersionTwoAndRoundTripBitExact) {
+TEST(BakeFile, MatricesRoundTripBitExact) {
   BakeFile b = sampleBake();
+  const std::size_t V = b.mesh.vertexCount();
   // A shadowed matrix beside the shadowed vector: (mode, layout) pairs are unique.
-  b.transfers.push_back(matrixTransfer(TransferMode::Shadowed, 3, 1, b.vertexCount));
-  b.transfers.push_back(matrixTransfer(TransferMode::Interreflected, 2, 3, b.vertexCount));
+  b.transfers.push_back(matrixTransfer(TransferMode::Shadowed, 3, 1, V));
+  b.transfers.push_back(matrixTransfer(TransferMode::Interreflected, 2, 3, V));
   const std::string bytes = encodeBake(b);
   const BakeFile r = decodeBake(asBytes(bytes), "mem.glb");
-  EXPECT_EQ(r.formatVersion, 2);
+  EXPECT_EQ(r.formatVersion, kBakeFormatVersion);
   expectSameBake(b, r);
   EXPECT_EQ(encodeBake(r), bytes);
   ASSERT_NE(r.find(TransferMode::Shadowed, TransferLayout::Matrix), nullptr);
@@ -269,7 +270,7 @@ TEST(BakeFile, WriteAndReadThroughDisk) {
   expectSameBake(b, readBake(path));
   // A failed write leaves nothing behind.
   BakeFile bad = b;
-  bad.transfers[0].field.data.pop_back();
+  bad.transfers[1].transfer = bad.transfers[1].transfer.withFirstRow(1);  // ranges differ
   const std::string badPath = (dir / "bad.glb").string();
   EXPECT_THROW(writeBake(badPath, bad), Error);
   EXPECT_FALSE(std::filesystem::exists(badPath));
@@ -286,7 +287,7 @@ TEST(BakeFile, GltfRulesHold) {
   const Glb g = splitGlb(bytes);
   const auto& j = g.json;
   EXPECT_EQ(j["asset"]["version"], "2.0");
-  EXPECT_EQ(j["extras"]["prtkit"]["formatVersion"], 1);
+  EXPECT_EQ(j["extras"]["prtkit"]["formatVersion"], kBakeFormatVersion);
   ASSERT_EQ(j["buffers"].size(), 1u);
   EXPECT_FALSE(j["buffers"][0].contains("uri"));
   const std::size_t bufLen = j["buffers"][0]["byteLength"];
@@ -360,8 +361,8 @@ TEST(BakeFile, AttributePackingMatchesDocumentation) {
       << err;
   ASSERT_EQ(model.meshes.size(), 2u);
   for (const auto& t : b.transfers) {
-    const std::size_t S = t.field.stride(), K = (S + 3) / 4;
-    const std::string prefix = transferAttributePrefix(t.settings.mode);
+    const std::size_t S = t.transfer.stride(), K = (S + 3) / 4;
+    const std::string prefix = transferAttributePrefix(t.mode());
     for (std::size_t part = 0; part < 2; ++part) {
       const auto& prim = model.meshes[part].primitives[0];
       const MeshPart& mp = b.mesh.parts[part];
@@ -379,7 +380,7 @@ TEST(BakeFile, AttributePackingMatchesDocumentation) {
               q, model.buffers[0].data.data() + view.byteOffset + acc.byteOffset + v * stride, 16);
           for (std::size_t c = 0; c < 4; ++c) {
             const std::size_t idx = 4 * k + c;
-            const float expect = idx < S ? t.field.vertex(mp.firstVertex + v)[idx] : 0.0f;
+            const float expect = idx < S ? t.transfer.row(mp.firstVertex + v)[idx] : 0.0f;
             ASSERT_EQ(std::memcmp(&q[c], &expect, 4), 0) << "vertex " << v << " float " << idx;
           }
         }
@@ -394,15 +395,13 @@ TEST(BakeFile, PartialRangesMergeExactly) {
   const std::size_t V = full.mesh.vertexCount();
   auto piece = [&](std::size_t first, std::size_t n) {
     BakeFile p = full;
-    p.firstVertex = first;
-    p.vertexCount = n;
     for (auto& t : p.transfers) {
-      const std::size_t S = t.field.stride();
-      t.field.vertexCount = n;
-      t.field.data.assign(full.find(t.settings.mode)->field.data.begin() + first * S,
-                          full.find(t.settings.mode)->field.data.begin() + (first + n) * S);
-      t.settings.firstVertex = first;
-      t.settings.vertexCount = n;
+      const std::size_t S = t.transfer.stride();
+      const float* all = full.find(t.mode())->transfer.values().data();
+      TransferShape shape = t.transfer.shape();
+      shape.rows = {first, n};
+      t.transfer = Transfer::dense(
+          shape, FloatArray(std::vector<float>(all + first * S, all + (first + n) * S)));
       t.stats.vertices = n;
     }
     // Through the file format: a partial file has no per-primitive transfer attributes.
@@ -420,9 +419,9 @@ TEST(BakeFile, PartialRangesMergeExactly) {
   const BakeFile merged = mergeBakes(pieces);
   EXPECT_TRUE(merged.complete());
   for (const auto& t : full.transfers) {
-    const BakedTransfer* m = merged.find(t.settings.mode);
+    const BakedTransfer* m = merged.find(t.mode());
     ASSERT_NE(m, nullptr);
-    EXPECT_TRUE(sameBits(m->field.data, t.field.data));
+    EXPECT_TRUE(sameTransfer(m->transfer, t.transfer));
     EXPECT_EQ(m->stats.rays, 3 * t.stats.rays);
     EXPECT_EQ(m->stats.vertices, V);
     EXPECT_DOUBLE_EQ(m->stats.stdErrT0Mean, t.stats.stdErrT0Mean);  // equal means stay equal
@@ -434,7 +433,7 @@ TEST(BakeFile, PartialRangesMergeExactly) {
   EXPECT_THROW(mergeBakes({piece(0, 2), piece(3, 6)}), Error);  // gap at vertex 2
   EXPECT_THROW(mergeBakes({piece(0, 3), piece(2, 7)}), Error);  // overlap
   BakeFile otherSeed = piece(2, 7);
-  otherSeed.transfers[0].settings.seed = 1;
+  otherSeed.transfers[0].recipe.seed = 1;
   EXPECT_THROW(mergeBakes({piece(0, 2), otherSeed}), Error);
   BakeFile otherMesh = piece(2, 7);
   otherMesh.mesh.positions[0].x += 1.0f;
@@ -443,16 +442,17 @@ TEST(BakeFile, PartialRangesMergeExactly) {
 
 TEST(BakeFile, NewerFormatVersionIsRejectedWithOneLine) {
   std::string bytes = encodeBake(sampleBake());
-  const std::string key = "\"formatVersion\":1";
+  const std::string key = "\"formatVersion\":" + std::to_string(kBakeFormatVersion);
   const auto at = bytes.find(key);
   ASSERT_NE(at, std::string::npos);
-  bytes[at + key.size() - 1] = '4';  // same length: the container stays valid
+  bytes[at + key.size() - 1] = '9';  // same length: the container stays valid
   try {
     decodeBake(asBytes(bytes), "new.glb");
     FAIL() << "accepted a newer format";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(),
-                 "new.glb: bake format version 4 is newer than this prtkit understands (3)");
+    EXPECT_EQ(std::string(e.what()),
+              "new.glb: bake format version 9 is newer than this prtkit understands (" +
+                  std::to_string(kBakeFormatVersion) + ")");
   }
 }
 
@@ -472,7 +472,7 @@ TEST(BakeFile, ForeignGltfIsRejected) {
 // A seed string past 2^64 - 1 is our one-line error, not std::stoull's bare "stoull".
 TEST(BakeFile, SeedPastTwoToTheSixtyFourIsRejectedByName) {
   BakeFile b = sampleBake();
-  b.transfers[0].settings.seed = UINT64_MAX;
+  b.transfers[0].recipe.seed = UINT64_MAX;
   std::string bytes = encodeBake(b);
   const auto at = bytes.find("\"18446744073709551615\"");
   ASSERT_NE(at, std::string::npos);
@@ -516,8 +516,11 @@ TEST(BakeFile, TruncatedOrCorruptFilesThrowNeverCrash) {
     for (int f = 0; f < flips; ++f) bad[rng() % bad.size()] = static_cast<char>(rng());
     try {
       const BakeFile r = decodeBake(asBytes(bad), "bad.glb");
-      for (const auto& t : r.transfers)
-        EXPECT_EQ(t.field.data.size(), r.vertexCount * t.field.stride());
+      for (const auto& t : r.transfers) {
+        EXPECT_EQ(t.transfer.rows(), r.rows());
+        if (!t.transfer.compressed())
+          EXPECT_EQ(t.transfer.values().size(), r.rows().count * t.transfer.stride());
+      }
     } catch (const Error&) {
     }
   }
@@ -532,8 +535,8 @@ TEST(BakeFile, WriterRejectsInconsistentBakes) {
   b.mesh.parts[1].firstVertex = 3;  // parts overlap
   EXPECT_THROW(encodeBake(b), Error);
   b = sampleBake();
-  b.vertexCount = 100;
-  EXPECT_THROW(encodeBake(b), Error);
+  for (BakedTransfer& t : b.transfers) t.transfer = t.transfer.withFirstRow(100);
+  EXPECT_THROW(encodeBake(b), Error);  // outside the mesh
   b = sampleBake();
   b.mesh.triangles.clear();
   b.mesh.parts.clear();
@@ -547,35 +550,35 @@ TEST(BakeFile, WriterRejectsInconsistentBakes) {
   EXPECT_EQ(r.mesh.triangles, b.mesh.triangles);
 }
 
-// Compressed transfer (version 3): bit-exact round trip of ids, weights, means and bases for a
-// vector and a matrix transfer, uint16 ids, stats kept; a version-2 claim is refused by name.
-TEST(BakeFile, CompressedTransferNeedsVersionThreeAndRoundTripsBitExact) {
+// Compressed transfer: bit-exact round trip of ids, weights, means and bases for a vector and a
+// matrix transfer, uint16 ids, stats kept; a version-2 claim is refused by name.
+TEST(BakeFile, CompressedTransferRoundTripsBitExact) {
   BakeFile b = sampleBake();
-  b.transfers.push_back(matrixTransfer(TransferMode::Unshadowed, 2, 3, b.vertexCount));
+  b.transfers.push_back(matrixTransfer(TransferMode::Unshadowed, 2, 3, b.mesh.vertexCount()));
   for (std::size_t i : {std::size_t(0), std::size_t(2)}) {  // shadowed vector, unshadowed matrix
     BakedTransfer& t = b.transfers[i];
-    t.compression = {3, i == 0 ? 2 : 0, 77, 10};  // N = 0 (no weights, no basis) for the matrix
-    t.compressed = compressCpca(t.field, t.compression, &t.compressionStats);
-    t.field.data.clear();
+    CpcaOptions o;
+    o.clusters = 3;
+    o.basisCount = i == 0 ? 2 : 0;  // N = 0 (no weights, no basis) for the matrix
+    o.seed = 77;
+    o.maxIterations = 10;
+    CpcaStats stats;
+    t.transfer = compressCpca(t.transfer, o, &stats);
+    t.compression = {o, stats};
   }
   const std::string bytes = encodeBake(b);
   const BakeFile r = decodeBake(asBytes(bytes), "mem.glb");
-  EXPECT_EQ(r.formatVersion, 3);
   EXPECT_EQ(encodeBake(r), bytes);
   for (std::size_t i : {std::size_t(0), std::size_t(2)}) {
     const BakedTransfer &x = b.transfers[i], &y = r.transfers[i];
-    ASSERT_TRUE(y.compressed.has_value());
-    EXPECT_EQ(y.field.layout, x.field.layout);
-    EXPECT_EQ(y.compressed->cluster, x.compressed->cluster);
-    EXPECT_TRUE(sameBits(y.compressed->weights, x.compressed->weights));
-    EXPECT_TRUE(sameBits(y.compressed->means, x.compressed->means));
-    EXPECT_TRUE(sameBits(y.compressed->basis, x.compressed->basis));
-    EXPECT_EQ(y.compression.seed, 77u);
-    EXPECT_EQ(y.compressionStats.squaredError, x.compressionStats.squaredError);
-    EXPECT_EQ(y.compressionStats.iterations, x.compressionStats.iterations);
-    EXPECT_TRUE(sameBits(y.dense().data, x.compressed->reconstruct().data));
+    ASSERT_TRUE(y.transfer.compressed());
+    EXPECT_TRUE(sameTransfer(x.transfer, y.transfer));
+    EXPECT_EQ(y.compression.fit.seed, 77u);
+    EXPECT_EQ(y.compression.stats.squaredError, x.compression.stats.squaredError);
+    EXPECT_EQ(y.compression.stats.iterations, x.compression.stats.iterations);
+    EXPECT_TRUE(sameBits(y.transfer.toDense().values(), x.transfer.toDense().values()));
   }
-  EXPECT_FALSE(r.transfers[1].compressed.has_value());
+  EXPECT_FALSE(r.transfers[1].transfer.compressed());
   const Glb g = splitGlb(bytes);
   const auto& t0 = g.json["extras"]["prtkit"]["transfers"][0];
   EXPECT_EQ(t0["compressed"]["clusters"], 3);
@@ -587,13 +590,13 @@ TEST(BakeFile, CompressedTransferNeedsVersionThreeAndRoundTripsBitExact) {
     for (const auto& [name, index] : mesh["primitives"][0]["attributes"].items())
       EXPECT_EQ(name.find("_PRT_SHADOWED"), std::string::npos) << name;
   // A version-2 claim holding compressed transfer is refused, naming the version.
-  std::string edited = bytes;
-  const std::string key = "\"formatVersion\":3";
-  const auto at = edited.find(key);
-  ASSERT_NE(at, std::string::npos);
-  edited[at + key.size() - 1] = '2';
+  nlohmann::json doc = g.json;
+  doc["extras"]["prtkit"]["formatVersion"] = 2;
+  // (Version 2 stored the material as its spec string.)
+  for (auto& t : doc["extras"]["prtkit"]["transfers"])
+    t["settings"]["material"] = parseMaterial("lambert").spec();
   try {
-    decodeBake(asBytes(edited), "old.glb");
+    decodeBake(asBytes(withJson(bytes, doc)), "old.glb");
     FAIL() << "compressed transfer in a version-2 file was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("needs version 3"), std::string::npos) << e.what();
@@ -619,10 +622,66 @@ TEST(BakeFile, CompressedTransferNeedsVersionThreeAndRoundTripsBitExact) {
   }
   // Compressed pieces are not merged.
   EXPECT_THROW(mergeBakes({b, b}), Error);
-  // expandCompressed gives dense rows a version-1/2 consumer understands.
-  BakeFile dense = r;
-  dense.expandCompressed();
-  EXPECT_EQ(dense.requiredVersion(), 2);
+}
+
+// The material is stored as structured fields that read back exactly (version 4), and the
+// spec string of versions 2-3 still reads.
+TEST(BakeFile, MaterialIsStructuredAndReadsBackExactly) {
+  BakeFile b = sampleBake();
+  Material m = parseMaterial("phong?exponent=17.123456789&ks=0.1234567,0.5,0.75");
+  m.diffuse = Rgb(1.0f / 3.0f, 0.2f, 0.7f);
+  b.transfers[0].recipe.material = m;
+  const std::string bytes = encodeBake(b);
+  const BakeFile r = decodeBake(asBytes(bytes), "m.glb");
+  EXPECT_EQ(r.transfers[0].recipe.material, m);
+  const nlohmann::json j =
+      splitGlb(bytes).json["extras"]["prtkit"]["transfers"][0]["settings"]["material"];
+  EXPECT_EQ(j["type"], "phong");
+  EXPECT_EQ(j["exponent"].get<double>(), 17.123456789);
+  EXPECT_EQ(j["ks"][0].get<double>(), 0.1234567);  // the float's shortest decimal
+  EXPECT_FALSE(
+      splitGlb(bytes).json["extras"]["prtkit"]["transfers"][0]["settings"].contains("albedo"));
+  // Version 3 wrote the spec string and a separate albedo: both still read.
+  nlohmann::json doc = splitGlb(bytes).json;
+  doc["extras"]["prtkit"]["formatVersion"] = 3;
+  doc["extras"]["prtkit"]["transfers"][0]["settings"]["material"] = "ggx?roughness=0.5&ks=0.25";
+  doc["extras"]["prtkit"]["transfers"][0]["settings"]["albedo"] = {0.5, 0.25, 0.125};
+  const BakeFile old = decodeBake(asBytes(withJson(bytes, doc)), "old.glb");
+  const Material& om = old.transfers[0].recipe.material;
+  EXPECT_EQ(om.lobe.kind, LobeKind::Ggx);
+  EXPECT_EQ(om.lobe.roughness, 0.5);
+  EXPECT_EQ(om.specular, Rgb(0.25f));
+  EXPECT_EQ(*om.diffuse, Rgb(0.5f, 0.25f, 0.125f));
+  // A structured material out of range is refused by name.
+  doc = splitGlb(bytes).json;
+  doc["extras"]["prtkit"]["transfers"][0]["settings"]["material"]["exponent"] = -1;
+  try {
+    decodeBake(asBytes(withJson(bytes, doc)), "bad.glb");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("material.exponent"), std::string::npos) << e.what();
+  }
+}
+
+// A dense matrix read from a file views the file's bytes instead of copying them.
+TEST(BakeFile, ReadingViewsTheFileForMatrices) {
+  const prt::testing::ScratchDir scratch;
+  const std::string path = (scratch.path() / "m.glb").string();
+  BakeFile b = sampleBake();
+  b.transfers.push_back(matrixTransfer(TransferMode::Shadowed, 3, 1, b.mesh.vertexCount()));
+  writeBake(path, b);
+  const BakeFile r = readBake(path);
+  const BakedTransfer* m = r.find(TransferMode::Shadowed, TransferLayout::Matrix);
+  ASSERT_NE(m, nullptr);
+  EXPECT_TRUE(m->transfer.values().isView());
+  EXPECT_FALSE(r.find(TransferMode::Shadowed, TransferLayout::Vector)->transfer.values().isView());
+  expectSameBake(b, r);
+  // decodeBake of bytes the caller owns copies.
+  const std::string bytes = encodeBake(b);
+  EXPECT_FALSE(decodeBake(asBytes(bytes), "x")
+                   .find(TransferMode::Shadowed, TransferLayout::Matrix)
+                   ->transfer.values()
+                   .isView());
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "common/random_data.hpp"
 #include "common/scratch.hpp"
 #include "prt/core/error.hpp"
 #include "prt/geometry/load.hpp"
@@ -74,19 +75,16 @@ ObjText parseObjText(const std::string& text) {
 }
 
 // A transfer that names its vertex: (position, uv, normal, index) — 9 numbers = 3 bands.
-TransferField selfDescribing(const Mesh& m) {
-  TransferField f;
-  f.bands = 3;
-  f.vertexCount = m.vertexCount();
-  f.data.resize(f.vertexCount * 9);
-  for (std::size_t v = 0; v < f.vertexCount; ++v) {
-    float* r = f.vertex(v);
+Transfer selfDescribing(const Mesh& m) {
+  std::vector<float> values(m.vertexCount() * 9);
+  for (std::size_t v = 0; v < m.vertexCount(); ++v) {
+    float* r = values.data() + 9 * v;
     r[0] = m.positions[v].x, r[1] = m.positions[v].y, r[2] = m.positions[v].z;
     r[3] = m.uvs.empty() ? -1 : m.uvs[v].x, r[4] = m.uvs.empty() ? -1 : m.uvs[v].y;
     r[5] = m.normals[v].x, r[6] = m.normals[v].y, r[7] = m.normals[v].z;
     r[8] = static_cast<float>(v);
   }
-  return f;
+  return testdata::denseTransfer(TransferLayout::Vector, 3, 1, std::move(values));
 }
 
 // Does a 9-number row describe the OBJ triple (v, vt, vn)?
@@ -125,7 +123,7 @@ TEST_F(Games202Obj, FaceLayoutFollowsTheCourseVertexOrder) {
   const Mesh mesh = loadMesh(obj_);
   ASSERT_EQ(mesh.vertexCount(), order.size());
   ASSERT_EQ(mesh.triangleCount(), o.corners.size() / 3);
-  const TransferField f = selfDescribing(mesh);
+  const Transfer f = selfDescribing(mesh);
 
   // Faces (the course's file): header V, then one line per face corner.
   const Games202Transport faces =
@@ -150,11 +148,10 @@ TEST_F(Games202Obj, FaceLayoutFollowsTheCourseVertexOrder) {
 
 TEST_F(Games202Obj, ExactTextLayoutAndFloatRoundTrip) {
   const Mesh mesh = loadMesh(obj_);
-  TransferField f;
-  f.bands = 2;  // any band count: B² numbers per line
-  f.vertexCount = mesh.vertexCount();
-  for (std::size_t i = 0; i < f.vertexCount * 4; ++i)
-    f.data.push_back(std::nextafter(1.0f / float(i + 3), 1.0f) * (i % 2 ? -1.0f : 1.0f));
+  std::vector<float> values;  // any band count: B² numbers per line
+  for (std::size_t i = 0; i < mesh.vertexCount() * 4; ++i)
+    values.push_back(std::nextafter(1.0f / float(i + 3), 1.0f) * (i % 2 ? -1.0f : 1.0f));
+  const Transfer f = testdata::denseTransfer(TransferLayout::Vector, 2, 1, values);
   const std::string text = formatGames202Transport(f, mesh, Games202Layout::Vertices);
   // First line, then "x x x x \n": each number followed by a space, as the course writes.
   EXPECT_EQ(text.substr(0, 3), "10\n");
@@ -165,8 +162,8 @@ TEST_F(Games202Obj, ExactTextLayoutAndFloatRoundTrip) {
   writeGames202Transport(path, f, mesh, Games202Layout::Vertices);
   const Games202Transport t = readGames202Transport(path);
   EXPECT_EQ(t.bands, 2);
-  ASSERT_EQ(t.rows.size(), f.data.size());
-  EXPECT_EQ(std::memcmp(t.rows.data(), f.data.data(), f.data.size() * 4), 0);
+  ASSERT_EQ(t.rows.size(), values.size());
+  EXPECT_EQ(std::memcmp(t.rows.data(), values.data(), values.size() * 4), 0);
 }
 
 TEST(Games202Transport, RgbNeedsAChannel) {
@@ -174,24 +171,27 @@ TEST(Games202Transport, RgbNeedsAChannel) {
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   m.normals.assign(3, {0, 0, 1});
   m.triangles = {{0, 1, 2}};
-  TransferField rgb;
-  rgb.bands = 1;
-  rgb.channels = 3;
-  rgb.vertexCount = 3;
-  rgb.data = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+  const Transfer rgb =
+      testdata::denseTransfer(TransferLayout::Vector, 1, 3, {1, 2, 3, 4, 5, 6, 7, 8, 9});
   EXPECT_THROW(formatGames202Transport(rgb, m), Error);
-  const TransferField lum = selectChannel(rgb, ChannelSelect::Luminance);
-  EXPECT_EQ(lum.channels, 1);
-  EXPECT_FLOAT_EQ(lum.data[1], 0.2126f * 4 + 0.7152f * 5 + 0.0722f * 6);
-  EXPECT_EQ(selectChannel(rgb, ChannelSelect::Blue).data[2], 9.0f);
-  EXPECT_EQ(selectChannel(rgb, ChannelSelect::Red).data[0], 1.0f);
+  const Transfer lum = selectChannel(rgb, ChannelSelect::Luminance);
+  EXPECT_EQ(lum.channels(), 1);
+  EXPECT_FLOAT_EQ(lum.values()[1], 0.2126f * 4 + 0.7152f * 5 + 0.0722f * 6);
+  EXPECT_EQ(selectChannel(rgb, ChannelSelect::Blue).values()[2], 9.0f);
+  EXPECT_EQ(selectChannel(rgb, ChannelSelect::Red).values()[0], 1.0f);
   EXPECT_EQ(parseChannelSelect("g"), ChannelSelect::Green);
   EXPECT_THROW(parseChannelSelect("alpha"), Error);
   // A field that does not cover the mesh is refused.
-  TransferField small = lum;
-  small.vertexCount = 2;
-  small.data.resize(2);
+  const Transfer small = testdata::denseTransfer(TransferLayout::Vector, 1, 1, {1, 2});
   EXPECT_THROW(formatGames202Transport(small, m), Error);
+  // Matrices are never written as if a row of them were a vector (issue: row 0 exported).
+  const Transfer matrices = testdata::denseTransfer(TransferLayout::Matrix, 1, 1, {1, 2, 3});
+  try {
+    formatGames202Transport(matrices, m);
+    FAIL() << "matrices were written as vectors";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("matrix"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Games202Transport, MalformedFilesAreRejected) {

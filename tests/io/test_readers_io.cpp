@@ -30,16 +30,13 @@ BakeFile tinyBake(double scale) {
   b.mesh = builtinScene("builtin:sphere?subdiv=0");  // 12 vertices, 20 triangles
   for (Vec3f& p : b.mesh.positions) p = p * float(scale);
   b.mesh.source = "far.obj";  // the recorded source, not the file a user names
-  b.vertexCount = b.mesh.vertexCount();
   BakedTransfer t;
-  t.settings.mode = TransferMode::Unshadowed;
-  t.settings.bands = 1;
-  t.settings.samples = 16;
-  t.settings.vertexCount = b.vertexCount;
-  t.field.bands = 1;
-  t.field.channels = 1;
-  t.field.vertexCount = b.vertexCount;
-  t.field.data.assign(b.vertexCount * t.field.stride(), 0.25f);
+  t.recipe.mode = TransferMode::Unshadowed;
+  t.recipe.samples = 16;
+  TransferShape shape;
+  shape.bands = 1;
+  shape.rows = {0, b.mesh.vertexCount()};
+  t.transfer = Transfer::zeros(shape);
   b.transfers.push_back(t);
   return b;
 }

@@ -1,4 +1,5 @@
-// Glossy relighting (prt/relight/glossy.hpp) and the material's lobes (prt/transfer/material.hpp):
+// Glossy relighting (prt/relight/relight.hpp, view_transfer.hpp, relighter.hpp) and the material's
+// lobes (prt/transfer/material.hpp):
 //  * Phong zonal factors against their closed forms; Λ_0 = 1 for every lobe; energy beyond B
 //    falls with B and with roughness;
 //  * the kernel equals a naive double-precision evaluation of kd (dᵀ M L) + ks (gᵀ M L), scalar
@@ -12,12 +13,16 @@
 #include <cmath>
 #include <vector>
 
+#include "common/random_data.hpp"
+#include "prt/core/cpu.hpp"
 #include "prt/core/error.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/relight/glossy.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/relight/relighter.hpp"
+#include "prt/relight/view_transfer.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transport/bake.hpp"
@@ -67,7 +72,7 @@ TEST(Material, SpecsRoundTripAndBadOnesAreRefused) {
 /// A small scene with an unshadowed matrix bake.
 struct Baked {
   Mesh mesh;
-  TransferField m;
+  Transfer m;
   explicit Baked(const std::string& scene, int bands) : mesh(builtinScene(scene)) {
     auto occ = makeEmbreeOccluder(mesh);
     BakeSettings s;
@@ -78,14 +83,34 @@ struct Baked {
   }
 };
 
+/// Glossy relighting through the one entry point.
+std::vector<Rgb> glossy(const Transfer& t, const sh::RgbSh& light, const Material& mat,
+                        const Mesh& mesh, const Vec3f& eye, std::span<const Rgb> albedo,
+                        const Mat3d& rotation = Mat3d::identity(),
+                        relight::RelightInfo* info = nullptr) {
+  return relight::relight(t, light, mat, {mesh.positions, mesh.normals, albedo}, eye, rotation,
+                          info);
+}
+
+/// The scalar matrices as RGB ones, channel c scaled by 0.5 + 0.25 c.
+Transfer rgbOf(const Transfer& m) {
+  TransferShape shape = m.shape();
+  shape.channels = 3;
+  Transfer rgb = Transfer::zeros(shape);
+  float* x = rgb.mutableValues();
+  for (std::size_t k = 0; k < m.values().size(); ++k)
+    for (int c = 0; c < 3; ++c) x[3 * k + c] = m.values()[k] * (0.5f + 0.25f * c);
+  return rgb;
+}
+
 sh::RgbSh someLight(int bands) {
   return envmap::projectEnvironment(envmap::builtinEnvironment("builtin:sky?elevation=35"), bands);
 }
 
 /// e = kd (dᵀ M L) + ks (gᵀ M L) in double, written plainly.
-Rgb naive(const TransferField& t, std::size_t v, const sh::RgbSh& light, const Material& mat,
+Rgb naive(const Transfer& t, std::size_t v, const sh::RgbSh& light, const Material& mat,
           const Vec3f& p, const Vec3f& n, const Vec3f& eye, const Rgb& albedo) {
-  const int B = t.bands, nc = B * B, nl = std::min(light.bands, B) * std::min(light.bands, B);
+  const int B = t.bands(), nc = B * B, nl = std::min(light.bands, B) * std::min(light.bands, B);
   std::vector<double> yn(nc), yr(nc);
   sh::eval(B, Vec3d(n), yn.data());
   const Vec3d vd = normalize(Vec3d(eye - p));
@@ -101,7 +126,7 @@ Rgb naive(const TransferField& t, std::size_t v, const sh::RgbSh& light, const M
       const int l = static_cast<int>(std::sqrt(double(i)));
       double li = 0;  // (M L_c)_i
       for (int j = 0; j < nl; ++j)
-        li += double(t.vertex(v)[(i * nc + j) * t.channels + (t.channels == 1 ? 0 : c)]) *
+        li += double(t.row(v)[(i * nc + j) * t.channels() + (t.channels() == 1 ? 0 : c)]) *
               light.c[j][c];
       diff += a[l] / kPi * yn[i] * li;
       if (mat.glossy()) spec += z[l] * yr[i] * li;
@@ -116,30 +141,26 @@ TEST(RelightGlossy, KernelEqualsNaiveEvaluation) {
   Baked scene("builtin:sphere?subdiv=1", 4);
   const Vec3f eye(0.5f, 2.0f, 3.0f);
   const Material mat = parseMaterial("phong?exponent=12&ks=0.3,0.4,0.5");
-  for (int lightBands : {4, 3, 6}) {
-    const sh::RgbSh light = someLight(lightBands);
-    std::vector<Rgb> out(scene.mesh.vertexCount());
-    const relight::RelightInfo info =
-        relight::relightGlossy(scene.m, light, mat, {scene.mesh.positions, scene.mesh.normals, eye},
-                               scene.mesh.albedo, out);
-    EXPECT_EQ(info.bands, std::min(4, lightBands));
-    for (std::size_t v = 0; v < out.size(); ++v) {
-      const Rgb want = naive(scene.m, v, light, mat, scene.mesh.positions[v], scene.mesh.normals[v],
-                             eye, scene.mesh.albedo[v]);
-      for (int c = 0; c < 3; ++c)
-        ASSERT_NEAR(out[v][c], want[c], 1e-4 * (1 + std::abs(want[c])))
-            << "vertex " << v << " light bands " << lightBands;
+  for (Simd simd : {Simd::Auto, Simd::Portable})
+    for (int lightBands : {4, 3, 6}) {
+      const ScopedSimd policy(simd);
+      const sh::RgbSh light = someLight(lightBands);
+      relight::RelightInfo info;
+      const std::vector<Rgb> out =
+          glossy(scene.m, light, mat, scene.mesh, eye, scene.mesh.albedo, Mat3d::identity(), &info);
+      EXPECT_EQ(info.bands, std::min(4, lightBands));
+      for (std::size_t v = 0; v < out.size(); ++v) {
+        const Rgb want = naive(scene.m, v, light, mat, scene.mesh.positions[v],
+                               scene.mesh.normals[v], eye, scene.mesh.albedo[v]);
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(out[v][c], want[c], 1e-4 * (1 + std::abs(want[c])))
+              << "vertex " << v << " light bands " << lightBands;
+      }
     }
-  }
   // RGB transfer: three different channels (the scalar field scaled per channel).
-  TransferField rgb = scene.m;
-  rgb.channels = 3;
-  rgb.data.resize(scene.m.data.size() * 3);
-  for (std::size_t k = 0; k < scene.m.data.size(); ++k)
-    for (int c = 0; c < 3; ++c) rgb.data[3 * k + c] = scene.m.data[k] * (0.5f + 0.25f * c);
+  const Transfer rgb = rgbOf(scene.m);
   const sh::RgbSh light = someLight(4);
-  std::vector<Rgb> out(scene.mesh.vertexCount());
-  relight::relightGlossy(rgb, light, mat, {scene.mesh.positions, scene.mesh.normals, eye}, {}, out);
+  const std::vector<Rgb> out = glossy(rgb, light, mat, scene.mesh, eye, {});
   for (std::size_t v = 0; v < out.size(); ++v) {
     const Rgb want =
         naive(rgb, v, light, mat, scene.mesh.positions[v], scene.mesh.normals[v], eye, Rgb(1.0f));
@@ -153,25 +174,20 @@ TEST(RelightGlossy, KernelEqualsNaiveEvaluation) {
 TEST(RelightGlossy, ViewTransferRelightsLikeTheMatrices) {
   Baked scene("builtin:sphere?subdiv=1", 4);
   const Vec3f eye(0.5f, 2.0f, 3.0f);
-  TransferField rgb = scene.m;
-  rgb.channels = 3;
-  rgb.data.resize(scene.m.data.size() * 3);
-  for (std::size_t k = 0; k < scene.m.data.size(); ++k)
-    for (int c = 0; c < 3; ++c) rgb.data[3 * k + c] = scene.m.data[k] * (0.5f + 0.25f * c);
-  const relight::GlossyView view{scene.mesh.positions, scene.mesh.normals, eye};
+  const Transfer rgb = rgbOf(scene.m);
+  const relight::Surface surface{scene.mesh.positions, scene.mesh.normals, scene.mesh.albedo};
   for (const char* spec :
        {"phong?exponent=12&ks=0.3,0.4,0.5", "ggx?roughness=0.4&ks=0.2&kd=0.6", "lambert"}) {
     SCOPED_TRACE(spec);
     const Material mat = parseMaterial(spec);
-    for (const TransferField* m : {&scene.m, &rgb}) {
-      const TransferField t =
-          relight::viewTransfer(*m, relight::prepareMaterial(mat, 4), view, scene.mesh.albedo);
-      ASSERT_EQ(t.layout, TransferLayout::Vector);
-      ASSERT_EQ(t.channels, 3);
+    for (const Transfer* m : {static_cast<const Transfer*>(&scene.m), &rgb}) {
+      const Transfer t = relight::viewTransfer(*m, prepareMaterial(mat, 4), surface, eye);
+      ASSERT_EQ(t.layout(), TransferLayout::Vector);
+      ASSERT_EQ(t.channels(), 3);
       for (int lightBands : {4, 3, 6}) {
         const sh::RgbSh light = someLight(lightBands);
         const Mat3d turn = rotationEulerXYZ(10, 40 * lightBands, 0);
-        const std::vector<Rgb> out = relight::relight(t, light, {}, turn);
+        const std::vector<Rgb> out = relight::relight(t, light, Material{}, {}, Vec3f(0.0f), turn);
         const sh::RgbSh turned = sh::Rotation(lightBands, turn).apply(light);
         for (std::size_t v = 0; v < out.size(); ++v) {
           const Rgb want = naive(*m, v, turned, mat, scene.mesh.positions[v], scene.mesh.normals[v],
@@ -194,10 +210,8 @@ TEST(RelightGlossy, WhiteFurnaceNeverExceedsTheLight) {
   for (const char* spec : {"phong?exponent=4&ks=0.6&kd=0.4", "ggx?roughness=0.5&ks=0.7&kd=0.3",
                            "phong?exponent=1&ks=1&kd=0"}) {
     const Material mat = parseMaterial(spec);
-    std::vector<Rgb> out(scene.mesh.vertexCount());
-    relight::relightGlossy(scene.m, white, mat,
-                           {scene.mesh.positions, scene.mesh.normals, Vec3f(0.3f, 1.0f, 4.0f)}, {},
-                           out);
+    const std::vector<Rgb> out =
+        glossy(scene.m, white, mat, scene.mesh, Vec3f(0.3f, 1.0f, 4.0f), {});
     float hi = 0, lo = 1e9f;
     for (const Rgb& e : out) {
       hi = std::max(hi, e.x);
@@ -228,12 +242,11 @@ TEST(RelightGlossy, WhiteFurnaceWithGlossyBouncesNeverExceedsTheLight) {
     s.bands = 5;
     s.samples = 1024;
     s.material = parseMaterial(spec);
-    const TransferField inter = bake(mesh, *occ, s);
+    const Transfer inter = bake(mesh, *occ, s);
     s.mode = TransferMode::Shadowed;
-    const TransferField direct = bake(mesh, *occ, s);
-    std::vector<Rgb> e(mesh.vertexCount()), e0(mesh.vertexCount());
-    relight::relightGlossy(inter, white, s.material, {mesh.positions, mesh.normals, eye}, {}, e);
-    relight::relightGlossy(direct, white, s.material, {mesh.positions, mesh.normals, eye}, {}, e0);
+    const Transfer direct = bake(mesh, *occ, s);
+    const std::vector<Rgb> e = glossy(inter, white, s.material, mesh, eye, {});
+    const std::vector<Rgb> e0 = glossy(direct, white, s.material, mesh, eye, {});
     float hi = 0, gain = 0;
     for (std::size_t v = 0; v < e.size(); ++v) {
       hi = std::max(hi, e[v].x);
@@ -258,22 +271,58 @@ TEST(RelightGlossy, TurningTheLightEqualsTurningTheSceneBack) {
   s.mode = TransferMode::Unshadowed;
   s.layout = TransferLayout::Matrix;
   s.bands = 5;
-  const TransferField mTurned = bake(turned, *occ, s);
+  const Transfer mTurned = bake(turned, *occ, s);
   const Material mat = parseMaterial("ggx?roughness=0.4&ks=0.5&kd=0.5");
   const sh::RgbSh light = someLight(5);
   const Vec3f eye(0.2f, 1.5f, 3.0f);
-  std::vector<Rgb> a(scene.mesh.vertexCount()), b(a.size());
-  relight::relightGlossy(scene.m, light, mat, {scene.mesh.positions, scene.mesh.normals, eye}, {},
-                         a, rot);
-  relight::relightGlossy(mTurned, light, mat,
-                         {turned.positions, turned.normals, Vec3f(inv * Vec3d(eye))}, {}, b);
+  const std::vector<Rgb> a = glossy(scene.m, light, mat, scene.mesh, eye, {}, rot);
+  const std::vector<Rgb> b = glossy(mTurned, light, mat, turned, Vec3f(inv * Vec3d(eye)), {});
   for (std::size_t v = 0; v < a.size(); ++v)
     for (int c = 0; c < 3; ++c) ASSERT_NEAR(a[v][c], b[v][c], 2e-3 * (1 + std::abs(b[v][c])));
 }
 
-TEST(RelightGlossy, VectorRelightRefusesMatrices) {
+TEST(RelightGlossy, MatricesNeedAPositionAndNormalPerRow) {
   Baked scene("builtin:sphere?subdiv=0", 3);
-  EXPECT_THROW(relight::relight(scene.m, someLight(3), {}), Error);
+  std::vector<Rgb> out(scene.mesh.vertexCount());
+  EXPECT_THROW(relight::relight(scene.m, someLight(3), Material{}, {}, Vec3f(0.0f), out), Error);
+}
+
+// The frame loop: frames in which only the light turns are relit from the matrices collapsed
+// for the eye (after one full frame and the one that collapses them), and every frame equals the
+// matrices relit through the entry point; a new eye, band count or material relights the
+// matrices again; a frame with nothing changed returns the last radiance.
+TEST(RelightGlossy, RelighterServesLightOnlyFramesFromTheCollapsedTransfer) {
+  Baked scene("builtin:sphere?subdiv=1", 4);
+  const Material mat = parseMaterial("phong?exponent=10&ks=0.4&kd=0.6");
+  relight::Relighter r(scene.m, {scene.mesh.positions, scene.mesh.normals, scene.mesh.albedo});
+  r.setMaterial(mat);
+  const sh::RgbSh light = someLight(4);
+  const auto frame = [&](double degrees, const Vec3f& eye) {
+    const Mat3d turn = rotationEulerXYZ(0, degrees, 0);
+    const std::span<const Rgb> got = r.relight(light, turn, eye);
+    const std::vector<Rgb> want =
+        glossy(scene.m.cut(r.bands()), light, mat, scene.mesh, eye, scene.mesh.albedo, turn);
+    for (std::size_t v = 0; v < want.size(); ++v)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(got[v][c], want[v][c], 1e-4 * (1 + std::abs(want[v][c]))) << "vertex " << v;
+  };
+  const Vec3f eye(0.5f, 2.0f, 3.0f);
+  frame(0, eye);
+  EXPECT_EQ(r.lightOnlyFrames(), 0);
+  frame(20, eye);
+  frame(40, eye);
+  EXPECT_EQ(r.frames(), 3);
+  EXPECT_EQ(r.lightOnlyFrames(), 2);
+  frame(40, eye);  // nothing changed: the same radiance, no relighting
+  EXPECT_EQ(r.frames(), 3);
+  frame(40, Vec3f(1.0f, 2.0f, 3.0f));  // the eye moved: the matrices again
+  EXPECT_EQ(r.lightOnlyFrames(), 2);
+  r.setBands(3);
+  frame(60, Vec3f(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(r.lightOnlyFrames(), 2);
+  frame(80, Vec3f(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(r.lightOnlyFrames(), 3);
+  EXPECT_THROW(r.setBands(5), Error);
 }
 
 }  // namespace

@@ -33,9 +33,9 @@ std::vector<Rgb> bakeAndRelight(const Mesh& mesh, const sh::RgbSh& light, const 
   s.bands = light.bands;
   s.samples = 2048;
   BakeStats stats;
-  const TransferField t = bake(mesh, *occluder, s, &stats);
+  const Transfer t = bake(mesh, *occluder, s, &stats);
   *stdErr = stats.stdErrConstMean;
-  return relight::relight(t, light, mesh.albedo, rotation);
+  return relight::relight(t, light, Material{}, {{}, {}, mesh.albedo}, Vec3f(0.0f), rotation);
 }
 
 double rmsDifference(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {

@@ -16,6 +16,7 @@
 #include "prt/relight/relight.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
+#include "prt/render/primary.hpp"
 #include "prt/render/render.hpp"
 
 namespace prt {
@@ -200,7 +201,7 @@ TEST(Render, SubpixelOffsetsAreStratified) {
 // little constant sky, 3 bands.
 struct Golden {
   Mesh mesh;
-  TransferField transfer;
+  Transfer transfer;
   sh::RgbSh light;
   Vec3f lightDir = normalize(Vec3f(1.0f, 0.6f, 0.4f));
 };
@@ -210,16 +211,17 @@ Golden goldenScene() {
   g.mesh = builtinScene("builtin:sphere?subdiv=3&albedo=0.8");
   const int bands = 3;
   const double lambda[3] = {kPi, 2 * kPi / 3, kPi / 4};
-  g.transfer.bands = bands;
-  g.transfer.channels = 1;
-  g.transfer.vertexCount = g.mesh.vertexCount();
+  std::vector<float> values;
   for (const Vec3f& n : g.mesh.normals) {
     double y[9];
     sh::evalReference(bands, Vec3d(n), y);
     for (int l = 0; l < bands; ++l)
-      for (int m = -l; m <= l; ++m)
-        g.transfer.data.push_back(float(lambda[l] / kPi * y[sh::index(l, m)]));
+      for (int m = -l; m <= l; ++m) values.push_back(float(lambda[l] / kPi * y[sh::index(l, m)]));
   }
+  TransferShape shape;
+  shape.bands = bands;
+  shape.rows = {0, g.mesh.vertexCount()};
+  g.transfer = Transfer::dense(shape, FloatArray(std::move(values)));
   envmap::Cap cap;
   cap.direction = g.lightDir;
   cap.halfAngle = 0.35;
@@ -233,7 +235,8 @@ Golden goldenScene() {
 TEST(Render, LitSideFacesTheLight) {
   const Golden g = goldenScene();
   const auto occ = makeEmbreeOccluder(g.mesh);
-  const auto rad = relight::relight(g.transfer, g.light, g.mesh.albedo);
+  const auto rad =
+      relight::relight(g.transfer, g.light, Material{}, {{}, {}, g.mesh.albedo}, Vec3f(0.0f));
   const Camera cam = render::frameMesh(g.mesh, 64, 64);
   const image::Image img = render::renderRelit(g.mesh, *occ, rad, cam, {64, 64, 4, 0}, {});
   // Luminance-weighted centroid of the image, relative to where the sphere centre projects,
@@ -253,8 +256,8 @@ TEST(Render, LitSideFacesTheLight) {
   EXPECT_GT(cosAngle, 0.95);
   EXPECT_GT(std::hypot(dx, dy), 3.0);  // clearly off-centre, not a flat disc
   // Rotating the light by 180° about +Y moves the lit side: the centroid's x flips sign.
-  const auto rotated =
-      relight::relight(g.transfer, g.light, g.mesh.albedo, rotationEulerXYZ(0, 180, 0));
+  const auto rotated = relight::relight(g.transfer, g.light, Material{}, {{}, {}, g.mesh.albedo},
+                                        Vec3f(0.0f), rotationEulerXYZ(0, 180, 0));
   const image::Image img2 = render::renderRelit(g.mesh, *occ, rotated, cam, {64, 64, 4, 0}, {});
   double sx2 = 0, sw2 = 0;
   for (int y = 0; y < 64; ++y)
@@ -268,7 +271,8 @@ TEST(Render, LitSideFacesTheLight) {
 TEST(Render, GoldenImage) {
   const Golden g = goldenScene();
   const auto occ = makeEmbreeOccluder(g.mesh);
-  const auto rad = relight::relight(g.transfer, g.light, g.mesh.albedo);
+  const auto rad =
+      relight::relight(g.transfer, g.light, Material{}, {{}, {}, g.mesh.albedo}, Vec3f(0.0f));
   const Camera cam = render::frameMesh(g.mesh, 64, 48);
   image::Image img = render::renderRelit(g.mesh, *occ, rad, cam, {64, 48, 4, 0},
                                          render::shBackground(g.light, Mat3d::identity()));

@@ -34,7 +34,7 @@ Environment smoothEnv() {
 struct Scene {
   Mesh mesh;
   std::unique_ptr<Occluder> occ;
-  TransferField transfer;
+  Transfer transfer;
   BakeSettings bake;
 };
 
@@ -162,7 +162,7 @@ TEST(Validate, GlossyBouncesAgreeWithTheGlossyReference) {
   s.transfer = bake(s.mesh, *s.occ, s.bake);
   BakeSettings diffuseBounces = s.bake;
   diffuseBounces.material = parseMaterial("lambert?kd=0.2");
-  const TransferField old = bake(s.mesh, *s.occ, diffuseBounces);
+  const Transfer old = bake(s.mesh, *s.occ, diffuseBounces);
 
   const Environment env = smoothEnv();
   const sh::RgbSh light = envmap::projectEnvironment(env, 6);
@@ -238,7 +238,8 @@ TEST(Validate, EnergyWeightedErrorOfADoubledTransfer) {
   const ValidationReport exact = validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs);
   // Only the reference's noise (and the bake's, far smaller) separates them.
   EXPECT_LT(exact.rows[0].energyRel, 2 * exact.rows[0].refStdErr + 0.002);
-  for (float& x : s.transfer.data) x *= 2;
+  float* x = s.transfer.mutableValues();
+  for (std::size_t i = 0; i < s.transfer.values().size(); ++i) x[i] *= 2;
   const ValidationReport twice = validate(s.mesh, *s.occ, s.transfer, s.bake, env, light, vs);
   EXPECT_NEAR(twice.rows[0].energyRel, 1.0, 0.03);
   EXPECT_NE(reportJson(twice).find("\"energyWeightedRelErr\""), std::string::npos);
@@ -272,10 +273,9 @@ TEST(Validate, BandReconciliationAndBadInput) {
   EXPECT_THROW(validate(s.mesh, *s.occ, s.transfer, s.bake, env, light3, vs), Error);
   // A transfer for another mesh.
   vs.reference.samples = 16;
-  TransferField other = s.transfer;
-  other.vertexCount -= 1;
-  other.data.resize(other.vertexCount * other.stride());
-  EXPECT_THROW(validate(s.mesh, *s.occ, other, s.bake, env, light3, vs), Error);
+  TransferShape shorter = s.transfer.shape();
+  shorter.rows.count -= 1;
+  EXPECT_THROW(validate(s.mesh, *s.occ, Transfer::zeros(shorter), s.bake, env, light3, vs), Error);
 }
 
 TEST(Validate, VertexSubsetIsDeterministicSortedAndUnique) {

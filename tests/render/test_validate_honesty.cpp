@@ -25,7 +25,7 @@ struct Fixture {
   Mesh mesh = builtinScene("builtin:sphere?subdiv=1");
   std::unique_ptr<Occluder> occ = makeEmbreeOccluder(mesh);
   BakeSettings bake;
-  TransferField transfer;
+  Transfer transfer;
   Fixture() {
     bake.mode = TransferMode::Unshadowed;
     bake.bands = 2;
@@ -103,8 +103,9 @@ TEST(ValidateHonesty, NonFinitePrtIsRefusedNamingTheBake) {
   const Environment lit = constant(1.0f);
   sh::RgbSh light = envmap::projectEnvironment(lit, 2);
   light.c[0] = Rgb(3e38f);  // finite, but T·L overflows float (as CPCA weights of 3e38 did)
-  TransferField t = f.transfer;
-  for (float& x : t.data) x *= 16.0f;
+  Transfer t = f.transfer;
+  float* x = t.mutableValues();
+  for (std::size_t i = 0; i < t.rowCount() * t.stride(); ++i) x[i] *= 16.0f;
   ValidateSettings vs;
   vs.reference.samples = 16;
   vs.bakeName = "given.glb";

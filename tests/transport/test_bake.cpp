@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/random_data.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -56,8 +58,9 @@ TEST(Bake, ConvexSphereHasNoSelfShadowing) {
       bake(scene.mesh, *scene.occluder, settings(TransferMode::Unshadowed, 4, 256));
   const auto shadowed =
       bake(scene.mesh, *scene.occluder, settings(TransferMode::Shadowed, 4, 256), &stats);
-  ASSERT_EQ(shadowed.data.size(), scene.mesh.vertexCount() * 16);
-  EXPECT_EQ(shadowed.data, unshadowed.data);  // bit-identical: every ray escapes
+  ASSERT_EQ(shadowed.values().size(), scene.mesh.vertexCount() * 16);
+  EXPECT_EQ(testdata::valuesOf(shadowed),
+            testdata::valuesOf(unshadowed));  // bit-identical: every ray escapes
   EXPECT_EQ(stats.rays, scene.mesh.vertexCount() * 256);
   EXPECT_GT(stats.raysPerSecond, 0.0);
 }
@@ -69,8 +72,8 @@ TEST(Bake, WhiteFurnaceOnConvexObjectIsExactWithCosineSobol) {
   BakeStats stats;
   const auto t =
       bake(scene.mesh, *scene.occluder, settings(TransferMode::Shadowed, 3, 512), &stats);
-  for (std::size_t v = 0; v < t.vertexCount; ++v)
-    ASSERT_NEAR(t.vertex(v)[0] * kSqrt4Pi, 1.0, 2e-6) << "vertex " << v;
+  for (std::size_t v = 0; v < t.rowCount(); ++v)
+    ASSERT_NEAR(t.row(v)[0] * kSqrt4Pi, 1.0, 2e-6) << "vertex " << v;
   // The i.i.d. standard error of a zero-variance estimator is zero.
   EXPECT_LT(stats.stdErrConstMax, 1e-6);
 }
@@ -86,13 +89,13 @@ TEST(Bake, WhiteFurnaceWithUniformRandomWithinStatedError) {
   const double expectedSe = std::sqrt(5.0 / 3.0 / 1024);
   EXPECT_NEAR(stats.stdErrConstMean, expectedSe, 0.1 * expectedSe);
   double worst = 0, sumSq = 0;
-  for (std::size_t v = 0; v < t.vertexCount; ++v) {
-    const double e = t.vertex(v)[0] * kSqrt4Pi - 1.0;
+  for (std::size_t v = 0; v < t.rowCount(); ++v) {
+    const double e = t.row(v)[0] * kSqrt4Pi - 1.0;
     worst = std::max(worst, std::abs(e));
     sumSq += e * e;
   }
   // RMS over vertices within 20% of the stated error; no vertex beyond 5 standard errors.
-  EXPECT_NEAR(std::sqrt(sumSq / t.vertexCount), expectedSe, 0.2 * expectedSe);
+  EXPECT_NEAR(std::sqrt(sumSq / t.rowCount()), expectedSe, 0.2 * expectedSe);
   EXPECT_LT(worst, 5 * expectedSe);
 }
 
@@ -112,12 +115,12 @@ TEST(Bake, UnshadowedEqualsClampedCosineLobe) {
     const auto t = bake(scene.mesh, *scene.occluder, s);
     double worst = 0, sumSq = 0;
     std::vector<double> y(bands * bands);
-    for (std::size_t v = 0; v < t.vertexCount; ++v) {
+    for (std::size_t v = 0; v < t.rowCount(); ++v) {
       sh::evalReference(bands, Vec3d(scene.mesh.normals[v]), y.data());
       for (int l = 0; l < bands; ++l)
         for (int m = -l; m <= l; ++m) {
           const int i = sh::index(l, m);
-          const double e = t.vertex(v)[i] - A[l] / kPi * y[i];
+          const double e = t.row(v)[i] - A[l] / kPi * y[i];
           worst = std::max(worst, std::abs(e));
           sumSq += e * e;
         }
@@ -126,7 +129,7 @@ TEST(Bake, UnshadowedEqualsClampedCosineLobe) {
       EXPECT_LT(worst, 1e-6);
     } else {
       // RMS error ~ 1/√N (the per-sample values have variance ≲ 1); never 0.
-      const double rms = std::sqrt(sumSq / (t.vertexCount * bands * bands));
+      const double rms = std::sqrt(sumSq / (t.rowCount() * bands * bands));
       EXPECT_GT(rms, 0.1 / std::sqrt(1024.0));
       EXPECT_LT(rms, 1.5 / std::sqrt(1024.0));
     }
@@ -178,12 +181,11 @@ TEST(Bake, SphereAbovePlaneOccludesOneMinusRatioSquared) {
   for (Sampling sampling : {Sampling::CosineSobol, Sampling::UniformRandom}) {
     BakeSettings s = settings(TransferMode::Shadowed, 3, 4096);
     s.sampling = sampling;
-    s.firstVertex = below;
-    s.vertexCount = 1;
+    s.rows = {below, 1};
     BakeStats stats;
     const auto t = bake(scene.mesh, *scene.occluder, s, &stats);
-    ASSERT_EQ(t.vertexCount, 1u);
-    const double lit = t.vertex(0)[0] * kSqrt4Pi;
+    ASSERT_EQ(t.rowCount(), 1u);
+    const double lit = t.row(0)[0] * kSqrt4Pi;
     EXPECT_GT(stats.stdErrConstMax, 1e-3);  // the estimate is not degenerate
     EXPECT_NEAR(lit, expected, 3 * stats.stdErrConstMax) << toString(sampling);
   }
@@ -193,14 +195,14 @@ TEST(Bake, SphereAbovePlaneOccludesOneMinusRatioSquared) {
 struct Summary {
   double mean = 0, max = 0;
 };
-Summary summarise(const TransferField& t) {
+Summary summarise(const Transfer& t) {
   Summary s;
-  for (std::size_t v = 0; v < t.vertexCount; ++v) {
-    const double x = t.vertex(v)[0] * kSqrt4Pi;
+  for (std::size_t v = 0; v < t.rowCount(); ++v) {
+    const double x = t.row(v)[0] * kSqrt4Pi;
     s.mean += x;
     s.max = std::max(s.max, x);
   }
-  s.mean /= double(t.vertexCount);
+  s.mean /= double(t.rowCount());
   return s;
 }
 
@@ -253,12 +255,12 @@ TEST(Bake, InterreflectionWhiteFurnaceInSphericalCavity) {
   BakeSettings s = settings(TransferMode::Interreflected, 3, 256);
   s.material.diffuse = Rgb(1.0f);
   std::vector<Summary> sums;
-  std::vector<TransferField> bakes;
+  std::vector<Transfer> bakes;
   for (int k = 0; k <= 4; ++k) {
     s.bounces = k;
     BakeStats stats;
     bakes.push_back(bake(cavity.mesh, *occluder, s, &stats));
-    EXPECT_EQ(bakes.back().channels, 1);
+    EXPECT_EQ(bakes.back().channels(), 1);
     sums.push_back(summarise(bakes.back()));
     const double exact = 1.0 - std::pow(1.0 - f, k + 1);
     // Mean over vertices: Monte Carlo error averages out; what remains is the polyhedral
@@ -271,8 +273,8 @@ TEST(Bake, InterreflectionWhiteFurnaceInSphericalCavity) {
   for (int k = 1; k <= 4; ++k) {
     EXPECT_GT(sums[k].mean, sums[k - 1].mean) << "bounce " << k;
     // Per vertex the series never decreases.
-    for (std::size_t i = 0; i < bakes[k].data.size(); i += 9)
-      ASSERT_GE(bakes[k].data[i], bakes[k - 1].data[i] - 1e-6f);
+    for (std::size_t i = 0; i < bakes[k].values().size(); i += 9)
+      ASSERT_GE(bakes[k].values()[i], testdata::valuesOf(bakes[k - 1])[i] - 1e-6f);
     const double ratio = (1 - sums[k].mean) / (1 - sums[k - 1].mean);
     EXPECT_NEAR(ratio, 1.0 - f, 0.005) << "bounce " << k;
   }
@@ -284,18 +286,18 @@ TEST(Bake, EachBounceAtMostAlbedoTimesThePrevious) {
   const float rho = 0.6f;
   BakeSettings s = settings(TransferMode::Interreflected, 2, 128);
   s.material.diffuse = Rgb(rho);
-  std::vector<TransferField> bakes;
+  std::vector<Transfer> bakes;
   for (int k = 0; k <= 3; ++k) {
     s.bounces = k;
     bakes.push_back(bake(scene.mesh, *scene.occluder, s));
   }
   double prevMax = 0;
-  for (std::size_t v = 0; v < bakes[0].vertexCount; ++v)
-    prevMax = std::max(prevMax, double(bakes[0].vertex(v)[0]));
+  for (std::size_t v = 0; v < bakes[0].rowCount(); ++v)
+    prevMax = std::max(prevMax, double(bakes[0].row(v)[0]));
   for (int k = 1; k <= 3; ++k) {
     double maxBounce = 0;
-    for (std::size_t v = 0; v < bakes[k].vertexCount; ++v)
-      maxBounce = std::max(maxBounce, double(bakes[k].vertex(v)[0] - bakes[k - 1].vertex(v)[0]));
+    for (std::size_t v = 0; v < bakes[k].rowCount(); ++v)
+      maxBounce = std::max(maxBounce, double(bakes[k].row(v)[0] - bakes[k - 1].row(v)[0]));
     EXPECT_GT(maxBounce, 0.0) << "bounce " << k;
     EXPECT_LE(maxBounce, rho * prevMax * (1 + 1e-4) + 1e-6) << "bounce " << k;
     prevMax = maxBounce;
@@ -309,34 +311,35 @@ TEST(Bake, ColouredAlbedoGivesRgbTransferMatchingScalarBakes) {
   const Rgb rho(0.9f, 0.5f, 0.2f);
   s.material.diffuse = rho;
   const auto rgb = bake(scene.mesh, *scene.occluder, s);
-  ASSERT_EQ(rgb.channels, 3);
+  ASSERT_EQ(rgb.channels(), 3);
   // Without an override, the Cornell box's own red and green walls make the transfer RGB.
   BakeSettings own = s;
   own.material.diffuse.reset();
-  EXPECT_EQ(bake(scene.mesh, *scene.occluder, own).channels, 3);
+  EXPECT_EQ(bake(scene.mesh, *scene.occluder, own).channels(), 3);
   for (int c = 0; c < 3; ++c) {
     s.material.diffuse = Rgb(rho[c]);
     const auto grey = bake(scene.mesh, *scene.occluder, s);
-    ASSERT_EQ(grey.channels, 1);
+    ASSERT_EQ(grey.channels(), 1);
     double worst = 0;
-    for (std::size_t v = 0; v < grey.vertexCount; ++v)
+    for (std::size_t v = 0; v < grey.rowCount(); ++v)
       for (int i = 0; i < 9; ++i)
-        worst = std::max(worst, double(std::abs(rgb.vertex(v)[i * 3 + c] - grey.vertex(v)[i])));
+        worst = std::max(worst, double(std::abs(rgb.row(v)[i * 3 + c] - grey.row(v)[i])));
     EXPECT_LT(worst, 1e-6) << "channel " << c;
   }
   // Shadowed bakes ignore albedo: always scalar.
   s.mode = TransferMode::Shadowed;
   s.material.diffuse = rho;
-  EXPECT_EQ(bake(scene.mesh, *scene.occluder, s).channels, 1);
+  EXPECT_EQ(bake(scene.mesh, *scene.occluder, s).channels(), 1);
 }
 
 TEST(Bake, FewerBandsEqualTheLeadingCoefficients) {
   Scene scene("builtin:sphere-plane?grid=8&subdiv=2");
   const auto t5 = bake(scene.mesh, *scene.occluder, settings(TransferMode::Shadowed, 5, 128));
   const auto t3 = bake(scene.mesh, *scene.occluder, settings(TransferMode::Shadowed, 3, 128));
-  const auto cut = t5.truncated(3);
-  ASSERT_EQ(cut.data.size(), t3.data.size());
-  for (std::size_t i = 0; i < t3.data.size(); ++i) ASSERT_NEAR(cut.data[i], t3.data[i], 1e-6f);
+  const auto cut = t5.cut(3);
+  ASSERT_EQ(cut.values().size(), t3.values().size());
+  for (std::size_t i = 0; i < t3.values().size(); ++i)
+    ASSERT_NEAR(cut.values()[i], t3.values()[i], 1e-6f);
 }
 
 TEST(Bake, DeterministicOverThreadsAndRanges) {
@@ -345,7 +348,7 @@ TEST(Bake, DeterministicOverThreadsAndRanges) {
     BakeSettings s = settings(mode, 3, 64);
     s.bounces = 2;
     s.material.diffuse = Rgb(0.7f, 0.6f, 0.5f);
-    TransferField one, two;
+    Transfer one, two;
     {
       ThreadLimit limit(1);
       one = bake(scene.mesh, *scene.occluder, s);
@@ -354,20 +357,19 @@ TEST(Bake, DeterministicOverThreadsAndRanges) {
       ThreadLimit limit(2);
       two = bake(scene.mesh, *scene.occluder, s);
     }
-    EXPECT_EQ(one.data, two.data) << toString(mode);
+    EXPECT_EQ(testdata::valuesOf(one), testdata::valuesOf(two)) << toString(mode);
     // A range bake equals the same rows of the full bake.
     const std::size_t a = 37, b = scene.mesh.vertexCount() - 11;
-    s.firstVertex = a;
-    s.vertexCount = b - a;
+    s.rows = {a, b - a};
     const auto part = bake(scene.mesh, *scene.occluder, s);
-    ASSERT_EQ(part.vertexCount, b - a);
-    ASSERT_EQ(part.channels, one.channels);
-    const std::vector<float> rows(one.data.begin() + a * one.stride(),
-                                  one.data.begin() + b * one.stride());
-    EXPECT_EQ(part.data, rows) << toString(mode);
+    ASSERT_EQ(part.rowCount(), b - a);
+    ASSERT_EQ(part.channels(), one.channels());
+    const std::vector<float> all = testdata::valuesOf(one);
+    const std::vector<float> rows(all.begin() + a * one.stride(), all.begin() + b * one.stride());
+    EXPECT_EQ(testdata::valuesOf(part), rows) << toString(mode);
     // And a different seed gives a different bake.
     s.seed = 99;
-    EXPECT_NE(bake(scene.mesh, *scene.occluder, s).data, part.data);
+    EXPECT_NE(testdata::valuesOf(bake(scene.mesh, *scene.occluder, s)), testdata::valuesOf(part));
   }
 }
 
@@ -402,10 +404,9 @@ TEST(Bake, RejectsBadSettings) {
   bad.bounces = 17;
   expectError(scene.mesh, *scene.occluder, bad, "bounces");
   bad = s;
-  bad.firstVertex = scene.mesh.vertexCount();
+  bad.rows = {scene.mesh.vertexCount(), 0};
   expectError(scene.mesh, *scene.occluder, bad, "vertex range");
-  bad.firstVertex = 1;
-  bad.vertexCount = scene.mesh.vertexCount();
+  bad.rows = {1, scene.mesh.vertexCount()};
   expectError(scene.mesh, *scene.occluder, bad, "vertex range");
   Mesh empty;
   empty.source = "empty.obj";

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/random_data.hpp"
+
 #include <cmath>
 #include <vector>
 
@@ -64,16 +66,16 @@ std::vector<double> hemisphereQuadrature(int bands, const Vec3d& n, int rows) {
 }
 
 /// dᵀM: the diffuse response of a matrix row (channel c), to compare with a vector bake.
-std::vector<double> diffuseResponse(const TransferField& m, std::size_t v, const Vec3f& n, int c) {
-  const int B = m.bands, nc = B * B;
+std::vector<double> diffuseResponse(const Transfer& m, std::size_t v, const Vec3f& n, int c) {
+  const int B = m.bands(), nc = B * B;
   std::vector<double> y(nc), out(nc, 0.0);
   sh::eval(B, Vec3d(n), y.data());
   const auto a = sh::clampedCosineKernel(B);
-  const float* row = m.vertex(v);
+  const float* row = m.row(v);
   for (int l = 0; l < B; ++l)
     for (int i = l * l; i < (l + 1) * (l + 1); ++i) {
       const double di = a[l] / kPi * y[i];
-      for (int j = 0; j < nc; ++j) out[j] += di * row[(i * nc + j) * m.channels + c];
+      for (int j = 0; j < nc; ++j) out[j] += di * row[(i * nc + j) * m.channels() + c];
     }
   return out;
 }
@@ -81,15 +83,15 @@ std::vector<double> diffuseResponse(const TransferField& m, std::size_t v, const
 TEST(BakeMatrix, UnshadowedEqualsHemisphereProductByIndependentQuadrature) {
   Scene scene("builtin:sphere?subdiv=2");
   const int B = 4, nc = 16;
-  const TransferField m =
+  const Transfer m =
       bake(scene.mesh, *scene.occluder, matrixSettings(TransferMode::Unshadowed, B, 16));
-  ASSERT_EQ(m.layout, TransferLayout::Matrix);
-  ASSERT_EQ(m.data.size(), scene.mesh.vertexCount() * nc * nc);
+  ASSERT_EQ(m.layout(), TransferLayout::Matrix);
+  ASSERT_EQ(m.values().size(), scene.mesh.vertexCount() * nc * nc);
   for (std::size_t v : {std::size_t(0), std::size_t(7), std::size_t(101)}) {
     const Vec3d n(scene.mesh.normals[v]);
     const auto ref = hemisphereQuadrature(B, normalize(n), 600);
     double worst = 0;
-    for (int k = 0; k < nc * nc; ++k) worst = std::max(worst, std::abs(m.vertex(v)[k] - ref[k]));
+    for (int k = 0; k < nc * nc; ++k) worst = std::max(worst, std::abs(m.row(v)[k] - ref[k]));
     // The midpoint rule's error at the hemisphere's edge is O(h) ≈ 1e-3 at 600 rows.
     EXPECT_LT(worst, 3e-3) << "vertex " << v;
   }
@@ -104,12 +106,12 @@ TEST(BakeMatrix, OppositeHemispheresSumToIdentity) {
   mesh.triangles = {{0, 1, 2}};
   auto occ = makeEmbreeOccluder(mesh);
   for (int B : {3, 6, 9}) {
-    const TransferField m = bake(mesh, *occ, matrixSettings(TransferMode::Unshadowed, B, 16));
+    const Transfer m = bake(mesh, *occ, matrixSettings(TransferMode::Unshadowed, B, 16));
     const int nc = B * B;
     double worst = 0;
     for (int i = 0; i < nc; ++i)
       for (int j = 0; j < nc; ++j) {
-        const double sum = m.vertex(0)[i * nc + j] + m.vertex(1)[i * nc + j];
+        const double sum = m.row(0)[i * nc + j] + m.row(1)[i * nc + j];
         worst = std::max(worst, std::abs(sum - (i == j ? 1.0 : 0.0)));
       }
     EXPECT_LT(worst, 2e-5) << B << " bands";
@@ -119,12 +121,13 @@ TEST(BakeMatrix, OppositeHemispheresSumToIdentity) {
 TEST(BakeMatrix, ConvexSphereShadowedEqualsUnshadowed) {
   Scene scene("builtin:sphere?subdiv=3");
   BakeStats stats;
-  const TransferField u =
+  const Transfer u =
       bake(scene.mesh, *scene.occluder, matrixSettings(TransferMode::Unshadowed, 3, 64));
-  const TransferField s =
+  const Transfer s =
       bake(scene.mesh, *scene.occluder, matrixSettings(TransferMode::Shadowed, 3, 256), &stats);
   EXPECT_EQ(stats.rays, scene.mesh.vertexCount() * 256);
-  EXPECT_EQ(s.data, u.data);  // control variate: no blocked ray, the exact H(n)
+  EXPECT_EQ(testdata::valuesOf(s),
+            testdata::valuesOf(u));  // control variate: no blocked ray, the exact H(n)
 }
 
 TEST(BakeMatrix, DiffuseResponseReproducesTheVectorBake) {
@@ -139,25 +142,25 @@ TEST(BakeMatrix, DiffuseResponseReproducesTheVectorBake) {
     BakeSettings sm = sv;
     sm.layout = TransferLayout::Matrix;
     BakeStats stV, stM;
-    const TransferField vec = bake(scene.mesh, *scene.occluder, sv, &stV);
-    const TransferField mat = bake(scene.mesh, *scene.occluder, sm, &stM);
-    ASSERT_EQ(mat.channels, vec.channels);
+    const Transfer vec = bake(scene.mesh, *scene.occluder, sv, &stV);
+    const Transfer mat = bake(scene.mesh, *scene.occluder, sm, &stM);
+    ASSERT_EQ(mat.channels(), vec.channels());
     double sumErr = 0, worst = 0;
-    for (std::size_t v = 0; v < vec.vertexCount; ++v) {
+    for (std::size_t v = 0; v < vec.rowCount(); ++v) {
       const auto r = diffuseResponse(mat, v, scene.mesh.normals[v], 0);
       for (int i = 0; i < 9; ++i) {
-        const double e = std::abs(r[i] - vec.vertex(v)[i * vec.channels]);
+        const double e = std::abs(r[i] - vec.row(v)[i * vec.channels()]);
         sumErr += e;
         worst = std::max(worst, e);
       }
     }
-    const double meanErr = sumErr / (9.0 * vec.vertexCount);
+    const double meanErr = sumErr / (9.0 * vec.rowCount());
     // Standard errors of T00 are ~1e-3 at 1024 samples; allow 4σ on the mean and 10σ worst.
     const double sigma = std::max(stV.stdErrT0Mean, stM.stdErrT0Mean) + 1e-4;
     EXPECT_LT(meanErr, 4 * sigma) << toString(mode);
     EXPECT_LT(worst, 10 * std::max(stV.stdErrT0Max, stM.stdErrT0Max) + 1e-3) << toString(mode);
     // And the vector bake is not trivially equal to zero response.
-    EXPECT_GT(std::abs(vec.vertex(0)[0]), 0.05);
+    EXPECT_GT(std::abs(vec.row(0)[0]), 0.05);
   }
 }
 
@@ -165,8 +168,8 @@ TEST(BakeMatrix, ColouredBouncesGiveRgbMatrices) {
   Scene scene("builtin:cornell?grid=6");
   BakeSettings s = matrixSettings(TransferMode::Interreflected, 3, 256);
   s.bounces = 1;
-  const TransferField m = bake(scene.mesh, *scene.occluder, s);
-  EXPECT_EQ(m.channels, 3);  // the red and green walls
+  const Transfer m = bake(scene.mesh, *scene.occluder, s);
+  EXPECT_EQ(m.channels(), 3);  // the red and green walls
   EXPECT_EQ(bakeFootprint(scene.mesh, s).channels, 3);
   m.check("cornell");
 }
@@ -178,7 +181,7 @@ TEST(BakeMatrix, IdenticalForAnyThreadCountAndRange) {
     BakeSettings s = matrixSettings(TransferMode::Interreflected, 3, 128);
     s.bounces = 2;
     s.material = parseMaterial(material);
-    TransferField one, two;
+    Transfer one, two;
     {
       ThreadLimit limit(1);
       one = bake(scene.mesh, *scene.occluder, s);
@@ -187,22 +190,21 @@ TEST(BakeMatrix, IdenticalForAnyThreadCountAndRange) {
       ThreadLimit limit(2);
       two = bake(scene.mesh, *scene.occluder, s);
     }
-    EXPECT_EQ(one.data, two.data);
+    EXPECT_EQ(testdata::valuesOf(one), testdata::valuesOf(two));
     BakeSettings r = s;
-    r.firstVertex = 50;
-    r.vertexCount = 40;
-    const TransferField part = bake(scene.mesh, *scene.occluder, r);
-    ASSERT_EQ(part.vertexCount, 40u);
+    r.rows = {50, 40};
+    const Transfer part = bake(scene.mesh, *scene.occluder, r);
+    ASSERT_EQ(part.rowCount(), 40u);
     for (std::size_t v = 0; v < 40; ++v)
-      for (std::size_t k = 0; k < part.stride(); ++k)
-        ASSERT_EQ(part.vertex(v)[k], one.vertex(50 + v)[k]);
+      for (std::size_t k = 0; k < part.stride(); ++k) ASSERT_EQ(part.row(v)[k], one.row(50 + v)[k]);
   }
 }
 
 /// ‖M_a − M_b‖_F over all rows and channels.
-double frobeniusDistance(const TransferField& a, const TransferField& b) {
+double frobeniusDistance(const Transfer& a, const Transfer& b) {
   double sum = 0;
-  for (std::size_t k = 0; k < a.data.size(); ++k) sum += std::pow(double(a.data[k]) - b.data[k], 2);
+  for (std::size_t k = 0; k < a.values().size(); ++k)
+    sum += std::pow(double(a.values()[k]) - b.values()[k], 2);
   return std::sqrt(sum);
 }
 
@@ -221,9 +223,9 @@ TEST(BakeMatrix, AVanishingLobeBouncesLikeADiffuseSurface) {
     sg.material = parseMaterial("phong?exponent=4&ks=1e-6&kd=0.8");
     BakeSettings sh = sd;
     sh.mode = TransferMode::Shadowed;
-    const TransferField diffuse = bake(scene.mesh, *scene.occluder, sd);
-    const TransferField glossy = bake(scene.mesh, *scene.occluder, sg);
-    const TransferField direct = bake(scene.mesh, *scene.occluder, sh);
+    const Transfer diffuse = bake(scene.mesh, *scene.occluder, sd);
+    const Transfer glossy = bake(scene.mesh, *scene.occluder, sg);
+    const Transfer direct = bake(scene.mesh, *scene.occluder, sh);
     const double bounce = frobeniusDistance(diffuse, direct);
     const double gap = frobeniusDistance(glossy, diffuse);
     std::printf("%d bounce(s): bounced light %.4f, glossy vs diffuse bounce surfaces %.4f\n",
@@ -243,16 +245,16 @@ TEST(BakeMatrix, GlossyBounceIsLinearInKsPerChannel) {
   s.material = parseMaterial("phong?exponent=8&ks=0.2,0.4,0.8&kd=0");
   BakeSettings sh = s;
   sh.mode = TransferMode::Shadowed;
-  const TransferField m = bake(scene.mesh, *scene.occluder, s);
-  const TransferField m0 = bake(scene.mesh, *scene.occluder, sh);
-  ASSERT_EQ(m.channels, 3);
-  ASSERT_EQ(m0.channels, 1);
+  const Transfer m = bake(scene.mesh, *scene.occluder, s);
+  const Transfer m0 = bake(scene.mesh, *scene.occluder, sh);
+  ASSERT_EQ(m.channels(), 3);
+  ASSERT_EQ(m0.channels(), 1);
   double sum1 = 0, worst = 0;
-  for (std::size_t v = 0; v < m.vertexCount; ++v)
+  for (std::size_t v = 0; v < m.rowCount(); ++v)
     for (std::size_t k = 0; k < m0.stride(); ++k) {
-      const double b0 = m.vertex(v)[3 * k] - m0.vertex(v)[k];
-      const double b1 = m.vertex(v)[3 * k + 1] - m0.vertex(v)[k];
-      const double b2 = m.vertex(v)[3 * k + 2] - m0.vertex(v)[k];
+      const double b0 = m.row(v)[3 * k] - m0.row(v)[k];
+      const double b1 = m.row(v)[3 * k + 1] - m0.row(v)[k];
+      const double b2 = m.row(v)[3 * k + 2] - m0.row(v)[k];
       sum1 += std::abs(b1);
       worst = std::max({worst, std::abs(b1 - 2 * b0), std::abs(b2 - 2 * b1)});
     }
@@ -272,13 +274,13 @@ TEST(BakeMatrix, ReportedErrorCoversTheSeedToSeedSpread) {
     s.bounces = 1;
     s.material = parseMaterial(material);
     BakeStats st;
-    const TransferField a = bake(scene.mesh, *scene.occluder, s, &st);
+    const Transfer a = bake(scene.mesh, *scene.occluder, s, &st);
     s.seed = 78;
-    const TransferField b = bake(scene.mesh, *scene.occluder, s);
+    const Transfer b = bake(scene.mesh, *scene.occluder, s);
     double sum = 0;
-    for (std::size_t v = 0; v < a.vertexCount; ++v)
-      sum += std::pow(double(a.vertex(v)[0]) - b.vertex(v)[0], 2);
-    const double spread = std::sqrt(sum / double(a.vertexCount) / 2);
+    for (std::size_t v = 0; v < a.rowCount(); ++v)
+      sum += std::pow(double(a.row(v)[0]) - b.row(v)[0], 2);
+    const double spread = std::sqrt(sum / double(a.rowCount()) / 2);
     std::printf("M00 seed-to-seed spread %.5f, reported mean standard error %.5f\n", spread,
                 st.stdErrT0Mean);
     EXPECT_GT(spread, 0.0);
@@ -289,22 +291,23 @@ TEST(BakeMatrix, ReportedErrorCoversTheSeedToSeedSpread) {
 
 TEST(BakeMatrix, TruncationKeepsTheLeadingBlock) {
   Scene scene("builtin:sphere?subdiv=1");
-  const TransferField m5 =
+  const Transfer m5 =
       bake(scene.mesh, *scene.occluder, matrixSettings(TransferMode::Unshadowed, 5, 16));
-  const TransferField m3 =
+  const Transfer m3 =
       bake(scene.mesh, *scene.occluder, matrixSettings(TransferMode::Unshadowed, 3, 16));
-  const TransferField cut = m5.truncated(3);
-  ASSERT_EQ(cut.data.size(), m3.data.size());
-  for (std::size_t k = 0; k < cut.data.size(); ++k) ASSERT_NEAR(cut.data[k], m3.data[k], 1e-6);
+  const Transfer cut = m5.cut(3);
+  ASSERT_EQ(cut.values().size(), m3.values().size());
+  for (std::size_t k = 0; k < cut.values().size(); ++k)
+    ASSERT_NEAR(cut.values()[k], m3.values()[k], 1e-6);
 }
 
 TEST(BakeMatrix, RefusesAFootprintBeyondMemoryWithTheFigure) {
   Scene scene("builtin:sphere?subdiv=1");
-  BakeSettings s = matrixSettings(TransferMode::Shadowed, 32, 16);  // 4 MB per vertex
+  BakeSettings s = matrixSettings(TransferMode::Shadowed, 16, 16);  // 256 KiB per vertex
   const BakeFootprint f = bakeFootprint(scene.mesh, s);
-  EXPECT_EQ(f.bytesPerVertex, std::size_t(32 * 32) * 32 * 32 * 4);
+  EXPECT_EQ(f.bytesPerVertex, std::size_t(16 * 16) * 16 * 16 * 4);
   Mesh big = scene.mesh;
-  // 1e6 vertices × 4 MB = 4 TB: refused before anything is allocated, with the figure.
+  // 1e6 vertices × 256 KiB = 262 GB: refused before anything is allocated, with the figure.
   big.positions.resize(1000000, Vec3f(0.0f));
   big.normals.resize(1000000, Vec3f(0, 1, 0));
   big.albedo.clear();
@@ -313,7 +316,15 @@ TEST(BakeMatrix, RefusesAFootprintBeyondMemoryWithTheFigure) {
     FAIL() << "expected a refusal";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("per vertex"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("TB"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("GB"), std::string::npos) << e.what();
+  }
+  // More bands than a bake takes: refused by the one band limit.
+  s.bands = 17;
+  try {
+    bake(scene.mesh, *scene.occluder, s);
+    FAIL() << "17 bands were baked";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("1..16"), std::string::npos) << e.what();
   }
 }
 

@@ -456,7 +456,7 @@ TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
       {"garbage.glb", "garbage.glb: is not a glTF binary (.glb) file"},
       {"truncated.glb", "truncated.glb: is truncated"},
       {"plain.glb", "plain.glb: is a glTF file but not a prtkit bake"},
-      {"newer.glb", "newer.glb: bake format version 2 is not supported by this page"},
+      {"newer.glb", "newer.glb: bake format version 99 is not supported by this page"},
       {"broken.json", "broken.json: is not JSON"},
       {"rows.json", "rows.json: has 3 coefficients but 2 bands need 4"},
       {"short.json", "short.json: the light has 2 bands but the bake 4"},

@@ -7,10 +7,11 @@ import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 
 import { packWeights, readCompressed } from './compressed.js';
 
-// Version 1: vector transfer as vertex attributes; 3 adds CPCA-compressed transfer (prt
-// compress), which the page relights in the compressed space (compressed.js). Version 2 files
-// hold glossy matrices, which the page does not draw.
-export const kFormatVersions = [1, 3];
+// Version 1: vector transfer as vertex attributes; 2 adds glossy matrices (drawn CPCA-compressed
+// only); 3 adds CPCA-compressed transfer (prt compress), which the page relights in the
+// compressed space (compressed.js); 4 stores the material as structured fields (the page takes
+// the material's kernels from prt-data.js, not from the file).
+export const kFormatVersions = [1, 2, 3, 4];
 // Bands of the glossy shader's SH arrays (64 coefficients; relight/glossy_shader.hpp).
 export const kMaxGlossyBands = 8;
 
@@ -43,7 +44,7 @@ export async function parseBake(buffer, name, limits) {
   const prt = json.extras && json.extras.prtkit;
   if (!prt) fail(name, 'is a glTF file but not a prtkit bake (no extras.prtkit; write one with prt bake)');
   if (!kFormatVersions.includes(prt.formatVersion))
-    fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads versions 1 and 3: diffuse vector transfer, dense or CPCA-compressed)`);
+    fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads versions ${kFormatVersions.join(', ')})`);
   const transfers = Array.isArray(prt.transfers) ? prt.transfers : [];
   if (transfers.length === 0) fail(name, 'the bake holds no transfer (bake it with prt bake --mode ...)');
   const range = prt.vertexRange || {};

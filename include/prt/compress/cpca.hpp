@@ -1,9 +1,9 @@
 #pragma once
-// Clustered principal component analysis of a transfer field (Sloan, Hall, Hart & Snyder,
+// Clustered principal component analysis of a transfer (Sloan, Hall, Hart & Snyder,
 // "Clustered Principal Components for Precomputed Radiance Transfer", SIGGRAPH 2003, §3-4).
 //
-// Each row x_p of a field (its stride() floats: B² or B⁴ values × channels, treated as one signal
-// vector of dimension D) is approximated inside its cluster k = k(p) by
+// Each row x_p of a dense transfer (its stride() floats: B² or B⁴ values × channels, treated as one
+// signal vector of dimension D) is approximated inside its cluster k = k(p) by
 //
 //   x_p ≈ M_k + Σ_{j<N} w_pj B_kj,      w_pj = B_kj · (x_p − M_k),
 //
@@ -36,84 +36,28 @@
 #include <vector>
 
 #include "prt/core/progress.hpp"
-#include "prt/transfer/field.hpp"
+#include "prt/transfer/cpca_settings.hpp"
+#include "prt/transfer/transfer.hpp"
 
 namespace prt {
 
-/// A CPCA-compressed transfer field. Not a third TransferLayout: a field's rows are addressable
-/// floats every kernel can stream, while a compressed row is (cluster, N weights) meaningless
-/// without its cluster's mean and basis. It keeps the shape of the field it came from (layout,
-/// bands, channels, rows) so it can be reconstructed or relit with the same conventions.
-struct CompressedTransfer {
-  TransferLayout layout = TransferLayout::Vector;  ///< of the source rows
-  TransferDomain domain = TransferDomain::Vertices;
-  int bands = 0;
-  int channels = 1;
-  std::size_t vertexCount = 0;
-  int clusters = 0;                    ///< K ≥ 1
-  int basisCount = 0;                  ///< N ≥ 0 (0 = vector quantisation)
-  std::vector<std::uint32_t> cluster;  ///< vertexCount cluster ids < K
-  std::vector<float> weights;          ///< vertexCount × N
-  std::vector<float> means;            ///< K × stride()
-  std::vector<float> basis;            ///< K × N × stride(): B_kj at (k·N + j)·stride()
+/// Compresses a dense transfer into a CPCA-compressed one of the same shape (throws prt::Error
+/// on a compressed source or bad options: K < 1, K > rows, N < 0, N > D). When `start` is given
+/// (a compressed transfer of the same shape and K, any N) its cluster assignment replaces the
+/// seeding, so a sweep over N can warm-start each run from the previous one. `progress` gets
+/// one tick per iteration and may cancel.
+Transfer compressCpca(const Transfer& source, const CpcaOptions& options,
+                      CpcaStats* stats = nullptr, const Transfer* start = nullptr,
+                      const ProgressFn& progress = {});
 
-  /// Floats of one source row (as TransferField::stride()).
-  std::size_t stride() const {
-    return transferRowSize(layout, bands) * static_cast<std::size_t>(channels);
-  }
-  const float* mean(std::size_t k) const { return means.data() + k * stride(); }
-  const float* basisVector(std::size_t k, std::size_t j) const {
-    return basis.data() + (k * static_cast<std::size_t>(basisCount) + j) * stride();
-  }
-  /// Writes the approximation of row v (stride() floats) to out.
-  void reconstructRow(std::size_t v, float* out) const;
-  /// The whole approximated field.
-  TransferField reconstruct() const;
-  /// Bytes as stored: a uint16 (K ≤ 65536) or uint32 cluster id and N floats per row, plus
-  /// K(N+1) rows of stride() floats.
-  std::size_t bytes() const;
-  /// Throws prt::Error("WHAT: ...") unless sizes agree, ids are < K and every value is finite.
-  void check(const std::string& what) const;
-};
-
-struct CpcaOptions {
-  int clusters = 1;        ///< K
-  int basisCount = 0;      ///< N ≤ D
-  std::uint64_t seed = 0;  ///< of the k-means++ seeding
-  int maxIterations = 30;  ///< of the reassignment loop
-  /// Converged when a pass lowers the total squared error by less than this fraction (0: run
-  /// until no row moves or maxIterations).
-  double tolerance = 1e-3;
-};
-
-/// How well a compressed field approximates its source.
-struct CpcaStats {
-  double squaredError = 0;      ///< Σ_p |x_p − x̂_p|²
-  double signalEnergy = 0;      ///< Σ_p |x_p|²
-  double relativeRms = 0;       ///< sqrt(squaredError / signalEnergy)
-  double snrDb = 0;             ///< 10 log10(signalEnergy / squaredError) (inf if exact)
-  double maxRowError = 0;       ///< max_p |x_p − x̂_p| (Euclidean, over the row's floats)
-  double compressionRatio = 0;  ///< source bytes (4·rows·D) / bytes()
-  double seconds = 0;           ///< wall time of the compression
-  int iterations = 0;           ///< reassignment passes run
-};
-
-/// Compresses `field` (throws prt::Error on bad options: K < 1, K > rows, N < 0, N > D). When
-/// `start` is given (same shape, any K, N) its cluster assignment replaces the seeding, so a
-/// sweep over N can warm-start each run from the previous one. `progress` gets one tick per
-/// iteration and may cancel.
-CompressedTransfer compressCpca(const TransferField& field, const CpcaOptions& options,
-                                CpcaStats* stats = nullptr,
-                                const CompressedTransfer* start = nullptr,
-                                const ProgressFn& progress = {});
-
-/// The error statistics of `c` against `field` (seconds and iterations left 0).
-CpcaStats measureCpca(const TransferField& field, const CompressedTransfer& c);
+/// The error statistics of `compressed` against the dense `source` (seconds and iterations
+/// left 0).
+CpcaStats measureCpca(const Transfer& source, const Transfer& compressed);
 
 /// One (K, N) of a sweep.
 struct CpcaSweepPoint {
   int clusters = 0, basisCount = 0;
-  std::size_t bytes = 0;  ///< CompressedTransfer::bytes()
+  std::size_t bytes = 0;  ///< Transfer::bytes() of the compressed transfer
   CpcaStats stats;
 };
 
@@ -121,9 +65,13 @@ struct CpcaSweepPoint {
 /// warm-started from the clustering of N − 1 so the error never grows with N. With
 /// stopAtError > 0 a K's sweep stops at the first N whose relative RMS error is ≤ stopAtError
 /// (larger N only cost more). Points in order of K then N.
-std::vector<CpcaSweepPoint> sweepCpca(const TransferField& field, const std::vector<int>& clusters,
-                                      int maxBasis, std::uint64_t seed, int maxIterations,
-                                      double tolerance, double stopAtError = 0,
+std::vector<CpcaSweepPoint> sweepCpca(const Transfer& source, const std::vector<int>& clusters,
+                                      int maxBasis, const CpcaFit& fit, double stopAtError = 0,
                                       const ProgressFn& progress = {});
+
+/// compressCpca through the warm-started chain N = 0..options.basisCount that sweepCpca runs,
+/// so that a (K, N) picked from a sweep is reproduced exactly; stats.seconds sums the chain.
+Transfer compressCpcaChain(const Transfer& source, const CpcaOptions& options, CpcaStats& stats,
+                           const ProgressFn& progress = {});
 
 }  // namespace prt

@@ -110,6 +110,7 @@ struct Mat3 {
   std::array<std::array<T, 3>, 3> m{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
 
   static constexpr Mat3 identity() { return Mat3{}; }
+  constexpr bool operator==(const Mat3&) const = default;
   constexpr Vec3<T> operator*(const Vec3<T>& v) const {
     return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
             m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,

@@ -18,14 +18,49 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json_fwd.hpp>
 
 namespace tinygltf {
 class Model;
 }
 
 namespace prt::gltf {
+
+/// The parts of a glTF document the accessor reader needs, whatever parsed it (tinygltf for
+/// the mesh loader, nlohmann::json for the bake file, which maps its binary chunk instead of
+/// copying it). Values as the file declares them: nothing here is checked yet.
+struct Document {
+  struct Accessor {
+    int bufferView = -1;
+    std::size_t byteOffset = 0;
+    std::size_t count = 0;
+    std::string type;  ///< "SCALAR", "VEC2" .. "MAT4" as the file spells it
+    int componentType = 0;
+    bool normalized = false;
+    bool sparse = false;
+  };
+  struct BufferView {
+    int buffer = -1;
+    std::size_t byteOffset = 0;
+    std::size_t byteLength = 0;
+    std::size_t byteStride = 0;  ///< 0: tightly packed
+  };
+  std::vector<Accessor> accessors;
+  std::vector<BufferView> bufferViews;
+  std::vector<std::span<const unsigned char>> buffers;  ///< bytes that outlive the reader
+};
+
+/// The document of a model tinygltf parsed (its buffers stay in the model).
+Document documentOf(const tinygltf::Model& model);
+/// The document of a glTF JSON whose buffer 0 is `bin` (a GLB's binary chunk; other buffers,
+/// which would need a uri, are empty). Throws prt::Error(label, ...) on an ill-formed
+/// accessors / bufferViews array (a member of the wrong type, a negative or non-integer value).
+Document documentOf(const nlohmann::json& gltf, std::span<const unsigned char> bin,
+                    const std::string& label);
 
 /// glTF component type codes (§3.6.2.2).
 enum ComponentType : int {
@@ -58,7 +93,7 @@ struct AccessorSpan {
 /// Reads accessors of one parsed glTF model; `label` (the file) begins every error message.
 class AccessorReader {
  public:
-  AccessorReader(std::string label, const tinygltf::Model& model);
+  AccessorReader(std::string label, Document document);
 
   /// The element count accessor `index` declares (only the index is checked; nothing is read),
   /// for checking a total against a limit before reading.
@@ -91,15 +126,19 @@ class AccessorReader {
     return out;
   }
 
+  /// The span of exactly `count` elements of `components` × `componentType`, not normalised,
+  /// every bound checked (what exact<T> copies; a caller may view it instead).
+  AccessorSpan spanExact(int index, int components, int componentType, std::size_t count,
+                         const std::string& what, std::size_t valueSize) const;
+
   /// Throws prt::Error(label, msg).
   [[noreturn]] void fail(const std::string& msg) const;
 
  private:
-  AccessorSpan spanExact(int index, int components, int componentType, std::size_t count,
-                         const std::string& what, std::size_t valueSize) const;
+  const Document::Accessor& accessorAt(int index, const std::string& what) const;
 
   std::string label_;
-  const tinygltf::Model& model_;
+  Document doc_;
 };
 
 }  // namespace prt::gltf

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "prt/geometry/mesh.hpp"
-#include "prt/transfer/field.hpp"
+#include "prt/transfer/transfer.hpp"
 
 namespace prt {
 
@@ -47,16 +47,18 @@ struct Games202Transport {
 enum class ChannelSelect { Luminance, Red, Green, Blue };
 /// Parses "luminance" | "r" | "g" | "b"; throws prt::Error otherwise.
 ChannelSelect parseChannelSelect(const std::string& s);
-/// A scalar transfer from `field`: itself if scalar; else one channel, or the Rec. 709 luminance
-/// 0.2126 R + 0.7152 G + 0.0722 B of each coefficient (linear, so relighting a grey
+/// A scalar transfer from dense vectors: itself if scalar; else one channel, or the Rec. 709
+/// luminance 0.2126 R + 0.7152 G + 0.0722 B of each coefficient (linear, so relighting a grey
 /// environment with it gives the luminance of the RGB result).
-TransferField selectChannel(const TransferField& field, ChannelSelect channel);
+Transfer selectChannel(const Transfer& field, ChannelSelect channel);
 
-/// The file's text. `field` must be scalar and cover every vertex of `mesh`.
-std::string formatGames202Transport(const TransferField& field, const Mesh& mesh,
+/// The file's text. `field` must be dense scalar vectors covering every vertex of `mesh`
+/// (matrices and compressed rows are refused: reduce them first; prt export writes a matrix's
+/// diffuse part, relight::diffuseTransfer).
+std::string formatGames202Transport(const Transfer& field, const Mesh& mesh,
                                     Games202Layout layout = Games202Layout::Faces);
 /// Writes it atomically.
-void writeGames202Transport(const std::string& path, const TransferField& field, const Mesh& mesh,
+void writeGames202Transport(const std::string& path, const Transfer& field, const Mesh& mesh,
                             Games202Layout layout = Games202Layout::Faces);
 
 /// Parses and validates: a positive vertex count, then lines of equally many numbers (a square

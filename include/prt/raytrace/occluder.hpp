@@ -9,22 +9,9 @@
 #include <span>
 
 #include "prt/geometry/mesh.hpp"
+#include "prt/raytrace/ray.hpp"
 
 namespace prt {
-
-struct Ray {
-  Vec3f origin;
-  Vec3f dir;  ///< unit
-  float tnear = 0;
-  float tfar = 3.4e38f;
-};
-
-struct Hit {
-  bool hit = false;
-  std::uint32_t triangle = 0;  ///< index into Mesh::triangles
-  float u = 0, v = 0;          ///< barycentrics: p = (1-u-v) p0 + u p1 + v p2
-  float t = 0;
-};
 
 class Occluder {
  public:

@@ -1,9 +1,19 @@
 #pragma once
-// CPU relighting: per-vertex exit radiance from transfer and lighting,
-//   R_c(p) = albedo_c(p) · Σ_i T_i(p) L_i,c        scalar transfer (channels = 1)
-//   R_c(p) = albedo_c(p) · Σ_i T_i,c(p) L_i,c      RGB transfer    (channels = 3)
-// (Sloan, Kautz & Snyder, "Precomputed Radiance Transfer for Real-Time Rendering in Dynamic,
-// Low-Frequency Lighting Environments", SIGGRAPH 2002, §5.)
+// CPU relighting: exit radiance per row of a transfer, whatever its layout and representation,
+// through one entry point (Sloan, Kautz & Snyder 2002, §5–6; Sloan, Hall, Hart & Snyder 2003,
+// §5 for compressed rows). Inside, one kernel per layout × representation:
+//
+//   dense vectors    R_c(p) = kd_c(p) · Σ_i T_i,c(p) L_i,c          (scalar: T_i,c = T_i)
+//   dense matrices   e_c(p, v) = kd_c(p) d(p)·(M_p L_c) + ks_c g(p, v)·(M_p L_c)
+//                    d_i = (A_l/π) Y_i(n_p), g_i = Λ_l Y_i(R_p(v))   (material.hpp)
+//                    written as u = M_pᵀ d, w = M_pᵀ g, one pass over the B⁴ entries of M_p
+//   CPCA vectors     R(p) = kd(p) ⊙ (M_k·L + Σ_j w_pj (B_kj·L)), the K(N+1) dots once per call
+//   CPCA matrices    L'_p = M_k L + Σ_j w_pj (B_kj L) (B² × RGB per cluster vector, once per
+//                    call), then the glossy shading above on L'_p
+//
+// kd is the material's diffuse colour when it sets one, else the surface's albedo (one per row,
+// one, or none: albedo.hpp). Vectors are diffuse: a material's lobe needs a matrix (callers
+// warn). Matrices are view-dependent: each row is seen from `eye`.
 //
 // Rotating the environment by R is done on the light's coefficients (sh::Rotation, one
 // orthogonal (2l+1)² block per band), never by re-projecting: the result is exactly the
@@ -11,12 +21,15 @@
 //
 // Band counts. SH bands are orthogonal, so a light with more bands than the transfer is cut to
 // the transfer's bands exactly (the extra coefficients would meet zeros). A light with fewer
-// bands than the transfer is an approximation (the transfer's upper bands see no light): we use
-// the light's bands and report it in RelightInfo so the caller can warn.
+// bands than the transfer is an approximation (the transfer's upper bands — for matrices its
+// columns — see no light): the light's bands are used and RelightInfo says so, so the caller can
+// warn. To relight with fewer bands than baked, cut the transfer (Transfer::cut).
 //
-// Cost: a dot product of B² (×3) floats per vertex against the same few hundred bytes of light —
-// memory-bound, so the kernels are written to stream the transfer once with the light held in
-// registers/L1; see docs/perf/relight.md.
+// Cost: memory-bound for dense rows (a dot product of B² (×3) floats, or one pass over a
+// matrix, against the same few hundred bytes of light), compute-bound for compressed matrices;
+// see docs/perf/relight.md and docs/perf/cpca.md. Every kernel has an AVX2+FMA form and a
+// portable one (core/cpu.hpp picks; results agree to float rounding) and is independent of the
+// thread count.
 
 #include <span>
 #include <string>
@@ -25,7 +38,9 @@
 #include "prt/core/vec.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
-#include "prt/transfer/field.hpp"
+#include "prt/transfer/material.hpp"
+#include "prt/transfer/prepared_material.hpp"
+#include "prt/transfer/transfer.hpp"
 
 namespace prt::relight {
 
@@ -40,7 +55,7 @@ struct RelightInfo {
   std::string warning() const;
 };
 
-/// Lighting laid out for the relighting kernels: rotated, cut to `bands`, in two layouts.
+/// Lighting laid out for the kernels: rotated, cut to `bands`, in two layouts.
 struct PreparedLight {
   int bands = 0;
   /// Scalar-transfer layouts: 3 planes (r, g, b) of B² floats padded to a multiple of 4 (P),
@@ -53,22 +68,33 @@ struct PreparedLight {
 /// bands used) and lays the light out for the kernels. Allocates; cheap (B² values).
 PreparedLight prepareLight(const sh::RgbSh& light, int transferBands,
                            const sh::Rotation* rotation = nullptr, RelightInfo* info = nullptr);
+/// The same from coefficients already rotated and cut: (r, g, b) per coefficient, b² of them.
+PreparedLight prepareLight(std::span<const Rgb> rotated, int bands);
 
-/// The kernel: out[v] = albedo(v) ⊙ T(v)·L for every vertex, in parallel. `albedo` holds one
-/// value per vertex, or one value for all (uniform), or nothing (white). `out.size()` must equal
-/// transfer.vertexCount. Allocation-free; results do not depend on the thread count.
-void relight(const TransferField& transfer, const PreparedLight& light, std::span<const Rgb> albedo,
-             std::span<Rgb> out);
+/// Where the transfer's rows are: per row a position and a unit normal (matrices need them:
+/// the view and the lobe), and the albedo (one per row, one, or none = white).
+struct Surface {
+  std::span<const Vec3f> positions;
+  std::span<const Vec3f> normals;
+  std::span<const Rgb> albedo;
+};
 
-/// Convenience: prepareLight with the environment rotated by `rotation` (a lobe along d moves to
-/// R d), then the kernel.
-RelightInfo relight(const TransferField& transfer, const sh::RgbSh& light,
-                    std::span<const Rgb> albedo, std::span<Rgb> out,
+/// The one entry point: out[r] = exit radiance of row r of `transfer` under `light` rotated by
+/// `rotation` (a lobe along d moves to R d), with `material`, seen from `eye` (matrices only).
+/// `out.size()` must equal transfer.rowCount(). Throws prt::Error on mismatched sizes.
+RelightInfo relight(const Transfer& transfer, const sh::RgbSh& light, const Material& material,
+                    const Surface& surface, const Vec3f& eye, std::span<Rgb> out,
                     const Mat3d& rotation = Mat3d::identity());
-
 /// Same, returning a new vector.
-std::vector<Rgb> relight(const TransferField& transfer, const sh::RgbSh& light,
-                         std::span<const Rgb> albedo, const Mat3d& rotation = Mat3d::identity(),
-                         RelightInfo* info = nullptr);
+std::vector<Rgb> relight(const Transfer& transfer, const sh::RgbSh& light, const Material& material,
+                         const Surface& surface, const Vec3f& eye,
+                         const Mat3d& rotation = Mat3d::identity(), RelightInfo* info = nullptr);
+
+/// The entry point for a frame loop that has already rotated and laid out the light (bands ≤
+/// the transfer's) and prepared the material at the transfer's bands: allocation-free for dense
+/// rows.
+void relightPrepared(const Transfer& transfer, const PreparedLight& light,
+                     const PreparedMaterial& material, const Surface& surface, const Vec3f& eye,
+                     std::span<Rgb> out);
 
 }  // namespace prt::relight

@@ -15,7 +15,7 @@
 
 #include "prt/core/vec.hpp"
 #include "prt/geometry/mesh.hpp"
-#include "prt/raytrace/occluder.hpp"
+#include "prt/raytrace/ray.hpp"
 
 namespace prt::render {
 
@@ -108,10 +108,5 @@ class RayGenerator {
   float tanY_, tanX_;
   int width_, height_;
 };
-
-/// Heuristic: true when the eye is inside a closed mesh, i.e. most of a few probe rays from the
-/// eye hit triangles from behind (against their counter-clockwise front). False when nothing or
-/// mostly front faces are hit.
-bool eyeInsideMesh(const Mesh& mesh, const Occluder& occluder, const Vec3f& eye);
 
 }  // namespace prt::render

@@ -43,4 +43,9 @@ image::Image tracePrimary(const Camera& camera, const FrameSettings& settings,
                           const Occluder& occluder, const ShadeFn& shade,
                           const BackgroundFn& background, const ProgressFn& progress = {});
 
+/// Heuristic: true when the eye is inside a closed mesh, i.e. most of a few probe rays from the
+/// eye hit triangles from behind (against their counter-clockwise front). False when nothing or
+/// mostly front faces are hit.
+bool eyeInsideMesh(const Mesh& mesh, const Occluder& occluder, const Vec3f& eye);
+
 }  // namespace prt::render

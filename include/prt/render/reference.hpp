@@ -83,7 +83,7 @@
 #include "prt/envmap/environment.hpp"
 #include "prt/geometry/mesh.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/transfer/field.hpp"
+#include "prt/transfer/bake_settings.hpp"
 #include "prt/transfer/material.hpp"
 
 namespace prt::render {

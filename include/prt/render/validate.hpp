@@ -1,7 +1,7 @@
 #pragma once
 // Validation of a bake against the Monte Carlo reference (reference.hpp): per band count b, the
 // PRT radiance R_b(p) = ρ(p) ⊙ T_b(p)·L_b (the first b² coefficients of one bake and of the
-// light: TransferField::truncated) against the reference R_ref(p), over a set of vertices.
+// light: Transfer::cut) against the reference R_ref(p), over a set of vertices.
 //
 // With N validated vertices p, channels c ∈ {r, g, b}, d = R_b − R_ref, and
 // ε = 10⁻² · m², m the mean over vertices and channels of R_ref (scale-free, so dark vertices do
@@ -76,8 +76,8 @@ std::vector<std::uint32_t> vertexSubset(std::size_t n, std::size_t count, std::u
 /// Validates `transfer` (every vertex of `mesh`, baked with `bake` settings) lit by `light` (the
 /// projection of `env`) against the reference. Band counts beyond min(transfer, light) are
 /// dropped with a warning. Throws prt::Error on mismatched sizes or bad settings.
-ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const TransferField& transfer,
-                          const BakeSettings& bake, const envmap::Environment& env,
+ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+                          const BakeRecipe& bake, const envmap::Environment& env,
                           const sh::RgbSh& light, const ValidateSettings& settings,
                           const ProgressFn& progress = {});
 

@@ -23,12 +23,13 @@
 #include <span>
 #include <vector>
 
+#include "prt/core/band_limits.hpp"
 #include "prt/core/vec.hpp"
 
 namespace prt::sh {
 
-/// Largest band count the library accepts anywhere.
-inline constexpr int kMaxBands = 32;
+/// Largest band count the library accepts anywhere (core/band_limits.hpp says why).
+inline constexpr int kMaxBands = bands::kMaxLibrary;
 /// Band counts 1..kFixedBands have compile-time specialised (fully unrolled) evaluation and
 /// rotation; above, the same recurrences run in loops. Kernels that specialise further on the
 /// band count (relighting) dispatch with sh::dispatchBands (sh_fixed.hpp).
@@ -43,6 +44,10 @@ constexpr int index(int l, int m) {
 
 /// Throws prt::Error("bands must be in 1..32, got B") when out of range.
 void checkBands(int bands);
+
+/// The normalisation of the real basis function Y_lm: K_l|m| = sqrt((2l+1)/(4π) (l−|m|)!/(l+|m|)!),
+/// times √2 for m ≠ 0 — the one definition (the reference evaluator and the shaders' kernels).
+double normalization(int l, int m);
 
 /// All B² values Y_i(dir) into out[0..B²) by Sloan's polynomial recurrence (see sh_fixed.hpp;
 /// bands 1..16 are compile-time specialised, 17..32 use the same recurrence in a loop).

@@ -42,6 +42,15 @@ namespace prt {
 
 enum class LobeKind { None, Phong, Ggx };
 
+/// The ranges and defaults a material spec accepts — the one copy (the CLI, the viewer's panel
+/// and the page's controls all use these).
+inline constexpr double kMaxPhongExponent = 1e4;
+/// α = roughness² ≥ 9e-4: narrower lobes need more than 32 bands anyway.
+inline constexpr double kMinGgxRoughness = 0.03;
+inline constexpr double kDefaultPhongExponent = 32.0;
+inline constexpr double kDefaultGgxRoughness = 0.3;
+inline constexpr float kDefaultSpecular = 0.5f;
+
 struct GlossyLobe {
   LobeKind kind = LobeKind::None;
   double exponent = 0;   ///< Phong exponent s >= 0
@@ -71,7 +80,8 @@ struct Material {
   std::span<const Rgb> diffuseOr(std::span<const Rgb> perVertex) const {
     return diffuse ? std::span<const Rgb>(&*diffuse, 1) : perVertex;
   }
-  /// The spec string that parses back to this material.
+  /// The spec string that parses back to this exact material (numbers in their shortest
+  /// round-trip form).
   std::string spec() const;
   bool operator==(const Material&) const = default;
 };

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "prt/core/vec.hpp"
+#include "prt/transfer/albedo.hpp"
 #include "prt/transfer/material.hpp"
 
 namespace prt {
@@ -31,12 +32,8 @@ struct PreparedMaterial {
   /// `g` (untouched otherwise). `scratch` holds B² floats.
   void responses(const Vec3f& position, const Vec3f& normal, const Vec3f& eye, float* d, float* g,
                  float* scratch) const;
-  /// kd at vertex v of nv: the material's, else `albedo` per vertex, one for all, or white.
-  Rgb diffuseAt(std::span<const Rgb> albedo, std::size_t v, std::size_t nv) const {
-    if (kd) return *kd;
-    if (albedo.size() == nv && nv != 1) return albedo[v];
-    return albedo.size() == 1 ? albedo[0] : Rgb(1.0f);
-  }
+  /// kd at row r: the material's, else the albedo's (albedo.hpp).
+  Rgb diffuseAt(const Albedo& albedo, std::size_t r) const { return kd ? *kd : albedo.at(r); }
 };
 /// The kernels of `material` at `bands` (1..sh::kMaxBands; throws prt::Error otherwise).
 PreparedMaterial prepareMaterial(const Material& material, int bands);

@@ -14,10 +14,11 @@ int main() {
   prt::BakeSettings s;
   s.bands = 3;
   s.samples = 64;
-  prt::TransferField t = prt::bake(mesh, *occ, s);
+  prt::Transfer t = prt::bake(mesh, *occ, s);
   auto light =
       prt::envmap::projectEnvironment(prt::envmap::builtinEnvironment("builtin:constant"), 3);
-  auto r = prt::relight::relight(t, light, mesh.albedo);
+  auto r = prt::relight::relight(t, light, prt::Material{},
+                                 {mesh.positions, mesh.normals, mesh.albedo}, prt::Vec3f(0.0f));
   std::printf("%zu vertices, radiance[0] = %.4f\n", r.size(), r[0].x);
   return r.size() == mesh.vertexCount() && std::abs(r[0].x - 0.8f) < 0.01f ? 0 : 1;
 }

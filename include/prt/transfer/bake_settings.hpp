@@ -1,0 +1,108 @@
+#pragma once
+// How a transfer is baked: the recipe stored with it in a bake file (mode, samples, bounces,
+// seed, sampling, material), the settings a bake takes (the recipe plus the shape asked for),
+// and the statistics it reports. Types only: the baking itself is transport/bake.hpp, so that
+// anything that reads a bake file links no ray tracer.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "prt/transfer/material.hpp"
+#include "prt/transfer/shape.hpp"
+
+namespace prt {
+
+/// Which integral the transfer holds (the transport, independent of layout and material).
+enum class TransferMode { Unshadowed, Shadowed, Interreflected };
+const char* toString(TransferMode mode);
+/// Parses "unshadowed" | "shadowed" | "interreflected"; throws prt::Error otherwise.
+TransferMode parseTransferMode(const std::string& s);
+/// The modes from the richest to the plainest: the order in which a verb picks its default.
+inline constexpr TransferMode kModesRichestFirst[] = {
+    TransferMode::Interreflected, TransferMode::Shadowed, TransferMode::Unshadowed};
+
+enum class Sampling {
+  /// Cosine-weighted hemisphere over Owen-scrambled Sobol' points (the default: unbiased and
+  /// far less noisy than random sampling for the same ray count).
+  CosineSobol,
+  /// The GAMES202 course's scheme: independent uniform directions over the whole sphere,
+  /// weight 4π/N · max(n·ω,0)/π; half of them fall below the horizon. For comparison.
+  UniformRandom,
+};
+const char* toString(Sampling sampling);
+/// Parses "sobol" | "cosine-sobol" | "uniform" | "uniform-random"; throws prt::Error otherwise.
+Sampling parseSampling(const std::string& s);
+
+/// Limits on the settings (checked by bake(); each violation is a one-line prt::Error).
+inline constexpr int kMaxBakeSamples = 1 << 24;
+inline constexpr int kMaxBounces = 16;
+
+/// How a transfer was (or is to be) baked, apart from its shape.
+struct BakeRecipe {
+  TransferMode mode = TransferMode::Shadowed;
+  int samples = 1024;  ///< directions per row per pass (powers of two suit Sobol' best)
+  int bounces = 0;     ///< inter-reflection bounces, 0..16 (only Interreflected bounces)
+  std::uint64_t seed = 0;
+  Sampling sampling = Sampling::CosineSobol;
+  /// The surface. Its diffuse colour (material.diffuse, else mesh.albedo, else 1) is the albedo
+  /// of the bounces. Its lobe and ks shape the bounces of an inter-reflected matrix bake (the
+  /// light glossy surfaces send toward each other); otherwise the lobe is applied at relighting
+  /// only. Either way it is stored with the bake as the default for relighting.
+  Material material;
+
+  /// The bounces the mode bakes: `bounces` for Interreflected, else 0 — the one rule.
+  int effectiveBounces() const { return mode == TransferMode::Interreflected ? bounces : 0; }
+  /// True when a bake of this recipe in `layout` bounces light through the material's lobe: an
+  /// inter-reflected matrix bake (with bounces) of a glossy material. Its transfer then holds
+  /// that lobe and ks in the light the surfaces send each other, so relighting with another
+  /// material changes the surface at each vertex but not that light. A vector bake's bounces
+  /// are diffuse: it cannot hold the direction light leaves in.
+  bool glossyBounces(TransferLayout layout) const {
+    return layout == TransferLayout::Matrix && effectiveBounces() > 0 && material.glossy();
+  }
+  bool operator==(const BakeRecipe&) const = default;
+};
+
+/// What bake() takes: the recipe, and the shape of the transfer to make.
+struct BakeSettings : BakeRecipe {
+  /// Vector: diffuse transfer (B² per row). Matrix: glossy transfer (B² × B² per row, see
+  /// prt/transfer/shape.hpp), sampled uniformly over each vertex's hemisphere.
+  TransferLayout layout = TransferLayout::Vector;
+  int bands = 3;
+  /// The rows to bake: [rows.first, rows.first + rows.count); count 0 means "to the last row".
+  /// The result holds those rows only (its row 0 is rows.first).
+  RowRange rows;
+};
+
+struct BakeStats {
+  std::uint64_t rays = 0;    ///< rays cast, all passes
+  double raysPerSecond = 0;  ///< over the ray-casting passes (raysPerSecondOf)
+  double secondsTotal = 0;
+  double secondsDirect = 0;           ///< the T⁰ pass (for Interreflected: over the whole mesh)
+  std::vector<double> secondsBounce;  ///< one entry per bounce
+  std::vector<std::uint64_t> raysBounce;
+  int threads = 0;
+  std::size_t vertices = 0;  ///< rows in the baked range
+  /// Monte Carlo error estimates over the baked range, as i.i.d. standard errors
+  /// sqrt(sample variance / N) of the per-vertex estimators. For the scrambled-Sobol' estimator
+  /// these are conservative (its error falls faster than N^-1/2).
+  double stdErrT0Mean = 0, stdErrT0Max = 0;
+  /// Of T·L for the constant environment L = 1 (L00 = √(4π)), i.e. of √(4π)·T₀, summed over the
+  /// bounces (independent estimators; first channel for RGB transfer).
+  double stdErrConstMean = 0, stdErrConstMax = 0;
+};
+
+/// Rays per second: rays / seconds, 0 when no time was measured — the one formula.
+inline double raysPerSecondOf(std::uint64_t rays, double seconds) {
+  return seconds > 0 ? static_cast<double>(rays) / seconds : 0.0;
+}
+
+/// The statistics of a bake of the union of two disjoint row ranges baked apart (a rows, b
+/// rows): rays and times add, the ray rate over the summed ray time, mean errors average
+/// weighted by rows, maxima take the maximum.
+BakeStats combineBakeStats(const BakeStats& a, std::size_t rowsA, const BakeStats& b,
+                           std::size_t rowsB);
+
+}  // namespace prt

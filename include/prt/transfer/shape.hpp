@@ -1,0 +1,84 @@
+#pragma once
+// The shape of a transfer: everything that says what its numbers mean, stored once (in
+// prt::Transfer) and read by every consumer (Sloan, Kautz & Snyder, "Precomputed Radiance
+// Transfer for Real-Time Rendering in Dynamic, Low-Frequency Lighting Environments",
+// SIGGRAPH 2002, §5 diffuse vectors, §6 glossy matrices).
+//
+// A transfer is a table of one *row* per element of its domain (mesh vertices; per-texel
+// lightmaps and probes are the domains to come). What a row holds depends on the layout:
+//
+//   Vector  (diffuse transfer)  B² coefficients:  T_i(p) = (1/π) ∫ Y_i(ω) V(p,ω) max(n·ω,0) dω
+//                                                 (+ inter-reflected light);
+//                                                 exit radiance R(p) = albedo(p) ⊙ Σ_i T_i L_i.
+//   Matrix  (glossy transfer)   B² × B² entries, row-major, row i = transferred coefficient,
+//                               column j = source-light coefficient:
+//                                 (M_p)_ij = ∫_{n·ω>0} Y_i(ω) V(p,ω) Y_j(ω) dω (+ bounces),
+//                               so the SH of the light that arrives at p is L'_p = M_p L; the
+//                               material's lobes turn L'_p into exit radiance (material.hpp).
+//
+// Channels: 1 (scalar, the same transfer for r, g, b) or 3 (RGB, coloured inter-reflection),
+// interleaved innermost: value e of a row, channel c, is at e·channels + c. For an RGB transfer
+// the bounce albedos are folded in; the albedo at p itself is not (relighting applies it).
+//
+// Rows: a transfer may hold a range [first, first + count) of its domain's rows (a split bake);
+// row r of the transfer is element first + r of the domain.
+//
+// Memory: 4·B²·C bytes per row for vectors, 4·B⁴·C for matrices (9 bands, 1M vertices, RGB
+// matrices: 79 GB); denseBytes() states it before anything is allocated.
+
+#include <cstddef>
+#include <string>
+
+namespace prt {
+
+/// What one row holds.
+enum class TransferLayout {
+  Vector,  ///< B² values: diffuse transfer
+  Matrix,  ///< B² × B² values: glossy transfer (transferred incident radiance)
+};
+const char* toString(TransferLayout layout);
+/// Parses "vector" | "matrix"; throws prt::Error otherwise.
+TransferLayout parseTransferLayout(const std::string& s);
+
+/// What the rows index.
+enum class TransferDomain {
+  Vertices,  ///< one row per mesh vertex, interpolated across triangles
+};
+const char* toString(TransferDomain domain);
+/// Parses "vertices"; throws prt::Error otherwise.
+TransferDomain parseTransferDomain(const std::string& s);
+
+/// Rows [first, first + count) of a domain.
+struct RowRange {
+  std::size_t first = 0;
+  std::size_t count = 0;
+  std::size_t end() const { return first + count; }
+  bool operator==(const RowRange&) const = default;
+};
+
+struct TransferShape {
+  TransferDomain domain = TransferDomain::Vertices;
+  TransferLayout layout = TransferLayout::Vector;
+  int bands = 0;
+  int channels = 1;  ///< 1 (scalar) or 3 (RGB)
+  RowRange rows;     ///< which rows of the domain the transfer holds
+
+  int coeffs() const { return bands * bands; }
+  bool isMatrix() const { return layout == TransferLayout::Matrix; }
+  /// Values per row per channel: B² (vector) or B⁴ (matrix).
+  std::size_t rowSize() const;
+  /// Floats per row, all channels.
+  std::size_t stride() const { return rowSize() * static_cast<std::size_t>(channels); }
+  std::size_t rowCount() const { return rows.count; }
+  /// Bytes of the dense rows (4 · rows · stride); saturates at SIZE_MAX instead of overflowing.
+  std::size_t denseBytes() const;
+  /// The same shape with b bands.
+  TransferShape withBands(int b) const;
+  /// Throws prt::Error("WHAT: ...") unless bands are in 1..bands::kMaxLibrary and channels 1|3.
+  void check(const std::string& what) const;
+  /// "interreflected"-free description: "matrix, 5 bands, RGB, 34,835 vertices".
+  std::string describe() const;
+  bool operator==(const TransferShape&) const = default;
+};
+
+}  // namespace prt

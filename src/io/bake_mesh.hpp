@@ -1,0 +1,39 @@
+#pragma once
+// The mesh in a bake file: one glTF mesh + node per MeshPart, one triangle primitive each
+// (POSITION, NORMAL, TEXCOORD_0, COLOR_0 = linear albedo, uint32 indices local to the part),
+// all parts viewing one shared vertex buffer in the scene's global vertex order, so any glTF
+// viewer opens the file as the scene. Private to src/io.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bake_schema.hpp"
+#include "glb.hpp"
+#include "prt/geometry/mesh.hpp"
+#include "prt/gltf/accessor.hpp"
+
+namespace prt::io {
+
+/// The mesh's parts, or one part for all of it.
+std::vector<MeshPart> partsOf(const Mesh& mesh);
+/// Throws prt::Error("bake file: ...") unless the mesh can be written: not empty, a normal per
+/// vertex, albedo and uvs per vertex if any, parts that tile vertices and triangles in order and
+/// whose triangles stay inside their part.
+void checkMeshForWriting(const Mesh& mesh, const std::vector<MeshPart>& parts);
+
+/// Describes the mesh in `bin` and writes glTF's meshes, nodes, scenes and material into
+/// `gltf`. `attributes` (name, view of VEC4 columns over all vertices) become extra primitive
+/// attributes of every part (a complete bake's vector transfer); `baseColour` the material's
+/// baseColorFactor when the mesh has no per-vertex albedo.
+void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
+                const std::vector<std::pair<std::string, int>>& attributes, const Rgb* baseColour,
+                glb::BinaryChunk& bin, nlohmann::json& gltf);
+
+/// Reads the mesh of a bake file that declares V vertices and T triangles.
+Mesh decodeMesh(const nlohmann::json& gltf, const gltf::AccessorReader& accessors,
+                std::size_t vertices, std::size_t triangles, const schema::Reader& r);
+
+}  // namespace prt::io

@@ -1,0 +1,191 @@
+// The shader-ready form of a transfer (prt/relight/shader_transfer.hpp): the path each layout and
+// representation takes; the per-vertex texels of every path hold exactly the documented slots;
+// the shader's sum over the compressed packings (evalPackedRow) equals relighting (vectors) and
+// the reconstructed matrices times the light (matrices), scalar and RGB, N = 0 .. 7 (so one and
+// several texels per vertex), light of as many and of fewer bands than the transfer.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "common/random_data.hpp"
+#include "prt/compress/cpca.hpp"
+#include "prt/core/error.hpp"
+#include "prt/core/sampling.hpp"
+#include "prt/relight/cluster_projection.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/relight/shader_transfer.hpp"
+
+namespace prt {
+namespace {
+
+using relight::ShaderPath;
+using testdata::randomField;
+using testdata::randomLight;
+
+CpcaOptions opts(int clusters, int basis, std::uint64_t seed, int iterations) {
+  CpcaOptions o;
+  o.clusters = clusters, o.basisCount = basis, o.seed = seed, o.maxIterations = iterations;
+  return o;
+}
+
+TEST(ShaderTransfer, EachLayoutAndRepresentationHasItsPath) {
+  const Transfer v = randomField(TransferLayout::Vector, 3, 1, 40, 1);
+  const Transfer m = randomField(TransferLayout::Matrix, 3, 1, 40, 2);
+  const Transfer cv = compressCpca(v, opts(2, 1, 1, 5)), cm = compressCpca(m, opts(2, 1, 1, 5));
+  EXPECT_EQ(relight::shaderPath(v, false), ShaderPath::DenseVector);
+  EXPECT_EQ(relight::shaderPath(v, true), ShaderPath::DenseVector);
+  EXPECT_EQ(relight::shaderPath(m, false), ShaderPath::CpuRadiance);
+  EXPECT_EQ(relight::shaderPath(m, true), ShaderPath::DenseMatrix);
+  EXPECT_EQ(relight::shaderPath(cv, false), ShaderPath::CpcaVector);
+  EXPECT_EQ(relight::shaderPath(cm, false), ShaderPath::CpuRadiance);
+  EXPECT_EQ(relight::shaderPath(cm, true), ShaderPath::CpcaMatrix);
+  // What the shaders cannot hold is refused with one line: RGB matrices and more than 8 bands
+  // in the vertex shader.
+  EXPECT_THROW(relight::shaderPath(randomField(TransferLayout::Matrix, 2, 3, 4, 3), true), Error);
+  EXPECT_THROW(relight::shaderPath(randomField(TransferLayout::Matrix, 9, 1, 2, 3), true), Error);
+  EXPECT_NO_THROW(relight::shaderPath(randomField(TransferLayout::Matrix, 9, 1, 2, 3), false));
+}
+
+TEST(ShaderTransfer, DenseRowsHoldTheirValuesInTheDocumentedTexels) {
+  for (int channels : {1, 3}) {
+    const Transfer v = randomField(TransferLayout::Vector, 3, channels, 20, 5 + channels);
+    const relight::ShaderRows rows = relight::packShaderRows(v, ShaderPath::DenseVector);
+    // Scalar: 9 coefficients in ⌈9/4⌉ = 3 texels, zero-padded; RGB: one (r, g, b, 0) texel each.
+    ASSERT_EQ(rows.texelsPerRow, channels == 1 ? 3 : 9);
+    for (std::size_t r = 0; r < 20; ++r) {
+      const float* t = rows.rgba.data() + r * 4 * rows.texelsPerRow;
+      for (int i = 0; i < 9; ++i)
+        for (int c = 0; c < channels; ++c)
+          ASSERT_EQ(channels == 1 ? t[i] : t[4 * i + c], v.row(r)[i * channels + c]);
+      if (channels == 1)
+        for (int i = 9; i < 12; ++i) EXPECT_EQ(t[i], 0.0f);
+      else
+        for (int i = 0; i < 9; ++i) EXPECT_EQ(t[4 * i + 3], 0.0f);
+    }
+  }
+  const Transfer m = randomField(TransferLayout::Matrix, 3, 1, 10, 9);
+  const relight::ShaderRows rows = relight::packShaderRows(m, ShaderPath::DenseMatrix);
+  ASSERT_EQ(rows.texelsPerRow, 9 * 3);  // 9 matrix rows of ⌈9/4⌉ texels
+  for (std::size_t r = 0; r < 10; ++r)
+    for (int i = 0; i < 9; ++i)
+      for (int j = 0; j < 12; ++j)
+        ASSERT_EQ(rows.rgba[(r * 27 + i * 3) * 4 + j], j < 9 ? m.row(r)[i * 9 + j] : 0.0f);
+  EXPECT_TRUE(relight::packShaderRows(m, ShaderPath::CpuRadiance).rgba.empty());
+}
+
+TEST(ClusterTable, VertexTexelsHoldIdAndWeightsInTheirSlots) {
+  for (int N : {0, 3, 4, 7}) {
+    const Transfer f = randomField(TransferLayout::Vector, 3, 1, 300, 7 + N);
+    const Transfer c = compressCpca(f, opts(5, N, 1, 5));
+    const relight::ShaderRows t = relight::packShaderRows(c, ShaderPath::CpcaVector);
+    EXPECT_EQ(t.texelsPerRow, (N + 4) / 4) << N;
+    EXPECT_EQ(t.bytesPerRow(), std::size_t(16 * ((N + 4) / 4)));
+    ASSERT_EQ(t.rgba.size(), 300u * 4 * t.texelsPerRow);
+    for (std::size_t v = 0; v < 300; ++v) {
+      const float* s = t.rgba.data() + v * 4 * t.texelsPerRow;
+      EXPECT_EQ(s[0], float(c.cpca().cluster[v]));
+      for (int j = 0; j < N; ++j) EXPECT_EQ(s[1 + j], c.cpca().weights[v * N + j]);
+      for (int p = N + 1; p < 4 * t.texelsPerRow; ++p) EXPECT_EQ(s[p], 0.0f);
+    }
+  }
+}
+
+TEST(ClusterTable, VectorSumTimesAlbedoEqualsRelightCompressed) {
+  for (int channels : {1, 3})
+    for (int N : {0, 2, 6})
+      for (int lightBands : {4, 2}) {
+        SCOPED_TRACE(::testing::Message() << "C " << channels << " N " << N << " b " << lightBands);
+        const std::size_t n = 500;
+        const Transfer f = randomField(TransferLayout::Vector, 4, channels, n, 3 + N);
+        const Transfer c = compressCpca(f, opts(7, N, 2, 5));
+        std::vector<Rgb> albedo(n);
+        Pcg32 rng(9);
+        for (Rgb& a : albedo) a = Rgb(rng.uniform(), rng.uniform(), rng.uniform());
+        const relight::PreparedLight light = relight::prepareLight(randomLight(lightBands, 4), 4);
+        std::vector<Rgb> want(n);
+        relight::relightPrepared(c, light, PreparedMaterial{}, {{}, {}, albedo}, Vec3f(0.0f), want);
+
+        const relight::ShaderRows vt = relight::packShaderRows(c, ShaderPath::CpcaVector);
+        std::vector<float> table;
+        relight::packClusterTable(relight::projectClusters(c, light), table);
+        ASSERT_EQ(table.size(), std::size_t(4 * 7 * (N + 1)));
+        double worst = 0, scale = 0;
+        for (std::size_t v = 0; v < n; ++v) {
+          Rgb e;
+          relight::evalPackedRow(vt, table, 1, v, &e);
+          e = e * albedo[v];
+          for (int k = 0; k < 3; ++k) {
+            worst = std::max(worst, std::abs(double(e[k]) - want[v][k]));
+            scale = std::max(scale, std::abs(double(want[v][k])));
+          }
+        }
+        EXPECT_GT(scale, 0.1);
+        EXPECT_LT(worst, 1e-5 * scale);
+      }
+}
+
+TEST(ClusterTable, MatrixSumEqualsReconstructedMatrixTimesLight) {
+  const int bands = 3, nB = bands * bands;
+  for (int channels : {1, 3})
+    for (int lightBands : {3, 2}) {
+      SCOPED_TRACE(::testing::Message() << "C " << channels << " b " << lightBands);
+      const std::size_t n = 200;
+      const Transfer f = randomField(TransferLayout::Matrix, bands, channels, n, 30 + channels);
+      const Transfer c = compressCpca(f, opts(4, 5, 2, 5));
+      const Transfer r = c.toDense();
+      const relight::PreparedLight light = relight::prepareLight(randomLight(lightBands, 8), bands);
+      const relight::ShaderRows vt = relight::packShaderRows(c, ShaderPath::CpcaMatrix);
+      std::vector<float> table;
+      relight::packClusterTable(relight::projectClusters(c, light), table);
+      ASSERT_EQ(table.size(), std::size_t(4 * 4 * 6 * nB));
+      const int nb = lightBands * lightBands;
+      double worst = 0, scale = 0;
+      std::vector<Rgb> got(nB);
+      for (std::size_t v = 0; v < n; ++v) {
+        relight::evalPackedRow(vt, table, nB, v, got.data());
+        // (M̂_v L)_i,c = Σ_{l < b²} M̂_v[(i·B² + l)·C + c] L_l,c
+        const float* m = r.row(v);
+        for (int i = 0; i < nB; ++i)
+          for (int k = 0; k < 3; ++k) {
+            double want = 0;
+            for (int l = 0; l < nb; ++l)
+              want += double(m[(i * nB + l) * channels + (channels == 1 ? 0 : k)]) *
+                      light.interleaved[3 * l + k];
+            worst = std::max(worst, std::abs(got[i][k] - want));
+            scale = std::max(scale, std::abs(want));
+          }
+      }
+      EXPECT_GT(scale, 0.1);
+      EXPECT_LT(worst, 2e-5 * scale);
+    }
+}
+
+TEST(ClusterTable, RefusesIdsFloatsCannotHold) {
+  CpcaRows c;
+  c.clusters = (1 << 24) + 1;
+  c.cluster.assign(std::size_t(1 << 24) + 1, 0);
+  c.means = FloatArray::zeros(c.cluster.size());
+  const Transfer t =
+      Transfer::cpca(testdata::shapeOf(TransferLayout::Vector, 1, 1, c.cluster.size()), c);
+  EXPECT_THROW(relight::packShaderRows(t, ShaderPath::CpcaVector), Error);
+}
+
+// The glossy kernels for the shaders (relight::shaderKernel) carry the SH normalisation
+// N_lm their unnormalised basis (P̃_l^|m| times A_m or B_m) leaves out; a kernel of ones gives
+// N_lm itself. With the shader's P̃_1^1 = −1, P_2 = (3z² − 1)/2, P̃_2^1 = −3z, P̃_2^2 = 3 these
+// must rebuild sh.hpp's constants: N_00 = 0.282095; N_1m = 0.488603 (Y_11 = −0.488603 x);
+// N_20 = 0.630783 (= 2 · 0.315392); N_2±1 = 0.364174 (= 1.092548 / 3); N_2±2 = 0.182091
+// (Y_22 = 0.546274 (x² − y²) = N · 3 (x² − y²)).
+TEST(GlossyShader, KernelsCarryTheShNormalisation) {
+  const std::vector<float> ones(9, 1.0f);
+  const std::array<float, 64> k = relight::shaderKernel(ones);
+  const double want[9] = {0.282095,     0.488603,     0.488603,     0.488603,    0.546274 / 3,
+                          1.092548 / 3, 2 * 0.315392, 1.092548 / 3, 0.546274 / 3};
+  for (int i = 0; i < 9; ++i) EXPECT_NEAR(k[i], want[i], 2e-6) << i;
+  for (int i = 9; i < 64; ++i) EXPECT_EQ(k[i], 0.0f) << i;  // past the kernel's bands
+}
+
+}  // namespace
+}  // namespace prt
