@@ -30,6 +30,13 @@ inline void init() {
   (void)once;
 }
 
+/// Set when the last input was refused with prt::Error (the replay test checks regression
+/// inputs named reject_* / accept_* against it; libFuzzer ignores it).
+inline bool& rejected() {
+  static bool r = false;
+  return r;
+}
+
 inline std::span<const unsigned char> bytes(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const unsigned char*>(data), size};
 }
@@ -44,9 +51,11 @@ inline std::string_view text(const std::uint8_t* data, std::size_t size) {
 #define PRT_FUZZ_TARGET(...)                                                          \
   extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) { \
     ::prt::fuzz::init();                                                              \
+    ::prt::fuzz::rejected() = false;                                                  \
     try {                                                                             \
       __VA_ARGS__;                                                                    \
     } catch (const ::prt::Error&) {                                                   \
+      ::prt::fuzz::rejected() = true;                                                 \
     }                                                                                 \
     return 0;                                                                         \
   }

@@ -1,7 +1,10 @@
-// Writes a small seed corpus for every fuzz target: OUT/<target>/<name>. The images, lights and
-// transport text come from our own writers (so they are exactly what prtkit produces); meshes are
-// tiny hand-written files covering each variant the loaders accept. The bake seed is written by
-// scripts/fuzz.sh with `prt bake` (so it follows the bake format as it evolves).
+// Writes a small seed corpus for every fuzz target: OUT/<target>/<name>. The images, lights,
+// transport text and bakes come from our own writers (so they are exactly what prtkit produces,
+// and follow the formats as they evolve); meshes and material specs are tiny hand-written inputs
+// covering each variant the readers accept. The bakes cover every representation the bake
+// reader decodes: dense vectors (format version 1), dense matrices (2), CPCA-compressed vectors
+// and matrices (3). Run at build time for the replay tests (fuzz/CMakeLists.txt) and by
+// scripts/fuzz.sh.
 //
 //   make_seeds OUT
 
@@ -13,9 +16,14 @@
 #include <stb_image_write.h>
 #include <zlib.h>
 
+#include "prt/compress/cpca.hpp"
+#include "prt/geometry/builtin.hpp"
 #include "prt/image/image_io.hpp"
+#include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/raytrace/occluder.hpp"
 #include "prt/sh/sh.hpp"
+#include "prt/transport/bake.hpp"
 
 namespace fs = std::filesystem;
 
@@ -76,6 +84,34 @@ const char* kGltf = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[
 "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],
 "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
 {"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]})";
+
+/// A bake of the 12-vertex icosahedron: one transfer of `layout` at `bands`, CPCA-compressed
+/// (2 clusters, 1 basis vector) when `compressed`.
+std::string bakeSeed(prt::TransferLayout layout, int bands, bool compressed) {
+  prt::BakeFile file;
+  file.mesh = prt::builtinScene("builtin:sphere?subdiv=0");
+  file.generator = "prtkit make_seeds";
+  const auto occluder = prt::makeEmbreeOccluder(file.mesh);
+  prt::BakeSettings s;
+  s.mode = prt::TransferMode::Unshadowed;
+  s.layout = layout;
+  s.bands = bands;
+  s.samples = 16;
+  if (layout == prt::TransferLayout::Matrix)
+    s.material = prt::parseMaterial("phong?exponent=8&ks=0.5");
+  prt::BakedTransfer t;
+  t.recipe = s;
+  t.transfer = prt::bake(file.mesh, *occluder, s, &t.stats);
+  if (compressed) {
+    prt::CpcaOptions o;
+    o.clusters = 2;
+    o.basisCount = 1;
+    t.compression.fit = o;
+    t.transfer = prt::compressCpca(t.transfer, o, &t.compression.stats);
+  }
+  file.transfers.push_back(std::move(t));
+  return prt::encodeBake(file);
+}
 
 }  // namespace
 
@@ -142,6 +178,20 @@ int main(int argc, char** argv) {
   put("light_txt", "light.txt", slurp(tmp / "light.txt"));
   put("transport_txt", "vertices.txt", "2\n1 0.5 0 0\n0.25 0 0 1e-3\n");
   put("transport_txt", "faces.txt", "1\n1 0 0 0\n1 0 0 0\n1 0 0 0\n");
+
+  // Bakes in every representation; the vector one is a glTF seed too (any viewer opens a bake).
+  put("bake", "vector.glb", bakeSeed(prt::TransferLayout::Vector, 3, false));
+  put("bake", "matrix.glb", bakeSeed(prt::TransferLayout::Matrix, 2, false));
+  put("bake", "compressed_vector.glb", bakeSeed(prt::TransferLayout::Vector, 3, true));
+  put("bake", "compressed_matrix.glb", bakeSeed(prt::TransferLayout::Matrix, 2, true));
+  put("gltf", "bake.glb", bakeSeed(prt::TransferLayout::Vector, 2, false));
+
+  // --material spec strings: every lobe, every key.
+  put("material", "lambert.txt", "lambert");
+  put("material", "lambert_kd.txt", "lambert?kd=0.5,0.25,0.125");
+  put("material", "phong.txt", "phong?exponent=32&ks=0.5");
+  put("material", "phong_kd.txt", "phong?exponent=8&ks=0.2,0.3,0.4&kd=0.4");
+  put("material", "ggx.txt", "ggx?roughness=0.3&ks=0.04&kd=0.8,0.8,0.8");
   fs::remove_all(tmp);
   return 0;
 }

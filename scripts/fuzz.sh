@@ -4,14 +4,16 @@
 # the first finding (the crashing input is left in build-fuzz/findings/TARGET/) and exits non-zero.
 #
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]     (targets: hdr exr ldr obj ply off gltf bake
-#                                                   light_json light_txt transport_txt)
+#                                                   light_json light_txt transport_txt material)
 # The growing corpora stay in build-fuzz/corpus/TARGET/, so later runs continue where earlier
-# ones stopped. This is a separate check, not part of ctest: see docs/robustness.md.
+# ones stopped; the committed regression inputs (fuzz/corpus/TARGET/) join the seeds. This is a
+# separate check, not part of ctest (ctest replays the seeds and the regression inputs with the
+# ordinary compiler, label fuzz-replay): see docs/robustness.md.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-20}
 shift || true
-all=(hdr exr ldr obj ply off gltf bake light_json light_txt transport_txt)
+all=(hdr exr ldr obj ply off gltf bake light_json light_txt transport_txt material)
 [[ $# -gt 0 ]] && targets=("$@") || targets=("${all[@]}")
 build="$root/build-fuzz"
 jobs=${FUZZ_BUILD_JOBS:-2}
@@ -24,21 +26,16 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER="$cxx" "${launcher[@]}" -DPRT_BUILD_FUZZERS=ON -DPRT_BUILD_TESTS=OFF \
   -DPRT_BUILD_BENCH=OFF -DPRT_BUILD_VIEWER=OFF >/dev/null
-# The bake seed is written by `prt`: the regular build's when there is one (saves building the
-# command line a second time with sanitizers), else this build's.
-prt="$root/build/prt"
-cli=()
-[[ -x "$prt" ]] || { prt="$build/prt"; cli=(prt_cli); }
-nice -n 10 ninja -C "$build" -j "$jobs" make_seeds "${cli[@]}" $(printf 'fuzz_%s ' "${targets[@]}")
+nice -n 10 ninja -C "$build" -j "$jobs" make_seeds $(printf 'fuzz_%s ' "${targets[@]}")
 
-# Seeds: tiny files from our own writers (make_seeds), and a bake written by `prt bake`.
+# Seeds: tiny files from our own writers (make_seeds: images, meshes, lights, transport, bakes in
+# every representation, material specs), plus the committed regression inputs.
 seeds="$build/seeds"
 rm -rf "$seeds"
-"$build/fuzz/make_seeds" "$seeds"
-mkdir -p "$seeds/bake"
-ASAN_OPTIONS=detect_leaks=0 "$prt" bake "builtin:sphere?subdiv=0" --mode unshadowed \
-  --samples 16 -q -o "$seeds/bake/sphere.glb" >/dev/null
-cp "$seeds/bake/sphere.glb" "$seeds/gltf/"
+ASAN_OPTIONS=detect_leaks=0 "$build/fuzz/make_seeds" "$seeds"
+for t in "${targets[@]}"; do
+  [[ -d "$root/fuzz/corpus/$t" ]] && cp "$root/fuzz/corpus/$t"/* "$seeds/$t/"
+done
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0:malloc_limit_mb=2048}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

@@ -181,7 +181,7 @@ float objectExposure(std::span<const Rgb> radiance) {
   if (lum.empty()) return 0;
   const auto mid = lum.begin() + static_cast<std::ptrdiff_t>(lum.size() / 2);
   std::nth_element(lum.begin(), mid, lum.end());
-  return *mid > 0 ? std::log2(0.3f / *mid) : 0.0f;
+  return *mid > 0 ? image::clampExposure(std::log2(0.3f / *mid)) : 0.0f;
 }
 
 /// The image as the PNG will show it, still linear: tone mapped (with exposure) and clamped, so
@@ -416,10 +416,7 @@ void runDemo(const DemoArgs& a) {
   for (const std::string& spec : envSpecs) {
     envs.push_back(envmap::loadEnvironment(spec));
     const envmap::LoadedEnvironment& e = envs.back();
-    for (std::size_t k = 0; k < e.stats.size(); ++k)
-      if (e.stats[k].nonFinitePixels + e.stats[k].negativePixels > 0)
-        info(fmt::format("{}: {} non-finite and {} negative pixels set to 0", e.files[k],
-                         e.stats[k].nonFinitePixels, e.stats[k].negativePixels));
+    for (const std::string& w : envmap::repairWarnings(e)) info(w);
   }
 
   // The output folder is built beside its final name and renamed into place at the end

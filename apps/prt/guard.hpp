@@ -9,6 +9,7 @@
 //  * "-o -" (standard output, prt/core/file.hpp) is refused in one line by a verb whose output
 //    is not one stream (refuseStandardOutput).
 
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdint>
@@ -20,6 +21,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/image/color.hpp"
 
 namespace prt::cli {
 
@@ -191,6 +193,11 @@ inline CLI::Validator finite(double lo = -HUGE_VAL, double hi = HUGE_VAL) {
         return {};
       },
       "NUMBER", "Finite");
+}
+
+/// An --exposure in stops: finite and within the library's one limit (image::kMaxExposureStops).
+inline CLI::Validator exposureStops() {
+  return finite(-image::kMaxExposureStops, image::kMaxExposureStops);
 }
 
 /// Every value option of every verb takes exactly one value per occurrence, so repeatable

@@ -203,7 +203,7 @@ void addLightCommand(CLI::App& root) {
       ->check(intRange(8, 16384))
       ->capture_default_str();
   cmd->add_option("--exposure", opts->exposure, "Preview exposure in stops (default: automatic)")
-      ->check(finite(-64, 64));
+      ->check(exposureStops());
   cmd->add_option("--tonemap", opts->toneMap, "Preview tone mapper: clamp|reinhard|aces")
       ->capture_default_str();
   cmd->add_flag("--strict", opts->strict, "Fail on NaN/Inf or negative pixels instead of warning");

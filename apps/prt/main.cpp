@@ -14,6 +14,7 @@
 #include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/version.hpp"
 
@@ -101,6 +102,7 @@ const char* activity(const std::string& verb) {
   if (verb == "prt merge") return "merging the bakes";
   if (verb == "prt compress") return "compressing the transfer";
   if (verb == "prt demo") return "running the demo";
+  if (verb == "prt web") return "writing the browser viewer";
   return "reading the command line";
 }
 
@@ -141,6 +143,9 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] { limit = std::make_unique<prt::ThreadLimit>(g.threads); });
 
   try {
+    // The PRT_MAX_* variables are read once, here: a bad one is refused at once, whatever the
+    // verb and whether or not it would have consulted the limit.
+    prt::limits();
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version

@@ -113,6 +113,7 @@ void runReference(const ReferenceArgs& a) {
   const BakeFile file = readBake(a.bake);
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
+  for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   auto occluder = makeEmbreeOccluder(file.mesh);
 
   render::ReferenceSettings rs;

@@ -146,6 +146,7 @@ void run(const RenderOptions& o) {
     // Matrix transfer is view-dependent: each vertex is seen from the camera's eye.
     relight::RelightInfo relit;
     const std::span<const Rgb> radiance = relighter.relight(light, rotation, camera.eye, &relit);
+    render::checkFiniteRadiance(radiance, o.bake);
     render::BackgroundFn bg;
     switch (kind) {
       case render::Background::Env:
@@ -195,7 +196,7 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--size", opts->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--spp", opts->spp, "Stratified samples per pixel")->capture_default_str();
   cmd->add_option("--exposure", opts->exposure, "Exposure in stops (PNG)")
-      ->check(finite(-64, 64))
+      ->check(exposureStops())
       ->capture_default_str();
   cmd->add_option("--tonemap", opts->tonemap, "Tone map for PNG: aces, reinhard, clamp")
       ->capture_default_str();

@@ -75,6 +75,7 @@ void runValidate(const ValidateArgs& a) {
                     "are diffuse too)");
   file.requireComplete(a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
+  for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.transfer.bands());
   auto occluder = makeEmbreeOccluder(file.mesh);
 
@@ -88,6 +89,7 @@ void runValidate(const ValidateArgs& a) {
   vs.bandsList = bands;
   vs.maxVertices = a.vertices;
   vs.window = parseWindow(a.window);
+  vs.bakeName = a.bake;
   info("validating " + bt.describe() + " transfer (" + std::to_string(bt.transfer.bands()) +
        " bands) of " + a.bake + " under " + a.light);
   // A compressed transfer is validated as relit, in the compressed space (the compression's own

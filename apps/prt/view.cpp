@@ -94,7 +94,7 @@ void addViewCommand(CLI::App& root) {
                   "env (the image), sh (its SH reconstruction) or none")
       ->capture_default_str();
   cmd->add_option("--exposure", a->exposure, "Exposure in stops")
-      ->check(finite(-64, 64))
+      ->check(exposureStops())
       ->capture_default_str();
   cmd->add_option("--tonemap", a->toneMap, "aces, reinhard or clamp")->capture_default_str();
   cmd->add_flag("--auto-rotate", a->autoRotate, "Turn the light about +Y");

@@ -170,7 +170,7 @@ void writeWebViewer(const WebOptions& a) {
   // Everything cheap is validated before any work, so errors come at once and nothing is written.
   const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
   image::parseToneMap(a.toneMap);
-  if (!std::isfinite(a.exposure)) throw Error("--exposure must be a finite number of stops");
+  image::checkExposure(a.exposure, "--exposure");
   if (a.backgroundWidth < 8 || a.backgroundWidth > 8192 || a.backgroundWidth % 2)
     throw Error("--background-width must be an even number of pixels in 8..8192");
   if (a.bands < 0 || a.bands > bands::kMaxLibrary)
@@ -248,6 +248,8 @@ void writeWebViewer(const WebOptions& a) {
      << "], \"exposure\": " << a.exposure << ", \"tonemap\": " << jsonString(a.toneMap)
      << ", \"mode\": " << jsonString(a.mode) << ", \"bands\": " << a.bands
      << ", \"camera\": " << cameraJson << ", \"framing\": " << framingJson << "},\n";
+  // The library's limits the page applies to what a URL asks for (?exposure=...).
+  js << "\"limits\": {\"exposureStops\": " << image::kMaxExposureStops << "},\n";
   js << "\"bake\": {\"name\": " << jsonString(fs::path(a.bake).filename().string())
      << ", \"glb\": \"" << base64(glb.data(), glb.size()) << "\"},\n";
   // Compressed glossy matrices: the bake's material (or --material) as the page's shader takes it
@@ -321,7 +323,8 @@ void addWebCommand(CLI::App& root) {
   cmd->add_option("--mode", args->mode, "Initial transfer mode");
   addMaterialOption(cmd, args->material, "for glossy (matrix) transfer");
   cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
-  cmd->add_option("--exposure", args->exposure, "Initial exposure in stops");
+  cmd->add_option("--exposure", args->exposure, "Initial exposure in stops")
+      ->check(exposureStops());
   cmd->add_option("--tonemap", args->toneMap, "Initial tone map: aces, reinhard, clamp")
       ->capture_default_str();
   cmd->add_option("--background-width", args->backgroundWidth,

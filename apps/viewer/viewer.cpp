@@ -84,6 +84,7 @@ Scene loadScene(const Options& o, const Output& out) {
     scene.setUserRotation(
         rotationEulerXYZ((*o.rotateDeg)[0], (*o.rotateDeg)[1], (*o.rotateDeg)[2]));
   scene.background = parseBackgroundMode(o.background);
+  image::checkExposure(o.exposure, "--exposure");
   scene.exposureStops = o.exposure;
   scene.toneMap = image::parseToneMap(o.toneMap);
   scene.autoRotate = o.autoRotate;

@@ -18,6 +18,7 @@
 #include "capture.hpp"
 #include "context.hpp"
 #include "prt/core/error.hpp"
+#include "prt/image/color.hpp"
 
 namespace prt::viewer {
 
@@ -144,7 +145,9 @@ struct Ui {
     int bg = int(scene.background);
     const char* bgNames[] = {"environment", "SH reconstruction", "black"};
     if (ImGui::Combo("background", &bg, bgNames, 3)) scene.background = BackgroundMode(bg);
-    ImGui::SliderFloat("exposure", &scene.exposureStops, -8.0f, 8.0f, "%.1f stops");
+    // ±8 on the slider; a value typed in (Ctrl+click) stays within the library's limit.
+    if (ImGui::SliderFloat("exposure", &scene.exposureStops, -8.0f, 8.0f, "%.1f stops"))
+      scene.exposureStops = image::clampExposure(scene.exposureStops);
     int tm = int(scene.toneMap);
     const char* tmNames[] = {"clamp", "reinhard", "aces"};
     if (ImGui::Combo("tone map", &tm, tmNames, 3)) scene.toneMap = image::ToneMap(tm);

@@ -459,23 +459,34 @@ void OutputBatch::commit() {
 
 // --- folders --------------------------------------------------------------------------------
 
+namespace {
+/// Whether folders can be made in `dir`, by making one and removing it: access() says yes to
+/// root everywhere (and /proc takes no folders), a probe says what mkdir will say later.
+void probeFolderWritable(const std::string& destination, const fs::path& dir) {
+  const fs::path probe = ourName(dir / "prt-probe", kPartialTag);
+  if (::mkdir(probe.c_str(), 0777) != 0)
+    throw Error(destination, "folder cannot be written: " + dir.string() + " (" + why(errno) + ")");
+  ::rmdir(probe.c_str());
+}
+}  // namespace
+
 void checkFolderReplaceable(const std::string& destination, const std::string& maker) {
   const fs::path p = folderTarget(destination);
   struct stat st;
   if (::lstat(p.c_str(), &st) != 0) {
-    if (errno != ENOENT) throw Error(destination, "cannot inspect the folder (" + why(errno) + ")");
+    if (errno != ENOENT && errno != ENOTDIR)
+      throw Error(destination, "cannot inspect the folder (" + why(errno) + ")");
     // To be made: the nearest existing ancestor must be a folder we can write.
     fs::path up = p.parent_path();
     while (::stat(up.c_str(), &st) != 0 && up != up.root_path()) up = up.parent_path();
-    if (!S_ISDIR(st.st_mode)) throw Error(destination, up.string() + " is not a folder");
-    if (::access(up.c_str(), W_OK) != 0)
-      throw Error(destination, "folder " + up.string() + " is not writable");
+    if (!S_ISDIR(st.st_mode))
+      throw Error(destination, "folder cannot be created: " + up.string() + " is not a folder");
+    probeFolderWritable(destination, up);
     return;
   }
   if (!S_ISDIR(st.st_mode))
     throw Error(destination, "exists and is not a folder (-o names the folder to write)");
-  if (::access(p.parent_path().c_str(), W_OK) != 0)
-    throw Error(destination, "folder " + p.parent_path().string() + " is not writable");
+  probeFolderWritable(destination, p.parent_path());
   std::error_code ec;
   if (fs::is_empty(p, ec) && !ec) return;
   if (markOf(p) == maker) return;
@@ -579,7 +590,12 @@ std::vector<unsigned char> readFileBytes(const std::string& path) {
 std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t maxBytes,
                                          const char* capName) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw Error(path, "is a directory, expected a file");
+  const fs::file_status st = fs::status(path, ec);
+  if (fs::is_directory(st)) throw Error(path, "is a directory, expected a file");
+  // A FIFO with no writer would block in open() forever, and a pipe or device has no size to
+  // check against the cap: only regular files are read.
+  if (fs::exists(st) && !fs::is_regular_file(st))
+    throw Error(path, "is not a regular file (a pipe, device or socket); give a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open (does it exist and is it readable?)");
   in.seekg(0, std::ios::end);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -40,6 +41,15 @@ void fromEnv(const char* name, double& out) {
   out = x;
 }
 
+std::string coordinateCapMessage(double v) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "%g is beyond the ray tracer's range (at most %g: Embree refuses rays that start "
+                "past 1.8e18)",
+                v, kMaxTraceableCoordinate);
+  return buf;
+}
+
 }  // namespace
 
 Limits limitsFromEnvironment() {
@@ -52,6 +62,8 @@ Limits limitsFromEnvironment() {
   fromEnv("PRT_MAX_TRIANGLES", l.maxTriangles);
   fromEnv("PRT_MAX_NESTING", l.maxNesting);
   fromEnv("PRT_MAX_COORDINATE", l.maxCoordinate);
+  if (l.maxCoordinate > kMaxTraceableCoordinate)
+    throw Error("PRT_MAX_COORDINATE", coordinateCapMessage(l.maxCoordinate));
   return l;
 }
 
@@ -62,6 +74,8 @@ Limits limits() {
 }
 
 void setLimits(const Limits& l) {
+  if (!(l.maxCoordinate > 0 && l.maxCoordinate <= kMaxTraceableCoordinate))
+    throw Error("Limits::maxCoordinate", coordinateCapMessage(l.maxCoordinate));
   std::lock_guard<std::mutex> lock(gMutex);
   gLimits = l;
 }

@@ -35,7 +35,10 @@ Spec::Spec(std::string full, const std::string& prefix) : full_(std::move(full))
       const auto eq = item.find('=');
       if (eq == std::string::npos || eq == 0)
         throw Error(full_, "parameter '" + item + "' is not of the form key=value");
-      values_[item.substr(0, eq)] = item.substr(eq + 1);
+      // A key given twice has no one meaning ("exponent=16&exponent=32"): refuse, rather than
+      // let the last one win silently.
+      if (!values_.emplace(item.substr(0, eq), item.substr(eq + 1)).second)
+        throw Error(full_, "parameter '" + item.substr(0, eq) + "' is given twice");
     }
     if (amp == std::string::npos) break;
     pos = amp + 1;

@@ -121,7 +121,9 @@ Environment Environment::analytic(std::function<Rgb(const Vec3f&)> smooth, std::
 
 Environment Environment::smoothPart() const {
   PRT_CHECK(kind_ == Kind::Analytic, "smoothPart() needs an analytic environment");
-  return latLong(smoothImage_);
+  Environment e = latLong(smoothImage_);
+  e.source_ = source_;
+  return e;
 }
 
 void Environment::initTables() {

@@ -48,7 +48,9 @@ std::array<image::Image, 6> readFaceFolder(const std::string& dir,
   return faces;
 }
 
-LoadedEnvironment loadEnvironment(const std::string& input, const LoadOptions& options) {
+namespace {
+
+LoadedEnvironment loadUnchecked(const std::string& input, const LoadOptions& options) {
   LoadedEnvironment out;
   if (isBuiltin(input)) {
     if (options.layout) throw Error(input, "a layout does not apply to builtin environments");
@@ -100,6 +102,37 @@ LoadedEnvironment loadEnvironment(const std::string& input, const LoadOptions& o
       throw Error(input, "the 'faces' layout needs a folder of six images");
   }
   out.layout = layoutName(layout);
+  return out;
+}
+
+}  // namespace
+
+LoadedEnvironment loadEnvironment(const std::string& input, const LoadOptions& options) {
+  LoadedEnvironment out = loadUnchecked(input, options);
+  out.env.setSource(input);
+  // The pixel policy zeroes NaN and inf pixels; when that is every pixel there is no light left
+  // to project, render or validate against (an all-NaN EXR would relight to black and validate
+  // at 0 %), so refuse rather than go on with a black environment.
+  std::size_t pixels = 0, nonFinite = 0;
+  for (const image::ReadStats& s : out.stats) {
+    pixels += s.pixels;
+    nonFinite += s.nonFinitePixels;
+  }
+  if (pixels > 0 && nonFinite == pixels)
+    throw Error(input, "every pixel (" + std::to_string(pixels) +
+                           ") is NaN or infinite: the environment holds no light");
+  return out;
+}
+
+std::vector<std::string> repairWarnings(const LoadedEnvironment& loaded) {
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < loaded.stats.size() && k < loaded.files.size(); ++k) {
+    const image::ReadStats& s = loaded.stats[k];
+    if (s.nonFinitePixels + s.negativePixels > 0)
+      out.push_back(loaded.files[k] + ": " + std::to_string(s.nonFinitePixels) +
+                    " non-finite and " + std::to_string(s.negativePixels) +
+                    " negative pixels set to 0");
+  }
   return out;
 }
 

@@ -51,7 +51,7 @@ float autoExposure(const image::Image& img) {
   double sum = 0;
   for (const Rgb& p : img.pixels) sum += std::log(1e-4 + image::luminance(p));
   const double avg = img.empty() ? 1.0 : std::exp(sum / static_cast<double>(img.size()));
-  return static_cast<float>(std::log2(0.18 / avg));
+  return image::clampExposure(static_cast<float>(std::log2(0.18 / avg)));
 }
 
 float previewExposure(const image::Image& panels) {

@@ -17,12 +17,13 @@ constexpr std::size_t kChunk = 1024;
 
 /// A valid but extremely bright environment (RGBE reaches 1.7e38) overflows the float sums to
 /// inf; say so instead of handing on coefficients that no later stage can use.
-void checkFiniteProjection(const sh::RgbSh& c) {
+void checkFiniteProjection(const sh::RgbSh& c, const std::string& source) {
   for (std::size_t i = 0; i < c.c.size(); ++i)
     if (!isFinite(c.c[i]))
-      throw Error("projecting the environment onto SH overflowed: coefficient " +
-                  std::to_string(i) +
-                  " is not finite (radiance too bright for 32-bit floats; scale the image down)");
+      throw Error(source, "projecting the environment onto SH overflowed: coefficient " +
+                              std::to_string(i) +
+                              " is not finite (radiance too bright for 32-bit floats; scale the "
+                              "image down)");
 }
 
 // Accumulates texels [lo, hi) into out (3·B² doubles, RGB interleaved per coefficient).
@@ -60,7 +61,7 @@ constexpr auto makeTable(std::integer_sequence<int, I...>) {
 
 template <typename TexelFn>
 sh::RgbSh projectTexels(int bands, std::size_t count, const TexelFn& texelAt,
-                        const ProgressFn& progress) {
+                        const ProgressFn& progress, const std::string& source = "") {
   sh::checkBands(bands);
   static constexpr auto table =
       makeTable<TexelFn>(std::make_integer_sequence<int, sh::kMaxBands>{});
@@ -82,7 +83,7 @@ sh::RgbSh projectTexels(int bands, std::size_t count, const TexelFn& texelAt,
   for (std::size_t i = 0; i < n; ++i)
     out.c[i] = {static_cast<float>(total[3 * i]), static_cast<float>(total[3 * i + 1]),
                 static_cast<float>(total[3 * i + 2])};
-  checkFiniteProjection(out);
+  checkFiniteProjection(out, source);
   return out;
 }
 
@@ -97,11 +98,11 @@ sh::RgbSh projectEnvironment(const Environment& env, int bands, const ProgressFn
       const sh::RgbSh c = capSh(bands, cap);
       for (std::size_t i = 0; i < out.c.size(); ++i) out.c[i] += c.c[i];
     }
-    checkFiniteProjection(out);
+    checkFiniteProjection(out, env.source());
     return out;
   }
   auto texelAt = [&env](std::size_t k) { return env.texel(k); };
-  return projectTexels(bands, env.texelCount(), texelAt, progress);
+  return projectTexels(bands, env.texelCount(), texelAt, progress, env.source());
 }
 
 sh::RgbSh projectGames202Faces(const std::array<image::Image, 6>& faces, int bands,

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <set>
 #include <utility>
 
 #include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/core/spec.hpp"
 
 namespace prt {
@@ -131,11 +133,32 @@ Mesh block(float hx, float hy, float hz, float angle, float cx, float cz, int n,
   return out;
 }
 
-Mesh makeSphere(Spec& p) {
+/// Vertex and triangle counts of the pieces, known before building them.
+struct Size {
+  std::uint64_t vertices = 0, triangles = 0;
+  Size operator+(Size o) const { return {vertices + o.vertices, triangles + o.triangles}; }
+  Size operator*(std::uint64_t k) const { return {vertices * k, triangles * k}; }
+};
+Size icosphereSize(int subdiv) {
+  const std::uint64_t f = std::uint64_t(1) << (2 * subdiv);  // 4^subdiv
+  return {10 * f + 2, 20 * f};
+}
+Size gridSize(int n) {
+  return {std::uint64_t(n + 1) * std::uint64_t(n + 1), 2 * std::uint64_t(n) * std::uint64_t(n)};
+}
+/// The resource policy (PRT_MAX_VERTICES, PRT_MAX_TRIANGLES) for a scene of `size`, before it
+/// is built, as every file loader applies it.
+void checkSize(const std::string& label, Size size) {
+  checkLimit(label, "vertex count", size.vertices, limits().maxVertices, "PRT_MAX_VERTICES");
+  checkLimit(label, "triangle count", size.triangles, limits().maxTriangles, "PRT_MAX_TRIANGLES");
+}
+
+Mesh makeSphere(Spec& p, const std::string& full) {
   const int subdiv = p.integer("subdiv", 5, 0, 7);
   const double r = p.number("r", 1.0, 1e-6, 1e6);
   const double a = p.number("albedo", 0.8, 0.0, 1.0);
   p.finish();
+  checkSize(full, icosphereSize(subdiv));
   Mesh scene;
   append(scene, icosphere(subdiv, float(r), Vec3f{0.0f}, Rgb(float(a))), "sphere");
   return scene;
@@ -150,6 +173,7 @@ Mesh makeSpherePlane(Spec& p, const std::string& full) {
   const double a = p.number("albedo", 0.8, 0.0, 1.0);
   p.finish();
   if (!(h > r)) throw Error(full, "the sphere must lie above the plane (h > r)");
+  checkSize(full, gridSize(n) + icosphereSize(subdiv));
   Mesh scene;
   const float s = float(size);
   // du = +X, dv = -Z so that cross(du, dv) = +Y.
@@ -158,21 +182,23 @@ Mesh makeSpherePlane(Spec& p, const std::string& full) {
   return scene;
 }
 
-Mesh makePlane(Spec& p) {
+Mesh makePlane(Spec& p, const std::string& full) {
   const double y = p.number("y", 0.0, -1e6, 1e6);
   const double size = p.number("size", 4.0, 1e-6, 1e6);
   const int n = p.integer("grid", 96, 1, 2000);
   const double a = p.number("albedo", 0.8, 0.0, 1.0);
   p.finish();
+  checkSize(full, gridSize(n));
   Mesh scene;
   const float s = float(size), h = float(y);
   append(scene, grid({-s, h, s}, {2 * s, 0, 0}, {0, 0, -2 * s}, n, Rgb(float(a))), "plane");
   return scene;
 }
 
-Mesh makeCornell(Spec& p) {
+Mesh makeCornell(Spec& p, const std::string& full) {
   const int n = p.integer("grid", 40, 1, 400);
   p.finish();
+  checkSize(full, gridSize(n) * 5 + gridSize(std::max(2, n / 5)) * 12);  // walls, two blocks
   const Rgb white{0.73f, 0.73f, 0.73f}, red{0.63f, 0.065f, 0.05f}, green{0.14f, 0.45f, 0.091f};
   Mesh scene;
   // Walls face inward. The box is [-1,1] x [0,2] x [-1,1], open at z = +1.
@@ -203,13 +229,13 @@ Mesh builtinScene(const std::string& full) {
   const std::string label = isBuiltinScene(full) ? full : std::string(kPrefix) + full;
   Mesh m;
   if (name == "sphere")
-    m = makeSphere(p);
+    m = makeSphere(p, label);
   else if (name == "sphere-plane")
     m = makeSpherePlane(p, label);
   else if (name == "plane")
-    m = makePlane(p);
+    m = makePlane(p, label);
   else if (name == "cornell")
-    m = makeCornell(p);
+    m = makeCornell(p, label);
   else {
     std::string list;
     for (const auto& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;

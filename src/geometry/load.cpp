@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -87,8 +88,34 @@ void throwBadIndex(const std::string& label, std::size_t face, long long index, 
                          std::to_string(index) + " (mesh has " + std::to_string(count) + ")");
 }
 
+namespace {
+
+enum class Head { Yes, No, More };
+
+/// Whether `s`, the first bytes of a decompressed stream, begins like a `format` file.
+Head headerVerdict(std::string_view format, std::string_view s) {
+  if (format == "ply")
+    return s.size() < 3 ? Head::More : s.substr(0, 3) == "ply" ? Head::Yes : Head::No;
+  // OFF: blank space and '#' comment lines, then the header keyword (readOff's tokens).
+  std::size_t i = 0;
+  while (true) {
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    if (i < s.size() && s[i] == '#') {
+      while (i < s.size() && s[i] != '\n') ++i;
+      continue;
+    }
+    break;
+  }
+  const std::size_t b = i;
+  while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i])) && s[i] != '#') ++i;
+  if (i == s.size()) return i - b > 16 ? Head::No : Head::More;  // the keyword may go on
+  return isOffKeyword(s.substr(b, i - b)) ? Head::Yes : Head::No;
+}
+
+}  // namespace
+
 std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsigned char> bytes,
-                                  std::string_view magic) {
+                                  std::string_view format) {
   // Streamed in chunks with the output capped at limits().maxDecompressedBytes, so a gzip bomb
   // (a few MB inflating to many GB) stops at the cap instead of exhausting memory.
   const std::uint64_t cap = limits().maxDecompressedBytes;
@@ -102,6 +129,8 @@ std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsi
   std::vector<unsigned char> out;
   std::vector<unsigned char> chunk(1 << 16);
   std::size_t inPos = 0;
+  constexpr std::size_t kDecideWithin = 1 << 16;  // the header must show within 64 KiB
+  bool decided = format.empty();
   while (true) {
     if (zs.avail_in == 0 && inPos < bytes.size()) {
       const std::size_t n = std::min<std::size_t>(bytes.size() - inPos, 1u << 30);
@@ -118,10 +147,20 @@ std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsi
                              " bytes (PRT_MAX_DECOMPRESSED_BYTES)");
     out.insert(out.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(produced));
     // Stop at once, not after gigabytes, when what comes out is not the expected format.
-    if (!magic.empty() && out.size() >= magic.size() && out.size() - produced < magic.size() &&
-        std::string_view(reinterpret_cast<const char*>(out.data()), magic.size()) != magic)
-      throw Error(label,
-                  "gzip: the decompressed data does not start with '" + std::string(magic) + "'");
+    if (!decided && produced > 0) {
+      const Head h = headerVerdict(
+          format, std::string_view(reinterpret_cast<const char*>(out.data()), out.size()));
+      if (h == Head::No)
+        throw Error(label,
+                    format == "ply"
+                        ? std::string("gzip: the decompressed data does not start with 'ply'")
+                        : "gzip: the decompressed data does not start with an OFF header "
+                          "(OFF, COFF, NOFF, CNOFF)");
+      if (h == Head::More && out.size() >= kDecideWithin)
+        throw Error(label, "gzip: no " + std::string(format) +
+                               " header in the first 64 KiB of the decompressed data");
+      decided = h == Head::Yes;
+    }
     if (rc == Z_STREAM_END) break;
     if (rc == Z_NEED_DICT || (rc != Z_OK && rc != Z_BUF_ERROR))
       throw Error(label, "gzip: " + std::string(zs.msg ? zs.msg : "corrupt data"));
@@ -238,7 +277,7 @@ std::string meshFormat(const std::string& path, bool& gz) {
 Mesh readBytes(const std::string& label, const std::string& ext, bool gz,
                std::span<const unsigned char> raw, LoadReport& report) {
   std::vector<unsigned char> inflated;
-  if (gz) inflated = detail::gunzip(label, raw, ext == "ply" ? "ply" : "");
+  if (gz) inflated = detail::gunzip(label, raw, ext);
   const std::span<const unsigned char> bytes = gz ? std::span<const unsigned char>(inflated) : raw;
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   if (ext == "ply") return detail::readPly(label, bytes, report);

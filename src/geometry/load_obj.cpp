@@ -15,6 +15,7 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +23,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 
@@ -102,16 +104,66 @@ void checkObjText(const std::string& label, std::string_view text) {
   }
 }
 
+/// tinyobjloader reads "Kd nan" as black, "Ns nan" as exponent 0 and "Kd 0.5" as (0.5, 0, 0),
+/// without a word; scan the material library ourselves first, so such a file is refused with
+/// its line. Colour lines (Ka Kd Ks Ke Kt Tf) hold three finite numbers, scalar lines (Ns Ni d
+/// Tr illum Pr Pm Ps Pc Pcr aniso anisor) one, after any "-option" words ("d -halo 0.5").
+void checkMtlText(const std::string& label, std::string_view text) {
+  static const std::set<std::string_view> colours = {"Ka", "Kd", "Ks", "Ke", "Kt", "Tf"};
+  static const std::set<std::string_view> scalars = {"Ns", "Ni", "d",  "Tr",  "illum", "Pr",
+                                                     "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
+  const auto isBlank = [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+  };
+  std::size_t line = 1;
+  for (std::size_t pos = 0; pos < text.size(); ++line) {
+    std::size_t eol = text.find('\n', pos);
+    if (eol == std::string_view::npos) eol = text.size();
+    std::string_view l = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (const std::size_t hash = l.find('#'); hash != std::string_view::npos) l = l.substr(0, hash);
+    std::vector<std::string_view> tok;
+    for (std::size_t i = 0; i < l.size();) {
+      while (i < l.size() && isBlank(l[i])) ++i;
+      const std::size_t b = i;
+      while (i < l.size() && !isBlank(l[i])) ++i;
+      if (i > b) tok.push_back(l.substr(b, i - b));
+    }
+    if (tok.empty()) continue;
+    const bool colour = colours.count(tok[0]) != 0;
+    if (!colour && !scalars.count(tok[0])) continue;
+    std::size_t first = 1;
+    while (first < tok.size() && tok[first].size() > 1 && tok[first][0] == '-' &&
+           std::isalpha(static_cast<unsigned char>(tok[first][1])))
+      ++first;
+    const std::size_t want = colour ? 3 : 1, got = tok.size() - first;
+    const std::string key(tok[0]);
+    const std::string where = "line " + std::to_string(line) + ": " + key;
+    for (std::size_t k = first; k < tok.size(); ++k) {
+      double x = 0;
+      const char* b = tok[k].data() + (tok[k][0] == '+' ? 1 : 0);
+      const char* e = tok[k].data() + tok[k].size();
+      const auto [ptr, ec] = std::from_chars(b, e, x);
+      if (ec != std::errc() || ptr != e || !std::isfinite(x) || std::fabs(x) > 3.4e38)
+        throw Error(label,
+                    where + " '" + std::string(tok[k].substr(0, 40)) + "' is not a finite number");
+    }
+    if (got != want)
+      throw Error(label, where + " needs " + (colour ? "three numbers r g b" : "one number") +
+                             ", found " + std::to_string(got));
+  }
+}
+
 /// Resolves mtllib names: files beside the OBJ (regular files only, read through readFileBytes
 /// and so under the file-size cap), or one text in memory that every name resolves to.
 class MtlReader : public tinyobj::MaterialReader {
  public:
-  MtlReader(std::filesystem::path dir, const std::string* memory)
-      : dir_(std::move(dir)), memory_(memory) {}
+  MtlReader(std::filesystem::path dir, const std::string* memory, std::string objLabel)
+      : dir_(std::move(dir)), memory_(memory), objLabel_(std::move(objLabel)) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* matMap, std::string* warn,
                   std::string* err) override {
-    std::string text;
+    std::string text, label = objLabel_ + " (material library " + name.substr(0, 80) + ")";
     if (memory_) {
       text = *memory_;
     } else {
@@ -121,6 +173,7 @@ class MtlReader : public tinyobj::MaterialReader {
         if (warn) *warn += "material file " + name + " not found\n";
         return false;
       }
+      label = file.string();
       try {
         const std::vector<unsigned char> bytes = readFileBytes(file.string());
         text.assign(bytes.begin(), bytes.end());
@@ -128,6 +181,12 @@ class MtlReader : public tinyobj::MaterialReader {
         if (!error_) error_ = e.what();
         return false;
       }
+    }
+    try {
+      checkMtlText(label, text);
+    } catch (const Error& e) {
+      if (!error_) error_ = e.what();
+      return false;
     }
     std::istringstream in(text);
     tinyobj::LoadMtl(matMap, materials, &in, warn, err);
@@ -139,6 +198,7 @@ class MtlReader : public tinyobj::MaterialReader {
  private:
   std::filesystem::path dir_;
   const std::string* memory_;
+  std::string objLabel_;
   std::optional<std::string> error_;
 };
 
@@ -174,7 +234,7 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
   std::vector<tinyobj::shape_t> shapesStore;
   std::vector<tinyobj::material_t> materialsStore;
   std::string warnText, errText;
-  MtlReader mtl(baseDir, mtlText);
+  MtlReader mtl(baseDir, mtlText, path);
   // Read straight from memory (no copy of a possibly large file into a stringstream).
   struct ViewBuf : std::streambuf {
     explicit ViewBuf(std::string_view v) {

@@ -81,6 +81,11 @@ class Tokens {
 
 }  // namespace
 
+bool isOffKeyword(std::string_view key) {
+  return key.size() >= 3 && key.substr(key.size() - 3) == "OFF" &&
+         key.find('4') == std::string_view::npos && key.find("ST") == std::string_view::npos;
+}
+
 Mesh readOff(const std::string& label, std::string_view text, LoadReport& report) {
   Tokens in(text, label);
   std::string_view kw;
@@ -90,8 +95,7 @@ Mesh readOff(const std::string& label, std::string_view text, LoadReport& report
       key.find('N') != std::string::npos && key.find("OFF") != std::string::npos;
   const bool hasColours =
       key.find('C') != std::string::npos && key.find("OFF") != std::string::npos;
-  if (key.size() < 3 || key.substr(key.size() - 3) != "OFF" || key.find("4") != std::string::npos ||
-      key.find("ST") != std::string::npos)
+  if (!isOffKeyword(key))
     throw Error(label, "not an OFF file (header '" + key.substr(0, 20) +
                            "'; supported: OFF, COFF, NOFF, CNOFF)");
   const long long nv = in.number<long long>("the vertex count");

@@ -28,11 +28,15 @@ Mesh readGltf(const std::string& path, LoadReport& report);
 Mesh readGltfBytes(const std::string& label, std::span<const unsigned char> bytes, bool binary,
                    const std::string& baseDir, bool allowFiles, LoadReport& report);
 
+/// The OFF header keywords readOff takes (ending in OFF: OFF, COFF, NOFF, CNOFF).
+bool isOffKeyword(std::string_view key);
+
 /// Inflates gzip (or zlib) data, streamed, refusing more than limits().maxDecompressedBytes of
-/// output, and (when `magic` is given) output that does not start with `magic`; throws
-/// Error(label, ...) on corrupt, truncated or oversized input.
+/// output; throws Error(label, ...) on corrupt, truncated or oversized input. With `format`
+/// ("ply" or "off") the output's header is checked as soon as the first bytes are out (within
+/// the first 64 KiB), so a bomb that is not that format stops there instead of at the cap.
 std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsigned char> bytes,
-                                  std::string_view magic = {});
+                                  std::string_view format = {});
 
 /// Bilinear lookup at texture coordinates (u, v) with repeat wrapping; v = 0 is the image's
 /// bottom row when `vUp` (OBJ), its top row otherwise (glTF).

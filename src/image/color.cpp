@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "prt/core/error.hpp"
 
@@ -41,16 +42,35 @@ ToneMap parseToneMap(const std::string& name) {
   throw Error("unknown tone mapper '" + name + "' (expected clamp, reinhard or aces)");
 }
 
+float clampExposure(float stops) {
+  if (std::isnan(stops)) return 0.0f;
+  return std::clamp(stops, -kMaxExposureStops, kMaxExposureStops);
+}
+
+void checkExposure(float stops, const std::string& what) {
+  if (!std::isfinite(stops) || std::fabs(stops) > kMaxExposureStops) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s %g: must be a finite number of stops in [%g, %g]",
+                  what.c_str(), double(stops), double(-kMaxExposureStops),
+                  double(kMaxExposureStops));
+    throw Error(buf);
+  }
+}
+
 Rgb toneMap(const Rgb& linear, ToneMap op, float exposureStops) {
-  const float scale = std::exp2(exposureStops);
+  const float scale = std::exp2(clampExposure(exposureStops));
   auto one = [&](float v) {
-    v = std::max(v * scale, 0.0f);
+    // Exposed, then clamped: NaN and negatives to 0, inf and anything absurd to a finite value
+    // every tone map sends to white (header comment).
+    v *= scale;
+    v = v > 0.0f ? std::min(v, kToneMapInputMax) : 0.0f;
     switch (op) {
       case ToneMap::Clamp:
         return std::min(v, 1.0f);
       case ToneMap::Reinhard:
         return v / (1.0f + v);
       case ToneMap::Aces:
+        v = std::min(v, 16.0f);  // the fit is ≥ 1 from 7.25 on: clamped to white there
         return std::clamp(v * (2.51f * v + 0.03f) / (v * (2.43f * v + 0.59f) + 0.14f), 0.0f, 1.0f);
     }
     return v;

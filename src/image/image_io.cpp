@@ -114,8 +114,15 @@ Image readRadianceHdr(const std::string& path, std::span<const unsigned char> b)
   };
   for (int y = 0; y < h; ++y) {
     need(4);
-    const bool rle = w >= 8 && w < 32768 && b[pos] == 2 && b[pos + 1] == 2 &&
-                     ((b[pos + 2] << 8) | b[pos + 3]) == w;
+    // As Radiance's freadcolrs: a scan line of a width in [8, 32767] that starts 2, 2, c (c < 128)
+    // is run-length encoded and must declare the image's width; another width is a corrupt file
+    // (Radiance rejects it), not flat pixels to decode as garbage.
+    const bool rle = w >= 8 && w < 32768 && b[pos] == 2 && b[pos + 1] == 2 && b[pos + 2] < 128;
+    if (rle && ((b[pos + 2] << 8) | b[pos + 3]) != w)
+      throw Error(path, "corrupt Radiance HDR file: scan line " + std::to_string(y) +
+                            " is run-length encoded for width " +
+                            std::to_string((b[pos + 2] << 8) | b[pos + 3]) + ", the image is " +
+                            std::to_string(w) + " wide");
     if (rle) {
       pos += 4;
       for (int c = 0; c < 4; ++c) {
@@ -460,6 +467,7 @@ ReadStats sanitize(Image& img) {
     s.nonFinitePixels += nonFinite;
     s.negativePixels += negative;
   }
+  s.pixels = img.pixels.size();
   return s;
 }
 

@@ -16,6 +16,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
+#include "prt/geometry/load.hpp"
 #include "prt/gltf/accessor.hpp"
 #include "transfer_codecs.hpp"
 
@@ -159,6 +160,7 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     r.fail("holds images; a bake file holds none (it is not a prtkit bake, or was edited)");
   const gltf::AccessorReader ar(name, gltf::documentOf(gltf, chunks.bin, name));
   bake.mesh = io::decodeMesh(gltf, ar, V, T, r);
+  checkMeshExtent(bake.mesh, name);  // named as given here, not as the bake's recorded source
   bake.mesh.source = text(prt, "source") ? *text(prt, "source") : name;
 
   const json& range = r.member(prt, "vertexRange", where);

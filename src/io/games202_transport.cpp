@@ -7,11 +7,23 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <string_view>
 
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 
 namespace prt {
+
+namespace {
+
+/// True when the last character that is not a space, tab or carriage return is a newline.
+bool endsWithNewline(std::string_view text) {
+  std::size_t n = text.size();
+  while (n > 0 && (text[n - 1] == ' ' || text[n - 1] == '\t' || text[n - 1] == '\r')) --n;
+  return n > 0 && text[n - 1] == '\n';
+}
+
+}  // namespace
 
 ChannelSelect parseChannelSelect(const std::string& s) {
   if (s == "luminance") return ChannelSelect::Luminance;
@@ -157,13 +169,22 @@ Games202Transport parseGames202Transport(const std::string& text, const std::str
     ++t.rowCount;
   }
   if (t.rowCount == 0) throw Error(name, "no coefficient lines after the vertex count");
+  // Both writers (ours, the course's) end every line with a newline: a file that stops inside a
+  // line was cut short, whatever its line count says.
+  if (!endsWithNewline(text))
+    throw Error(name, "the last line has no newline: the file is truncated");
+  // One line per vertex, or three per triangle corner — and every vertex is some triangle's
+  // corner, so a faces file has at least as many lines as vertices. Fewer lines than vertices is
+  // a truncated file, not the other layout.
   if (t.rowCount == t.vertexCount) {
     t.layout = Games202Layout::Vertices;
-  } else if (t.rowCount % 3 == 0) {
+  } else if (t.rowCount % 3 == 0 && t.rowCount > t.vertexCount) {
     t.layout = Games202Layout::Faces;
   } else {
     throw Error(name, std::to_string(t.rowCount) + " coefficient lines: neither one per vertex (" +
-                          std::to_string(t.vertexCount) + ") nor three per triangle");
+                          std::to_string(t.vertexCount) + ") nor three per triangle corner (at " +
+                          "least " + std::to_string(t.vertexCount) +
+                          "); the file is truncated or corrupt");
   }
   return t;
 }

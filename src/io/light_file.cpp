@@ -135,6 +135,14 @@ sh::RgbSh parseLightGames202(std::string_view text, const std::string& path) {
     if (!isFinite(v)) throw Error(path, "line " + std::to_string(lineNo) + ": value is not finite");
     rows.push_back(v);
   }
+  // Both writers (ours, the course's) end every line with a newline; a file cut inside a line can
+  // still leave a square number of complete-looking lines (16 cut to 9 reads as 3 bands).
+  std::size_t end = text.size();
+  while (end > 0 && (text[end - 1] == ' ' || text[end - 1] == '\t' || text[end - 1] == '\r')) --end;
+  if (!rows.empty() && (end == 0 || text[end - 1] != '\n'))
+    throw Error(path, "line " + std::to_string(lineNo) +
+                          " has no newline: the file is truncated (every light.txt line ends "
+                          "with one)");
   const int bands = bandsFromCount(path, rows.size());
   sh::RgbSh out(bands);
   out.c = std::move(rows);

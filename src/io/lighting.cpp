@@ -25,12 +25,7 @@ Lighting loadLighting(const std::string& spec, int bands, const ProgressFn& prog
     return l;
   }
   envmap::LoadedEnvironment loaded = envmap::loadEnvironment(spec);
-  for (std::size_t k = 0; k < loaded.stats.size(); ++k)
-    if (loaded.stats[k].nonFinitePixels + loaded.stats[k].negativePixels > 0)
-      l.warnings.push_back(loaded.files[k] + ": " +
-                           std::to_string(loaded.stats[k].nonFinitePixels) + " non-finite and " +
-                           std::to_string(loaded.stats[k].negativePixels) +
-                           " negative pixels set to 0 (radiance is finite and non-negative)");
+  for (std::string& w : envmap::repairWarnings(loaded)) l.warnings.push_back(std::move(w));
   l.coefficients = envmap::projectEnvironment(loaded.env, bands, progress);
   l.image = std::move(loaded.env);
   return l;

@@ -131,10 +131,15 @@ Framing meshFraming(const Mesh& mesh) {
   // A tighter bounding sphere than the box's half-diagonal: same centre, radius to the farthest
   // vertex (a unit sphere gets radius 1, not √3).
   Framing f;
+  // In double: a squared distance of coordinates near the cap (PRT_MAX_COORDINATE) overflows
+  // float, which gave "radius": inf on the web page.
   f.centre = computeBounds(mesh).centre();
-  float r2 = 0.0f;
-  for (const Vec3f& p : mesh.positions) r2 = std::max(r2, dot(p - f.centre, p - f.centre));
-  f.radius = std::sqrt(r2);
+  double r2 = 0.0;
+  for (const Vec3f& p : mesh.positions) {
+    const Vec3d d = Vec3d(p) - Vec3d(f.centre);
+    r2 = std::max(r2, dot(d, d));
+  }
+  f.radius = static_cast<float>(std::sqrt(r2));
   return f;
 }
 

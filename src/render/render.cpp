@@ -52,6 +52,14 @@ BackgroundFn colourBackground(const Rgb& colour) {
   return [colour](const Vec3f&) { return colour; };
 }
 
+void checkFiniteRadiance(std::span<const Rgb> radiance, const std::string& label) {
+  for (std::size_t v = 0; v < radiance.size(); ++v)
+    if (!isFinite(radiance[v]))
+      throw Error(label, "the relit radiance at vertex " + std::to_string(v) +
+                             " is not finite (the transfer times the light overflows 32-bit "
+                             "floats); nothing written");
+}
+
 ShadeFn vertexRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance) {
   if (radiance.size() != mesh.vertexCount())
     throw Error("render: " + std::to_string(radiance.size()) + " radiance values for a mesh of " +

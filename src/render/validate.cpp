@@ -166,6 +166,20 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   const auto& verts = rep.reference.vertices;
   const std::size_t n = verts.size();
   const std::vector<Rgb>& ref = rep.reference.radiance;
+  // A non-finite reference (radiance beyond float range) leaves nothing to compare against:
+  // refuse it rather than tabulate inf % and NaN %.
+  for (std::size_t i = 0; i < n; ++i)
+    if (!isFinite(ref[i]) || !isFinite(rep.reference.stdError[i]))
+      throw Error(env.source(), "the reference radiance at vertex " + std::to_string(verts[i]) +
+                                    " is not finite (the environment is too bright for 32-bit "
+                                    "floats); nothing to validate against");
+  double refTotal = 0;
+  for (const Rgb& c : ref) refTotal += sumSq(c);
+  rep.referenceIsZero = !(refTotal > 0);
+  if (rep.referenceIsZero)
+    rep.warnings.push_back(
+        "the reference is zero at every validated vertex (a black environment?): relative "
+        "errors are undefined (n/a)");
 
   double meanRef = 0;
   for (const Rgb& c : ref) meanRef += (double(c.x) + c.y + c.z) / 3.0;
@@ -230,7 +244,14 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     relight::relight(transfer.cut(b), lights[k], rs.material,
                      {mesh.positions, mesh.normals, albedo}, rs.eye ? *rs.eye : Vec3f(0.0f), all,
                      rs.rotation);
-    for (std::size_t i = 0; i < n; ++i) prt[i] = all[verts[i]];
+    for (std::size_t i = 0; i < n; ++i) {
+      prt[i] = all[verts[i]];
+      if (!isFinite(prt[i]))
+        throw Error(settings.bakeName,
+                    "the PRT radiance at vertex " + std::to_string(verts[i]) +
+                        " is not finite at " + std::to_string(b) +
+                        " bands (the transfer times the light overflows 32-bit floats)");
+    }
 
     // floor² = mean over the floor's vertices of Σ_c (x̂² − se²)/(R_ref² + ε)/3 for x = e_b − e:
     // E[x̂²] = x² + se², so its noise does not inflate it. Alongside, per vertex, what the
@@ -299,6 +320,12 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     r.maxRel = mx;
     r.negativeShare =
         rep.negativeVertices > 0 ? double(negative) / double(rep.negativeVertices) : 0.0;
+    if (rep.referenceIsZero) {
+      // Relative to nothing: undefined, not 0 % (and not the 1e32 % that ε alone would give).
+      const double na = std::numeric_limits<double>::quiet_NaN();
+      r.relRmse = r.energyRel = r.meanRel = r.maxRel = r.floor = r.refStdErr = r.explained = na;
+      std::fill(err.begin(), err.end(), 0.0f);
+    }
     rep.rows.push_back(r);
     rep.vertexError = std::move(err);
   }
@@ -317,19 +344,28 @@ std::string formatTable(const ValidationReport& rep) {
   os << "------+-----------+-----------------+--------------+-------------+------------------+----"
         "---------+-----------+----------"
      << (lobe ? "+------------------" : "") << "\n";
+  // A percentage, or "n/a" where it is undefined (a zero reference): never "inf%" or "-nan%".
+  const auto cell = [](double v, int width, int digits) {
+    char text[48];
+    if (std::isfinite(v))
+      std::snprintf(text, sizeof text, "%*.*f%%", width, digits, 100 * v);
+    else
+      std::snprintf(text, sizeof text, "%*s", width + 1, "n/a");
+    return std::string(text);
+  };
+  const auto pct = [&](double v, int width) { return cell(v, width, 3); };
   for (const BandRow& r : rep.rows) {
-    std::snprintf(line, sizeof line,
-                  "%5d | %8.3f%% | %14.3f%% | %11.3f%% | %10.3f%% | %15.3f%% | %10.3f%% | "
-                  "%8.1f%% | %7.2f%%",
-                  r.bands, 100 * r.relRmse, 100 * r.energyRel, 100 * r.meanRel, 100 * r.maxRel,
-                  100 * r.floor, 100 * r.refStdErr, 100 * r.explained, 100 * r.negativeShare);
+    std::snprintf(line, sizeof line, "%5d | %s | %s | %s | %s | %s | %s | %s | %7.2f%%", r.bands,
+                  pct(r.relRmse, 8).c_str(), pct(r.energyRel, 14).c_str(),
+                  pct(r.meanRel, 11).c_str(), pct(r.maxRel, 10).c_str(), pct(r.floor, 15).c_str(),
+                  pct(r.refStdErr, 10).c_str(), cell(r.explained, 8, 1).c_str(),
+                  100 * r.negativeShare);
     os << line;
-    if (lobe) {
-      std::snprintf(line, sizeof line, " | %15.3f%%", 100 * r.lobeEnergyBeyond);
-      os << line;
-    }
+    if (lobe) os << " | " << pct(r.lobeEnergyBeyond, 15);
     os << "\n";
   }
+  if (rep.referenceIsZero)
+    os << "n/a: the reference is zero at every validated vertex; relative errors are undefined\n";
   return os.str();
 }
 
@@ -379,6 +415,7 @@ std::string reportJson(const ValidationReport& rep, int indent) {
   os << i1 << "\"floorSeconds\": " << num(rep.floorSeconds) << "," << nl;
   os << i1 << "\"window\": " << jsonString(rep.window) << "," << nl;
   os << i1 << "\"negativeVertices\": " << rep.negativeVertices << "," << nl;
+  os << i1 << "\"referenceIsZero\": " << (rep.referenceIsZero ? "true" : "false") << "," << nl;
   os << i1 << "\"warnings\": [";
   for (std::size_t k = 0; k < rep.warnings.size(); ++k)
     os << (k ? ", " : "") << jsonString(rep.warnings[k]);

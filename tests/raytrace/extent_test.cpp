@@ -1,5 +1,5 @@
 // The Embree occluder refuses scenes whose coordinates it cannot trace (Embree asserts on ray
-// origins beyond 1.8e19 and squared distances overflow floats far below), naming the figure,
+// origins beyond 1.844e18 and squared distances overflow floats far below), naming the figure,
 // for meshes that never went through a loader (built in code, read from a bake file).
 
 #include <gtest/gtest.h>

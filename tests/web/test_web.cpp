@@ -518,4 +518,36 @@ TEST(Web, CliRefusesWhatThePageCannotShow) {
   EXPECT_NE(r.err.find("sepia"), std::string::npos) << r.err;
 }
 
+TEST(Web, AbsurdExposureAndLightShowWhite) {
+  // Issue 16, item 5: ?exposure= beyond the library's limit is clamped to it (prt-data.js
+  // carries the limit), and the shared tone map saturates a light of 1e20 to white instead of
+  // overflowing to black — as prt render's PNG at --exposure 64.
+  PRT_REQUIRE_PAGE();
+  std::string light = "{\"bands\": 4, \"coefficients\": [[1e20, 1e20, 1e20]";
+  for (int i = 1; i < 16; ++i) light += ", [0, 0, 0]";
+  std::ofstream(path("l20.json")) << light << "]}\n";
+  Result r = prt("-q web cornell.glb --env l20.json -o page_bright");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const char* e : {"64", "1e30"}) {
+    std::string log;
+    const std::string json =
+        runPage(path("page_bright"), "screenshot&size=64x48&exposure=" + std::string(e), &log);
+    ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
+    const std::vector<unsigned char> rgb = unbase64(jsonField(json, "rgb"));
+    ASSERT_EQ(rgb.size(), 64u * 48u * 3u);
+    const std::size_t c = 3 * (24 * 64 + 32);
+    EXPECT_EQ(rgb[c], 255) << e;
+    EXPECT_EQ(rgb[c + 1], 255) << e;
+    EXPECT_EQ(rgb[c + 2], 255) << e;
+  }
+  r = prt("-q render cornell.glb --light l20.json --exposure 64 --size 64x48 -o bright.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const prt::image::Image img = prt::image::readImage(path("bright.png"));
+  EXPECT_EQ(img.at(32, 24).x, 1.0f);
+  r = prt("web cornell.glb --exposure 1e30 -o nope");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.err.find("--exposure"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("nope")));
+}
+
 }  // namespace

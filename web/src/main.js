@@ -147,12 +147,16 @@ async function main() {
 
   // ---- state ------------------------------------------------------------------------------
   const view = data.view || {};
+  // The library's exposure limit (image::kMaxExposureStops, written into prt-data.js by prt web):
+  // a ?exposure= beyond it is clamped to it, one that is not a number is 0.
+  const exposureWithin = (stops, lim) =>
+    Number.isFinite(stops) ? Math.min(Math.max(stops, -lim.exposureStops), lim.exposureStops) : 0;
   const num = (key, fallback) => (query.has(key) ? Number(query.get(key)) : fallback);
   const state = {
     env: num('env', 0),
     mode: query.get('mode') || view.mode || '',
     bands: num('bands', view.bands || 0),
-    exposure: num('exposure', view.exposure || 0),
+    exposure: exposureWithin(num('exposure', view.exposure || 0), data.limits),
     tonemap: query.get('tonemap') || view.tonemap || 'aces',
     background: query.get('background') || 'env',
     spin: 0,

@@ -63,8 +63,9 @@ FileNoteFn setFileNoteHandler(FileNoteFn handler);
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 /// Same for a byte buffer.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
-/// Reads a whole file; throws Error("path: cannot open ...") on failure, or when it is larger
-/// than limits().maxFileBytes (PRT_MAX_FILE_BYTES).
+/// Reads a whole regular file (never a pipe, device or socket: a FIFO would block in open());
+/// throws Error("path: cannot open ...") on failure, or when it is larger than
+/// limits().maxFileBytes (PRT_MAX_FILE_BYTES).
 std::vector<unsigned char> readFileBytes(const std::string& path);
 /// The same with a cap of the caller's (a format's own limit), named `capName` in the refusal.
 std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t maxBytes,

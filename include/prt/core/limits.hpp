@@ -18,7 +18,8 @@
 //   PRT_MAX_NESTING             deepest JSON nesting / scene-graph depth
 //   PRT_MAX_COORDINATE          largest |x|, |y| or |z| of a vertex (what the ray tracer handles)
 //
-// A variable that is not a positive number makes limits() throw prt::Error naming it.
+// A variable that is not a positive number makes limits() throw prt::Error naming it, and so
+// does a PRT_MAX_COORDINATE beyond kMaxTraceableCoordinate (what Embree can trace at all).
 
 #include <cstdint>
 #include <span>
@@ -26,6 +27,13 @@
 #include <string_view>
 
 namespace prt {
+
+/// The largest PRT_MAX_COORDINATE (and Limits::maxCoordinate) accepted: Embree aborts
+/// (`ray.valid()`) on ray origins or directions beyond FLT_LARGE = 1.844e18 in any coordinate,
+/// and a camera framing a mesh stands up to about 10 of its coordinates' magnitude away
+/// (bounding-sphere centre + radius / sin(fov/2) · margin), so 1e17 keeps every ray Embree sees
+/// inside its range. (Renders go black long before, near 3e12: see maxCoordinate.)
+inline constexpr double kMaxTraceableCoordinate = 1e17;
 
 struct Limits {
   std::uint64_t maxFileBytes = std::uint64_t(2) << 30;          ///< 2 GiB
@@ -40,7 +48,8 @@ struct Limits {
 
 /// The limits in force (defaults, overridden by PRT_MAX_* variables, or by setLimits()).
 Limits limits();
-/// Replaces the limits for the rest of the process (tests, embedding applications, fuzzers).
+/// Replaces the limits for the rest of the process (tests, embedding applications, fuzzers);
+/// throws prt::Error for a maxCoordinate that is not in (0, kMaxTraceableCoordinate].
 void setLimits(const Limits& l);
 /// The defaults with the PRT_MAX_* environment variables applied; throws prt::Error for a
 /// variable that is not a positive number.

@@ -15,7 +15,7 @@ namespace prt {
 class Spec {
  public:
   /// Parses `full`; a leading `prefix` (e.g. "builtin:") is dropped from the name. Throws
-  /// prt::Error("FULL: ...") for an item without '=' or an empty key.
+  /// prt::Error("FULL: ...") for an item without '=', an empty key or a key given twice.
   explicit Spec(std::string full, const std::string& prefix = "");
 
   const std::string& name() const { return name_; }

@@ -74,6 +74,11 @@ class Environment {
   /// Faces (Kind::Cube) or the single image (other kinds; the texel lat-long for Analytic).
   const std::vector<image::Image>& images() const { return images_; }
 
+  /// What the user named to load it (a file, a folder, builtin:NAME; "" when built in code), so
+  /// messages about it name the input (envmap::loadEnvironment sets it).
+  const std::string& source() const { return source_; }
+  void setSource(std::string source) { source_ = std::move(source); }
+
  private:
   Kind kind_ = Kind::LatLong;
   std::vector<image::Image> images_;
@@ -86,6 +91,7 @@ class Environment {
   std::function<Rgb(const Vec3f&)> smooth_;
   std::vector<Cap> caps_;
   image::Image smoothImage_;
+  std::string source_;
 
   void initTables();
 };

@@ -36,7 +36,12 @@ std::array<image::Image, 6> readFaceFolder(const std::string& dir,
                                            std::vector<std::string>* files = nullptr,
                                            std::vector<image::ReadStats>* stats = nullptr);
 
-/// Loads an image file, a face folder or builtin:NAME. Throws prt::Error naming the file.
+/// Loads an image file, a face folder or builtin:NAME. Throws prt::Error naming the file, also
+/// when every pixel read was NaN or infinite (nothing would be left but black). The
+/// environment's source() is `input`.
 LoadedEnvironment loadEnvironment(const std::string& input, const LoadOptions& options = {});
+/// One line per file whose pixels the policy repaired: "FILE: N non-finite and M negative
+/// pixels set to 0" — what every verb that loads an environment warns.
+std::vector<std::string> repairWarnings(const LoadedEnvironment& loaded);
 
 }  // namespace prt::envmap

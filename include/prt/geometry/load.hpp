@@ -36,8 +36,9 @@ inline constexpr float kMaxAlbedo = 100.0f;
 
 /// Rejects positions the ray tracer cannot handle, naming the first offender and the figure:
 /// non-finite, or a coordinate beyond limits().maxCoordinate (Embree asserts on ray origins past
-/// 1.8e19, and squared distances overflow floats well before; see prt/core/limits.hpp). Every
-/// loader runs it, and so does the Embree occluder for meshes built in code or read from bakes.
+/// 1.844e18, and squared distances overflow floats well before; see prt/core/limits.hpp). Every
+/// loader runs it, the bake reader too (naming the file given), and so does the Embree occluder
+/// for meshes built in code.
 void checkMeshExtent(const Mesh& mesh, const std::string& label);
 /// checkMeshExtent, plus non-finite normals, texture coordinates or albedo and albedo above
 /// kMaxAlbedo. Every loader runs it.

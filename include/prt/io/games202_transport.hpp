@@ -62,8 +62,10 @@ void writeGames202Transport(const std::string& path, const Transfer& field, cons
                             Games202Layout layout = Games202Layout::Faces);
 
 /// Parses and validates: a positive vertex count, then lines of equally many numbers (a square
-/// B²), all finite; the layout is Vertices if there are exactly vertexCount lines, else Faces
-/// (which needs a multiple of 3). `name` is used in messages ("NAME:LINE: ...").
+/// B²), all finite, the last ending in a newline (else the file was cut short); the layout is
+/// Vertices if there are exactly vertexCount lines, else Faces (which needs a multiple of 3 and
+/// more lines than vertices: fewer is a truncated file). `name` is used in messages
+/// ("NAME:LINE: ...").
 Games202Transport parseGames202Transport(const std::string& text, const std::string& name);
 Games202Transport readGames202Transport(const std::string& path);
 

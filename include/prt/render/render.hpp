@@ -26,6 +26,12 @@ BackgroundFn environmentBackground(const envmap::Environment& env, const Mat3d& 
 BackgroundFn shBackground(const sh::RgbSh& light, const Mat3d& rotation);
 BackgroundFn colourBackground(const Rgb& colour);
 
+/// Throws Error(label, "the relit radiance at vertex N is not finite ...") for the first value
+/// that is not: finite transfer times a finite light can still overflow float (CPCA weights of
+/// 3e38), and inf − inf is NaN, which no tone map can show as anything but black. Call it on
+/// relit radiance before rendering it.
+void checkFiniteRadiance(std::span<const Rgb> radiance, const std::string& label);
+
 /// Shades a hit by barycentric interpolation of per-vertex radiance.
 ShadeFn vertexRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance);
 

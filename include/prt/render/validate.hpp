@@ -52,6 +52,8 @@ struct ValidateSettings {
   /// A window on the light against ringing, applied at each band count b to the b-band light
   /// (as `prt light --bands b --window W` would) for PRT and the floor alike.
   sh::Window window = sh::Window::None;
+  /// The bake file the transfer came from, named when its relighting overflows.
+  std::string bakeName;
 };
 
 /// Above this share of negative-radiance vertices a row calls for a window on the light.
@@ -93,6 +95,9 @@ struct ValidationReport {
   double floorSeconds = 0;
   std::string window = "none";       ///< the window on the light
   std::size_t negativeVertices = 0;  ///< the vertices negativeShare counts among
+  /// The reference is 0 at every validated vertex (a black environment): relative errors are
+  /// undefined, and the rows hold NaN for them (formatTable prints "n/a", reportJson null).
+  bool referenceIsZero = false;
 };
 
 /// A deterministic random subset of `count` of [0, n) (all when count is 0 or ≥ n), sorted.
