@@ -27,6 +27,7 @@
 #include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/json.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/render/camera.hpp"
@@ -49,29 +50,23 @@ struct ReferenceArgs {
 
 std::string toJson(const render::ReferenceResult& r, const ReferenceArgs& a,
                    const render::ReferenceSettings& rs) {
-  std::ostringstream os;
-  char buf[96];
-  os << "{\n  \"samples\": " << a.samples << ",\n  \"mode\": \"" << toString(rs.mode)
-     << "\",\n  \"bounces\": " << rs.bounces << ",\n  \"material\": \"" << rs.material.spec()
-     << "\",\n";
-  if (rs.eye && rs.material.glossy()) {
-    std::snprintf(buf, sizeof buf, "  \"eye\": [%.8g,%.8g,%.8g],\n", rs.eye->x, rs.eye->y,
-                  rs.eye->z);
-    os << buf;
-  }
-  os << "  \"seed\": " << a.seed << ",\n  \"rays\": " << r.rays << ",\n  \"vertices\": [";
-  for (std::size_t i = 0; i < r.vertices.size(); ++i) os << (i ? "," : "") << r.vertices[i];
-  const auto triples = [&](const char* key, const std::vector<Rgb>& v) {
-    os << "],\n  \"" << key << "\": [";
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      std::snprintf(buf, sizeof buf, "%s[%.8g,%.8g,%.8g]", i ? "," : "", v[i].x, v[i].y, v[i].z);
-      os << buf;
-    }
+  const auto triples = [](const std::vector<Rgb>& v) {
+    Json out = Json::array();
+    for (const Rgb& c : v) out.push_back(jsonFloats(&c.x, 3));
+    return out;
   };
-  triples("radiance", r.radiance);
-  triples("stdError", r.stdError);
-  os << "]\n}\n";
-  return os.str();
+  Json j;
+  j["samples"] = a.samples;
+  j["mode"] = toString(rs.mode);
+  j["bounces"] = rs.bounces;
+  j["material"] = rs.material.spec();
+  if (rs.eye && rs.material.glossy()) j["eye"] = jsonFloats(&rs.eye->x, 3);
+  j["seed"] = a.seed;
+  j["rays"] = r.rays;
+  j["vertices"] = r.vertices;
+  j["radiance"] = triples(r.radiance);
+  j["stdError"] = triples(r.stdError);
+  return formatJson(j);
 }
 
 std::string toBinary(const render::ReferenceResult& r) {

@@ -9,6 +9,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/json.hpp"
 #include "prt/core/limits.hpp"
 
 namespace prt::io {
@@ -35,18 +36,17 @@ int bandsFromCount(const std::string& path, std::size_t count) {
 void writeLightJson(const std::string& path, const LightFile& light) {
   const sh::RgbSh& c = light.coefficients;
   PRT_CHECK(c.c.size() == static_cast<std::size_t>(c.bands) * c.bands, "coefficient count");
-  // Written by hand so every float keeps 9 significant digits and rows stay one per line.
-  std::ostringstream os;
-  os << "{\n  \"bands\": " << c.bands << ",\n  \"coefficients\": [\n";
-  for (std::size_t i = 0; i < c.c.size(); ++i)
-    os << "    [" << formatFloat(c.c[i].x) << ", " << formatFloat(c.c[i].y) << ", "
-       << formatFloat(c.c[i].z) << "]" << (i + 1 < c.c.size() ? ",\n" : "\n");
-  os << "  ],\n  \"source\": " << nlohmann::json(light.source).dump()
-     << ",\n  \"layout\": " << nlohmann::json(light.layout).dump()
-     << ",\n  \"window\": " << nlohmann::json(light.window).dump() << ",\n  \"rotation\": ["
-     << light.rotationDeg[0] << ", " << light.rotationDeg[1] << ", " << light.rotationDeg[2]
-     << "],\n  \"prtkit_version\": " << nlohmann::json(light.prtkitVersion).dump() << "\n}\n";
-  writeFileAtomically(path, os.str());
+  Json j;
+  j["bands"] = c.bands;
+  Json rows = Json::array();
+  for (const Rgb& x : c.c) rows.push_back(jsonFloats(&x.x, 3));
+  j["coefficients"] = std::move(rows);
+  j["source"] = light.source;
+  j["layout"] = light.layout;
+  j["window"] = light.window;
+  j["rotation"] = Json::array({light.rotationDeg[0], light.rotationDeg[1], light.rotationDeg[2]});
+  j["prtkit_version"] = light.prtkitVersion;
+  writeFileAtomically(path, formatJson(j));
 }
 
 LightFile readLightJson(const std::string& path) {

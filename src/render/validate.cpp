@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "prt/core/error.hpp"
+#include "prt/core/json.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
 #include "prt/relight/relight.hpp"
@@ -369,78 +370,40 @@ std::string formatTable(const ValidationReport& rep) {
   return os.str();
 }
 
-namespace {
-
-std::string jsonString(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      o += '\\';
-      o += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      o += buf;
-    } else {
-      o += c;
-    }
-  }
-  return o + "\"";
-}
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-}  // namespace
-
 std::string reportJson(const ValidationReport& rep, int indent) {
-  const std::string i1(indent, ' '), i2(2 * indent, ' '), i3(3 * indent, ' ');
-  const char* nl = indent > 0 ? "\n" : "";
-  std::ostringstream os;
-  os << "{" << nl;
-  os << i1 << "\"mode\": " << jsonString(toString(rep.mode)) << "," << nl;
-  os << i1 << "\"bounces\": " << rep.bounces << "," << nl;
-  os << i1 << "\"transferBands\": " << rep.transferBands << "," << nl;
-  os << i1 << "\"lightBands\": " << rep.lightBands << "," << nl;
-  os << i1 << "\"vertices\": " << rep.reference.vertices.size() << "," << nl;
-  os << i1 << "\"referenceRays\": " << rep.reference.rays << "," << nl;
-  os << i1 << "\"referenceSeconds\": " << num(rep.reference.seconds) << "," << nl;
-  os << i1 << "\"floorMethod\": " << jsonString(rep.floorMethod) << "," << nl;
-  os << i1 << "\"floorVertices\": " << rep.floorVertices << "," << nl;
-  os << i1 << "\"floorRays\": " << rep.floorRays << "," << nl;
-  os << i1 << "\"floorSeconds\": " << num(rep.floorSeconds) << "," << nl;
-  os << i1 << "\"window\": " << jsonString(rep.window) << "," << nl;
-  os << i1 << "\"negativeVertices\": " << rep.negativeVertices << "," << nl;
-  os << i1 << "\"referenceIsZero\": " << (rep.referenceIsZero ? "true" : "false") << "," << nl;
-  os << i1 << "\"warnings\": [";
-  for (std::size_t k = 0; k < rep.warnings.size(); ++k)
-    os << (k ? ", " : "") << jsonString(rep.warnings[k]);
-  os << "]," << nl;
-  os << i1 << "\"rows\": [" << nl;
-  for (std::size_t k = 0; k < rep.rows.size(); ++k) {
-    const BandRow& r = rep.rows[k];
-    os << i2 << "{" << nl;
-    os << i3 << "\"bands\": " << r.bands << "," << nl;
-    os << i3 << "\"relRmse\": " << num(r.relRmse) << "," << nl;
-    os << i3 << "\"energyWeightedRelErr\": " << num(r.energyRel) << "," << nl;
-    os << i3 << "\"meanRelErr\": " << num(r.meanRel) << "," << nl;
-    os << i3 << "\"maxRelErr\": " << num(r.maxRel) << "," << nl;
-    os << i3 << "\"truncationFloor\": " << num(r.floor) << "," << nl;
-    os << i3 << "\"refStdErr\": " << num(r.refStdErr) << "," << nl;
-    os << i3 << "\"lightTruncationFloor\": " << num(r.lightFloor) << "," << nl;
-    os << i3 << "\"explained\": " << num(r.explained) << "," << nl;
-    os << i3 << "\"unexplainedSq\": " << num(r.unexplainedSq) << "," << nl;
-    os << i3 << "\"unexplainedSqStdErr\": " << num(r.unexplainedSqStdErr) << "," << nl;
-    os << i3 << "\"negativeShare\": " << num(r.negativeShare) << "," << nl;
-    os << i3 << "\"lobeEnergyBeyond\": " << num(r.lobeEnergyBeyond) << nl;
-    os << i2 << "}" << (k + 1 < rep.rows.size() ? "," : "") << nl;
-  }
-  os << i1 << "]" << nl << "}" << nl;
-  return os.str();
+  Json j;
+  j["mode"] = toString(rep.mode);
+  j["bounces"] = rep.bounces;
+  j["transferBands"] = rep.transferBands;
+  j["lightBands"] = rep.lightBands;
+  j["vertices"] = rep.reference.vertices.size();
+  j["referenceRays"] = rep.reference.rays;
+  j["referenceSeconds"] = rep.reference.seconds;
+  j["floorMethod"] = rep.floorMethod;
+  j["floorVertices"] = rep.floorVertices;
+  j["floorRays"] = rep.floorRays;
+  j["floorSeconds"] = rep.floorSeconds;
+  j["window"] = rep.window;
+  j["negativeVertices"] = rep.negativeVertices;
+  j["referenceIsZero"] = rep.referenceIsZero;
+  j["warnings"] = rep.warnings;
+  Json rows = Json::array();
+  for (const BandRow& r : rep.rows)
+    rows.push_back({{"bands", r.bands},
+                    {"relRmse", r.relRmse},
+                    {"energyWeightedRelErr", r.energyRel},
+                    {"meanRelErr", r.meanRel},
+                    {"maxRelErr", r.maxRel},
+                    {"truncationFloor", r.floor},
+                    {"refStdErr", r.refStdErr},
+                    {"lightTruncationFloor", r.lightFloor},
+                    {"explained", r.explained},
+                    {"unexplainedSq", r.unexplainedSq},
+                    {"unexplainedSqStdErr", r.unexplainedSqStdErr},
+                    {"negativeShare", r.negativeShare},
+                    {"lobeEnergyBeyond", r.lobeEnergyBeyond}});
+  j["rows"] = std::move(rows);
+  return formatJson(j, indent);
 }
 
 std::vector<Rgb> vertexErrorColours(const Mesh& mesh, const ValidationReport& report,
