@@ -10,6 +10,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/vec.hpp"
+#include "prt/image/image.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/sh/convolve.hpp"
 
@@ -45,14 +46,15 @@ inline Mat3d parseRotation(const std::string& s) {
   return rotationEulerXYZ(a[0], a[1], a[2]);
 }
 
-/// "WxH" -> (w, h), both in 1..16384; `option` names the flag in messages.
+/// "WxH" -> (w, h), both in 1..image::kMaxImageSide; `option` names the flag in messages.
 inline void parseSize(const std::string& s, int& w, int& h, const char* option = "--size") {
   char x = 0;
   std::istringstream in(s);
   if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof())
     throw Error(std::string(option) + " '" + s + "' is not WIDTHxHEIGHT");
-  if (w <= 0 || h <= 0 || w > 16384 || h > 16384)
-    throw Error(std::string(option) + " " + s + ": width and height must be 1..16384");
+  if (w <= 0 || h <= 0 || w > image::kMaxImageSide || h > image::kMaxImageSide)
+    throw Error(std::string(option) + " " + s + ": width and height must be 1.." +
+                std::to_string(image::kMaxImageSide));
 }
 
 inline render::MisHeuristic parseMis(const std::string& s) {

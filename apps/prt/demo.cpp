@@ -36,6 +36,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/version.hpp"
@@ -379,7 +380,8 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
 
 void runDemo(const DemoArgs& a) {
   const auto t0 = Clock::now();
-  if (a.bands < 1 || a.bands > 16) throw Error(fmt::format("--bands {}: must be 1..16", a.bands));
+  if (a.bands < 1 || a.bands > bands::kMaxBake)
+    throw Error(fmt::format("--bands {}: must be 1..{}", a.bands, bands::kMaxBake));
   if (a.samples < 1 || a.samples > kMaxBakeSamples)
     throw Error(fmt::format("--samples {}: must be 1..{}", a.samples, kMaxBakeSamples));
   if (a.referenceSamples < 1 || a.glossyReferenceSamples < 1)
@@ -387,8 +389,11 @@ void runDemo(const DemoArgs& a) {
   if (a.bounces < 1 || a.bounces > kMaxBounces)
     throw Error(fmt::format("--bounces {}: must be 1..{}", a.bounces, kMaxBounces));
   if (a.frames < 0 || a.frames > 360) throw Error("--frames must be 0..360");
-  if (a.glossyBands < 1 || a.glossyBands > 8)
-    throw Error(fmt::format("--glossy-bands {}: must be 1..8", a.glossyBands));
+  if (a.glossyBands < 1 || a.glossyBands > bands::kMaxShaderGlossy)
+    throw Error(
+        fmt::format("--glossy-bands {}: must be 1..{} (the page draws glossy matrices up "
+                    "to that)",
+                    a.glossyBands, bands::kMaxShaderGlossy));
   if (a.glossySamples < 1 || a.glossySamples > kMaxBakeSamples)
     throw Error(
         fmt::format("--glossy-samples {}: must be 1..{}", a.glossySamples, kMaxBakeSamples));

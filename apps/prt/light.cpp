@@ -14,6 +14,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/version.hpp"
@@ -63,8 +64,8 @@ void warnAboutPixels(const envmap::LoadedEnvironment& loaded, bool strict) {
 
 void runLight(const LightOptions& o) {
   // Validate everything first: nothing is written unless all of it works.
-  if (o.bands < 1 || o.bands > sh::kMaxBands)
-    throw Error("--bands must be in 1..32, got " + std::to_string(o.bands));
+  if (o.bands < 1 || o.bands > bands::kMaxLibrary)
+    throw Error(fmt::format("--bands {}: must be 1..{}", o.bands, bands::kMaxLibrary));
   if (o.previewWidth < 8 || o.previewWidth % 2)
     throw Error("--preview-width must be an even number >= 8");
   const bool compat = o.compat == "games202";
@@ -191,7 +192,8 @@ void addLightCommand(CLI::App& root) {
       ->required();
   cmd->add_option("--layout", opts->layout,
                   "latlong|probe|vcross|hcross|faces (default: detected)");
-  cmd->add_option("-b,--bands", opts->bands, "SH bands B (1..32; B² coefficients)")
+  cmd->add_option("-b,--bands", opts->bands,
+                  "SH bands B (1.." + std::to_string(bands::kMaxLibrary) + "; B² coefficients)")
       ->capture_default_str();
   cmd->add_option("--window", opts->window, "none|hanning|lanczos|dering")->capture_default_str();
   cmd->add_option("--rotate", opts->rotate, "Rotate the light: X,Y,Z Euler degrees (R = Rz Ry Rx)");
@@ -200,7 +202,7 @@ void addLightCommand(CLI::App& root) {
   cmd->add_option("--preview", opts->preview,
                   "Preview image: source, SH radiance, SH irradiance/pi");
   cmd->add_option("--preview-width", opts->previewWidth, "Preview width in pixels")
-      ->check(intRange(8, 16384))
+      ->check(intRange(8, image::kMaxImageSide))
       ->capture_default_str();
   cmd->add_option("--exposure", opts->exposure, "Preview exposure in stops (default: automatic)")
       ->check(exposureStops());

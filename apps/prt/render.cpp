@@ -16,6 +16,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/image/image_io.hpp"
@@ -86,8 +87,8 @@ void run(const RenderOptions& o) {
     if (o.turntable == 0) throw Error("--contact-sheet needs --turntable N");
     checkOutput(o.contactSheet, "the contact sheet");
   }
-  if (o.bands < 0 || o.bands > sh::kMaxBands)
-    throw Error(fmt::format("--bands must be 1..{}", sh::kMaxBands));
+  if (o.bands < 0 || o.bands > bands::kMaxLibrary)
+    throw Error(fmt::format("--bands {}: must be 1..{}", o.bands, bands::kMaxLibrary));
   // What is written: -o itself, or with --turntable its numbered frames and the contact sheet.
   std::vector<NamedPath> outputs;
   if (o.turntable == 0) outputs.push_back({"-o", o.output});
@@ -203,7 +204,7 @@ void addRenderCommand(CLI::App& root) {
   addTransferChoice(cmd, opts->transfer, "to relight");
   addMaterialOption(cmd, opts->material, "to relight with");
   cmd->add_option("--bands", opts->bands, "Use at most this many SH bands (default: all)")
-      ->check(intRange(1, sh::kMaxBands));
+      ->check(intRange(1, bands::kMaxLibrary));
   cmd->add_option("--background", opts->background,
                   "What rays that miss show: env, sh (the light's SH reconstruction), none, a "
                   "linear colour r,g,b, or #rrggbb")

@@ -9,6 +9,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "transfer_options.hpp"
 
@@ -84,12 +85,13 @@ void addViewCommand(CLI::App& root) {
   cmd->add_option("--mode", a->mode, "Transfer mode to start with (default: the richest)");
   addMaterialOption(cmd, a->material, "to relight with");
   cmd->add_option("--glossy-on", a->glossyOn,
-                  "Where glossy (matrix) transfer is relit: cpu (relightGlossy into a vertex "
-                  "buffer) or gpu (the vertex shader, scalar matrices up to 8 bands)")
+                  "Where glossy (matrix) transfer is relit: cpu (relight::Relighter into a vertex "
+                  "buffer) or gpu (the vertex shader, scalar matrices up to " +
+                      std::to_string(bands::kMaxShaderGlossy) + " bands)")
       ->check(CLI::IsMember({"cpu", "gpu"}))
       ->capture_default_str();
   cmd->add_option("--bands", a->bands, "Start with at most this many SH bands")
-      ->check(intRange(1, 32));
+      ->check(intRange(1, bands::kMaxPackedLight));
   cmd->add_option("--background", a->background,
                   "env (the image), sh (its SH reconstruction) or none")
       ->capture_default_str();

@@ -14,6 +14,7 @@
 #include "context.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/image/image.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/sh/sh.hpp"
 #include "scene.hpp"
@@ -37,8 +38,10 @@ BackgroundMode parseBackgroundMode(const std::string& s) {
 }
 
 void checkOptions(const Options& o) {
-  if (o.width <= 0 || o.height <= 0 || o.width > 16384 || o.height > 16384)
-    throw Error(fmt::format("--size {}x{}: width and height must be 1..16384", o.width, o.height));
+  if (o.width <= 0 || o.height <= 0 || o.width > image::kMaxImageSide ||
+      o.height > image::kMaxImageSide)
+    throw Error(fmt::format("--size {}x{}: width and height must be 1..{}", o.width, o.height,
+                            image::kMaxImageSide));
   if (o.frames < 0) throw Error("--frames must be positive (0: until the window is closed)");
   if (o.bands < 0 || o.bands > kMaxViewerBands)
     throw Error(fmt::format("--bands must be 1..{}", kMaxViewerBands));

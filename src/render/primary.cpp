@@ -9,7 +9,7 @@
 namespace prt::render {
 
 void checkFrameSettings(const FrameSettings& s) {
-  constexpr int kMaxSide = 16384;
+  constexpr int kMaxSide = image::kMaxImageSide;
   if (s.width <= 0 || s.height <= 0 || s.width > kMaxSide || s.height > kMaxSide)
     throw Error("image size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                 " is invalid (each side must be 1.." + std::to_string(kMaxSide) + ")");

@@ -701,7 +701,7 @@ void ReferenceIntegrator::kernelResidual(const Vec3f& p, const Vec3f& n, const V
 Estimate ReferenceIntegrator::estimate(const Vec3f& p, const Vec3f& n, const Vec3f& v,
                                        const Rgb& kd, int samples, std::uint64_t seed,
                                        std::uint64_t* rays) const {
-  const int bounces = settings_.mode == TransferMode::Interreflected ? settings_.bounces : 0;
+  const int bounces = effectiveBounces(settings_.mode, settings_.bounces);
   const bool gloss = settings_.material.glossy();
   const Vec3d ks(settings_.material.specular);
   const Vec3f r = gloss ? normalize(reflectView(n, v)) : n;
@@ -758,7 +758,7 @@ Estimate ReferenceIntegrator::estimateBandLimited(const Vec3f& p, const Vec3f& n
   const int lanes = band_->lanes;
   if (out.size() != std::size_t(lanes))
     throw Error("estimateBandLimited: one estimate per band limit");
-  const int bounces = settings_.mode == TransferMode::Interreflected ? settings_.bounces : 0;
+  const int bounces = effectiveBounces(settings_.mode, settings_.bounces);
   const bool gloss = settings_.material.glossy();
   const Vec3d ks(settings_.material.specular);
   const Vec3f r = gloss ? normalize(reflectView(n, v)) : n;

@@ -158,8 +158,8 @@ TEST_F(LightCli, BadInputsFailCleanly) {
   image::writeImage(p("odd.exr"), image::Image(50, 30, Rgb(0.5f)));
   expectFailure("'" + p("odd.exr") + "'", {"odd.exr", "50x30 fits no layout"});
   expectFailure("'" + p("ok.png") + "' --layout probe", {"ok.png", "square"});
-  expectFailure("'" + p("ok.png") + "' --bands 0", {"--bands must be in 1..32"});
-  expectFailure("'" + p("ok.png") + "' --bands 33", {"--bands must be in 1..32, got 33"});
+  expectFailure("'" + p("ok.png") + "' --bands 0", {"--bands 0: must be 1..32"});
+  expectFailure("'" + p("ok.png") + "' --bands 33", {"--bands 33: must be 1..32"});
   expectFailure("'" + p("ok.png") + "' --window blur", {"--window"});
   expectFailure("'" + p("ok.png") + "' --rotate 1,2", {"--rotate"});
   expectFailure("builtin:nope", {"builtin:nope", "unknown builtin"});

@@ -10,6 +10,10 @@
 
 namespace prt::image {
 
+/// The widest and tallest image any verb renders or a viewer opens (16384² is the pixel cap,
+/// limits().maxImagePixels, at its default).
+inline constexpr int kMaxImageSide = 16384;
+
 struct Image {
   int width = 0;
   int height = 0;

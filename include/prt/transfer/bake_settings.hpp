@@ -39,6 +39,12 @@ Sampling parseSampling(const std::string& s);
 inline constexpr int kMaxBakeSamples = 1 << 24;
 inline constexpr int kMaxBounces = 16;
 
+/// The bounces a mode bakes (and its reference follows): `bounces` for Interreflected, else 0 —
+/// the one rule.
+constexpr int effectiveBounces(TransferMode mode, int bounces) {
+  return mode == TransferMode::Interreflected ? bounces : 0;
+}
+
 /// How a transfer was (or is to be) baked, apart from its shape.
 struct BakeRecipe {
   TransferMode mode = TransferMode::Shadowed;
@@ -52,8 +58,8 @@ struct BakeRecipe {
   /// only. Either way it is stored with the bake as the default for relighting.
   Material material;
 
-  /// The bounces the mode bakes: `bounces` for Interreflected, else 0 — the one rule.
-  int effectiveBounces() const { return mode == TransferMode::Interreflected ? bounces : 0; }
+  /// The bounces the mode bakes (prt::effectiveBounces).
+  int effectiveBounces() const { return prt::effectiveBounces(mode, bounces); }
   /// True when a bake of this recipe in `layout` bounces light through the material's lobe: an
   /// inter-reflected matrix bake (with bounces) of a glossy material. Its transfer then holds
   /// that lobe and ks in the light the surfaces send each other, so relighting with another
