@@ -181,20 +181,16 @@ class Body {
 
 }  // namespace
 
-Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, LoadReport& report) {
-  // --- header ---
-  const char* text = reinterpret_cast<const char*>(bytes.data());
-  const std::string_view all(text, bytes.size());
-  if (all.substr(0, 3) != "ply") throw Error(label, "not a PLY file (does not start with 'ply')");
-  const std::size_t endHeader = all.find("end_header");
-  if (endHeader == std::string_view::npos) throw Error(label, "PLY header has no end_header");
-  std::size_t bodyStart = all.find('\n', endHeader);
-  if (bodyStart == std::string_view::npos)
-    bodyStart = all.size();
-  else
-    ++bodyStart;
+namespace {
 
-  std::istringstream header{std::string(all.substr(0, endHeader))};
+struct Header {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+};
+
+/// The header's format and elements (the text before end_header).
+Header parseHeader(const std::string& label, std::string_view text) {
+  std::istringstream header{std::string(text)};
   std::string line;
   std::optional<Format> format;
   std::vector<Element> elements;
@@ -253,18 +249,152 @@ Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, Loa
     }
   }
   if (!format) throw Error(label, "PLY header has no format line");
+  return {*format, std::move(elements)};
+}
 
-  // --- body ---
+/// Positions and, where the element has them, normals, sRGB colours (as linear albedo) and UVs.
+void readVertices(const std::string& label, const Element& e, Body& in, Mesh& m) {
+  int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, ir = -1, ig = -1, ib = -1, iu = -1,
+      ivv = -1;
+  for (int k = 0; k < int(e.props.size()); ++k) {
+    const std::string& n = e.props[k].name;
+    if (e.props[k].list) continue;
+    if (n == "x")
+      ix = k;
+    else if (n == "y")
+      iy = k;
+    else if (n == "z")
+      iz = k;
+    else if (n == "nx")
+      inx = k;
+    else if (n == "ny")
+      iny = k;
+    else if (n == "nz")
+      inz = k;
+    else if (n == "red" || n == "r" || n == "diffuse_red")
+      ir = k;
+    else if (n == "green" || n == "g" || n == "diffuse_green")
+      ig = k;
+    else if (n == "blue" || n == "b" || n == "diffuse_blue")
+      ib = k;
+    else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
+      iu = k;
+    else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
+      ivv = k;
+  }
+  if (ix < 0 || iy < 0 || iz < 0) throw Error(label, "PLY vertex element lacks x, y or z");
+  const bool normals = inx >= 0 && iny >= 0 && inz >= 0;
+  const bool colours = ir >= 0 && ig >= 0 && ib >= 0;
+  const bool uvs = iu >= 0 && ivv >= 0;
+  m.positions.resize(e.count);
+  if (normals) m.normals.resize(e.count);
+  if (colours) m.albedo.resize(e.count);
+  if (uvs) m.uvs.resize(e.count);
+  std::vector<double> val(e.props.size());
+  for (std::size_t v = 0; v < e.count; ++v) {
+    for (std::size_t k = 0; k < e.props.size(); ++k) {
+      const Property& p = e.props[k];
+      if (p.list) {
+        const std::size_t c = in.listLength(in.read(p.countType));
+        for (std::size_t j = 0; j < c; ++j) in.read(p.type);
+        val[k] = 0;
+      } else {
+        val[k] = in.read(p.type);
+      }
+    }
+    m.positions[v] = {float(val[ix]), float(val[iy]), float(val[iz])};
+    if (normals) m.normals[v] = {float(val[inx]), float(val[iny]), float(val[inz])};
+    if (uvs) m.uvs[v] = {float(val[iu]), float(val[ivv])};
+    if (colours) {
+      const int idx[3] = {ir, ig, ib};
+      for (int c = 0; c < 3; ++c) {
+        const Property& p = e.props[idx[c]];
+        const double x = val[idx[c]];
+        // 8-bit (or 16-bit) integers are sRGB codes; floats are sRGB values in [0, 1].
+        const double maxCode = p.type == Type::U16 ? 65535.0 : 255.0;
+        const double s = isIntegerType(p.type) ? x / maxCode : x;
+        m.albedo[v][c] = image::srgbToLinear(float(std::clamp(s, 0.0, 1.0)));
+      }
+    }
+  }
+}
+
+/// The vertex_indices list of each face, fanned into triangles; indices checked against nv.
+void readFaces(const std::string& label, const Element& e, Body& in, std::size_t nv, Mesh& m,
+               LoadReport& report) {
+  int li = -1;
+  for (int k = 0; k < int(e.props.size()); ++k)
+    if (e.props[k].list &&
+        (e.props[k].name == "vertex_indices" || e.props[k].name == "vertex_index"))
+      li = k;
+  if (li < 0) throw Error(label, "PLY face element has no vertex_indices list");
+  m.triangles.reserve(e.count);
+  std::vector<std::uint32_t> corners;
+  for (std::size_t f = 0; f < e.count; ++f) {
+    for (int k = 0; k < int(e.props.size()); ++k) {
+      const Property& p = e.props[k];
+      if (!p.list) {
+        in.read(p.type);
+        continue;
+      }
+      const std::size_t n = in.listLength(in.read(p.countType));
+      if (k != li) {
+        for (std::size_t j = 0; j < n; ++j) in.read(p.type);
+        continue;
+      }
+      corners.clear();
+      for (std::size_t j = 0; j < n; ++j) {
+        const double i = in.read(p.type);
+        if (!(i >= 0 && i < double(nv) && i == std::floor(i)))
+          throw Error(label, "face " + std::to_string(f) + " references vertex " +
+                                 Body::shortNumber(i) + " (mesh has " + std::to_string(nv) + ")");
+        corners.push_back(static_cast<std::uint32_t>(i));
+      }
+      if (n > 3) ++report.polygonsTriangulated;
+      for (std::size_t j = 1; j + 1 < n; ++j)
+        m.triangles.push_back({corners[0], corners[j], corners[j + 1]});
+    }
+  }
+}
+
+/// Reads past every record of an element we do not use.
+void skipElement(const Element& e, Body& in) {
+  for (std::size_t r = 0; r < e.count; ++r)
+    for (const Property& p : e.props) {
+      if (p.list) {
+        const std::size_t c = in.listLength(in.read(p.countType));
+        for (std::size_t j = 0; j < c; ++j) in.read(p.type);
+      } else {
+        in.read(p.type);
+      }
+    }
+}
+
+}  // namespace
+
+Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, LoadReport& report) {
+  const char* text = reinterpret_cast<const char*>(bytes.data());
+  const std::string_view all(text, bytes.size());
+  if (all.substr(0, 3) != "ply") throw Error(label, "not a PLY file (does not start with 'ply')");
+  const std::size_t endHeader = all.find("end_header");
+  if (endHeader == std::string_view::npos) throw Error(label, "PLY header has no end_header");
+  std::size_t bodyStart = all.find('\n', endHeader);
+  if (bodyStart == std::string_view::npos)
+    bodyStart = all.size();
+  else
+    ++bodyStart;
+  const Header h = parseHeader(label, all.substr(0, endHeader));
+
   const unsigned char* body = bytes.data() + std::min(bodyStart, bytes.size());
-  Body in(label, body, bytes.size() - std::min(bodyStart, bytes.size()), *format);
+  Body in(label, body, bytes.size() - std::min(bodyStart, bytes.size()), h.format);
   Mesh m;
   bool sawVertex = false, sawFace = false;
   std::size_t nv = 0;
-  for (const Element& e : elements) {
+  for (const Element& e : h.elements) {
     // The smallest possible record: reject counts that cannot fit before allocating.
     std::size_t minRecord = 0;
     for (const Property& p : e.props) minRecord += p.list ? sizeOf(p.countType) : sizeOf(p.type);
-    if (*format == Format::Ascii) minRecord = e.props.empty() ? 0 : 2 * e.props.size();
+    if (h.format == Format::Ascii) minRecord = e.props.empty() ? 0 : 2 * e.props.size();
     if (minRecord && e.count > in.remaining() / minRecord)
       throw Error(label, "element '" + e.name + "' claims " + std::to_string(e.count) +
                              " records but the file has room for at most " +
@@ -277,123 +407,18 @@ Mesh readPly(const std::string& label, std::span<const unsigned char> bytes, Loa
         throw Error(label, "PLY vertex element lacks x, y or z");
       continue;
     }
-    if (e.name == "vertex" && !sawVertex)
-      checkLimit(label, "vertex count", e.count, limits().maxVertices, "PRT_MAX_VERTICES");
-    if (e.name == "face" && !sawFace)
-      checkLimit(label, "face count", e.count, limits().maxTriangles, "PRT_MAX_TRIANGLES");
     if (e.name == "vertex" && !sawVertex) {
+      checkLimit(label, "vertex count", e.count, limits().maxVertices, "PRT_MAX_VERTICES");
       sawVertex = true;
       nv = e.count;
-      int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, ir = -1, ig = -1, ib = -1,
-          iu = -1, ivv = -1;
-      for (int k = 0; k < int(e.props.size()); ++k) {
-        const std::string& n = e.props[k].name;
-        if (e.props[k].list) continue;
-        if (n == "x")
-          ix = k;
-        else if (n == "y")
-          iy = k;
-        else if (n == "z")
-          iz = k;
-        else if (n == "nx")
-          inx = k;
-        else if (n == "ny")
-          iny = k;
-        else if (n == "nz")
-          inz = k;
-        else if (n == "red" || n == "r" || n == "diffuse_red")
-          ir = k;
-        else if (n == "green" || n == "g" || n == "diffuse_green")
-          ig = k;
-        else if (n == "blue" || n == "b" || n == "diffuse_blue")
-          ib = k;
-        else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
-          iu = k;
-        else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
-          ivv = k;
-      }
-      if (ix < 0 || iy < 0 || iz < 0) throw Error(label, "PLY vertex element lacks x, y or z");
-      const bool normals = inx >= 0 && iny >= 0 && inz >= 0;
-      const bool colours = ir >= 0 && ig >= 0 && ib >= 0;
-      const bool uvs = iu >= 0 && ivv >= 0;
-      m.positions.resize(e.count);
-      if (normals) m.normals.resize(e.count);
-      if (colours) m.albedo.resize(e.count);
-      if (uvs) m.uvs.resize(e.count);
-      std::vector<double> val(e.props.size());
-      for (std::size_t v = 0; v < e.count; ++v) {
-        for (std::size_t k = 0; k < e.props.size(); ++k) {
-          const Property& p = e.props[k];
-          if (p.list) {
-            const std::size_t c = in.listLength(in.read(p.countType));
-            for (std::size_t j = 0; j < c; ++j) in.read(p.type);
-            val[k] = 0;
-          } else {
-            val[k] = in.read(p.type);
-          }
-        }
-        m.positions[v] = {float(val[ix]), float(val[iy]), float(val[iz])};
-        if (normals) m.normals[v] = {float(val[inx]), float(val[iny]), float(val[inz])};
-        if (uvs) m.uvs[v] = {float(val[iu]), float(val[ivv])};
-        if (colours) {
-          const int idx[3] = {ir, ig, ib};
-          for (int c = 0; c < 3; ++c) {
-            const Property& p = e.props[idx[c]];
-            const double x = val[idx[c]];
-            // 8-bit (or 16-bit) integers are sRGB codes; floats are sRGB values in [0, 1].
-            const double maxCode = p.type == Type::U16 ? 65535.0 : 255.0;
-            const double s = isIntegerType(p.type) ? x / maxCode : x;
-            m.albedo[v][c] = image::srgbToLinear(float(std::clamp(s, 0.0, 1.0)));
-          }
-        }
-      }
+      readVertices(label, e, in, m);
     } else if (e.name == "face" && !sawFace) {
-      sawFace = true;
-      int li = -1;
-      for (int k = 0; k < int(e.props.size()); ++k)
-        if (e.props[k].list &&
-            (e.props[k].name == "vertex_indices" || e.props[k].name == "vertex_index"))
-          li = k;
-      if (li < 0) throw Error(label, "PLY face element has no vertex_indices list");
+      checkLimit(label, "face count", e.count, limits().maxTriangles, "PRT_MAX_TRIANGLES");
       if (!sawVertex) throw Error(label, "PLY face element comes before the vertex element");
-      m.triangles.reserve(e.count);
-      std::vector<std::uint32_t> corners;
-      for (std::size_t f = 0; f < e.count; ++f) {
-        for (int k = 0; k < int(e.props.size()); ++k) {
-          const Property& p = e.props[k];
-          if (!p.list) {
-            in.read(p.type);
-            continue;
-          }
-          const std::size_t n = in.listLength(in.read(p.countType));
-          if (k != li) {
-            for (std::size_t j = 0; j < n; ++j) in.read(p.type);
-            continue;
-          }
-          corners.clear();
-          for (std::size_t j = 0; j < n; ++j) {
-            const double i = in.read(p.type);
-            if (!(i >= 0 && i < double(nv) && i == std::floor(i)))
-              throw Error(label, "face " + std::to_string(f) + " references vertex " +
-                                     Body::shortNumber(i) + " (mesh has " + std::to_string(nv) +
-                                     ")");
-            corners.push_back(static_cast<std::uint32_t>(i));
-          }
-          if (n > 3) ++report.polygonsTriangulated;
-          for (std::size_t j = 1; j + 1 < n; ++j)
-            m.triangles.push_back({corners[0], corners[j], corners[j + 1]});
-        }
-      }
+      sawFace = true;
+      readFaces(label, e, in, nv, m, report);
     } else {
-      for (std::size_t r = 0; r < e.count; ++r)
-        for (const Property& p : e.props) {
-          if (p.list) {
-            const std::size_t c = in.listLength(in.read(p.countType));
-            for (std::size_t j = 0; j < c; ++j) in.read(p.type);
-          } else {
-            in.read(p.type);
-          }
-        }
+      skipElement(e, in);
     }
   }
   if (!sawVertex) throw Error(label, "PLY file has no vertex element");
