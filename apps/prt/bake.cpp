@@ -79,15 +79,21 @@ std::string seconds(double s) {
   return s < 1 ? fmt::format("{:.0f} ms", s * 1e3) : fmt::format("{:.2f} s", s);
 }
 
-void runBake(const BakeArgs& a) {
-  // Settings first (cheap checks before loading anything), then the output path.
-  if (a.modes.empty()) throw Error("no --mode given");
+/// What every mode of the bake shares, from the options (cheap checks before loading anything).
+struct BakePlan {
   std::vector<TransferMode> modes;
+  TransferLayout layout = TransferLayout::Vector;
+  BakeRecipe recipe;  ///< all but the mode
+};
+
+BakePlan planOf(const BakeArgs& a) {
+  if (a.modes.empty()) throw Error("no --mode given");
+  BakePlan plan;
   for (const auto& m : a.modes) {
     const TransferMode mode = parseTransferMode(m);
-    for (TransferMode seen : modes)
+    for (TransferMode seen : plan.modes)
       if (seen == mode) throw Error("--mode " + m + " given twice");
-    modes.push_back(mode);
+    plan.modes.push_back(mode);
   }
   if (a.bands < 1 || a.bands > bands::kMaxBake)
     throw Error(fmt::format("--bands {}: must be 1..{}", a.bands, bands::kMaxBake));
@@ -95,13 +101,78 @@ void runBake(const BakeArgs& a) {
     throw Error(fmt::format("--samples {}: must be 1..{}", a.samples, kMaxBakeSamples));
   if (a.bounces < 0 || a.bounces > kMaxBounces)
     throw Error(fmt::format("--bounces {}: must be 0..{}", a.bounces, kMaxBounces));
-  const Sampling sampling = parseSampling(a.sampling == "cosine" ? "cosine-sobol" : a.sampling);
-  std::optional<Rgb> albedo;
-  if (!a.albedo.empty()) albedo = parseAlbedo(a.albedo);
-  const TransferLayout layout = parseTransferLayout(a.transfer);
-  Material material;
-  if (!a.material.empty()) material = parseMaterial(a.material);
-  if (albedo) material.diffuse = albedo;
+  BakeRecipe& r = plan.recipe;
+  r.sampling = parseSampling(a.sampling == "cosine" ? "cosine-sobol" : a.sampling);
+  r.samples = static_cast<int>(a.samples);
+  r.bounces = a.bounces;
+  r.seed = a.seed;
+  plan.layout = parseTransferLayout(a.transfer);
+  if (!a.material.empty()) r.material = parseMaterial(a.material);
+  if (!a.albedo.empty()) r.material.diffuse = parseAlbedo(a.albedo);
+  return plan;
+}
+
+/// States the memory a mode's bake takes before the work, and refuses what a bake file cannot
+/// hold (naming `output`).
+void announce(const Mesh& mesh, const BakeSettings& s, const std::string& output) {
+  const std::string what = fmt::format("{} {}", toString(s.mode), toString(s.layout));
+  const BakeFootprint fp = bakeFootprint(mesh, s);
+  info(fmt::format("{}: {} per vertex, {} in all{}", what, bytesText(fp.bytesPerVertex),
+                   bytesText(fp.transferBytes),
+                   fp.workingBytes ? " + " + bytesText(fp.workingBytes) + " working" : ""));
+  if (s.glossyBounces(s.layout))
+    info(
+        fmt::format("{}: the bounces follow the material's lobe ({}): {} matrix passes over the "
+                    "whole mesh",
+                    what, s.material.spec(), s.bounces + 1));
+  else if (s.bounces > 0 && s.material.glossy())
+    info(
+        fmt::format("{}: its bounces treat every surface as diffuse (kd); --transfer matrix "
+                    "bounces the light off the lobe too",
+                    what));
+  // The mesh and the JSON take a little of the file too: a margin of 64 MiB.
+  const std::uint64_t fileRoom = kMaxBakeFileBytes - (std::uint64_t(1) << 26);
+  if (fp.transferBytes > fileRoom)
+    throw Error(output, fmt::format("{} transfer of {} vertices at {} bands is {}, more than a "
+                                    "bake file holds ({}); use fewer bands or split the bake "
+                                    "with --range",
+                                    what, s.rows.count, s.bands, bytesText(fp.transferBytes),
+                                    bytesText(fileRoom)));
+}
+
+/// The bake's rays, timings and Monte Carlo error, in two lines.
+void report(const BakedTransfer& t) {
+  const BakeStats& st = t.stats;
+  const char* mode = toString(t.mode());
+  std::string bounces;
+  for (std::size_t k = 0; k < st.secondsBounce.size(); ++k)
+    bounces += fmt::format(", bounce {} {}", k + 1, seconds(st.secondsBounce[k]));
+  info(fmt::format("{}: {} rays in {} ({:.3g} Mrays/s, {} threads); direct {}{}", mode, st.rays,
+                   seconds(st.secondsTotal), st.raysPerSecond / 1e6, st.threads,
+                   seconds(st.secondsDirect), bounces));
+  info(
+      fmt::format("{}: Monte Carlo std. error of T00 mean {:.2e} max {:.2e}; of white-sky "
+                  "radiance mean {:.2e} max {:.2e}; {} channel(s)",
+                  mode, st.stdErrT0Mean, st.stdErrT0Max, st.stdErrConstMean, st.stdErrConstMax,
+                  t.transfer.channels()));
+}
+
+/// Never write a bake no reader can use: a non-finite coefficient (an absurd material albedo
+/// amplified by the bounces, coordinates beyond float range) fails here, with the vertex.
+void refuseNonFinite(const Mesh& mesh, const BakedTransfer& t) {
+  const std::size_t stride = t.transfer.stride();
+  const FloatArray& values = t.transfer.values();
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (!std::isfinite(values[k]))
+      throw Error(mesh.source,
+                  fmt::format("{} transfer of vertex {} is not finite (check the "
+                              "material albedos and coordinates); nothing written",
+                              toString(t.mode()), t.transfer.rows().first + k / stride));
+}
+
+void runBake(const BakeArgs& a) {
+  BakePlan plan = planOf(a);
+  Material& material = plan.recipe.material;
   if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
     throw Error(a.output + ": the bake file must end in .glb");
   std::vector<NamedPath> inputs;
@@ -110,10 +181,10 @@ void runBake(const BakeArgs& a) {
   checkWritable(a.output);
 
   const auto t0 = std::chrono::steady_clock::now();
-  LoadReport report;
+  LoadReport loadReport;
   BakeFile file;
-  file.mesh = loadScene(a.inputs, &report);
-  for (const auto& w : report.warnings) warn(w);
+  file.mesh = loadScene(a.inputs, &loadReport);
+  for (const auto& w : loadReport.warnings) warn(w);
   // Without --material, the file's own glossy surface (MTL Ks/Ns, glTF metallic-roughness).
   if (a.material.empty() && file.mesh.gloss) {
     const std::optional<Rgb> kd = material.diffuse;
@@ -140,69 +211,21 @@ void runBake(const BakeArgs& a) {
                    mesh.source, mesh.vertexCount(), mesh.triangleCount(), mesh.parts.size(),
                    seconds(loadSeconds), seconds(bvhSeconds)));
 
-  for (TransferMode mode : modes) {
+  for (TransferMode mode : plan.modes) {
     BakeSettings s;
-    s.layout = layout;
+    static_cast<BakeRecipe&>(s) = plan.recipe;
     s.mode = mode;
-    s.bands = a.bands;
-    s.samples = static_cast<int>(a.samples);
-    s.bounces = a.bounces;
     s.bounces = s.effectiveBounces();  // what the file records: 0 unless inter-reflected
-    s.seed = a.seed;
-    s.sampling = sampling;
-    s.material = material;
+    s.layout = plan.layout;
+    s.bands = a.bands;
     s.rows = rows;
-    // State the memory before the work, and refuse what a bake file cannot hold.
-    const BakeFootprint fp = bakeFootprint(mesh, s);
-    info(fmt::format("{} {}: {} per vertex, {} in all{}", toString(mode), toString(layout),
-                     bytesText(fp.bytesPerVertex), bytesText(fp.transferBytes),
-                     fp.workingBytes ? " + " + bytesText(fp.workingBytes) + " working" : ""));
-    if (s.glossyBounces(layout))
-      info(
-          fmt::format("{} {}: the bounces follow the material's lobe ({}): {} matrix passes over "
-                      "the whole mesh",
-                      toString(mode), toString(layout), material.spec(), s.bounces + 1));
-    else if (s.bounces > 0 && material.glossy())
-      info(
-          fmt::format("{} {}: its bounces treat every surface as diffuse (kd); --transfer matrix "
-                      "bounces the light off the lobe too",
-                      toString(mode), toString(layout)));
-    // The mesh and the JSON take a little of the file too: a margin of 64 MiB.
-    const std::uint64_t fileRoom = kMaxBakeFileBytes - (std::uint64_t(1) << 26);
-    if (fp.transferBytes > fileRoom)
-      throw Error(a.output, fmt::format("{} {} transfer of {} vertices at {} bands is {}, more "
-                                        "than a bake file holds ({}); use fewer bands or split "
-                                        "the bake with --range",
-                                        toString(mode), toString(layout), rows.count, a.bands,
-                                        bytesText(fp.transferBytes), bytesText(fileRoom)));
+    announce(mesh, s, a.output);
     BakedTransfer t;
     t.recipe = s;
     t.transfer =
         bake(mesh, *occluder, s, &t.stats, progressBar(std::string("bake ") + toString(mode)));
-    const BakeStats& st = t.stats;
-    info(fmt::format("{}: {} rays in {} ({:.3g} Mrays/s, {} threads); direct {}{}", toString(mode),
-                     st.rays, seconds(st.secondsTotal), st.raysPerSecond / 1e6, st.threads,
-                     seconds(st.secondsDirect), [&] {
-                       std::string b;
-                       for (std::size_t k = 0; k < st.secondsBounce.size(); ++k)
-                         b += fmt::format(", bounce {} {}", k + 1, seconds(st.secondsBounce[k]));
-                       return b;
-                     }()));
-    info(
-        fmt::format("{}: Monte Carlo std. error of T00 mean {:.2e} max {:.2e}; of white-sky "
-                    "radiance mean {:.2e} max {:.2e}; {} channel(s)",
-                    toString(mode), st.stdErrT0Mean, st.stdErrT0Max, st.stdErrConstMean,
-                    st.stdErrConstMax, t.transfer.channels()));
-    // Never write a bake no reader can use: a non-finite coefficient (an absurd material albedo
-    // amplified by the bounces, coordinates beyond float range) fails here, with the vertex.
-    const std::size_t stride = t.transfer.stride();
-    const FloatArray& values = t.transfer.values();
-    for (std::size_t k = 0; k < values.size(); ++k)
-      if (!std::isfinite(values[k]))
-        throw Error(mesh.source,
-                    fmt::format("{} transfer of vertex {} is not finite (check the material "
-                                "albedos and coordinates); nothing written",
-                                toString(mode), rows.first + k / stride));
+    report(t);
+    refuseNonFinite(mesh, t);
     file.transfers.push_back(std::move(t));
   }
   writeBake(a.output, file);
