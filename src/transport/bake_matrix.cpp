@@ -217,6 +217,25 @@ void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, 
   }
 }
 
+/// Column kz of Z for a front-face hit of a diffuse bounce: the previous order's vector transfer
+/// interpolated at the hit, times the albedo there (per channel).
+void diffuseBounceColumn(const MatrixContext& ctx, const Hit& h, Workspace& ws, int kz) {
+  const auto& tri = ctx.mesh.triangles[h.triangle];
+  const std::size_t stride = ctx.bounced->stride();
+  const int bChannels = ctx.bounced->channels();
+  const float b0 = 1.0f - h.u - h.v;
+  const float* r0 = ctx.bounced->row(tri[0]);
+  const float* r1 = ctx.bounced->row(tri[1]);
+  const float* r2 = ctx.bounced->row(tri[2]);
+  for (std::size_t i = 0; i < stride; ++i) ws.interp[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
+  const Rgb rho = ctx.albedo.at(tri, h.u, h.v);
+  for (int c = 0; c < ctx.channels; ++c) {
+    float* zc = ws.z[c].col(kz).data();
+    const int src = bChannels == 1 ? 0 : c;
+    for (int i = 0; i < ctx.nc; ++i) zc[i] = rho[c] * ws.interp[i * bChannels + src];
+  }
+}
+
 /// One vertex: writes its B² × B² (× C) row to out; returns Var of the M_00 estimator's mean.
 double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws) {
   const Mesh& mesh = ctx.mesh;
@@ -242,9 +261,6 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
     ws.gtotal[c].setZero();
     ws.gpart[c].setZero();
   }
-  const std::size_t bStride = ctx.bounced ? ctx.bounced->stride() : 0;
-  const int bChannels = ctx.bounced ? ctx.bounced->channels() : 1;
-
   std::array<Ray, kBatch> rays;
   std::array<std::uint8_t, kBatch> blocked;
   Moments m;
@@ -301,19 +317,7 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
           addSample(kz++);
           continue;
         }
-        const auto& tri = mesh.triangles[h.triangle];
-        const float b0 = 1.0f - h.u - h.v;
-        const float* r0 = ctx.bounced->row(tri[0]);
-        const float* r1 = ctx.bounced->row(tri[1]);
-        const float* r2 = ctx.bounced->row(tri[2]);
-        for (std::size_t i = 0; i < bStride; ++i)
-          ws.interp[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
-        const Rgb rho = ctx.albedo.at(tri, h.u, h.v);
-        for (int c = 0; c < channels; ++c) {
-          float* zc = ws.z[c].col(kz).data();
-          const int src = bChannels == 1 ? 0 : c;
-          for (int i = 0; i < nc; ++i) zc[i] = rho[c] * ws.interp[i * bChannels + src];
-        }
+        diffuseBounceColumn(ctx, h, ws, kz);
         addSample(kz++);
       }
       for (int q = 0; q < nb; ++q) sh::eval(ctx.bands, rays[back[q]].dir, ws.y.col(k++).data());
