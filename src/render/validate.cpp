@@ -83,6 +83,183 @@ const char* windowName(sh::Window w) {
   }
 }
 
+/// The band counts to validate: the list asked for (default 1..rep.bands), those beyond what
+/// both the light and the transfer hold dropped with a warning, sorted, once each.
+std::vector<int> bandsToValidate(const ValidateSettings& settings, ValidationReport& rep) {
+  std::vector<int> bands = settings.bandsList;
+  if (bands.empty())
+    for (int b = 1; b <= rep.bands; ++b) bands.push_back(b);
+  std::vector<int> kept;
+  for (int b : bands) {
+    if (b < 1) throw Error("band count " + std::to_string(b) + " must be at least 1");
+    if (b > rep.bands)
+      rep.warnings.push_back("skipping " + std::to_string(b) + " bands (only " +
+                             std::to_string(rep.bands) + " available)");
+    else
+      kept.push_back(b);
+  }
+  std::sort(kept.begin(), kept.end());
+  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  if (kept.empty())
+    throw Error("no band count to validate: asked for more than the " + std::to_string(rep.bands) +
+                " bands available");
+  return kept;
+}
+
+/// The reference with the bake's transport. Diffuse (vector) transfer holds the diffuse part
+/// only, with diffuse bounces: the reference renders the same, the lobe dropped (kd kept).
+ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecipe& bake,
+                               const Transfer& transfer, std::size_t nv) {
+  ReferenceSettings rs = settings.reference;
+  rs.mode = bake.mode;
+  rs.bounces = bake.effectiveBounces();
+  rs.material = bake.material;
+  rs.bandLimit.reset();
+  if (!transfer.isMatrix()) {
+    rs.material.lobe = {};
+    rs.material.specular = Rgb(0.0f);
+  }
+  rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
+  // Glossy (matrix) transfer is seen from an eye.
+  if (transfer.isMatrix() && !rs.eye)
+    throw Error("validating glossy (matrix) transfer needs the eye the reference and PRT share");
+  return rs;
+}
+
+/// A non-finite reference (radiance beyond float range) leaves nothing to compare against:
+/// refused rather than tabulated as inf % and NaN %. A zero one is said (relative errors n/a).
+void checkReference(const envmap::Environment& env, ValidationReport& rep) {
+  const ReferenceResult& r = rep.reference;
+  double total = 0;
+  for (std::size_t i = 0; i < r.radiance.size(); ++i) {
+    if (!isFinite(r.radiance[i]) || !isFinite(r.stdError[i]))
+      throw Error(env.source(), "the reference radiance at vertex " +
+                                    std::to_string(r.vertices[i]) +
+                                    " is not finite (the environment is too bright for 32-bit "
+                                    "floats); nothing to validate against");
+    total += sumSq(r.radiance[i]);
+  }
+  rep.referenceIsZero = !(total > 0);
+  if (rep.referenceIsZero)
+    rep.warnings.push_back(
+        "the reference is zero at every validated vertex (a black environment?): relative "
+        "errors are undefined (n/a)");
+}
+
+/// The relative-RMSE metric over the validated vertices: per vertex and channel the weight
+/// 1 / (R_ref² + ε), ε = 10⁻² mean(R_ref)², and the reference's own noise in it.
+struct Metric {
+  const std::vector<Rgb>& ref;
+  const std::vector<Rgb>& stdError;
+  double meanRef = 0;
+  double eps = 0;
+
+  Metric(const std::vector<Rgb>& reference, const std::vector<Rgb>& se)
+      : ref(reference), stdError(se) {
+    for (const Rgb& c : ref) meanRef += (double(c.x) + c.y + c.z) / 3.0;
+    meanRef /= double(std::max<std::size_t>(ref.size(), 1));
+    eps = 1e-2 * meanRef * meanRef + 1e-30;
+  }
+  double weight(std::size_t i, int c) const { return 1.0 / (double(ref[i][c]) * ref[i][c] + eps); }
+  /// What an exact transfer's squared rel RMSE would be at vertex entry i: the reference noise.
+  double noiseSq(std::size_t i) const {
+    double s = 0;
+    for (int c = 0; c < 3; ++c) s += double(stdError[i][c]) * stdError[i][c] * weight(i, c);
+    return s / 3.0;
+  }
+  /// Σ_c (R − R_ref)² weight / 3 at vertex entry i.
+  double errorSq(std::size_t i, const Rgb& prt) const {
+    double a = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = double(prt[c]) - ref[i][c];
+      a += d * d * weight(i, c) / 3.0;
+    }
+    return a;
+  }
+};
+
+/// The floor's vertices: an even stride of at most `count` of the validated ones (an RMS over
+/// vertices; a thousand estimate it to a few per cent of itself), as positions among them.
+std::vector<std::size_t> floorEntries(std::size_t validated, std::size_t count) {
+  const std::size_t stride = (validated + count - 1) / std::max<std::size_t>(count, 1);
+  std::vector<std::size_t> idx;
+  for (std::size_t i = 0; i < validated; i += std::max<std::size_t>(stride, 1)) idx.push_back(i);
+  return idx;
+}
+
+/// The floor columns of row r (lane k of `lanes`) from the floor run's band-limited estimates:
+/// floor² = mean over the floor's vertices of Σ_c (x̂² − se²)/(R_ref² + ε)/3 for x = e_b − e
+/// (E[x̂²] = x² + se², so its noise does not inflate it), the light-only floor likewise, and
+/// what the identity rel RMSE² = floor² + noise² leaves over, (R_b − R_ref)² − (x̂² − se²) −
+/// se_ref² per vertex, with its standard error; `explained` = √(floor² + noise²) / rel RMSE on
+/// the same vertices.
+void fillFloor(BandRow& r, const Metric& metric, const ReferenceResult& floorRun,
+               const std::vector<std::size_t>& floorIdx, const std::vector<Rgb>& prt, std::size_t k,
+               std::size_t lanes) {
+  const std::size_t nf = floorIdx.size();
+  const double count = double(std::max<std::size_t>(nf, 1));
+  const auto floorSq = [&](Estimate BandLimitedEstimate::*part, std::vector<double>* rest) {
+    double sum = 0;
+    for (std::size_t j = 0; j < nf; ++j) {
+      const std::size_t i = floorIdx[j];
+      const Estimate& e = floorRun.bandLimited[j * lanes + k].*part;
+      double f = 0;
+      for (int c = 0; c < 3; ++c) {
+        const double x = e.mean[c], se = e.stdError[c];
+        f += (x * x - se * se) * metric.weight(i, c) / 3.0;
+      }
+      sum += f;
+      if (rest) (*rest)[j] = metric.errorSq(i, prt[i]) - f - metric.noiseSq(i);
+    }
+    return sum / count;
+  };
+  std::vector<double> rest(nf);
+  const double fSq = floorSq(&BandLimitedEstimate::difference, &rest);
+  const double lightSq = floorSq(&BandLimitedEstimate::light, nullptr);
+  r.floor = std::sqrt(std::max(0.0, fSq));
+  r.lightFloor = std::sqrt(std::max(0.0, lightSq));
+  double restMean = 0, restVar = 0, errSq = 0, noise = 0;
+  for (double x : rest) restMean += x / count;
+  for (double x : rest) restVar += (x - restMean) * (x - restMean);
+  r.unexplainedSq = restMean;
+  r.unexplainedSqStdErr = nf > 1 ? std::sqrt(restVar / double(nf - 1) / double(nf)) : 0.0;
+  // The same over the floor's vertices only, so that the three share their vertices.
+  for (std::size_t i : floorIdx) {
+    errSq += metric.errorSq(i, prt[i]);
+    noise += metric.noiseSq(i);
+  }
+  r.explained = errSq > 0 ? std::sqrt(std::max(0.0, fSq + noise / count) / (errSq / count)) : 1.0;
+}
+
+/// The error columns of row r over every validated vertex, and the per-vertex error `err`; a
+/// vertex counts as negative where `counted` and some channel is below `negativeBelow`.
+void fillErrors(BandRow& r, std::vector<float>& err, const Metric& metric,
+                const std::vector<Rgb>& prt, const std::vector<char>& counted, double negativeBelow,
+                std::size_t negativeVertices) {
+  const std::vector<Rgb>& ref = metric.ref;
+  const std::size_t n = ref.size();
+  err.assign(n, 0.0f);
+  double sum = 0, mx = 0, diffEnergy = 0, refEnergy = 0;
+  std::size_t negative = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d2 = sumSq(prt[i] - ref[i]), r2 = sumSq(ref[i]);
+    const double e = std::sqrt(d2 / (r2 + 3 * metric.eps));
+    err[i] = static_cast<float>(e);
+    sum += e;
+    mx = std::max(mx, e);
+    diffEnergy += d2;
+    refEnergy += r2;
+    if (counted[i] && std::min({prt[i].x, prt[i].y, prt[i].z}) < negativeBelow) ++negative;
+  }
+  r.relRmse = relativeRmse(row(prt), row(ref), metric.eps);
+  // Energy-weighted: ‖R_b − R_ref‖ / ‖R_ref‖ over all vertices and channels, i.e. e(p)² weighted
+  // by each vertex's share of the reference energy (no ε): bright vertices count most.
+  r.energyRel = refEnergy > 0 ? std::sqrt(diffEnergy / refEnergy) : 0.0;
+  r.meanRel = sum / double(std::max<std::size_t>(n, 1));
+  r.maxRel = mx;
+  r.negativeShare = negativeVertices > 0 ? double(negative) / double(negativeVertices) : 0.0;
+}
+
 }  // namespace
 
 ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
@@ -106,99 +283,27 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     rep.warnings.push_back("light has " + std::to_string(light.bands) + " bands, transfer " +
                            std::to_string(transfer.bands()) + ": validating up to " +
                            std::to_string(rep.bands) + " bands");
-
-  std::vector<int> bands = settings.bandsList;
-  if (bands.empty())
-    for (int b = 1; b <= rep.bands; ++b) bands.push_back(b);
-  std::vector<int> kept;
-  for (int b : bands) {
-    if (b < 1) throw Error("band count " + std::to_string(b) + " must be at least 1");
-    if (b > rep.bands)
-      rep.warnings.push_back("skipping " + std::to_string(b) + " bands (only " +
-                             std::to_string(rep.bands) + " available)");
-    else
-      kept.push_back(b);
-  }
-  std::sort(kept.begin(), kept.end());
-  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
-  if (kept.empty())
-    throw Error("no band count to validate: asked for more than the " + std::to_string(rep.bands) +
-                " bands available");
-
-  // The reference, with the bake's transport.
-  ReferenceSettings rs = settings.reference;
-  rs.mode = bake.mode;
-  rs.bounces = rep.bounces;
-  rs.material = bake.material;
-  rs.bandLimit.reset();
-  // Diffuse (vector) transfer holds the diffuse part only, with diffuse bounces: the reference
-  // renders the same, the lobe dropped (kd kept).
-  if (!transfer.isMatrix()) {
-    rs.material.lobe = {};
-    rs.material.specular = Rgb(0.0f);
-  }
-  rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
-  // Glossy (matrix) transfer is seen from an eye.
+  const std::vector<int> kept = bandsToValidate(settings, rep);
+  const ReferenceSettings rs = referenceFor(settings, bake, transfer, nv);
   const bool glossy = transfer.isMatrix();
-  if (glossy && !rs.eye)
-    throw Error("validating glossy (matrix) transfer needs the eye the reference and PRT share");
-
-  // The floor's vertices: an even stride of at most settings.floorVertices of the validated
-  // ones (an RMS over vertices; a thousand estimate it to a few per cent of itself).
-  const std::size_t nMain = rs.vertices.size();
-  const std::size_t stride =
-      (nMain + settings.floorVertices - 1) / std::max<std::size_t>(settings.floorVertices, 1);
-  std::vector<std::uint32_t> floorVerts;
-  std::vector<std::size_t> floorIdx;  // positions in the validated vertices
-  for (std::size_t i = 0; i < nMain; i += std::max<std::size_t>(stride, 1)) {
-    floorVerts.push_back(rs.vertices[i]);
-    floorIdx.push_back(i);
-  }
-  const std::size_t nf = floorVerts.size();
+  const std::vector<std::size_t> floorIdx =
+      floorEntries(rs.vertices.size(), settings.floorVertices);
+  const std::size_t nf = floorIdx.size();
 
   // Progress: the reference, then the band-limited run over the floor's vertices (about twice
   // the reference's work per vertex), in proportion.
-  const double mainShare = double(nMain) / double(nMain + 2 * nf);
+  const double mainShare = double(rs.vertices.size()) / double(rs.vertices.size() + 2 * nf);
   const auto part = [&](double lo, double hi) -> ProgressFn {
     if (!progress) return {};
     return [&progress, lo, hi](double f) { return progress(lo + (hi - lo) * f); };
   };
   rep.reference = renderReference(mesh, occluder, env, rs, part(0.0, mainShare));
+  checkReference(env, rep);
   const auto& verts = rep.reference.vertices;
   const std::size_t n = verts.size();
-  const std::vector<Rgb>& ref = rep.reference.radiance;
-  // A non-finite reference (radiance beyond float range) leaves nothing to compare against:
-  // refuse it rather than tabulate inf % and NaN %.
-  for (std::size_t i = 0; i < n; ++i)
-    if (!isFinite(ref[i]) || !isFinite(rep.reference.stdError[i]))
-      throw Error(env.source(), "the reference radiance at vertex " + std::to_string(verts[i]) +
-                                    " is not finite (the environment is too bright for 32-bit "
-                                    "floats); nothing to validate against");
-  double refTotal = 0;
-  for (const Rgb& c : ref) refTotal += sumSq(c);
-  rep.referenceIsZero = !(refTotal > 0);
-  if (rep.referenceIsZero)
-    rep.warnings.push_back(
-        "the reference is zero at every validated vertex (a black environment?): relative "
-        "errors are undefined (n/a)");
-
-  double meanRef = 0;
-  for (const Rgb& c : ref) meanRef += (double(c.x) + c.y + c.z) / 3.0;
-  meanRef /= std::max<std::size_t>(n, 1);
-  const double eps = 1e-2 * meanRef * meanRef + 1e-30;
-  // Per vertex and channel, the weight of relative RMSE: 1 / (R_ref² + ε).
-  const auto weight = [&](std::size_t i, int c) {
-    return 1.0 / (double(ref[i][c]) * ref[i][c] + eps);
-  };
-  // The reference's noise in the rel RMSE metric: what an exact transfer's rel RMSE would be.
-  const auto noiseSq = [&](std::size_t i) {
-    double s = 0;
-    for (int c = 0; c < 3; ++c)
-      s += double(rep.reference.stdError[i][c]) * rep.reference.stdError[i][c] * weight(i, c);
-    return s / 3.0;
-  };
+  const Metric metric(rep.reference.radiance, rep.reference.stdError);
   double refNoiseSq = 0;
-  for (std::size_t i = 0; i < n; ++i) refNoiseSq += noiseSq(i);
+  for (std::size_t i = 0; i < n; ++i) refNoiseSq += metric.noiseSq(i);
   const double refStd = std::sqrt(refNoiseSq / double(std::max<std::size_t>(n, 1)));
 
   // The b-band lights PRT relights with, and the same as band limits for the floor.
@@ -218,7 +323,8 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   // and band count from the reference's own samples (reference.hpp), in one run for all band
   // counts. Its radiance is the reference's at those vertices, bit for bit.
   ReferenceSettings fr = rs;
-  fr.vertices = floorVerts;
+  fr.vertices.clear();
+  for (std::size_t i : floorIdx) fr.vertices.push_back(rs.vertices[i]);
   fr.bandLimit = std::move(bl);
   const ReferenceResult floorRun = renderReference(mesh, occluder, env, fr, part(mainShare, 1.0));
   rep.floorMethod = kFloorMethod;
@@ -232,13 +338,11 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     for (std::size_t i = 0; i < n; ++i)
       counted[i] = dot(mesh.normals[verts[i]], *rs.eye - mesh.positions[verts[i]]) > 0;
   rep.negativeVertices = static_cast<std::size_t>(std::count(counted.begin(), counted.end(), 1));
-  const double negativeBelow = -1e-3 * meanRef;
 
   std::vector<Rgb> albedo;
   if (mesh.hasAlbedo()) albedo = mesh.albedo;
   std::vector<Rgb> prt(n);
-  const std::size_t lanes = kept.size();
-  for (std::size_t k = 0; k < lanes; ++k) {
+  for (std::size_t k = 0; k < kept.size(); ++k) {
     const int b = kept[k];
     // PRT radiance at b bands (relight rotates the light itself).
     std::vector<Rgb> all(nv);
@@ -253,74 +357,14 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
                         " is not finite at " + std::to_string(b) +
                         " bands (the transfer times the light overflows 32-bit floats)");
     }
-
-    // floor² = mean over the floor's vertices of Σ_c (x̂² − se²)/(R_ref² + ε)/3 for x = e_b − e:
-    // E[x̂²] = x² + se², so its noise does not inflate it. Alongside, per vertex, what the
-    // identity rel RMSE² = floor² + noise² leaves over: (R_b − R_ref)² − (x̂² − se²) − se_ref².
-    const auto floorSq = [&](Estimate BandLimitedEstimate::*part, std::vector<double>* rest) {
-      double sum = 0;
-      for (std::size_t j = 0; j < nf; ++j) {
-        const std::size_t i = floorIdx[j];
-        const Estimate& e = floorRun.bandLimited[j * lanes + k].*part;
-        double f = 0, a = 0;
-        for (int c = 0; c < 3; ++c) {
-          const double x = e.mean[c], se = e.stdError[c], d = double(prt[i][c]) - ref[i][c];
-          f += (x * x - se * se) * weight(i, c) / 3.0;
-          a += d * d * weight(i, c) / 3.0;
-        }
-        sum += f;
-        if (rest) (*rest)[j] = a - f - noiseSq(i);
-      }
-      return sum / double(std::max<std::size_t>(nf, 1));
-    };
-    std::vector<double> rest(nf);
-    const double fSq = floorSq(&BandLimitedEstimate::difference, &rest);
-    const double lightSq = floorSq(&BandLimitedEstimate::light, nullptr);
-
     BandRow r;
     r.bands = b;
-    r.relRmse = relativeRmse(row(prt), row(ref), eps);
-    r.floor = std::sqrt(std::max(0.0, fSq));
-    r.lightFloor = std::sqrt(std::max(0.0, lightSq));
     r.refStdErr = refStd;
-    double restMean = 0, restVar = 0, errSq = 0, noise = 0;
-    for (double x : rest) restMean += x / double(std::max<std::size_t>(nf, 1));
-    for (double x : rest) restVar += (x - restMean) * (x - restMean);
-    r.unexplainedSq = restMean;
-    r.unexplainedSqStdErr = nf > 1 ? std::sqrt(restVar / double(nf - 1) / double(nf)) : 0.0;
-    // The same over the floor's vertices only, so that the three share their vertices.
-    for (std::size_t j = 0; j < nf; ++j) {
-      const std::size_t i = floorIdx[j];
-      for (int c = 0; c < 3; ++c) {
-        const double d = double(prt[i][c]) - ref[i][c];
-        errSq += d * d * weight(i, c) / 3.0;
-      }
-      noise += noiseSq(i);
-    }
-    r.explained =
-        errSq > 0 ? std::sqrt(std::max(0.0, fSq + noise / double(nf)) / (errSq / double(nf))) : 1.0;
+    std::vector<float> err;
+    fillErrors(r, err, metric, prt, counted, -1e-3 * metric.meanRef, rep.negativeVertices);
+    fillFloor(r, metric, floorRun, floorIdx, prt, k, kept.size());
     // What the lobe itself loses at b bands: its zonal energy beyond b (0 for a diffuse surface).
     r.lobeEnergyBeyond = rs.material.glossy() ? rs.material.lobe.energyBeyond(b) : 0.0;
-    std::vector<float> err(n);
-    double sum = 0, mx = 0, diffEnergy = 0, refEnergy = 0;
-    std::size_t negative = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double d2 = sumSq(prt[i] - ref[i]), r2 = sumSq(ref[i]);
-      const double e = std::sqrt(d2 / (r2 + 3 * eps));
-      err[i] = static_cast<float>(e);
-      sum += e;
-      mx = std::max(mx, e);
-      diffEnergy += d2;
-      refEnergy += r2;
-      if (counted[i] && std::min({prt[i].x, prt[i].y, prt[i].z}) < negativeBelow) ++negative;
-    }
-    // Energy-weighted: ‖R_b − R_ref‖ / ‖R_ref‖ over all vertices and channels, i.e. e(p)² weighted
-    // by each vertex's share of the reference energy (no ε): bright vertices count most.
-    r.energyRel = refEnergy > 0 ? std::sqrt(diffEnergy / refEnergy) : 0.0;
-    r.meanRel = sum / std::max<std::size_t>(n, 1);
-    r.maxRel = mx;
-    r.negativeShare =
-        rep.negativeVertices > 0 ? double(negative) / double(rep.negativeVertices) : 0.0;
     if (rep.referenceIsZero) {
       // Relative to nothing: undefined, not 0 % (and not the 1e32 % that ε alone would give).
       const double na = std::numeric_limits<double>::quiet_NaN();
