@@ -262,6 +262,257 @@ Mesh readGltf(const std::string& path, LoadReport& report) {
                        true, report);
 }
 
+namespace {
+
+/// The mesh a glTF scene makes: every triangle primitive of every mesh instance, transformed to
+/// world space, with its normals, its first UV set, and an albedo from the base colour factor,
+/// texture and COLOR_0 (all white where one primitive has an albedo and another has none).
+class GltfMeshBuilder {
+ public:
+  GltfMeshBuilder(const std::string& path, const tinygltf::Model& model, const std::string& baseDir,
+                  LoadReport& report)
+      : path_(path), model_(model), dir_(baseDir), report_(report), rd_(path, model, report) {}
+
+  /// Mesh `meshIndex` instanced with `world` as one part.
+  void addMesh(int meshIndex, const Mat4& world, const std::string& partName);
+  /// The default scene's node tree (or, without scenes, every mesh once).
+  void addScene();
+  Mesh finish();
+
+ private:
+  /// Base colour factor and texture of a primitive's material (and its UVs for the texture);
+  /// records the first material's metallic-roughness as the mesh's gloss.
+  struct Surface {
+    bool hasMaterial = false;
+    Rgb factor{1.0f};
+    const image::Image* texture = nullptr;
+    std::vector<float> uv;
+  };
+  Surface surfaceOf(const tinygltf::Primitive& prim);
+  void addPrimitive(const tinygltf::Mesh& gm, std::size_t pi, const Mat4& world);
+  void addTriangles(int mode, const std::vector<std::uint32_t>& idx, std::uint32_t base,
+                    bool mirror);
+
+  const std::string& path_;
+  const tinygltf::Model& model_;
+  const std::filesystem::path dir_;
+  LoadReport& report_;
+  Reader rd_;
+  Mesh mesh_;
+  bool anyAlbedo_ = false, anyNormals_ = false;
+  std::vector<Rgb> albedo_;
+};
+
+void GltfMeshBuilder::addMesh(int meshIndex, const Mat4& world, const std::string& partName) {
+  if (meshIndex < 0 || meshIndex >= int(model_.meshes.size()))
+    rd_.fail("node refers to mesh " + std::to_string(meshIndex) + " (file has " +
+             std::to_string(model_.meshes.size()) + ")");
+  const tinygltf::Mesh& gm = model_.meshes[meshIndex];
+  MeshPart part;
+  part.name = partName.empty() ? (gm.name.empty() ? "mesh " + std::to_string(meshIndex) : gm.name)
+                               : partName;
+  part.firstVertex = std::uint32_t(mesh_.positions.size());
+  part.firstTriangle = std::uint32_t(mesh_.triangles.size());
+  for (std::size_t pi = 0; pi < gm.primitives.size(); ++pi) addPrimitive(gm, pi, world);
+  part.vertexCount = std::uint32_t(mesh_.positions.size()) - part.firstVertex;
+  part.triangleCount = std::uint32_t(mesh_.triangles.size()) - part.firstTriangle;
+  if (part.vertexCount) mesh_.parts.push_back(part);
+}
+
+GltfMeshBuilder::Surface GltfMeshBuilder::surfaceOf(const tinygltf::Primitive& prim) {
+  Surface out;
+  if (prim.material < 0 || prim.material >= int(model_.materials.size())) return out;
+  const tinygltf::Material& mat = model_.materials[prim.material];
+  out.hasMaterial = true;
+  const auto& f = mat.pbrMetallicRoughness.baseColorFactor;
+  if (f.size() >= 3) out.factor = Rgb{float(f[0]), float(f[1]), float(f[2])};
+  if (!mesh_.gloss) {
+    // glTF §3.9.2: F0 = mix(0.04, baseColor, metallic); the lobe's roughness is
+    // roughnessFactor (textures of either are not sampled here).
+    const double m = mat.pbrMetallicRoughness.metallicFactor;
+    const double r = mat.pbrMetallicRoughness.roughnessFactor;
+    if (!(std::isfinite(m) && std::isfinite(r) && m >= 0 && m <= 1 && r >= 0 && r <= 1))
+      rd_.fail("material '" + mat.name.substr(0, 80) +
+               "': metallicFactor and roughnessFactor must lie in [0, 1]");
+    SurfaceGloss g;
+    g.model = SurfaceGloss::Model::MetallicRoughness;
+    g.metallic = float(m);
+    g.roughness = float(r);
+    g.specular = Rgb(0.04f * float(1 - m)) + out.factor * float(m);
+    g.material = mat.name.substr(0, 80);
+    mesh_.gloss = g;
+  }
+  const auto& bt = mat.pbrMetallicRoughness.baseColorTexture;
+  if (bt.index >= 0) {
+    const std::string set = "TEXCOORD_" + std::to_string(std::max(0, bt.texCoord));
+    const auto it = prim.attributes.find(set);
+    if (it != prim.attributes.end()) {
+      out.texture = rd_.texture(bt.index, dir_);
+      if (out.texture) out.uv = rd_.floats(it->second, 2, set.c_str());
+    }
+  }
+  return out;
+}
+
+void GltfMeshBuilder::addPrimitive(const tinygltf::Mesh& gm, std::size_t pi, const Mat4& world) {
+  const tinygltf::Primitive& prim = gm.primitives[pi];
+  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    report_.warnings.push_back(path_ + ": mesh '" + gm.name + "' primitive " + std::to_string(pi) +
+                               " is points or lines; skipped");
+    return;
+  }
+  const auto attr = [&](const char* name) {
+    const auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  const int posAcc = attr("POSITION");
+  if (posAcc < 0)
+    rd_.fail("mesh '" + gm.name + "' primitive " + std::to_string(pi) + " has no POSITION");
+  // A mesh instanced by many nodes is copied per instance: cap the total as it grows.
+  checkLimit(path_, "vertex count", mesh_.positions.size() + rd_.count(posAcc, "POSITION"),
+             limits().maxVertices, "PRT_MAX_VERTICES");
+  const std::vector<float> pos = rd_.floats(posAcc, 3, "POSITION");
+  const std::size_t n = pos.size() / 3;
+  const std::uint32_t base = std::uint32_t(mesh_.positions.size());
+  std::vector<float> nrm, col, uv0;
+  if (attr("NORMAL") >= 0) {
+    nrm = rd_.floats(attr("NORMAL"), 3, "NORMAL");
+    anyNormals_ = true;
+  }
+  int colComps = 0;
+  if (attr("COLOR_0") >= 0) col = rd_.colours(attr("COLOR_0"), colComps);
+  const Surface surface = surfaceOf(prim);
+  if (attr("TEXCOORD_0") >= 0) uv0 = rd_.floats(attr("TEXCOORD_0"), 2, "TEXCOORD_0");
+  if ((!nrm.empty() && nrm.size() != pos.size()) ||
+      (!surface.uv.empty() && surface.uv.size() != 2 * n) ||
+      (!uv0.empty() && uv0.size() != 2 * n) || (!col.empty() && col.size() != n * colComps))
+    rd_.fail("mesh '" + gm.name + "' primitive " + std::to_string(pi) +
+             ": attributes have different counts");
+  if ((surface.hasMaterial || !col.empty()) && !anyAlbedo_) {
+    anyAlbedo_ = true;
+    albedo_.assign(mesh_.positions.size(), Rgb(1.0f));  // earlier primitives: default material
+  }
+  if (!uv0.empty() && mesh_.uvs.size() < mesh_.positions.size())
+    mesh_.uvs.resize(mesh_.positions.size());
+  const Mat3d nm = normalMatrix(world.upper());
+  for (std::size_t i = 0; i < n; ++i) {
+    mesh_.positions.push_back(Vec3f(world.point({pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]})));
+    if (nrm.empty()) {
+      mesh_.normals.push_back(Vec3f(0.0f));  // marks "compute"
+    } else {
+      const Vec3d nn = nm * Vec3d{nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]};
+      const double len = length(nn);
+      mesh_.normals.push_back(len > 0 ? Vec3f(nn / len) : Vec3f(0.0f));
+    }
+    if (!uv0.empty())
+      mesh_.uvs.push_back({uv0[2 * i], uv0[2 * i + 1]});
+    else if (!mesh_.uvs.empty())
+      mesh_.uvs.push_back({});
+    if (anyAlbedo_) {
+      Rgb a = surface.factor;
+      if (surface.texture)
+        a *= sampleTexture(*surface.texture, {surface.uv[2 * i], surface.uv[2 * i + 1]}, false);
+      if (!col.empty()) a *= Rgb{col[colComps * i], col[colComps * i + 1], col[colComps * i + 2]};
+      albedo_.push_back(a);
+    }
+  }
+  std::vector<std::uint32_t> idx;
+  if (prim.indices >= 0) {
+    idx = rd_.indices(prim.indices);
+  } else {
+    idx.resize(n);
+    for (std::size_t i = 0; i < n; ++i) idx[i] = std::uint32_t(i);
+  }
+  for (std::size_t k = 0; k < idx.size(); ++k)
+    if (idx[k] >= n) throwBadIndex(path_, k / 3, idx[k], n);
+  addTriangles(mode, idx, base, det(world.upper()) < 0);
+}
+
+void GltfMeshBuilder::addTriangles(int mode, const std::vector<std::uint32_t>& idx,
+                                   std::uint32_t base, bool mirror) {
+  const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    if (mirror) std::swap(b, c);
+    mesh_.triangles.push_back({base + a, base + b, base + c});
+  };
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    for (std::size_t k = 0; k + 2 < idx.size(); k += 3) add(idx[k], idx[k + 1], idx[k + 2]);
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (std::size_t k = 0; k + 2 < idx.size(); ++k)
+      k % 2 == 0 ? add(idx[k], idx[k + 1], idx[k + 2]) : add(idx[k + 1], idx[k], idx[k + 2]);
+  } else {
+    for (std::size_t k = 1; k + 1 < idx.size(); ++k) add(idx[0], idx[k], idx[k + 1]);
+  }
+}
+
+void GltfMeshBuilder::addScene() {
+  if (model_.scenes.empty()) {
+    for (int m = 0; m < int(model_.meshes.size()); ++m) addMesh(m, Mat4{}, "");
+    return;
+  }
+  const int s = model_.defaultScene >= 0 && model_.defaultScene < int(model_.scenes.size())
+                    ? model_.defaultScene
+                    : 0;
+  // Depth first, children in order, without recursion (a chain of 10^5 nodes must not overflow
+  // the stack); a node on the current path again is a cycle, a path deeper than the nesting
+  // limit is refused.
+  const std::uint64_t maxDepth = limits().maxNesting;
+  std::vector<char> onPath(model_.nodes.size(), 0);
+  struct Frame {
+    int node;
+    Mat4 world;
+    std::size_t next = 0;  // next child to visit
+  };
+  std::vector<Frame> stack;
+  std::size_t instances = 0;
+  const std::size_t maxInstances = std::max<std::size_t>(1000000, 4 * model_.nodes.size());
+  const auto enter = [&](int node, const Mat4& parent) {
+    if (node < 0 || node >= int(model_.nodes.size()))
+      rd_.fail("scene refers to node " + std::to_string(node) + " (file has " +
+               std::to_string(model_.nodes.size()) + ")");
+    if (onPath[node])
+      rd_.fail("node " + std::to_string(node) + " is its own ancestor (cycle in the scene graph)");
+    // A node shared by several parents is visited once per path: a chain of nodes each
+    // listing the next twice makes 2^depth paths. Cap the instances.
+    if (++instances > maxInstances)
+      rd_.fail("scene graph instantiates more than " + std::to_string(maxInstances) +
+               " nodes (shared subtrees)");
+    if (stack.size() >= maxDepth)
+      rd_.fail("scene graph deeper than " + std::to_string(maxDepth) + " levels (PRT_MAX_NESTING)");
+    onPath[node] = 1;
+    const tinygltf::Node& nd = model_.nodes[node];
+    stack.push_back(Frame{node, parent * localMatrix(nd)});
+    if (nd.mesh >= 0) addMesh(nd.mesh, stack.back().world, nd.name);
+  };
+  for (int root : model_.scenes[s].nodes) {
+    enter(root, Mat4{});
+    while (!stack.empty()) {
+      Frame& f = stack.back();
+      const tinygltf::Node& nd = model_.nodes[f.node];
+      if (f.next < nd.children.size()) {
+        const int child = nd.children[f.next++];
+        const Mat4 world = f.world;  // `f` may move when the stack grows
+        enter(child, world);
+      } else {
+        onPath[f.node] = 0;
+        stack.pop_back();
+      }
+    }
+  }
+}
+
+Mesh GltfMeshBuilder::finish() {
+  if (mesh_.positions.empty()) throw Error(path_, "has no triangle meshes in its scene");
+  if (anyAlbedo_) mesh_.albedo = std::move(albedo_);
+  if (!anyNormals_) mesh_.normals.clear();  // all computed, no warning
+  if (!mesh_.uvs.empty() && mesh_.uvs.size() != mesh_.positions.size())
+    mesh_.uvs.resize(mesh_.positions.size());
+  return std::move(mesh_);
+}
+
+}  // namespace
+
 Mesh readGltfBytes(const std::string& path, std::span<const unsigned char> bytes, bool binary,
                    const std::string& baseDir, bool allowFiles, LoadReport& report) {
   // tinygltf parses with nlohmann::json and then walks the tree recursively (extras, extensions):
@@ -287,210 +538,9 @@ Mesh readGltfBytes(const std::string& path, std::span<const unsigned char> bytes
     if (err.size() > 200) err = err.substr(0, 200) + "...";
     throw Error(path, err.empty() ? "cannot parse glTF" : err);
   }
-  Reader rd(path, model, report);
-  const std::filesystem::path dir = baseDir;
-  Mesh mesh;
-  bool anyAlbedo = false, anyNormals = false;
-  std::vector<Rgb> albedo;
-
-  const auto addMesh = [&](int meshIndex, const Mat4& world, const std::string& partName) {
-    if (meshIndex < 0 || meshIndex >= int(model.meshes.size()))
-      rd.fail("node refers to mesh " + std::to_string(meshIndex) + " (file has " +
-              std::to_string(model.meshes.size()) + ")");
-    const tinygltf::Mesh& gm = model.meshes[meshIndex];
-    MeshPart part;
-    part.name = partName.empty() ? (gm.name.empty() ? "mesh " + std::to_string(meshIndex) : gm.name)
-                                 : partName;
-    part.firstVertex = std::uint32_t(mesh.positions.size());
-    part.firstTriangle = std::uint32_t(mesh.triangles.size());
-    const Mat3d lin = world.upper();
-    const Mat3d nm = normalMatrix(lin);
-    const bool mirror = det(lin) < 0;
-    for (std::size_t pi = 0; pi < gm.primitives.size(); ++pi) {
-      const tinygltf::Primitive& prim = gm.primitives[pi];
-      const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-          mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        report.warnings.push_back(path + ": mesh '" + gm.name + "' primitive " +
-                                  std::to_string(pi) + " is points or lines; skipped");
-        continue;
-      }
-      const auto attr = [&](const char* name) {
-        const auto it = prim.attributes.find(name);
-        return it == prim.attributes.end() ? -1 : it->second;
-      };
-      const int posAcc = attr("POSITION");
-      if (posAcc < 0)
-        rd.fail("mesh '" + gm.name + "' primitive " + std::to_string(pi) + " has no POSITION");
-      // A mesh instanced by many nodes is copied per instance: cap the total as it grows.
-      checkLimit(path, "vertex count", mesh.positions.size() + rd.count(posAcc, "POSITION"),
-                 limits().maxVertices, "PRT_MAX_VERTICES");
-      const std::vector<float> pos = rd.floats(posAcc, 3, "POSITION");
-      const std::size_t n = pos.size() / 3;
-      const std::uint32_t base = std::uint32_t(mesh.positions.size());
-      std::vector<float> nrm, col, uv;
-      if (attr("NORMAL") >= 0) {
-        nrm = rd.floats(attr("NORMAL"), 3, "NORMAL");
-        anyNormals = true;
-      }
-      const int colAcc = attr("COLOR_0");
-      int colComps = 0;
-      if (colAcc >= 0) col = rd.colours(colAcc, colComps);
-      const tinygltf::Material* mat =
-          prim.material >= 0 && prim.material < int(model.materials.size())
-              ? &model.materials[prim.material]
-              : nullptr;
-      Rgb factor(1.0f);
-      const image::Image* tex = nullptr;
-      if (mat) {
-        const auto& f = mat->pbrMetallicRoughness.baseColorFactor;
-        if (f.size() >= 3) factor = Rgb{float(f[0]), float(f[1]), float(f[2])};
-        if (!mesh.gloss) {
-          // glTF §3.9.2: F0 = mix(0.04, baseColor, metallic); the lobe's roughness is
-          // roughnessFactor (textures of either are not sampled here).
-          const double m = mat->pbrMetallicRoughness.metallicFactor;
-          const double r = mat->pbrMetallicRoughness.roughnessFactor;
-          if (!(std::isfinite(m) && std::isfinite(r) && m >= 0 && m <= 1 && r >= 0 && r <= 1))
-            rd.fail("material '" + mat->name.substr(0, 80) +
-                    "': metallicFactor and roughnessFactor must lie in [0, 1]");
-          SurfaceGloss g;
-          g.model = SurfaceGloss::Model::MetallicRoughness;
-          g.metallic = float(m);
-          g.roughness = float(r);
-          g.specular = Rgb(0.04f * float(1 - m)) + factor * float(m);
-          g.material = mat->name.substr(0, 80);
-          mesh.gloss = g;
-        }
-        const auto& bt = mat->pbrMetallicRoughness.baseColorTexture;
-        if (bt.index >= 0) {
-          const std::string set = "TEXCOORD_" + std::to_string(std::max(0, bt.texCoord));
-          if (attr(set.c_str()) >= 0) {
-            tex = rd.texture(bt.index, dir);
-            if (tex) uv = rd.floats(attr(set.c_str()), 2, set.c_str());
-          }
-        }
-      }
-      std::vector<float> uv0;
-      if (attr("TEXCOORD_0") >= 0) uv0 = rd.floats(attr("TEXCOORD_0"), 2, "TEXCOORD_0");
-      if ((!nrm.empty() && nrm.size() != pos.size()) || (!uv.empty() && uv.size() != 2 * n) ||
-          (!uv0.empty() && uv0.size() != 2 * n) || (!col.empty() && col.size() != n * colComps))
-        rd.fail("mesh '" + gm.name + "' primitive " + std::to_string(pi) +
-                ": attributes have different counts");
-      const bool primAlbedo = mat || !col.empty();
-      if (primAlbedo && !anyAlbedo) {
-        anyAlbedo = true;
-        albedo.assign(mesh.positions.size(), Rgb(1.0f));  // earlier primitives: default material
-      }
-      if (!uv0.empty() && mesh.uvs.size() < mesh.positions.size())
-        mesh.uvs.resize(mesh.positions.size());
-      for (std::size_t i = 0; i < n; ++i) {
-        mesh.positions.push_back(Vec3f(world.point({pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]})));
-        if (nrm.empty()) {
-          mesh.normals.push_back(Vec3f(0.0f));  // marks "compute"
-        } else {
-          const Vec3d nn = nm * Vec3d{nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]};
-          const double len = length(nn);
-          mesh.normals.push_back(len > 0 ? Vec3f(nn / len) : Vec3f(0.0f));
-        }
-        if (!uv0.empty())
-          mesh.uvs.push_back({uv0[2 * i], uv0[2 * i + 1]});
-        else if (!mesh.uvs.empty())
-          mesh.uvs.push_back({});
-        if (anyAlbedo) {
-          Rgb a = factor;
-          if (tex) a *= sampleTexture(*tex, {uv[2 * i], uv[2 * i + 1]}, false);
-          if (!col.empty())
-            a *= Rgb{col[colComps * i], col[colComps * i + 1], col[colComps * i + 2]};
-          albedo.push_back(a);
-        }
-      }
-      std::vector<std::uint32_t> idx;
-      if (prim.indices >= 0) {
-        idx = rd.indices(prim.indices);
-      } else {
-        idx.resize(n);
-        for (std::size_t i = 0; i < n; ++i) idx[i] = std::uint32_t(i);
-      }
-      for (std::size_t k = 0; k < idx.size(); ++k)
-        if (idx[k] >= n) throwBadIndex(path, k / 3, idx[k], n);
-      const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-        if (mirror) std::swap(b, c);
-        mesh.triangles.push_back({base + a, base + b, base + c});
-      };
-      if (mode == TINYGLTF_MODE_TRIANGLES) {
-        for (std::size_t k = 0; k + 2 < idx.size(); k += 3) add(idx[k], idx[k + 1], idx[k + 2]);
-      } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-        for (std::size_t k = 0; k + 2 < idx.size(); ++k)
-          k % 2 == 0 ? add(idx[k], idx[k + 1], idx[k + 2]) : add(idx[k + 1], idx[k], idx[k + 2]);
-      } else {
-        for (std::size_t k = 1; k + 1 < idx.size(); ++k) add(idx[0], idx[k], idx[k + 1]);
-      }
-    }
-    part.vertexCount = std::uint32_t(mesh.positions.size()) - part.firstVertex;
-    part.triangleCount = std::uint32_t(mesh.triangles.size()) - part.firstTriangle;
-    if (part.vertexCount) mesh.parts.push_back(part);
-  };
-
-  if (model.scenes.empty()) {
-    for (int m = 0; m < int(model.meshes.size()); ++m) addMesh(m, Mat4{}, "");
-  } else {
-    const int s = model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size())
-                      ? model.defaultScene
-                      : 0;
-    // Depth first, children in order, without recursion (a chain of 10^5 nodes must not overflow
-    // the stack); a node on the current path again is a cycle, a path deeper than the nesting
-    // limit is refused.
-    const std::uint64_t maxDepth = limits().maxNesting;
-    std::vector<char> onPath(model.nodes.size(), 0);
-    struct Frame {
-      int node;
-      Mat4 world;
-      std::size_t next = 0;  // next child to visit
-    };
-    std::vector<Frame> stack;
-    std::size_t instances = 0;
-    const std::size_t maxInstances = std::max<std::size_t>(1000000, 4 * model.nodes.size());
-    const auto enter = [&](int node, const Mat4& parent) {
-      if (node < 0 || node >= int(model.nodes.size()))
-        rd.fail("scene refers to node " + std::to_string(node) + " (file has " +
-                std::to_string(model.nodes.size()) + ")");
-      if (onPath[node])
-        rd.fail("node " + std::to_string(node) + " is its own ancestor (cycle in the scene graph)");
-      // A node shared by several parents is visited once per path: a chain of nodes each
-      // listing the next twice makes 2^depth paths. Cap the instances.
-      if (++instances > maxInstances)
-        rd.fail("scene graph instantiates more than " + std::to_string(maxInstances) +
-                " nodes (shared subtrees)");
-      if (stack.size() >= maxDepth)
-        rd.fail("scene graph deeper than " + std::to_string(maxDepth) +
-                " levels (PRT_MAX_NESTING)");
-      onPath[node] = 1;
-      const tinygltf::Node& nd = model.nodes[node];
-      stack.push_back(Frame{node, parent * localMatrix(nd)});
-      if (nd.mesh >= 0) addMesh(nd.mesh, stack.back().world, nd.name);
-    };
-    for (int root : model.scenes[s].nodes) {
-      enter(root, Mat4{});
-      while (!stack.empty()) {
-        Frame& f = stack.back();
-        const tinygltf::Node& nd = model.nodes[f.node];
-        if (f.next < nd.children.size()) {
-          const int child = nd.children[f.next++];
-          const Mat4 world = f.world;  // `f` may move when the stack grows
-          enter(child, world);
-        } else {
-          onPath[f.node] = 0;
-          stack.pop_back();
-        }
-      }
-    }
-  }
-  if (mesh.positions.empty()) throw Error(path, "has no triangle meshes in its scene");
-  if (anyAlbedo) mesh.albedo = std::move(albedo);
-  if (!anyNormals) mesh.normals.clear();  // all computed, no warning
-  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
-    mesh.uvs.resize(mesh.positions.size());
-  return mesh;
+  GltfMeshBuilder builder(path, model, baseDir, report);
+  builder.addScene();
+  return builder.finish();
 }
 
 }  // namespace prt::detail
