@@ -226,6 +226,63 @@ Mesh readObj(const std::string& path, LoadReport& report) {
                      std::filesystem::path(path).parent_path().string(), nullptr, report);
 }
 
+namespace {
+
+/// Every material's Kd, Ks and Ns checked; the glossy part of the mesh: the first material with
+/// a specular colour (Ks > 0), Phong exponent Ns.
+std::optional<SurfaceGloss> checkMaterials(const std::string& path,
+                                           const std::vector<tinyobj::material_t>& materials) {
+  for (const tinyobj::material_t& m : materials)
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(m.diffuse[k]) || m.diffuse[k] > kMaxAlbedo || m.diffuse[k] < 0)
+        throw Error(path, "material '" + m.name.substr(0, 80) + "': Kd " + colourText(m.diffuse) +
+                              " is not a colour (each component finite, in [0, 100])");
+  std::optional<SurfaceGloss> gloss;
+  for (const tinyobj::material_t& m : materials) {
+    const bool finite = std::isfinite(m.specular[0]) && std::isfinite(m.specular[1]) &&
+                        std::isfinite(m.specular[2]) && std::isfinite(m.shininess);
+    if (!finite || m.specular[0] < 0 || m.specular[1] < 0 || m.specular[2] < 0 || m.shininess < 0)
+      throw Error(path, "material '" + m.name.substr(0, 80) + "': Ks " + colourText(m.specular) +
+                            " / Ns " + std::to_string(m.shininess) +
+                            " is not a specular colour and exponent (finite, >= 0)");
+    if (!gloss && (m.specular[0] > 0 || m.specular[1] > 0 || m.specular[2] > 0)) {
+      SurfaceGloss g;
+      g.model = SurfaceGloss::Model::Phong;
+      g.specular = Rgb(m.specular[0], m.specular[1], m.specular[2]);
+      g.exponent = m.shininess;
+      g.material = m.name.substr(0, 80);
+      gloss = g;
+    }
+  }
+  return gloss;
+}
+
+/// The diffuse textures (map_Kd), decoded once per material, relative to `baseDir`; one that
+/// cannot be read is left empty with a warning.
+std::vector<image::Image> loadTextures(const std::string& path, const std::string& baseDir,
+                                       const std::vector<tinyobj::material_t>& materials,
+                                       LoadReport& report) {
+  // Textures, decoded once per material.
+  const std::filesystem::path dir = baseDir;
+  std::vector<image::Image> textures(materials.size());
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    std::string name = materials[m].diffuse_texname;
+    if (name.empty()) continue;
+    std::replace(name.begin(), name.end(), '\\', '/');
+    const std::string file = (dir / name).string();
+    try {
+      textures[m] = image::readImage(file);
+    } catch (const Error& e) {
+      report.warnings.push_back(path + ": material '" + materials[m].name +
+                                "': texture not used: " + e.what());
+    }
+  }
+
+  return textures;
+}
+
+}  // namespace
+
 Mesh readObjText(const std::string& path, std::string_view text, const std::string& baseDir,
                  const std::string* mtlText, LoadReport& report) {
   checkObjText(path, text);
@@ -265,47 +322,13 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
   }
   const auto& shapes = shapesStore;
   const auto& materials = materialsStore;
-  for (const tinyobj::material_t& m : materials)
-    for (int k = 0; k < 3; ++k)
-      if (!std::isfinite(m.diffuse[k]) || m.diffuse[k] > kMaxAlbedo || m.diffuse[k] < 0)
-        throw Error(path, "material '" + m.name.substr(0, 80) + "': Kd " + colourText(m.diffuse) +
-                              " is not a colour (each component finite, in [0, 100])");
-  // The glossy part: the first material with a specular colour (Ks > 0), Phong exponent Ns.
-  std::optional<SurfaceGloss> gloss;
-  for (const tinyobj::material_t& m : materials) {
-    const bool finite = std::isfinite(m.specular[0]) && std::isfinite(m.specular[1]) &&
-                        std::isfinite(m.specular[2]) && std::isfinite(m.shininess);
-    if (!finite || m.specular[0] < 0 || m.specular[1] < 0 || m.specular[2] < 0 || m.shininess < 0)
-      throw Error(path, "material '" + m.name.substr(0, 80) + "': Ks " + colourText(m.specular) +
-                            " / Ns " + std::to_string(m.shininess) +
-                            " is not a specular colour and exponent (finite, >= 0)");
-    if (!gloss && (m.specular[0] > 0 || m.specular[1] > 0 || m.specular[2] > 0)) {
-      SurfaceGloss g;
-      g.model = SurfaceGloss::Model::Phong;
-      g.specular = Rgb(m.specular[0], m.specular[1], m.specular[2]);
-      g.exponent = m.shininess;
-      g.material = m.name.substr(0, 80);
-      gloss = g;
-    }
-  }
+  const std::optional<SurfaceGloss> gloss = checkMaterials(path, materials);
   const std::size_t np = attrib.vertices.size() / 3, nt = attrib.texcoords.size() / 2,
                     nn = attrib.normals.size() / 3;
 
-  // Textures, decoded once per material.
-  const std::filesystem::path dir = baseDir;
-  std::vector<image::Image> textures(materials.size());
-  for (std::size_t m = 0; m < materials.size(); ++m) {
-    std::string name = materials[m].diffuse_texname;
-    if (name.empty() || mtlText) continue;  // textures only from files
-    std::replace(name.begin(), name.end(), '\\', '/');
-    const std::string file = (dir / name).string();
-    try {
-      textures[m] = image::readImage(file);
-    } catch (const Error& e) {
-      report.warnings.push_back(path + ": material '" + materials[m].name +
-                                "': texture not used: " + e.what());
-    }
-  }
+  const std::vector<image::Image> textures = mtlText
+                                                 ? std::vector<image::Image>(materials.size())
+                                                 : loadTextures(path, baseDir, materials, report);
 
   Mesh mesh;
   std::unordered_map<std::array<int, 3>, std::uint32_t, TripleHash> index;
