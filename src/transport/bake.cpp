@@ -421,15 +421,10 @@ Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& se
       return s;
     }();
     st.raysPerSecond = raysPerSecondOf(st.rays, traceSeconds);
-    double sumT0 = 0, maxT0 = 0;
-    for (double var : variance) {
-      const double se = std::sqrt(var);
-      sumT0 += se;
-      maxT0 = std::max(maxT0, se);
-    }
+    const StandardErrors t0 = standardErrors(variance);
     const double scale = std::sqrt(4.0 * kPi);  // T·L for L = 1 is √(4π) T₀
-    st.stdErrT0Mean = count ? sumT0 / double(count) : 0.0;
-    st.stdErrT0Max = maxT0;
+    st.stdErrT0Mean = t0.mean;
+    st.stdErrT0Max = t0.max;
     st.stdErrConstMean = st.stdErrT0Mean * scale;
     st.stdErrConstMax = st.stdErrT0Max * scale;
     *stats = std::move(st);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -47,6 +48,21 @@ struct Moments {
     return var / n;
   }
 };
+
+/// The mean and the largest of the per-vertex standard errors √Var over a baked range.
+struct StandardErrors {
+  double mean = 0, max = 0;
+};
+inline StandardErrors standardErrors(const std::vector<double>& variances) {
+  StandardErrors e;
+  for (double var : variances) {
+    const double se = std::sqrt(var);
+    e.mean += se;
+    e.max = std::max(e.max, se);
+  }
+  e.mean = variances.empty() ? 0.0 : e.mean / double(variances.size());
+  return e;
+}
 
 /// Throws prt::Error naming the first problem with the mesh or the settings.
 void validateBake(const Mesh& mesh, const BakeSettings& s);

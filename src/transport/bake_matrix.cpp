@@ -443,15 +443,11 @@ Transfer bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettin
     }
     st.secondsTotal = seconds(start);
     st.raysPerSecond = raysPerSecondOf(st.rays, st.secondsTotal);
-    double sum = 0, mx = 0;
-    for (double var : variance) {
-      sum += std::sqrt(var);
-      mx = std::max(mx, std::sqrt(var));
-    }
+    const StandardErrors m00 = standardErrors(variance);
     // For matrices the standard error is that of M_00, the transferred radiance under the
     // constant light L = 1 (L00 = √(4π), so L'_00 Y00 = M_00).
-    st.stdErrT0Mean = st.stdErrConstMean = count ? sum / double(count) : 0.0;
-    st.stdErrT0Max = st.stdErrConstMax = mx;
+    st.stdErrT0Mean = st.stdErrConstMean = m00.mean;
+    st.stdErrT0Max = st.stdErrConstMax = m00.max;
     *stats = std::move(st);
   }
   return out;
