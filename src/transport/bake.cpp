@@ -295,6 +295,21 @@ double bounceVertex(Context& ctx, std::size_t v, int pass, const float* prev, in
   return m.varianceOfMean(n);
 }
 
+/// The ray rate over the ray-casting passes (the direct pass only when it cast rays) and the
+/// standard errors of T₀ and of the radiance under the constant light.
+BakeStats finishStats(BakeStats st, std::uint64_t directRays, const std::vector<double>& variance) {
+  double traceSeconds = directRays > 0 ? st.secondsDirect : 0.0;
+  for (double b : st.secondsBounce) traceSeconds += b;
+  st.raysPerSecond = raysPerSecondOf(st.rays, traceSeconds);
+  const StandardErrors t0 = standardErrors(variance);
+  const double scale = std::sqrt(4.0 * kPi);  // T·L for L = 1 is √(4π) T₀
+  st.stdErrT0Mean = t0.mean;
+  st.stdErrT0Max = t0.max;
+  st.stdErrConstMean = st.stdErrT0Mean * scale;
+  st.stdErrConstMax = st.stdErrT0Max * scale;
+  return st;
+}
+
 }  // namespace
 
 Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
@@ -324,11 +339,8 @@ Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& se
   const int nc = ctx.nc;
   const int channels = inter && !ctx.albedo.grey ? 3 : 1;
 
-  TransferShape shape;
-  shape.layout = TransferLayout::Vector;
-  shape.bands = settings.bands;
-  shape.channels = channels;
-  shape.rows = rows;
+  const TransferShape shape{TransferDomain::Vertices, TransferLayout::Vector, settings.bands,
+                            channels, rows};
   Transfer out = Transfer::zeros(shape);
   float* const outData = out.mutableValues();
   const std::size_t outStride = shape.stride();
@@ -415,19 +427,7 @@ Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& se
   if (stats) {
     st.rays = ctx.rays.load();
     st.secondsTotal = seconds(start);
-    const double traceSeconds = (directRays > 0 ? st.secondsDirect : 0.0) + [&] {
-      double s = 0;
-      for (double b : st.secondsBounce) s += b;
-      return s;
-    }();
-    st.raysPerSecond = raysPerSecondOf(st.rays, traceSeconds);
-    const StandardErrors t0 = standardErrors(variance);
-    const double scale = std::sqrt(4.0 * kPi);  // T·L for L = 1 is √(4π) T₀
-    st.stdErrT0Mean = t0.mean;
-    st.stdErrT0Max = t0.max;
-    st.stdErrConstMean = st.stdErrT0Mean * scale;
-    st.stdErrConstMax = st.stdErrT0Max * scale;
-    *stats = std::move(st);
+    *stats = finishStats(std::move(st), directRays, variance);
   }
   return out;
 }
