@@ -19,14 +19,7 @@
 namespace prt {
 namespace {
 
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 TEST(ReadersCore, CoordinateCapStopsWhereEmbreeStops) {
   // Embree aborts (ray.valid()) on origins past 1.844e18; the camera stands several radii out.

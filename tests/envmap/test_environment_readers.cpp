@@ -13,18 +13,12 @@
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/image/image_io.hpp"
+#include "support/hardening.hpp"
 
 namespace prt::envmap {
 namespace {
 
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 TEST(EnvironmentReaders, AllNanIsRefusedSomeNanIsReported) {
   prt::testing::ScratchDir dir;

@@ -25,19 +25,7 @@ using test::PeakAllocation;
 using test::ScopedLimits;
 using test::TempDir;
 
-std::string gzipOf(const std::string& data) {
-  z_stream zs{};
-  deflateInit2(&zs, 1, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
-  std::string out(deflateBound(&zs, data.size()) + 32, '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  zs.avail_in = uInt(data.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = uInt(out.size());
-  deflate(&zs, Z_FINISH);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
-}
+using test::gzipOf;
 
 void expectOneLine(const std::string& e, const std::string& file, const std::string& part) {
   EXPECT_EQ(e.rfind(file + ": ", 0), 0u) << e;

@@ -11,6 +11,7 @@
 #include "prt/core/error.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/image/color.hpp"
+#include "support/hardening.hpp"
 
 namespace prt {
 namespace {
@@ -62,19 +63,7 @@ std::string binaryPly(bool big) {
   return s;
 }
 
-std::string gzip(const std::string& data) {
-  z_stream zs{};
-  deflateInit2(&zs, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
-  std::string out(deflateBound(&zs, data.size()) + 32, '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  zs.avail_in = uInt(data.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = uInt(out.size());
-  deflate(&zs, Z_FINISH);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
-}
+using test::gzipOf;
 
 void expectTetrahedron(const Mesh& m, bool colours) {
   ASSERT_EQ(m.vertexCount(), 4u);
@@ -97,8 +86,8 @@ TEST(PlyLoader, AllEncodingsGiveTheSameMesh) {
   expectTetrahedron(loadMesh(dir.write("a.ply", asciiPly())), true);
   expectTetrahedron(loadMesh(dir.write("le.ply", binaryPly(false))), true);
   expectTetrahedron(loadMesh(dir.write("be.ply", binaryPly(true))), true);
-  expectTetrahedron(loadMesh(dir.write("le.ply.gz", gzip(binaryPly(false)))), true);
-  expectTetrahedron(loadMesh(dir.write("a.PLY.GZ", gzip(asciiPly()))), true);
+  expectTetrahedron(loadMesh(dir.write("le.ply.gz", gzipOf(binaryPly(false)))), true);
+  expectTetrahedron(loadMesh(dir.write("a.PLY.GZ", gzipOf(asciiPly()))), true);
 }
 
 TEST(PlyLoader, NormalsAndExtraElementsAndQuads) {
@@ -154,7 +143,7 @@ TEST(PlyLoader, MalformedFilesGiveOneLineErrors) {
   const std::string np = dir.write("nan.ply", nan);
   EXPECT_NE(errorOf(np).find("vertex 1 has a non-finite coordinate"), std::string::npos)
       << errorOf(np);
-  const std::string gz = dir.write("bad.ply.gz", gzip(asciiPly()).substr(0, 40));
+  const std::string gz = dir.write("bad.ply.gz", gzipOf(asciiPly()).substr(0, 40));
   EXPECT_NE(errorOf(gz).find("gzip"), std::string::npos) << errorOf(gz);
   for (const auto& p : {cut, lie, bi, noEnd, badType, cloud, np, gz})
     EXPECT_EQ(errorOf(p).find('\n'), std::string::npos);

@@ -13,6 +13,7 @@
 #include "prt/core/file.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
+#include "support/hardening.hpp"
 
 namespace fs = std::filesystem;
 using namespace prt;
@@ -37,14 +38,7 @@ void truncateFile(const std::string& path, double keep) {
            static_cast<std::streamsize>(bytes.size() * keep));
 }
 
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 }  // namespace
 

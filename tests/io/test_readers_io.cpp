@@ -12,18 +12,12 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/io/games202_transport.hpp"
 #include "prt/io/light_file.hpp"
+#include "support/hardening.hpp"
 
 namespace prt {
 namespace {
 
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 BakeFile tinyBake(double scale) {
   BakeFile b;

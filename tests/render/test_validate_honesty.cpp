@@ -15,6 +15,7 @@
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transport/bake.hpp"
+#include "support/hardening.hpp"
 
 namespace prt::render {
 namespace {
@@ -42,14 +43,7 @@ Environment constant(float v, int width = 16) {
   return e;
 }
 
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 TEST(ValidateHonesty, ZeroReferenceIsNotApplicableNotZeroPercent) {
   const Fixture f;

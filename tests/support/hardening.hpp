@@ -18,6 +18,8 @@
 #include <string>
 #include <thread>
 
+#include <zlib.h>
+
 #include "prt/core/error.hpp"
 #include "prt/core/limits.hpp"
 
@@ -48,6 +50,21 @@ inline void noteAllocation(std::size_t n) {
   std::size_t cur = peakRequest().load(std::memory_order_relaxed);
   while (n > cur && !peakRequest().compare_exchange_weak(cur, n)) {
   }
+}
+
+/// `data` gzip-compressed (zlib's deflate, level 1): the .gz inputs of the reader tests.
+inline std::string gzipOf(const std::string& data) {
+  z_stream zs{};
+  deflateInit2(&zs, 1, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
+  std::string out(deflateBound(&zs, data.size()) + 32, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  zs.avail_in = uInt(data.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = uInt(out.size());
+  deflate(&zs, Z_FINISH);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
 }
 
 /// The error message of fn(), or "" if it did not throw prt::Error (anything else propagates).
