@@ -52,9 +52,24 @@ void checkTransfersForWriting(const BakeFile& bake) {
       throw Error(std::string("bake file: a transfer over ") + toString(t.transfer.domain()) +
                   " has no place in this format version");
     t.transfer.shape().check("bake file");
+    try {
+      checkRecipe(t.recipe);
+    } catch (const Error& e) {
+      throw Error(std::string("bake file: the ") + toString(t.mode()) + " transfer's " + e.what());
+    }
     if (!t.transfer.compressed() && t.transfer.values().size() != rows.count * t.transfer.stride())
       throw Error("bake file: transfer rows do not match the vertex range");
-    if (t.transfer.compressed()) t.transfer.check("bake file");
+    if (t.transfer.compressed()) {
+      t.transfer.check("bake file");
+      // A cut below its basis (Transfer::cut keeps N): more basis vectors than values per row,
+      // which the format (and its reader) does not hold.
+      if (static_cast<std::size_t>(t.transfer.cpca().basisCount) > t.transfer.stride())
+        throw Error(std::string("bake file: the ") + toString(t.mode()) +
+                    " compressed transfer has " + std::to_string(t.transfer.cpca().basisCount) +
+                    " basis vectors for " + std::to_string(t.transfer.stride()) +
+                    " values per row (cut to fewer bands than its basis spans); write its dense "
+                    "form (toDense) or compress it again");
+    }
   }
 }
 

@@ -172,8 +172,8 @@ void readSettings(const json& o, const std::string& where, int version, const Re
   if (!o.is_object()) r.fail(where + " is not an object");
   recipe.mode = r.within(where, [&] { return parseTransferMode(r.string(o, "mode", where)); });
   recipe.sampling = r.within(where, [&] { return parseSampling(r.string(o, "sampling", where)); });
-  recipe.samples = static_cast<int>(r.integer(o, "samples", where, 0, 2147483647.0));
-  recipe.bounces = static_cast<int>(r.integer(o, "bounces", where, 0, 2147483647.0));
+  recipe.samples = static_cast<int>(r.integer(o, "samples", where, 1, kMaxBakeSamples));
+  recipe.bounces = static_cast<int>(r.integer(o, "bounces", where, 0, kMaxBounces));
   recipe.seed = r.integer(o, "seed", where);
   shape.layout =
       r.has(o, "layout")
@@ -192,8 +192,9 @@ void readSettings(const json& o, const std::string& where, int version, const Re
   if (r.has(o, "material")) recipe.material = readMaterial(o["material"], where + ".material", r);
   // Versions 1–3 kept a uniform bounce albedo apart from the material.
   if (r.has(o, "albedo"))
-    recipe.material.diffuse =
-        readRgb(o["albedo"], where + ".albedo", r, 0.0, std::numeric_limits<double>::max());
+    recipe.material.diffuse = readRgb(o["albedo"], where + ".albedo", r, 0.0, 1.0);
+  // Whatever form it came in, the material meets the ranges bake() and --material hold it to.
+  r.within(where, [&] { checkRecipe(recipe); });
 }
 
 json statsJson(const BakeStats& s) {

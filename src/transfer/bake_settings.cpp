@@ -6,6 +6,16 @@
 
 namespace prt {
 
+void checkRecipe(const BakeRecipe& r) {
+  if (r.samples < 1 || r.samples > kMaxBakeSamples)
+    throw Error("samples must be in 1.." + std::to_string(kMaxBakeSamples) + ", got " +
+                std::to_string(r.samples));
+  if (r.bounces < 0 || r.bounces > kMaxBounces)
+    throw Error("bounces must be in 0.." + std::to_string(kMaxBounces) + ", got " +
+                std::to_string(r.bounces));
+  checkMaterial(r.material);
+}
+
 const char* toString(TransferMode mode) {
   switch (mode) {
     case TransferMode::Unshadowed:

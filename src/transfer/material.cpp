@@ -135,6 +135,25 @@ std::string Material::spec() const {
   return s + params;
 }
 
+void checkMaterial(const Material& m) {
+  const auto colourIn01 = [&](const Rgb& c, const char* what) {
+    for (int i = 0; i < 3; ++i)
+      if (!(c[i] >= 0.0f && c[i] <= 1.0f))
+        throw Error("material " + m.spec() + ": " + what + " = " + colour(c) +
+                    " is outside 0..1 (each component)");
+  };
+  if (m.diffuse) colourIn01(*m.diffuse, "kd");
+  if (m.lobe.kind != LobeKind::None) colourIn01(m.specular, "ks");
+  if (m.lobe.kind == LobeKind::Phong &&
+      !(m.lobe.exponent >= 0 && m.lobe.exponent <= kMaxPhongExponent))
+    throw Error("material " + m.spec() + ": the Phong exponent must lie in 0.." +
+                number(kMaxPhongExponent));
+  if (m.lobe.kind == LobeKind::Ggx &&
+      !(m.lobe.roughness >= kMinGgxRoughness && m.lobe.roughness <= 1.0))
+    throw Error("material " + m.spec() + ": the GGX roughness must lie in " +
+                number(kMinGgxRoughness) + "..1");
+}
+
 Material parseMaterial(const std::string& text) {
   Spec spec(text);
   Material m;

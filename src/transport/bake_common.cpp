@@ -33,18 +33,7 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
                               std::to_string(mesh.vertexCount()) + ")");
   if (s.bands < 1 || s.bands > bands::kMaxBake)
     throw Error(bands::bandLimitMessage("the bake", s.bands, "baking", bands::kMaxBake));
-  if (s.samples < 1 || s.samples > kMaxBakeSamples)
-    throw Error("samples must be in 1.." + std::to_string(kMaxBakeSamples) + ", got " +
-                std::to_string(s.samples));
-  if (s.bounces < 0 || s.bounces > kMaxBounces)
-    throw Error("bounces must be in 0.." + std::to_string(kMaxBounces) + ", got " +
-                std::to_string(s.bounces));
-  if (s.material.diffuse && !(isFinite(*s.material.diffuse) && s.material.diffuse->x >= 0 &&
-                              s.material.diffuse->y >= 0 && s.material.diffuse->z >= 0))
-    throw Error("albedo must be finite and non-negative");
-  const Rgb ks = s.material.specular;
-  if (!(isFinite(ks) && ks.x >= 0 && ks.y >= 0 && ks.z >= 0))
-    throw Error("specular colour ks must be finite and non-negative");
+  checkRecipe(s);
   if (s.rows.first >= mesh.vertexCount() || s.rows.count > mesh.vertexCount() - s.rows.first)
     throw Error(name, "vertex range [" + std::to_string(s.rows.first) + ", " +
                           std::to_string(s.rows.first + s.rows.count) + ") is outside the mesh (" +

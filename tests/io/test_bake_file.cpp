@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <random>
 
 #include "common/random_data.hpp"
@@ -683,6 +684,82 @@ TEST(BakeFile, ReadingViewsTheFileForMatrices) {
                    .find(TransferMode::Shadowed, TransferLayout::Matrix)
                    ->transfer.values()
                    .isView());
+}
+
+// The writer writes only what its reader reads, and both hold a recipe to what bake() does
+// (checkRecipe): a kd beyond 1, a sample count of 0, bounces beyond 16 are refused on the way
+// out and on the way in, whatever version the file claims.
+TEST(BakeFile, WriterAndReaderHoldTheRecipeToWhatABakeCouldMake) {
+  BakeFile b = sampleBake();
+  b.transfers[0].recipe.material.diffuse = Rgb(2.0f, 0.5f, 0.5f);
+  try {
+    encodeBake(b);
+    ADD_FAILURE() << "a kd of 2 was written";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("kd"), std::string::npos) << e.what();
+  }
+  const std::string bytes = encodeBake(sampleBake());
+  const Glb g = splitGlb(bytes);
+  struct Edit {
+    const char* what;
+    std::function<void(nlohmann::json&)> apply;
+    const char* expect;
+  };
+  const std::vector<Edit> edits = {
+      {"kd 2",
+       [](nlohmann::json& s) {
+         s["material"]["kd"] = {2.0, 0.5, 0.5};
+       },
+       "kd"},
+      {"old albedo 2",
+       [](nlohmann::json& s) {
+         s["material"] = "lambert";
+         s["albedo"] = {2.0, 0.5, 0.5};
+       },
+       "albedo"},
+      {"samples 0", [](nlohmann::json& s) { s["samples"] = 0; }, "samples"},
+      {"bounces 17", [](nlohmann::json& s) { s["bounces"] = 17; }, "bounces"},
+  };
+  for (const Edit& e : edits) {
+    SCOPED_TRACE(e.what);
+    nlohmann::json doc = g.json;
+    if (std::string(e.what) == "old albedo 2") doc["extras"]["prtkit"]["formatVersion"] = 3;
+    for (auto& t : doc["extras"]["prtkit"]["transfers"]) {
+      if (std::string(e.what) == "old albedo 2") t["settings"]["material"] = "lambert";
+      e.apply(t["settings"]);
+    }
+    try {
+      decodeBake(asBytes(withJson(bytes, doc)), "edited.glb");
+      ADD_FAILURE() << "read";
+    } catch (const Error& err) {
+      const std::string m = err.what();
+      EXPECT_EQ(m.rfind("edited.glb", 0), 0u) << m;
+      EXPECT_NE(m.find(e.expect), std::string::npos) << m;
+    }
+  }
+}
+
+// A compressed transfer cut below its basis (N > values per row) cannot be stored: refused by
+// the writer with what to do, rather than written and refused by the reader.
+TEST(BakeFile, CompressedTransferCutBelowItsBasisIsRefusedOnTheWayOut) {
+  BakeFile b = sampleBake();
+  BakedTransfer& t = b.transfers[0];
+  CpcaOptions o;
+  o.clusters = 2;
+  o.basisCount = 6;
+  o.maxIterations = 5;
+  t.transfer = compressCpca(t.transfer, o);
+  ASSERT_GT(t.transfer.bands(), 1);
+  t.transfer = t.transfer.cut(1);  // 1 value per row (x channels), 6 basis vectors
+  ASSERT_GT(static_cast<std::size_t>(t.transfer.cpca().basisCount), t.transfer.stride());
+  try {
+    encodeBake(b);
+    ADD_FAILURE() << "written";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("basis vectors"), std::string::npos) << e.what();
+  }
+  b.transfers[0].transfer = b.transfers[0].transfer.toDense();
+  EXPECT_NO_THROW(decodeBake(asBytes(encodeBake(b)), "dense.glb"));
 }
 
 }  // namespace

@@ -71,6 +71,11 @@ struct BakeRecipe {
   bool operator==(const BakeRecipe&) const = default;
 };
 
+/// The one check of a recipe, for bake() and for the bake file's writer and reader alike (a file
+/// holds only what a bake could have made): samples in 1..kMaxBakeSamples, bounces in
+/// 0..kMaxBounces, the material by checkMaterial. Throws prt::Error naming the value.
+void checkRecipe(const BakeRecipe& recipe);
+
 /// What bake() takes: the recipe, and the shape of the transfer to make.
 struct BakeSettings : BakeRecipe {
   /// Vector: diffuse transfer (B² per row). Matrix: glossy transfer (B² × B² per row, see

@@ -93,6 +93,10 @@ struct Material {
 /// Parses a spec string (see above); throws prt::Error("SPEC: ...") on anything unknown or out
 /// of range.
 Material parseMaterial(const std::string& spec);
+/// The one check of a material's ranges, for every way one arrives (a spec, a bake file, the
+/// library's callers): kd and ks finite in [0, 1], a Phong exponent in [0, kMaxPhongExponent],
+/// a GGX roughness in [kMinGgxRoughness, 1]. Throws prt::Error("material SPEC: WHAT").
+void checkMaterial(const Material& m);
 
 /// What the `ggx` spec is, in one plain-text line for --help texts.
 inline constexpr const char* kGgxHelp =
