@@ -17,8 +17,8 @@
 //     vertices; a builtin 41k-vertex sphere when absent, counter bunny = 0), shadowed transfer
 //     matrices at 5 bands (625 floats per vertex), 256 samples, Phong lobe (exponent 16) +
 //     diffuse, compressed with K clusters and N vectors (timed once: compress_s), against the
-//     dense glossy kernel (relightGlossy) on the same matrices: vs_dense, vs_equal_err (goal
-//     ≥ 20) and project_ms as above.
+//     dense glossy kernel (relight::relight of the dense matrices) on the same matrices: vs_dense,
+//     vs_equal_err (goal ≥ 20) and project_ms as above.
 
 #include <benchmark/benchmark.h>
 

@@ -2,8 +2,10 @@
 // transport text and bakes come from our own writers (so they are exactly what prtkit produces,
 // and follow the formats as they evolve); meshes and material specs are tiny hand-written inputs
 // covering each variant the readers accept. The bakes cover every representation the bake
-// reader decodes: dense vectors (format version 1), dense matrices (2), CPCA-compressed vectors
-// and matrices (3). Run at build time for the replay tests (fuzz/CMakeLists.txt) and by
+// reader decodes — dense vectors, dense matrices, CPCA-compressed vectors and matrices — as the
+// writer writes them today (format version 4); the files of versions 1–3 (spec-string
+// materials, the separate albedo) are in fuzz/corpus/bake/ as accept_v*.glb, copies of
+// tests/data/bakes/. Run at build time for the replay tests (fuzz/CMakeLists.txt) and by
 // scripts/fuzz.sh.
 //
 //   make_seeds OUT

@@ -15,7 +15,7 @@
 // Snyder 2002, §6; --glossy-bands, default 5: B⁴ = 625 floats per vertex; --bounces bounces off
 // surfaces of the same glossy material) and relit with a glossy
 // material (--glossy, default a Phong lobe) seen from the stills' camera, e(p, v) with
-// v = normalize(eye − p) per vertex (relight::relightGlossy, as prt render); the brute-force
+// v = normalize(eye − p) per vertex (relight::relight, as prt render); the brute-force
 // reference evaluates the same lobe with no SH (render/reference.hpp), and the table adds the
 // fraction of the lobe's energy beyond each band count — what no b-band transfer can hold.
 // The matrices go to glossy.glb (the demo's scene.glb stays the small diffuse bake the web page

@@ -115,7 +115,7 @@ void runReference(const ReferenceArgs& a) {
   rs.samples = a.samples;
   rs.mode = bt.mode();
   rs.bounces = bt.recipe.effectiveBounces();
-  // The bake stores its material (bake file version 2 keeps the whole spec); --material replaces
+  // The bake stores its material (kd, ks and the lobe, at full precision); --material replaces
   // it, keeping the bake's kd unless it names its own.
   rs.material = materialOption(a.material, bt, a.bake,
                                "the reference follows --material at every bounce, the bake "

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
@@ -26,8 +27,8 @@ int bandsFromCount(const std::string& path, std::size_t count) {
   const int b = static_cast<int>(std::lround(std::sqrt(static_cast<double>(count))));
   if (count == 0 || static_cast<std::size_t>(b) * b != count)
     throw Error(path, std::to_string(count) + " coefficients is not a square number B² of bands");
-  if (b > sh::kMaxBands)
-    throw Error(path, std::to_string(b) + " bands is more than the 32 supported");
+  if (b > bands::kMaxLibrary)
+    throw Error(path, bands::bandLimitMessage("the light", b, "prtkit", bands::kMaxLibrary));
   return b;
 }
 

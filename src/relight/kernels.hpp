@@ -1,6 +1,6 @@
 #pragma once
 // The relighting kernels, one per layout × representation, behind relight()'s one dispatch
-// (dispatch.cpp); private to src/relight. Each checks what only it can (its arrays against the
+// (relight.cpp); private to src/relight. Each checks what only it can (its arrays against the
 // shape); the dispatch has checked the light, the surface and the output against the transfer.
 
 #include <cstddef>

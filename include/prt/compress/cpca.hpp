@@ -10,7 +10,7 @@
 // with M_k the cluster mean and B_k0..B_k,N−1 the orthonormal top-N principal directions of the
 // cluster's covariance. Relighting is linear in the row, so exit radiance becomes
 // (M_k·L) + Σ_j w_pj (B_kj·L): K(N+1) dot products per frame, then N multiply-adds per vertex
-// (relight/compressed.hpp).
+// (relight/relight.hpp, relight/cluster_projection.hpp).
 //
 // The iteration (the paper's "iterative CPCA", a Lloyd iteration with PCA in place of the mean):
 //   0. seed K clusters by k-means++ (Arthur & Vassilvitskii 2007) from a Pcg32 stream of `seed`;

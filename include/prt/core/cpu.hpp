@@ -1,8 +1,11 @@
 #pragma once
-// Which SIMD paths the kernels may take — the one run-time CPU check (relighting, CPCA, the
-// bake's direction batches all ask here). Every kernel has a portable form beside its AVX2+FMA
-// one; setSimd(Simd::Portable) forces the portable forms, so tests compare both on every machine
-// and benchmarks measure either. Results agree up to float rounding (documented per kernel).
+// Which SIMD paths the kernels may take — the one run-time CPU check for the kernels whose AVX2
+// and portable forms differ in rounding (FMA): relighting and the cluster projections. Each has
+// a portable form beside its AVX2+FMA one; setSimd(Simd::Portable) forces the portable forms,
+// so tests compare both on every machine and benchmarks measure either. Results agree up to
+// float rounding (documented per kernel). Loops compiled several times by GCC's target_clones
+// (the bake's Sobol' direction batch, CPCA's chunk products) give identical bits in every
+// version (no FMA contraction, same operation order), so they need no switch here.
 
 namespace prt {
 

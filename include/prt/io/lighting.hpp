@@ -1,8 +1,9 @@
 #pragma once
 // The light a verb or viewer relights with, from anything a user names — an environment (image,
 // face folder, builtin:NAME) or an SH light file (.json, the course's light.txt) — under one set
-// of rules, so prt render, validate, reference, view, web and the demo answer the same input
-// the same way:
+// of rules, so prt render, view and web answer the same input the same way (validate, reference
+// and the demo need the environment's texels themselves, for the Monte Carlo reference, and
+// load environments only, through envmap::loadEnvironment):
 //
 //   * an environment is projected to the bands asked for (exactly: the transfer's);
 //   * a light file keeps its coefficients; with more bands than asked it is cut (exact: bands

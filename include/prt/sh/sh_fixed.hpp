@@ -64,7 +64,7 @@ constexpr PolyTables makePolyTables() {
 inline constexpr PolyTables kPoly = makePolyTables();
 
 // T goes by const reference through every function here (free for float and double once
-// inlined): with a SIMD lane type T (relight/compressed_glossy.cpp's eight floats) a caller
+// inlined): with a SIMD lane type T (relight/cpca_matrix_kernels.cpp's eight floats) a caller
 // compiled for AVX2 and a copy of these templates compiled for the baseline disagree on how a
 // 32-byte value is passed (GCC's -Wpsabi note), which corrupts the arguments wherever the
 // compiler chooses not to inline (seen in the sanitizer build).

@@ -5,7 +5,7 @@
 //   exit radiance  e(p, v) = kd(p) ⊙ (1/π) ∫ L'_p(ω) max(n·ω, 0) dω  +  ks ⊙ ∫ L'_p(ω) G(R·ω) dω
 //
 // with L'_p the light that arrives at p (shadowed, and bounced off the scene for inter-reflected
-// transfer). With L'_p in SH (L'_p = M_p L for glossy transfer matrices, field.hpp), both
+// transfer). With L'_p in SH (L'_p = M_p L for glossy transfer matrices, transfer.hpp), both
 // integrals are zonal convolutions (Funk–Hecke), so
 //
 //   e(p, v) = Σ_lm L'_lm [ kd (A_l/π) Y_lm(n) + ks Λ_l Y_lm(R) ],    Λ_l = 2π ∫ G(t) P_l(t) dt,

@@ -7,7 +7,7 @@
 //
 // so that the light leaving the point toward the eye is kd (d·L') + ks (g·L') for the light L'
 // arriving there. Used where that exit radiance is needed: relighting glossy transfer
-// (relight/glossy.hpp, relight/compressed.hpp) and the matrix bake, whose bounces carry the
+// (relight/relight.hpp and its kernels) and the matrix bake, whose bounces carry the
 // light a glossy surface sends toward another vertex (transport/bake.hpp).
 
 #include <optional>
