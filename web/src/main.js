@@ -14,16 +14,16 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import GUI from 'lil-gui';
 
-import { parseBake, parseLightJson, parseLightTxt } from './bake.js';
+import { kMaxGlossyBands, parseBake, parseLightJson, parseLightTxt } from './bake.js';
 import { axisAngle, evalSh, mul3, rotateLight, rotationEulerXYZ } from './sh.js';
 import { clusterTableImage, projectClusters } from './compressed.js';
-import meshVert from './shaders/mesh.vert';
-import compressedVert from './shaders/compressed.vert';
-import compressedGlossyVert from './shaders/compressedGlossy.vert';
-import meshFrag from './shaders/mesh.frag';
-import fullscreenVert from './shaders/fullscreen.vert';
-import backgroundFrag from './shaders/background.frag';
-import toneFrag from './shaders/tone.frag';
+import meshVert from 'prt:shaders/mesh.vert';
+import compressedVert from 'prt:shaders/compressed.vert';
+import compressedGlossyVert from 'prt:shaders/compressedGlossy.vert';
+import meshFrag from 'prt:shaders/mesh.frag';
+import fullscreenVert from 'prt:shaders/fullscreen.vert';
+import backgroundFrag from 'prt:shaders/background.frag';
+import toneFrag from 'prt:shaders/tone.frag';
 
 const kToneMaps = { clamp: 0, reinhard: 1, aces: 2 };
 const query = new URLSearchParams(location.search);
@@ -168,6 +168,7 @@ async function main() {
   if (!(state.env >= 0 && state.env < envs.length)) state.env = 0;
 
   // ---- scene: background triangle + relit parts ---------------------------------------------
+  // (three vertices: the stage makes the triangle from gl_VertexID; three.js counts these)
   const scene = new THREE.Scene();
   const camera = new THREE.PerspectiveCamera(40, 1, 0.1, 100);
   const fullscreen = new THREE.BufferGeometry();
@@ -220,12 +221,14 @@ async function main() {
     const meshes = b.parts.map((p) => {
       const textures = {};
       for (const t of b.transfers) textures[t.mode] = { texture: dataTexture(p.texels[t.mode]), width: p.texels[t.mode].width };
-      const defines = p.hasAlbedo ? { PRT_HAS_ALBEDO: 1 } : {};
+      // The arrays' sizes (shaders/hosts/webgl2.glsl): the light's vec4s, the glossy kernels'.
+      const defines = { PRT_LIGHT_VEC4S: vec4s, PRT_GLOSSY_COEFFS: kMaxGlossyBands * kMaxGlossyBands };
+      if (p.hasAlbedo) defines.PRT_HAS_ALBEDO = 1;
       const material = new THREE.RawShaderMaterial({
         glslVersion: THREE.GLSL3, vertexShader: meshVert, fragmentShader: meshFrag,
-        defines: Object.assign({ PRT_LIGHT_VEC4S: vec4s }, defines),
+        defines,
         uniforms: {
-          uTransfer: { value: null }, uTexWidth: { value: 1 }, uTexelsPerVertex: { value: 1 },
+          uTransfer: { value: null }, uTexelsPerVertex: { value: 1 },
           uCount: { value: 0 }, uRgb: { value: false }, uL: light,
         },
         side: THREE.DoubleSide,
@@ -233,18 +236,18 @@ async function main() {
       const compressedMaterial = !b.transfers.some((t) => t.compressed) ? null : new THREE.RawShaderMaterial({
         glslVersion: THREE.GLSL3, vertexShader: compressedVert, fragmentShader: meshFrag, defines,
         uniforms: {
-          uWeights: { value: null }, uWeightsWidth: { value: 1 }, uClusters: { value: null },
-          uClustersWidth: { value: 1 }, uTexelsPerVertex: { value: 1 }, uBasisCount: { value: 0 },
+          uWeights: { value: null }, uClusters: { value: null },
+          uTexelsPerVertex: { value: 1 }, uBasisCount: { value: 0 },
         },
         side: THREE.DoubleSide,
       });
       const glossyMaterial = !b.transfers.some((t) => t.matrix) ? null : new THREE.RawShaderMaterial({
         glslVersion: THREE.GLSL3, vertexShader: compressedGlossyVert, fragmentShader: meshFrag, defines,
         uniforms: {
-          uWeights: { value: null }, uWeightsWidth: { value: 1 }, uClusters: { value: null },
-          uClustersWidth: { value: 1 }, uTexelsPerVertex: { value: 1 }, uBasisCount: { value: 0 },
-          uBands: { value: 1 }, uCoeffs: { value: 1 }, uDiffuse: { value: new Float32Array(64) },
-          uGlossy: { value: new Float32Array(64) }, uKd: { value: new THREE.Vector3() },
+          uWeights: { value: null }, uClusters: { value: null },
+          uTexelsPerVertex: { value: 1 }, uBasisCount: { value: 0 },
+          uBands: { value: 1 }, uCoeffs: { value: 1 }, uDiffuse: { value: new Float32Array(kMaxGlossyBands * kMaxGlossyBands) },
+          uGlossy: { value: new Float32Array(kMaxGlossyBands * kMaxGlossyBands) }, uKd: { value: new THREE.Vector3() },
           uKs: { value: new THREE.Vector3() }, uEye: { value: new THREE.Vector3() }, uHasKd: { value: false },
         },
         side: THREE.DoubleSide,
@@ -386,15 +389,12 @@ async function main() {
       if (t.compressed) {
         const table = clusterTables[t.mode];
         u.uWeights.value = tex.texture;
-        u.uWeightsWidth.value = tex.width;
         u.uClusters.value = table.texture;
-        u.uClustersWidth.value = table.width;
         u.uTexelsPerVertex.value = t.compressed.texelsPerVertex;
         u.uBasisCount.value = t.compressed.basisCount;
         continue;
       }
       u.uTransfer.value = tex.texture;
-      u.uTexWidth.value = tex.width;
       u.uTexelsPerVertex.value = t.texelsPerVertex;
       u.uRgb.value = t.channels === 3;
       u.uCount.value = t.channels === 3 ? b * b : Math.ceil((b * b) / 4);

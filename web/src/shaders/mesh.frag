@@ -1,4 +1,0 @@
-precision highp float;
-in vec3 vRadiance;
-out vec4 fragColour;
-void main() { fragColour = vec4(vRadiance, 1.0); }
