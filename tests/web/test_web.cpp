@@ -3,7 +3,8 @@
 //   * its first frame (?screenshot) matches prt render of the same bake, light, rotation and
 //     default view: RMSE < 0.02 on displayed [0, 1] colour; a turned light must not match;
 //   * its SH rotation (web/src/sh.js under node) equals sh::Rotation to 1e-5 for 3, 5, 9 bands;
-//   * bad dropped files leave the scene (bake, environments, pixels) as it was and say why;
+//   * bad dropped files leave the scene (bake, environments, pixels) as it was and say why; a
+//     light with fewer bands than the bake is padded with the library's warning;
 //   * CPCA-compressed bakes (version 3), diffuse vectors and glossy matrices, are relit in the
 //     compressed space and match prt render.
 // Each test skips, saying why, where chromium, node or the built page is missing.
@@ -27,6 +28,7 @@
 #include "common/scratch.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
+#include "prt/io/lighting.hpp"
 #include "prt/sh/rotate.hpp"
 
 namespace {
@@ -304,20 +306,25 @@ TEST(Web, CompressedGlossyFirstFrameMatchesPrtRender) {
   const std::string cam = "eye=0.4,1.3,2.3;target=0,0.8,0;fov=45";
   r = prt("-q web gc.glb --env builtin:sky --env builtin:studio --camera '" + cam + "' -o page_g");
   ASSERT_EQ(r.rc, 0) << r.err;
-  for (const std::string rot : {"0,0,0", "20,70,0"}) {
-    SCOPED_TRACE(rot);
+  // (b = 3 of 4 bands: the table holds the transfer cut to 3 bands, as prt view's.)
+  for (const auto& [rot, bands] : std::vector<std::pair<std::string, int>>{
+           {"0,0,0", 4}, {"20,70,0", 4}, {"20,70,0", 3}}) {
+    SCOPED_TRACE(rot + " at " + std::to_string(bands) + " bands");
     r = prt("-q render gc.glb --light builtin:studio --rotate " + rot + " --camera '" + cam +
-            "' --exposure -1 --size 320x240 -o g.png");
+            "' --exposure -1 --bands " + std::to_string(bands) + " --size 320x240 -o g.png");
     ASSERT_EQ(r.rc, 0) << r.err;
     std::string log;
     const std::string json =
-        runPage(path("page_g"), "screenshot&size=320x240&env=1&exposure=-1&rotate=" + rot, &log);
+        runPage(path("page_g"), "screenshot&size=320x240&env=1&exposure=-1&rotate=" + rot +
+                                    "&bands=" + std::to_string(bands),
+                &log);
     ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
     EXPECT_EQ(jsonField(json, "compressed"), "8x3, 16 bytes per vertex");
     const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("g.png"));
     EXPECT_LT(e, kMatch);
     EXPECT_LT(quantile90, kInterior);
-    std::cout << "page vs prt render, compressed glossy, rotate " << rot << ": RMSE " << e
+    std::cout << "page vs prt render, compressed glossy, rotate " << rot << ", " << bands
+              << " bands: RMSE " << e
               << ", 90th percentile " << quantile90 * 255 << "/255\n";
   }
   // The comparison can fail: close up the lobe is a large part of the image, so the diffuse
@@ -459,7 +466,6 @@ TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
       {"newer.glb", "newer.glb: bake format version 99 is not supported by this page"},
       {"broken.json", "broken.json: is not JSON"},
       {"rows.json", "rows.json: has 3 coefficients but 2 bands need 4"},
-      {"short.json", "short.json: the light has 2 bands but the bake 4"},
       {"picture.png", "picture.png: not a bake (.glb) or an SH light (.json, or the course's"},
       {"odd.txt", "odd.txt: has 2 lines; a light.txt has B² lines"},
   };
@@ -471,10 +477,31 @@ TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
     for (const char* same : {"\"sameBake\":true", "\"sameEnvs\":true", "\"sameFrame\":true"})
       EXPECT_NE(entry.find(same), std::string::npos) << same << " in " << entry;
   }
+  // A light with fewer bands than the bake follows the library's rule (io::loadLighting): added,
+  // padded with zeros (it draws what the same light with the bake's bands draws), and the
+  // library's warning shown as a warning. What the library says for the same light (the same
+  // file name: the page's is bare):
+  std::ofstream(path("short.json")) << "{\"bands\": 2, \"coefficients\": "
+                                       "[[1, 1, 1], [0, 0, 0], [0, 0, 0], [0, 0, 0]]}\n";
+  const prt::io::Lighting lib = prt::io::loadLighting(path("short.json"), 4);
+  ASSERT_EQ(lib.warnings.size(), 1u);
+  std::string shortWarning = lib.warnings[0];
+  shortWarning.erase(0, shortWarning.find("short.json"));
+  {
+    const std::size_t at = json.find("\"short\":{");
+    ASSERT_NE(at, std::string::npos) << json;
+    const std::string entry = json.substr(at, json.find('}', at) - at);
+    EXPECT_EQ(jsonField(entry, "message"), shortWarning) << entry;
+    EXPECT_EQ(jsonField(entry, "kind"), "warning") << entry;
+    for (const char* want : {"\"added\":true", "\"changed\":true", "\"sameAsPadded\":true"})
+      EXPECT_NE(entry.find(want), std::string::npos) << want << " in " << entry;
+  }
   // The control: a good light file (JSON, then light.txt) is added, and clears the message.
   EXPECT_NE(json.find("\"control\":{\"message\":\"\",\"added\":true}"), std::string::npos) << json;
-  // And a good bake replaces the scene.
-  EXPECT_NE(json.find("\"controlBake\":{\"message\":\"\",\"replaced\":true}"), std::string::npos)
+  // And a good bake replaces the scene (the short light, still in the list, is warned about
+  // again for the new bake).
+  EXPECT_NE(json.find("\"controlBake\":{\"message\":\"" + shortWarning + "\",\"replaced\":true}"),
+            std::string::npos)
       << json;
 }
 
