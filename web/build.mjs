@@ -8,6 +8,7 @@
 //   GENDIR/shaders/NAME   imported as 'prt:shaders/NAME', as text: the stages of shaders/stages/
 //                         already flattened with the page's host interface by the one shader
 //                         resolver, cmake/Shaders.cmake (the desktop viewer embeds the same).
+// tests/web/golden/imports.mjs maps the same names for node (the golden-vector check).
 import * as esbuild from 'esbuild';
 import fs from 'node:fs';
 import path from 'node:path';
