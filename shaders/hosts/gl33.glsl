@@ -6,6 +6,7 @@
 //   PRT_TEXELS            the type of an RGBA32F data texture: a texture buffer here
 //   prtTexel(s, t)        texel t of one
 //   PRT_LIGHT_UNIFORM     the rotated light uL[] (r, g, b, -) per coefficient: a std140 block
+//   PRT_CAMERA_UNIFORMS   the uniforms prtClip reads (declared once, by prt_mesh.glsl)
 //   prtClip(p)            clip position of world point p (the parts are in world space)
 //   PRT_HAS_ALBEDO        defined: the renderer always feeds location 1 (the albedo, or one
 //                         constant colour when the mesh has none)

@@ -8,6 +8,7 @@
 //                         (t mod width, t div width)
 //   prtTexel(s, t)        texel t of one
 //   PRT_LIGHT_UNIFORM     the rotated light uL[] (r, g, b, 0) per coefficient: a uniform array
+//   PRT_CAMERA_UNIFORMS   the uniforms prtClip reads (declared once, by prt_mesh.glsl)
 //   prtClip(p)            clip position of world point p (three.js's matrices; the parts are
 //                         in world space)
 precision highp float;
