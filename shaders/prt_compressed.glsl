@@ -1,6 +1,6 @@
 // prtkit relighting from CPCA-compressed transfer (Sloan, Hall, Hart & Snyder 2003, §5), shared
 // by the desktop viewer (GLSL 3.30) and the web page (GLSL ES 3.00). Layouts: include/prt/
-// relight/cluster_table.hpp. The host declares, before this file:
+// relight/shader_transfer.hpp. The host declares, before this file:
 //   vec4 prtWeightTexel(int t)   per-vertex texels, T per vertex: slot 0 the cluster id k (a
 //                                float), slot 1 + j the weight w_j (j < N), zero padding
 //   vec4 prtClusterTexel(int t)  this frame's cluster projections, (r, g, b, -) per value:

@@ -248,12 +248,10 @@ void writeWebViewer(const WebOptions& a) {
      << "], \"exposure\": " << a.exposure << ", \"tonemap\": " << jsonString(a.toneMap)
      << ", \"mode\": " << jsonString(a.mode) << ", \"bands\": " << a.bands
      << ", \"camera\": " << cameraJson << ", \"framing\": " << framingJson << "},\n";
-  // The library's limits the page applies to what a URL asks for (?exposure=...).
-  js << "\"limits\": {\"exposureStops\": " << image::kMaxExposureStops << "},\n";
   js << "\"bake\": {\"name\": " << jsonString(fs::path(a.bake).filename().string())
      << ", \"glb\": \"" << base64(glb.data(), glb.size()) << "\"},\n";
   // Compressed glossy matrices: the bake's material (or --material) as the page's shader takes it
-  // (kernels times the SH normalisation its basis leaves out, relight/glossy_shader.hpp), per
+  // (kernels times the SH normalisation its basis leaves out, relight::shaderKernel, shader_transfer.hpp), per
   // mode.
   js << "\"glossy\": {";
   bool firstGlossy = true;

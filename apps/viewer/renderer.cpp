@@ -32,13 +32,16 @@ void requireTextureBufferTexels(double texels, const char* what, const char* adv
 
 namespace {
 
-// ---- shaders --------------------------------------------------------------------------------
-// The GLSL lives in shaders/ (shared functions prt_*.glsl, this viewer's stages in
-// shaders/viewer/), embedded at configure time (cmake/EmbedShaders.cmake); the web page (web/)
-// compiles the same shared functions. Each source gets the desktop's #version here.
+// ---- shaders ---------------------------------------------------------------------------------
+// The stages live in shaders/stages/ (shared with the web page), flattened with the desktop's
+// host interface shaders/hosts/gl33.glsl and embedded at configure time (cmake/Shaders.cmake).
+// Each source gets the desktop's #version here and the sizes its arrays take from the C++
+// limits: the light block's kMaxPackedCoeffs vec4s, the glossy kernels' kMaxShaderGlossy².
 
 std::string glsl330(const char* body) {
-  return std::string("#version 330 core\n") + body;
+  return fmt::format(
+      "#version 330 core\n#define PRT_LIGHT_VEC4S {}\n#define PRT_GLOSSY_COEFFS {}\n{}",
+      kMaxViewerCoeffs, bands::kMaxShaderGlossy * bands::kMaxShaderGlossy, body);
 }
 
 GLuint compile(GLenum type, const std::string& source, const char* name) {
@@ -163,6 +166,7 @@ Renderer::Renderer() {
       link(glsl330(kShaderCompressedVert), glsl330(kShaderMeshFrag), "compressed mesh");
   compressedGlossyProgram_ = link(glsl330(kShaderCompressedGlossyVert), glsl330(kShaderMeshFrag),
                                   "compressed glossy mesh");
+  radianceProgram_ = link(glsl330(kShaderRadianceVert), glsl330(kShaderMeshFrag), "radiance mesh");
   glUniformBlockBinding(meshProgram_, glGetUniformBlockIndex(meshProgram_, "Light"), 0);
   glUniformBlockBinding(glossyProgram_, glGetUniformBlockIndex(glossyProgram_, "Light"), 0);
   glGenVertexArrays(1, &vao_);
@@ -180,8 +184,9 @@ Renderer::Renderer() {
 }
 
 Renderer::~Renderer() {
-  const GLuint programs[] = {meshProgram_,   backgroundProgram_, toneProgram_,
-                             glossyProgram_, compressedProgram_, compressedGlossyProgram_};
+  const GLuint programs[] = {meshProgram_,       backgroundProgram_,       toneProgram_,
+                             glossyProgram_,     compressedProgram_,       compressedGlossyProgram_,
+                             radianceProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
   const GLuint buffers[] = {positions_, albedo_,   indices_, transferBuffer_,
                             lightUbo_,  radiance_, normals_, clusterBuffer_};
@@ -290,7 +295,8 @@ void Renderer::setTransfer(const relight::ShaderRows& rows, const TransferShape&
 void Renderer::setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
                                  std::optional<Rgb> kd, Rgb ks) {
   // The SH normalisation N_lm the shader's basis leaves out (relight::shaderKernel).
-  const std::array<float, 64> d = relight::shaderKernel(diffuse), g = relight::shaderKernel(glossy);
+  const auto d = relight::shaderKernel(diffuse), g = relight::shaderKernel(glossy);
+  static_assert(d.size() == bands::kMaxShaderGlossy * bands::kMaxShaderGlossy);
   glossyDiffuse_.assign(d.begin(), d.end());
   glossyLobe_.assign(g.begin(), g.end());
   glossyKd_ = kd;
@@ -349,8 +355,8 @@ void Renderer::resize(int w, int h) {
 }
 
 void Renderer::setGlossyUniforms(unsigned p, const Vec3f& eye) const {
-  glUniform1fv(loc(p, "uDiffuse"), 64, glossyDiffuse_.data());
-  glUniform1fv(loc(p, "uGlossy"), 64, glossyLobe_.data());
+  glUniform1fv(loc(p, "uDiffuse"), GLsizei(glossyDiffuse_.size()), glossyDiffuse_.data());
+  glUniform1fv(loc(p, "uGlossy"), GLsizei(glossyLobe_.size()), glossyLobe_.data());
   const Rgb kd = glossyKd_.value_or(Rgb(1.0f));
   glUniform3f(loc(p, "uKd"), kd.x, kd.y, kd.z);
   glUniform1i(loc(p, "uHasKd"), glossyKd_.has_value());
@@ -427,7 +433,8 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     const GLuint p = path_ == ShaderPath::DenseMatrix  ? glossyProgram_
                      : path_ == ShaderPath::CpcaVector ? compressedProgram_
                      : path_ == ShaderPath::CpcaMatrix ? compressedGlossyProgram_
-                                                       : meshProgram_;
+                     : path_ == ShaderPath::CpuRadiance ? radianceProgram_
+                                                        : meshProgram_;
     const bool compressed = path_ == ShaderPath::CpcaVector || path_ == ShaderPath::CpcaMatrix;
     if (compressed) {
       PRT_CHECK(!f.clusterTable.empty(), "compressed transfer needs FrameParams.clusterTable");
@@ -443,17 +450,13 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
     switch (path_) {
       case ShaderPath::DenseVector:
-      case ShaderPath::CpuRadiance: {
-        const bool direct = path_ == ShaderPath::CpuRadiance;
         glUniform1i(loc(p, "uTransfer"), 1);
         glUniform1i(loc(p, "uTexelsPerVertex"), texelsPerRow_);
         glUniform1i(loc(p, "uRgb"), transferChannels_ == 3);
-        glUniform1i(loc(p, "uCount"), direct                   ? 0
-                                      : transferChannels_ == 3 ? b * b
-                                                               : paddedCoeffs(b) / 4);
-        glUniform1i(loc(p, "uDirect"), direct);
+        glUniform1i(loc(p, "uCount"), transferChannels_ == 3 ? b * b : paddedCoeffs(b) / 4);
         break;
-      }
+      case ShaderPath::CpuRadiance:  // the radiance attribute, made on the CPU
+        break;
       case ShaderPath::DenseMatrix:
         glUniform1i(loc(p, "uTransfer"), 1);
         glUniform1i(loc(p, "uBands"), std::min(b, bands::kMaxShaderGlossy));
@@ -495,9 +498,8 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   glBindTexture(GL_TEXTURE_2D, resolveColour_);
   glUniform1i(loc(toneProgram_, "uHdr"), 0);
   glUniform1f(loc(toneProgram_, "uScale"), std::exp2(f.exposureStops));
-  glUniform1i(loc(toneProgram_, "uToneMap"), f.toneMap == image::ToneMap::Clamp      ? 0
-                                             : f.toneMap == image::ToneMap::Reinhard ? 1
-                                                                                     : 2);
+  // The shader's op is the enum's value (prt_display.glsl; the page's from web constants).
+  glUniform1i(loc(toneProgram_, "uToneMap"), static_cast<int>(f.toneMap));
   glBindVertexArray(emptyVao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);

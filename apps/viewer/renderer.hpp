@@ -12,7 +12,7 @@
 //        block (LightPacker); the rasteriser interpolates R perspective-correctly across each
 //        triangle — the barycentric interpolation prt render does on ray hits.
 //        Glossy (matrix) transfer instead arrives as per-vertex exit radiance computed on the
-//        CPU (SceneView, relight::relightGlossy) in a vertex buffer the shader passes through.
+//        CPU (SceneView, relight::Relighter) in a vertex buffer the shader passes through.
 //  2. The samples are resolved (box filter, like render's stratified spp average).
 //  3. A full-screen pass applies exposure 2^stops, the tone map and the sRGB encode
 //     (image::toneMap, image::linearToSrgb: the same formulas in GLSL) into the target.
@@ -134,7 +134,7 @@ class Renderer {
   void setGlossyUniforms(unsigned program, const Vec3f& eye) const;
 
   unsigned meshProgram_ = 0, backgroundProgram_ = 0, toneProgram_ = 0, glossyProgram_ = 0;
-  unsigned compressedProgram_ = 0, compressedGlossyProgram_ = 0;
+  unsigned compressedProgram_ = 0, compressedGlossyProgram_ = 0, radianceProgram_ = 0;
   unsigned clusterBuffer_ = 0, clusterTexture_ = 0;
   std::size_t clusterTableBytes_ = 0;
   unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0, normals_ = 0;
@@ -145,8 +145,9 @@ class Renderer {
   bool hasAlbedo_ = false, hasTransfer_ = false, hasRadiance_ = false;
   relight::ShaderPath path_ = relight::ShaderPath::DenseVector;
   int texelsPerRow_ = 0, basisCount_ = 0;
-  // Kernels × the SH normalisation, 64 each.
-  std::vector<float> glossyDiffuse_ = std::vector<float>(64), glossyLobe_ = std::vector<float>(64);
+  // Kernels × the SH normalisation, kMaxShaderGlossy² each (relight::shaderKernel).
+  std::vector<float> glossyDiffuse_ = std::vector<float>(bands::kMaxShaderGlossy * bands::kMaxShaderGlossy),
+                     glossyLobe_ = glossyDiffuse_;
   std::optional<Rgb> glossyKd_;
   Rgb glossyKs_{0.0f};
   int transferBands_ = 0, transferChannels_ = 1;

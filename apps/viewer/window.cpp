@@ -77,26 +77,35 @@ struct Ui {
         m.specular = Rgb(kDefaultSpecular);
       changed = true;
     }
+    // The sliders span the ranges parseMaterial accepts (material.hpp's limits); a value typed
+    // past them (ctrl+click) is kept only if parseMaterial accepts it, below.
     if (m.lobe.kind == LobeKind::Phong) {
       float s = float(m.lobe.exponent);
-      if (ImGui::SliderFloat("exponent", &s, 0.0f, 256.0f, "%.1f", ImGuiSliderFlags_Logarithmic))
-        m.lobe.exponent = std::max(double(s), 0.0), changed = true;
+      if (ImGui::SliderFloat("exponent", &s, 0.0f, float(kMaxPhongExponent), "%.1f",
+                             ImGuiSliderFlags_Logarithmic))
+        m.lobe.exponent = double(s), changed = true;
     } else if (m.lobe.kind == LobeKind::Ggx) {
       float r = float(m.lobe.roughness);
       if (ImGui::SliderFloat("roughness", &r, float(kMinGgxRoughness), 1.0f, "%.3f"))
-        m.lobe.roughness = std::clamp(double(r), kMinGgxRoughness, 1.0), changed = true;
+        m.lobe.roughness = double(r), changed = true;
     }
     if (m.lobe.kind != LobeKind::None) {
       float ks[3] = {m.specular.x, m.specular.y, m.specular.z};
       if (ImGui::ColorEdit3("ks", ks, ImGuiColorEditFlags_Float))
-        m.specular = {std::max(ks[0], 0.0f), std::max(ks[1], 0.0f), std::max(ks[2], 0.0f)},
-        changed = true;
+        m.specular = {ks[0], ks[1], ks[2]}, changed = true;
       // What the shown bands cannot hold of the lobe (GlossyLobe::energyBeyond).
       ImGui::TextDisabled("lobe energy beyond %d bands: %.0f%%", scene.bands(),
                           100.0 * m.lobe.energyBeyond(scene.bands()));
     }
     ImGui::TextDisabled("%s", m.spec().c_str());
-    if (changed) scene.setMaterial(m);
+    // The one policy for what a material may be: parseMaterial's (the CLI's --material). A value
+    // it refuses is dropped (the panel shows the scene's material again next frame).
+    if (changed) {
+      try {
+        scene.setMaterial(parseMaterial(m.spec()));
+      } catch (const Error&) {
+      }
+    }
   }
 
   void panel(Scene& scene, const Output& out) {

@@ -48,7 +48,7 @@ void checkPath(const Transfer& t, ShaderPath path) {
     case ShaderPath::CpuRadiance:
       break;
   }
-  if (t.compressed() && t.cpca().clusters > (1 << 24))
+  if (t.compressed() && t.cpca().clusters > kMaxShaderClusters)
     throw Error(std::to_string(t.cpca().clusters) +
                 " clusters: a shader reads cluster ids as floats, exact below 2^24");
 }

@@ -98,7 +98,7 @@ TEST(ViewCli, ShBackgroundTruncatedBandsAndToneMapsMatch) {
   EXPECT_LT(compareWithRender(cornellBake(), "--light builtin:studio --background none"), kMatch);
 }
 
-// Glossy (matrix) transfer: the viewer relights it on the CPU with relightGlossy, each vertex
+// Glossy (matrix) transfer: the viewer relights it on the CPU with relight::Relighter, each vertex
 // seen from the orbit camera's eye, exactly as prt render does; so the same thresholds hold.
 // Measured at 320×240 under llvmpipe: RMSE 0.005–0.007 for each matching pair below, 0.056 for
 // the diffuse-only view against the glossy render close up.
@@ -149,7 +149,7 @@ TEST(ViewCli, GlossyOnGpuMatchesRender) {
 
 // CPCA-compressed transfer (bake version 3) is relit in the compressed space on the GPU: per
 // frame the cluster projections on the CPU, per vertex N weighted sums in the vertex shader.
-// prt render relights the same compressed rows on the CPU (relightCompressed), so a matching
+// prt render relights the same compressed rows on the CPU (relight::relight of the compressed rows), so a matching
 // frame meets the same thresholds as a dense one.
 TEST(ViewCli, CompressedVectorBakeMatchesRender) {
   PRT_REQUIRE_HEADLESS_GL();
@@ -180,7 +180,7 @@ TEST(ViewCli, CompressedVectorBakeMatchesRender) {
   EXPECT_NE(d.out.find("dense transfer: 48 bytes per vertex"), std::string::npos) << d.out;
 }
 
-// Compressed glossy matrices: on the CPU by relightCompressedGlossy (the default), or in the
+// Compressed glossy matrices: on the CPU by relight::Relighter (the default), or in the
 // vertex shader (--glossy-on gpu) from per-cluster L'_kj = B_kj L' tables. Both against prt
 // render of the same compressed bake.
 TEST(ViewCli, CompressedGlossyBakeMatchesRenderOnCpuAndGpu) {

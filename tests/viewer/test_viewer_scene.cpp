@@ -309,8 +309,8 @@ TEST(Scene, CompressedFrameEqualsDenseReconstructionFrame) {
     bool glossyOnGpu;
     int bands;
   };
-  // Glossy on the CPU: relightCompressedGlossy into the radiance buffer (the renderer draws
-  // radiance, not compressed data), against relightGlossy of the expanded matrices.
+  // Glossy on the CPU: relight::relight of the compressed rows into the radiance buffer (the renderer draws
+  // radiance, not compressed data), against relight::relight of the expanded matrices.
   for (const Case& c :
        {Case{compressedSphereBake(), false, 3}, Case{compressedSphereBake(), false, 2},
         Case{compressedCornellBake(), false, 4}, Case{compressedGlossyBake(), true, 4},

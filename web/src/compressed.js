@@ -1,15 +1,19 @@
 // CPCA-compressed transfer in the page (prt compress, bake format version 3; docs/compress.md),
 // relit in the compressed space as Sloan, Hall, Hart & Snyder 2003 do on the GPU and as the
-// desktop viewer does (include/prt/relight/cluster_table.hpp holds the layouts):
+// desktop viewer does (include/prt/relight/shader_transfer.hpp holds the layouts; transfer.js
+// dispatches to this file for the CpcaVector and CpcaMatrix paths):
 //   per vertex, once:  its cluster id k and N weights w_j in T = ⌈(N+1)/4⌉ RGBA32F texels
 //                      (slot 0 = k as a float, slot 1 + j = w_j, zero padding);
 //   per frame, in JS:  the rotated light L' (first b bands) projected onto every cluster's mean
 //                      and basis, c_k = M_k·L', d_kj = B_kj·L' (K(N+1)·b²·3 multiply-adds),
 //                      texel k(N+1) + j = (r, g, b, 0), j = 0 the mean;
 //   per vertex, GPU:   R(v) = albedo(v) ⊙ (c_k + Σ_j w_j d_kj)   (shaders/prt_compressed.glsl).
-// Glossy matrices (Q = B² values per cluster vector): the table holds L'_kj = B_kj L' (texel
-// (k(N+1) + j)·B² + i), and the vertex shader forms L'_v = L'_k0 + Σ_j w_j L'_kj and shades it
-// (shaders/compressedGlossy.vert, as prt view --glossy-on gpu).
+// Glossy matrices (Q = b² values per cluster vector at b shown bands: the transfer cut to b
+// bands, as the desktop viewer cuts it): the table holds L'_kj = B_kj L' (texel
+// (k(N + 1) + j)·b² + i), and the vertex shader forms L'_v = L'_k0 + Σ_j w_j L'_kj and shades it
+// (shaders/stages/compressedGlossy.vert, as prt view --glossy-on gpu).
+// tests/web/golden_check.mjs checks projectClusters and packWeights against the library.
+import { textureShape } from './texels.js';
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
@@ -20,14 +24,14 @@ function fail(name, what) {
  * returns { clusters K, basisCount N, stride D, texelsPerVertex, cluster, weights, means, basis }.
  * Every count is checked against the accessors and every id against K.
  */
-export async function readCompressed(gltf, json, t, shape, vertexCount, name) {
+export async function readCompressed(gltf, json, t, shape, vertexCount, name, maxClusters) {
   const c = t.compressed;
   const what = `the ${shape.mode} transfer's compressed form`;
   if (!c || c.method !== 'cpca') fail(name, `${what} is not CPCA (method ${c && c.method})`);
   const n = shape.bands * shape.bands;
   const K = c.clusters, N = c.basisCount, D = (shape.matrix ? n * n : n) * shape.channels;
-  if (!Number.isInteger(K) || K < 1 || K > vertexCount || K >= 1 << 24)
-    fail(name, `${what} has ${K} clusters (1..${Math.min(vertexCount, (1 << 24) - 1)} expected)`);
+  if (!Number.isInteger(K) || K < 1 || K > vertexCount || K > maxClusters)
+    fail(name, `${what} has ${K} clusters (1..${Math.min(vertexCount, maxClusters)} expected)`);
   if (!Number.isInteger(N) || N < 0 || N > D) fail(name, `${what} has ${N} basis vectors (0..${D} expected)`);
   const prefix = String(c.accessorPrefix || '');
   const byPart = {};
@@ -55,15 +59,6 @@ export async function readCompressed(gltf, json, t, shape, vertexCount, name) {
            cluster, weights, means, basis };
 }
 
-/** A texel count as a W × H RGBA32F image (W = 4096, or the GPU's maximum if smaller). */
-function textureShape(texels, limits, name, what) {
-  const W = Math.min(limits.maxTextureSize, 4096);
-  const H = Math.max(1, Math.ceil(texels / W));
-  if (H > limits.maxTextureSize)
-    fail(name, `${what} needs ${texels} texels, more than this WebGL's ${limits.maxTextureSize}² textures hold`);
-  return { width: W, height: H, data: new Float32Array(W * H * 4) };
-}
-
 /** The per-vertex texels of vertices first .. first + count − 1 (one part), as a data image. */
 export function packWeights(c, first, count, limits, name, mode) {
   const T = c.texelsPerVertex, N = c.basisCount;
@@ -76,13 +71,13 @@ export function packWeights(c, first, count, limits, name, mode) {
   return img;
 }
 
-/** The per-frame cluster table's image (filled by projectClusters). */
+/** The per-frame cluster table's image (filled by projectClusters), sized for all B bands. */
 export function clusterTableImage(c, limits, name, mode) {
   return textureShape(c.clusters * (c.basisCount + 1) * c.coeffs, limits, name, `the ${mode} transfer's cluster table`);
 }
 
 /**
- * The once-per-frame step (relight::projectClusters): for every cluster k and j = 0..N,
+ * The once-per-frame step (relight::projectClusters + packClusterTable): for every cluster k and j = 0..N,
  * texel k(N+1) + j = Σ_{i<b²} x_i L'_i per channel, x = M_k (j = 0) or B_k,j−1, with
  * x_i = x[i·C + c] (C = 1: the same value for the three channels). `light` holds b² (r, g, b).
  */
@@ -111,15 +106,15 @@ export function projectClusters(c, bands, channels, light, out) {
 }
 
 /**
- * The matrix form: texel (k(N+1) + j)·B² + i = (X L')_i = Σ_{l<b²} X[(i·B² + l)·C + c] L'_l,c for
- * every row i < B² (the shader sums rows i < b²), X = M_k or B_k,j−1.
+ * The matrix form, of the transfer cut to b bands: texel (k(N+1) + j)·b² + i = (X L')_i =
+ * Σ_{l<b²} X[(i·B² + l)·C + c] L'_l,c for every row i < b², X = M_k or B_k,j−1.
  */
 function projectClusterMatrices(c, bands, channels, light, out) {
   const D = c.stride, N = c.basisCount, W = N + 1, nB = c.coeffs, nb = bands * bands, C = channels;
   for (let k = 0; k < c.clusters; ++k)
     for (let j = 0; j < W; ++j) {
       const x = j === 0 ? c.means : c.basis, o = j === 0 ? k * D : (k * N + j - 1) * D;
-      for (let i = 0; i < nB; ++i) {
+      for (let i = 0; i < nb; ++i) {
         let r = 0, g = 0, b = 0;
         const row = o + i * nB * C;
         for (let l = 0; l < nb; ++l) {
@@ -131,7 +126,7 @@ function projectClusterMatrices(c, bands, channels, light, out) {
             r += x[e] * light[3 * l], g += x[e + 1] * light[3 * l + 1], b += x[e + 2] * light[3 * l + 2];
           }
         }
-        const q = 4 * ((k * W + j) * nB + i);
+        const q = 4 * ((k * W + j) * nb + i);
         out[q] = r, out[q + 1] = g, out[q + 2] = b, out[q + 3] = 0;
       }
     }

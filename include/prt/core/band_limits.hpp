@@ -2,7 +2,7 @@
 // Every limit on SH band counts, in one place (bands B = degrees 0..B−1, B² coefficients).
 // Each exists for a stated reason; everything that checks a band count checks it against one of
 // these and words its refusal with bandLimitMessage, so the CLI, the viewers and the page agree.
-// The web page reads the same numbers from a file generated at build time (web/build.mjs).
+// The web page reads the same numbers from a module generated at build time (web/gen/constants.cpp).
 
 #include <string>
 

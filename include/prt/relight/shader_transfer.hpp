@@ -78,6 +78,9 @@ struct ShaderRows {
   /// Bytes one row uploads (16·T).
   std::size_t bytesPerRow() const { return 16 * static_cast<std::size_t>(texelsPerRow); }
 };
+/// The most clusters a compressed path draws: shaders read a cluster id as a float, exact up
+/// to 2^24.
+inline constexpr int kMaxShaderClusters = 1 << 24;
 /// Texels per row of a path for a transfer.
 int shaderTexelsPerRow(const Transfer& t, ShaderPath path);
 /// Packs the rows for `path` (checked against the transfer as shaderPath does).

@@ -1,11 +1,7 @@
-// The environment behind the mesh, rotated by R: the lat-long image read at Rᵀ d
-// (shaders/prt_latlong.glsl, as the desktop viewer and prt render).
-precision highp float;
-precision highp sampler2D;
+// The environment behind the mesh, rotated by R: the lat-long image read at Rᵀ d, d the pixel's
+// camera ray (prt_latlong.glsl, as prt render).
 uniform vec2 uViewport;
-uniform vec3 uForward;
-uniform vec3 uRightTan;
-uniform vec3 uUpTan;
+uniform vec3 uForward, uRightTan, uUpTan;
 uniform mat3 uRotationT;
 uniform sampler2D uLatLong;
 out vec4 fragColour;

@@ -1,3 +1,0 @@
-in vec3 vRadiance;
-out vec4 fragColour;
-void main() { fragColour = vec4(vRadiance, 1.0); }

@@ -1,0 +1,286 @@
+// prt_web_golden DIR: writes DIR/golden.json (and the files it names: a bake, light files) —
+// inputs and what the C++ library computes from them, wherever the browser viewer must compute
+// the same thing in JS. tests/web/golden_check.mjs feeds the same inputs to the page's
+// functions (web/src) and compares (ctest web.GoldenVectors; docs/web.md, "Tests"):
+//
+//   rotation     sh::Rotation(rotationEulerXYZ) of random lights, several rotations and bands
+//                (sh.js rotationEulerXYZ + rotateLight); rotationAxisAngle (sh.js axisAngle)
+//   evalSh       sh::eval at random directions (sh.js evalSh: the SH background)
+//   clusters     the per-frame cluster table (relight::projectClusters of the transfer cut to
+//                the shown bands, packClusterTable) and the per-vertex texels (packShaderRows)
+//                of small CPCA transfers — vectors and matrices, scalar and RGB, b = B and b < B
+//                (compressed.js projectClusters, packWeights)
+//   bake         a bake file of four transfers (dense and compressed, vectors and a matrix) on a
+//                7-part mesh: the library's pick order (transferPreference), every transfer's
+//                shader path and packed rows (shaderPath, packShaderRows) and the default
+//                framing and camera (meshFraming, frameCamera) (bake.js parseBake, camera.js)
+//   lights       light files with fewer and more bands than the transfer: io::loadLighting's
+//                warnings and io::padded's coefficients (lights.js)
+//   messages     bands::bandLimitMessage (messages.js, filled from the generated template)
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "prt/core/band_limits.hpp"
+#include "prt/core/vec.hpp"
+#include "prt/geometry/builtin.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/io/light_file.hpp"
+#include "prt/io/lighting.hpp"
+#include "prt/relight/cluster_projection.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/relight/shader_transfer.hpp"
+#include "prt/render/camera.hpp"
+#include "prt/sh/rotate.hpp"
+#include "prt/sh/sh.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace prt;
+
+std::mt19937 rng(20240521);
+
+float uniform(float lo, float hi) {
+  return std::uniform_real_distribution<float>(lo, hi)(rng);
+}
+std::vector<float> randoms(std::size_t n, float lo = -1.0f, float hi = 1.0f) {
+  std::vector<float> v(n);
+  for (float& x : v) x = uniform(lo, hi);
+  return v;
+}
+json array(const float* p, std::size_t n) {
+  json a = json::array();
+  for (std::size_t i = 0; i < n; ++i) a.push_back(p[i]);
+  return a;
+}
+json array(const std::vector<float>& v) {
+  return array(v.data(), v.size());
+}
+json vec(const Vec3f& v) {
+  return {v.x, v.y, v.z};
+}
+json rgbArray(std::span<const Rgb> c) {
+  json a = json::array();
+  for (const Rgb& x : c) a.push_back(x.x), a.push_back(x.y), a.push_back(x.z);
+  return a;
+}
+
+json rotations() {
+  json cases = json::array();
+  for (int bands : {1, 2, 3, 5, 9})
+    for (int k = 0; k < 4; ++k) {
+      double euler[3] = {0, 0, 0};
+      if (k == 1) euler[1] = uniform(-180, 180);  // about +Y only
+      if (k >= 2)
+        for (double& e : euler) e = uniform(-180, 180);
+      const std::vector<float> light = randoms(std::size_t(bands) * bands * 3);
+      sh::RgbSh l(bands);
+      for (int i = 0; i < bands * bands; ++i) l.c[i] = {light[3 * i], light[3 * i + 1], light[3 * i + 2]};
+      const sh::RgbSh out = sh::Rotation(bands, rotationEulerXYZ(euler[0], euler[1], euler[2])).apply(l);
+      cases.push_back({{"bands", bands}, {"euler", {euler[0], euler[1], euler[2]}},
+                       {"light", array(light)}, {"rotated", rgbArray(out.c)}});
+    }
+  return cases;
+}
+
+json axisAngles() {
+  json cases = json::array();
+  for (int k = 0; k < 4; ++k) {
+    const Vec3d axis = normalize(Vec3d{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)});
+    const double angle = uniform(-3, 3);
+    const Mat3d r = rotationAxisAngle(axis, angle);
+    json m = json::array();
+    for (int i = 0; i < 3; ++i) m.push_back({r.m[i][0], r.m[i][1], r.m[i][2]});
+    cases.push_back({{"axis", {axis.x, axis.y, axis.z}}, {"angle", angle}, {"matrix", m}});
+  }
+  return cases;
+}
+
+json evalShCases() {
+  json cases = json::array();
+  for (int bands : {1, 4, 9})
+    for (int k = 0; k < 4; ++k) {
+      const Vec3d d = k == 0 ? Vec3d{0, 1, 0}
+                             : normalize(Vec3d{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)});
+      std::vector<double> y(std::size_t(bands) * bands);
+      sh::eval(bands, d, y.data());
+      cases.push_back({{"bands", bands}, {"dir", {d.x, d.y, d.z}}, {"values", y}});
+    }
+  return cases;
+}
+
+/// A CPCA transfer of `rows` rows with random ids, weights, means and basis vectors.
+Transfer randomCpca(TransferLayout layout, int bands, int channels, std::size_t rows, int K,
+                    int N) {
+  TransferShape shape;
+  shape.layout = layout;
+  shape.bands = bands;
+  shape.channels = channels;
+  shape.rows = {0, rows};
+  CpcaRows c;
+  c.clusters = K;
+  c.basisCount = N;
+  for (std::size_t r = 0; r < rows; ++r)
+    c.cluster.push_back(r < std::size_t(K) ? std::uint32_t(r) : std::uint32_t(rng() % K));
+  c.weights = FloatArray(randoms(rows * N));
+  c.means = FloatArray(randoms(std::size_t(K) * shape.stride()));
+  c.basis = FloatArray(randoms(std::size_t(K) * N * shape.stride(), -0.5f, 0.5f));
+  return Transfer::cpca(shape, c);
+}
+
+json cpcaJson(const Transfer& t) {
+  const CpcaRows& c = t.cpca();
+  json ids = json::array();
+  for (std::uint32_t k : c.cluster) ids.push_back(k);
+  return {{"layout", toString(t.layout())}, {"bands", t.bands()},   {"channels", t.channels()},
+          {"rows", t.rowCount()},           {"clusters", c.clusters}, {"basisCount", c.basisCount},
+          {"cluster", ids},                 {"weights", array(c.weights.data(), c.weights.size())},
+          {"means", array(c.means.data(), c.means.size())},
+          {"basis", array(c.basis.data(), c.basis.size())}};
+}
+
+json clusterCases() {
+  struct Case {
+    TransferLayout layout;
+    int bands, channels, K, N;
+  };
+  json cases = json::array();
+  for (const Case& c : {Case{TransferLayout::Vector, 3, 1, 5, 3}, Case{TransferLayout::Vector, 4, 3, 4, 5},
+                        Case{TransferLayout::Matrix, 3, 1, 3, 2}, Case{TransferLayout::Matrix, 2, 3, 2, 4},
+                        Case{TransferLayout::Vector, 2, 1, 3, 0}}) {
+    const Transfer t = randomCpca(c.layout, c.bands, c.channels, 11, c.K, c.N);
+    const relight::ShaderPath path = relight::shaderPath(t, true);
+    const relight::ShaderRows rows = relight::packShaderRows(t, path);
+    json tables = json::array();
+    for (int b = c.bands; b >= std::max(1, c.bands - 1); --b) {
+      const std::vector<float> light = randoms(std::size_t(b) * b * 3);
+      std::vector<Rgb> rotated(std::size_t(b) * b);
+      for (std::size_t i = 0; i < rotated.size(); ++i)
+        rotated[i] = {light[3 * i], light[3 * i + 1], light[3 * i + 2]};
+      std::vector<float> table;
+      relight::packClusterTable(relight::projectClusters(t.cut(b), relight::prepareLight(rotated, b)),
+                                table);
+      tables.push_back({{"bands", b}, {"light", array(light)}, {"table", array(table)}});
+    }
+    json j = cpcaJson(t);
+    j["texelsPerRow"] = rows.texelsPerRow;
+    j["packedRows"] = array(rows.rgba);
+    j["frames"] = tables;
+    cases.push_back(j);
+  }
+  return cases;
+}
+
+json bakeCase(const fs::path& dir) {
+  BakeFile b;
+  b.mesh = builtinScene("cornell?grid=3");
+  const std::size_t V = b.mesh.vertexCount();
+  const auto dense = [&](TransferMode mode, int bands, int channels) {
+    BakedTransfer t;
+    t.recipe.mode = mode;
+    TransferShape shape;
+    shape.bands = bands;
+    shape.channels = channels;
+    shape.rows = {0, V};
+    t.transfer = Transfer::dense(shape, FloatArray(randoms(V * shape.stride())));
+    return t;
+  };
+  const auto compressed = [&](TransferMode mode, TransferLayout layout, int bands, int channels, int K,
+                              int N) {
+    BakedTransfer t;
+    t.recipe.mode = mode;
+    t.transfer = randomCpca(layout, bands, channels, V, K, N);
+    return t;
+  };
+  // Stored in an order unlike the preference, so that the page has to sort.
+  b.transfers.push_back(dense(TransferMode::Unshadowed, 3, 1));
+  b.transfers.push_back(compressed(TransferMode::Shadowed, TransferLayout::Vector, 3, 1, 6, 3));
+  b.transfers.push_back(dense(TransferMode::Interreflected, 3, 3));
+  b.transfers.push_back(compressed(TransferMode::Shadowed, TransferLayout::Matrix, 3, 1, 4, 2));
+  const std::string file = (dir / "golden.glb").string();
+  writeBake(file, b);
+  const BakeFile read = readBake(file);
+
+  json order = json::array();
+  for (std::size_t i : transferPreference(read)) {
+    const Transfer& t = read.transfers[i].transfer;
+    const relight::ShaderPath path = relight::shaderPath(t, true);
+    const relight::ShaderRows rows = relight::packShaderRows(t, path);
+    order.push_back({{"mode", toString(read.transfers[i].mode())}, {"layout", toString(t.layout())},
+                     {"compressed", t.compressed()}, {"texelsPerRow", rows.texelsPerRow},
+                     {"packedRows", array(rows.rgba)}});
+  }
+  json parts = json::array();
+  for (const MeshPart& p : read.mesh.parts)
+    parts.push_back({{"name", p.name}, {"first", p.firstVertex}, {"vertices", p.vertexCount}});
+  const render::Framing f = render::meshFraming(read.mesh);
+  const int w = 320, h = 240;
+  const render::Camera c = render::frameCamera(f, w, h);
+  return {{"file", "golden.glb"},
+          {"vertices", V},
+          {"parts", parts},
+          {"transfers", order},
+          {"framing", {{"centre", vec(f.centre)}, {"radius", f.radius}, {"direction", vec(f.direction)},
+                       {"up", vec(f.up)}, {"fov", f.fovY}, {"margin", f.margin}}},
+          {"width", w},
+          {"height", h},
+          {"camera", {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"up", vec(c.up)}, {"fov", c.fovY}}}};
+}
+
+json lightCases(const fs::path& dir) {
+  json cases = json::array();
+  for (const auto& [lightBands, transferBands] : {std::pair{2, 4}, std::pair{3, 4}, std::pair{5, 3}, std::pair{3, 3}}) {
+    const std::string name =
+        "light" + std::to_string(lightBands) + "_for" + std::to_string(transferBands) + ".json";
+    io::LightFile lf;
+    lf.coefficients = sh::RgbSh(lightBands);
+    for (Rgb& x : lf.coefficients.c) x = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+    io::writeLightJson((dir / name).string(), lf);
+    const io::Lighting l = io::loadLighting((dir / name).string(), transferBands);
+    const sh::RgbSh padded = io::padded(l.coefficients, transferBands);
+    cases.push_back({{"file", name}, {"path", (dir / name).string()}, {"transferBands", transferBands},
+                     {"warnings", l.warnings}, {"coefficients", rgbArray(padded.c)}});
+  }
+  return cases;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: prt_web_golden DIR\n");
+    return 2;
+  }
+  try {
+    const fs::path dir = argv[1];
+    fs::create_directories(dir);
+    json g;
+    g["rotation"] = rotations();
+    g["axisAngle"] = axisAngles();
+    g["evalSh"] = evalShCases();
+    g["clusters"] = clusterCases();
+    g["bake"] = bakeCase(dir);
+    g["lights"] = lightCases(dir);
+    g["messages"] = json::array();
+    for (const auto& [what, b, who, max] :
+         {std::tuple{"the shadowed vector transfer", 20, "this page's light", 15},
+          std::tuple{"a light {with} braces", 33, "the library", bands::kMaxLibrary}})
+      g["messages"].push_back({{"what", what}, {"bands", b}, {"who", who}, {"max", max},
+                               {"message", bands::bandLimitMessage(what, b, who, max)}});
+    std::ofstream(dir / "golden.json") << g.dump() << "\n";
+    std::printf("wrote %s\n", (dir / "golden.json").string().c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "prt_web_golden: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,179 @@
+// prt_web_constants OUT.js: writes the browser viewer's constants module (imported in web/src as
+// 'prt:constants', bundled by web/build.mjs) from the C++ library, so that the page restates
+// none of the library's limits, names, versions or policies (docs/web.md, "Generated from the
+// C++"). Built and run by CMake (web/CMakeLists.txt) before the page is bundled.
+//
+// Every value below is read from the library, not retyped: the band and material limits and
+// the bake format version are its constants; mode, layout and tone-map names are its toString /
+// parse functions; the transfer pick order is transferPreference run on a bake holding every
+// (mode, layout); the two messages the page words like the library are templates cut out of
+// the library's own messages (and checked to give them back).
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "prt/core/band_limits.hpp"
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+#include "prt/core/version.hpp"
+#include "prt/image/color.hpp"
+#include "prt/image/image_io.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/io/light_file.hpp"
+#include "prt/io/lighting.hpp"
+#include "prt/relight/shader_transfer.hpp"
+#include "prt/transfer/material.hpp"
+
+namespace {
+
+using json = nlohmann::ordered_json;  // keys in the order written (toneMaps: the enum order)
+
+/// Replaces every `from` in `s` by `to`.
+std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
+  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+    s.replace(p, from.size(), to);
+  return s;
+}
+
+/// A message template: `message` with each value replaced by its {key}; throws unless filling
+/// the template back (as web/src/messages.js does) gives `message` exactly, so a value that
+/// also occurs elsewhere in the wording fails the build instead of producing a wrong template.
+std::string cutTemplate(const std::string& message,
+                        const std::vector<std::pair<std::string, std::string>>& values) {
+  std::string t = message;
+  for (const auto& [key, value] : values) t = replaceAll(t, value, "{" + key + "}");
+  std::string back = t;
+  for (const auto& [key, value] : values) back = replaceAll(back, "{" + key + "}", value);
+  if (back != message || t == message)
+    throw prt::Error("cannot cut a template out of \"" + message + "\"");
+  return t;
+}
+
+/// io::loadLighting's warning for a light file with fewer bands than the transfer, as a
+/// template over {name}, {light} (the file's bands) and {transfer} (the transfer's).
+std::string lightBandsTemplate() {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() /
+                       ("prt-web-constants-" + std::to_string(std::random_device{}()));
+  fs::create_directories(dir);
+  const std::string file = (dir / "light.json").string();
+  std::string t;
+  try {
+    prt::io::LightFile light;
+    light.coefficients = prt::sh::RgbSh(3);
+    light.coefficients.c[0] = prt::Rgb(1.0f);
+    prt::io::writeLightJson(file, light);
+    const prt::io::Lighting l = prt::io::loadLighting(file, 7);
+    if (l.warnings.size() != 1)
+      throw prt::Error("io::loadLighting gave " + std::to_string(l.warnings.size()) +
+                       " warnings for a 3-band light and a 7-band transfer (1 expected)");
+    t = cutTemplate(l.warnings[0], {{"name", file}, {"light", "3"}, {"transfer", "7"}});
+  } catch (...) {
+    fs::remove_all(dir);
+    throw;
+  }
+  fs::remove_all(dir);
+  return t;
+}
+
+json constants() {
+  using namespace prt;
+  json c;
+  c["generator"] = kGenerator;
+  c["bands"] = {{"maxLibrary", bands::kMaxLibrary},
+                {"maxBake", bands::kMaxBake},
+                {"maxPackedLight", bands::kMaxPackedLight},
+                {"maxShaderGlossy", bands::kMaxShaderGlossy}};
+  c["image"] = {{"maxExposureStops", image::kMaxExposureStops}};
+  c["material"] = {{"maxPhongExponent", kMaxPhongExponent},
+                   {"minGgxRoughness", kMinGgxRoughness},
+                   {"defaultPhongExponent", kDefaultPhongExponent},
+                   {"defaultGgxRoughness", kDefaultGgxRoughness},
+                   {"defaultSpecular", kDefaultSpecular}};
+  // decodeBake reads versions 1..kBakeFormatVersion.
+  json versions = json::array();
+  for (int v = 1; v <= kBakeFormatVersion; ++v) versions.push_back(v);
+  c["bakeFormat"] = {{"version", kBakeFormatVersion}, {"reads", versions}};
+
+  // Modes, richest first, with their glTF names; layouts.
+  json modes = json::array();
+  for (TransferMode m : kModesRichestFirst)
+    modes.push_back({{"name", toString(m)},
+                     {"attributePrefix", transferAttributePrefix(m)},
+                     {"compressedPrefix", transferCompressedPrefix(m)}});
+  c["modes"] = modes;
+  c["layouts"] = {toString(TransferLayout::Vector), toString(TransferLayout::Matrix)};
+
+  // The pick order: transferPreference on a bake with one transfer of every (mode, layout).
+  BakeFile all;
+  for (TransferMode m : kModesRichestFirst)
+    for (TransferLayout l : {TransferLayout::Vector, TransferLayout::Matrix}) {
+      BakedTransfer t;
+      t.recipe.mode = m;
+      TransferShape shape;
+      shape.layout = l;
+      shape.bands = 1;
+      t.transfer = Transfer::zeros(shape);
+      all.transfers.push_back(t);
+    }
+  json order = json::array();
+  for (std::size_t i : transferPreference(all))
+    order.push_back({{"mode", toString(all.transfers[i].mode())},
+                     {"layout", toString(all.transfers[i].transfer.layout())}});
+  c["transferPreference"] = order;
+
+  // The GPU paths (relight::ShaderPath) the page draws, by name, with the library's wording.
+  c["shaderPaths"] = {
+      {"DenseVector", relight::toString(relight::ShaderPath::DenseVector)},
+      {"DenseMatrix", relight::toString(relight::ShaderPath::DenseMatrix)},
+      {"CpcaVector", relight::toString(relight::ShaderPath::CpcaVector)},
+      {"CpcaMatrix", relight::toString(relight::ShaderPath::CpcaMatrix)},
+  };
+  c["maxShaderClusters"] = relight::kMaxShaderClusters;
+  // The tone maps by name, valued as shaders/prt_display.glsl's op (the enum's order).
+  // The default is the PNG writer's (what prt render writes without --tonemap).
+  json tone = json::object();
+  std::string defaultTone;
+  for (const char* name : {"clamp", "reinhard", "aces"}) {
+    tone[name] = static_cast<int>(image::parseToneMap(name));
+    if (image::parseToneMap(name) == image::WriteOptions{}.toneMap) defaultTone = name;
+  }
+  if (defaultTone.empty()) throw prt::Error("the default tone map has no name here");
+  c["toneMaps"] = tone;
+  c["defaultToneMap"] = defaultTone;
+
+  c["messages"] = {
+      {"bandLimit", cutTemplate(bands::bandLimitMessage("WHAT", 1001, "WHO", 1002),
+                                {{"what", "WHAT"}, {"bands", "1001"}, {"who", "WHO"}, {"max", "1002"}})},
+      {"lightBands", lightBandsTemplate()},
+  };
+  return c;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: prt_web_constants OUT.js\n");
+    return 2;
+  }
+  try {
+    const json c = constants();
+    std::string js =
+        "// Generated at build time by web/gen/constants.cpp from the C++ library; do not edit.\n"
+        "// (docs/web.md, \"Generated from the C++\")\n";
+    for (const auto& [key, value] : c.items())
+      js += "export const " + key + " = " + value.dump() + ";\n";
+    prt::writeFileAtomically(argv[1], js);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "prt_web_constants: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,140 @@
+// The one reader of a transfer in the page — one dispatch, as the library's
+// (include/prt/relight/shader_transfer.hpp): shaderPath says once how a transfer is drawn
+// (dense vectors, CPCA-compressed vectors or matrices; the page draws dense matrices nowhere),
+// and every later step — reading its rows from the glTF, packing a part's texels, the per-frame
+// work, the shader and its uniforms (draw.js) — is looked up by that path, never re-decided from
+// the layout or the representation. The pick order is the library's (transferPreference,
+// generated into 'prt:constants').
+import { bands as kBands, layouts, maxShaderClusters, modes, shaderPaths, transferPreference }
+  from 'prt:constants';
+import { bandLimitMessage } from './messages.js';
+import { clusterTableImage, packWeights, projectClusters, readCompressed } from './compressed.js';
+import { textureShape } from './texels.js';
+
+function fail(name, what) {
+  throw new Error(`${name}: ${what}`);
+}
+
+/** The page's GPU path of a transfer (relight::shaderPath with matrices on the GPU), or throws
+ *  the line saying why the page cannot draw it. */
+export function shaderPath(shape, compressed, name, limits) {
+  const what = `the ${shape.mode} ${shape.layout} transfer`;
+  if (shape.layout === 'matrix') {
+    // Dense matrices are 4·B⁴ bytes per vertex (2.5 KB at 5 bands); compressed 16·⌈(N+1)/4⌉.
+    if (!compressed)
+      fail(name, `the ${shape.mode} transfer holds dense glossy matrices; this page draws them CPCA-compressed only (prt compress)`);
+    if (shape.bands > kBands.maxShaderGlossy)
+      fail(name, bandLimitMessage(`the ${shape.mode} transfer's glossy matrices`, shape.bands, 'the shaders\' glossy response', kBands.maxShaderGlossy));
+    return 'CpcaMatrix';
+  }
+  // The light must fit the vertex shader's uniforms (limits.maxBands ≤ bands.maxPackedLight).
+  if (shape.bands > limits.maxBands)
+    fail(name, bandLimitMessage(what, shape.bands, 'this page\'s light (the vertex shader\'s uniforms)', limits.maxBands));
+  return compressed ? 'CpcaVector' : 'DenseVector';
+}
+
+/** Texels per row of the dense form of t (relight::shaderTexelsPerRow: DenseVector, and
+ *  DenseMatrix's B² rows of ⌈B²/4⌉ texels) — what a compressed transfer saves against. */
+export function denseTexelsPerRow(t) {
+  const n = t.bands * t.bands;
+  return t.matrix ? n * Math.ceil(n / 4) : t.channels === 1 ? Math.ceil(n / 4) : n;
+}
+
+/** What each path needs from the file and per part (the rows), and per frame. */
+const kPaths = {
+  DenseVector: {
+    // Per vertex: scalar ⌈B²/4⌉ texels of four coefficients, RGB B² texels (r, g, b, 0) —
+    // relight::packShaderRows, read from the VEC4 attributes GLTFLoader put on each part.
+    async read() { return null; },
+    texelsPerRow: denseTexelsPerRow,
+    rows(t, part, limits, name) {
+      const g = part.geometry, V = g.getAttribute('position').count;
+      const attributes = Math.ceil((t.bands * t.bands * t.channels) / 4);
+      const attrs = [];
+      for (let k = 0; k < attributes; ++k) {
+        const a = g.getAttribute(t.attributePrefix + k);
+        if (!a || a.itemSize !== 4 || a.count !== V)
+          fail(name, `part '${part.name}' lacks the ${t.mode} transfer attribute ${t.attributePrefix.toUpperCase()}${k}`);
+        attrs.push(a);
+      }
+      const T = t.texelsPerRow, img = textureShape(V * T, limits, name, `the ${t.mode} transfer`, ' (use fewer bands)');
+      const row = new Float32Array(attributes * 4), data = img.data;
+      for (let v = 0; v < V; ++v) {
+        for (let k = 0; k < attributes; ++k) {
+          const a = attrs[k];
+          row[4 * k] = a.getX(v), row[4 * k + 1] = a.getY(v), row[4 * k + 2] = a.getZ(v), row[4 * k + 3] = a.getW(v);
+        }
+        const dst = v * T * 4;
+        if (t.channels === 1) data.set(row.subarray(0, T * 4), dst);
+        else
+          for (let i = 0; i < t.bands * t.bands; ++i)
+            data[dst + 4 * i] = row[3 * i], data[dst + 4 * i + 1] = row[3 * i + 1], data[dst + 4 * i + 2] = row[3 * i + 2];
+      }
+      for (let k = 0; k < attributes; ++k) g.deleteAttribute(t.attributePrefix + k);  // in the texture now
+      return img;
+    },
+    table: () => null,
+    frame() {},
+  },
+  CpcaVector: {
+    read: readCompressed,
+    texelsPerRow: (t) => t.compressed.texelsPerVertex,
+    rows: (t, part, limits, name) => packWeights(t.compressed, part.first, part.vertices, limits, name, t.mode),
+    table: (t, limits, name) => clusterTableImage(t.compressed, limits, name, t.mode),
+    // The once-per-frame step: K(N+1) projections of L' (b bands).
+    frame: (t, b, rotated, table) => projectClusters(t.compressed, b, t.channels, rotated, table.data),
+  },
+};
+kPaths.CpcaMatrix = kPaths.CpcaVector;
+
+/**
+ * Reads transfer entry `entry` of extras.prtkit: its shape (checked), its path, and what the
+ * path reads from the file (the compressed arrays). `gltf` is GLTFLoader's result.
+ */
+export async function readTransfer(gltf, entry, vertexCount, name, limits) {
+  const s = entry.settings || {};
+  const mode = modes.find((m) => m.name === String(s.mode));
+  if (!mode) fail(name, `unknown transfer mode '${s.mode}'`);
+  const layout = s.layout || layouts[0];
+  if (!layouts.includes(layout)) fail(name, `the ${mode.name} transfer has an unknown layout '${s.layout}'`);
+  const bands = s.bands, channels = s.channels;
+  if (!Number.isInteger(bands) || bands < 1 || bands > kBands.maxLibrary)
+    fail(name, bandLimitMessage(`the ${mode.name} transfer`, bands, 'a bake file', kBands.maxLibrary));
+  if (channels !== 1 && channels !== 3) fail(name, `the ${mode.name} transfer has ${channels} channels (1 or 3 expected)`);
+  const t = { mode: mode.name, layout, bands, channels, matrix: layout === 'matrix',
+              attributePrefix: mode.attributePrefix.toLowerCase(), compressed: null };
+  t.path = shaderPath(t, !!entry.compressed, name, limits);
+  t.describe = shaderPaths[t.path];
+  const p = kPaths[t.path];
+  t.compressed = await p.read(gltf, gltf.parser.json, entry, t, vertexCount, name, maxShaderClusters);
+  t.texelsPerRow = p.texelsPerRow(t);
+  return t;
+}
+
+/** A part's per-vertex texels of transfer t as a data image (part: { geometry, name, first,
+ *  vertices }). */
+export function packRows(t, part, limits, name) {
+  return kPaths[t.path].rows(t, part, limits, name);
+}
+
+/** The per-frame table a path fills (null if none). */
+export function frameTable(t, limits, name) {
+  return kPaths[t.path].table(t, limits, name);
+}
+
+/** The per-frame CPU step of t at b bands under the rotated light (b² RGB, zero-padded). */
+export function frameStep(t, b, rotated, table) {
+  kPaths[t.path].frame(t, b, rotated, table);
+}
+
+/** The transfers in the order the library prefers them (io::transferPreference). */
+export function preferenceOrder(transfers) {
+  const rank = (t) => transferPreference.findIndex((p) => p.mode === t.mode && p.layout === t.layout);
+  return transfers.slice().sort((a, b) => rank(a) - rank(b));
+}
+
+/** io::pickTransfer over transfers in preference order: the first of `mode` (any if empty or
+ *  absent), else the first. */
+export function pickTransfer(ordered, mode) {
+  return ordered.find((t) => !mode || t.mode === mode) || ordered[0];
+}
