@@ -318,7 +318,7 @@ void renderTurntable(const LightScene& ls, const BakedTransfer& bt, const sh::Rg
 /// The live viewer: prt web's folder for the same bake and environments, in web/. Returns why
 /// there is none ("" when written).
 std::string writeLiveViewer(const DemoScene& scene, const std::vector<std::string>& envSpecs,
-                            const DemoFolder& file) {
+                            const DemoFolder& file, const std::string& output) {
   std::string why;
   if (!webAssetsAvailable(&why)) {
     warn("demo: no live viewer on the page: " + why);
@@ -328,6 +328,7 @@ std::string writeLiveViewer(const DemoScene& scene, const std::vector<std::strin
   w.bake = file("scene.glb");
   w.envs = envSpecs;
   w.output = file("web");
+  w.reportAs = (fs::path(output) / "web").string();  // where it will be, not the partial folder
   w.mode = "interreflected";
   // The stills' framing: the object, not the whole ground plane.
   const render::Camera c = render::frameSphere(scene.centre, scene.radius, 640, 480);
@@ -423,7 +424,7 @@ void runDemo(const DemoArgs& a) {
     lights.push_back(std::move(L));
   }
 
-  const std::string webWhy = writeLiveViewer(scene, envSpecs, file);
+  const std::string webWhy = writeLiveViewer(scene, envSpecs, file, a.output);
   writeDemoPage(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0), webWhy,
                 glossy ? &*glossy : nullptr);
   // Into place: replace an earlier demo folder only now that the new one is complete.

@@ -27,6 +27,7 @@
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/json.hpp"
 #include "prt/core/version.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
@@ -89,23 +90,6 @@ std::string base64(const void* data, std::size_t n) {
   return out;
 }
 
-/// A JSON string literal (also safe inside a <script>: no "</").
-std::string jsonString(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\')
-      o += '\\', o += c;
-    else if (c == '/')
-      o += "\\/";
-    else if (u < 0x20)
-      o += fmt::format("\\u{:04x}", u);
-    else
-      o += c;
-  }
-  return o + "\"";
-}
-
 struct WebEnvironment {
   std::string name;
   sh::RgbSh light;
@@ -166,36 +150,38 @@ bool webAssetsAvailable(std::string* why) {
   }
 }
 
-void writeWebViewer(const WebOptions& a) {
-  // Everything cheap is validated before any work, so errors come at once and nothing is written.
-  const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
+namespace {
+
+/// Everything cheap, before any work, so errors come at once and nothing is written.
+void checkOptions(const WebOptions& a) {
+  parseEulerDegrees(a.rotate);
   image::parseToneMap(a.toneMap);
   image::checkExposure(a.exposure, "--exposure");
   if (a.backgroundWidth < 8 || a.backgroundWidth > 8192 || a.backgroundWidth % 2)
     throw Error("--background-width must be an even number of pixels in 8..8192");
   if (a.bands < 0 || a.bands > bands::kMaxLibrary)
-    throw Error(fmt::format("--bands must be 1..{}", bands::kMaxLibrary));
+    throw Error(fmt::format("--bands {}: must be 1..{}", a.bands, bands::kMaxLibrary));
+  if (a.embed != "auto" && a.embed != "always" && a.embed != "never")
+    throw Error("--embed '" + a.embed + "': expected auto, always or never");
   if (!a.material.empty()) parseMaterial(a.material);
-  const fs::path assets = findAssets();
-  // The folder is written as a whole (FolderOutput) and replaces only an empty folder or one
-  // prt web made; no input may lie inside it.
-  {
-    std::vector<NamedPath> inputs = {{"input", a.bake}};
-    for (const std::string& e : a.envs) inputs.push_back({"--env", e});
-    checkOutputFolder({"-o", a.output}, inputs);
-  }
-  checkFolderReplaceable(a.output, "prt web");
+}
 
-  // The bake: validated here (one clear line now rather than on the page), copied verbatim.
-  const std::vector<unsigned char> glb = readFileBytes(a.bake);
-  const BakeFile bake = decodeBake(glb, a.bake);
-  // The page draws vector (diffuse) transfer, dense (version 1) or CPCA-compressed (version 3,
-  // relit in the compressed space), and glossy matrices CPCA-compressed (per vertex 16·⌈(N+1)/4⌉
-  // bytes instead of 4·B⁴); dense matrices (2.5 KB per vertex at 5 bands) are refused here, as
-  // the page refuses such a file dropped on it.
-  // The page draws what the GPU paths of relight/shader_transfer.hpp draw with matrices on the
-  // GPU: vectors (dense or compressed) and compressed matrices; dense matrices (2.5 KB per vertex
-  // at 5 bands) are refused here, as the page refuses such a file dropped on it.
+/// The bake, validated here (one clear line now rather than on the page): complete, and every
+/// transfer on a GPU path of relight/shader_transfer.hpp — vectors (dense or compressed) and
+/// compressed matrices. Dense matrices (2.5 KB per vertex at 5 bands) are refused, as the page
+/// refuses such a file dropped on it. A file beyond what the page takes is refused before it is
+/// read.
+std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(a.bake, ec);
+  if (!ec && size > kMaxPageBakeBytes)
+    throw Error(a.bake, fmt::format("{:.0f} MB is more than the browser viewer takes ({:.0f} MB: "
+                                    "its transfer goes to the GPU as float textures); compress "
+                                    "it (prt compress: CPCA, typically 10x smaller) or bake "
+                                    "fewer bands",
+                                    double(size) / 1e6, double(kMaxPageBakeBytes) / 1e6));
+  std::vector<unsigned char> glb = readFileBytes(a.bake, kMaxPageBakeBytes, "the page's limit");
+  bake = decodeBake(glb, a.bake);
   for (const BakedTransfer& t : bake.transfers) {
     if (t.transfer.isMatrix() && !t.transfer.compressed())
       throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices; the browser "
@@ -212,49 +198,49 @@ void writeWebViewer(const WebOptions& a) {
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(a.bake);
   if (!a.mode.empty()) prt::pickTransfer(bake, parseTransferMode(a.mode), {}, a.bake);
-  int bands = 0;
-  for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.transfer.bands());
+  return glb;
+}
 
-  // The camera, from the library's numbers only (docs/conventions.md, "Camera"): the default
-  // framing (render::meshFraming: the bounding sphere, view direction, up, fov, margin), which
-  // the page turns into frameCamera's camera for its canvas, and --camera's eye, target, up and
-  // fov (keys not given come from the default framing at 640x480), which it uses as they are.
-  const auto vec = [](const Vec3f& v) {
-    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", v.x, v.y, v.z);
-  };
-  const render::Framing framing = render::meshFraming(bake.mesh);
-  const std::string framingJson = fmt::format(
-      "{{\"centre\": {}, \"radius\": {:.9g}, \"direction\": {}, \"up\": {}, \"fov\": {:.9g}, "
-      "\"margin\": {:.9g}}}",
-      vec(framing.centre), framing.radius, vec(framing.direction), vec(framing.up), framing.fovY,
-      framing.margin);
-  std::string cameraJson = "null";
+Json vec3(const Vec3f& v) {
+  return jsonFloats(&v.x, 3);
+}
+
+/// The initial view. The camera from the library's numbers only (docs/conventions.md,
+/// "Camera"): the default framing (render::meshFraming: the bounding sphere, view direction,
+/// up, fov, margin), which the page turns into frameCamera's camera for its canvas, and
+/// --camera's eye, target, up and fov (keys not given come from the default framing at
+/// 640x480), which it uses as they are.
+Json viewJson(const WebOptions& a, const Mesh& mesh) {
+  const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
+  const render::Framing f = render::meshFraming(mesh);
+  Json camera = nullptr;
   if (!a.camera.empty()) {
-    const render::Camera c = render::parseCamera(a.camera, render::frameCamera(framing, 640, 480));
-    cameraJson = fmt::format("{{\"eye\": {}, \"target\": {}, \"up\": {}, \"fov\": {:.9g}}}",
-                             vec(c.eye), vec(c.target), vec(c.up), c.fovY);
+    const render::Camera c = render::parseCamera(a.camera, render::frameCamera(f, 640, 480));
+    camera = {{"eye", vec3(c.eye)},
+              {"target", vec3(c.target)},
+              {"up", vec3(c.up)},
+              {"fov", jsonFloat(c.fovY)}};
   }
+  return {{"rotate", Json::array({euler[0], euler[1], euler[2]})},
+          {"exposure", jsonFloat(a.exposure)},
+          {"tonemap", a.toneMap},
+          {"mode", a.mode},
+          {"bands", a.bands},
+          {"camera", camera},
+          {"framing",
+           {{"centre", vec3(f.centre)},
+            {"radius", jsonFloat(f.radius)},
+            {"direction", vec3(f.direction)},
+            {"up", vec3(f.up)},
+            {"fov", jsonFloat(f.fovY)},
+            {"margin", jsonFloat(f.margin)}}}};
+}
 
-  std::vector<WebEnvironment> envs;
-  const std::vector<std::string> specs =
-      a.envs.empty() ? std::vector<std::string>{"builtin:sky"} : a.envs;
-  for (const std::string& s : specs) envs.push_back(loadEnvironment(s, bands, a.backgroundWidth));
-
-  std::ostringstream js;
-  js << "// Written by prt web (" << kGenerator << "): the bake and its lights, read by "
-     << "prt-web.js.\nwindow.PRT_DATA = {\n";
-  js << "\"generator\": " << jsonString(kGenerator) << ",\n";
-  js << "\"view\": {\"rotate\": [" << euler[0] << ", " << euler[1] << ", " << euler[2]
-     << "], \"exposure\": " << a.exposure << ", \"tonemap\": " << jsonString(a.toneMap)
-     << ", \"mode\": " << jsonString(a.mode) << ", \"bands\": " << a.bands
-     << ", \"camera\": " << cameraJson << ", \"framing\": " << framingJson << "},\n";
-  js << "\"bake\": {\"name\": " << jsonString(fs::path(a.bake).filename().string())
-     << ", \"glb\": \"" << base64(glb.data(), glb.size()) << "\"},\n";
-  // Compressed glossy matrices: the bake's material (or --material) as the page's shader takes it
-  // (kernels times the SH normalisation its basis leaves out, relight::shaderKernel, shader_transfer.hpp), per
-  // mode.
-  js << "\"glossy\": {";
-  bool firstGlossy = true;
+/// Compressed glossy matrices: the bake's material (or --material) as the page's shader takes
+/// it (kernels times the SH normalisation its basis leaves out, relight::shaderKernel), per
+/// mode.
+Json glossyJson(const WebOptions& a, const BakeFile& bake) {
+  Json out = Json::object();
   for (const BakedTransfer& t : bake.transfers) {
     if (!t.transfer.isMatrix()) continue;
     const Material material =
@@ -262,47 +248,88 @@ void writeWebViewer(const WebOptions& a) {
                        "the page shades each vertex with --material, the bounced light keeps the "
                        "bake's");
     const PreparedMaterial pm = prepareMaterial(material, t.transfer.bands());
-    const auto list = [](const std::array<float, 64>& k) {
-      std::string out;
-      for (std::size_t i = 0; i < k.size(); ++i)
-        out += fmt::format("{}{:.9g}", i ? ", " : "", k[i]);
-      return out;
-    };
-    js << (firstGlossy ? "" : ", ") << jsonString(toString(t.mode()))
-       << ": {\"material\": " << jsonString(material.spec()) << ", \"diffuse\": ["
-       << list(relight::shaderKernel(pm.diffuse)) << "], \"lobe\": ["
-       << list(relight::shaderKernel(pm.glossy)) << "], \"kd\": "
-       << (pm.kd ? fmt::format("[{:.9g}, {:.9g}, {:.9g}]", pm.kd->x, pm.kd->y, pm.kd->z) : "null")
-       << ", \"ks\": "
-       << fmt::format("[{:.9g}, {:.9g}, {:.9g}]", pm.specular.x, pm.specular.y, pm.specular.z)
-       << "}";
-    firstGlossy = false;
+    const std::array<float, 64> diffuse = relight::shaderKernel(pm.diffuse),
+                                lobe = relight::shaderKernel(pm.glossy);
+    out[toString(t.mode())] = {{"material", material.spec()},
+                               {"diffuse", jsonFloats(diffuse.data(), diffuse.size())},
+                               {"lobe", jsonFloats(lobe.data(), lobe.size())},
+                               {"kd", pm.kd ? jsonFloats(&pm.kd->x, 3) : Json(nullptr)},
+                               {"ks", jsonFloats(&pm.specular.x, 3)}};
   }
-  js << "},\n";
-  js << "\"environments\": [\n";
-  for (std::size_t k = 0; k < envs.size(); ++k) {
-    const WebEnvironment& e = envs[k];
-    js << "{\"name\": " << jsonString(e.name) << ", \"bands\": " << e.light.bands
-       << ", \"coefficients\": [";
-    for (std::size_t i = 0; i < e.light.c.size(); ++i) {
-      const Rgb& c = e.light.c[i];
-      js << (i ? ", " : "") << fmt::format("[{:.9g}, {:.9g}, {:.9g}]", c.x, c.y, c.z);
-    }
-    const std::vector<unsigned char> rgbe = encodeRgbe(e.background);
-    js << "],\n \"background\": {\"width\": " << e.background.width
-       << ", \"height\": " << e.background.height << ", \"rgbe\": \""
-       << base64(rgbe.data(), rgbe.size()) << "\"}}" << (k + 1 < envs.size() ? ",\n" : "\n");
-  }
-  js << "]};\n";
+  return out;
+}
 
-  const fs::path out(a.output);
+Json environmentJson(const WebEnvironment& e) {
+  Json coefficients = Json::array();
+  for (const Rgb& c : e.light.c) coefficients.push_back(jsonFloats(&c.x, 3));
+  const std::vector<unsigned char> rgbe = encodeRgbe(e.background);
+  return {{"name", e.name},
+          {"bands", e.light.bands},
+          {"coefficients", std::move(coefficients)},
+          {"background",
+           {{"width", e.background.width},
+            {"height", e.background.height},
+            {"rgbe", base64(rgbe.data(), rgbe.size())}}}};
+}
+
+}  // namespace
+
+void writeWebViewer(const WebOptions& a) {
+  checkOptions(a);
+  const fs::path assets = findAssets();
+  // The folder is written as a whole (FolderOutput) and replaces only an empty folder or one
+  // prt web made; no input may lie inside it.
+  {
+    std::vector<NamedPath> inputs = {{"input", a.bake}};
+    for (const std::string& e : a.envs) inputs.push_back({"--env", e});
+    checkOutputFolder({"-o", a.output}, inputs);
+  }
+  checkFolderReplaceable(a.output, "prt web");
+
+  BakeFile bake;
+  const std::vector<unsigned char> glb = readBakeForPage(a, bake);
+  int bands = 0;
+  for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.transfer.bands());
+  std::vector<WebEnvironment> envs;
+  const std::vector<std::string> specs =
+      a.envs.empty() ? std::vector<std::string>{"builtin:sky"} : a.envs;
+  for (const std::string& s : specs) envs.push_back(loadEnvironment(s, bands, a.backgroundWidth));
+
+  // Small bakes inside prt-data.js (base64: the page then works opened from disk); larger ones
+  // beside it as bake.glb, which the page fetches (over http; a browser refuses file:// fetches).
+  const bool embed =
+      a.embed == "always" || (a.embed == "auto" && glb.size() <= kMaxEmbeddedBakeBytes);
+  Json bakeEntry = {{"name", fs::path(a.bake).filename().string()}, {"bytes", glb.size()}};
+  if (embed)
+    bakeEntry["glb"] = base64(glb.data(), glb.size());
+  else
+    bakeEntry["file"] = kBakeFileName;
+  Json data;
+  data["generator"] = kGenerator;
+  data["view"] = viewJson(a, bake.mesh);
+  data["bake"] = std::move(bakeEntry);
+  data["glossy"] = glossyJson(a, bake);
+  data["environments"] = Json::array();
+  for (const WebEnvironment& e : envs) data["environments"].push_back(environmentJson(e));
+
   FolderOutput folder(a.output, "prt web");
   for (const char* f : {"index.html", "prt-web.js", "THIRD_PARTY_LICENSES.txt"})
     if (fs::is_regular_file(assets / f)) folder.write(f, readText(assets / f));
-  folder.write("prt-data.js", js.str());
+  if (!embed)
+    folder.write(kBakeFileName,
+                 std::string_view(reinterpret_cast<const char*>(glb.data()), glb.size()));
+  folder.write("prt-data.js", "// Written by prt web (" + std::string(kGenerator) +
+                                  "): the bake and its lights, read by prt-web.js.\n"
+                                  "window.PRT_DATA = " +
+                                  formatJson(data, 0) + ";\n");
   folder.commit();
-  info(fmt::format("wrote {} (open {} in a browser; {} environment(s), {} bands)", a.output,
-                   (out / "index.html").string(), envs.size(), bands));
+  const std::string shown = a.reportAs.empty() ? a.output : a.reportAs;
+  info(fmt::format("wrote {} (open {} in a browser; {} environment(s), {} bands{})", shown,
+                   (fs::path(shown) / "index.html").string(), envs.size(), bands,
+                   embed ? ""
+                         : fmt::format("; the bake, {:.0f} MB, is beside it as {}: serve the "
+                                       "folder over http, e.g. python3 -m http.server -d {}",
+                                       double(glb.size()) / 1e6, kBakeFileName, shown)));
 }
 
 void addWebCommand(CLI::App& root) {
@@ -324,6 +351,12 @@ void addWebCommand(CLI::App& root) {
   cmd->add_option("--exposure", args->exposure, "Initial exposure in stops")
       ->check(exposureStops());
   cmd->add_option("--tonemap", args->toneMap, "Initial tone map: aces, reinhard, clamp")
+      ->capture_default_str();
+  cmd->add_option("--embed", args->embed,
+                  fmt::format("Where the bake goes: auto (inside prt-data.js up to {} MB, so the "
+                              "page opens from disk; else beside it as {}, fetched over http), "
+                              "always, never",
+                              kMaxEmbeddedBakeBytes >> 20, kBakeFileName))
       ->capture_default_str();
   cmd->add_option("--background-width", args->backgroundWidth,
                   "Width of each environment's lat-long background image")

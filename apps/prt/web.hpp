@@ -1,10 +1,20 @@
 #pragma once
 // prt web's work as a function, for prt demo (which puts the live viewer on its index.html).
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace prt::cli {
+
+/// The largest bake prt-data.js carries inside itself (base64, 4/3 of the bytes): the page then
+/// opens from disk. A larger one goes beside it as kBakeFileName, fetched by the page over http
+/// (a browser refuses file:// fetches), without the 4/3 and the decoding of a script that size.
+inline constexpr std::uint64_t kMaxEmbeddedBakeBytes = std::uint64_t(32) << 20;
+inline constexpr const char* kBakeFileName = "bake.glb";
+/// The largest bake the page takes: its transfer is uploaded as float textures, and Chromium
+/// holds the file, the parsed glTF and the textures at once (docs/web.md, "Large bakes").
+inline constexpr std::uint64_t kMaxPageBakeBytes = std::uint64_t(1) << 30;
 
 struct WebOptions {
   std::string bake;               ///< bake file (.glb)
@@ -18,6 +28,8 @@ struct WebOptions {
   float exposure = 0.0f;
   int bands = 0;  ///< initial band count (0 = the bake's)
   int backgroundWidth = 512;
+  std::string embed = "auto";  ///< auto | always | never: the bake inside prt-data.js or beside
+  std::string reportAs;        ///< the folder's name in the closing line ("" = output)
 };
 
 /// True when the page's built assets (index.html, prt-web.js) can be found.

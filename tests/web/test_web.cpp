@@ -305,25 +305,24 @@ TEST(Web, CompressedGlossyFirstFrameMatchesPrtRender) {
   r = prt("-q web gc.glb --env builtin:sky --env builtin:studio --camera '" + cam + "' -o page_g");
   ASSERT_EQ(r.rc, 0) << r.err;
   // (b = 3 of 4 bands: the table holds the transfer cut to 3 bands, as prt view's.)
-  for (const auto& [rot, bands] : std::vector<std::pair<std::string, int>>{
-           {"0,0,0", 4}, {"20,70,0", 4}, {"20,70,0", 3}}) {
+  for (const auto& [rot, bands] :
+       std::vector<std::pair<std::string, int>>{{"0,0,0", 4}, {"20,70,0", 4}, {"20,70,0", 3}}) {
     SCOPED_TRACE(rot + " at " + std::to_string(bands) + " bands");
     r = prt("-q render gc.glb --light builtin:studio --rotate " + rot + " --camera '" + cam +
             "' --exposure -1 --bands " + std::to_string(bands) + " --size 320x240 -o g.png");
     ASSERT_EQ(r.rc, 0) << r.err;
     std::string log;
-    const std::string json =
-        runPage(path("page_g"), "screenshot&size=320x240&env=1&exposure=-1&rotate=" + rot +
-                                    "&bands=" + std::to_string(bands),
-                &log);
+    const std::string json = runPage(path("page_g"),
+                                     "screenshot&size=320x240&env=1&exposure=-1&rotate=" + rot +
+                                         "&bands=" + std::to_string(bands),
+                                     &log);
     ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
     EXPECT_EQ(jsonField(json, "compressed"), "8x3, 16 bytes per vertex");
     const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("g.png"));
     EXPECT_LT(e, kMatch);
     EXPECT_LT(quantile90, kInterior);
     std::cout << "page vs prt render, compressed glossy, rotate " << rot << ", " << bands
-              << " bands: RMSE " << e
-              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+              << " bands: RMSE " << e << ", 90th percentile " << quantile90 * 255 << "/255\n";
   }
   // The comparison can fail: close up the lobe is a large part of the image, so the diffuse
   // part alone (render with a lambert material) is far off.
@@ -465,6 +464,48 @@ TEST(Web, CliRefusesWhatThePageCannotShow) {
   r = prt("web missing.glb -o nope --tonemap sepia");
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.err.find("sepia"), std::string::npos) << r.err;
+}
+
+// Large bakes (issue 16, item 7): beside prt-data.js as bake.glb instead of base64 inside it.
+// --embed never forces it for a small bake; the page fetches the file and draws the frame it
+// draws from the embedded copy; opened from disk, where a browser refuses the fetch, it says how
+// to serve the folder. A bake beyond the page's limit is refused before it is read.
+TEST(Web, LargeBakesGoBesideThePageAndAreFetched) {
+  PRT_REQUIRE_PAGE();
+  Result r = prt("-q web cornell.glb --embed never -o page_beside");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(prt::testing::slurp(path("page_beside/bake.glb")),
+            prt::testing::slurp(path("cornell.glb")));
+  const std::string data = prt::testing::slurp(path("page_beside/prt-data.js"));
+  EXPECT_EQ(data.find("\"glb\""), std::string::npos);
+  EXPECT_NE(data.find("\"file\":\"bake.glb\""), std::string::npos);
+  // Fetched (Chromium allows file:// fetches with this flag, as a server would serve them).
+  std::string log;
+  std::string json = runPage(path("page_beside"), "screenshot&size=320x240&env=0&mode=shadowed",
+                             &log, "--allow-file-access-from-files");
+  ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
+  const std::vector<unsigned char> beside = unbase64(jsonField(json, "rgb"));
+  EXPECT_EQ(beside, pageFrame("env=0&mode=shadowed")) << "the same frame as the embedded bake";
+  // Opened from disk without it: the fetch is refused and the page says what to do.
+  json = runPage(path("page_beside"), "test=none");
+  EXPECT_NE(json.find("served over http"), std::string::npos) << json;
+  // An --embed that is not a choice, and a bake past the page's limit (a sparse file: refused by
+  // its size, before a byte is read).
+  r = prt("web cornell.glb --embed sometimes -o nope");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("--embed 'sometimes'"), std::string::npos) << r.err;
+  {
+    std::ofstream(path("huge.glb")) << "glTF";
+    fs::resize_file(path("huge.glb"), (std::uintmax_t(1) << 30) + 1);
+  }
+  r = prt("web huge.glb -o nope");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("huge.glb: 1074 MB is more than the browser viewer takes"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("prt compress"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("nope")));
+  fs::remove(path("huge.glb"));
 }
 
 TEST(Web, AbsurdExposureAndLightShowWhite) {

@@ -80,6 +80,29 @@ function disposeBake(gpu, scene) {
   for (const t of Object.values(gpu.tables)) t.texture.dispose();
 }
 
+/**
+ * The bake beside the page (data.bake.file, written there by prt web for bakes too large to
+ * carry inside prt-data.js). Browsers fetch files only over http(s): opened from disk, the page
+ * says how to serve it.
+ */
+async function fetchBake(bake) {
+  const megabytes = (bake.bytes / 1e6).toFixed(0);
+  let response;
+  try {
+    response = await fetch(bake.file);
+  } catch (e) {
+    throw new Error(`${bake.name}: this bake (${megabytes} MB) is beside the page as ${bake.file}, ` +
+                    'which a browser loads only when the folder is served over http: run ' +
+                    '`python3 -m http.server -d FOLDER` and open http://localhost:8000/ ' +
+                    '(or write the page with prt web --embed always to open it from disk)');
+  }
+  if (!response.ok) throw new Error(`${bake.name}: ${bake.file} could not be loaded (HTTP ${response.status})`);
+  const buffer = await response.arrayBuffer();
+  if (buffer.byteLength !== bake.bytes)
+    throw new Error(`${bake.name}: ${bake.file} has ${buffer.byteLength} bytes, prt-data.js says ${bake.bytes}`);
+  return buffer;
+}
+
 async function main() {
   const data = window.PRT_DATA;
   if (!data || !data.bake || !Array.isArray(data.environments))
@@ -190,10 +213,11 @@ async function main() {
     return warnings;
   };
 
-  // ---- the bake from prt-data.js ----------------------------------------------------------
+  // ---- the bake: inside prt-data.js (small bakes), or beside it (prt web --embed) -----------
   let warnings;
   try {
-    warnings = page.setBake(await parseBake(base64Bytes(data.bake.glb).buffer, data.bake.name, limits));
+    const bytes = data.bake.glb ? base64Bytes(data.bake.glb).buffer : await fetchBake(data.bake);
+    warnings = page.setBake(await parseBake(bytes, data.bake.name, limits));
   } catch (e) {
     return fatal(e.message);
   }

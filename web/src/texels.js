@@ -13,6 +13,6 @@ export function textureShape(texels, limits, name, what, advice = '') {
   const W = textureWidth(limits);
   const H = Math.max(1, Math.ceil(texels / W));
   if (H > limits.maxTextureSize)
-    throw new Error(`${name}: ${what} needs ${texels} texels, more than this WebGL's ${limits.maxTextureSize}² textures hold${advice}`);
+    throw new Error(`${name}: ${what} needs ${texels} texels, more than the ${W} × ${limits.maxTextureSize} textures of this WebGL hold${advice}`);
   return { width: W, height: H, data: new Float32Array(W * H * 4) };
 }
