@@ -184,8 +184,8 @@ Renderer::Renderer() {
 }
 
 Renderer::~Renderer() {
-  const GLuint programs[] = {meshProgram_,       backgroundProgram_,       toneProgram_,
-                             glossyProgram_,     compressedProgram_,       compressedGlossyProgram_,
+  const GLuint programs[] = {meshProgram_,    backgroundProgram_, toneProgram_,
+                             glossyProgram_,  compressedProgram_, compressedGlossyProgram_,
                              radianceProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
   const GLuint buffers[] = {positions_, albedo_,   indices_, transferBuffer_,
@@ -372,15 +372,12 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   // The library's camera frame and matrices (render/camera.hpp), as RayGenerator uses them.
   const render::Camera& c = f.camera;
   const render::CameraBasis basis = render::cameraBasis(c, w, h);
-  const Vec3f &forward = basis.forward, &right = basis.right, &up = basis.up;
-  const float tanX = basis.tanX, tanY = basis.tanY;
   // Clip planes around the bounding sphere: depth d of its centre, everything within d ± r.
-  const float d = dot(centre_ - c.eye, forward);
+  const float d = dot(centre_ - c.eye, basis.forward);
   const float farZ = std::max(d + 1.01f * radius_, 1e-3f * radius_);
   const float nearZ = std::max(d - 1.01f * radius_, 1e-4f * farZ);
-  const render::Mat4f viewProjM =
+  const render::Mat4f viewProj =
       render::multiply(render::projectionMatrix(c, w, h, nearZ, farZ), render::viewMatrix(c));
-  const float* viewProj = viewProjM.data();  // column-major for GL
 
   glBindFramebuffer(GL_FRAMEBUFFER, msFbo_);
   glViewport(0, 0, w, h);
@@ -389,27 +386,36 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
   glDisable(GL_BLEND);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (f.background != BackgroundMode::None) drawBackground(f, basis);  // (a)
+  drawMesh(f, viewProj.data());                                        // (b)
+  toneMap(f, target);                                                  // (2), (3)
+}
 
-  // (a) background.
-  if (f.background != BackgroundMode::None) {
-    glUseProgram(backgroundProgram_);
-    glUniform2f(loc(backgroundProgram_, "uViewport"), float(w), float(h));
-    uniform3(backgroundProgram_, "uForward", forward);
-    uniform3(backgroundProgram_, "uRightTan", right * tanX);
-    uniform3(backgroundProgram_, "uUpTan", up * tanY);
-    // GLSL mat3 is column-major: uploading R's rows as columns gives Rᵀ.
-    float rt[9];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) rt[3 * i + j] = float(f.lightRotation.m[i][j]);
-    glUniformMatrix3fv(loc(backgroundProgram_, "uRotationT"), 1, GL_FALSE, rt);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, f.background == BackgroundMode::Env ? envTexture_ : shTexture_);
-    glUniform1i(loc(backgroundProgram_, "uLatLong"), 0);
-    glBindVertexArray(emptyVao_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
+/// (a) What rays that miss show: the environment (or its SH reconstruction), turned as the light.
+void Renderer::drawBackground(const FrameParams& f, const render::CameraBasis& basis) {
+  const int w = f.width, h = f.height;
+  const Vec3f &forward = basis.forward, &right = basis.right, &up = basis.up;
+  const float tanX = basis.tanX, tanY = basis.tanY;
+  glUseProgram(backgroundProgram_);
+  glUniform2f(loc(backgroundProgram_, "uViewport"), float(w), float(h));
+  uniform3(backgroundProgram_, "uForward", forward);
+  uniform3(backgroundProgram_, "uRightTan", right * tanX);
+  uniform3(backgroundProgram_, "uUpTan", up * tanY);
+  // GLSL mat3 is column-major: uploading R's rows as columns gives Rᵀ.
+  float rt[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) rt[3 * i + j] = float(f.lightRotation.m[i][j]);
+  glUniformMatrix3fv(loc(backgroundProgram_, "uRotationT"), 1, GL_FALSE, rt);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, f.background == BackgroundMode::Env ? envTexture_ : shTexture_);
+  glUniform1i(loc(backgroundProgram_, "uLatLong"), 0);
+  glBindVertexArray(emptyVao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
 
-  // (b) the relit mesh.
+/// (b) The relit mesh, by the transfer's shader path; viewProj column-major, for GL.
+void Renderer::drawMesh(const FrameParams& f, const float* viewProj) {
+  const render::Camera& c = f.camera;
   // The light block, timed (the per-frame upload the stats report), and a mesh program's state.
   const auto uploadLight = [&] {
     const auto t0 = std::chrono::steady_clock::now();
@@ -430,9 +436,9 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
       triangles_ > 0 && hasTransfer_ && (path_ != ShaderPath::CpuRadiance || hasRadiance_);
   if (drawable) {
     // The program of the path and its per-vertex texels; then what the path needs per frame.
-    const GLuint p = path_ == ShaderPath::DenseMatrix  ? glossyProgram_
-                     : path_ == ShaderPath::CpcaVector ? compressedProgram_
-                     : path_ == ShaderPath::CpcaMatrix ? compressedGlossyProgram_
+    const GLuint p = path_ == ShaderPath::DenseMatrix   ? glossyProgram_
+                     : path_ == ShaderPath::CpcaVector  ? compressedProgram_
+                     : path_ == ShaderPath::CpcaMatrix  ? compressedGlossyProgram_
                      : path_ == ShaderPath::CpuRadiance ? radianceProgram_
                                                         : meshProgram_;
     const bool compressed = path_ == ShaderPath::CpcaVector || path_ == ShaderPath::CpcaMatrix;
@@ -486,8 +492,11 @@ void Renderer::draw(const FrameParams& f, unsigned target) {
     glDisable(GL_DEPTH_TEST);
     glActiveTexture(GL_TEXTURE0);
   }
+}
 
-  // (2) resolve, (3) tone map into the target.
+/// (2) Resolves the multisampled HDR frame, (3) tone maps it into `target`.
+void Renderer::toneMap(const FrameParams& f, unsigned target) {
+  const int w = f.width, h = f.height;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, msFbo_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolveFbo_);
   glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);

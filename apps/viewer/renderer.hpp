@@ -132,6 +132,9 @@ class Renderer {
 
   /// Sets the glossy kernels, kd, ks and eye uniforms of a glossy program.
   void setGlossyUniforms(unsigned program, const Vec3f& eye) const;
+  void drawBackground(const FrameParams& f, const render::CameraBasis& basis);
+  void drawMesh(const FrameParams& f, const float* viewProj);
+  void toneMap(const FrameParams& f, unsigned target);
 
   unsigned meshProgram_ = 0, backgroundProgram_ = 0, toneProgram_ = 0, glossyProgram_ = 0;
   unsigned compressedProgram_ = 0, compressedGlossyProgram_ = 0, radianceProgram_ = 0;
@@ -146,7 +149,8 @@ class Renderer {
   relight::ShaderPath path_ = relight::ShaderPath::DenseVector;
   int texelsPerRow_ = 0, basisCount_ = 0;
   // Kernels × the SH normalisation, kMaxShaderGlossy² each (relight::shaderKernel).
-  std::vector<float> glossyDiffuse_ = std::vector<float>(bands::kMaxShaderGlossy * bands::kMaxShaderGlossy),
+  std::vector<float> glossyDiffuse_ =
+                         std::vector<float>(bands::kMaxShaderGlossy * bands::kMaxShaderGlossy),
                      glossyLobe_ = glossyDiffuse_;
   std::optional<Rgb> glossyKd_;
   Rgb glossyKs_{0.0f};
