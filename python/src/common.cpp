@@ -327,11 +327,37 @@ struct Shared {
 
 constexpr auto kPoll = std::chrono::milliseconds(50);
 
+/// The long calls in progress, so that Ctrl-C stops all of them (as in prt): the process-wide
+/// cancel flag it sets stays set until the last of them has finished.
+std::mutex gCallsMutex;
+int gCalls = 0;
+bool gInterrupted = false;
+
+struct ActiveCall {
+  ActiveCall() {
+    std::lock_guard<std::mutex> lock(gCallsMutex);
+    ++gCalls;
+  }
+  ~ActiveCall() {
+    std::lock_guard<std::mutex> lock(gCallsMutex);
+    if (--gCalls == 0 && gInterrupted) {
+      prt::clearCancel();
+      gInterrupted = false;
+    }
+  }
+  static void interrupt() {
+    std::lock_guard<std::mutex> lock(gCallsMutex);
+    gInterrupted = true;
+    prt::requestCancel();
+  }
+};
+
 }  // namespace
 
 void runLongImpl(const char* label, py::handle progress,
                  const std::function<void(const prt::ProgressFn&)>& work) {
   Reporter reporter(progress, label);
+  const ActiveCall active;
   auto shared = std::make_shared<Shared>();
   const prt::ProgressFn fn = [shared](double f) {
     shared->fraction.store(f, std::memory_order_relaxed);
@@ -351,7 +377,6 @@ void runLongImpl(const char* label, py::handle progress,
   });
 
   std::optional<py::error_already_set> pythonError;  // from a signal handler or the callback
-  bool interrupted = false;
   for (;;) {
     bool done;
     {
@@ -363,12 +388,11 @@ void runLongImpl(const char* label, py::handle progress,
     if (pythonError) continue;  // cancelling: wait for the work to stop
     if (PyErr_CheckSignals() != 0) {
       pythonError.emplace();
-      interrupted = true;
       shared->cancel.store(true);
       // Prompt: every Progress checks this flag at each chunk of work, not only when it next
       // calls back (every 1/256th). It is process-wide, as in the CLI: Ctrl-C stops every
-      // prtkit operation in progress.
-      prt::requestCancel();
+      // prtkit call in progress (ActiveCall clears it when the last has stopped).
+      ActiveCall::interrupt();
       continue;
     }
     const double f = shared->fraction.load(std::memory_order_relaxed);
@@ -385,7 +409,6 @@ void runLongImpl(const char* label, py::handle progress,
     py::gil_scoped_release nogil;
     worker.join();
   }
-  if (interrupted) prt::clearCancel();
   if (!pythonError && !shared->error && reporter && reporter.last() < 1.0) {
     try {
       reporter.report(1.0);

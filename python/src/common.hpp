@@ -136,7 +136,9 @@ std::shared_ptr<const void> keepAlive(py::object obj);
 ///   * run Python's signal handlers (PyErr_CheckSignals; in the main thread only): an
 ///     exception from them (KeyboardInterrupt on Ctrl-C) cancels the work at once through the
 ///     process-wide flag the CLI's SIGINT handler sets (prt::requestCancel, checked by every
-///     Progress at each chunk of work), waits for it to stop and is raised;
+///     Progress at each chunk of work), waits for it to stop and is raised. As in the CLI the
+///     flag stops every long call in progress (those of other threads raise prtkit.Cancelled);
+///     it is cleared when the last of them has returned;
 ///   * call `progress` — None, a callable taking the fraction done (returning False cancels:
 ///     prtkit.Cancelled), or True for a tqdm bar labelled `label` when tqdm is installed.
 /// Exceptions of the work are rethrown here (prtkit.Error, prtkit.Cancelled, MemoryError).

@@ -59,6 +59,28 @@ def test_sigint_cancels_a_bake_within_a_second(big):
     assert prtkit.bake(big, samples=4).shape == (big.vertex_count, 9)
 
 
+def test_ctrl_c_stops_the_bakes_of_other_threads_too(big):
+    # As in prt: Ctrl-C stops every prtkit call in progress; another thread's raises Cancelled.
+    errors = []
+
+    def other():
+        try:
+            prtkit.bake(big, **LONG)
+        except prtkit.Cancelled as e:
+            errors.append(e)
+
+    th = threading.Thread(target=other)
+    th.start()
+    time.sleep(0.2)
+    timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        prtkit.bake(big, **LONG)
+    th.join(timeout=5)
+    timer.join()
+    assert not th.is_alive() and len(errors) == 1
+
+
 def test_the_gil_is_released_during_a_bake(big):
     counts = []
     stop = threading.Event()
