@@ -164,6 +164,9 @@ render take one (or anything load_environment takes).)")
           [](const PyEnvironment& e, py::handle directions) {
             const auto d = floats(directions, "directions", {kAny, 3});
             const std::size_t n = static_cast<std::size_t>(d.shape(0));
+            for (std::size_t k = 0; k < n; ++k)
+              if (d.data()[3 * k] == 0 && d.data()[3 * k + 1] == 0 && d.data()[3 * k + 2] == 0)
+                throw py::value_error("directions[" + std::to_string(k) + "] is zero");
             std::vector<prt::Rgb> out(n);
             {
               py::gil_scoped_release nogil;

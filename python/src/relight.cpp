@@ -109,9 +109,20 @@ py::array relightFn(py::handle transferObj, py::handle lightObj, py::handle albe
 prt::render::Camera cameraOf(py::handle obj, const prt::Mesh& mesh, int w, int h) {
   const prt::render::Camera framed = prt::render::frameMesh(mesh, w, h);
   if (obj.is_none()) return framed;
-  if (py::isinstance<py::str>(obj))
-    return asValueError([&] { return prt::render::parseCamera(obj.cast<std::string>(), framed); });
-  return obj.cast<prt::render::Camera>();
+  const prt::render::Camera c =
+      py::isinstance<py::str>(obj)
+          ? asValueError([&] { return prt::render::parseCamera(obj.cast<std::string>(), framed); })
+          : obj.cast<prt::render::Camera>();
+  // A camera with no frame would trace NaN rays.
+  const prt::Vec3f forward = c.target - c.eye;
+  if (!(length(forward) > 0) ||
+      !(length(cross(forward, c.up)) > 1e-6f * length(forward) * length(c.up)))
+    throw py::value_error(
+        "camera: the eye must differ from the target, and up must not be parallel "
+        "to the view direction");
+  if (!(c.fovY > 0 && c.fovY < 180))
+    throw py::value_error("camera: fov must be in (0, 180) degrees");
+  return c;
 }
 
 prt::render::MisHeuristic heuristicOf(const std::string& s) {

@@ -125,3 +125,19 @@ def test_ray_queries_refuse_what_embree_cannot_take(scene):
         prtkit.occluded(scene, np.full((1, 3), 1e30), np.ones((1, 3)))
     with pytest.raises(ValueError, match="NaN"):
         prtkit.occluded(scene, np.full((1, 3), np.nan), np.ones((1, 3)))
+
+
+def test_cameras_and_directions_that_trace_nothing(scene):
+    R = np.ones((scene.vertex_count, 3), np.float32)
+    with pytest.raises(ValueError, match="eye must differ from the target"):
+        prtkit.render(scene, R, camera=prtkit.Camera(eye=(0, 0, 0), target=(0, 0, 0)))
+    with pytest.raises(ValueError, match="up must not be parallel"):
+        prtkit.render(scene, R, camera=prtkit.Camera(eye=(0, 5, 0), target=(0, 0, 0)))
+    with pytest.raises(ValueError, match="fov"):
+        prtkit.Camera(fov=0)
+    with pytest.raises(ValueError, match=r"directions\[0\] is zero"):
+        prtkit.load_environment("builtin:sky").lookup(np.zeros((1, 3)))
+    with pytest.raises(ValueError, match="not unit length"):
+        prtkit.sh_eval(3, np.array([[0, 2.0, 0]]))
+    with pytest.raises(ValueError, match=r"radiance must have shape"):
+        prtkit.render(scene, R[:-1])
