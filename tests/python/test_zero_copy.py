@@ -2,6 +2,7 @@
 C++ buffer; inputs read in place (a transfer) are viewed, not converted."""
 
 import ctypes
+import subprocess
 import sys
 
 import numpy as np
@@ -77,3 +78,23 @@ def test_transfer_views_its_compressed_arrays(scene):
     k = t.cluster_ids
     rec = t.means[k] + np.einsum("rj,rjd->rd", t.weights, t.basis[k])
     assert np.allclose(rec, t.to_dense().values, atol=1e-6)
+
+
+def test_no_copy_is_made_of_a_large_bake():
+    # In a fresh process: the peak memory grows by the transfer once (about 100 MB of matrices),
+    # not twice, as a copy on the way out would make it.
+    script = """
+import resource, sys
+import prtkit
+mesh = prtkit.load_mesh("builtin:sphere?subdiv=6")
+prtkit.bake(mesh, samples=1, bands=1)
+before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+T = prtkit.bake(mesh, mode="unshadowed", transfer="matrix", bands=5, samples=1)
+after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+print(T.nbytes, (after - before) * 1024)
+"""
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True).stdout.split()
+    size, grown = int(out[0]), int(out[1])
+    assert size > 90e6
+    assert grown < 1.5 * size, f"peak memory grew by {grown / size:.2f}x the transfer"
