@@ -18,6 +18,10 @@ packages=(
   # (npm is added below only when no npm command exists: NodeSource's nodejs ships its own npm and
   # conflicts with Debian's npm package)
   nodejs chromium
+  # the Python module (import prtkit): its build, numpy, the tests (pytest; tqdm for the progress
+  # bar's), and `pip install --no-build-isolation .` offline (setuptools, wheel, pip, venv)
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-tqdm
+  python3-setuptools python3-wheel python3-pip python3-venv
 )
 assets=(glmark2-data blender-data)
 # scripts/fuzz.sh: libFuzzer with clang 14 (ASan + UBSan)

@@ -1,7 +1,5 @@
 #include "transfer_options.hpp"
 
-#include <algorithm>
-
 #include <fmt/format.h>
 
 #include "cli.hpp"
@@ -62,20 +60,6 @@ void warnLobeOnVectors(const Material& m, const BakedTransfer& baked, const std:
   if (m.glossy() && !baked.transfer.isMatrix())
     warn(fmt::format("{}: the {} transfer is a vector (diffuse only); {}", file,
                      toString(baked.mode()), consequence));
-}
-
-Material materialFromGloss(const SurfaceGloss& g) {
-  const auto clamp01 = [](float x) { return std::clamp(x, 0.0f, 1.0f); };
-  Material m;
-  m.specular = Rgb(clamp01(g.specular.x), clamp01(g.specular.y), clamp01(g.specular.z));
-  if (g.model == SurfaceGloss::Model::Phong) {
-    m.lobe.kind = LobeKind::Phong;
-    m.lobe.exponent = std::clamp(double(g.exponent), 0.0, kMaxPhongExponent);
-  } else {
-    m.lobe.kind = LobeKind::Ggx;
-    m.lobe.roughness = std::clamp(double(g.roughness), kMinGgxRoughness, 1.0);
-  }
-  return m;
 }
 
 }  // namespace prt::cli

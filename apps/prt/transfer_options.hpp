@@ -6,7 +6,6 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "prt/geometry/mesh.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/transfer/material.hpp"
 
@@ -38,9 +37,5 @@ Material materialOption(const std::string& spec, const BakedTransfer& baked,
 /// the verb does instead.
 void warnLobeOnVectors(const Material& m, const BakedTransfer& baked, const std::string& file,
                        const std::string& consequence);
-
-/// A mesh file's own glossy surface (MTL Ks/Ns, glTF metallic-roughness) as a material, clamped
-/// to the ranges a material spec accepts; kd left unset.
-Material materialFromGloss(const SurfaceGloss& gloss);
 
 }  // namespace prt::cli

@@ -48,6 +48,34 @@ std::array<image::Image, 6> readFaceFolder(const std::string& dir,
   return faces;
 }
 
+Environment environmentFromImage(image::Image img, std::optional<Layout> given,
+                                 const std::string& name, Layout* used) {
+  const Layout layout = given ? *given : detectLayout(img.width, img.height, name);
+  if (used) *used = layout;
+  const std::string dims = std::to_string(img.width) + "x" + std::to_string(img.height);
+  switch (layout) {
+    case Layout::LatLong:
+      if (img.width != 2 * img.height)
+        throw Error(name, "is " + dims + ", a lat-long image must be 2:1");
+      return Environment::latLong(std::move(img));
+    case Layout::Probe:
+      if (img.width != img.height)
+        throw Error(name, "is " + dims + ", a light probe must be square");
+      return Environment::probe(std::move(img));
+    case Layout::VCross:
+      if (4 * img.width != 3 * img.height || img.width % 3 != 0)
+        throw Error(name, "is " + dims + ", a vertical cross must be 3N x 4N");
+      return Environment::cross(img, layout);
+    case Layout::HCross:
+      if (3 * img.width != 4 * img.height || img.width % 4 != 0)
+        throw Error(name, "is " + dims + ", a horizontal cross must be 4N x 3N");
+      return Environment::cross(img, layout);
+    case Layout::Faces:
+      break;
+  }
+  throw Error(name, "the 'faces' layout needs a folder of six images");
+}
+
 namespace {
 
 LoadedEnvironment loadUnchecked(const std::string& input, const LoadOptions& options) {
@@ -74,33 +102,8 @@ LoadedEnvironment loadUnchecked(const std::string& input, const LoadOptions& opt
   image::Image img = image::readImage(input, {options.ldrDecode}, &s);
   out.files.push_back(input);
   out.stats.push_back(s);
-  const Layout layout =
-      options.layout ? *options.layout : detectLayout(img.width, img.height, input);
-  const std::string dims = std::to_string(img.width) + "x" + std::to_string(img.height);
-  switch (layout) {
-    case Layout::LatLong:
-      if (img.width != 2 * img.height)
-        throw Error(input, "is " + dims + ", a lat-long image must be 2:1");
-      out.env = Environment::latLong(std::move(img));
-      break;
-    case Layout::Probe:
-      if (img.width != img.height)
-        throw Error(input, "is " + dims + ", a light probe must be square");
-      out.env = Environment::probe(std::move(img));
-      break;
-    case Layout::VCross:
-      if (4 * img.width != 3 * img.height || img.width % 3 != 0)
-        throw Error(input, "is " + dims + ", a vertical cross must be 3N x 4N");
-      out.env = Environment::cross(img, layout);
-      break;
-    case Layout::HCross:
-      if (3 * img.width != 4 * img.height || img.width % 4 != 0)
-        throw Error(input, "is " + dims + ", a horizontal cross must be 4N x 3N");
-      out.env = Environment::cross(img, layout);
-      break;
-    case Layout::Faces:
-      throw Error(input, "the 'faces' layout needs a folder of six images");
-  }
+  Layout layout;
+  out.env = environmentFromImage(std::move(img), options.layout, input, &layout);
   out.layout = layoutName(layout);
   return out;
 }

@@ -312,6 +312,20 @@ BakeStats finishStats(BakeStats st, std::uint64_t directRays, const std::vector<
 
 }  // namespace
 
+Material materialFromGloss(const SurfaceGloss& g) {
+  const auto clamp01 = [](float x) { return std::clamp(x, 0.0f, 1.0f); };
+  Material m;
+  m.specular = Rgb(clamp01(g.specular.x), clamp01(g.specular.y), clamp01(g.specular.z));
+  if (g.model == SurfaceGloss::Model::Phong) {
+    m.lobe.kind = LobeKind::Phong;
+    m.lobe.exponent = std::clamp(double(g.exponent), 0.0, kMaxPhongExponent);
+  } else {
+    m.lobe.kind = LobeKind::Ggx;
+    m.lobe.roughness = std::clamp(double(g.roughness), kMinGgxRoughness, 1.0);
+  }
+  return m;
+}
+
 Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
               BakeStats* stats, const ProgressFn& progressFn) {
   validateBake(mesh, settings);

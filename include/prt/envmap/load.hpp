@@ -36,6 +36,13 @@ std::array<image::Image, 6> readFaceFolder(const std::string& dir,
                                            std::vector<std::string>* files = nullptr,
                                            std::vector<image::ReadStats>* stats = nullptr);
 
+/// An environment from an image in memory (a render, an application's array): `layout` if
+/// given, else detected from the aspect ratio, and checked as loadEnvironment checks a file's
+/// (`name` in messages; the layout used is written to `used`). Faces need six images
+/// (Environment::cube).
+Environment environmentFromImage(image::Image img, std::optional<Layout> layout,
+                                 const std::string& name, Layout* used = nullptr);
+
 /// Loads an image file, a face folder or builtin:NAME. Throws prt::Error naming the file, also
 /// when every pixel read was NaN or infinite (nothing would be left but black). The
 /// environment's source() is `input`.

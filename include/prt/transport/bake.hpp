@@ -43,6 +43,11 @@ struct BakeFootprint {
 };
 BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& settings);
 
+/// A mesh file's own glossy surface (Mesh::gloss: MTL Ks/Ns → phong, glTF metallic-roughness →
+/// ggx with F0 as ks) as a material, clamped to the ranges a material spec accepts; kd left unset.
+/// What a bake takes when it is given no material (prt bake, the Python module's bake).
+Material materialFromGloss(const SurfaceGloss& gloss);
+
 /// Bakes the transfer of mesh (whose triangles `occluder` was built from) under `settings`: a
 /// dense Transfer over the vertices settings.rows (count 0: to the last vertex), of
 /// settings.layout and settings.bands. Channels: 1, unless the mode is Interreflected and some
