@@ -4,6 +4,7 @@
 // and bake_matrix.cpp (matrices), and the in-process driver bake() runs.
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include "bake_common.hpp"
@@ -234,6 +235,28 @@ BakeStats BakePasses::stats(const std::vector<std::uint64_t>& rays,
   st.vertices = m.rows.count;
   st.secondsTotal = secondsTotal;
   return st;
+}
+
+std::string bakeIdentity(const Mesh& mesh, const BakeSettings& s) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  const auto add = [&h](const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  add(mesh.positions.data(), mesh.positions.size() * sizeof(Vec3f));
+  add(mesh.normals.data(), mesh.normals.size() * sizeof(Vec3f));
+  add(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+  add(mesh.albedo.data(), mesh.albedo.size() * sizeof(Rgb));
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  const RowRange rows = bakeRows(mesh, s);
+  return std::to_string(mesh.vertexCount()) + " vertices, " +
+         std::to_string(mesh.triangleCount()) + " triangles, mesh " + hex + "; " +
+         toString(s.mode) + " " + toString(s.layout) + ", " + std::to_string(s.bands) +
+         " bands, " + std::to_string(s.samples) + " samples, " +
+         std::to_string(s.effectiveBounces()) + " bounces, seed " + std::to_string(s.seed) + ", " +
+         toString(s.sampling) + ", " + s.material.spec() + ", vertices " +
+         std::to_string(rows.first) + ".." + std::to_string(rows.end());
 }
 
 Transfer runBakePasses(const BakePasses& passes, BakeStats* stats, const ProgressFn& progressFn) {

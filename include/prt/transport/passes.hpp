@@ -95,6 +95,12 @@ class BakePasses {
   std::unique_ptr<Impl> impl_;
 };
 
+/// One line that tells one bake from another: the mesh (vertex and triangle count, a
+/// fingerprint of its positions, normals, triangles and albedo) and every setting that changes a
+/// row. Pieces of a split bake (checkpointed chunks, job-array pass files) carry it, and only
+/// pieces with the same identity are joined.
+std::string bakeIdentity(const Mesh& mesh, const BakeSettings& settings);
+
 /// Runs every pass in this process over all its rows (what bake() does): two full-mesh buffers
 /// of the previous and current pass, the sum over the range (or the whole mesh when a pass
 /// reads it). Returns the transfer of resultShape().
