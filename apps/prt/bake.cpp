@@ -336,6 +336,7 @@ void runBakeMpi(const BakeArgs& a) {
     throw;
   } catch (const Error& e) {
     if (root) throw;
+    if (!session.agreedOnce()) throw QuietFailure();
     throw Error("rank " + std::to_string(session.rank()) + ": " + e.what());
   }
 }
@@ -476,7 +477,7 @@ void runBake(const BakeArgs& a) {
                 std::string(kMpiNote));
   BakePlan plan = planOf(a);
   Material& material = plan.recipe.material;
-  if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
+  if (a.pass < 0 && fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
     throw Error(a.output + ": the bake file must end in .glb");
   std::vector<NamedPath> inputs;
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});

@@ -31,10 +31,12 @@ double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-/// The fault-test hook: "R:C" — rank R exits when handed global chunk C.
+/// The fault-test hook: "R:C" — rank R exits when it is handed its C-th chunk of the run
+/// (counted from 0 on that rank: which chunks a rank gets varies, how many it has had does not).
 struct ExitHook {
   int rank = -1;
   long long chunk = -1;
+  long long handed = 0;
   ExitHook() {
     if (const char* v = std::getenv("PRT_TEST_EXIT_AT_CHUNK"))
       if (std::sscanf(v, "%d:%lld", &rank, &chunk) != 2) rank = -1;
@@ -104,7 +106,7 @@ MPI_Datatype blocksType(const std::vector<std::size_t>& chunks, const RowJob& jo
 
 JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, unsigned char* sideOut,
                 const ProgressFn& progress) {
-  static const ExitHook hook;
+  static ExitHook hook;
   const auto start = Clock::now();
   const int rank = session.rank(), size = session.size();
   const bool root = session.root();
@@ -188,7 +190,7 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
     }
     if (c < 0) break;
     const std::size_t chunk = static_cast<std::size_t>(c);
-    if (hook.rank == rank && static_cast<long long>(base + chunk) == hook.chunk) std::_Exit(3);
+    if (hook.rank == rank && hook.handed++ == hook.chunk) std::_Exit(3);
     const auto [lo, hi] = rangeOf(chunk);
     unsigned char* rowsAt;
     unsigned char* sideAt;

@@ -201,7 +201,10 @@ Session::~Session() {
 void Session::agree(std::exception_ptr failure) {
   int mine = failure ? rank_ : size_, lowest = size_;
   MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  if (lowest == size_) return;
+  if (lowest == size_) {
+    agreedOnce_ = true;
+    return;
+  }
   std::string message;
   if (rank_ == lowest) {
     try {

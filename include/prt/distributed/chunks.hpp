@@ -56,7 +56,7 @@ struct JobStats {
 /// rank for an all-gather, on rank 0 for a gather (elsewhere it may be null); `side`: rows ×
 /// sideBytes on rank 0 (may be null elsewhere). `progress` (rank 0) gets the share of chunks
 /// done. The test hook PRT_TEST_EXIT_AT_CHUNK=R:C makes rank R exit at once (status 3, no
-/// message: a crash) when it is handed chunk C (numbered across the run, Session::reserveChunks).
+/// message: a crash) when it is handed its C-th chunk of the run (from 0).
 JobStats runJob(Session& session, const RowJob& job, unsigned char* rows, unsigned char* side,
                 const ProgressFn& progress = {});
 

@@ -44,6 +44,9 @@ class Session {
   /// throws: the failure of the lowest failing rank, as prt::Error with its message on the
   /// root, and AgreedFailure elsewhere (the root reports it; the others exit quietly).
   void agree(std::exception_ptr failure);
+  /// True once agree() has passed: failures after it are this rank's own (the others are
+  /// past the same point), failures before it most likely every rank's (the same inputs).
+  bool agreedOnce() const { return agreedOnce_; }
   /// A Barrier that sleeps between polls instead of spinning, so waiting ranks leave the cores
   /// to working ones (ranks share cores when oversubscribed, and threads share them always).
   void barrier();
@@ -69,6 +72,7 @@ class Session {
   std::uint64_t bytesReceived_ = 0;
   std::uint64_t nextChunk_ = 0;
   bool agreedFailure_ = false;
+  bool agreedOnce_ = false;
   int uncaught_ = 0;
 };
 
