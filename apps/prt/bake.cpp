@@ -314,12 +314,17 @@ void runBakeMpi(const BakeArgs& a) {
       if (!root) continue;
       for (std::size_t j = 0; j < rep.jobs.size(); ++j) {
         const distributed::JobStats& js = rep.jobs[j];
-        info(fmt::format("{}: {} chunks ({} on rank 0{}), {:.3f} s, exchange {:.3f} s, rank 0 "
-                         "received {}",
+        // What moved: each rank receives the rows it did not compute, (N − 1) × the pass's
+        // bytes over all ranks for an all-gather (rank 0 alone, its share, for the last pass);
+        // rank 0 also receives each row's variance (8 B) for the error estimate.
+        info(fmt::format("{}: {} chunks ({} on rank 0{}), {:.3f} s, exchange {:.3f} s; rows "
+                         "received {} B ({:.2f} x the pass's {} B), variances {} B",
                          rep.names[j], js.chunks, js.chunksHere,
                          js.chunksResumed ? fmt::format(", {} from the checkpoint", js.chunksResumed)
                                           : std::string(),
-                         js.seconds, js.exchangeSeconds, bytesText(js.bytesReceived)));
+                         js.seconds, js.exchangeSeconds, js.rowBytesAll,
+                         double(js.rowBytesAll) / double(std::max<std::uint64_t>(rep.passBytes[j], 1)),
+                         rep.passBytes[j], js.sideBytesAll));
       }
       report(t);
       refuseNonFinite(mesh, t);

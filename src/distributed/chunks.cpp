@@ -251,7 +251,7 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
     for (std::size_t c : chunks) b += (rangeOf(c).second - rangeOf(c).first) * unit;
     return b;
   };
-  std::uint64_t received = 0;
+  std::uint64_t received = 0, sideReceived = 0;
   if (size > 1) {
     if (job.allGather) {
       for (int r = 0; r < size; ++r) {
@@ -278,7 +278,7 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
           types.push_back(blocksType(chunks, job, unit, false));
           reqs.emplace_back();
           MPI_Irecv(full, 1, types.back(), r, tag, MPI_COMM_WORLD, &reqs.back());
-          received += bytesOf(chunks, unit);
+          (tag == kTagSide ? sideReceived : received) += bytesOf(chunks, unit);
         }
         detail::politeWaitAll(static_cast<int>(reqs.size()), reqs.data());
         for (MPI_Datatype& t : types) MPI_Type_free(&t);
@@ -298,8 +298,12 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
   unsigned long long mineRays = rays, total = 0;
   MPI_Reduce(&mineRays, &total, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   st.rays = root ? total + resumedRays : rays;
-  st.bytesReceived = received;
-  session.addBytesReceived(received);
+  st.bytesReceived = received + sideReceived;
+  unsigned long long mineBytes = received, allBytes = 0;
+  MPI_Reduce(&mineBytes, &allBytes, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+  st.rowBytesAll = allBytes;
+  st.sideBytesAll = sideReceived;
+  session.addBytesReceived(received + sideReceived);
   st.seconds = since(start);
   if (root && progress) progress(1.0);
   return st;

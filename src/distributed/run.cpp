@@ -149,6 +149,7 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
     seconds.push_back(js.seconds);
     rep.names.push_back(job.name);
     rep.jobs.push_back(js);
+    rep.passBytes.push_back(p.shape.denseBytes());
     if (root && p.variance)
       for (std::size_t v = std::max(rows.first, pr.first); v < std::min(rows.end(), pr.end()); ++v)
         variance[v - rows.first] += var[v - pr.first];

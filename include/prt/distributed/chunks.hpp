@@ -46,7 +46,9 @@ struct JobStats {
   std::uint64_t rays = 0;            ///< all ranks' (on rank 0; this rank's elsewhere)
   double seconds = 0;                ///< wall time of the job, exchange included
   double exchangeSeconds = 0;        ///< of which the all-gather or gather
-  std::uint64_t bytesReceived = 0;   ///< by this rank
+  std::uint64_t bytesReceived = 0;     ///< rows and side bytes, by this rank
+  std::uint64_t rowBytesAll = 0;       ///< rows received by all ranks together (on rank 0)
+  std::uint64_t sideBytesAll = 0;      ///< side bytes received by rank 0
   std::size_t chunks = 0;            ///< in the job
   std::size_t chunksHere = 0;        ///< computed by this rank
   std::size_t chunksResumed = 0;     ///< loaded from the checkpoint

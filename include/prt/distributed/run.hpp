@@ -35,6 +35,7 @@ std::size_t defaultChunkRows(bool matrix, int bands);
 struct RunReport {
   std::vector<std::string> names;
   std::vector<JobStats> jobs;
+  std::vector<std::uint64_t> passBytes;  ///< each pass's rows, 4 · rows · stride
   std::uint64_t bytesReceived = 0;  ///< by rank 0, all jobs
   int ranks = 1, threads = 0;       ///< threads: summed over the ranks
 };
