@@ -622,15 +622,20 @@ void addBakeCommand(CLI::App& root) {
   cmd->add_option("--previous", args->previous,
                   "With --pass K >= 1: the merged pass file of pass K-1");
   cmd->footer(R"(On a cluster (docs/distributed.md):
-  mpirun -np 8 --hostfile hosts prt bake bunny.obj --mode interreflected -j 4 -o bunny.glb
-  srun --ntasks=8 --cpus-per-task=4 prt bake bunny.obj --mode interreflected -j 4 -o bunny.glb
-    One bake across MPI ranks, bit-identical to one process: every rank loads the scene and
-    builds its BVH (memory per rank: mesh + BVH + two full-mesh passes, as one process), rank 0
-    hands out chunks of vertices, -j threads work inside each rank (one rank per node or per
-    socket, -j its cores), each bounce pass is all-gathered, rank 0 writes the file. A rank that
-    dies ends the job with one line naming it and its chunk; --checkpoint DIR resumes.
+  mpirun --hostfile hosts -np 4 --bind-to none prt bake scene.obj --mode interreflected -j 32 \
+         --checkpoint /shared/ckpt -o scene.glb
+    hosts: one line per node, "node01 slots=1": one rank per node (or socket), -j its cores.
+  Slurm, a batch script (sbatch bake.sbatch):
+    #SBATCH --nodes=8 --ntasks-per-node=1 --cpus-per-task=32 --mem=16G
+    srun --mpi=pmix prt bake scene.obj --mode interreflected -j "$SLURM_CPUS_PER_TASK" -o scene.glb
+  One bake across MPI ranks, bit-identical to one process: every rank loads the scene and builds
+  its BVH; rank 0 hands out chunks of vertices (--chunk) to the ranks, whose threads share each
+  chunk; each bounce pass is all-gathered; rank 0 writes the file. Memory per rank: the mesh,
+  its BVH and two full-mesh passes (rank 0 also the output), as one process. A rank that dies
+  ends the job with one line naming it and its chunk, no output; --checkpoint DIR resumes.
+  prt reference and prt validate run across ranks the same way.
   Job arrays without MPI: --shard I/N (or auto) per task, then prt merge; interreflected bakes
-    shard one --pass at a time, each pass reading the merged one before (--previous).)");
+  shard one --pass at a time, each reading the merged one before (--previous PASS.prtpass).)");
   cmd->callback([args] { runBake(*args); });
 }
 
