@@ -46,6 +46,9 @@ for mode in "shadowed --samples 1024" "interreflected --bounces 2 --samples 512"
     two+=("$(run "$mpi" 1 "${args[@]}")")
   done
   grep -E "pass [0-9]+ '" "$tmp/err.txt" | sed 's/^/  /' > "$tmp/passes.txt" || true
+  cp "$tmp/err.txt" "$tmp/err-mpi.txt"
+  run "" 2 "${args[@]}" > /dev/null  # once more in one process, for its per-pass seconds
+  cp "$tmp/err.txt" "$tmp/err-one.txt"
   python3 - "$mode" "${one[@]}" -- "${two[@]}" <<'PY'
 import statistics, sys
 mode = sys.argv[1]
@@ -64,5 +67,35 @@ print(f"  medians: bake {mb(one,0):.3f} s vs {mb(two,0):.3f} s -> parallel effic
       f"(median of the pairs' ratios {pairs:.3f}); wall {mb(one,1):.2f} s vs {mb(two,1):.2f} s -> {ew:.3f}")
 PY
   echo "  last 2-rank run's passes:"; cat "$tmp/passes.txt"
+  python3 - "$tmp/err-one.txt" "$tmp/err-mpi.txt" <<'PY'
+# A model of the speed-up at N ranks of one thread each, from the measured per-pass work
+# (the one-process run's pass seconds x 2 threads), chunks and exchanged bytes:
+#   T(N) = sum over passes k of  W_k/N + c_k/2 + x_k(N),
+#   c_k = W_k / C_k the mean chunk time (the last chunks leave ranks idle by about half a
+#   chunk), x_k(N) = N broadcasts of log2(N) latencies a + (N-1)/N S_k / b received per rank
+#   (all-gathered passes; the last one is gathered to rank 0: S_k / b at rank 0), and
+#   2a per chunk handed out (C_k/N per rank).
+# Loading and the BVH (every rank, at once) are left out: they do not shrink with N.
+import math, re, sys
+one, mpi = (open(f).read() for f in sys.argv[1:3])
+m = re.search(r"^\w+: \d+ rays in [\d.]+ m?s \([^)]*\); direct ([\d.]+) (ms|s)(.*)$", one, re.M)
+sec = lambda v, u: float(v) / (1000 if u == "ms" else 1)
+passes = [sec(m.group(1), m.group(2))] + [sec(v, u) for v, u in re.findall(r"bounce \d+ ([\d.]+) (ms|s)", m.group(3))]
+W = [2 * p for p in passes]
+info = re.findall(r"pass \d+ '[^']*': (\d+) chunks .*?the pass's (\d+) B", mpi)
+C = [int(c) for c, _ in info]
+S = [int(b) for _, b in info]
+for name, a, b in (("InfiniBand (a = 2 us, b = 10 GB/s)", 2e-6, 10e9), ("10 GbE TCP (a = 30 us, b = 1 GB/s)", 30e-6, 1e9)):
+    t1 = sum(W)
+    out = []
+    for N in (2, 8, 64):
+        t = 0
+        for k, (w, c, s) in enumerate(zip(W, C, S)):
+            last = k == len(W) - 1
+            x = (s / b) if last else (N * math.log2(N) * a + (N - 1) / N * s / b)
+            t += w / N + (w / c) / 2 + x + (c / N) * 2 * a
+        out.append(f"N={N}: {t1 / t:.1f}x ({t1 / t / N:.2f} efficiency)")
+    print(f"  model, {name}: one rank {t1:.2f} s of work; " + "; ".join(out))
+PY
 done
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -142,8 +142,10 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
   std::mutex mutex;
   std::size_t next = 0;
   std::atomic<std::size_t> finished{0};
+  bool failed = false;  // rank 0's own work failed: hand out nothing more, then rethrow
   const auto acquire = [&](int who) -> long long {
     std::lock_guard<std::mutex> lock(mutex);
+    if (failed) return -1;
     while (next < nchunks && present[next]) owner[next++] = kResumed;
     if (next == nchunks) return -1;
     owner[next] = who;
@@ -176,6 +178,8 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
   std::vector<std::size_t> mine;
   std::uint64_t rays = 0;
   long long last = -1;
+  std::exception_ptr failure;
+  try {
   for (;;) {
     long long c;
     if (root) {
@@ -218,7 +222,15 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
         throw Cancelled();
     }
   }
+  } catch (...) {
+    // Rank 0's coordinator still answers the others (with "no more chunks") before this rank
+    // reports the failure; a failure elsewhere ends that rank, and the runtime the job.
+    failure = std::current_exception();
+    std::lock_guard<std::mutex> lock(mutex);
+    failed = true;
+  }
   if (coordinator.joinable()) coordinator.join();
+  if (failure) std::rethrow_exception(failure);
   if (root) session.setActivity(0, "exchanging the rows of " + job.name);
   st.chunksHere = mine.size();
 

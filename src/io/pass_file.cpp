@@ -87,6 +87,10 @@ PassPiece decodePassPiece(std::span<const unsigned char> b, const std::string& n
   if (p.sumChannels != 0 && p.sumChannels != 1 && p.sumChannels != 3)
     throw Error(name, "bad pass file header (sumChannels)");
   const std::size_t rows = p.shape.rows.count;
+  // Every row holds at least its 8-byte variance: a count past that is a lie (and the products
+  // below cannot overflow).
+  if (rows > b.size() / sizeof(double))
+    throw Error(name, "declares " + std::to_string(rows) + " rows, more than its bytes hold");
   const std::size_t nv = rows * p.shape.stride(), ns = sumSize(p);
   const std::size_t at = 16 + n;
   if (b.size() - at != (nv + ns) * sizeof(float) + rows * sizeof(double))
