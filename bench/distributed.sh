@@ -4,7 +4,9 @@
 # and an inter-reflected (2 bounces) bunny. Prints, per mode, each run's bake time (the bake's
 # own secondsTotal: passes and exchanges, not loading or the BVH) and wall time (the whole
 # command, mpirun's start-up included), the medians, and the parallel efficiency
-# T(1 x 2 threads) / T(2 ranks x 1 thread); then the bytes each bounce pass exchanged.
+# T(1 x 2 threads) / T(2 ranks x 1 thread), and the CPU time of both (on a machine shared with
+# other work the wall times are noisy, the CPU times much less); then the bytes each pass
+# exchanged and a model of 8 and 64 ranks.
 # Usage: bench/distributed.sh [BUILD_DIR] [REPEATS]   (mpirun, Open MPI; as root it sets
 # OMPI_ALLOW_RUN_AS_ROOT)
 set -euo pipefail
@@ -28,13 +30,17 @@ print(float(v) / (1000 if unit == "ms" else 1))
 PY
 }
 
-run() {  # LABEL LAUNCH THREADS ARGS... -> "bake wall" seconds
+run() {  # LAUNCH THREADS ARGS... -> "bake wall cpu" seconds (cpu: user + system, all processes)
   local launch=$1 threads=$2; shift 2
-  local start end
-  start=$(date +%s.%N)
-  $launch "$prt" bake "$mesh" "$@" -j "$threads" -o "$tmp/out.glb" 2> "$tmp/err.txt"
-  end=$(date +%s.%N)
-  echo "$(bake_seconds "$tmp/err.txt") $(echo "$end - $start" | bc)"
+  local times
+  times=$(python3 -c '
+import resource, subprocess, sys, time
+t = time.monotonic()
+with open(sys.argv[1], "w") as err:
+    subprocess.run(sys.argv[2:], stderr=err, check=True)
+r = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(f"{time.monotonic() - t:.3f} {r.ru_utime + r.ru_stime:.3f}")' "$tmp/err.txt" $launch "$prt" bake "$mesh" "$@" -j "$threads" -o "$tmp/out.glb")
+  echo "$(bake_seconds "$tmp/err.txt") $times"
 }
 
 echo "machine: $(nproc) cores, $(uname -m); load before: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -60,11 +66,13 @@ mb = lambda xs, k: statistics.median(x[k] for x in xs)
 print(f"\n{mode}")
 print("  1 process x 2 threads, bake s:", " ".join(f"{x[0]:.2f}" for x in one), f"(wall {' '.join(f'{x[1]:.2f}' for x in one)})")
 print("  2 ranks x 1 thread,    bake s:", " ".join(f"{x[0]:.2f}" for x in two), f"(wall {' '.join(f'{x[1]:.2f}' for x in two)})")
+print("  CPU seconds (all processes, loading and BVH included):", " ".join(f"{x[2]:.2f}" for x in one), "vs", " ".join(f"{x[2]:.2f}" for x in two))
 e = mb(one, 0) / mb(two, 0)
 ew = mb(one, 1) / mb(two, 1)
 pairs = statistics.median(a[0] / b[0] for a, b in zip(one, two))
 print(f"  medians: bake {mb(one,0):.3f} s vs {mb(two,0):.3f} s -> parallel efficiency {e:.3f} "
-      f"(median of the pairs' ratios {pairs:.3f}); wall {mb(one,1):.2f} s vs {mb(two,1):.2f} s -> {ew:.3f}")
+      f"(median of the pairs' ratios {pairs:.3f}); wall {mb(one,1):.2f} s vs {mb(two,1):.2f} s -> {ew:.3f}; "
+      f"CPU {mb(one,2):.2f} s vs {mb(two,2):.2f} s -> {mb(one,2) / mb(two,2):.3f}")
 PY
   echo "  last 2-rank run's passes:"; cat "$tmp/passes.txt"
   python3 - "$tmp/err-one.txt" "$tmp/err-mpi.txt" <<'PY'

@@ -12,8 +12,8 @@ namespace prt::distributed::detail {
 
 /// Waits for `req` by polling MPI_Test: a few times at once, then sleeping between polls, from
 /// 20 µs up to 500 µs, so a waiting rank (or rank 0's coordinator thread) leaves the cores to
-/// the ranks and threads that work (a spinning wait costs a core; a coordinator polling every
-/// 50 µs cost about 10% of one in a 2-rank bake on 2 cores). A chunk takes tens of
+/// the ranks and threads that work (a spinning wait costs a core; rank 0's coordinator, which
+/// waits most of the time, used 0.75% of one in a 2-rank bake). A chunk takes tens of
 /// milliseconds, so the ≤ 0.5 ms a request may wait is about 1%. `idle` runs about every 50 ms
 /// while waiting (the root's watch over the other ranks).
 inline void politeWait(MPI_Request* req, MPI_Status* status, const std::function<void()>& idle = {}) {
