@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <tuple>
 
 #include "cli.hpp"
@@ -91,12 +92,14 @@ std::pair<std::size_t, std::size_t> parseShard(const std::string& s) {
     } else if (k8s) {
       i = number(k8s, "JOB_COMPLETION_INDEX");
     } else {
-      throw Error("--shard auto: neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set "
-                  "(give --shard I/N)");
+      throw Error(
+          "--shard auto: neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set "
+          "(give --shard I/N)");
     }
     if (!n)
-      throw Error("--shard auto: the shard count is unknown (SLURM_ARRAY_TASK_COUNT is not set; "
-                  "give --shard auto/N)");
+      throw Error(
+          "--shard auto: the shard count is unknown (SLURM_ARRAY_TASK_COUNT is not set; "
+          "give --shard auto/N)");
   } else {
     if (slash == std::string::npos) throw Error("--shard '" + s + "': expected I/N, e.g. 3/16");
     i = number(head, "I");
@@ -260,8 +263,9 @@ void runBakeMpi(const BakeArgs& a) {
     std::exception_ptr failure;
     try {
       if (!a.shard.empty() || a.pass >= 0)
-        throw Error("--shard and --pass split a bake for job arrays without MPI; under mpirun the "
-                    "ranks share the work (drop them)");
+        throw Error(
+            "--shard and --pass split a bake for job arrays without MPI; under mpirun the "
+            "ranks share the work (drop them)");
       plan = planOf(a);
       if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
         throw Error(a.output + ": the bake file must end in .glb");
@@ -294,6 +298,13 @@ void runBakeMpi(const BakeArgs& a) {
     distributed::RunOptions options;
     options.chunkRows = a.chunk;
     options.checkpoint = a.checkpoint;
+    // Rank 0 keeps a matrix transfer that would not fit its memory in a mapped scratch file
+    // beside the output (PRT_MPI_SPILL_ABOVE=BYTES lowers the threshold, for tests).
+    if (!isStandardOutput(a.output)) {
+      const std::string parent = std::filesystem::path(a.output).parent_path().string();
+      options.spillFolder = parent.empty() ? "." : parent;
+    }
+    if (const char* v = std::getenv("PRT_MPI_SPILL_ABOVE")) options.spillAbove = std::stoull(v);
     for (std::size_t m = 0; m < plan.modes.size(); ++m) {
       BakeSettings s;
       static_cast<BakeRecipe&>(s) = plan.recipe;
@@ -308,23 +319,28 @@ void runBakeMpi(const BakeArgs& a) {
       BakedTransfer t;
       t.recipe = s;
       distributed::RunReport rep;
-      t.transfer = distributed::bake(session, mesh, *occluder, s, o, &t.stats, &rep,
-                                     root ? progressBar(std::string("bake ") + toString(s.mode))
-                                          : ProgressFn{});
+      t.transfer = distributed::bake(
+          session, mesh, *occluder, s, o, &t.stats, &rep,
+          root ? progressBar(std::string("bake ") + toString(s.mode)) : ProgressFn{});
       if (!root) continue;
+      if (rep.spilled)
+        info(fmt::format("{}: rank 0 kept the transfer ({}) in a mapped scratch file beside the "
+                         "output, not in memory",
+                         toString(s.mode), bytesText(bakeFootprint(mesh, s).transferBytes)));
       for (std::size_t j = 0; j < rep.jobs.size(); ++j) {
         const distributed::JobStats& js = rep.jobs[j];
         // What moved: each rank receives the rows it did not compute, (N − 1) × the pass's
         // bytes over all ranks for an all-gather (rank 0 alone, its share, for the last pass);
         // rank 0 also receives each row's variance (8 B) for the error estimate.
-        info(fmt::format("{}: {} chunks ({} on rank 0{}), {:.3f} s, exchange {:.3f} s; rows "
-                         "received {} B ({:.2f} x the pass's {} B), variances {} B",
-                         rep.names[j], js.chunks, js.chunksHere,
-                         js.chunksResumed ? fmt::format(", {} from the checkpoint", js.chunksResumed)
-                                          : std::string(),
-                         js.seconds, js.exchangeSeconds, js.rowBytesAll,
-                         double(js.rowBytesAll) / double(std::max<std::uint64_t>(rep.passBytes[j], 1)),
-                         rep.passBytes[j], js.sideBytesAll));
+        info(fmt::format(
+            "{}: {} chunks ({} on rank 0{}), {:.3f} s, exchange {:.3f} s; rows "
+            "received {} B ({:.2f} x the pass's {} B), variances {} B",
+            rep.names[j], js.chunks, js.chunksHere,
+            js.chunksResumed ? fmt::format(", {} from the checkpoint", js.chunksResumed)
+                             : std::string(),
+            js.seconds, js.exchangeSeconds, js.rowBytesAll,
+            double(js.rowBytesAll) / double(std::max<std::uint64_t>(rep.passBytes[j], 1)),
+            rep.passBytes[j], js.sideBytesAll));
       }
       report(t);
       refuseNonFinite(mesh, t);
@@ -367,15 +383,15 @@ void runPassBake(const BakeArgs& a, BakeFile& file, const Occluder& occluder, Ba
     throw Error(a.output, fmt::format("pass {} of {} ('{}') is written to a pass file (.prtpass); "
                                       "the last pass, {}, writes the bake",
                                       k, count, p.name, count - 1));
-  if (last && ext != "glb")
-    throw Error(a.output, "the last pass writes the bake (.glb)");
+  if (last && ext != "glb") throw Error(a.output, "the last pass writes the bake (.glb)");
   const std::string identity = bakeIdentity(mesh, s);
   PassPiece prev;
   if (k > 0) {
     if (a.previous.empty())
-      throw Error(fmt::format("--pass {} reads pass {}: give --previous PASS{}.prtpass (its "
-                              "merged pieces)",
-                              k, k - 1, k - 1));
+      throw Error(
+          fmt::format("--pass {} reads pass {}: give --previous PASS{}.prtpass (its "
+                      "merged pieces)",
+                      k, k - 1, k - 1));
     prev = readPassPiece(a.previous);
     if (prev.identity != identity)
       throw Error(a.previous, "is a pass of another bake (" + prev.identity + ")");
@@ -406,9 +422,8 @@ void runPassBake(const BakeArgs& a, BakeFile& file, const Occluder& occluder, Ba
   Transfer out = Transfer::zeros(shape);
   std::vector<double> var(rows.count, 0.0);
   Progress progress(progressBar(std::string("bake ") + toString(s.mode)), rows.count);
-  const std::uint64_t rays =
-      passes.compute(k, rows, input, out.mutableValues(), p.variance ? var.data() : nullptr,
-                     &progress);
+  const std::uint64_t rays = passes.compute(k, rows, input, out.mutableValues(),
+                                            p.variance ? var.data() : nullptr, &progress);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // The variance summed over the passes so far, in pass order.
   std::vector<double> variance(rows.count, 0.0);
@@ -477,9 +492,10 @@ void runBake(const BakeArgs& a) {
   }
 #endif
   if (!a.checkpoint.empty())
-    throw Error("--checkpoint keeps the finished chunks of an MPI run: start prt under mpirun "
-                "(mpirun -np 1 works)" +
-                std::string(kMpiNote));
+    throw Error(
+        "--checkpoint keeps the finished chunks of an MPI run: start prt under mpirun "
+        "(mpirun -np 1 works)" +
+        std::string(kMpiNote));
   BakePlan plan = planOf(a);
   Material& material = plan.recipe.material;
   if (a.pass < 0 && fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
@@ -513,17 +529,19 @@ void runBake(const BakeArgs& a) {
       a.range.empty() ? RowRange{0, mesh.vertexCount()} : parseRange(a.range, mesh.vertexCount());
   std::size_t shard = 0, shards = 1;
   if (!a.shard.empty()) std::tie(shard, shards) = parseShard(a.shard);
-  const bool multiPass = plan.recipe.bounces > 0 &&
-                         std::find(plan.modes.begin(), plan.modes.end(),
-                                   TransferMode::Interreflected) != plan.modes.end();
+  const bool multiPass =
+      plan.recipe.bounces > 0 && std::find(plan.modes.begin(), plan.modes.end(),
+                                           TransferMode::Interreflected) != plan.modes.end();
   if (a.pass >= 0 && (plan.modes.size() != 1 || !multiPass))
-    throw Error("--pass bakes one pass of an interreflected bake with bounces: give one --mode "
-                "interreflected (the other modes bake in one pass: --shard alone splits them)");
+    throw Error(
+        "--pass bakes one pass of an interreflected bake with bounces: give one --mode "
+        "interreflected (the other modes bake in one pass: --shard alone splits them)");
   if (a.pass < 0 && !a.previous.empty()) throw Error("--previous goes with --pass");
   if (a.pass < 0 && !a.shard.empty() && multiPass)
-    throw Error("--shard of an interreflected bake shards its passes one at a time: add --pass 0, "
-                "prt merge the pieces, then --pass 1 --previous MERGED.prtpass, and so on (prt "
-                "bake --help, docs/distributed.md)");
+    throw Error(
+        "--shard of an interreflected bake shards its passes one at a time: add --pass 0, "
+        "prt merge the pieces, then --pass 1 --previous MERGED.prtpass, and so on (prt "
+        "bake --help, docs/distributed.md)");
   if (a.pass < 0 && shards > 1) rows = shardOf(rows, shard, shards);
 
   const auto t1 = std::chrono::steady_clock::now();

@@ -120,8 +120,12 @@ void runMerge(const MergeArgs& a) {
 
 void addMergeCommand(CLI::App& root) {
   auto args = std::make_shared<MergeArgs>();
-  auto* cmd = root.add_subcommand("merge", "Merge split bakes (prt bake --range, --shard) into one, or the pass files of one pass (--pass K --shard I/N)");
-  cmd->add_option("inputs", args->inputs, "Bake pieces (.glb) or pass files (.prtpass), in any order")->required();
+  auto* cmd = root.add_subcommand("merge",
+                                  "Merge split bakes (prt bake --range, --shard) into one, or the "
+                                  "pass files of one pass (--pass K --shard I/N)");
+  cmd->add_option("inputs", args->inputs,
+                  "Bake pieces (.glb) or pass files (.prtpass), in any order")
+      ->required();
   cmd->add_option("-o,--output", args->output, "Output bake file (.glb)")->required();
   cmd->callback([args] { runMerge(*args); });
 }

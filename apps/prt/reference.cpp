@@ -25,6 +25,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "mpi_verb.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
@@ -34,7 +35,6 @@
 #include "prt/render/reference.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transfer/material.hpp"
-#include "mpi_verb.hpp"
 #include "transfer_options.hpp"
 
 namespace prt::cli {

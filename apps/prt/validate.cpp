@@ -14,6 +14,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "mpi_verb.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -25,7 +26,6 @@
 #include "prt/render/metrics.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
-#include "mpi_verb.hpp"
 #include "transfer_options.hpp"
 
 namespace prt::cli {

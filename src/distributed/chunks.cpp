@@ -84,8 +84,8 @@ std::uint64_t readChunk(const std::string& path, std::size_t lo, std::size_t hi,
 
 /// An MPI datatype of the byte blocks [lo·unit, hi·unit) of the given chunks, at their place in
 /// a full table (packed = false) or one after another (packed = true).
-MPI_Datatype blocksType(const std::vector<std::size_t>& chunks, const RowJob& job,
-                        std::size_t unit, bool packed) {
+MPI_Datatype blocksType(const std::vector<std::size_t>& chunks, const RowJob& job, std::size_t unit,
+                        bool packed) {
   std::vector<int> lengths;
   std::vector<MPI_Aint> displs;
   MPI_Aint at = 0;
@@ -96,8 +96,8 @@ MPI_Datatype blocksType(const std::vector<std::size_t>& chunks, const RowJob& jo
     at += static_cast<MPI_Aint>((hi - lo) * unit);
   }
   MPI_Datatype t;
-  MPI_Type_create_hindexed(static_cast<int>(chunks.size()), lengths.data(), displs.data(),
-                           MPI_BYTE, &t);
+  MPI_Type_create_hindexed(static_cast<int>(chunks.size()), lengths.data(), displs.data(), MPI_BYTE,
+                           &t);
   MPI_Type_commit(&t);
   return t;
 }
@@ -180,48 +180,49 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
   long long last = -1;
   std::exception_ptr failure;
   try {
-  for (;;) {
-    long long c;
-    if (root) {
-      c = acquire(0);
-      if (c >= 0) session.setActivity(0, "computing " + describe(static_cast<std::size_t>(c)));
-    } else {
-      long long msg[2] = {static_cast<long long>(base), last};
-      MPI_Send(msg, 2, MPI_LONG_LONG, 0, kTagRequest, MPI_COMM_WORLD);
-      MPI_Request req;
-      MPI_Irecv(&c, 1, MPI_LONG_LONG, 0, kTagReply, MPI_COMM_WORLD, &req);
-      politeWait(&req, nullptr);
+    for (;;) {
+      long long c;
+      if (root) {
+        c = acquire(0);
+        if (c >= 0) session.setActivity(0, "computing " + describe(static_cast<std::size_t>(c)));
+      } else {
+        long long msg[2] = {static_cast<long long>(base), last};
+        MPI_Send(msg, 2, MPI_LONG_LONG, 0, kTagRequest, MPI_COMM_WORLD);
+        MPI_Request req;
+        MPI_Irecv(&c, 1, MPI_LONG_LONG, 0, kTagReply, MPI_COMM_WORLD, &req);
+        politeWait(&req, nullptr);
+      }
+      if (c < 0) break;
+      const std::size_t chunk = static_cast<std::size_t>(c);
+      if (hook.rank == rank && hook.handed++ == hook.chunk) std::_Exit(3);
+      const auto [lo, hi] = rangeOf(chunk);
+      unsigned char* rowsAt;
+      unsigned char* sideAt;
+      if (direct) {
+        rowsAt = rowsOut + lo * job.rowBytes;
+        sideAt = root && job.sideBytes ? sideOut + lo * job.sideBytes : nullptr;
+      } else {
+        packed.resize(packed.size() + (hi - lo) * job.rowBytes);
+        rowsAt = packed.data() + packed.size() - (hi - lo) * job.rowBytes;
+        sideAt = nullptr;
+      }
+      if (!sideAt && job.sideBytes) {
+        sidePacked.resize(sidePacked.size() + (hi - lo) * job.sideBytes);
+        sideAt = sidePacked.data() + sidePacked.size() - (hi - lo) * job.sideBytes;
+      }
+      const std::uint64_t r = job.compute(lo, hi, rowsAt, sideAt);
+      rays += r;
+      if (!job.checkpoint.empty())
+        writeChunk(chunkPath(job.checkpoint, chunk), lo, hi, job, rowsAt, sideAt, r);
+      mine.push_back(chunk);
+      last = c;
+      if (root) {
+        finished.fetch_add(1);
+        if (progress &&
+            !progress(double(finished.load()) / double(std::max<std::size_t>(nchunks, 1))))
+          throw Cancelled();
+      }
     }
-    if (c < 0) break;
-    const std::size_t chunk = static_cast<std::size_t>(c);
-    if (hook.rank == rank && hook.handed++ == hook.chunk) std::_Exit(3);
-    const auto [lo, hi] = rangeOf(chunk);
-    unsigned char* rowsAt;
-    unsigned char* sideAt;
-    if (direct) {
-      rowsAt = rowsOut + lo * job.rowBytes;
-      sideAt = root && job.sideBytes ? sideOut + lo * job.sideBytes : nullptr;
-    } else {
-      packed.resize(packed.size() + (hi - lo) * job.rowBytes);
-      rowsAt = packed.data() + packed.size() - (hi - lo) * job.rowBytes;
-      sideAt = nullptr;
-    }
-    if (!sideAt && job.sideBytes) {
-      sidePacked.resize(sidePacked.size() + (hi - lo) * job.sideBytes);
-      sideAt = sidePacked.data() + sidePacked.size() - (hi - lo) * job.sideBytes;
-    }
-    const std::uint64_t r = job.compute(lo, hi, rowsAt, sideAt);
-    rays += r;
-    if (!job.checkpoint.empty())
-      writeChunk(chunkPath(job.checkpoint, chunk), lo, hi, job, rowsAt, sideAt, r);
-    mine.push_back(chunk);
-    last = c;
-    if (root) {
-      finished.fetch_add(1);
-      if (progress && !progress(double(finished.load()) / double(std::max<std::size_t>(nchunks, 1))))
-        throw Cancelled();
-    }
-  }
   } catch (...) {
     // Rank 0's coordinator still answers the others (with "no more chunks") before this rank
     // reports the failure; a failure elsewhere ends that rank, and the runtime the job.
@@ -295,8 +296,8 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
         detail::politeWaitAll(static_cast<int>(reqs.size()), reqs.data());
         for (MPI_Datatype& t : types) MPI_Type_free(&t);
       } else if (!mine.empty()) {
-        MPI_Datatype t = blocksType(mine, job, unit, !(job.allGather && unit == job.rowBytes &&
-                                                       mineData == rowsOut));
+        MPI_Datatype t = blocksType(
+            mine, job, unit, !(job.allGather && unit == job.rowBytes && mineData == rowsOut));
         MPI_Request req;
         MPI_Isend(mineData, 1, t, 0, tag, MPI_COMM_WORLD, &req);
         politeWait(&req, nullptr);

@@ -16,7 +16,8 @@ namespace prt::distributed::detail {
 /// waits most of the time, used 0.75% of one in a 2-rank bake). A chunk takes tens of
 /// milliseconds, so the ≤ 0.5 ms a request may wait is about 1%. `idle` runs about every 50 ms
 /// while waiting (the root's watch over the other ranks).
-inline void politeWait(MPI_Request* req, MPI_Status* status, const std::function<void()>& idle = {}) {
+inline void politeWait(MPI_Request* req, MPI_Status* status,
+                       const std::function<void()>& idle = {}) {
   using Clock = std::chrono::steady_clock;
   int flag = 0;
   auto next = Clock::now() + std::chrono::milliseconds(50);

@@ -1,6 +1,8 @@
 #include "prt/distributed/run.hpp"
 
 #include <mpi.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -11,6 +13,8 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/parallel.hpp"
+#include "prt/core/units.hpp"
+#include "prt/transport/bake.hpp"
 #include "prt/transport/passes.hpp"
 
 namespace prt::distributed {
@@ -44,6 +48,32 @@ void claimCheckpoint(Session& session, const std::string& folder, const std::str
   session.agree(failure);
 }
 
+std::size_t physicalMemory() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return static_cast<std::size_t>(-1);
+  return static_cast<std::size_t>(pages) * static_cast<std::size_t>(page);
+}
+
+/// `bytes` of zeros in a file-backed shared mapping of a scratch file in `folder`, unlinked at
+/// once (nothing is left behind, whatever happens): pages the kernel writes back to the file
+/// and drops under memory pressure, instead of memory. The pointer lives as long as the keeper.
+std::shared_ptr<void> scratchMapping(const std::string& folder, std::size_t bytes,
+                                     unsigned char** data) {
+  std::string name = (folder.empty() ? std::string(".") : folder) + "/.prt-spill-XXXXXX";
+  const int fd = ::mkstemp(name.data());
+  if (fd < 0) throw Error(folder, "cannot create a scratch file for the transfer");
+  ::unlink(name.c_str());
+  if (::ftruncate(fd, static_cast<off_t>(bytes)) != 0) {
+    ::close(fd);
+    throw Error(folder, "cannot make a scratch file of " + bytesText(bytes) + " for the transfer");
+  }
+  void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  ::close(fd);
+  if (p == MAP_FAILED) throw Error(folder, "cannot map a scratch file for the transfer");
+  *data = static_cast<unsigned char*>(p);
+  return std::shared_ptr<void>(p, [bytes](void* q) { ::munmap(q, bytes); });
+}
+
 int totalThreads() {
   int mine = maxThreads(), total = 0;
   MPI_Allreduce(&mine, &total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
@@ -63,14 +93,32 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
   const auto start = Clock::now();
   std::unique_ptr<BakePasses> plan;
   std::exception_ptr failure;
+  const bool root = session.root();
+  bool spill = false;
   try {
-    plan = std::make_unique<BakePasses>(mesh, occluder, settings);
+    plan = std::make_unique<BakePasses>(mesh, occluder, settings, false);
+    // Memory per rank: the whole-mesh passes every rank holds, and of the last pass rank 0 the
+    // whole transfer (twice for summed vectors: the sum and the pass) unless it spills a
+    // matrix transfer to a mapped file, the others their share.
+    const BakeFootprint fp = bakeFootprint(mesh, settings);
+    const std::size_t have = physicalMemory();
+    const std::size_t limit = options.spillAbove ? options.spillAbove : have / 2;
+    const std::size_t output = plan->resultIsSum() ? 2 * fp.transferBytes : fp.transferBytes;
+    spill = root && !plan->resultIsSum() && !options.spillFolder.empty() &&
+            fp.workingBytes + output > limit;
+    const std::size_t need =
+        fp.workingBytes + (root ? (spill ? 0 : output)
+                                : fp.transferBytes / static_cast<std::size_t>(session.size()));
+    if (need > have / 10 * 9)
+      throw Error(std::string(toString(settings.layout)) + " transfer at " +
+                  std::to_string(settings.bands) + " bands needs " + bytesText(need) +
+                  " on rank " + std::to_string(session.rank()) + ", whose machine has " +
+                  bytesText(have) + " (fewer bands, a vertex range, or a smaller mesh)");
   } catch (...) {
     failure = std::current_exception();
   }
   session.agree(failure);
   const BakePasses& passes = *plan;
-  const bool root = session.root();
   const int count = passes.count();
   const std::size_t n = mesh.vertexCount();
   const TransferShape& result = passes.resultShape();
@@ -117,9 +165,13 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
     const bool last = k == count - 1;
     const RowRange pr = p.shape.rows;
     // The rows: every rank holds a pass the next one reads; the last, rank 0 only.
-    Transfer out = !last || root ? Transfer::zeros(p.shape) : Transfer();
-    unsigned char* outBytes =
-        !last || root ? reinterpret_cast<unsigned char*>(out.mutableValues()) : nullptr;
+    const bool spilled = last && spill;
+    Transfer out = (!last || root) && !spilled ? Transfer::zeros(p.shape) : Transfer();
+    unsigned char* outBytes = (!last || root) && !spilled
+                                  ? reinterpret_cast<unsigned char*>(out.mutableValues())
+                                  : nullptr;
+    std::shared_ptr<void> mapping;
+    if (spilled) mapping = scratchMapping(options.spillFolder, p.shape.denseBytes(), &outBytes);
     std::vector<double> var(root && p.variance ? pr.count : 0);
     const Transfer& input = p.input == PassInput::Sum ? sum : prev;
     RowJob job;
@@ -132,8 +184,8 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
     job.sideBytes = p.variance ? sizeof(double) : 0;
     job.allGather = !last;
     job.compute = [&](std::size_t lo, std::size_t hi, unsigned char* r, unsigned char* side) {
-      return passes.compute(k, RowRange{pr.first + lo, hi - lo}, input,
-                            reinterpret_cast<float*>(r), reinterpret_cast<double*>(side));
+      return passes.compute(k, RowRange{pr.first + lo, hi - lo}, input, reinterpret_cast<float*>(r),
+                            reinterpret_cast<double*>(side));
     };
     if (!options.checkpoint.empty())
       job.checkpoint = options.checkpoint + "/pass-" + std::to_string(k);
@@ -142,9 +194,9 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
       const double lo = done / total, share = weight[static_cast<std::size_t>(k)] / total;
       sub = [&progressFn, lo, share](double f) { return progressFn(lo + share * f); };
     }
-    const JobStats js = runJob(session, job, outBytes,
-                               var.empty() ? nullptr : reinterpret_cast<unsigned char*>(var.data()),
-                               sub);
+    const JobStats js =
+        runJob(session, job, outBytes,
+               var.empty() ? nullptr : reinterpret_cast<unsigned char*>(var.data()), sub);
     rays.push_back(js.rays);
     seconds.push_back(js.seconds);
     rep.names.push_back(job.name);
@@ -155,9 +207,13 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
         variance[v - rows.first] += var[v - pr.first];
     if (keepSum && !(last && !passes.resultIsSum()) && (root || !last))
       passes.accumulate(k, pr, out.values().data(), sumShape.rows, sumData);
+    if (spilled)
+      out = Transfer::dense(p.shape, FloatArray::view(mapping, reinterpret_cast<float*>(outBytes),
+                                                      p.shape.rows.count * p.shape.stride()));
     prev = std::move(out);
     done += weight[static_cast<std::size_t>(k)];
   }
+  rep.spilled = spill;
   rep.bytesReceived = session.bytesReceived();
   if (report) *report = rep;
   if (!root) return Transfer();

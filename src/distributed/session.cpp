@@ -4,12 +4,12 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <fcntl.h>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fcntl.h>
 #include <vector>
 
 #include "mpi_util.hpp"
@@ -153,8 +153,9 @@ Session::Session(const std::string& verb, FatalFn fatal)
     throw Error("MPI: MPI_Init_thread failed");
   if (provided < MPI_THREAD_SERIALIZED) {
     MPI_Finalize();
-    throw Error("MPI: the library gives no MPI_THREAD_SERIALIZED support (rank 0's coordinator "
-                "thread needs it)");
+    throw Error(
+        "MPI: the library gives no MPI_THREAD_SERIALIZED support (rank 0's coordinator "
+        "thread needs it)");
   }
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);

@@ -125,10 +125,12 @@ PassPiece mergePassPieces(std::vector<PassPiece> pieces) {
   std::vector<float> sum(out.sum.begin(), out.sum.end());
   for (std::size_t i = 1; i < pieces.size(); ++i) {
     const PassPiece& p = pieces[i];
-    const std::string who = "merge: the piece starting at vertex " + std::to_string(p.shape.rows.first);
+    const std::string who =
+        "merge: the piece starting at vertex " + std::to_string(p.shape.rows.first);
     if (p.identity != out.identity) throw Error(who + " is of another bake (" + p.identity + ")");
-    if (p.pass != out.pass) throw Error(who + " is of pass " + std::to_string(p.pass) + ", not " +
-                                        std::to_string(out.pass));
+    if (p.pass != out.pass)
+      throw Error(who + " is of pass " + std::to_string(p.pass) + ", not " +
+                  std::to_string(out.pass));
     TransferShape a = p.shape, b = out.shape;
     a.rows = b.rows = {};
     if (!(a == b) || p.sumChannels != out.sumChannels)

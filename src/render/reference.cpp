@@ -648,11 +648,11 @@ void ReferenceRows::compute(std::size_t first, std::size_t count, Rgb* radiance,
       const std::uint64_t seed = deriveSeed(settings.seed, v);
       rays[i] = 0;
       const Estimate est =
-          lanes == 0 ? integrator_->estimate(p, n, view, kd, settings.samples, seed, &rays[i])
-                     : integrator_->estimateBandLimited(
-                           p, n, view, kd, settings.samples, seed,
-                           std::span<BandLimitedEstimate>(bandLimited + i * lanes, lanes),
-                           &rays[i]);
+          lanes == 0
+              ? integrator_->estimate(p, n, view, kd, settings.samples, seed, &rays[i])
+              : integrator_->estimateBandLimited(
+                    p, n, view, kd, settings.samples, seed,
+                    std::span<BandLimitedEstimate>(bandLimited + i * lanes, lanes), &rays[i]);
       radiance[i] = est.mean;
       stdError[i] = est.stdError;
       if (progress) progress->advance(1);

@@ -340,8 +340,8 @@ bool vectorAlbedoGrey(const VectorSetup& setup) {
 
 std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
                                 const VectorSetup& setup, int pass, RowRange rows,
-                                const Transfer* prev, int outChannels, float* out,
-                                double* variance, Progress* progress) {
+                                const Transfer* prev, int outChannels, float* out, double* variance,
+                                Progress* progress) {
   Context ctx{mesh,
               occluder,
               setup.settings,
@@ -361,10 +361,9 @@ std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
     std::vector<float> tmp(static_cast<std::size_t>(nc) * 3);
     for (std::size_t r = b; r < e; ++r) {
       const std::size_t v = rows.first + r;
-      const double var =
-          pass == 0 ? directVertex(ctx, v, out + r * width, acc, tmp)
-                    : bounceVertex(ctx, v, pass, prevData, prevChannels, out + r * width,
-                                   outChannels, false, acc, tmp);
+      const double var = pass == 0 ? directVertex(ctx, v, out + r * width, acc, tmp)
+                                   : bounceVertex(ctx, v, pass, prevData, prevChannels,
+                                                  out + r * width, outChannels, false, acc, tmp);
       if (variance) variance[r] = var;
     }
     if (progress) progress->advance(e - b);

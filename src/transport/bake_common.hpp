@@ -88,8 +88,8 @@ bool vectorAlbedoGrey(const VectorSetup& setup);
 /// the whole mesh's Tᵏ⁻¹, B² × outChannels floats per row).
 std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
                                 const VectorSetup& setup, int pass, RowRange rows,
-                                const Transfer* prev, int outChannels, float* out,
-                                double* variance, Progress* progress);
+                                const Transfer* prev, int outChannels, float* out, double* variance,
+                                Progress* progress);
 /// The statistics of a vector bake from its passes' rays, seconds and summed variances.
 BakeStats vectorStats(const std::vector<std::uint64_t>& rays, const std::vector<double>& seconds,
                       const std::vector<double>& variance);

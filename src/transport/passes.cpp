@@ -74,9 +74,13 @@ struct BakePasses::Impl {
 };
 
 BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings)
+    : BakePasses(mesh, occluder, settings, true) {}
+
+BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+                       bool checkMemory)
     : impl_(std::make_unique<Impl>(mesh, occluder, settings)) {
   validateBake(mesh, settings);
-  checkFootprint(mesh, settings, bakeFootprint(mesh, settings));
+  if (checkMemory) checkFootprint(mesh, settings, bakeFootprint(mesh, settings));
   Impl& m = *impl_;
   m.rows = bakeRows(mesh, settings);
   const RowRange all{0, mesh.vertexCount()};
@@ -161,18 +165,20 @@ const Mesh& BakePasses::mesh() const {
 std::uint64_t BakePasses::compute(int k, RowRange rows, const Transfer& input, float* out,
                                   double* variance, Progress* progress) const {
   const BakePassInfo& p = pass(k);
-  PRT_CHECK(rows.first >= p.shape.rows.first && rows.end() <= p.shape.rows.end(), "rows outside the pass");
+  PRT_CHECK(rows.first >= p.shape.rows.first && rows.end() <= p.shape.rows.end(),
+            "rows outside the pass");
   const Impl& m = *impl_;
   const Transfer* in = nullptr;
   if (p.input != PassInput::None) {
-    PRT_CHECK(input.rows().first == 0 && input.rowCount() == m.mesh.vertexCount(), "a pass input covers the whole mesh");
+    PRT_CHECK(input.rows().first == 0 && input.rowCount() == m.mesh.vertexCount(),
+              "a pass input covers the whole mesh");
     in = &input;
   }
   if (rows.count == 0) return 0;
   const auto k0 = static_cast<std::size_t>(k);
   if (m.vector[k0])
-    return computeVectorRows(m.mesh, m.occluder, *m.vector[k0], k, rows, in, p.shape.channels,
-                             out, variance, progress);
+    return computeVectorRows(m.mesh, m.occluder, *m.vector[k0], k, rows, in, p.shape.channels, out,
+                             variance, progress);
   return computeMatrixRows(m.mesh, m.occluder, *m.matrix[k0], rows, in, out, variance, progress);
 }
 
@@ -250,10 +256,9 @@ std::string bakeIdentity(const Mesh& mesh, const BakeSettings& s) {
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   const RowRange rows = bakeRows(mesh, s);
-  return std::to_string(mesh.vertexCount()) + " vertices, " +
-         std::to_string(mesh.triangleCount()) + " triangles, mesh " + hex + "; " +
-         toString(s.mode) + " " + toString(s.layout) + ", " + std::to_string(s.bands) +
-         " bands, " + std::to_string(s.samples) + " samples, " +
+  return std::to_string(mesh.vertexCount()) + " vertices, " + std::to_string(mesh.triangleCount()) +
+         " triangles, mesh " + hex + "; " + toString(s.mode) + " " + toString(s.layout) + ", " +
+         std::to_string(s.bands) + " bands, " + std::to_string(s.samples) + " samples, " +
          std::to_string(s.effectiveBounces()) + " bounces, seed " + std::to_string(s.seed) + ", " +
          toString(s.sampling) + ", " + s.material.spec() + ", vertices " +
          std::to_string(rows.first) + ".." + std::to_string(rows.end());
@@ -312,8 +317,7 @@ Transfer runBakePasses(const BakePasses& passes, BakeStats* stats, const Progres
     secs.push_back(seconds(t0));
     done += weight[static_cast<std::size_t>(k)];
   }
-  if (stats)
-    *stats = passes.stats(rays, secs, variance, seconds(start), maxThreads());
+  if (stats) *stats = passes.stats(rays, secs, variance, seconds(start), maxThreads());
   return passes.resultIsSum() ? sum : prev;
 }
 

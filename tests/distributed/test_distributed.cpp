@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <iterator>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -84,7 +85,9 @@ class Mpi : public CliTest {
     if (!haveMpirun()) GTEST_SKIP() << "mpirun is not installed (Debian: openmpi-bin)";
     CliTest::SetUp();
   }
-  fs::path dir() const { return dir_; }
+  fs::path dir() const {
+    return dir_;
+  }
 };
 
 constexpr const char* kVector =
@@ -97,7 +100,8 @@ TEST_F(Mpi, BakesOnOneToFourRanksEqualTheSingleProcessFile) {
     const std::string out = "mpi" + std::to_string(ranks) + ".glb";
     // 2 threads per rank on 1 and 3 ranks, 1 on 2 and 4; small chunks on 3, so that every rank
     // gets many and the order they come back in is scrambled.
-    const std::string extra = std::string(ranks % 2 ? " -j 2" : " -j 1") + (ranks == 3 ? " --chunk 37" : "");
+    const std::string extra =
+        std::string(ranks % 2 ? " -j 2" : " -j 1") + (ranks == 3 ? " --chunk 37" : "");
     const Result r = prt(std::string(kVector) + extra + " -o " + out, mpirun(ranks));
     ASSERT_EQ(r.rc, 0) << ranks << " ranks: " << r.err;
     EXPECT_NE(r.err.find(std::to_string(ranks) + " MPI ranks"), std::string::npos) << r.err;
@@ -118,10 +122,18 @@ TEST_F(Mpi, RgbBouncesAndGlossyMatricesEqualTheSingleProcessFile) {
   int ranks = 2;
   for (const std::string& cmd : {rgb, glossy, diffuse}) {
     ASSERT_EQ(prt(cmd + " -q -o one.glb").rc, 0) << cmd;
-    const Result r = prt(cmd + " -q -o mpi.glb", mpirun(ranks));
+    // The matrix bakes as if they did not fit rank 0's memory: it gathers the last pass into a
+    // mapped scratch file beside the output, which the writer streams from.
+    const bool matrix = cmd.find("matrix") != std::string::npos;
+    const Result r = prt(cmd + " -o out/mpi.glb",
+                         std::string(matrix ? "PRT_MPI_SPILL_ABOVE=1 " : "") + mpirun(ranks));
     ASSERT_EQ(r.rc, 0) << cmd << ": " << r.err;
-    EXPECT_EQ(withoutTimings(dir() / "mpi.glb"), withoutTimings(dir() / "one.glb"))
+    EXPECT_EQ(matrix, r.err.find("in a mapped scratch file") != std::string::npos) << r.err;
+    EXPECT_EQ(withoutTimings(dir() / "out/mpi.glb"), withoutTimings(dir() / "one.glb"))
         << cmd << " on " << ranks << " ranks";
+    // Nothing but the bake is left beside it (the scratch file was unlinked when made).
+    const auto files = std::distance(fs::directory_iterator(dir() / "out"), {});
+    EXPECT_EQ(files, 1);
     ++ranks;
   }
 }
@@ -185,9 +197,10 @@ TEST_F(Mpi, AKilledRankFailsTheJobCleanlyAndACheckpointResumesBitIdentical) {
   EXPECT_EQ(withoutTimings(dir() / "out/b.glb"), withoutTimings(dir() / "one.glb"));
 
   // Another bake refuses the folder rather than mixing chunks.
-  const Result other = prt("bake builtin:sphere-plane --mode interreflected --bounces 2 "
-                           "--samples 64 --checkpoint ck -o out/c.glb",
-                           mpirun(2));
+  const Result other =
+      prt("bake builtin:sphere-plane --mode interreflected --bounces 2 "
+          "--samples 64 --checkpoint ck -o out/c.glb",
+          mpirun(2));
   EXPECT_NE(other.rc, 0);
   EXPECT_NE(other.err.find("holds the checkpoint of another run"), std::string::npos) << other.err;
   EXPECT_FALSE(fs::exists(dir() / "out/c.glb"));
@@ -203,14 +216,13 @@ TEST_F(JobArray, ShardsMergeBitExactly) {
   const std::string bake = "bake builtin:cornell --mode shadowed --samples 32 -q";
   ASSERT_EQ(prt(bake + " -o one.glb").rc, 0);
   for (int i = 0; i < 3; ++i)
-    ASSERT_EQ(prt(bake + " --shard " + std::to_string(i) + "/3 -o s" + std::to_string(i) + ".glb")
-                  .rc,
-              0);
+    ASSERT_EQ(
+        prt(bake + " --shard " + std::to_string(i) + "/3 -o s" + std::to_string(i) + ".glb").rc, 0);
   // Slurm's array variables (an array 4-6 here) name the shard as --shard auto reads them.
-  const Result slurm = prt(bake + " --shard auto -o auto.glb",
-                           "SLURM_ARRAY_TASK_ID=5 SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_COUNT=3 ");
+  const Result slurm =
+      prt(bake + " --shard auto -o auto.glb",
+          "SLURM_ARRAY_TASK_ID=5 SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_COUNT=3 ");
   ASSERT_EQ(slurm.rc, 0) << slurm.err;
-  EXPECT_EQ(slurp(dir() / "auto.glb").size(), slurp(dir() / "s1.glb").size());
   expectSameTransfers(dir() / "auto.glb", dir() / "s1.glb");
   ASSERT_EQ(prt("merge s2.glb s0.glb s1.glb -q -o merged.glb").rc, 0);
   expectSameTransfers(dir() / "merged.glb", dir() / "one.glb");

@@ -67,18 +67,21 @@ TEST(PassFile, MergeJoinsPiecesOfOnePassAndRefusesTheRest) {
   const PassPiece m = mergePassPieces({b, a});
   EXPECT_EQ(m.shape.rows, (RowRange{0, 10}));
   EXPECT_EQ(0, std::memcmp(m.values.data(), a.values.data(), a.values.size() * 4));
-  EXPECT_EQ(0, std::memcmp(m.values.data() + a.values.size(), b.values.data(),
-                           b.values.size() * 4));
+  EXPECT_EQ(0,
+            std::memcmp(m.values.data() + a.values.size(), b.values.data(), b.values.size() * 4));
   EXPECT_EQ(m.rays.back(), a.rays.back() + b.rays.back());
   EXPECT_EQ(m.rays.front(), 100u);
-  EXPECT_NE(errorOf([&] { mergePassPieces({a, piece(5, 2, 0)}); }).find("leaves a gap"),
+  EXPECT_NE(errorOf([&] {
+              mergePassPieces({a, piece(5, 2, 0)});
+            }).find("leaves a gap"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { mergePassPieces({a, piece(3, 2, 0)}); }).find("overlaps"),
+  EXPECT_NE(errorOf([&] {
+              mergePassPieces({a, piece(3, 2, 0)});
+            }).find("overlaps"),
             std::string::npos);
   PassPiece other = b;
   other.identity = "another bake";
-  EXPECT_NE(errorOf([&] { mergePassPieces({a, other}); }).find("another bake"),
-            std::string::npos);
+  EXPECT_NE(errorOf([&] { mergePassPieces({a, other}); }).find("another bake"), std::string::npos);
   PassPiece later = b;
   later.pass = 2;
   later.rays.push_back(1);

@@ -82,12 +82,24 @@ TEST(BakePasses, AnySplitOfEveryPassReassemblesIntoTheBake) {
   };
   const Case cases[] = {
       {"shadowed vectors", TransferMode::Shadowed, TransferLayout::Vector, 0, "", {}},
-      {"RGB bounces, a range", TransferMode::Interreflected, TransferLayout::Vector, 2, "",
+      {"RGB bounces, a range",
+       TransferMode::Interreflected,
+       TransferLayout::Vector,
+       2,
+       "",
        {1000, 3000}},
-      {"diffuse-bounce matrices", TransferMode::Interreflected, TransferLayout::Matrix, 2, "",
+      {"diffuse-bounce matrices",
+       TransferMode::Interreflected,
+       TransferLayout::Matrix,
+       2,
+       "",
        {0, 1500}},
-      {"glossy-bounce matrices", TransferMode::Interreflected, TransferLayout::Matrix, 2,
-       "phong?exponent=8&ks=0.3,0.4,0.5", {200, 700}},
+      {"glossy-bounce matrices",
+       TransferMode::Interreflected,
+       TransferLayout::Matrix,
+       2,
+       "phong?exponent=8&ks=0.3,0.4,0.5",
+       {200, 700}},
   };
   for (const Case& c : cases) {
     BakeSettings s;

@@ -26,14 +26,14 @@
 namespace prt::distributed {
 
 struct RowJob {
-  std::string name;               ///< for messages: "pass 1 'bounce 1'"
-  std::size_t rows = 0;           ///< rows [0, rows) of the job
-  std::size_t firstRow = 0;       ///< the global index of row 0 (messages name global rows)
-  std::string rowNoun = "rows";   ///< "vertices"
-  std::size_t chunkRows = 256;    ///< rows per chunk
-  std::size_t rowBytes = 0;       ///< bytes per row that are gathered
-  std::size_t sideBytes = 0;      ///< bytes per row gathered to rank 0 only (error estimates)
-  bool allGather = true;          ///< every rank gets every row; else rank 0 only
+  std::string name;              ///< for messages: "pass 1 'bounce 1'"
+  std::size_t rows = 0;          ///< rows [0, rows) of the job
+  std::size_t firstRow = 0;      ///< the global index of row 0 (messages name global rows)
+  std::string rowNoun = "rows";  ///< "vertices"
+  std::size_t chunkRows = 256;   ///< rows per chunk
+  std::size_t rowBytes = 0;      ///< bytes per row that are gathered
+  std::size_t sideBytes = 0;     ///< bytes per row gathered to rank 0 only (error estimates)
+  bool allGather = true;         ///< every rank gets every row; else rank 0 only
   /// Computes rows [lo, hi) into rows (hi − lo rows of rowBytes) and side (of sideBytes);
   /// returns the rays cast.
   std::function<std::uint64_t(std::size_t lo, std::size_t hi, unsigned char* rows,
@@ -43,15 +43,15 @@ struct RowJob {
 };
 
 struct JobStats {
-  std::uint64_t rays = 0;            ///< all ranks' (on rank 0; this rank's elsewhere)
-  double seconds = 0;                ///< wall time of the job, exchange included
-  double exchangeSeconds = 0;        ///< of which the all-gather or gather
-  std::uint64_t bytesReceived = 0;     ///< rows and side bytes, by this rank
-  std::uint64_t rowBytesAll = 0;       ///< rows received by all ranks together (on rank 0)
-  std::uint64_t sideBytesAll = 0;      ///< side bytes received by rank 0
-  std::size_t chunks = 0;            ///< in the job
-  std::size_t chunksHere = 0;        ///< computed by this rank
-  std::size_t chunksResumed = 0;     ///< loaded from the checkpoint
+  std::uint64_t rays = 0;           ///< all ranks' (on rank 0; this rank's elsewhere)
+  double seconds = 0;               ///< wall time of the job, exchange included
+  double exchangeSeconds = 0;       ///< of which the all-gather or gather
+  std::uint64_t bytesReceived = 0;  ///< rows and side bytes, by this rank
+  std::uint64_t rowBytesAll = 0;    ///< rows received by all ranks together (on rank 0)
+  std::uint64_t sideBytesAll = 0;   ///< side bytes received by rank 0
+  std::size_t chunks = 0;           ///< in the job
+  std::size_t chunksHere = 0;       ///< computed by this rank
+  std::size_t chunksResumed = 0;    ///< loaded from the checkpoint
 };
 
 /// Runs `job` over every rank of `session` (collective). `rows`: rows × rowBytes bytes on every

@@ -25,6 +25,12 @@ namespace prt::distributed {
 struct RunOptions {
   std::size_t chunkRows = 0;  ///< rows per chunk; 0: defaultChunkRows of each pass
   std::string checkpoint;     ///< folder keeping finished chunks ("" for none)
+  /// Where rank 0 may keep the last pass of a matrix bake in a file-backed mapping instead of
+  /// memory (a temporary there, unlinked at once, so nothing is left behind): when the
+  /// transfer and the working buffers would take more than `spillAbove` bytes of its memory.
+  /// "" keeps it in memory always.
+  std::string spillFolder;
+  std::size_t spillAbove = 0;  ///< 0: half of this machine's physical memory
 };
 
 /// Rows per chunk by default: enough work per chunk (tens of milliseconds at 1024 samples) that
@@ -36,15 +42,20 @@ struct RunReport {
   std::vector<std::string> names;
   std::vector<JobStats> jobs;
   std::vector<std::uint64_t> passBytes;  ///< each pass's rows, 4 · rows · stride
-  std::uint64_t bytesReceived = 0;  ///< by rank 0, all jobs
-  int ranks = 1, threads = 0;       ///< threads: summed over the ranks
+  std::uint64_t bytesReceived = 0;       ///< by rank 0, all jobs
+  int ranks = 1, threads = 0;            ///< threads: summed over the ranks
+  bool spilled = false;  ///< rank 0 kept the last pass in a file-backed mapping
 };
 
 /// bake() across the ranks (collective): every rank loads the same mesh and builds its own
 /// occluder; each pass is computed in chunks, all-gathered before the next, the last gathered
 /// to rank 0, which gets the transfer and `stats` (as bake() reports them, `threads` summed
-/// over the ranks); the other ranks get an empty Transfer. Throws what bake() throws, on every
-/// rank alike (Session::agree), and prt::Error when the checkpoint folder holds another bake's.
+/// over the ranks); the other ranks get an empty Transfer. Memory per rank: the passes a later
+/// pass reads, whole (as one process); the last pass, only the rank's own chunks — on rank 0 the
+/// whole transfer, in memory or, beyond RunOptions::spillAbove, in a file-backed mapping that
+/// the bake writer streams from. Throws what bake() throws, on every rank alike
+/// (Session::agree), and prt::Error when the checkpoint folder holds another bake's or a rank
+/// lacks the memory (naming it and the figure).
 Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
               const BakeSettings& settings, const RunOptions& options, BakeStats* stats = nullptr,
               RunReport* report = nullptr, const ProgressFn& progress = {});
@@ -53,7 +64,6 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
 render::ReferenceResult renderReference(Session& session, const Mesh& mesh,
                                         const Occluder& occluder, const envmap::Environment& env,
                                         const render::ReferenceSettings& settings,
-                                        const RunOptions& options,
-                                        const ProgressFn& progress = {});
+                                        const RunOptions& options, const ProgressFn& progress = {});
 
 }  // namespace prt::distributed

@@ -54,6 +54,10 @@ class BakePasses {
   /// Validates the mesh and the settings (the errors bake() throws) and prepares every pass
   /// (sample tables, kernels). `mesh` and `occluder` must outlive it.
   BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings);
+  /// The same; `checkMemory` false leaves the memory check (bakeFootprint against this
+  /// machine's memory) to a driver that holds less than one process does (an MPI rank).
+  BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+             bool checkMemory);
   ~BakePasses();
   BakePasses(const BakePasses&) = delete;
   BakePasses& operator=(const BakePasses&) = delete;
