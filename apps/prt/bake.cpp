@@ -32,6 +32,7 @@
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transport/bake.hpp"
 #include "prt/transport/passes.hpp"
+#include "mpi_verb.hpp"
 #include "transfer_options.hpp"
 #if PRT_HAVE_MPI
 #include <iostream>
@@ -485,6 +486,8 @@ void runPassBake(const BakeArgs& a, BakeFile& file, const Occluder& occluder, Ba
 }
 
 void runBake(const BakeArgs& a) {
+  // A job array's tasks are separate by design (--shard); other copies must join over MPI.
+  if (a.shard.empty()) refuseUnjoinedCopies("prt bake");
 #if PRT_HAVE_MPI
   if (distributed::launchedByMpi()) {
     runBakeMpi(a);

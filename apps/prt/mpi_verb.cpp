@@ -1,5 +1,6 @@
 #include "mpi_verb.hpp"
 
+#include <cstdlib>
 #include <iostream>
 
 #include "cli.hpp"
@@ -7,7 +8,29 @@
 
 namespace prt::cli {
 
+void refuseUnjoinedCopies(const std::string& verb) {
+  const auto count = [](const char* name) {
+    const char* v = std::getenv(name);
+    return v ? std::atol(v) : 0L;
+  };
+  bool mpi = false;
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    mpi = mpi || std::getenv(v) != nullptr;
+#if PRT_HAVE_MPI
+  if (!mpi && count("SLURM_STEP_NUM_TASKS") > 1)
+    throw Error(verb + " was started as " + std::to_string(count("SLURM_STEP_NUM_TASKS")) +
+                " srun tasks without MPI wire-up (no PMI in the environment): each would do the "
+                "whole work; use srun --mpi=pmix (or pmi2), or --shard for job arrays");
+#else
+  if ((mpi && count("OMPI_COMM_WORLD_SIZE") != 1) || count("SLURM_STEP_NUM_TASKS") > 1)
+    throw Error("this prt was built without MPI, so the copies a launcher started cannot share "
+                "the work (each would do all of it): rebuild with Open MPI installed "
+                "(scripts/setup.sh), or use --shard for job arrays");
+#endif
+}
+
 MpiVerb::MpiVerb(const std::string& verb) {
+  refuseUnjoinedCopies(verb);
 #if PRT_HAVE_MPI
   if (!distributed::launchedByMpi()) return;
   session_ = std::make_unique<distributed::Session>(verb, [verb](const std::string& line) {

@@ -19,6 +19,12 @@
 
 namespace prt::cli {
 
+/// Throws prt::Error when this process is one of several copies that cannot join into one job:
+/// started by srun with several tasks but no MPI wire-up (no PMI in the environment), or by an
+/// MPI launcher when this prt was built without MPI — each copy would do the whole work and
+/// write the same output.
+void refuseUnjoinedCopies(const std::string& verb);
+
 class MpiVerb {
  public:
   /// Starts an MPI session when launched by an MPI launcher; the other ranks go quiet.
