@@ -10,6 +10,8 @@ packages=(
   libembree-dev libtbb-dev libeigen3-dev libspectra-dev
   libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libopenexr-dev zlib1g-dev
   libcli11-dev libfmt-dev
+  # MPI (mpirun -np N prt bake ...; docs/distributed.md): Open MPI, found by find_package(MPI)
+  openmpi-bin libopenmpi-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # viewer (prt view): window, UI, GL loader; EGL + Mesa (llvmpipe) headless; Xvfb for its window test
   libglfw3-dev libimgui-dev libepoxy-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri xvfb xauth

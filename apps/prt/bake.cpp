@@ -4,24 +4,41 @@
 //   prt bake builtin:sphere-plane --mode unshadowed --mode shadowed -o both.glb
 //   prt bake scene.obj --mode shadowed --range 0:50000 -o part0.glb   (split bakes; see
 //                                                                       docs/formats-bake.md)
+//   mpirun -np 8 prt bake bunny.obj --mode interreflected -o bunny.glb  (one bake across MPI
+//                                                                       ranks; docs/distributed.md)
+//   prt bake scene.obj --mode shadowed --shard 3/16 -o part3.glb      (job arrays, no MPI)
+//   prt bake scene.obj --mode interreflected --pass 1 --previous pass0.prtpass --shard 3/16
+//            -o pass1-3.prtpass                                        (a job array's bounces)
 
 #include <fmt/format.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <tuple>
 
 #include "cli.hpp"
 #include "guard.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/parallel.hpp"
 #include "prt/core/units.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/pass_file.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transport/bake.hpp"
+#include "prt/transport/passes.hpp"
+#include "mpi_verb.hpp"
 #include "transfer_options.hpp"
+#if PRT_HAVE_MPI
+#include <iostream>
+
+#include "prt/distributed/run.hpp"
+#endif
 
 namespace prt::cli {
 
@@ -40,7 +57,64 @@ struct BakeArgs {
   std::string material;
   std::string range;
   std::string output;
+  // Distributed and split bakes (docs/distributed.md).
+  std::string checkpoint;  ///< MPI: folder of finished chunks
+  std::size_t chunk = 0;   ///< MPI: rows per chunk (0: the default)
+  std::string shard;       ///< I/N, auto, auto/N: one shard of the work (job arrays)
+  int pass = -1;           ///< one pass of a multi-pass bake (job arrays)
+  std::string previous;    ///< the merged pass file of pass K − 1
 };
+
+/// --shard: "I/N" (0 ≤ I < N), or "auto" / "auto/N" with I (and N) from the scheduler:
+/// SLURM_ARRAY_TASK_ID − SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_COUNT (Slurm job arrays), or
+/// JOB_COMPLETION_INDEX (Kubernetes indexed Jobs, which do not say N: give auto/N).
+std::pair<std::size_t, std::size_t> parseShard(const std::string& s) {
+  const auto number = [&](const std::string& t, const char* what) -> std::size_t {
+    if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos)
+      throw Error(fmt::format("--shard {}: {} '{}' is not a count", s, what, t));
+    return std::stoull(t);
+  };
+  const auto slash = s.find('/');
+  const std::string head = s.substr(0, slash);
+  std::size_t i = 0, n = 0;
+  if (slash != std::string::npos) n = number(s.substr(slash + 1), "N");
+  if (head == "auto") {
+    const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+    const char* k8s = std::getenv("JOB_COMPLETION_INDEX");
+    if (id) {
+      const char* lo = std::getenv("SLURM_ARRAY_TASK_MIN");
+      const std::size_t first = lo ? number(lo, "SLURM_ARRAY_TASK_MIN") : 0;
+      i = number(id, "SLURM_ARRAY_TASK_ID");
+      if (i < first) throw Error("--shard auto: SLURM_ARRAY_TASK_ID is below SLURM_ARRAY_TASK_MIN");
+      i -= first;
+      if (!n)
+        if (const char* c = std::getenv("SLURM_ARRAY_TASK_COUNT"))
+          n = number(c, "SLURM_ARRAY_TASK_COUNT");
+    } else if (k8s) {
+      i = number(k8s, "JOB_COMPLETION_INDEX");
+    } else {
+      throw Error(
+          "--shard auto: neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set "
+          "(give --shard I/N)");
+    }
+    if (!n)
+      throw Error(
+          "--shard auto: the shard count is unknown (SLURM_ARRAY_TASK_COUNT is not set; "
+          "give --shard auto/N)");
+  } else {
+    if (slash == std::string::npos) throw Error("--shard '" + s + "': expected I/N, e.g. 3/16");
+    i = number(head, "I");
+  }
+  if (n == 0 || i >= n)
+    throw Error(fmt::format("--shard {}: must satisfy 0 <= I < N (got {}/{})", s, i, n));
+  return {i, n};
+}
+
+/// Shard i of n of rows: [first + ⌊i·count/n⌋, first + ⌊(i+1)·count/n⌋).
+RowRange shardOf(RowRange rows, std::size_t i, std::size_t n) {
+  const std::size_t lo = rows.count * i / n, hi = rows.count * (i + 1) / n;
+  return {rows.first + lo, hi - lo};
+}
 
 Rgb parseAlbedo(const std::string& s) {
   float r, g, b;
@@ -170,10 +244,264 @@ void refuseNonFinite(const Mesh& mesh, const BakedTransfer& t) {
                               toString(t.mode()), t.transfer.rows().first + k / stride));
 }
 
+#if PRT_HAVE_MPI
+constexpr const char* kMpiNote = "";
+
+/// `mpirun -np N prt bake ...`: one bake across the ranks (prt/distributed/run.hpp). Every rank
+/// loads the scene and builds its BVH; rank 0 reports and writes the file. Failures that every
+/// rank meets (a bad option, a missing file) are agreed on and reported once, by rank 0.
+void runBakeMpi(const BakeArgs& a) {
+  distributed::Session session("prt bake", [](const std::string& line) {
+    std::cerr << "prt bake: error: " << line << std::endl;
+  });
+  const bool root = session.root();
+  if (!root) globals().quiet = globals().silent = true;
+  try {
+    BakePlan plan;
+    BakeFile file;
+    RowRange rows;
+    std::unique_ptr<Occluder> occluder;
+    std::exception_ptr failure;
+    try {
+      if (!a.shard.empty() || a.pass >= 0)
+        throw Error(
+            "--shard and --pass split a bake for job arrays without MPI; under mpirun the "
+            "ranks share the work (drop them)");
+      plan = planOf(a);
+      if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
+        throw Error(a.output + ": the bake file must end in .glb");
+      if (root) {
+        std::vector<NamedPath> inputs;
+        for (const std::string& in : a.inputs) inputs.push_back({"input", in});
+        checkOutputs({{"-o", a.output}}, inputs);
+        checkWritable(a.output);
+      }
+      LoadReport loadReport;
+      file.mesh = loadScene(a.inputs, &loadReport);
+      for (const auto& w : loadReport.warnings) warn(w);
+      Material& material = plan.recipe.material;
+      if (a.material.empty() && file.mesh.gloss) {
+        const std::optional<Rgb> kd = material.diffuse;
+        material = materialFromGloss(*file.mesh.gloss);
+        material.diffuse = kd;
+      }
+      if (material.diffuse) file.mesh.albedo.assign(file.mesh.vertexCount(), *material.diffuse);
+      rows = a.range.empty() ? RowRange{0, file.mesh.vertexCount()}
+                             : parseRange(a.range, file.mesh.vertexCount());
+      occluder = makeEmbreeOccluder(file.mesh);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    session.agree(failure);
+    const Mesh& mesh = file.mesh;
+    info(fmt::format("{}: {} vertices, {} triangles; {} MPI ranks x {} threads", mesh.source,
+                     mesh.vertexCount(), mesh.triangleCount(), session.size(), maxThreads()));
+    distributed::RunOptions options;
+    options.chunkRows = a.chunk;
+    options.checkpoint = a.checkpoint;
+    // Rank 0 keeps a matrix transfer that would not fit its memory in a mapped scratch file
+    // beside the output (PRT_MPI_SPILL_ABOVE=BYTES lowers the threshold, for tests).
+    if (!isStandardOutput(a.output)) {
+      const std::string parent = std::filesystem::path(a.output).parent_path().string();
+      options.spillFolder = parent.empty() ? "." : parent;
+    }
+    if (const char* v = std::getenv("PRT_MPI_SPILL_ABOVE")) options.spillAbove = std::stoull(v);
+    for (std::size_t m = 0; m < plan.modes.size(); ++m) {
+      BakeSettings s;
+      static_cast<BakeRecipe&>(s) = plan.recipe;
+      s.mode = plan.modes[m];
+      s.bounces = s.effectiveBounces();
+      s.layout = plan.layout;
+      s.bands = a.bands;
+      s.rows = rows;
+      if (root) announce(mesh, s, a.output);
+      distributed::RunOptions o = options;
+      if (!o.checkpoint.empty()) o.checkpoint += std::string("/") + toString(s.mode);
+      BakedTransfer t;
+      t.recipe = s;
+      distributed::RunReport rep;
+      t.transfer = distributed::bake(
+          session, mesh, *occluder, s, o, &t.stats, &rep,
+          root ? progressBar(std::string("bake ") + toString(s.mode)) : ProgressFn{});
+      if (!root) continue;
+      if (rep.spilled)
+        info(fmt::format("{}: rank 0 kept the transfer ({}) in a mapped scratch file beside the "
+                         "output, not in memory",
+                         toString(s.mode), bytesText(bakeFootprint(mesh, s).transferBytes)));
+      for (std::size_t j = 0; j < rep.jobs.size(); ++j) {
+        const distributed::JobStats& js = rep.jobs[j];
+        // What moved: each rank receives the rows it did not compute, (N − 1) × the pass's
+        // bytes over all ranks for an all-gather (rank 0 alone, its share, for the last pass);
+        // rank 0 also receives each row's variance (8 B) for the error estimate.
+        info(fmt::format(
+            "{}: {} chunks ({} on rank 0{}), {:.3f} s, exchange {:.3f} s; rows "
+            "received {} B ({:.2f} x the pass's {} B), variances {} B",
+            rep.names[j], js.chunks, js.chunksHere,
+            js.chunksResumed ? fmt::format(", {} from the checkpoint", js.chunksResumed)
+                             : std::string(),
+            js.seconds, js.exchangeSeconds, js.rowBytesAll,
+            double(js.rowBytesAll) / double(std::max<std::uint64_t>(rep.passBytes[j], 1)),
+            rep.passBytes[j], js.sideBytesAll));
+      }
+      report(t);
+      refuseNonFinite(mesh, t);
+      file.transfers.push_back(std::move(t));
+    }
+    if (root) {
+      writeBake(a.output, file);
+      info(fmt::format("wrote {} ({}{} vertices {}..{})", a.output,
+                       file.complete() ? "" : "partial: ", rows.count, rows.first, rows.end() - 1));
+    }
+  } catch (const distributed::AgreedFailure&) {
+    throw QuietFailure();
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    if (root) throw;
+    if (!session.agreedOnce()) throw QuietFailure();
+    throw Error("rank " + std::to_string(session.rank()) + ": " + e.what());
+  }
+}
+#else
+constexpr const char* kMpiNote =
+    "; this prt was built without MPI (scripts/setup.sh installs Open MPI; rebuild)";
+#endif
+
+/// `prt bake --pass K`: rows of one pass of a multi-pass bake, reading the merged pass K − 1.
+/// The passes before the last write pass files; the last writes a bake piece, as --range does.
+void runPassBake(const BakeArgs& a, BakeFile& file, const Occluder& occluder, BakeSettings s,
+                 std::size_t shard, std::size_t shards) {
+  const Mesh& mesh = file.mesh;
+  const auto t0 = std::chrono::steady_clock::now();
+  const BakePasses passes(mesh, occluder, s);
+  const int count = passes.count(), k = a.pass;
+  if (k < 0 || k >= count)
+    throw Error(fmt::format("--pass {}: this bake has passes 0..{}", k, count - 1));
+  const BakePassInfo& p = passes.pass(k);
+  const bool last = k == count - 1;
+  const std::string ext = fileExtension(a.output);
+  if (!last && ext != "prtpass")
+    throw Error(a.output, fmt::format("pass {} of {} ('{}') is written to a pass file (.prtpass); "
+                                      "the last pass, {}, writes the bake",
+                                      k, count, p.name, count - 1));
+  if (last && ext != "glb") throw Error(a.output, "the last pass writes the bake (.glb)");
+  const std::string identity = bakeIdentity(mesh, s);
+  PassPiece prev;
+  if (k > 0) {
+    if (a.previous.empty())
+      throw Error(
+          fmt::format("--pass {} reads pass {}: give --previous PASS{}.prtpass (its "
+                      "merged pieces)",
+                      k, k - 1, k - 1));
+    prev = readPassPiece(a.previous);
+    if (prev.identity != identity)
+      throw Error(a.previous, "is a pass of another bake (" + prev.identity + ")");
+    if (prev.pass != k - 1)
+      throw Error(a.previous, fmt::format("is pass {}, not {}", prev.pass, k - 1));
+    if (!(prev.shape.rows == passes.pass(k - 1).shape.rows))
+      throw Error(a.previous,
+                  fmt::format("holds vertices {}..{} of pass {} only: merge all its pieces first",
+                              prev.shape.rows.first, prev.shape.rows.end() - 1, k - 1));
+  } else if (!a.previous.empty()) {
+    throw Error("--previous: pass 0 reads no earlier pass");
+  }
+  const RowRange rows = shardOf(p.shape.rows, shard, shards);
+  info(fmt::format("pass {} of {} ('{}'): vertices {}..{} (shard {} of {})", k, count, p.name,
+                   rows.first, rows.end() - 1, shard, shards));
+  // What pass k reads, over the whole mesh: the previous pass, or the sum of those before.
+  Transfer input;
+  if (p.input == PassInput::Previous)
+    input = Transfer::dense(prev.shape, prev.values);
+  else if (p.input == PassInput::Sum) {
+    TransferShape sh = prev.shape;
+    sh.layout = TransferLayout::Vector;
+    sh.channels = prev.sumChannels;
+    input = Transfer::dense(sh, prev.sum);
+  }
+  TransferShape shape = p.shape;
+  shape.rows = rows;
+  Transfer out = Transfer::zeros(shape);
+  std::vector<double> var(rows.count, 0.0);
+  Progress progress(progressBar(std::string("bake ") + toString(s.mode)), rows.count);
+  const std::uint64_t rays = passes.compute(k, rows, input, out.mutableValues(),
+                                            p.variance ? var.data() : nullptr, &progress);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // The variance summed over the passes so far, in pass order.
+  std::vector<double> variance(rows.count, 0.0);
+  for (std::size_t r = 0; r < rows.count; ++r) {
+    if (k > 0) variance[r] = prev.variance[rows.first - prev.shape.rows.first + r];
+    if (p.variance) variance[r] += var[r];
+  }
+  std::vector<std::uint64_t> raysPer = k > 0 ? prev.rays : std::vector<std::uint64_t>{};
+  std::vector<double> secondsPer = k > 0 ? prev.seconds : std::vector<double>{};
+  raysPer.push_back(rays);
+  secondsPer.push_back(secs);
+  // The running sum over these rows: the previous one's, plus this pass.
+  const bool summing = passes.resultIsSum() || passes.needsFullSum();
+  std::vector<float> sum;
+  if (summing && !(last && !passes.resultIsSum())) {
+    const std::size_t width = static_cast<std::size_t>(p.shape.coeffs()) * passes.sumChannels();
+    sum.assign(rows.count * width, 0.0f);
+    if (k > 0)
+      std::copy_n(prev.sum.data() + (rows.first - prev.shape.rows.first) * width, sum.size(),
+                  sum.data());
+    passes.accumulate(k, rows, out.values().data(), rows, sum.data());
+  }
+  if (!last) {
+    PassPiece piece;
+    piece.identity = identity;
+    piece.pass = k;
+    piece.passes = count;
+    piece.name = p.name;
+    piece.shape = shape;
+    piece.values = out.values();
+    piece.sumChannels = sum.empty() ? 0 : passes.sumChannels();
+    piece.sum = FloatArray(std::move(sum));
+    piece.variance = std::move(variance);
+    piece.rays = std::move(raysPer);
+    piece.seconds = std::move(secondsPer);
+    writePassPiece(a.output, piece);
+    info(fmt::format("wrote {} (pass {} of {}, vertices {}..{}, {} rays)", a.output, k, count,
+                     rows.first, rows.end() - 1, rays));
+    return;
+  }
+  // The last pass: a bake piece of these rows. The earlier passes' rays and seconds are the
+  // whole passes': shard 0 carries them, so that merging the pieces counts them once.
+  if (shard != 0)
+    for (std::size_t j = 0; j + 1 < raysPer.size(); ++j) raysPer[j] = 0, secondsPer[j] = 0;
+  BakedTransfer t;
+  s.rows = rows;
+  t.recipe = s;
+  TransferShape rs = passes.resultShape();
+  rs.rows = rows;
+  t.transfer = passes.resultIsSum() ? Transfer::dense(rs, FloatArray(std::move(sum))) : out;
+  t.stats = passes.stats(raysPer, secondsPer, variance, secs, maxThreads());
+  t.stats.vertices = rows.count;
+  report(t);
+  refuseNonFinite(mesh, t);
+  file.transfers.push_back(std::move(t));
+  writeBake(a.output, file);
+  info(fmt::format("wrote {} (last pass, {}{} vertices {}..{})", a.output,
+                   file.complete() ? "" : "partial: ", rows.count, rows.first, rows.end() - 1));
+}
+
 void runBake(const BakeArgs& a) {
+  // A job array's tasks are separate by design (--shard); other copies must join over MPI.
+  if (a.shard.empty()) refuseUnjoinedCopies("prt bake");
+#if PRT_HAVE_MPI
+  if (distributed::launchedByMpi()) {
+    runBakeMpi(a);
+    return;
+  }
+#endif
+  if (!a.checkpoint.empty())
+    throw Error(
+        "--checkpoint keeps the finished chunks of an MPI run: start prt under mpirun "
+        "(mpirun -np 1 works)" +
+        std::string(kMpiNote));
   BakePlan plan = planOf(a);
   Material& material = plan.recipe.material;
-  if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
+  if (a.pass < 0 && fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
     throw Error(a.output + ": the bake file must end in .glb");
   std::vector<NamedPath> inputs;
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});
@@ -200,8 +528,24 @@ void runBake(const BakeArgs& a) {
   const Mesh& mesh = file.mesh;
   const double loadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const RowRange rows =
+  RowRange rows =
       a.range.empty() ? RowRange{0, mesh.vertexCount()} : parseRange(a.range, mesh.vertexCount());
+  std::size_t shard = 0, shards = 1;
+  if (!a.shard.empty()) std::tie(shard, shards) = parseShard(a.shard);
+  const bool multiPass =
+      plan.recipe.bounces > 0 && std::find(plan.modes.begin(), plan.modes.end(),
+                                           TransferMode::Interreflected) != plan.modes.end();
+  if (a.pass >= 0 && (plan.modes.size() != 1 || !multiPass))
+    throw Error(
+        "--pass bakes one pass of an interreflected bake with bounces: give one --mode "
+        "interreflected (the other modes bake in one pass: --shard alone splits them)");
+  if (a.pass < 0 && !a.previous.empty()) throw Error("--previous goes with --pass");
+  if (a.pass < 0 && !a.shard.empty() && multiPass)
+    throw Error(
+        "--shard of an interreflected bake shards its passes one at a time: add --pass 0, "
+        "prt merge the pieces, then --pass 1 --previous MERGED.prtpass, and so on (prt "
+        "bake --help, docs/distributed.md)");
+  if (a.pass < 0 && shards > 1) rows = shardOf(rows, shard, shards);
 
   const auto t1 = std::chrono::steady_clock::now();
   const auto occluder = makeEmbreeOccluder(mesh);
@@ -211,6 +555,16 @@ void runBake(const BakeArgs& a) {
                    mesh.source, mesh.vertexCount(), mesh.triangleCount(), mesh.parts.size(),
                    seconds(loadSeconds), seconds(bvhSeconds)));
 
+  if (a.pass >= 0) {
+    BakeSettings s;
+    static_cast<BakeRecipe&>(s) = plan.recipe;
+    s.mode = plan.modes.front();
+    s.layout = plan.layout;
+    s.bands = a.bands;
+    s.rows = rows;
+    runPassBake(a, file, *occluder, s, shard, shards);
+    return;
+  }
   for (TransferMode mode : plan.modes) {
     BakeSettings s;
     static_cast<BakeRecipe&>(s) = plan.recipe;
@@ -269,7 +623,40 @@ void addBakeCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--range", args->range,
                   "Bake only vertices FIRST:END (split bakes; merge later)");
-  cmd->add_option("-o,--output", args->output, "Output bake file (.glb)")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "Output bake file (.glb); with --pass K before the last, a pass file "
+                  "(.prtpass)")
+      ->required();
+  cmd->add_option("--checkpoint", args->checkpoint,
+                  "MPI: keep finished chunks in this folder; a rerun with the same settings "
+                  "resumes from them");
+  cmd->add_option("--chunk", args->chunk,
+                  "MPI: vertices per chunk handed to a rank (default 256; matrices 1024/B^2)")
+      ->check(unsignedInt(1u << 30));
+  cmd->add_option("--shard", args->shard,
+                  "Job arrays: bake shard I of N (I/N; auto: from SLURM_ARRAY_TASK_ID and "
+                  "_COUNT, or JOB_COMPLETION_INDEX with auto/N); prt merge joins the pieces");
+  cmd->add_option("--pass", args->pass,
+                  "Job arrays: bake pass K only of an interreflected bake (0: direct; the last "
+                  "writes the bake), its shard with --shard")
+      ->check(intRange(0, 64));
+  cmd->add_option("--previous", args->previous,
+                  "With --pass K >= 1: the merged pass file of pass K-1");
+  cmd->footer(R"(On a cluster (docs/distributed.md):
+  mpirun --hostfile hosts -np 4 --bind-to none prt bake scene.obj --mode interreflected -j 32 \
+         --checkpoint /shared/ckpt -o scene.glb
+    hosts: one line per node, "node01 slots=1": one rank per node (or socket), -j its cores.
+  Slurm, a batch script (sbatch bake.sbatch):
+    #SBATCH --nodes=8 --ntasks-per-node=1 --cpus-per-task=32 --mem=16G
+    srun --mpi=pmix prt bake scene.obj --mode interreflected -j "$SLURM_CPUS_PER_TASK" -o scene.glb
+  One bake across MPI ranks, bit-identical to one process: every rank loads the scene and builds
+  its BVH; rank 0 hands out chunks of vertices (--chunk) to the ranks, whose threads share each
+  chunk; each bounce pass is all-gathered; rank 0 writes the file. Memory per rank: the mesh,
+  its BVH and two full-mesh passes (rank 0 also the output), as one process. A rank that dies
+  ends the job with one line naming it and its chunk, no output; --checkpoint DIR resumes.
+  prt reference and prt validate run across ranks the same way.
+  Job arrays without MPI: --shard I/N (or auto) per task, then prt merge; interreflected bakes
+  shard one --pass at a time, each reading the merged one before (--previous PASS.prtpass).)");
   cmd->callback([args] { runBake(*args); });
 }
 

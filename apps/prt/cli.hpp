@@ -5,6 +5,7 @@
 // as "prt VERB: error: MESSAGE".
 
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <string>
 
 #include "prt/core/progress.hpp"
@@ -16,8 +17,15 @@ struct Globals {
   int threads = 0;       ///< -j/--threads, 0 = all cores
   bool quiet = false;    ///< -q
   bool verbose = false;  ///< -v
+  bool silent = false;   ///< no warnings either (the MPI ranks other than rank 0)
 };
 Globals& globals();
+
+/// A failure another process reports (rank 0 of an MPI job, for every rank): main exits with
+/// status 1 and prints nothing.
+struct QuietFailure : std::exception {
+  const char* what() const noexcept override { return "failure reported elsewhere"; }
+};
 
 /// A progress callback drawing "label [#####     ] 42%" on stderr when stderr is a terminal
 /// (and not quiet); returns false (cancel) after Ctrl-C.

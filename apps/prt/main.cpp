@@ -30,6 +30,7 @@ void info(const std::string& line) {
 }
 
 void warn(const std::string& line) {
+  if (globals().silent) return;
   std::cerr << "prt: warning: " << oneLine(line) << '\n';
 }
 
@@ -170,6 +171,8 @@ int main(int argc, char** argv) {
     }
     std::cerr << verb << ": error: " << oneLine(e.what()) << " (see " << verb << " --help)\n";
     return e.get_exit_code();
+  } catch (const QuietFailure&) {
+    return 1;
   } catch (const prt::Cancelled&) {
     std::cerr << "\nprt: cancelled\n";
     return 130;

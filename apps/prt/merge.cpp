@@ -18,6 +18,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/io/bake_merge.hpp"
+#include "prt/io/pass_file.hpp"
 
 namespace prt::cli {
 
@@ -28,7 +29,49 @@ struct MergeArgs {
   std::string output;
 };
 
+/// Pass files (prt bake --pass K --shard I/N) merge into one pass file of the whole pass.
+void runMergePasses(const MergeArgs& a) {
+  if (fileExtension(a.output) != "prtpass")
+    throw Error(a.output + ": merged pass files make a pass file (.prtpass)");
+  std::vector<NamedPath> inputs;
+  for (const std::string& in : a.inputs) inputs.push_back({"input", in});
+  checkOutputs({{"-o", a.output}}, inputs);
+  checkWritable(a.output);
+  std::vector<std::pair<PassPiece, std::string>> pieces;
+  for (const std::string& in : a.inputs) pieces.emplace_back(readPassPiece(in), in);
+  std::stable_sort(pieces.begin(), pieces.end(), [](const auto& x, const auto& y) {
+    return x.first.shape.rows.first < y.first.shape.rows.first;
+  });
+  PassPiece merged = std::move(pieces.front().first);
+  for (std::size_t k = 1; k < pieces.size(); ++k) {
+    std::vector<PassPiece> two;
+    two.push_back(std::move(merged));
+    two.push_back(std::move(pieces[k].first));
+    try {
+      merged = mergePassPieces(std::move(two));
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      std::string msg = e.what();
+      if (msg.rfind("merge: ", 0) == 0) msg.erase(0, 7);
+      throw Error(pieces[k].second, msg);
+    }
+  }
+  writePassPiece(a.output, merged);
+  info(fmt::format("wrote {} (pass {} of {} '{}', vertices {}..{})", a.output, merged.pass,
+                   merged.passes, merged.name, merged.shape.rows.first,
+                   merged.shape.rows.end() - 1));
+}
+
 void runMerge(const MergeArgs& a) {
+  const bool passFiles =
+      !a.inputs.empty() && std::all_of(a.inputs.begin(), a.inputs.end(), [](const std::string& in) {
+        return fileExtension(in) == "prtpass";
+      });
+  if (passFiles) {
+    runMergePasses(a);
+    return;
+  }
   if (a.inputs.size() < 2) throw Error("prt merge needs at least two bake files");
   if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
     throw Error(a.output + ": the bake file must end in .glb");
@@ -77,8 +120,12 @@ void runMerge(const MergeArgs& a) {
 
 void addMergeCommand(CLI::App& root) {
   auto args = std::make_shared<MergeArgs>();
-  auto* cmd = root.add_subcommand("merge", "Merge split bakes (prt bake --range) into one");
-  cmd->add_option("inputs", args->inputs, "Bake pieces (.glb), in any order")->required();
+  auto* cmd = root.add_subcommand("merge",
+                                  "Merge split bakes (prt bake --range, --shard) into one, or the "
+                                  "pass files of one pass (--pass K --shard I/N)");
+  cmd->add_option("inputs", args->inputs,
+                  "Bake pieces (.glb) or pass files (.prtpass), in any order")
+      ->required();
   cmd->add_option("-o,--output", args->output, "Output bake file (.glb)")->required();
   cmd->callback([args] { runMerge(*args); });
 }

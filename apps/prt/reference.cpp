@@ -25,6 +25,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "mpi_verb.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
@@ -89,7 +90,7 @@ std::string toBinary(const render::ReferenceResult& r) {
   return out;
 }
 
-void runReference(const ReferenceArgs& a) {
+void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   if (a.samples < 1) throw Error("--samples must be at least 1");
   const std::string ext = isStandardOutput(a.output) ? "json" : fileExtension(a.output);
   if (ext != "json" && ext != "bin") throw Error(a.output, "output must be .json or .bin");
@@ -127,7 +128,8 @@ void runReference(const ReferenceArgs& a) {
   rs.heuristic = mis;
   rs.vertices = render::vertexSubset(file.mesh.vertexCount(), a.vertices, a.seed);
   const render::ReferenceResult r =
-      render::renderReference(file.mesh, *occluder, env.env, rs, progressBar("reference"));
+      mpi.reference(file.mesh, *occluder, env.env, rs, progressBar("reference"));
+  if (!mpi.root()) return;
   for (std::size_t i = 0; i < r.radiance.size(); ++i)
     for (int c = 0; c < 3; ++c)
       if (!std::isfinite(r.radiance[i][c]) || !std::isfinite(r.stdError[i][c]))
@@ -143,6 +145,11 @@ void runReference(const ReferenceArgs& a) {
                 a.output.c_str(), r.vertices.size(), a.samples,
                 static_cast<unsigned long long>(r.rays), r.seconds);
   info(line);
+}
+
+void runReference(const ReferenceArgs& a) {
+  MpiVerb mpi("prt reference");
+  mpi.run([&] { referenceBody(a, mpi); });
 }
 
 }  // namespace

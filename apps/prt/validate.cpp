@@ -14,6 +14,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "mpi_verb.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -40,7 +41,7 @@ struct ValidateArgs {
   std::uint64_t seed = 0;
 };
 
-void runValidate(const ValidateArgs& a) {
+void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   if (a.samples < 1) throw Error("--reference-samples must be at least 1");
   std::vector<int> bands;
   if (!a.bandsList.empty())
@@ -100,8 +101,13 @@ void runValidate(const ValidateArgs& a) {
                     "uncompressed transfer (SNR {:.2f} dB)",
                     bt.transfer.cpca().clusters, bt.transfer.cpca().basisCount,
                     bt.compression.stats.relativeRms, bt.compression.stats.snrDb));
+  if (mpi.active())
+    vs.runReference = [&](const render::ReferenceSettings& rs, const ProgressFn& p) {
+      return mpi.reference(file.mesh, *occluder, env.env, rs, p);
+    };
   const render::ValidationReport rep = render::validate(
       file.mesh, *occluder, bt.transfer, recipe, env.env, light, vs, progressBar("reference"));
+  if (!mpi.root()) return;
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
   std::snprintf(line, sizeof line,
@@ -152,6 +158,11 @@ void runValidate(const ValidateArgs& a) {
                   a.image.c_str(), rep.rows.back().bands, 100.0 * scale);
     info(line);
   }
+}
+
+void runValidate(const ValidateArgs& a) {
+  MpiVerb mpi("prt validate");
+  mpi.run([&] { validateBody(a, mpi); });
 }
 
 }  // namespace

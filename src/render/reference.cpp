@@ -594,8 +594,9 @@ Estimate ReferenceIntegrator::estimateBandLimited(const Vec3f& p, const Vec3f& n
 
 // ---------------------------------------------------------------------------------------------
 
-ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, const Environment& env,
-                                const ReferenceSettings& settings, const ProgressFn& progress) {
+ReferenceRows::ReferenceRows(const Mesh& mesh, const Occluder& occluder, const Environment& env,
+                             const ReferenceSettings& settings)
+    : mesh_(mesh), settings_(settings) {
   if (settings.samples < 1 || settings.samples > (1 << 24))
     throw Error("reference samples must be in 1..16777216 (got " +
                 std::to_string(settings.samples) + ")");
@@ -609,32 +610,33 @@ ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, cons
   if (settings.material.glossy() && !settings.eye)
     throw Error("a glossy reference (" + settings.material.spec() +
                 ") needs the eye position for its view directions");
-
-  ReferenceResult out;
   if (settings.vertices.empty()) {
-    out.vertices.resize(nv);
-    for (std::size_t v = 0; v < nv; ++v) out.vertices[v] = static_cast<std::uint32_t>(v);
+    vertices_.resize(nv);
+    for (std::size_t v = 0; v < nv; ++v) vertices_[v] = static_cast<std::uint32_t>(v);
   } else {
-    out.vertices = settings.vertices;
-    for (std::uint32_t v : out.vertices)
+    vertices_ = settings.vertices;
+    for (std::uint32_t v : vertices_)
       if (v >= nv)
         throw Error("reference vertex " + std::to_string(v) + " out of range (mesh has " +
                     std::to_string(nv) + ")");
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  const EnvironmentSampler sampler(env);
-  const ReferenceIntegrator integrator(mesh, occluder, sampler, settings);
-  const std::size_t count = out.vertices.size();
-  out.radiance.assign(count, Rgb(0.0f));
-  out.stdError.assign(count, Rgb(0.0f));
-  const std::size_t lanes = settings.bandLimit ? settings.bandLimit->limits.size() : 0;
-  out.bandLimited.assign(count * lanes, BandLimitedEstimate{});
-  std::vector<std::uint64_t> rays(count, 0);
-  Progress prog(progress, count);
+  lanes_ = settings.bandLimit ? settings.bandLimit->limits.size() : 0;
+  sampler_ = std::make_unique<EnvironmentSampler>(env);
+  integrator_ = std::make_unique<ReferenceIntegrator>(mesh, occluder, *sampler_, settings);
+}
+
+ReferenceRows::~ReferenceRows() = default;
+
+void ReferenceRows::compute(std::size_t first, std::size_t count, Rgb* radiance, Rgb* stdError,
+                            BandLimitedEstimate* bandLimited, std::uint64_t* rays,
+                            Progress* progress) const {
+  const Mesh& mesh = mesh_;
+  const ReferenceSettings& settings = settings_;
+  const std::size_t lanes = lanes_;
   parallelFor(count, 1, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
-      prog.check();
-      const std::uint32_t v = out.vertices[i];
+      if (progress) progress->check();
+      const std::uint32_t v = vertices_[first + i];
       const Vec3f& p = mesh.positions[v];
       const Vec3f& n = mesh.normals[v];
       const Rgb kd = settings.material.diffuse ? *settings.material.diffuse
@@ -644,18 +646,34 @@ ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, cons
       const Vec3f toEye = settings.eye ? *settings.eye - p : n;
       const Vec3f view = length(toEye) > 0 ? normalize(toEye) : n;
       const std::uint64_t seed = deriveSeed(settings.seed, v);
+      rays[i] = 0;
       const Estimate est =
           lanes == 0
-              ? integrator.estimate(p, n, view, kd, settings.samples, seed, &rays[i])
-              : integrator.estimateBandLimited(
+              ? integrator_->estimate(p, n, view, kd, settings.samples, seed, &rays[i])
+              : integrator_->estimateBandLimited(
                     p, n, view, kd, settings.samples, seed,
-                    std::span<BandLimitedEstimate>(out.bandLimited).subspan(i * lanes, lanes),
-                    &rays[i]);
-      out.radiance[i] = est.mean;
-      out.stdError[i] = est.stdError;
-      prog.advance(1);
+                    std::span<BandLimitedEstimate>(bandLimited + i * lanes, lanes), &rays[i]);
+      radiance[i] = est.mean;
+      stdError[i] = est.stdError;
+      if (progress) progress->advance(1);
     }
   });
+}
+
+ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, const Environment& env,
+                                const ReferenceSettings& settings, const ProgressFn& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ReferenceRows job(mesh, occluder, env, settings);
+  ReferenceResult out;
+  out.vertices = job.vertices();
+  const std::size_t count = out.vertices.size();
+  out.radiance.assign(count, Rgb(0.0f));
+  out.stdError.assign(count, Rgb(0.0f));
+  out.bandLimited.assign(count * job.lanes(), BandLimitedEstimate{});
+  std::vector<std::uint64_t> rays(count, 0);
+  Progress prog(progress, count);
+  job.compute(0, count, out.radiance.data(), out.stdError.data(), out.bandLimited.data(),
+              rays.data(), &prog);
   for (std::uint64_t r : rays) out.rays += r;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

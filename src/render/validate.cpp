@@ -297,7 +297,11 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     if (!progress) return {};
     return [&progress, lo, hi](double f) { return progress(lo + (hi - lo) * f); };
   };
-  rep.reference = renderReference(mesh, occluder, env, rs, part(0.0, mainShare));
+  const auto runReference = [&](const ReferenceSettings& r, const ProgressFn& p) {
+    return settings.runReference ? settings.runReference(r, p)
+                                 : renderReference(mesh, occluder, env, r, p);
+  };
+  rep.reference = runReference(rs, part(0.0, mainShare));
   checkReference(env, rep);
   const auto& verts = rep.reference.vertices;
   const std::size_t n = verts.size();
@@ -326,7 +330,7 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   fr.vertices.clear();
   for (std::size_t i : floorIdx) fr.vertices.push_back(rs.vertices[i]);
   fr.bandLimit = std::move(bl);
-  const ReferenceResult floorRun = renderReference(mesh, occluder, env, fr, part(mainShare, 1.0));
+  const ReferenceResult floorRun = runReference(fr, part(mainShare, 1.0));
   rep.floorMethod = kFloorMethod;
   rep.floorVertices = nf;
   rep.floorRays = floorRun.rays;

@@ -30,6 +30,7 @@
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/sh/sh_fixed.hpp"
+#include "prt/transport/passes.hpp"
 
 namespace prt {
 
@@ -125,9 +126,9 @@ struct Context {
   const BakeSettings& settings;
   int nc;  // B²
   ShEval eval;
-  std::unique_ptr<OwenSobol2D> sobol;
-  BounceAlbedo albedo;
-  std::vector<double> lobe;  ///< A_l/π of the clamped cosine, l = 0..B-1
+  const OwenSobol2D* sobol;  ///< null: uniform random sampling
+  const BounceAlbedo& albedo;
+  const std::vector<double>& lobe;  ///< A_l/π of the clamped cosine, l = 0..B-1
   std::atomic<std::uint64_t> rays{0};
 };
 
@@ -180,7 +181,7 @@ double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
     }
   }
   const Vec3f origin = shadowed ? p + nrm * ctx.occluder.rayOffset(p) : p;
-  VertexSampler sampler(ctx.settings, ctx.sobol.get(), v, 0, nrm);
+  VertexSampler sampler(ctx.settings, ctx.sobol, v, 0, nrm);
 
   std::array<Ray, kBatch> rays;
   std::array<float, kBatch> w, ws;
@@ -239,7 +240,7 @@ double bounceVertex(Context& ctx, std::size_t v, int pass, const float* prev, in
   const int width = nc * outChannels;
   const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
   const Vec3f origin = p + nrm * ctx.occluder.rayOffset(p);
-  VertexSampler sampler(ctx.settings, ctx.sobol.get(), v, pass, nrm);
+  VertexSampler sampler(ctx.settings, ctx.sobol, v, pass, nrm);
 
   Moments m;
   std::uint64_t cast = 0;
@@ -326,124 +327,82 @@ Material materialFromGloss(const SurfaceGloss& g) {
   return m;
 }
 
-Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
-              BakeStats* stats, const ProgressFn& progressFn) {
-  validateBake(mesh, settings);
-  checkFootprint(mesh, settings, bakeFootprint(mesh, settings));
-  if (settings.layout == TransferLayout::Matrix)
-    return bakeMatrix(mesh, occluder, settings, stats, progressFn);
-  const auto start = Clock::now();
-  const std::size_t n = mesh.vertexCount();
-  const RowRange rows = bakeRows(mesh, settings);
-  const std::size_t first = rows.first, count = rows.count;
-  const int bounces = settings.effectiveBounces();
-  const bool inter = bounces > 0;
+namespace bakedetail {
 
+/// What every pass of a vector bake shares: the sample table, the clamped-cosine lobe, the
+/// bounce albedo.
+struct VectorSetup {
+  BakeSettings settings;
+  std::unique_ptr<OwenSobol2D> sobol;
+  BounceAlbedo albedo;
+  std::vector<double> lobe;
+};
+
+std::shared_ptr<const VectorSetup> makeVectorSetup(const Mesh& mesh, const BakeSettings& s) {
+  auto setup = std::make_shared<VectorSetup>();
+  setup->settings = s;
+  setup->albedo = resolveAlbedo(mesh, setup->settings);
+  for (double a : sh::clampedCosineKernel(s.bands)) setup->lobe.push_back(a / kPi);
+  if (s.sampling == Sampling::CosineSobol)
+    setup->sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(s.samples));
+  return setup;
+}
+
+bool vectorAlbedoGrey(const VectorSetup& setup) {
+  return setup.albedo.grey;
+}
+
+std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
+                                const VectorSetup& setup, int pass, RowRange rows,
+                                const Transfer* prev, int outChannels, float* out, double* variance,
+                                Progress* progress) {
   Context ctx{mesh,
               occluder,
-              settings,
-              settings.bands * settings.bands,
-              ShEval(settings.bands),
-              nullptr,
-              resolveAlbedo(mesh, settings),
+              setup.settings,
+              setup.settings.bands * setup.settings.bands,
+              ShEval(setup.settings.bands),
+              setup.sobol.get(),
+              setup.albedo,
+              setup.lobe,
               {}};
-  for (double a : sh::clampedCosineKernel(settings.bands)) ctx.lobe.push_back(a / kPi);
-  if (settings.sampling == Sampling::CosineSobol)
-    ctx.sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(settings.samples));
   const int nc = ctx.nc;
-  const int channels = inter && !ctx.albedo.grey ? 3 : 1;
-
-  const TransferShape shape{TransferDomain::Vertices, TransferLayout::Vector, settings.bands,
-                            channels, rows};
-  Transfer out = Transfer::zeros(shape);
-  float* const outData = out.mutableValues();
-  const std::size_t outStride = shape.stride();
-  const auto outRow = [&](std::size_t r) { return outData + r * outStride; };
-
-  // Work: the direct pass and all but the last bounce cover the whole mesh when inter-reflecting
-  // (hit points fall anywhere); the last pass covers the range only.
-  const std::size_t work = inter ? n * bounces + count : count;
-  Progress progress(progressFn, work);
-  std::vector<double> variance(count, 0.0);  // Var(T₀) summed over passes, per range vertex
-
-  BakeStats st;
-  st.threads = maxThreads();
-  st.vertices = count;
-
-  // Runs fn(v, accumulator, scratch) over vertices [lo, hi) in parallel.
-  auto run = [&](std::size_t lo, std::size_t hi, std::size_t scratch, auto&& fn) {
-    parallelFor(hi - lo, kVertexGrain, [&](std::size_t b, std::size_t e) {
-      progress.check();
-      Accumulator acc(static_cast<std::size_t>(nc) * 3);
-      std::vector<float> tmp(scratch);
-      for (std::size_t k = b; k < e; ++k) fn(lo + k, acc, tmp);
-      progress.advance(e - b);
-    });
-  };
-  auto recordVariance = [&](std::size_t v, double var) {
-    if (v >= first && v < first + count) variance[v - first] += var;
-  };
-
-  // Pass 0.
-  const auto t0 = Clock::now();
-  std::vector<float> prev;  // Tᵏ⁻¹ over the whole mesh (inter-reflection only)
-  if (!inter) {
-    run(first, first + count, static_cast<std::size_t>(nc),
-        [&](std::size_t v, Accumulator& acc, std::vector<float>& y) {
-          variance[v - first] = directVertex(ctx, v, outRow(v - first), acc, y);
-        });
-  } else {
-    prev.assign(n * nc, 0.0f);
-    run(0, n, static_cast<std::size_t>(nc),
-        [&](std::size_t v, Accumulator& acc, std::vector<float>& y) {
-          recordVariance(v, directVertex(ctx, v, prev.data() + v * nc, acc, y));
-        });
-    // Output starts as T⁰ (broadcast to every channel of an RGB transfer).
-    for (std::size_t r = 0; r < count; ++r)
-      for (int i = 0; i < nc; ++i)
-        for (int c = 0; c < channels; ++c) outRow(r)[i * channels + c] = prev[(first + r) * nc + i];
-  }
-  st.secondsDirect = seconds(t0);
-  const std::uint64_t directRays = ctx.rays.load();
-
-  // Passes 1..K.
-  int prevChannels = 1;
-  std::vector<float> cur;
-  for (int k = 1; k <= bounces; ++k) {
-    const auto tb = Clock::now();
-    const std::uint64_t raysBefore = ctx.rays.load();
-    const std::size_t scratch = static_cast<std::size_t>(nc) * 3;
-    if (k == bounces) {
-      run(first, first + count, scratch,
-          [&](std::size_t v, Accumulator& acc, std::vector<float>& t) {
-            variance[v - first] += bounceVertex(ctx, v, k, prev.data(), prevChannels,
-                                                outRow(v - first), channels, true, acc, t);
-          });
-    } else {
-      cur.assign(n * static_cast<std::size_t>(nc) * channels, 0.0f);
-      run(0, n, scratch, [&](std::size_t v, Accumulator& acc, std::vector<float>& t) {
-        recordVariance(v, bounceVertex(ctx, v, k, prev.data(), prevChannels,
-                                       cur.data() + v * nc * channels, channels, false, acc, t));
-      });
-      const std::size_t stride = static_cast<std::size_t>(nc) * channels;
-      for (std::size_t r = 0; r < count; ++r) {
-        float* o = outRow(r);
-        const float* c = cur.data() + (first + r) * stride;
-        for (std::size_t i = 0; i < stride; ++i) o[i] += c[i];
-      }
-      prev.swap(cur);
-      prevChannels = channels;
+  const std::size_t width = static_cast<std::size_t>(nc) * (pass == 0 ? 1 : outChannels);
+  const float* prevData = pass > 0 ? prev->values().data() : nullptr;
+  const int prevChannels = pass > 0 ? prev->channels() : 1;
+  parallelFor(rows.count, kVertexGrain, [&](std::size_t b, std::size_t e) {
+    if (progress) progress->check();
+    Accumulator acc(static_cast<std::size_t>(nc) * 3);
+    std::vector<float> tmp(static_cast<std::size_t>(nc) * 3);
+    for (std::size_t r = b; r < e; ++r) {
+      const std::size_t v = rows.first + r;
+      const double var = pass == 0 ? directVertex(ctx, v, out + r * width, acc, tmp)
+                                   : bounceVertex(ctx, v, pass, prevData, prevChannels,
+                                                  out + r * width, outChannels, false, acc, tmp);
+      if (variance) variance[r] = var;
     }
-    st.secondsBounce.push_back(seconds(tb));
-    st.raysBounce.push_back(ctx.rays.load() - raysBefore);
-  }
+    if (progress) progress->advance(e - b);
+  });
+  return ctx.rays.load();
+}
 
-  if (stats) {
-    st.rays = ctx.rays.load();
-    st.secondsTotal = seconds(start);
-    *stats = finishStats(std::move(st), directRays, variance);
+BakeStats vectorStats(const std::vector<std::uint64_t>& rays, const std::vector<double>& seconds,
+                      const std::vector<double>& variance) {
+  BakeStats st;
+  for (std::uint64_t r : rays) st.rays += r;
+  st.secondsDirect = seconds.empty() ? 0.0 : seconds[0];
+  for (std::size_t k = 1; k < seconds.size(); ++k) {
+    st.secondsBounce.push_back(seconds[k]);
+    st.raysBounce.push_back(rays[k]);
   }
-  return out;
+  return finishStats(std::move(st), rays.empty() ? 0 : rays[0], variance);
+}
+
+}  // namespace bakedetail
+
+Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+              BakeStats* stats, const ProgressFn& progressFn) {
+  const BakePasses passes(mesh, occluder, settings);
+  return runBakePasses(passes, stats, progressFn);
 }
 
 }  // namespace prt

@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "prt/core/progress.hpp"
 #include "prt/transport/bake.hpp"
 
 namespace prt::bakedetail {
@@ -75,8 +78,32 @@ std::size_t physicalMemoryBytes();
 /// Throws prt::Error stating the figure when the bake would not fit in this machine's memory.
 void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint& f);
 
-/// The matrix (glossy) bake; bake() dispatches here for TransferLayout::Matrix.
-Transfer bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
-                    BakeStats* stats, const ProgressFn& progress);
+// The passes' kernels (passes.cpp builds the pass list on them).
+
+/// A vector bake's shared tables (bake.cpp).
+struct VectorSetup;
+std::shared_ptr<const VectorSetup> makeVectorSetup(const Mesh& mesh, const BakeSettings& s);
+bool vectorAlbedoGrey(const VectorSetup& setup);
+/// Rows of vector pass `pass` (0: direct, B² floats per row; k ≥ 1: bounce k reading `prev`,
+/// the whole mesh's Tᵏ⁻¹, B² × outChannels floats per row).
+std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
+                                const VectorSetup& setup, int pass, RowRange rows,
+                                const Transfer* prev, int outChannels, float* out, double* variance,
+                                Progress* progress);
+/// The statistics of a vector bake from its passes' rays, seconds and summed variances.
+BakeStats vectorStats(const std::vector<std::uint64_t>& rays, const std::vector<double>& seconds,
+                      const std::vector<double>& variance);
+
+/// One matrix pass's tables (bake_matrix.cpp).
+struct MatrixSetup;
+/// `bounce`: it reads a bounced transfer; `glossy`: that transfer is the matrices of one order
+/// less, seen through the material's lobe (else the diffuse vector transfer).
+std::shared_ptr<const MatrixSetup> makeMatrixSetup(const Mesh& mesh, const BakeSettings& s,
+                                                   bool bounce, bool glossy, int channels);
+std::uint64_t computeMatrixRows(const Mesh& mesh, const Occluder& occluder,
+                                const MatrixSetup& setup, RowRange rows, const Transfer* bounced,
+                                float* out, double* variance, Progress* progress);
+/// The seed of the glossy bounce order `order` baked under a bake of seed `seed`.
+std::uint64_t matrixBounceOrderSeed(std::uint64_t seed, int order);
 
 }  // namespace prt::bakedetail

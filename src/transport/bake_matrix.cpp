@@ -141,14 +141,14 @@ struct MatrixContext {
   const Occluder& occluder;
   const BakeSettings& settings;
   int bands, nc, channels;
-  MatD hz;
-  std::unique_ptr<OwenSobol2D> sobol;
-  BounceAlbedo albedo;
+  const MatD& hz;
+  const OwenSobol2D* sobol;
+  const BounceAlbedo& albedo;
   /// The bounced light's source over the whole mesh: diffuse vector transfer T^{K−1}, or for
   /// glossy bounce surfaces the matrices M^{K−1} (then `glossy` is set). Null without bounces.
   const Transfer* bounced = nullptr;
   bool glossy = false;
-  PreparedMaterial kernels;  ///< the material's d and g kernels (glossy bounces)
+  const PreparedMaterial& kernels;  ///< the material's d and g kernels (glossy bounces)
   std::atomic<std::uint64_t> rays{0};
 };
 
@@ -350,107 +350,67 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
 
 }  // namespace
 
-Transfer bakeMatrix(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
-                    BakeStats* stats, const ProgressFn& progressFn) {
-  const auto start = Clock::now();
-  const RowRange rows = bakeRows(mesh, settings);
-  const std::size_t first = rows.first, count = rows.count;
-  const bool inter = settings.effectiveBounces() > 0;
+/// What one matrix pass needs besides its input: its settings (seed, mode), the hemisphere
+/// product matrix about +Z, the sample table, the bounce albedo and the material's kernels.
+struct MatrixSetup {
+  BakeSettings settings;
+  int channels = 1;
+  bool bounce = false;  ///< reads a bounced transfer (diffuse vectors or glossy matrices)
+  bool glossy = false;  ///< ... and it is matrices seen through the material's lobe
+  MatD hz;
+  std::unique_ptr<OwenSobol2D> sobol;
+  BounceAlbedo albedo;
+  PreparedMaterial kernels;
+};
 
-  // The bounced light over the whole mesh (hits land anywhere): the diffuse transfer with K − 1
-  // bounces, or for glossy bounce surfaces the matrices with K − 1 bounces (this function, one
-  // order less). It takes the first share of the progress.
-  const bool glossy = settings.glossyBounces(settings.layout);
-  const double preShare = !inter   ? 0.0
-                          : glossy ? double(settings.bounces) / (settings.bounces + 1)
-                                   : 0.3;
-  Transfer bounced;
-  BakeStats bounceStats;
-  if (glossy) {
-    BakeSettings ms = settings;
-    ms.rows = {};
-    ms.bounces = settings.bounces - 1;
-    ms.mode = ms.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
-    ms.seed = deriveSeed(settings.seed, kBounceOrder + static_cast<std::uint64_t>(ms.bounces));
-    ProgressFn sub;
-    if (progressFn) sub = [&](double f) { return progressFn(preShare * f); };
-    bounced = bakeMatrix(mesh, occluder, ms, &bounceStats, sub);
-  } else if (inter) {
-    BakeSettings vs = settings;
-    vs.layout = TransferLayout::Vector;
-    vs.rows = {};
-    vs.bounces = settings.bounces - 1;
-    vs.mode = vs.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
-    ProgressFn sub;
-    if (progressFn) sub = [&](double f) { return progressFn(preShare * f); };
-    bounced = prt::bake(mesh, occluder, vs, &bounceStats, sub);
-  }
+std::shared_ptr<const MatrixSetup> makeMatrixSetup(const Mesh& mesh, const BakeSettings& s,
+                                                   bool bounce, bool glossy, int channels) {
+  auto setup = std::make_shared<MatrixSetup>();
+  setup->settings = s;
+  setup->channels = channels;
+  setup->bounce = bounce;
+  setup->glossy = glossy;
+  setup->hz = hemisphereProductZ(s.bands);
+  if (s.mode != TransferMode::Unshadowed)
+    setup->sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(s.samples));
+  setup->albedo = resolveAlbedo(mesh, setup->settings);
+  if (glossy) setup->kernels = prepareMaterial(s.material, s.bands);
+  return setup;
+}
 
-  MatrixContext ctx{
-      mesh,
-      occluder,
-      settings,
-      settings.bands,
-      settings.bands * settings.bands,
-      1,
-      hemisphereProductZ(settings.bands),
-      nullptr,
-      resolveAlbedo(mesh, settings),
-      inter ? &bounced : nullptr,
-      glossy,
-      glossy ? prepareMaterial(settings.material, settings.bands) : PreparedMaterial{},
-      {}};
-  ctx.channels = bakeFootprint(mesh, settings).channels;
-  if (settings.mode != TransferMode::Unshadowed)
-    ctx.sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(settings.samples));
-
-  TransferShape shape;
-  shape.layout = TransferLayout::Matrix;
-  shape.bands = settings.bands;
-  shape.channels = ctx.channels;
-  shape.rows = rows;
-  Transfer out = Transfer::zeros(shape);
-  float* const outData = out.mutableValues();
-  ProgressFn mainFn;
-  if (progressFn) mainFn = [&](double f) { return progressFn(preShare + (1 - preShare) * f); };
-  Progress progress(mainFn, count);
-  std::vector<double> variance(count, 0.0);
-  const auto tm = Clock::now();
-  parallelFor(count, kVertexGrain, [&](std::size_t b, std::size_t e) {
-    progress.check();
+std::uint64_t computeMatrixRows(const Mesh& mesh, const Occluder& occluder,
+                                const MatrixSetup& setup, RowRange rows, const Transfer* bounced,
+                                float* out, double* variance, Progress* progress) {
+  const BakeSettings& s = setup.settings;
+  MatrixContext ctx{mesh,
+                    occluder,
+                    s,
+                    s.bands,
+                    s.bands * s.bands,
+                    setup.channels,
+                    setup.hz,
+                    setup.sobol.get(),
+                    setup.albedo,
+                    setup.bounce ? bounced : nullptr,
+                    setup.glossy,
+                    setup.kernels,
+                    {}};
+  const std::size_t stride =
+      static_cast<std::size_t>(ctx.nc) * static_cast<std::size_t>(ctx.nc) * setup.channels;
+  parallelFor(rows.count, kVertexGrain, [&](std::size_t b, std::size_t e) {
+    if (progress) progress->check();
     Workspace ws(ctx.nc, ctx.channels);
-    for (std::size_t r = b; r < e; ++r)
-      variance[r] = matrixVertex(ctx, first + r, outData + r * shape.stride(), ws);
-    progress.advance(e - b);
-  });
-
-  if (stats) {
-    BakeStats st;
-    st.threads = maxThreads();
-    st.vertices = count;
-    st.rays = ctx.rays.load() + bounceStats.rays;
-    st.secondsDirect = seconds(tm);
-    if (glossy) {
-      // The recursion's passes: its shadowed pass is the direct one, this pass the last bounce.
-      st.secondsDirect = bounceStats.secondsDirect;
-      st.secondsBounce = bounceStats.secondsBounce;
-      st.secondsBounce.push_back(seconds(tm));
-      st.raysBounce = bounceStats.raysBounce;
-      st.raysBounce.push_back(ctx.rays.load());
-    } else if (inter) {
-      st.secondsBounce = {bounceStats.secondsTotal};
-      st.raysBounce = {bounceStats.rays};
+    for (std::size_t r = b; r < e; ++r) {
+      const double var = matrixVertex(ctx, rows.first + r, out + r * stride, ws);
+      if (variance) variance[r] = var;
     }
-    st.secondsTotal = seconds(start);
-    st.raysPerSecond = raysPerSecondOf(st.rays, st.secondsTotal);
-    const StandardErrors m00 = standardErrors(variance);
-    // For matrices the standard error is that of M_00, the transferred radiance under the
-    // constant light L = 1 (L00 = √(4π), so L'_00 Y00 = M_00).
-    st.stdErrT0Mean = st.stdErrConstMean = m00.mean;
-    st.stdErrT0Max = st.stdErrConstMax = m00.max;
-    *stats = std::move(st);
-  }
-  return out;
+    if (progress) progress->advance(e - b);
+  });
+  return ctx.rays.load();
+}
+
+std::uint64_t matrixBounceOrderSeed(std::uint64_t seed, int order) {
+  return deriveSeed(seed, kBounceOrder + static_cast<std::uint64_t>(order));
 }
 
 }  // namespace prt::bakedetail

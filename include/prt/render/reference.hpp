@@ -226,6 +226,36 @@ class ReferenceIntegrator {
   std::shared_ptr<const BandLimitData> band_;  ///< set with settings.bandLimit
 };
 
+/// The per-vertex work of renderReference over entries of its vertex list, for schedulers that
+/// split it (MPI ranks, prt/distributed/): every entry is a pure function of the scene, the
+/// settings and its vertex index, so computing all entries in any pieces gives renderReference's
+/// result bit for bit. Validates the settings as renderReference does.
+class ReferenceRows {
+ public:
+  /// `mesh`, `occluder` and `env` must outlive it.
+  ReferenceRows(const Mesh& mesh, const Occluder& occluder, const envmap::Environment& env,
+                const ReferenceSettings& settings);
+  ~ReferenceRows();
+  /// The vertices estimated, one entry each (settings.vertices, or every vertex).
+  const std::vector<std::uint32_t>& vertices() const { return vertices_; }
+  /// Band-limited estimates per entry (settings.bandLimit's limits; 0 without).
+  std::size_t lanes() const { return lanes_; }
+  /// Entries [first, first + count): radiance and stdError (count each), bandLimited
+  /// (count × lanes(); may be null when lanes() is 0) and rays (count). Parallel over the
+  /// entries; advances `progress` per entry.
+  void compute(std::size_t first, std::size_t count, Rgb* radiance, Rgb* stdError,
+               BandLimitedEstimate* bandLimited, std::uint64_t* rays,
+               Progress* progress = nullptr) const;
+
+ private:
+  const Mesh& mesh_;
+  ReferenceSettings settings_;
+  std::vector<std::uint32_t> vertices_;
+  std::size_t lanes_ = 0;
+  std::unique_ptr<EnvironmentSampler> sampler_;
+  std::unique_ptr<ReferenceIntegrator> integrator_;
+};
+
 /// Per-vertex reference radiance e(p, v), v = normalize(eye − p). kd: material.diffuse, else the
 /// mesh's albedo, else 1. Parallel over vertices, progress per vertex; throws prt::Error on bad
 /// settings (samples < 1 or > 2^24, bounces out of 0..16, vertex index out of range, a glossy

@@ -31,6 +31,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,10 @@ struct ValidateSettings {
   sh::Window window = sh::Window::None;
   /// The bake file the transfer came from, named when its relighting overflows.
   std::string bakeName;
+  /// Runs the reference (the main run and the floor's band-limited run): renderReference over
+  /// the mesh, occluder and environment validate() is given when empty; a scheduler that
+  /// spreads it over ranks sets its own (it must return renderReference's result).
+  std::function<ReferenceResult(const ReferenceSettings&, const ProgressFn&)> runReference;
 };
 
 /// Above this share of negative-radiance vertices a row calls for a window on the light.

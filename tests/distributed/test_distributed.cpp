@@ -1,0 +1,273 @@
+// One bake, reference or validation across MPI ranks (docs/distributed.md), run as a user would:
+// the real `prt` under the real `mpirun` (Open MPI; as root, OMPI_ALLOW_RUN_AS_ROOT, ranks
+// oversubscribed on this machine's cores, loopback only), each result against the same command
+// in one process:
+//  * bakes on 1, 2, 3 and 4 ranks with 1 or 2 threads each — shadowed, inter-reflected with two
+//    bounces (scalar and RGB), glossy matrices — equal the single-process file;
+//  * a reference and a validation table through MPI equal the single-process ones;
+//  * a rank that dies mid-bake (the test hook PRT_TEST_EXIT_AT_CHUNK) fails the job quickly with
+//    one line naming it and its chunk and no output file; rerun with the same --checkpoint, the
+//    bake resumes from the finished chunks and ends bit-identical;
+//  * job-array shards (--shard I/N, and --pass K --previous for the bounces) merge bit-exactly.
+//
+// "Equal the single-process file": a bake file records its timings (seconds per pass, rays per
+// second) and the thread count in each transfer's statistics, and those differ between any two
+// runs, one process or many. So both files are decoded, those fields (and only those) are set
+// to zero, and the two are encoded again and compared byte for byte: the mesh, every transfer
+// value, the recipes, the rays and the error estimates must be identical bit for bit.
+//
+// The MPI tests skip, saying why, where mpirun is missing or prt was built without MPI.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <iterator>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "cli/cli_harness.hpp"
+#include "prt/io/bake_file.hpp"
+
+namespace prt::testing {
+namespace {
+
+/// The bake file's bytes with the statistics that vary from run to run (timings, threads)
+/// zeroed: what must be identical between two bakes of the same inputs and settings.
+std::string withoutTimings(const fs::path& path) {
+  BakeFile f = readBake(path.string());
+  for (BakedTransfer& t : f.transfers) {
+    BakeStats& s = t.stats;
+    s.secondsTotal = s.secondsDirect = s.raysPerSecond = 0;
+    for (double& b : s.secondsBounce) b = 0;
+    s.threads = 0;
+  }
+  return encodeBake(f);
+}
+
+/// The transfers' values and rays only: a merge of job-array pieces combines the error
+/// estimates' means weighted by rows (combineBakeStats), which need not round as one bake does.
+void expectSameTransfers(const fs::path& a, const fs::path& b) {
+  const BakeFile fa = readBake(a.string()), fb = readBake(b.string());
+  ASSERT_EQ(fa.transfers.size(), fb.transfers.size());
+  for (std::size_t i = 0; i < fa.transfers.size(); ++i) {
+    const Transfer& x = fa.transfers[i].transfer;
+    const Transfer& y = fb.transfers[i].transfer;
+    ASSERT_EQ(x.shape(), y.shape()) << fa.transfers[i].describe();
+    ASSERT_EQ(x.values().size(), y.values().size());
+    EXPECT_EQ(0, std::memcmp(x.values().data(), y.values().data(), x.values().size() * 4))
+        << fa.transfers[i].describe() << ": values differ";
+    EXPECT_TRUE(fa.transfers[i].recipe == fb.transfers[i].recipe);
+    EXPECT_EQ(fa.transfers[i].stats.rays, fb.transfers[i].stats.rays);
+    EXPECT_EQ(fa.transfers[i].stats.raysBounce, fb.transfers[i].stats.raysBounce);
+  }
+}
+
+bool haveMpirun() {
+  return std::system("command -v mpirun > /dev/null 2>&1") == 0;
+}
+
+/// mpirun as the suite runs it: as root (CI), more ranks than cores, loopback only.
+std::string mpirun(int ranks) {
+  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_tcp_if_include=lo "
+         "OMPI_MCA_oob_tcp_if_include=lo mpirun --oversubscribe -np " +
+         std::to_string(ranks) + " ";
+}
+
+class Mpi : public CliTest {
+ protected:
+  void SetUp() override {
+#if !PRT_HAVE_MPI
+    GTEST_SKIP() << "prt was built without MPI (find_package(MPI) found none; scripts/setup.sh "
+                    "installs openmpi-bin and libopenmpi-dev)";
+#endif
+    if (!haveMpirun()) GTEST_SKIP() << "mpirun is not installed (Debian: openmpi-bin)";
+    CliTest::SetUp();
+  }
+  fs::path dir() const {
+    return dir_;
+  }
+};
+
+constexpr const char* kVector =
+    "bake builtin:sphere-plane --mode shadowed --mode interreflected --bounces 2 --samples 32";
+
+TEST_F(Mpi, BakesOnOneToFourRanksEqualTheSingleProcessFile) {
+  ASSERT_EQ(prt(std::string(kVector) + " -q -o one.glb").rc, 0);
+  const std::string one = withoutTimings(dir() / "one.glb");
+  for (int ranks = 1; ranks <= 4; ++ranks) {
+    const std::string out = "mpi" + std::to_string(ranks) + ".glb";
+    // 2 threads per rank on 1 and 3 ranks, 1 on 2 and 4; small chunks on 3, so that every rank
+    // gets many and the order they come back in is scrambled.
+    const std::string extra =
+        std::string(ranks % 2 ? " -j 2" : " -j 1") + (ranks == 3 ? " --chunk 37" : "");
+    const Result r = prt(std::string(kVector) + extra + " -o " + out, mpirun(ranks));
+    ASSERT_EQ(r.rc, 0) << ranks << " ranks: " << r.err;
+    EXPECT_NE(r.err.find(std::to_string(ranks) + " MPI ranks"), std::string::npos) << r.err;
+    EXPECT_EQ(withoutTimings(dir() / out), one) << ranks << " ranks";
+  }
+}
+
+TEST_F(Mpi, RgbBouncesAndGlossyMatricesEqualTheSingleProcessFile) {
+  // The Cornell box's coloured walls make RGB bounces; glossy matrices bounce through the lobe
+  // (three matrix passes, each all-gathered); diffuse-bounce matrices read the vector passes' sum.
+  const std::string rgb = "bake builtin:cornell --mode interreflected --bounces 2 --samples 32";
+  const std::string glossy =
+      "bake builtin:sphere-plane --mode interreflected --bounces 2 --transfer matrix --bands 3 "
+      "--samples 16 --material 'phong?exponent=8&ks=0.4,0.3,0.3'";
+  const std::string diffuse =
+      "bake builtin:cornell --mode interreflected --bounces 1 --transfer matrix --bands 3 "
+      "--samples 16";
+  int ranks = 2;
+  for (const std::string& cmd : {rgb, glossy, diffuse}) {
+    ASSERT_EQ(prt(cmd + " -q -o one.glb").rc, 0) << cmd;
+    // The matrix bakes as if they did not fit rank 0's memory: it gathers the last pass into a
+    // mapped scratch file beside the output, which the writer streams from.
+    const bool matrix = cmd.find("matrix") != std::string::npos;
+    const Result r = prt(cmd + " -o out/mpi.glb",
+                         std::string(matrix ? "PRT_MPI_SPILL_ABOVE=1 " : "") + mpirun(ranks));
+    ASSERT_EQ(r.rc, 0) << cmd << ": " << r.err;
+    EXPECT_EQ(matrix, r.err.find("in a mapped scratch file") != std::string::npos) << r.err;
+    EXPECT_EQ(withoutTimings(dir() / "out/mpi.glb"), withoutTimings(dir() / "one.glb"))
+        << cmd << " on " << ranks << " ranks";
+    // Nothing but the bake is left beside it (the scratch file was unlinked when made).
+    const auto files = std::distance(fs::directory_iterator(dir() / "out"), {});
+    EXPECT_EQ(files, 1);
+    ++ranks;
+  }
+}
+
+TEST_F(Mpi, ReferenceAndValidationEqualTheSingleProcessOnes) {
+  ASSERT_EQ(prt("bake builtin:sphere-plane --mode interreflected --bounces 1 --samples 32 -q "
+                "-o b.glb")
+                .rc,
+            0);
+  const std::string ref = "reference b.glb --light builtin:sky --samples 16 --vertices 600 -q";
+  ASSERT_EQ(prt(ref + " -o one.bin").rc, 0);
+  const Result r = prt(ref + " -o mpi.bin", mpirun(3));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(slurp(dir() / "mpi.bin"), slurp(dir() / "one.bin"));
+
+  const std::string val =
+      "validate b.glb --light builtin:sky --reference-samples 16 --vertices 300 -q";
+  const Result v1 = prt(val + " --json one.json");
+  ASSERT_EQ(v1.rc, 0) << v1.err;
+  const Result v2 = prt(val + " --json mpi.json", mpirun(2));
+  ASSERT_EQ(v2.rc, 0) << v2.err;
+  EXPECT_EQ(v2.out, v1.out);  // the table, printed by rank 0 alone
+  // The report's JSON holds the reference's seconds: everything else must match.
+  const auto strip = [](std::string s) {
+    for (const char* key : {"\"referenceSeconds\"", "\"floorSeconds\""}) {
+      const auto at = s.find(key);
+      if (at != std::string::npos) s.erase(at, s.find('\n', at) - at);
+    }
+    return s;
+  };
+  EXPECT_EQ(strip(slurp(dir() / "mpi.json")), strip(slurp(dir() / "one.json")));
+}
+
+TEST_F(Mpi, AKilledRankFailsTheJobCleanlyAndACheckpointResumesBitIdentical) {
+  const std::string bake =
+      "bake builtin:sphere-plane --mode interreflected --bounces 2 --samples 32 -j 1 "
+      "--checkpoint ck -o out/b.glb";
+  const auto t0 = std::chrono::steady_clock::now();
+  // Rank 1 exits (status 3, no message, as a crash would) when handed its fourth chunk.
+  const Result dead = prt(bake, "PRT_TEST_EXIT_AT_CHUNK=1:3 " + mpirun(2));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_NE(dead.rc, 0);
+  EXPECT_LT(seconds, 30) << "the job took " << seconds << " s to stop";
+  // One line of ours names the rank and its chunk (mpirun adds its own banner around it).
+  std::size_t lines = 0, at = 0;
+  while ((at = dead.err.find("prt bake: error: ", at)) != std::string::npos) ++lines, ++at;
+  EXPECT_EQ(lines, 1u) << dead.err;
+  EXPECT_NE(dead.err.find("rank 1 (pid "), std::string::npos) << dead.err;
+  EXPECT_NE(dead.err.find("died while computing chunk "), std::string::npos) << dead.err;
+  EXPECT_NE(dead.err.find(" (vertices "), std::string::npos) << dead.err;
+  EXPECT_TRUE(fs::is_empty(dir() / "out")) << "a partial output was left";
+
+  const Result resumed = prt(bake, mpirun(2));
+  ASSERT_EQ(resumed.rc, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("from the checkpoint"), std::string::npos) << resumed.err;
+  ASSERT_EQ(prt("bake builtin:sphere-plane --mode interreflected --bounces 2 --samples 32 -q "
+                "-o one.glb")
+                .rc,
+            0);
+  EXPECT_EQ(withoutTimings(dir() / "out/b.glb"), withoutTimings(dir() / "one.glb"));
+
+  // Another bake refuses the folder rather than mixing chunks.
+  const Result other =
+      prt("bake builtin:sphere-plane --mode interreflected --bounces 2 "
+          "--samples 64 --checkpoint ck -o out/c.glb",
+          mpirun(2));
+  EXPECT_NE(other.rc, 0);
+  EXPECT_NE(other.err.find("holds the checkpoint of another run"), std::string::npos) << other.err;
+  EXPECT_FALSE(fs::exists(dir() / "out/c.glb"));
+}
+
+// Job arrays need no MPI: these run wherever prt does.
+class JobArray : public CliTest {
+ protected:
+  fs::path dir() const { return dir_; }
+};
+
+TEST_F(JobArray, ShardsMergeBitExactly) {
+  const std::string bake = "bake builtin:cornell --mode shadowed --samples 32 -q";
+  ASSERT_EQ(prt(bake + " -o one.glb").rc, 0);
+  for (int i = 0; i < 3; ++i)
+    ASSERT_EQ(
+        prt(bake + " --shard " + std::to_string(i) + "/3 -o s" + std::to_string(i) + ".glb").rc, 0);
+  // Slurm's array variables (an array 4-6 here) name the shard as --shard auto reads them.
+  const Result slurm =
+      prt(bake + " --shard auto -o auto.glb",
+          "SLURM_ARRAY_TASK_ID=5 SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_COUNT=3 ");
+  ASSERT_EQ(slurm.rc, 0) << slurm.err;
+  expectSameTransfers(dir() / "auto.glb", dir() / "s1.glb");
+  ASSERT_EQ(prt("merge s2.glb s0.glb s1.glb -q -o merged.glb").rc, 0);
+  expectSameTransfers(dir() / "merged.glb", dir() / "one.glb");
+}
+
+TEST_F(JobArray, BouncesShardPassByPassAndMergeBitExactly) {
+  for (const std::string& bake :
+       {std::string("bake builtin:cornell --mode interreflected --bounces 2 --samples 32 -q"),
+        std::string("bake builtin:sphere-plane --mode interreflected --bounces 2 --transfer "
+                    "matrix --bands 3 --samples 16 --material 'phong?exponent=8&ks=0.4' -q")}) {
+    ASSERT_EQ(prt(bake + " -o one.glb").rc, 0);
+    // Pass 0 in 2 shards, pass 1 in 3 reading the merged pass 0, the last in 2.
+    for (int i = 0; i < 2; ++i)
+      ASSERT_EQ(prt(bake + " --pass 0 --shard " + std::to_string(i) + "/2 -o p0-" +
+                    std::to_string(i) + ".prtpass")
+                    .rc,
+                0);
+    ASSERT_EQ(prt("merge p0-1.prtpass p0-0.prtpass -q -o p0.prtpass").rc, 0);
+    for (int i = 0; i < 3; ++i)
+      ASSERT_EQ(prt(bake + " --pass 1 --previous p0.prtpass --shard " + std::to_string(i) +
+                    "/3 -o p1-" + std::to_string(i) + ".prtpass")
+                    .rc,
+                0);
+    // A pass that reads an incomplete previous pass is refused, naming what is missing.
+    const Result partial = prt(bake + " --pass 2 --previous p1-0.prtpass -o x.glb");
+    EXPECT_NE(partial.rc, 0);
+    EXPECT_NE(partial.err.find("merge all its pieces first"), std::string::npos) << partial.err;
+    ASSERT_EQ(prt("merge p1-0.prtpass p1-1.prtpass p1-2.prtpass -q -o p1.prtpass").rc, 0);
+    for (int i = 0; i < 2; ++i)
+      ASSERT_EQ(prt(bake + " --pass 2 --previous p1.prtpass --shard " + std::to_string(i) +
+                    "/2 -o last" + std::to_string(i) + ".glb")
+                    .rc,
+                0);
+    ASSERT_EQ(prt("merge last0.glb last1.glb -q -o merged.glb").rc, 0);
+    expectSameTransfers(dir() / "merged.glb", dir() / "one.glb");
+  }
+}
+
+TEST_F(JobArray, ShardingABounceBakeWithoutPassIsRefusedWithTheRecipe) {
+  const Result r =
+      prt("bake builtin:cornell --mode interreflected --bounces 1 --shard 0/2 -o out/x.glb");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.err.find("add --pass 0"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(dir() / "out"));
+}
+
+}  // namespace
+}  // namespace prt::testing
