@@ -23,9 +23,10 @@ void refuseUnjoinedCopies(const std::string& verb) {
                 "whole work; use srun --mpi=pmix (or pmi2), or --shard for job arrays");
 #else
   if ((mpi && count("OMPI_COMM_WORLD_SIZE") != 1) || count("SLURM_STEP_NUM_TASKS") > 1)
-    throw Error("this prt was built without MPI, so the copies a launcher started cannot share "
-                "the work (each would do all of it): rebuild with Open MPI installed "
-                "(scripts/setup.sh), or use --shard for job arrays");
+    throw Error(
+        "this prt was built without MPI, so the copies a launcher started cannot share "
+        "the work (each would do all of it): rebuild with Open MPI installed "
+        "(scripts/setup.sh), or use --shard for job arrays");
 #endif
 }
 

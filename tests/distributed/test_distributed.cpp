@@ -21,10 +21,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <iterator>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iterator>
 #include <string>
 
 #include "cli/cli_harness.hpp"
@@ -267,6 +267,23 @@ TEST_F(JobArray, ShardingABounceBakeWithoutPassIsRefusedWithTheRecipe) {
   EXPECT_NE(r.rc, 0);
   EXPECT_NE(r.err.find("add --pass 0"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::is_empty(dir() / "out"));
+}
+
+TEST_F(JobArray, CopiesALauncherStartedWithoutMpiWireUpAreRefused) {
+  // srun -n 2 without --mpi: two copies that would each bake everything into the same file.
+  const std::string env = "env -u OMPI_COMM_WORLD_SIZE -u PMIX_RANK -u PMI_RANK -u PMI_SIZE ";
+  const Result r = prt("bake builtin:cornell --mode shadowed --samples 4 -q -o out/x.glb",
+                       env + "SLURM_STEP_NUM_TASKS=2 ");
+  EXPECT_NE(r.rc, 0);
+  EXPECT_NE(r.err.find("each would do"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(dir() / "out"));
+  // One task, or a job array's shards (separate by design), still bake.
+  EXPECT_EQ(0, prt("bake builtin:cornell --mode shadowed --samples 4 -q -o out/one.glb",
+                   env + "SLURM_STEP_NUM_TASKS=1 ")
+                   .rc);
+  EXPECT_EQ(0, prt("bake builtin:cornell --mode shadowed --samples 4 -q --shard 0/2 -o out/s0.glb",
+                   env + "SLURM_STEP_NUM_TASKS=2 ")
+                   .rc);
 }
 
 }  // namespace
