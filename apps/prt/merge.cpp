@@ -11,7 +11,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "cli.hpp"
 #include "guard.hpp"
@@ -29,6 +31,32 @@ struct MergeArgs {
   std::string output;
 };
 
+/// Merges pieces (each with the file it came from) in the order of their first row, one at a time,
+/// so that an error names the file that does not fit ("part1.glb: overlaps the previous range").
+template <class Piece, class FirstRow, class MergeTwo>
+Piece mergeInRowOrder(std::vector<std::pair<Piece, std::string>> pieces, FirstRow firstRow,
+                      MergeTwo mergeTwo) {
+  std::stable_sort(pieces.begin(), pieces.end(), [&](const auto& x, const auto& y) {
+    return firstRow(x.first) < firstRow(y.first);
+  });
+  Piece merged = std::move(pieces.front().first);
+  for (std::size_t k = 1; k < pieces.size(); ++k) {
+    std::vector<Piece> two;
+    two.push_back(std::move(merged));
+    two.push_back(std::move(pieces[k].first));
+    try {
+      merged = mergeTwo(std::move(two));
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      std::string msg = e.what();
+      if (msg.rfind("merge: ", 0) == 0) msg.erase(0, 7);
+      throw Error(pieces[k].second, msg);
+    }
+  }
+  return merged;
+}
+
 /// Pass files (prt bake --pass K --shard I/N) merge into one pass file of the whole pass.
 void runMergePasses(const MergeArgs& a) {
   if (fileExtension(a.output) != "prtpass")
@@ -39,24 +67,9 @@ void runMergePasses(const MergeArgs& a) {
   checkWritable(a.output);
   std::vector<std::pair<PassPiece, std::string>> pieces;
   for (const std::string& in : a.inputs) pieces.emplace_back(readPassPiece(in), in);
-  std::stable_sort(pieces.begin(), pieces.end(), [](const auto& x, const auto& y) {
-    return x.first.shape.rows.first < y.first.shape.rows.first;
-  });
-  PassPiece merged = std::move(pieces.front().first);
-  for (std::size_t k = 1; k < pieces.size(); ++k) {
-    std::vector<PassPiece> two;
-    two.push_back(std::move(merged));
-    two.push_back(std::move(pieces[k].first));
-    try {
-      merged = mergePassPieces(std::move(two));
-    } catch (const Cancelled&) {
-      throw;
-    } catch (const Error& e) {
-      std::string msg = e.what();
-      if (msg.rfind("merge: ", 0) == 0) msg.erase(0, 7);
-      throw Error(pieces[k].second, msg);
-    }
-  }
+  const PassPiece merged = mergeInRowOrder(
+      std::move(pieces), [](const PassPiece& p) { return p.shape.rows.first; },
+      [](std::vector<PassPiece> two) { return mergePassPieces(std::move(two)); });
   writePassPiece(a.output, merged);
   info(fmt::format("wrote {} (pass {} of {} '{}', vertices {}..{})", a.output, merged.pass,
                    merged.passes, merged.name, merged.shape.rows.first,
@@ -79,8 +92,7 @@ void runMerge(const MergeArgs& a) {
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});
   checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
-  // Read every piece, then merge them in vertex order one at a time, so that an error names the
-  // file that does not fit ("part1.glb: overlaps the previous range ...").
+  // Read every piece, then merge them in vertex order (mergeInRowOrder).
   std::vector<std::pair<BakeFile, std::string>> pieces;
   pieces.reserve(a.inputs.size());
   for (const std::string& in : a.inputs) {
@@ -91,24 +103,9 @@ void runMerge(const MergeArgs& a) {
                             "), which cannot be merged: merge the uncompressed pieces, then "
                             "compress");
   }
-  std::stable_sort(pieces.begin(), pieces.end(), [](const auto& x, const auto& y) {
-    return x.first.rows().first < y.first.rows().first;
-  });
-  BakeFile merged = std::move(pieces.front().first);
-  for (std::size_t k = 1; k < pieces.size(); ++k) {
-    std::vector<BakeFile> two;
-    two.push_back(std::move(merged));
-    two.push_back(std::move(pieces[k].first));
-    try {
-      merged = mergeBakes(std::move(two));
-    } catch (const Cancelled&) {
-      throw;
-    } catch (const Error& e) {
-      std::string msg = e.what();
-      if (msg.rfind("merge: ", 0) == 0) msg.erase(0, 7);
-      throw Error(pieces[k].second, msg);
-    }
-  }
+  const BakeFile merged = mergeInRowOrder(
+      std::move(pieces), [](const BakeFile& f) { return f.rows().first; },
+      [](std::vector<BakeFile> two) { return mergeBakes(std::move(two)); });
   writeBake(a.output, merged);
   const RowRange rows = merged.rows();
   info(fmt::format("wrote {} ({} vertices {}..{}{}, {} mode(s))", a.output, rows.count, rows.first,
