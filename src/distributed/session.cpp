@@ -39,22 +39,6 @@ const char* activityOf(int r) {
   return &w.lines[(static_cast<std::size_t>(r) * 2 + w.which[r].load()) * kLine];
 }
 
-bool processGone(long pid) {
-  if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) return true;
-  // A zombie (exited, not yet reaped by its launcher) still answers kill(pid, 0).
-  char path[64];
-  std::snprintf(path, sizeof path, "/proc/%ld/stat", pid);  // (not in the handler: see below)
-  const int fd = ::open(path, O_RDONLY);
-  if (fd < 0) return true;
-  char buf[512];
-  const ssize_t n = ::read(fd, buf, sizeof buf - 1);
-  ::close(fd);
-  if (n <= 0) return true;
-  buf[n] = 0;
-  const char* paren = std::strrchr(buf, ')');
-  return paren && paren[1] == ' ' && (paren[2] == 'Z' || paren[2] == 'X');
-}
-
 // Async-signal-safe pieces for the handler: write(2) of fixed buffers and integers.
 void put(const char* s) {
   const ssize_t ignored = ::write(STDERR_FILENO, s, std::strlen(s));
@@ -73,7 +57,9 @@ void putInt(long v) {
   if (neg) buf[--i] = '-';
   put(buf + i);
 }
-bool goneInHandler(long pid) {
+/// Whether a local process has exited (gone, or a zombie not yet reaped by its launcher, which
+/// still answers kill(pid, 0)). Async-signal-safe, so the watch and the SIGTERM handler share it.
+bool processGone(long pid) {
   if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) return true;
   char path[48] = "/proc/";
   char num[24];
@@ -103,7 +89,7 @@ extern "C" void onTerminate(int) {
   if (!g_watch || g_reported.exchange(true)) ::_exit(143);
   const WatchState& w = *g_watch;
   for (int r = 1; r < w.size; ++r)
-    if (w.local[r] && goneInHandler(w.pid[r])) {
+    if (w.local[r] && processGone(w.pid[r])) {
       put(w.prefix);
       put("rank ");
       putInt(r);
