@@ -107,13 +107,13 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
     spill = root && !plan->resultIsSum() && !options.spillFolder.empty() &&
             fp.workingBytes + output > limit;
     const std::size_t need =
-        fp.workingBytes + (root ? (spill ? 0 : output)
-                                : fp.transferBytes / static_cast<std::size_t>(session.size()));
+        fp.workingBytes +
+        (root ? (spill ? 0 : output) : fp.transferBytes / static_cast<std::size_t>(session.size()));
     if (need > have / 10 * 9)
       throw Error(std::string(toString(settings.layout)) + " transfer at " +
-                  std::to_string(settings.bands) + " bands needs " + bytesText(need) +
-                  " on rank " + std::to_string(session.rank()) + ", whose machine has " +
-                  bytesText(have) + " (fewer bands, a vertex range, or a smaller mesh)");
+                  std::to_string(settings.bands) + " bands needs " + bytesText(need) + " on rank " +
+                  std::to_string(session.rank()) + ", whose machine has " + bytesText(have) +
+                  " (fewer bands, a vertex range, or a smaller mesh)");
   } catch (...) {
     failure = std::current_exception();
   }
@@ -132,15 +132,6 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
     claimCheckpoint(session, options.checkpoint, id);
   }
 
-  // Work shares for the progress, as runBakePasses weighs them.
-  std::vector<double> weight;
-  double total = 0;
-  for (int k = 0; k < count; ++k) {
-    const TransferShape& s = passes.pass(k).shape;
-    weight.push_back(double(s.rows.count) * (s.isMatrix() ? s.coeffs() : 1));
-    total += weight.back();
-  }
-
   // The running sum: on rank 0 over the bake's rows; on every rank over the whole mesh when a
   // pass reads it.
   const bool summing = passes.resultIsSum() || passes.needsFullSum();
@@ -156,7 +147,6 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
   std::vector<std::uint64_t> rays;
   std::vector<double> seconds;
   Transfer prev;
-  double done = 0;
   RunReport rep;
   rep.ranks = session.size();
   rep.threads = totalThreads();
@@ -189,11 +179,7 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
     };
     if (!options.checkpoint.empty())
       job.checkpoint = options.checkpoint + "/pass-" + std::to_string(k);
-    ProgressFn sub;
-    if (progressFn && root) {
-      const double lo = done / total, share = weight[static_cast<std::size_t>(k)] / total;
-      sub = [&progressFn, lo, share](double f) { return progressFn(lo + share * f); };
-    }
+    const ProgressFn sub = root ? passes.passProgress(k, progressFn) : ProgressFn();
     const JobStats js =
         runJob(session, job, outBytes,
                var.empty() ? nullptr : reinterpret_cast<unsigned char*>(var.data()), sub);
@@ -211,7 +197,6 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
       out = Transfer::dense(p.shape, FloatArray::view(mapping, reinterpret_cast<float*>(outBytes),
                                                       p.shape.rows.count * p.shape.stride()));
     prev = std::move(out);
-    done += weight[static_cast<std::size_t>(k)];
   }
   rep.spilled = spill;
   rep.bytesReceived = session.bytesReceived();

@@ -155,6 +155,18 @@ bool BakePasses::needsFullSum() const {
 int BakePasses::sumChannels() const {
   return impl_->sumChannels;
 }
+ProgressFn BakePasses::passProgress(int k, const ProgressFn& whole) const {
+  if (!whole) return {};
+  const auto work = [this](int j) {
+    const TransferShape& s = pass(j).shape;
+    return double(s.rows.count) * (s.isMatrix() ? s.coeffs() : 1);
+  };
+  double before = 0, total = 0;
+  for (int j = 0; j < count(); ++j) (j < k ? before : total) += work(j);
+  total += before;
+  const double lo = before / total, share = work(k) / total;
+  return [whole, lo, share](double f) { return whole(lo + share * f); };
+}
 const BakeSettings& BakePasses::settings() const {
   return impl_->settings;
 }
@@ -271,15 +283,6 @@ Transfer runBakePasses(const BakePasses& passes, BakeStats* stats, const Progres
   const TransferShape& result = passes.resultShape();
   const RowRange rows = result.rows;
 
-  // Progress in proportion to the work: a matrix row costs about B² vector rows.
-  std::vector<double> weight;
-  double total = 0;
-  for (int k = 0; k < count; ++k) {
-    const TransferShape& s = passes.pass(k).shape;
-    weight.push_back(double(s.rows.count) * (s.isMatrix() ? s.coeffs() : 1));
-    total += weight.back();
-  }
-
   const bool summing = passes.resultIsSum() || passes.needsFullSum();
   TransferShape sumShape = result;
   sumShape.layout = TransferLayout::Vector;
@@ -292,16 +295,10 @@ Transfer runBakePasses(const BakePasses& passes, BakeStats* stats, const Progres
   std::vector<std::uint64_t> rays;
   std::vector<double> secs;
   Transfer prev;
-  double done = 0;
   for (int k = 0; k < count; ++k) {
     const BakePassInfo& p = passes.pass(k);
     const auto t0 = Clock::now();
-    ProgressFn sub;
-    if (progressFn) {
-      const double lo = done / total, share = weight[static_cast<std::size_t>(k)] / total;
-      sub = [&progressFn, lo, share](double f) { return progressFn(lo + share * f); };
-    }
-    Progress progress(sub, p.shape.rows.count);
+    Progress progress(passes.passProgress(k, progressFn), p.shape.rows.count);
     Transfer out = Transfer::zeros(p.shape);
     std::vector<double> var(p.variance ? p.shape.rows.count : 0);
     const Transfer& input = p.input == PassInput::Sum ? sum : prev;
@@ -315,7 +312,6 @@ Transfer runBakePasses(const BakePasses& passes, BakeStats* stats, const Progres
       passes.accumulate(k, p.shape.rows, out.values().data(), sumShape.rows, sumData);
     prev = std::move(out);
     secs.push_back(seconds(t0));
-    done += weight[static_cast<std::size_t>(k)];
   }
   if (stats) *stats = passes.stats(rays, secs, variance, seconds(start), maxThreads());
   return passes.resultIsSum() ? sum : prev;

@@ -73,6 +73,9 @@ class BakePasses {
   bool needsFullSum() const;
   /// Channels of the running sum (1, or 3 once an RGB pass is added).
   int sumChannels() const;
+  /// The progress of pass k as a share of the whole bake's `whole` (empty when `whole` is): the
+  /// passes in proportion to their work, a matrix row counting as B² vector rows.
+  ProgressFn passProgress(int k, const ProgressFn& whole) const;
   const BakeSettings& settings() const;
   const Mesh& mesh() const;
 
