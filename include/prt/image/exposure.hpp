@@ -29,7 +29,7 @@ inline constexpr float kAutoExposureHeadroom = 0.9f;
 /// The linear display value (tone-mapped, before the sRGB encode) at and above which an 8-bit
 /// sRGB code is 255: srgbToLinear(254.5 / 255) ≈ 0.9911.
 float clipDisplayValue();
-/// The smallest exposed input value that `op` shows as clipped (≈ 5.70 for ACES, ≈ 111 for
+/// The smallest exposed input value that `op` shows as clipped (≈ 6.38 for ACES, ≈ 111 for
 /// Reinhard, ≈ 0.991 for Clamp).
 float clipInput(ToneMap op);
 /// True when some channel of `linear`, exposed by `stops`, clips after `op`.
