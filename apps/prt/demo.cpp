@@ -55,6 +55,7 @@
 #include "prt/relight/relight.hpp"
 #include "prt/relight/relighter.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/render/exposure.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transport/bake.hpp"
@@ -121,19 +122,6 @@ std::string shortName(const std::string& spec) {
   for (char& c : s)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return s.empty() ? "env" : s;
-}
-
-/// Exposure (stops) that puts the median luminance of the relit vertices at 0.3 after exposure
-/// (a white object under the sky or a real environment then reads as light grey to white, with
-/// the tone map's shoulder left for the brightest parts).
-float objectExposure(std::span<const Rgb> radiance) {
-  std::vector<float> lum;
-  lum.reserve(radiance.size());
-  for (const Rgb& c : radiance) lum.push_back(image::luminance(c));
-  if (lum.empty()) return 0;
-  const auto mid = lum.begin() + static_cast<std::ptrdiff_t>(lum.size() / 2);
-  std::nth_element(lum.begin(), mid, lum.end());
-  return *mid > 0 ? image::clampExposure(std::log2(0.3f / *mid)) : 0.0f;
 }
 
 /// The image as the PNG will show it, still linear: tone mapped (with exposure) and clamped, so
@@ -258,7 +246,9 @@ ModeResult renderMode(const LightScene& ls, const BakedTransfer& bt, const sh::R
                        {mesh.positions, mesh.normals, mesh.albedo}, ls.camera.eye);
   // One exposure per environment, from its unshadowed (brightest) relighting, so every picture
   // under it compares directly.
-  if (m.mode == TransferMode::Unshadowed) L.exposure = objectExposure(relit);
+  if (m.mode == TransferMode::Unshadowed)
+    L.exposure = render::autoExposure(mesh, ls.occluder, relit, ls.camera, ls.frame.width,
+                                      ls.frame.height, image::ToneMap::Aces);
   const image::WriteOptions wo{image::ToneMap::Aces, L.exposure};
   const std::string base = fmt::format("img/{}_{}", L.name, key);
   const render::BackgroundFn background = render::environmentBackground(ls.env, Mat3d::identity());
@@ -296,7 +286,7 @@ void renderTurntable(const LightScene& ls, const BakedTransfer& bt, const sh::Rg
   small.width = ls.frame.width * 2 / 3;
   small.height = ls.frame.height * 2 / 3;
   const render::Camera cam =
-      render::frameSphere(scene.centre, scene.radius, small.width, small.height);
+      render::frameMesh(ls.mesh, small.width, small.height);
   std::vector<image::Image> sheet;
   relight::Relighter relighter(bt.transfer, {ls.mesh.positions, ls.mesh.normals, ls.mesh.albedo});
   relighter.setMaterial(bt.recipe.material);
@@ -317,8 +307,8 @@ void renderTurntable(const LightScene& ls, const BakedTransfer& bt, const sh::Rg
 
 /// The live viewer: prt web's folder for the same bake and environments, in web/. Returns why
 /// there is none ("" when written).
-std::string writeLiveViewer(const DemoScene& scene, const std::vector<std::string>& envSpecs,
-                            const DemoFolder& file, const std::string& output) {
+std::string writeLiveViewer(const std::vector<std::string>& envSpecs, const DemoFolder& file,
+                            const std::string& output, float exposure) {
   std::string why;
   if (!webAssetsAvailable(&why)) {
     warn("demo: no live viewer on the page: " + why);
@@ -330,10 +320,9 @@ std::string writeLiveViewer(const DemoScene& scene, const std::vector<std::strin
   w.output = file("web");
   w.reportAs = (fs::path(output) / "web").string();  // where it will be, not the partial folder
   w.mode = "interreflected";
-  // The stills' framing: the object, not the whole ground plane.
-  const render::Camera c = render::frameSphere(scene.centre, scene.radius, 640, 480);
-  w.camera = fmt::format("eye={},{},{};target={},{},{}", c.eye.x, c.eye.y, c.eye.z, c.target.x,
-                         c.target.y, c.target.z);
+  // The stills' framing is the page's own (render::meshFraming: the object, not the ground
+  // plane); the page opens at the stills' exposure of the first environment.
+  w.exposure = exposure;
   writeWebViewer(w);
   return "";
 }
@@ -382,7 +371,7 @@ void runDemo(const DemoArgs& a) {
   if (glossyMaterial) glossy = bakeGlossy(scene.mesh, *occluder, a, *glossyMaterial, file);
 
   const render::Camera camera =
-      render::frameSphere(scene.centre, scene.radius, frame.width, frame.height);
+      render::frameMesh(scene.mesh, frame.width, frame.height);
   std::vector<LightResult> lights;
   for (std::size_t li = 0; li < envs.size(); ++li) {
     const auto tl = Clock::now();
@@ -424,7 +413,7 @@ void runDemo(const DemoArgs& a) {
     lights.push_back(std::move(L));
   }
 
-  const std::string webWhy = writeLiveViewer(scene, envSpecs, file, a.output);
+  const std::string webWhy = writeLiveViewer(envSpecs, file, a.output, lights.front().exposure);
   writeDemoPage(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0), webWhy,
                 glossy ? &*glossy : nullptr);
   // Into place: replace an earlier demo folder only now that the new one is complete.

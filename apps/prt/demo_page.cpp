@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "prt/core/file.hpp"
+#include "prt/core/json.hpp"
 #include "prt/core/version.hpp"
 
 namespace prt::cli {
@@ -146,7 +147,11 @@ void writeBakeTable(std::ostream& h, const BakeFile& bake, const std::vector<Lig
 /// One environment: its preview, each mode's pictures and table, the turntable.
 void writeLight(std::ostream& h, const LightResult& L, const DemoArgs& a,
                 const GlossyBake* glossy) {
-  h << "<h2>" << htmlEscape(L.spec) << "</h2>\n<figure class=\"preview\"><img src=\"" << L.preview
+  h << "<h2 data-exposure=\"" << jsonFloat(L.exposure).dump() << "\">" << htmlEscape(L.spec)
+    << "</h2>\n<p>Pictures at " << fmt::format("{:.2f}", L.exposure)
+    << " stops (auto exposure: the model's median at light grey, at most 2% of its pixels "
+       "clipped; the live viewer opens at the first environment's).</p>\n"
+    << "<figure class=\"preview\"><img src=\"" << L.preview
     << "\"><figcaption>The environment (top), its " << a.bands
     << "-band SH reconstruction, and the irradiance/π it gives a white surface.</figcaption>"
        "</figure>\n";

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -198,6 +199,23 @@ inline CLI::Validator finite(double lo = -HUGE_VAL, double hi = HUGE_VAL) {
 /// An --exposure in stops: finite and within the library's one limit (image::kMaxExposureStops).
 inline CLI::Validator exposureStops() {
   return finite(-image::kMaxExposureStops, image::kMaxExposureStops);
+}
+
+/// An --exposure that may also be `auto` (image/exposure.hpp's rule, the default).
+inline CLI::Validator exposureStopsOrAuto() {
+  const CLI::Validator stops = exposureStops();
+  return CLI::Validator(
+      [stops](std::string& s) -> std::string {
+        if (s == "auto") return {};
+        std::string t = s;
+        return stops(t);
+      },
+      "auto|STOPS", "ExposureOrAuto");
+}
+/// The value of an exposureStopsOrAuto option: nullopt for `auto`.
+inline std::optional<float> exposureOption(const std::string& s) {
+  if (s == "auto") return std::nullopt;
+  return std::stof(s);
 }
 
 /// Every value option of every verb takes exactly one value per occurrence, so repeatable

@@ -25,6 +25,7 @@
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relighter.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/render/exposure.hpp"
 #include "prt/render/primary.hpp"
 #include "prt/render/render.hpp"
 #include "transfer_options.hpp"
@@ -40,7 +41,7 @@ struct RenderOptions {
   std::string camera;
   std::string size = "640x480";
   int spp = 4;
-  float exposure = 0.0f;
+  std::string exposure = "auto";
   std::string tonemap = "aces";
   TransferChoice transfer;
   std::string material;
@@ -78,7 +79,7 @@ void run(const RenderOptions& o) {
   const render::Background bgKind = render::parseBackground(o.background, &bgColour);
   image::WriteOptions write;
   write.toneMap = image::parseToneMap(o.tonemap);
-  write.exposureStops = o.exposure;
+  const std::optional<float> exposure = exposureOption(o.exposure);
   if (o.turntable < 0) throw Error("--turntable must be a positive frame count");
   if (o.turntable > 0)
     refuseStandardOutput({"-o", o.output}, "--turntable writes numbered frames beside -o");
@@ -148,6 +149,13 @@ void run(const RenderOptions& o) {
     relight::RelightInfo relit;
     const std::span<const Rgb> radiance = relighter.relight(light, rotation, camera.eye, &relit);
     render::checkFiniteRadiance(radiance, o.bake);
+    // --exposure auto: image/exposure.hpp's rule on the first frame's model pixels, kept for
+    // every turntable frame so they compare.
+    if (k == 0)
+      write.exposureStops =
+          exposure ? *exposure
+                   : render::autoExposure(bake.mesh, *occluder, radiance, camera, frame.width,
+                                          frame.height, write.toneMap);
     render::BackgroundFn bg;
     switch (kind) {
       case render::Background::Env:
@@ -168,8 +176,9 @@ void run(const RenderOptions& o) {
     const std::string path = o.turntable > 0 ? framePath(o.output, k) : o.output;
     image::writeImage(path, img, write);
     if (!o.contactSheet.empty()) sheet.push_back(std::move(img));
-    info(fmt::format("{} {} ({}x{}, {} spp, {} bands, {} transfer, {})", did, path, frame.width,
-                     frame.height, frame.spp, relit.bands, baked.describe(), material.spec()));
+    info(fmt::format("{} {} ({}x{}, {} spp, {} bands, {} transfer, {}, exposure {:.2f}{})", did,
+                     path, frame.width, frame.height, frame.spp, relit.bands, baked.describe(),
+                     material.spec(), write.exposureStops, exposure ? "" : " auto"));
   }
   if (!o.contactSheet.empty())
     image::writeImage(o.contactSheet, render::contactSheet(sheet), write);
@@ -192,12 +201,14 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--rotate", opts->rotate,
                   "Rotate the environment: X,Y,Z degrees (X, then Y, then Z)");
   cmd->add_option("--camera", opts->camera,
-                  "Camera: 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (default: frame the bounding "
-                  "sphere from above-front)");
+                  "Camera: 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (default: frame the object — "
+                  "the parts other than a ground plane — from above-front)");
   cmd->add_option("--size", opts->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--spp", opts->spp, "Stratified samples per pixel")->capture_default_str();
-  cmd->add_option("--exposure", opts->exposure, "Exposure in stops (PNG)")
-      ->check(exposureStops())
+  cmd->add_option("--exposure", opts->exposure,
+                  "Exposure in stops (PNG), or auto: the model's median at light grey, at most 2% "
+                  "of its pixels clipped")
+      ->check(exposureStopsOrAuto())
       ->capture_default_str();
   cmd->add_option("--tonemap", opts->tonemap, "Tone map for PNG: aces, reinhard, clamp")
       ->capture_default_str();

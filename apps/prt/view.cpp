@@ -29,7 +29,7 @@ struct ViewArgs {
   std::string camera, mode, material, glossyOn = "cpu", background = "env", toneMap = "aces",
                                       screenshot;
   int bands = 0, frames = 0;
-  float exposure = 0.0f;
+  std::string exposure = "auto";
   bool autoRotate = false, headless = false, stats = false;
   double spin = 30.0;
 };
@@ -50,7 +50,7 @@ void runView(const ViewArgs& a) {
   o.glossyOnGpu = a.glossyOn == "gpu";
   o.bands = a.bands;
   o.background = a.background;
-  o.exposure = a.exposure;
+  o.exposure = exposureOption(a.exposure);
   o.toneMap = a.toneMap;
   o.autoRotate = a.autoRotate;
   o.spinDegreesPerSecond = a.spin;
@@ -95,8 +95,10 @@ void addViewCommand(CLI::App& root) {
   cmd->add_option("--background", a->background,
                   "env (the image), sh (its SH reconstruction) or none")
       ->capture_default_str();
-  cmd->add_option("--exposure", a->exposure, "Exposure in stops")
-      ->check(exposureStops())
+  cmd->add_option("--exposure", a->exposure,
+                  "Initial exposure in stops, or auto: prt render's rule on a CPU relight of the "
+                  "first view")
+      ->check(exposureStopsOrAuto())
       ->capture_default_str();
   cmd->add_option("--tonemap", a->toneMap, "aces, reinhard or clamp")->capture_default_str();
   cmd->add_flag("--auto-rotate", a->autoRotate, "Turn the light about +Y");

@@ -37,6 +37,7 @@
 #include "prt/io/lighting.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/render/exposure.hpp"
 #include "prt/transfer/prepared_material.hpp"
 #include "transfer_options.hpp"
 #include "web.hpp"
@@ -156,7 +157,7 @@ namespace {
 void checkOptions(const WebOptions& a) {
   parseEulerDegrees(a.rotate);
   image::parseToneMap(a.toneMap);
-  image::checkExposure(a.exposure, "--exposure");
+  if (a.exposure) image::checkExposure(*a.exposure, "--exposure");
   if (a.backgroundWidth < 8 || a.backgroundWidth > 8192 || a.backgroundWidth % 2)
     throw Error("--background-width must be an even number of pixels in 8..8192");
   if (a.bands < 0 || a.bands > bands::kMaxLibrary)
@@ -210,7 +211,24 @@ Json vec3(const Vec3f& v) {
 /// up, fov, margin), which the page turns into frameCamera's camera for its canvas, and
 /// --camera's eye, target, up and fov (keys not given come from the default framing at
 /// 640x480), which it uses as they are.
-Json viewJson(const WebOptions& a, const Mesh& mesh) {
+/// The exposure the page opens at: --exposure, else the auto exposure of what it first shows
+/// (the picked transfer under the first environment, the initial rotation and camera at 640x480).
+float initialExposure(const WebOptions& a, const BakeFile& bake, const sh::RgbSh& light) {
+  if (a.exposure) return *a.exposure;
+  std::optional<TransferMode> mode;
+  if (!a.mode.empty()) mode = parseTransferMode(a.mode);
+  const BakedTransfer& t = prt::pickTransfer(bake, mode, {}, a.bake);
+  const Material material = t.transfer.isMatrix() && !a.material.empty()
+                                ? parseMaterial(a.material)
+                                : t.recipe.material;
+  const render::Framing f = render::meshFraming(bake.mesh);
+  render::Camera c = render::frameCamera(f, 640, 480);
+  if (!a.camera.empty()) c = render::parseCamera(a.camera, c);
+  return render::relitExposure(bake.mesh, t.transfer, material, light, parseRotation(a.rotate), c,
+                               640, 480, image::parseToneMap(a.toneMap), a.bands);
+}
+
+Json viewJson(const WebOptions& a, const Mesh& mesh, float exposure) {
   const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
   const render::Framing f = render::meshFraming(mesh);
   Json camera = nullptr;
@@ -222,7 +240,7 @@ Json viewJson(const WebOptions& a, const Mesh& mesh) {
               {"fov", jsonFloat(c.fovY)}};
   }
   return {{"rotate", Json::array({euler[0], euler[1], euler[2]})},
-          {"exposure", jsonFloat(a.exposure)},
+          {"exposure", jsonFloat(exposure)},
           {"tonemap", a.toneMap},
           {"mode", a.mode},
           {"bands", a.bands},
@@ -306,7 +324,7 @@ void writeWebViewer(const WebOptions& a) {
     bakeEntry["file"] = kBakeFileName;
   Json data;
   data["generator"] = kGenerator;
-  data["view"] = viewJson(a, bake.mesh);
+  data["view"] = viewJson(a, bake.mesh, initialExposure(a, bake, envs.front().light));
   data["bake"] = std::move(bakeEntry);
   data["glossy"] = glossyJson(a, bake);
   data["environments"] = Json::array();
@@ -348,8 +366,11 @@ void addWebCommand(CLI::App& root) {
   cmd->add_option("--mode", args->mode, "Initial transfer mode");
   addMaterialOption(cmd, args->material, "for glossy (matrix) transfer");
   cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
-  cmd->add_option("--exposure", args->exposure, "Initial exposure in stops")
-      ->check(exposureStops());
+  cmd->add_option_function<std::string>(
+         "--exposure", [args](const std::string& s) { args->exposure = exposureOption(s); },
+         "Initial exposure in stops, or auto (default): prt render's rule on a CPU relight of "
+         "the first view")
+      ->check(exposureStopsOrAuto());
   cmd->add_option("--tonemap", args->toneMap, "Initial tone map: aces, reinhard, clamp")
       ->capture_default_str();
   cmd->add_option("--embed", args->embed,

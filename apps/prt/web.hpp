@@ -2,6 +2,7 @@
 // prt web's work as a function, for prt demo (which puts the live viewer on its index.html).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,9 @@ struct WebOptions {
   std::string mode;               ///< initial transfer mode ("" = the richest)
   std::string material;           ///< glossy matrices' material ("" = the bake's)
   std::string toneMap = "aces";
-  float exposure = 0.0f;
+  /// Initial exposure in stops; nullopt: auto (render::relitExposure of the initial transfer and
+  /// environment, relit on the CPU through the initial camera).
+  std::optional<float> exposure;
   int bands = 0;  ///< initial band count (0 = the bake's)
   int backgroundWidth = 512;
   std::string embed = "auto";  ///< auto | always | never: the bake inside prt-data.js or beside

@@ -16,6 +16,7 @@
 #include "prt/core/file.hpp"
 #include "prt/image/image.hpp"
 #include "prt/image/image_io.hpp"
+#include "prt/render/exposure.hpp"
 #include "prt/sh/sh.hpp"
 #include "scene.hpp"
 #include "window.hpp"
@@ -87,9 +88,19 @@ Scene loadScene(const Options& o, const Output& out) {
     scene.setUserRotation(
         rotationEulerXYZ((*o.rotateDeg)[0], (*o.rotateDeg)[1], (*o.rotateDeg)[2]));
   scene.background = parseBackgroundMode(o.background);
-  image::checkExposure(o.exposure, "--exposure");
-  scene.exposureStops = o.exposure;
   scene.toneMap = image::parseToneMap(o.toneMap);
+  if (o.exposure) {
+    image::checkExposure(*o.exposure, "--exposure");
+    scene.exposureStops = *o.exposure;
+  } else {
+    // prt render's rule on a CPU relight of the first view (the same bake, light and camera).
+    const Mesh& mesh = scene.bake().mesh;
+    scene.exposureStops = render::relitExposure(
+        mesh, scene.transfer().transfer, scene.material(),
+        scene.environment(std::size_t(scene.environmentIndex())).lighting.coefficients,
+        scene.lightRotation(), scene.orbit.camera(), o.width, o.height, scene.toneMap,
+        scene.bands());
+  }
   scene.autoRotate = o.autoRotate;
   scene.spinDegreesPerSecond = o.spinDegreesPerSecond;
   return scene;

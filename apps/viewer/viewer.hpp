@@ -23,7 +23,7 @@ struct Options {
   bool glossyOnGpu = false;        ///< --glossy-on gpu: matrix transfer relit in the vertex shader
   int bands = 0;                   ///< 0 = all the bake has
   std::string background = "env";  ///< env | sh | none
-  float exposure = 0.0f;
+  std::optional<float> exposure;  ///< stops; nullopt: auto (render::relitExposure of the first view)
   std::string toneMap = "aces";
   bool autoRotate = false;
   double spinDegreesPerSecond = 30.0;

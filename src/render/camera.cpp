@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "prt/core/error.hpp"
@@ -127,15 +128,59 @@ Camera frameSphere(const Vec3f& centre, float radius, int width, int height, flo
   return frameCamera(f, width, height);
 }
 
+bool isGroundPart(const Mesh& mesh, const MeshPart& part) {
+  if (mesh.parts.size() < 2 || part.vertexCount == 0) return false;
+  const std::size_t v0 = part.firstVertex, v1 = std::size_t(part.firstVertex) + part.vertexCount;
+  if (v1 > mesh.positions.size() || v1 > mesh.normals.size()) return false;
+  Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (std::size_t v = v0; v < v1; ++v) {
+    if (mesh.normals[v].y < 0.999f) return false;  // within ~2.5° of +Y
+    lo = min(lo, mesh.positions[v]);
+    hi = max(hi, mesh.positions[v]);
+  }
+  const float width = std::max(hi.x - lo.x, hi.z - lo.z);
+  if (!(width > 0.0f) || hi.y - lo.y > 1e-4f * width) return false;
+  // Under everything else: no other part reaches below its top.
+  float othersLow = std::numeric_limits<float>::max();
+  for (const MeshPart& q : mesh.parts) {
+    if (&q == &part) continue;
+    const std::size_t e = std::min(mesh.positions.size(), std::size_t(q.firstVertex) + q.vertexCount);
+    for (std::size_t v = q.firstVertex; v < e; ++v) othersLow = std::min(othersLow, mesh.positions[v].y);
+  }
+  return othersLow >= hi.y - 1e-4f * width;
+}
+
+std::vector<Vec3f> framedVertices(const Mesh& mesh) {
+  std::vector<Vec3f> out;
+  for (const MeshPart& p : mesh.parts) {
+    if (isGroundPart(mesh, p)) continue;
+    const std::size_t e = std::min(mesh.positions.size(), std::size_t(p.firstVertex) + p.vertexCount);
+    out.insert(out.end(), mesh.positions.begin() + std::ptrdiff_t(std::min<std::size_t>(p.firstVertex, e)),
+               mesh.positions.begin() + std::ptrdiff_t(e));
+  }
+  if (out.empty()) out = mesh.positions;
+  return out;
+}
+
 Framing meshFraming(const Mesh& mesh) {
   // A tighter bounding sphere than the box's half-diagonal: same centre, radius to the farthest
   // vertex (a unit sphere gets radius 1, not √3).
   Framing f;
+  const std::vector<Vec3f> object = framedVertices(mesh);
+  if (object.empty()) {
+    f.radius = 0.0f;
+    return f;
+  }
+  Vec3f lo = object.front(), hi = object.front();
+  for (const Vec3f& p : object) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  }
+  f.centre = (lo + hi) * 0.5f;
   // In double: a squared distance of coordinates near the cap (PRT_MAX_COORDINATE) overflows
   // float, which gave "radius": inf on the web page.
-  f.centre = computeBounds(mesh).centre();
   double r2 = 0.0;
-  for (const Vec3f& p : mesh.positions) {
+  for (const Vec3f& p : object) {
     const Vec3d d = Vec3d(p) - Vec3d(f.centre);
     r2 = std::max(r2, dot(d, d));
   }

@@ -201,6 +201,17 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
   if (html.find("src=\"web/index.html\"") != std::string::npos) {
     EXPECT_TRUE(std::filesystem::exists(d / "web/prt-data.js"));
     EXPECT_TRUE(std::filesystem::exists(d / "web/prt-web.js"));
+    // The page opens at the stills' exposure of the first environment (one auto exposure).
+    const std::string tag = "<h2 data-exposure=\"";
+    const std::size_t at = html.find(tag);
+    ASSERT_NE(at, std::string::npos);
+    const std::string stills = html.substr(at + tag.size(), html.find('"', at + tag.size()) -
+                                                                  at - tag.size());
+    const std::string data = slurp(d / "web/prt-data.js");
+    EXPECT_NE(data.find("\"exposure\":" + stills), std::string::npos)
+        << "stills at " << stills << " stops; the page's view: "
+        << data.substr(data.find("\"view\""), 200);
+    EXPECT_NE(std::stod(stills), 0.0);
   }
   EXPECT_EQ(onlyEntry(dir_ / "out"), "demo");  // no partial folder beside it
 

@@ -72,12 +72,13 @@ TEST(ViewCli, RotatedLightMatchesRenderRotate) {
 
 TEST(ViewCli, AutoRotationAndCameraMatchRender) {
   PRT_REQUIRE_HEADLESS_GL();
+  // At a fixed exposure: the auto exposure follows the light each verb starts from.
   // Headless frames are 1/60 s apart: frame 31 of a 180°/s spin shows the light turned by
   // 30/60 · 180° = 90° about +Y, i.e. render --rotate 0,90,0.
-  const Result r = prt("-q render '" + spherePlaneBake() + "' " + std::string(kSize) +
+  const Result r = prt("-q render --exposure 0 '" + spherePlaneBake() + "' " + std::string(kSize) +
                        " --rotate 0,90,0 -o render.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const Result v = prt("-q view '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
+  const Result v = prt("-q view --exposure 0 '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
                        " --frames 31 --auto-rotate --spin 180 --screenshot spun.png");
   ASSERT_EQ(v.rc, 0) << v.err;
   EXPECT_LT(displayedRmse(path("spun.png"), path("render.png")), kMatch);
@@ -138,10 +139,10 @@ TEST(ViewCli, GlossyOnGpuMatchesRender) {
             kMatch);
   EXPECT_LT(compareWithRender(glossyBake(), "--bands 3 --light builtin:studio", gpu), kMatch);
   // Frame 31 of a 180°/s spin against render --rotate 0,90,0: the light follows per frame.
-  const Result r = prt("-q render '" + glossyBake() + "' " + std::string(kSize) +
+  const Result r = prt("-q render --exposure 0 '" + glossyBake() + "' " + std::string(kSize) +
                        " --rotate 0,90,0 -o render.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const Result v = prt("-q view '" + glossyBake() + "' --headless " + std::string(kSize) +
+  const Result v = prt("-q view --exposure 0 '" + glossyBake() + "' --headless " + std::string(kSize) +
                        " --frames 31 --auto-rotate --spin 180 --glossy-on gpu --screenshot g.png");
   ASSERT_EQ(v.rc, 0) << v.err;
   EXPECT_LT(displayedRmse(path("g.png"), path("render.png")), kMatch);
@@ -205,10 +206,10 @@ TEST(ViewCli, GlossyRelitEveryFrameAsLightAndCameraMove) {
   PRT_REQUIRE_HEADLESS_GL();
   // Frame 31 of a 180°/s spin is the light turned 90° about +Y (see AutoRotation... above): the
   // radiance must be recomputed as the light turns, not kept from the first frame.
-  const Result r = prt("-q render '" + glossyBake() + "' " + std::string(kSize) +
+  const Result r = prt("-q render --exposure 0 '" + glossyBake() + "' " + std::string(kSize) +
                        " --rotate 0,90,0 -o render.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const Result v = prt("view '" + glossyBake() + "' --headless " + std::string(kSize) +
+  const Result v = prt("view --exposure 0 '" + glossyBake() + "' --headless " + std::string(kSize) +
                        " --frames 31 --auto-rotate --spin 180 --stats --screenshot spun.png");
   ASSERT_EQ(v.rc, 0) << v.err;
   EXPECT_LT(displayedRmse(path("spun.png"), path("render.png")), kMatch);

@@ -94,9 +94,9 @@ TEST(Scene, DragByKnownPixelsIsAKnownRotation) {
 TEST(Scene, DraggedLightFrameMatchesRenderRotate) {
   PRT_REQUIRE_HEADLESS_GL();
   const Result r =
-      prt("-q render '" + spherePlaneBake() + "' --size 160x120 --rotate 0,90,0 -o rotated.png");
+      prt("-q render --exposure 0 '" + spherePlaneBake() + "' --size 160x120 --rotate 0,90,0 -o rotated.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const Result r0 = prt("-q render '" + spherePlaneBake() + "' --size 160x120 -o plain.png");
+  const Result r0 = prt("-q render --exposure 0 '" + spherePlaneBake() + "' --size 160x120 -o plain.png");
   ASSERT_EQ(r0.rc, 0) << r0.err;
 
   Scene s = smallScene(160, 120);

@@ -194,7 +194,10 @@ constexpr double kInterior = 2.5 / 255.0;
 /// The page's ?screenshot frame for QUERY (320x240, as tests/viewer compare prt view) as RGB bytes.
 std::vector<unsigned char> pageFrame(const std::string& query) {
   std::string log;
-  const std::string json = runPage(webFolder(nullptr), "screenshot&size=320x240&" + query, &log);
+  // At exposure 0 unless asked: these compare the drawing, and the written auto exposure is the
+  // page's first view's, not that of the query's light.
+  const std::string q = query.find("exposure=") == std::string::npos ? "exposure=0&" + query : query;
+  const std::string json = runPage(webFolder(nullptr), "screenshot&size=320x240&" + q, &log);
   EXPECT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
   return unbase64(jsonField(json, "rgb"));
 }
@@ -202,7 +205,7 @@ std::vector<unsigned char> pageFrame(const std::string& query) {
 TEST(Web, FirstFrameMatchesPrtRenderScalar) {
   PRT_REQUIRE_PAGE();
   const Result r =
-      prt("-q render cornell.glb --light builtin:sky --rotate 0,70,0 --mode shadowed "
+      prt("-q render --exposure 0 cornell.glb --light builtin:sky --rotate 0,70,0 --mode shadowed "
           "--size 320x240 -o shadowed.png");
   ASSERT_EQ(r.rc, 0) << r.err;
   const double same =
@@ -238,10 +241,10 @@ TEST(Web, GivenCameraMatchesPrtRender) {
   const std::string cam = "eye=1.2,2.2,2.6;target=0.1,0.2,0;up=0.2,1,0;fov=55";
   Result r = prt("-q web cornell.glb --env builtin:studio --camera '" + cam + "' -o page_cam");
   ASSERT_EQ(r.rc, 0) << r.err;
-  r = prt("-q render cornell.glb --light builtin:studio --camera '" + cam +
+  r = prt("-q render --exposure 0 cornell.glb --light builtin:studio --camera '" + cam +
           "' --mode shadowed --size 320x240 -o cam.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const std::string json = runPage(path("page_cam"), "screenshot&size=320x240&mode=shadowed");
+  const std::string json = runPage(path("page_cam"), "screenshot&size=320x240&exposure=0&mode=shadowed");
   const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("cam.png"));
   EXPECT_LT(e, kMatch) << json.substr(0, 200);
   EXPECT_LT(quantile90, kInterior);
@@ -271,10 +274,10 @@ TEST(Web, CompressedFirstFrameMatchesPrtRender) {
         Case{"--light builtin:sky --rotate 0,70,0 --mode shadowed --bands 3",
              "env=0&rotate=0,70,0&mode=shadowed&bands=3", "16x2, 16 bytes per vertex"}}) {
     SCOPED_TRACE(c.query);
-    r = prt("-q render cpca.glb --size 320x240 " + c.render + " -o cpca.png");
+    r = prt("-q render --exposure 0 cpca.glb --size 320x240 " + c.render + " -o cpca.png");
     ASSERT_EQ(r.rc, 0) << r.err;
     std::string log;
-    const std::string json = runPage(path("page_cpca"), "screenshot&size=320x240&" + c.query, &log);
+    const std::string json = runPage(path("page_cpca"), "screenshot&size=320x240&exposure=0&" + c.query, &log);
     ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
     EXPECT_EQ(jsonField(json, "compressed"), c.compressed);
     const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("cpca.png"));
@@ -363,9 +366,9 @@ TEST(Web, MeshWithoutAlbedoMatchesPrtRender) {
   ASSERT_EQ(r.rc, 0) << r.err;
   r = prt("-q web box.glb --env builtin:studio -o page_box");
   ASSERT_EQ(r.rc, 0) << r.err;
-  r = prt("-q render box.glb --light builtin:studio --rotate 0,40,0 --size 320x240 -o box.png");
+  r = prt("-q render --exposure 0 box.glb --light builtin:studio --rotate 0,40,0 --size 320x240 -o box.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const std::string json = runPage(path("page_box"), "screenshot&size=320x240&rotate=0,40,0");
+  const std::string json = runPage(path("page_box"), "screenshot&size=320x240&exposure=0&rotate=0,40,0");
   EXPECT_LT(displayedRmse(unbase64(jsonField(json, "rgb")), path("box.png")), kMatch)
       << json.substr(0, 200);
   EXPECT_LT(quantile90, kInterior);
@@ -481,7 +484,7 @@ TEST(Web, LargeBakesGoBesideThePageAndAreFetched) {
   EXPECT_NE(data.find("\"file\":\"bake.glb\""), std::string::npos);
   // Fetched (Chromium allows file:// fetches with this flag, as a server would serve them).
   std::string log;
-  std::string json = runPage(path("page_beside"), "screenshot&size=320x240&env=0&mode=shadowed",
+  std::string json = runPage(path("page_beside"), "screenshot&size=320x240&exposure=0&env=0&mode=shadowed",
                              &log, "--allow-file-access-from-files");
   ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
   const std::vector<unsigned char> beside = unbase64(jsonField(json, "rgb"));

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "prt/core/vec.hpp"
 #include "prt/geometry/mesh.hpp"
@@ -76,7 +77,15 @@ struct Framing {
   float fovY = 40.0f;
   float margin = 1.05f;
 };
-/// The default framing of a mesh: centred on its bounds, radius to the farthest vertex.
+/// A ground part: a flat, horizontal part facing up (+Y: every normal within ~2.5° of it, its
+/// heights within 1e-4 of its width) whose top is no higher than the lowest point of the other
+/// parts — the plane under an object, a Cornell box's floor. Never the mesh's only part.
+bool isGroundPart(const Mesh& mesh, const MeshPart& part);
+/// The object of interest, what the default camera frames: the vertices of the mesh's non-ground
+/// parts (isGroundPart), or all of them when every part is ground or the mesh has no parts.
+std::vector<Vec3f> framedVertices(const Mesh& mesh);
+/// The default framing of a mesh (every tool's default camera: render, validate, view, web, demo):
+/// the object of interest (framedVertices), centred on its bounds, radius to its farthest vertex.
 Framing meshFraming(const Mesh& mesh);
 /// The camera of `framing` for a width × height image.
 Camera frameCamera(const Framing& framing, int width, int height);

@@ -1,0 +1,54 @@
+#include "prt/render/exposure.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "prt/core/error.hpp"
+#include "prt/core/parallel.hpp"
+#include "prt/image/exposure.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/render/render.hpp"
+
+namespace prt::render {
+
+std::vector<Rgb> modelPixels(const Mesh& mesh, const Occluder& occluder,
+                             std::span<const Rgb> radiance, const Camera& camera, int width,
+                             int height) {
+  PRT_CHECK(width > 0 && height > 0, "image size must be positive");
+  const RayGenerator gen(camera, width, height);
+  const ShadeFn shade = vertexRadianceShader(mesh, radiance);
+  // One row per slot, joined in row order: the same pixels whatever the thread count.
+  std::vector<std::vector<Rgb>> rows(static_cast<std::size_t>(height));
+  parallelFor(rows.size(), 1, [&](std::size_t yb, std::size_t ye) {
+    for (std::size_t y = yb; y < ye; ++y)
+      for (int x = 0; x < width; ++x) {
+        const Ray ray = gen.ray(float(x) + 0.5f, float(y) + 0.5f);
+        const Hit hit = occluder.intersect(ray);
+        if (hit.hit) rows[y].push_back(shade(ray, hit));
+      }
+  });
+  std::vector<Rgb> out;
+  for (const auto& r : rows) out.insert(out.end(), r.begin(), r.end());
+  return out;
+}
+
+float autoExposure(const Mesh& mesh, const Occluder& occluder, std::span<const Rgb> radiance,
+                   const Camera& camera, int width, int height, image::ToneMap op) {
+  PRT_CHECK(width > 0 && height > 0, "image size must be positive");
+  const int w = std::min(width, kExposureProbeWidth);
+  const int h = std::max(1, int(std::lround(double(height) * w / width)));
+  return image::autoExposure(modelPixels(mesh, occluder, radiance, camera, w, h), op);
+}
+
+float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& material,
+                    const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera, int width,
+                    int height, image::ToneMap op, int bands) {
+  const Transfer shown =
+      bands > 0 && bands < transfer.bands() ? transfer.cut(bands) : transfer;
+  const std::vector<Rgb> radiance = relight::relight(
+      shown, light, material, {mesh.positions, mesh.normals, mesh.albedo}, camera.eye, rotation);
+  const auto occluder = makeEmbreeOccluder(mesh);
+  return autoExposure(mesh, *occluder, radiance, camera, width, height, op);
+}
+
+}  // namespace prt::render
