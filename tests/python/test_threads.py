@@ -30,7 +30,7 @@ def cpu_seconds():
 
 
 def test_sigint_cancels_a_bake_within_a_second(big):
-    prtkit.bake(big, samples=1)  # start the thread pool before counting threads
+    prtkit.bake(big, samples=64)  # start every worker of the pool before counting threads
     threads_before, python_before = os_threads(), threading.active_count()
     sent = []
 
