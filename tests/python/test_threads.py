@@ -49,9 +49,11 @@ def test_sigint_cancels_a_bake_within_a_second(big):
     assert raised - sent[0] < 1.0, f"KeyboardInterrupt {raised - sent[0]:.2f} s after SIGINT"
     assert raised - start < 5.0
     # Nothing is left running: no extra thread, no CPU spent afterwards.
-    # (TBB may retire idle workers, so the OS thread count can only fall.)
+    # TBB may retire idle workers, or start the rest of its pool during the long bake: at most
+    # the main thread and get_threads() - 1 workers remain, never the call's helper thread.
     assert threading.active_count() == python_before
-    assert os_threads() <= threads_before
+    assert os_threads() <= max(threads_before, prtkit.get_threads()), (threads_before,
+                                                                       prtkit.get_threads())
     c0 = cpu_seconds()
     time.sleep(0.3)
     assert cpu_seconds() - c0 < 0.1
