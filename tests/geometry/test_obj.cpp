@@ -8,6 +8,7 @@
 #include "prt/geometry/load.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
+#include "support/hardening.hpp"
 
 namespace prt {
 namespace {
@@ -120,12 +121,7 @@ TEST(ObjLoader, ComputesNormalsWhenAbsent) {
 }
 
 std::string errorOf(const std::string& path) {
-  try {
-    loadMesh(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::errorOf([&] { loadMesh(path); });
 }
 
 TEST(ObjLoader, BadFilesGiveOneLineErrors) {

@@ -107,12 +107,7 @@ TEST(PlyLoader, NormalsAndExtraElementsAndQuads) {
 }
 
 std::string errorOf(const std::string& path) {
-  try {
-    loadMesh(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::errorOf([&] { loadMesh(path); });
 }
 
 TEST(PlyLoader, MalformedFilesGiveOneLineErrors) {
