@@ -1,5 +1,6 @@
 // prt: the prtkit command line. `prt VERB --help` for each verb.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -34,24 +35,51 @@ void warn(const std::string& line) {
   std::cerr << "prt: warning: " << oneLine(line) << '\n';
 }
 
+namespace {
+
+/// "48 s", "5 min 12 s", "1 h 03 min".
+std::string durationText(double s) {
+  const long long t = std::llround(std::max(0.0, s));
+  char buf[32];
+  if (t < 60)
+    std::snprintf(buf, sizeof buf, "%lld s", t);
+  else if (t < 3600)
+    std::snprintf(buf, sizeof buf, "%lld min %02lld s", t / 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lld h %02lld min", t / 3600, (t % 3600) / 60);
+  return buf;
+}
+
+/// The time left if the rest goes as fast as the part done: t (1 − f) / f; "ETA ?" before
+/// anything is done.
+std::string etaText(double f, double t) {
+  if (!(f > 0.0) || t < 0.5) return "ETA ?";
+  return "ETA " + durationText(t * (1.0 - std::min(f, 1.0)) / f);
+}
+
+}  // namespace
+
 ProgressFn progressBar(const std::string& label) {
   if (globals().quiet) return [](double) { return !cancelRequested(); };
   if (::isatty(STDERR_FILENO)) {
-    return [label, last = -1](double f) mutable {
+    using Clock = std::chrono::steady_clock;
+    return [label, last = -1, start = Clock::now()](double f) mutable {
       if (cancelRequested()) return false;
       const int pct = static_cast<int>(f * 100.0);
       if (pct == last) return true;
       last = pct;
+      const double t = std::chrono::duration<double>(Clock::now() - start).count();
       const int width = 30, filled = pct * width / 100;
-      std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%%s", label.c_str(), filled,
+      std::fprintf(stderr, "\r%s [%.*s%*s] %3d%% %-16s%s", label.c_str(), filled,
                    "##############################", width - filled, "", pct,
+                   pct >= 100 ? durationText(t).c_str() : etaText(f, t).c_str(),
                    pct >= 100 ? "\n" : "");
       std::fflush(stderr);
       return true;
     };
   }
   // Not a terminal (a pipe, a log file, CI): a plain line at most every few seconds, so long
-  // work is never silent — "reference: 35% (12 s)". PRT_PROGRESS_INTERVAL (seconds, default 5)
+  // work is never silent — "reference: 35% (12 s, ETA 22 s)". PRT_PROGRESS_INTERVAL (seconds, default 5)
   // sets the spacing; the tests set it to 0.
   double interval = 5.0;
   if (const char* env = std::getenv("PRT_PROGRESS_INTERVAL")) {
@@ -65,7 +93,8 @@ ProgressFn progressBar(const std::string& label) {
     const double t = std::chrono::duration<double>(Clock::now() - start).count();
     const int pct = static_cast<int>(f * 100.0);
     if (t >= next && pct != lastPct && pct < 100) {
-      std::fprintf(stderr, "%s: %d%% (%.0f s)\n", label.c_str(), pct, t);
+      std::fprintf(stderr, "%s: %d%% (%s, %s)\n", label.c_str(), pct, durationText(t).c_str(),
+                   etaText(f, t).c_str());
       std::fflush(stderr);
       lastPct = pct;
       next = t + interval;
@@ -104,6 +133,7 @@ const char* activity(const std::string& verb) {
   if (verb == "prt compress") return "compressing the transfer";
   if (verb == "prt demo") return "running the demo";
   if (verb == "prt web") return "writing the browser viewer";
+  if (verb == "prt completions" || verb == "prt manpage") return "writing the text";
   return "reading the command line";
 }
 
@@ -133,6 +163,7 @@ int main(int argc, char** argv) {
   addCompressCommand(app);
   addDemoCommand(app);
   addWebCommand(app);
+  addCompletionsCommands(app);
   oneValuePerOption(app);
 
   std::signal(SIGINT, onSigint);

@@ -257,6 +257,7 @@ TEST_F(HardeningCli, ProgressLinesInAPipe) {
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find("reference: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("% ("), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(", ETA "), std::string::npos) << r.err;  // "35% (12 s, ETA 22 s)"
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
   // The default spacing (5 s) prints nothing for a run this short; -q prints nothing at all.
   r = prt(ref);
