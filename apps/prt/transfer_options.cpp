@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include "cli.hpp"
+#include "prt/core/error.hpp"
+#include "prt/io/light_file.hpp"
+#include "prt/core/band_limits.hpp"
 
 namespace prt::cli {
 
@@ -60,6 +63,28 @@ void warnLobeOnVectors(const Material& m, const BakedTransfer& baked, const std:
   if (m.glossy() && !baked.transfer.isMatrix())
     warn(fmt::format("{}: the {} transfer is a vector (diffuse only); {}", file,
                      toString(baked.mode()), consequence));
+}
+
+void warnLobeEnergyLoss(const Material& m, int bands, const std::string& file) {
+  if (!m.glossy()) return;
+  const double lost = m.lobe.energyBeyond(bands);
+  if (lost <= kLobeEnergyLossWarning) return;
+  // The fewest bands (up to the library's) that would keep the loss under the threshold.
+  int enough = 0;
+  for (int b = bands + 1; b <= bands::kMaxLibrary && !enough; ++b)
+    if (m.lobe.energyBeyond(b) <= kLobeEnergyLossWarning) enough = b;
+  warn(fmt::format("{}: the material's lobe ({}) loses {:.0f}% of its energy beyond {} bands: the "
+                   "highlight will look broader and dimmer than the material's; {}",
+                   file, m.spec(), 100 * lost, bands,
+                   enough ? fmt::format("bake {} bands or use a rougher lobe", enough)
+                          : std::string("use a rougher lobe")));
+}
+
+void refuseShLight(const std::string& light, const std::string& verb) {
+  if (io::isLightFile(light))
+    throw Error(light, "is an SH light file; prt " + verb +
+                           " traces the environment itself (an image, a face folder or "
+                           "builtin:NAME), whose radiance SH coefficients only approximate");
 }
 
 }  // namespace prt::cli

@@ -38,4 +38,13 @@ Material materialOption(const std::string& spec, const BakedTransfer& baked,
 void warnLobeOnVectors(const Material& m, const BakedTransfer& baked, const std::string& file,
                        const std::string& consequence);
 
+/// Warns, naming `file`, when the glossy lobe of `m` loses more than kLobeEnergyLossWarning of
+/// its energy beyond `bands` (what no `bands`-band transfer can hold), with the fraction and
+/// what would hold it.
+void warnLobeEnergyLoss(const Material& m, int bands, const std::string& file);
+
+/// `validate` and `reference` integrate the environment itself: an SH light file (.json, the
+/// course's light.txt) cannot stand in for it; refused in one line naming the file and `verb`.
+void refuseShLight(const std::string& light, const std::string& verb);
+
 }  // namespace prt::cli
