@@ -1,3 +1,4 @@
+#include <cstdio>
 #include "prt/envmap/load.hpp"
 
 #include <filesystem>
@@ -131,12 +132,29 @@ std::vector<std::string> repairWarnings(const LoadedEnvironment& loaded) {
   std::vector<std::string> out;
   for (std::size_t k = 0; k < loaded.stats.size() && k < loaded.files.size(); ++k) {
     const image::ReadStats& s = loaded.stats[k];
-    if (s.nonFinitePixels + s.negativePixels > 0)
-      out.push_back(loaded.files[k] + ": " + std::to_string(s.nonFinitePixels) +
-                    " non-finite and " + std::to_string(s.negativePixels) +
-                    " negative pixels set to 0");
+    const double light = s.positiveSum + s.negativeSum;
+    const double share = light > 0 ? s.negativeSum / light : (s.negativePixels ? 1.0 : 0.0);
+    const bool negatives = s.negativePixels > 0 && share > kNegativeLightWarning;
+    if (!s.nonFinitePixels && !negatives) continue;
+    std::string line = loaded.files[k] + ":";
+    if (s.nonFinitePixels)
+      line += " " + std::to_string(s.nonFinitePixels) + " pixels with NaN/Inf set to 0";
+    if (s.nonFinitePixels && negatives) line += ",";
+    if (negatives) {
+      char pct[32];
+      std::snprintf(pct, sizeof pct, "%.3g%%", 100 * share);
+      line += " " + std::to_string(s.negativePixels) +
+              " pixels with negative values clamped to 0 (" + pct + " of its light)";
+    }
+    out.push_back(std::move(line));
   }
   return out;
+}
+
+bool anyPixelRepaired(const LoadedEnvironment& loaded) {
+  for (const image::ReadStats& s : loaded.stats)
+    if (s.nonFinitePixels + s.negativePixels > 0) return true;
+  return false;
 }
 
 }  // namespace prt::envmap

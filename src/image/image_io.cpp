@@ -460,8 +460,11 @@ ReadStats sanitize(Image& img) {
         v = 0.0f;
         nonFinite = true;
       } else if (v < 0.0f) {
+        s.negativeSum -= v;
         v = 0.0f;
         negative = true;
+      } else {
+        s.positiveSum += v;
       }
     }
     s.nonFinitePixels += nonFinite;

@@ -36,7 +36,24 @@ TEST(EnvironmentReaders, AllNanIsRefusedSomeNanIsReported) {
   EXPECT_EQ(e.env.source(), some);
   const std::vector<std::string> w = repairWarnings(e);
   ASSERT_EQ(w.size(), 1u);
-  EXPECT_EQ(w[0], some + ": 30 non-finite and 1 negative pixels set to 0");
+  EXPECT_EQ(w[0], some +
+                      ": 30 pixels with NaN/Inf set to 0, 1 pixels with negative values clamped "
+                      "to 0 (66.7% of its light)");
+  // Negatives as small as lossy compression leaves (here 1e-5 of the light) are clamped
+  // silently; past kNegativeLightWarning they are said.
+  image::Image grey(8, 4, Rgb(1.0f));
+  grey.pixels[3] = Rgb(-3.2e-4f / 3, 0.0f, 0.0f);  // 1.1e-4 / 96 ≈ 1.1e-6 of the light
+  image::writeImage(dir / "residue.exr", grey);
+  const LoadedEnvironment residue = loadEnvironment(dir / "residue.exr");
+  EXPECT_TRUE(repairWarnings(residue).empty());
+  EXPECT_TRUE(anyPixelRepaired(residue));
+  grey.pixels[3] = Rgb(-0.1f, 0.0f, 0.0f);  // 0.1 / 93.1 ≈ 1.1e-3 of the light
+  image::writeImage(dir / "negative.exr", grey);
+  const std::vector<std::string> said = repairWarnings(loadEnvironment(dir / "negative.exr"));
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_NE(said[0].find("1 pixels with negative values clamped to 0 (0.107% of its light)"),
+            std::string::npos)
+      << said[0];
   // A black (but finite) image is light-less too, yet not garbage: it loads.
   image::Image black(8, 4);
   image::writeImage(dir / "black.exr", black);

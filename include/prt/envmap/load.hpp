@@ -47,8 +47,16 @@ Environment environmentFromImage(image::Image img, std::optional<Layout> layout,
 /// when every pixel read was NaN or infinite (nothing would be left but black). The
 /// environment's source() is `input`.
 LoadedEnvironment loadEnvironment(const std::string& input, const LoadOptions& options = {});
-/// One line per file whose pixels the policy repaired: "FILE: N non-finite and M negative
-/// pixels set to 0" — what every verb that loads an environment warns.
+/// Negative pixels whose magnitudes sum to at most this fraction of an image's light are the
+/// harmless residue of lossy EXR compression (Blender's studio.exr: 0.002 %) and are clamped
+/// silently; more is said, as it changes the light.
+inline constexpr double kNegativeLightWarning = 1e-4;
+/// One line per file whose pixels the policy repaired and whose light it changed: "FILE: N
+/// pixels with NaN/Inf set to 0", "FILE: M pixels with negative values clamped to 0 (x% of its
+/// light)" (past kNegativeLightWarning) — what every verb that loads an environment warns.
 std::vector<std::string> repairWarnings(const LoadedEnvironment& loaded);
+/// True when any file of `loaded` had a pixel repaired (NaN/Inf or negative, however small):
+/// what --strict refuses.
+bool anyPixelRepaired(const LoadedEnvironment& loaded);
 
 }  // namespace prt::envmap

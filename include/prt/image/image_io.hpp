@@ -35,6 +35,8 @@ struct ReadStats {
   std::size_t nonFinitePixels = 0;  ///< had a NaN or ±Inf channel (set to 0)
   std::size_t negativePixels = 0;   ///< had a negative finite channel (clamped to 0)
   std::size_t pixels = 0;           ///< all the pixels read
+  double negativeSum = 0;           ///< Σ |v| over the negative channels clamped
+  double positiveSum = 0;           ///< Σ v over the finite positive channels
   bool ldr = false;                 ///< decoded from an 8/16-bit format
 };
 
