@@ -142,12 +142,14 @@ export function startInteractive(page) {
   window.addEventListener('dragleave', () => { document.getElementById('prt-drop').style.display = 'none'; });
   window.addEventListener('drop', (e) => { onDrop(e); });
 
-  // Loop, with the frame time on screen (interval between frames, smoothed).
-  let last = performance.now(), smooth = 0;
+  // Loop, with the frame time on screen: the interval between two frames' timestamps, smoothed.
+  // The first frame has no interval (a rAF timestamp may even precede the setup's clock), so
+  // nothing is shown until the second.
+  let last = null, smooth = 0;
   function loop(now) {
-    const dt = now - last;
+    const dt = last === null ? 0 : Math.max(0, now - last);
+    if (last !== null) smooth = smooth ? 0.9 * smooth + 0.1 * dt : dt;
     last = now;
-    smooth = smooth ? 0.9 * smooth + 0.1 * dt : dt;
     if (actions['auto-rotate']) state.spin += (actions['speed (°/s)'] * Math.PI / 180) * (dt / 1000);
     controls.update();
     page.draw(canvas.width, canvas.height, null);
@@ -155,7 +157,8 @@ export function startInteractive(page) {
     hud.textContent = `${b.name}  ${b.triangles} triangles, ${b.vertices} vertices\n` +
       `${t.mode} ${t.layout}, ${Math.min(state.bands, t.bands)} of ${t.bands} bands, ${t.channels === 3 ? 'RGB' : 'scalar'}\n` +
       describeTransfer(t).map((l) => l + '\n').join('') +
-      `frame ${smooth.toFixed(1)} ms (${(1000 / smooth).toFixed(0)} fps)\n${page.rendererName}`;
+      (smooth > 0 ? `frame ${smooth.toFixed(1)} ms (${(1000 / smooth).toFixed(0)} fps)` : 'frame time: measuring') +
+      `\n${page.rendererName}`;
     if (!query.has('test')) requestAnimationFrame(loop);
   }
   requestAnimationFrame(loop);
