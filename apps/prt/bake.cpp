@@ -21,6 +21,7 @@
 
 #include "cli.hpp"
 #include "guard.hpp"
+#include "report.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -63,6 +64,7 @@ struct BakeArgs {
   std::string shard;       ///< I/N, auto, auto/N: one shard of the work (job arrays)
   int pass = -1;           ///< one pass of a multi-pass bake (job arrays)
   std::string previous;    ///< the merged pass file of pass K − 1
+  std::string json;        ///< --json: the report
 };
 
 /// --shard: "I/N" (0 ≤ I < N), or "auto" / "auto/N" with I (and N) from the scheduler:
@@ -244,6 +246,41 @@ void refuseNonFinite(const Mesh& mesh, const BakedTransfer& t) {
                               toString(t.mode()), t.transfer.rows().first + k / stride));
 }
 
+/// --json: the written bake (or pass file) and how it was made. `ranks` > 0 for an MPI run.
+void writeReport(const BakeArgs& a, const BakeFile& file, int ranks = 0, Json pass = nullptr) {
+  Report r("bake", a.json);
+  if (!r.wanted()) return;
+  for (const std::string& in : a.inputs) r.input(in);
+  if (a.pass > 0) r.input(a.previous);
+  r.output(a.output);
+  r["mesh"] = meshJson(file.mesh);
+  const RowRange rows = file.rows();
+  r["rows"] = {{"first", rows.first}, {"end", rows.end()}, {"complete", file.complete()}};
+  if (ranks > 0) r["mpiRanks"] = ranks;
+  if (!pass.is_null()) r["pass"] = std::move(pass);
+  r["transfers"] = Json::array();
+  for (const BakedTransfer& t : file.transfers) r["transfers"].push_back(transferJson(t));
+  r.write();
+}
+
+/// A mesh argument that is a mode's name ("--mode shadowed unshadowed bunny.obj" took
+/// "unshadowed" as a mesh): say how several modes are given.
+void refuseModesAsInputs(const BakeArgs& a) {
+  for (const std::string& in : a.inputs) {
+    bool isMode = true;
+    try {
+      parseTransferMode(in);
+    } catch (const Error&) {
+      isMode = false;
+    }
+    std::error_code ec;
+    if (isMode && !std::filesystem::exists(in, ec))
+      throw Error(fmt::format("'{}' is a mode, not a mesh: give each mode its own --mode "
+                              "(--mode shadowed --mode {}) or list them (--mode shadowed,{})",
+                              in, in, in));
+  }
+}
+
 #if PRT_HAVE_MPI
 constexpr const char* kMpiNote = "";
 
@@ -270,11 +307,13 @@ void runBakeMpi(const BakeArgs& a) {
       plan = planOf(a);
       if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
         throw Error(a.output + ": the bake file must end in .glb");
+      refuseModesAsInputs(a);
       if (root) {
         std::vector<NamedPath> inputs;
         for (const std::string& in : a.inputs) inputs.push_back({"input", in});
         checkOutputs({{"-o", a.output}}, inputs);
         checkWritable(a.output);
+        Report("bake", a.json).check({{"-o", a.output}}, inputs);
       }
       LoadReport loadReport;
       file.mesh = loadScene(a.inputs, &loadReport);
@@ -351,6 +390,7 @@ void runBakeMpi(const BakeArgs& a) {
       writeBake(a.output, file);
       info(fmt::format("wrote {} ({}{} vertices {}..{})", a.output,
                        file.complete() ? "" : "partial: ", rows.count, rows.first, rows.end() - 1));
+      writeReport(a, file, session.size());
     }
   } catch (const distributed::AgreedFailure&) {
     throw QuietFailure();
@@ -463,6 +503,17 @@ void runPassBake(const BakeArgs& a, BakeFile& file, const Occluder& occluder, Ba
     writePassPiece(a.output, piece);
     info(fmt::format("wrote {} (pass {} of {}, vertices {}..{}, {} rays)", a.output, k, count,
                      rows.first, rows.end() - 1, rays));
+    if (!a.json.empty()) {
+      Report r("bake", a.json);
+      for (const std::string& in : a.inputs) r.input(in);
+      if (k > 0) r.input(a.previous);
+      r.output(a.output);
+      r["mesh"] = meshJson(mesh);
+      r["pass"] = {{"index", k},           {"count", count},     {"name", p.name},
+                   {"first", rows.first},  {"end", rows.end()},  {"rays", rays},
+                   {"seconds", secs},      {"shard", shard},     {"shards", shards}};
+      r.write();
+    }
     return;
   }
   // The last pass: a bake piece of these rows. The earlier passes' rays and seconds are the
@@ -483,6 +534,10 @@ void runPassBake(const BakeArgs& a, BakeFile& file, const Occluder& occluder, Ba
   writeBake(a.output, file);
   info(fmt::format("wrote {} (last pass, {}{} vertices {}..{})", a.output,
                    file.complete() ? "" : "partial: ", rows.count, rows.first, rows.end() - 1));
+  writeReport(a, file, 0,
+              {{"index", k}, {"count", count}, {"name", p.name}, {"first", rows.first},
+               {"end", rows.end()}, {"rays", rays}, {"seconds", secs}, {"shard", shard},
+               {"shards", shards}});
 }
 
 void runBake(const BakeArgs& a) {
@@ -503,10 +558,13 @@ void runBake(const BakeArgs& a) {
   Material& material = plan.recipe.material;
   if (a.pass < 0 && fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
     throw Error(a.output + ": the bake file must end in .glb");
+  refuseModesAsInputs(a);
   std::vector<NamedPath> inputs;
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});
+  if (!a.previous.empty()) inputs.push_back({"--previous", a.previous});
   checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
+  Report("bake", a.json).check({{"-o", a.output}}, inputs);
 
   const auto t0 = std::chrono::steady_clock::now();
   LoadReport loadReport;
@@ -585,6 +643,7 @@ void runBake(const BakeArgs& a) {
   writeBake(a.output, file);
   info(fmt::format("wrote {} ({}{} vertices {}..{})", a.output,
                    file.complete() ? "" : "partial: ", rows.count, rows.first, rows.end() - 1));
+  writeReport(a, file);
 }
 
 }  // namespace
@@ -598,8 +657,13 @@ void addBakeCommand(CLI::App& root) {
          "Mesh files (OBJ, PLY, OFF, glTF) or builtin:NAME; several are baked as one scene")
       ->required();
   cmd->add_option("--mode", args->modes,
-                  "unshadowed | shadowed | interreflected (repeat for several in one file)")
-      ->required();
+                  "unshadowed | shadowed | interreflected; several in one file: repeat it "
+                  "(--mode shadowed --mode interreflected) or list them (--mode "
+                  "shadowed,interreflected)")
+      ->required()
+      ->type_name("MODE")
+      ->allow_extra_args(false)
+      ->delimiter(',');
   cmd->add_option("--bands", args->bands,
                   "SH bands B (B² coefficients; the course's SHOrder 2 = 3 bands)")
       ->capture_default_str();
@@ -642,6 +706,7 @@ void addBakeCommand(CLI::App& root) {
       ->check(intRange(0, 64));
   cmd->add_option("--previous", args->previous,
                   "With --pass K >= 1: the merged pass file of pass K-1");
+  addJsonOption(cmd, args->json);
   cmd->footer(R"(On a cluster (docs/distributed.md):
   mpirun --hostfile hosts -np 4 --bind-to none prt bake scene.obj --mode interreflected -j 32 \
          --checkpoint /shared/ckpt -o scene.glb

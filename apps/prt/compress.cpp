@@ -17,6 +17,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "report.hpp"
 #include "prt/compress/cpca.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -30,7 +31,7 @@ namespace prt::cli {
 namespace {
 
 struct CompressArgs {
-  std::string bake, output, sweep, sweepClusters = "1,4,16,64,256";
+  std::string bake, output, sweep, sweepClusters = "1,4,16,64,256", json;
   TransferChoice transfer;
   int clusters = 64, basis = 8, iterations = 30, maxBasis = 16;
   std::uint64_t seed = 0;
@@ -111,8 +112,10 @@ std::vector<int> parseClusterList(const std::string& s, std::size_t rows) {
 
 void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   const bool sweeping = !a.sweep.empty();
-  // The tables go to standard output, unless the bake does (-o -).
-  std::ostream& table = isStandardOutput(a.output) ? std::cerr : std::cout;
+  // The tables go to standard output, unless the bake or the report does (-o -, --json -).
+  Report report("compress", a.json);
+  std::ostream& table =
+      isStandardOutput(a.output) || report.toStandardOutput() ? std::cerr : std::cout;
   if (a.output.empty() && !sweeping) throw Error("prt compress needs -o OUTPUT.glb (or --sweep)");
   if (!a.output.empty() && fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
     throw Error(a.output + ": the bake file must end in .glb");
@@ -123,6 +126,8 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   checkOutputs({{"-o", a.output}, {"--sweep", a.sweep}}, {{"input", a.bake}});
   if (!a.output.empty()) checkWritable(a.output);
   if (sweeping) checkWritable(a.sweep);
+  report.check({{"-o", a.output}, {"--sweep", a.sweep}}, {{"input", a.bake}});
+  report.input(a.bake);
 
   BakeFile bake = readBake(a.bake);
   const BakedTransfer& picked = pickTransfer(bake, a.transfer, a.bake);
@@ -153,6 +158,17 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
     const int maxN = std::min<int>(a.maxBasis, static_cast<int>(D));
     const auto pts =
         sweepCpca(field, ks, maxN, opt, sweeping ? 0 : a.targetError, progressBar("sweeping"));
+    Json sweep = Json::array();
+    for (const auto& p : pts)
+      sweep.push_back({{"clusters", p.clusters},
+                       {"components", p.basisCount},
+                       {"bytes", p.bytes},
+                       {"bytesPerRow", static_cast<double>(p.bytes) / rows},
+                       {"relativeRms", p.stats.relativeRms},
+                       {"snrDb", std::isfinite(p.stats.snrDb) ? Json(p.stats.snrDb) : Json()},
+                       {"ratio", p.stats.compressionRatio},
+                       {"seconds", p.stats.seconds}});
+    report["sweep"] = std::move(sweep);
     if (sweeping) {
       table << fmt::format("{:>7} {:>4} {:>12} {:>10} {:>9} {:>9} {:>8}  {}\n", "K", "N",
                            "bytes/vertex", "rel. RMS", "SNR dB", "ratio", "seconds", "colour");
@@ -167,6 +183,7 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
       image::WriteOptions wo;
       wo.toneMap = image::ToneMap::Clamp;
       image::writeImage(a.sweep, plotSweep(pts, rows, a.targetError), wo);
+      report.output(a.sweep);
       info(
           fmt::format("wrote {} (x: stored bytes per vertex, log2; y: relative RMS error, log10; "
                       "one line per K in the colours above{})",
@@ -187,10 +204,14 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
       opt.clusters = best->clusters;
       opt.basisCount = best->basisCount;
       chain = true;
+      report["targetError"] = a.targetError;
       info(fmt::format("--target-error {}: K = {}, N = {} ({:.2f} bytes per vertex)", a.targetError,
                        opt.clusters, opt.basisCount, static_cast<double>(best->bytes) / rows));
     }
-    if (a.output.empty()) return;
+    if (a.output.empty()) {
+      report.write();
+      return;
+    }
   }
 
   CpcaStats stats;
@@ -209,6 +230,9 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
     }
   writeBake(a.output, bake);
   info(fmt::format("wrote {}", a.output));
+  report.output(a.output);
+  report["transfer"] = transferJson(picked);
+  report.write();
 }
 
 }  // namespace
@@ -248,6 +272,7 @@ void addCompressCommand(CLI::App& root) {
       ->check(intRange(0, 1 << 20))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output bake file (.glb)");
+  addJsonOption(cmd, args->json);
   cmd->callback([args, k, n] { runCompress(*args, k->count() > 0, n->count() > 0); });
 }
 

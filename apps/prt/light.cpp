@@ -14,6 +14,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
+#include "report.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -45,21 +46,21 @@ struct LightOptions {
   std::optional<float> exposure;
   std::string toneMap = "aces";
   bool strict = false;
+  std::string json;
 };
 
+/// The repairs that changed the light are warned (envmap::repairWarnings); --strict refuses any.
 void warnAboutPixels(const envmap::LoadedEnvironment& loaded, bool strict) {
-  for (std::size_t i = 0; i < loaded.files.size(); ++i) {
-    const image::ReadStats& s = loaded.stats[i];
-    if (s.nonFinitePixels == 0 && s.negativePixels == 0) continue;
-    std::string msg = loaded.files[i] + ":";
-    if (s.nonFinitePixels)
-      msg += " " + std::to_string(s.nonFinitePixels) + " pixels with NaN/Inf set to 0";
-    if (s.nonFinitePixels && s.negativePixels) msg += ",";
-    if (s.negativePixels)
-      msg += " " + std::to_string(s.negativePixels) + " pixels with negative values clamped to 0";
-    if (strict) throw Error(msg + " (--strict)");
-    warn(msg);
+  if (strict && envmap::anyPixelRepaired(loaded)) {
+    for (std::size_t i = 0; i < loaded.files.size(); ++i) {
+      const image::ReadStats& s = loaded.stats[i];
+      if (s.nonFinitePixels + s.negativePixels)
+        throw Error(loaded.files[i],
+                    fmt::format("{} pixels with NaN/Inf and {} with negative values (--strict)",
+                                s.nonFinitePixels, s.negativePixels));
+    }
   }
+  for (const std::string& w : envmap::repairWarnings(loaded)) warn(w);
 }
 
 void runLight(const LightOptions& o) {
@@ -79,6 +80,8 @@ void runLight(const LightOptions& o) {
   const sh::Window window = parseWindow(o.window);
   const image::ToneMap tone = image::parseToneMap(o.toneMap);
   checkOutputs({{"-o", o.output}, {"--preview", o.preview}}, {{"input", o.input}});
+  Report report("light", o.json);
+  report.check({{"-o", o.output}, {"--preview", o.preview}}, {{"input", o.input}});
   checkWritable(o.output);
   if (!o.preview.empty()) {
     checkWritable(o.preview);
@@ -175,6 +178,20 @@ void runLight(const LightOptions& o) {
     io::writeLightJson(o.output, lf);
   }
   info("wrote " + o.output + (o.preview.empty() ? "" : " and " + o.preview));
+  if (report.wanted()) {
+    report.input(o.input);
+    for (const std::string& file : loaded.files)
+      if (file != o.input) report.input(file);
+    report.output(o.output);
+    if (!o.preview.empty()) report.output(o.preview);
+    report["format"] = format;
+    report["source"] = o.input;
+    report["layout"] = loaded.layout;
+    report["window"] = o.window;
+    report["rotationDegrees"] = rot;
+    report["light"] = shLightJson(f);
+    report.write();
+  }
 }
 
 }  // namespace
@@ -209,6 +226,7 @@ void addLightCommand(CLI::App& root) {
   cmd->add_option("--tonemap", opts->toneMap, "Preview tone mapper: clamp|reinhard|aces")
       ->capture_default_str();
   cmd->add_flag("--strict", opts->strict, "Fail on NaN/Inf or negative pixels instead of warning");
+  addJsonOption(cmd, opts->json);
   cmd->callback([opts] { runLight(*opts); });
 }
 

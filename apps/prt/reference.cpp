@@ -14,6 +14,7 @@
 //   .bin   "PRTREF1\0", uint32 count, then count × (uint32 vertex, 3 float radiance,
 //          3 float standard error), all little-endian.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -29,12 +30,15 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
+#include "prt/image/color.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transfer/material.hpp"
+#include "prt/io/light_file.hpp"
+#include "report.hpp"
 #include "transfer_options.hpp"
 
 namespace prt::cli {
@@ -42,7 +46,7 @@ namespace prt::cli {
 namespace {
 
 struct ReferenceArgs {
-  std::string bake, light, output, rotate, material, eye, mis = "power";
+  std::string bake, light, output, rotate, material, eye, mis = "power", json;
   TransferChoice transfer;
   int samples = 1024;
   std::size_t vertices = 0;
@@ -94,8 +98,11 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   if (a.samples < 1) throw Error("--samples must be at least 1");
   const std::string ext = isStandardOutput(a.output) ? "json" : fileExtension(a.output);
   if (ext != "json" && ext != "bin") throw Error(a.output, "output must be .json or .bin");
+  refuseShLight(a.light, "reference");
   checkOutputs({{"-o", a.output}}, {{"input", a.bake}, {"--light", a.light}});
   checkWritable(a.output);
+  Report report("reference", a.json);
+  report.check({{"-o", a.output}}, {{"input", a.bake}, {"--light", a.light}});
   const Mat3d rotation = parseRotation(a.rotate);
   const render::MisHeuristic mis = parseMis(a.mis);
   if (!a.material.empty()) parseMaterial(a.material);  // a bad spec fails before the bake is read
@@ -145,6 +152,33 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
                 a.output.c_str(), r.vertices.size(), a.samples,
                 static_cast<unsigned long long>(r.rays), r.seconds);
   info(line);
+  if (report.wanted()) {
+    report.input(a.bake);
+    report.input(a.light);
+    report.output(a.output);
+    report["mode"] = toString(rs.mode);
+    report["bounces"] = rs.bounces;
+    report["material"] = rs.material.spec();
+    report["samples"] = a.samples;
+    report["seed"] = a.seed;
+    report["vertices"] = r.vertices.size();
+    report["rays"] = r.rays;
+    report["seconds"] = r.seconds;
+    if (mpi.active()) report["mpiRanks"] = mpi.size();
+    // Luminance of the radiance and of its standard error, over the estimated vertices.
+    double sum = 0, errSum = 0, errMax = 0;
+    for (std::size_t i = 0; i < r.radiance.size(); ++i) {
+      sum += image::luminance(r.radiance[i]);
+      const double e = image::luminance(r.stdError[i]);
+      errSum += e;
+      errMax = std::max(errMax, e);
+    }
+    const double n = std::max<double>(1, r.radiance.size());
+    report["meanLuminance"] = sum / n;
+    report["stdErrLuminanceMean"] = errSum / n;
+    report["stdErrLuminanceMax"] = errMax;
+    report.write();
+  }
 }
 
 void runReference(const ReferenceArgs& a) {
@@ -176,6 +210,7 @@ void addReferenceCommand(CLI::App& root) {
   cmd->add_option("--seed", a->seed, "Seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();
   cmd->add_option("-o,--output", a->output, "Output .json or .bin")->required();
+  addJsonOption(cmd, a->json);
   cmd->callback([a] { runReference(*a); });
 }
 

@@ -7,6 +7,7 @@
 // bands. --rotate turns the environment (X, then Y, then Z, degrees) by rotating its SH
 // coefficients; the background rotates with it.
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -28,6 +29,7 @@
 #include "prt/render/exposure.hpp"
 #include "prt/render/primary.hpp"
 #include "prt/render/render.hpp"
+#include "report.hpp"
 #include "transfer_options.hpp"
 
 namespace prt::cli {
@@ -51,6 +53,7 @@ struct RenderOptions {
   std::string contactSheet;
   unsigned seed = 0;
   std::string output;
+  std::string json;
 };
 
 void checkOutput(const std::string& path, const char* what) {
@@ -97,6 +100,9 @@ void run(const RenderOptions& o) {
     outputs.push_back({fmt::format("-o (frame {})", k), framePath(o.output, k)});
   outputs.push_back({"--contact-sheet", o.contactSheet});
   checkOutputs(outputs, {{"input", o.bake}, {"--light", o.light}});
+  Report report("render", o.json);
+  report.check(outputs, {{"input", o.bake}, {"--light", o.light}});
+  const auto start = std::chrono::steady_clock::now();
 
   const BakeFile bake = readBake(o.bake);
   bake.requireComplete(o.bake);
@@ -118,6 +124,7 @@ void run(const RenderOptions& o) {
     warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands,
                      baked.transfer.bands(), baked.transfer.bands()));
   if (o.bands > 0) relighter.setBands(std::min(o.bands, baked.transfer.bands()));
+  if (baked.transfer.isMatrix()) warnLobeEnergyLoss(material, relighter.bands(), o.bake);
 
   // The light: an SH light file, or an environment projected to the transfer's bands.
   const io::Lighting lighting =
@@ -140,6 +147,7 @@ void run(const RenderOptions& o) {
   // All or nothing: the frames and the contact sheet wait in temporaries until the last is made.
   OutputBatch batch;
   const char* did = o.turntable > 0 ? "rendered" : "wrote";
+  Json frameReports = Json::array();
   for (int k = 0; k < frames; ++k) {
     // Turntable: the environment turns about +Y after the user's rotation.
     const Mat3d rotation = o.turntable > 0
@@ -171,18 +179,49 @@ void run(const RenderOptions& o) {
         break;
     }
     const std::string label = frames > 1 ? fmt::format("frame {}/{}", k + 1, frames) : "rendering";
+    const auto frameStart = std::chrono::steady_clock::now();
     image::Image img =
         render::renderRelit(bake.mesh, *occluder, radiance, camera, frame, bg, progressBar(label));
     const std::string path = o.turntable > 0 ? framePath(o.output, k) : o.output;
     image::writeImage(path, img, write);
+    report.output(path);
+    frameReports.push_back(
+        {{"path", path},
+         {"lightRotationDegreesY", o.turntable > 0 ? 360.0 * k / frames : 0.0},
+         {"seconds",
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count()}});
+    if (k == 0) report["bands"] = relit.bands;
     if (!o.contactSheet.empty()) sheet.push_back(std::move(img));
     info(fmt::format("{} {} ({}x{}, {} spp, {} bands, {} transfer, {}, exposure {:.2f}{})", did,
                      path, frame.width, frame.height, frame.spp, relit.bands, baked.describe(),
                      material.spec(), write.exposureStops, exposure ? "" : " auto"));
   }
-  if (!o.contactSheet.empty())
+  if (!o.contactSheet.empty()) {
     image::writeImage(o.contactSheet, render::contactSheet(sheet), write);
+    report.output(o.contactSheet);
+  }
   batch.commit();
+  if (report.wanted()) {
+    report.input(o.bake);
+    report.input(o.light);
+    report["transfer"] = {{"mode", toString(baked.mode())}, {"layout", toString(baked.transfer.layout())},
+                          {"representation", baked.transfer.compressed() ? "cpca" : "dense"}};
+    report["material"] = material.spec();
+    report["width"] = frame.width;
+    report["height"] = frame.height;
+    report["spp"] = frame.spp;
+    report["exposureStops"] = write.exposureStops;
+    report["exposureAuto"] = !exposure.has_value();
+    report["toneMap"] = o.tonemap;
+    report["camera"] = {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
+                        {"target", {camera.target.x, camera.target.y, camera.target.z}},
+                        {"up", {camera.up.x, camera.up.y, camera.up.z}},
+                        {"fovYDegrees", camera.fovY}};
+    report["frames"] = std::move(frameReports);
+    report["seconds"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report.write();
+  }
   if (o.turntable > 0)
     info(fmt::format("wrote {} frames {}..{}{}", frames, framePath(o.output, 0),
                      framePath(o.output, frames - 1),
@@ -231,6 +270,7 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("-o,--output", opts->output,
                   "Output image (.png tone-mapped sRGB, .exr/.hdr linear)")
       ->required();
+  addJsonOption(cmd, opts->json);
   cmd->callback([opts] { run(*opts); });
 }
 

@@ -26,6 +26,8 @@
 #include "prt/render/metrics.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
+#include "prt/io/light_file.hpp"
+#include "report.hpp"
 #include "transfer_options.hpp"
 
 namespace prt::cli {
@@ -59,10 +61,10 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
       throw Error(a.image, "--image must be .png or .exr");
     checkWritable(a.image);
   }
-  refuseStandardOutput({"--json", a.json}, "the table is printed on standard output");
-  if (!a.json.empty()) checkWritable(a.json);
-  checkOutputs({{"--json", a.json}, {"--image", a.image}},
-               {{"input", a.bake}, {"--light", a.light}});
+  refuseShLight(a.light, "validate");
+  Report report("validate", a.json);
+  checkOutputs({{"--image", a.image}}, {{"input", a.bake}, {"--light", a.light}});
+  report.check({{"--image", a.image}}, {{"input", a.bake}, {"--light", a.light}});
 
   const BakeFile file = readBake(a.bake);
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
@@ -71,6 +73,7 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   recipe.material = materialOption(a.material, bt, a.bake,
                                    "the reference's bounces follow --material, so the two "
                                    "differ by more than error");
+  if (bt.transfer.isMatrix()) warnLobeEnergyLoss(recipe.material, bt.transfer.bands(), a.bake);
   warnLobeOnVectors(recipe.material, bt, a.bake,
                     "validating its diffuse part (the reference drops the lobe, and its bounces "
                     "are diffuse too)");
@@ -122,7 +125,8 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
                 rep.floorMethod.c_str(), rep.floorVertices, a.samples,
                 static_cast<unsigned long long>(rep.floorRays), rep.floorSeconds);
   info(line);
-  std::cout << render::formatTable(rep) << std::flush;
+  // The table on standard output, unless the report is (--json -): then on stderr.
+  (report.toStandardOutput() ? std::cerr : std::cout) << render::formatTable(rep) << std::flush;
   for (const render::BandRow& r : rep.rows)
     if (r.negativeShare > render::kNegativeShareWarning)
       warn(
@@ -136,7 +140,6 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
                                                "): the rest rings in the transfer and the "
                                                "lobe, which more bands hold"));
 
-  if (!a.json.empty()) writeFileAtomically(a.json, render::reportJson(rep));
 
   if (!a.image.empty()) {
     // Per-vertex relative error at the largest band count, through the false-colour ramp,
@@ -157,6 +160,15 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
                   "error image %s: relative error at %d bands, black 0%% .. white %.2f%%",
                   a.image.c_str(), rep.rows.back().bands, 100.0 * scale);
     info(line);
+  }
+  if (report.wanted()) {
+    report.input(a.bake);
+    report.input(a.light);
+    if (!a.image.empty()) report.output(a.image);
+    // The members of render::reportJson (the table with its settings and timings), after ours.
+    const Json table = Json::parse(render::reportJson(rep));
+    for (const auto& [key, value] : table.items()) report[key.c_str()] = value;
+    report.write();
   }
 }
 
@@ -194,7 +206,7 @@ void addValidateCommand(CLI::App& root) {
                   "Window the light against ringing at each band count: none | hanning | "
                   "lanczos | dering")
       ->capture_default_str();
-  cmd->add_option("--json", a->json, "Write the table as JSON");
+  addJsonOption(cmd, a->json);
   cmd->add_option("--image", a->image, "Write a false-colour per-vertex error image (.png/.exr)");
   cmd->add_option("--image-size", a->imageSize, "Error image size WxH")->capture_default_str();
   cmd->callback([a] { runValidate(*a); });

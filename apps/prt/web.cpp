@@ -34,6 +34,7 @@
 #include "prt/envmap/project.hpp"
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/envmap/builtin.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
@@ -101,7 +102,10 @@ WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
   io::Lighting l = io::loadLighting(spec, bands, progressBar("projecting"));
   for (const std::string& w : l.warnings) warn(w);
   WebEnvironment e;
-  e.name = spec;
+  // What the page's menu shows: a file's name, not the folders it was found in (a build
+  // machine's absolute path means nothing to whoever opens the page); builtin:NAME as it is.
+  e.name = envmap::isBuiltin(spec) ? spec : fs::path(spec).filename().string();
+  if (e.name.empty()) e.name = fs::path(spec).parent_path().filename().string();  // "faces/"
   // The page always reads the bake's bands: a light with fewer is padded with zeros (the
   // transfer's upper bands see no light, as the warning says).
   e.light = io::padded(l.coefficients, bands);
@@ -265,6 +269,7 @@ Json glossyJson(const WebOptions& a, const BakeFile& bake) {
         materialOption(a.material, t, a.bake,
                        "the page shades each vertex with --material, the bounced light keeps the "
                        "bake's");
+    warnLobeEnergyLoss(material, t.transfer.bands(), a.bake);
     const PreparedMaterial pm = prepareMaterial(material, t.transfer.bands());
     const std::array<float, 64> diffuse = relight::shaderKernel(pm.diffuse),
                                 lobe = relight::shaderKernel(pm.glossy);

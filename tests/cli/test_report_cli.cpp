@@ -1,0 +1,136 @@
+// `--json PATH|-`: every verb that reports something writes one JSON object of one schema style
+// (apps/prt/report.hpp, docs/formats-report.md). The figures are checked against what the verb
+// also wrote (the bake file, the light file), and the same object against what another verb
+// says of the same thing (bake's transfer against info's).
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cli_harness.hpp"
+#include "prt/core/json.hpp"
+
+namespace prt::testing {
+namespace {
+
+constexpr const char* kSphere = "'builtin:sphere-plane?subdiv=1'";
+
+class ReportCli : public CliTest {
+ protected:
+  Json load(const std::string& name) const { return Json::parse(slurp(dir_ / name)); }
+  /// The members every report opens with.
+  static void expectEnvelope(const Json& j, const std::string& verb) {
+    ASSERT_TRUE(j.is_object());
+    auto it = j.begin();
+    EXPECT_EQ(it.key(), "verb");
+    EXPECT_EQ(j.at("verb"), verb);
+    EXPECT_FALSE(j.at("prtkitVersion").get<std::string>().empty());
+    EXPECT_TRUE(j.at("inputs").is_array());
+    EXPECT_TRUE(j.at("outputs").is_array());
+  }
+  void bake(const std::string& extra = "") const {
+    const Result r = prt(std::string("-q bake ") + kSphere +
+                         " --mode shadowed --samples 16 -o b.glb" + extra);
+    ASSERT_EQ(r.rc, 0) << r.err;
+  }
+};
+
+TEST_F(ReportCli, BakeReportsTheTransferInfoReadsBack) {
+  bake(" --json bake.json");
+  const Json b = load("bake.json");
+  expectEnvelope(b, "bake");
+  EXPECT_EQ(b["outputs"], Json::array({"b.glb"}));
+  EXPECT_EQ(b["inputs"], Json::array({"builtin:sphere-plane?subdiv=1"}));
+  ASSERT_EQ(b["transfers"].size(), 1u);
+  const Json& t = b["transfers"][0];
+  EXPECT_EQ(t["mode"], "shadowed");
+  EXPECT_EQ(t["bands"], 3);
+  EXPECT_EQ(t["coefficients"], 9);
+  EXPECT_EQ(t["recipe"]["samples"], 16);
+  EXPECT_GT(t["stats"]["rays"].get<double>(), 0);
+  EXPECT_EQ(b["rows"]["complete"], true);
+  EXPECT_EQ(b["rows"]["end"], b["mesh"]["vertices"]);
+
+  // info --json -: nothing but the report on standard output, the same objects for the same
+  // things.
+  const Result r = prt("info b.glb --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json i = Json::parse(r.out);
+  expectEnvelope(i, "info");
+  ASSERT_EQ(i["files"].size(), 1u);
+  const Json& f = i["files"][0];
+  EXPECT_EQ(f["kind"], "bake");
+  EXPECT_EQ(f["mesh"], b["mesh"]);
+  EXPECT_EQ(f["transfers"][0], t);
+}
+
+TEST_F(ReportCli, LightReportHoldsTheCoefficientsItWrote) {
+  const Result r = prt("-q light builtin:sky --bands 4 -o l.json --json r.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json j = load("r.json"), l = load("l.json");
+  expectEnvelope(j, "light");
+  EXPECT_EQ(j["outputs"], Json::array({"l.json"}));
+  EXPECT_EQ(j["light"]["bands"], 4);
+  EXPECT_EQ(j["light"]["coefficients"], l["coefficients"]);
+  // The sky is brightest overhead: its dominant direction points up.
+  EXPECT_GT(j["light"]["dominantDirection"][1].get<double>(), 0.5);
+  // And info says the same of the file.
+  const Result i = prt("info l.json --json -");
+  ASSERT_EQ(i.rc, 0) << i.err;
+  EXPECT_EQ(Json::parse(i.out)["files"][0]["light"], j["light"]);
+}
+
+TEST_F(ReportCli, ValidateReportGoesToStandardOutputAndTheTableToStderr) {
+  bake();
+  const Result r = prt(
+      "-q validate b.glb --light builtin:sky --reference-samples 8 --vertices 12 --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  expectEnvelope(j, "validate");
+  EXPECT_EQ(j["mode"], "shadowed");
+  EXPECT_EQ(j["vertices"], 12);
+  EXPECT_EQ(j["rows"].size(), 3u);
+  EXPECT_NE(r.err.find("bands |"), std::string::npos) << "the table moves to stderr: " << r.err;
+}
+
+TEST_F(ReportCli, ReferenceRenderAndCompressReport) {
+  bake();
+  Result r = prt("-q reference b.glb --light builtin:sky --samples 8 --vertices 6 -o ref.json "
+                 "--json rr.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json ref = load("rr.json");
+  expectEnvelope(ref, "reference");
+  EXPECT_EQ(ref["vertices"], 6);
+  EXPECT_EQ(ref["samples"], 8);
+  EXPECT_EQ(ref["rays"], load("ref.json")["rays"]);
+
+  r = prt("-q render b.glb --size 32x24 --spp 1 --turntable 2 -o f.png --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json ren = Json::parse(r.out);
+  expectEnvelope(ren, "render");
+  EXPECT_EQ(ren["outputs"], Json::array({"f_000.png", "f_001.png"}));
+  EXPECT_EQ(ren["frames"].size(), 2u);
+  EXPECT_EQ(ren["width"], 32);
+  EXPECT_EQ(ren["exposureAuto"], true);
+  EXPECT_DOUBLE_EQ(ren["frames"][1]["lightRotationDegreesY"].get<double>(), 180.0);
+
+  r = prt("-q compress b.glb --clusters 2 --pca 2 -o c.glb --json c.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json c = load("c.json");
+  expectEnvelope(c, "compress");
+  EXPECT_EQ(c["transfer"]["representation"], "cpca");
+  EXPECT_EQ(c["transfer"]["compression"]["clusters"], 2);
+  EXPECT_LT(c["transfer"]["bytes"].get<double>(), c["transfer"]["denseBytes"].get<double>());
+}
+
+TEST_F(ReportCli, BadReportPathsAreRefusedBeforeAnyWork) {
+  bake();
+  expectCleanFailure("light builtin:sky -o out/l.json --json out/l.json", "name the same file");
+  expectCleanFailure("light builtin:sky -o out/l.json --json out/r.txt", "name a .json file");
+  expectCleanFailure("render b.glb --size 16x12 -o - --json -", "both name standard output");
+  expectCleanFailure("info b.glb --json b.glb", "would overwrite the input");
+  expectCleanFailure("validate b.glb --light builtin:sky --json out/missing/r.json", "r.json");
+}
+
+}  // namespace
+}  // namespace prt::testing
