@@ -24,6 +24,8 @@ packages=(
   # bar's), and `pip install --no-build-isolation .` offline (setuptools, wheel, pip, venv)
   python3-dev pybind11-dev python3-numpy python3-pytest python3-tqdm
   python3-setuptools python3-wheel python3-pip python3-venv
+  # the tests of `prt completions` and `prt manpage`: zsh checks the script, groff the page
+  zsh groff-base
 )
 assets=(glmark2-data blender-data)
 # scripts/fuzz.sh: libFuzzer with clang 14 (ASan + UBSan)
