@@ -33,10 +33,13 @@ double since(Clock::time_point t) {
 
 /// The fault-test hook: "R:C" — rank R exits when it is handed its C-th chunk of the run
 /// (counted from 0 on that rank: which chunks a rank gets varies, how many it has had does not).
+/// So that R surely gets that many however the machine schedules the ranks, rank 0 computes
+/// nothing itself until it has handed R its fatal chunk.
 struct ExitHook {
   int rank = -1;
   long long chunk = -1;
-  long long handed = 0;
+  long long handed = 0;                      ///< on rank R: chunks it was handed
+  std::atomic<long long> handedToDoomed{0};  ///< on rank 0: chunks it handed to rank R
   ExitHook() {
     if (const char* v = std::getenv("PRT_TEST_EXIT_AT_CHUNK"))
       if (std::sscanf(v, "%d:%lld", &rank, &chunk) != 2) rank = -1;
@@ -165,6 +168,7 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
         const int r = status.MPI_SOURCE;
         if (msg[1] >= 0) finished.fetch_add(1);  // it finished a chunk before asking
         const long long c = acquire(r);
+        if (c >= 0 && r == hook.rank) hook.handedToDoomed.fetch_add(1);
         session.setActivity(r, c >= 0 ? "computing " + describe(static_cast<std::size_t>(c))
                                       : "waiting for the end of " + job.name);
         MPI_Send(&c, 1, MPI_LONG_LONG, r, kTagReply, MPI_COMM_WORLD);
@@ -183,6 +187,9 @@ JobStats runJob(Session& session, const RowJob& job, unsigned char* rowsOut, uns
     for (;;) {
       long long c;
       if (root) {
+        if (hook.rank > 0 && hook.rank < size)  // the fault test: let rank R reach its chunk
+          while (hook.handedToDoomed.load() <= hook.chunk)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
         c = acquire(0);
         if (c >= 0) session.setActivity(0, "computing " + describe(static_cast<std::size_t>(c)));
       } else {
