@@ -26,6 +26,8 @@ packages=(
   python3-setuptools python3-wheel python3-pip python3-venv
   # the tests of `prt completions` and `prt manpage`: zsh checks the script, groff the page
   zsh groff-base
+  # the peer the light exports are checked against: Filament's cmgen (prt light --format cmgen)
+  libfilament-tools
 )
 assets=(glmark2-data blender-data)
 # scripts/fuzz.sh: libFuzzer with clang 14 (ASan + UBSan)

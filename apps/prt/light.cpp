@@ -24,6 +24,7 @@
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/image/image_io.hpp"
+#include "prt/io/engine_light.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/rotate.hpp"
@@ -31,6 +32,8 @@
 namespace prt::cli {
 
 namespace {
+
+constexpr const char* kLightFormats = "json|games202|threejs|gltf-ibl|cmgen|unity";
 
 struct LightOptions {
   std::string input = envmap::kDefaultEnvironment;
@@ -72,14 +75,31 @@ void runLight(const LightOptions& o) {
   const bool compat = o.compat == "games202";
   if (!o.compat.empty() && !compat)
     throw Error("--compat accepts only 'games202', got '" + o.compat + "'");
-  const std::string format =
-      !o.format.empty() ? o.format : (fileExtension(o.output) == "txt" ? "games202" : "json");
-  if (format != "json" && format != "games202")
-    throw Error("--format must be json or games202, got '" + format + "'");
+  checkOutputs({{"-o", o.output}, {"--preview", o.preview}}, {{"input", o.input}});
+  // The format: --format, else by extension (.json ours, .txt the course's); an engine's format
+  // only when asked for. The extension must be the format's, so no file claims to be what it
+  // is not.
+  const std::string ext = fileExtension(o.output);
+  if (o.format.empty() && o.output != "-" && ext != "json" && ext != "txt")
+    throw Error(o.output, "unknown light file extension '." + ext +
+                              "': use .json or .txt (GAMES202), or --format " + kLightFormats);
+  const std::string format = !o.format.empty() ? o.format : ext == "txt" ? "games202" : "json";
+  std::optional<io::EngineLight> engine;
+  if (format != "json" && format != "games202") {
+    try {
+      engine = io::parseEngineLight(format);
+    } catch (const Error&) {
+      throw Error("--format must be one of " + std::string(kLightFormats) + ", got '" + format +
+                  "'");
+    }
+  }
+  const std::string wantExt =
+      engine ? io::engineLightExtension(*engine) : format == "games202" ? "txt" : "json";
+  if (o.output != "-" && ext != wantExt)
+    throw Error(o.output, "--format " + format + " writes a ." + wantExt + " file");
   const std::array<double, 3> rot = parseEulerDegrees(o.rotate);
   const sh::Window window = parseWindow(o.window);
   const image::ToneMap tone = image::parseToneMap(o.toneMap);
-  checkOutputs({{"-o", o.output}, {"--preview", o.preview}}, {{"input", o.input}});
   Report report("light", o.json);
   report.check({{"-o", o.output}, {"--preview", o.preview}}, {{"input", o.input}});
   checkWritable(o.output);
@@ -165,7 +185,9 @@ void runLight(const LightOptions& o) {
     image::WriteOptions wo{tone, o.exposure ? *o.exposure : envmap::previewExposure(panels)};
     image::writeImage(o.preview, panels, wo);
   }
-  if (format == "games202") {
+  if (engine) {
+    writeFileAtomically(o.output, io::formatEngineLight(*engine, f, o.input));
+  } else if (format == "games202") {
     io::writeLightGames202(o.output, f);
   } else {
     io::LightFile lf;
@@ -205,7 +227,7 @@ void addLightCommand(CLI::App& root) {
                   "builtin:sky|constant|studio "
                   "(default builtin:sky)");
   cmd->add_option("-o,--output", opts->output,
-                  "Output light file (.json, or .txt for the GAMES202 format)")
+                  "Output light file (.json ours, .txt GAMES202; --format for an engine's)")
       ->required();
   cmd->add_option("--layout", opts->layout,
                   "latlong|probe|vcross|hcross|faces (default: detected)");
@@ -215,7 +237,11 @@ void addLightCommand(CLI::App& root) {
   cmd->add_option("--window", opts->window, "none|hanning|lanczos|dering")->capture_default_str();
   cmd->add_option("--rotate", opts->rotate, "Rotate the light: X,Y,Z Euler degrees (R = Rz Ry Rx)");
   cmd->add_option("--compat", opts->compat, "games202: reproduce the course framework's numbers");
-  cmd->add_option("--format", opts->format, "json|games202 (default: by extension)");
+  cmd->add_option("--format", opts->format,
+                  std::string(kLightFormats) +
+                      ": ours, the GAMES202 course's light.txt, a three.js LightProbe, glTF "
+                      "EXT_lights_image_based irradiance, Filament cmgen's sh.txt, Unity "
+                      "SphericalHarmonicsL2 (docs/formats-light.md; default: by extension)");
   cmd->add_option("--preview", opts->preview,
                   "Preview image: source, SH radiance, SH irradiance/pi");
   cmd->add_option("--preview-width", opts->previewWidth, "Preview width in pixels")

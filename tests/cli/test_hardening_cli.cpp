@@ -92,7 +92,7 @@ TEST_F(HardeningCli, OutputsNeverOverwriteInputs) {
   std::filesystem::create_directories(dir_ / "Sky");
   for (const char* f : {"posx", "negx", "posy", "negy", "posz", "negz"})
     std::filesystem::copy_file(dir_ / "face.png", dir_ / "Sky" / (std::string(f) + ".png"));
-  refused("light Sky/ -o Sky/posx.png", "Sky/posx.png");
+  refused("light Sky/ -o out/l.json --preview Sky/posx.png", "Sky/posx.png");
   refused("light Sky --preview Sky/negz.png --format games202 -o out/l.txt", "Sky/negz.png");
   EXPECT_EQ(prt("-q light Sky/ --format games202 -o Sky/light.txt").rc, 0);
   EXPECT_EQ(slurp(dir_ / "Sky/posx.png"), slurp(dir_ / "face.png"));
