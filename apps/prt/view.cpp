@@ -24,7 +24,7 @@ namespace {
 struct ViewArgs {
   std::string bake;
   std::vector<std::string> envs;
-  std::string size = "640x480";
+  std::string size = "1280x800";
   std::string rotate;
   std::string camera, mode, material, glossyOn = "cpu", background = "env", toneMap = "aces",
                                       screenshot;

@@ -27,6 +27,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr double kOrbitRadPerPixel = 0.3 * kPi / 180.0;
+/// The panel opens expanded only in a window at least this large (width, height); smaller, it
+/// starts as its title bar (click to open).
+constexpr int kPanelOpenAbove[2] = {960, 600};
 
 /// Files dropped since the last frame (GLFW calls back from glfwPollEvents).
 std::vector<std::string>& droppedFiles() {
@@ -108,24 +111,22 @@ struct Ui {
     }
   }
 
-  void panel(Scene& scene, const Output& out) {
+  /// The panel: what is shown and the controls used most (transfer, bands, environment,
+  /// exposure) always; the material, the display and light controls and the help as sections
+  /// (the material open for glossy transfer, where it matters). Collapsed to its title bar when
+  /// the window is smaller than kPanelOpenAbove at start, so it never hides a small view.
+  void panel(Scene& scene, int windowWidth, int windowHeight) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowCollapsed(windowWidth < kPanelOpenAbove[0] ||
+                                      windowHeight < kPanelOpenAbove[1],
+                                  ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.75f);
     ImGui::Begin("prt view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-    ImGui::PushItemWidth(170);
+    ImGui::PushItemWidth(ImGui::GetFontSize() * 12.0f);
     const Mesh& mesh = scene.bake().mesh;
     ImGui::TextUnformatted(scene.bakeName().c_str());
-    ImGui::Text("%zu triangles, %zu vertices", mesh.triangleCount(), mesh.vertexCount());
-    ImGui::Text("frame %.2f ms (%.0f fps), light CPU %.3f ms", frameMs,
-                frameMs > 0 ? 1000.0 / frameMs : 0.0, cpuMs);
-    ImGui::TextDisabled("%s", renderer.c_str());
-    // Compressed transfer: K, N and what it uploads per vertex against the dense rows.
-    if (scene.transfer().transfer.compressed()) {
-      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 26.0f);
-      ImGui::TextUnformatted(upload.c_str());
-      ImGui::PopTextWrapPos();
-    }
-    ImGui::Separator();
+    ImGui::TextDisabled("%zu triangles  %.2f ms (%.0f fps)", mesh.triangleCount(), frameMs,
+                        frameMs > 0 ? 1000.0 / frameMs : 0.0);
 
     const auto label = [](const BakedTransfer& t) {
       const Transfer& x = t.transfer;
@@ -143,7 +144,6 @@ struct Ui {
     }
     int bands = scene.bands();
     if (ImGui::SliderInt("bands", &bands, 1, scene.bakeBands())) scene.setBands(bands);
-    materialPanel(scene);
     if (ImGui::BeginCombo("environment",
                           scene.environment(scene.environmentIndex()).name.c_str())) {
       for (int k = 0; k < int(scene.environmentCount()); ++k)
@@ -151,33 +151,48 @@ struct Ui {
           scene.selectEnvironment(k);
       ImGui::EndCombo();
     }
-    int bg = int(scene.background);
-    const char* bgNames[] = {"environment", "SH reconstruction", "black"};
-    if (ImGui::Combo("background", &bg, bgNames, 3)) scene.background = BackgroundMode(bg);
     // ±8 on the slider; a value typed in (Ctrl+click) stays within the library's limit.
     if (ImGui::SliderFloat("exposure", &scene.exposureStops, -8.0f, 8.0f, "%.1f stops"))
       scene.exposureStops = image::clampExposure(scene.exposureStops);
-    int tm = int(scene.toneMap);
-    const char* tmNames[] = {"clamp", "reinhard", "aces"};
-    if (ImGui::Combo("tone map", &tm, tmNames, 3)) scene.toneMap = image::ToneMap(tm);
-    ImGui::Checkbox("auto-rotate light", &scene.autoRotate);
-    float speed = float(scene.spinDegreesPerSecond);
-    if (ImGui::SliderFloat("speed", &speed, -180.0f, 180.0f, "%.0f deg/s"))
-      scene.spinDegreesPerSecond = speed;
-    if (ImGui::Button("reset light")) scene.resetLight();
-    ImGui::SameLine();
-    if (ImGui::Button("reset camera")) scene.orbit.reset();
-    ImGui::Separator();
-    ImGui::TextDisabled("left drag: orbit   right/shift drag: rotate light");
-    ImGui::TextDisabled("middle/ctrl drag: pan   wheel: zoom   space: auto-rotate");
-    ImGui::TextDisabled("B: background   [ ]: bands   Tab: next environment");
-    ImGui::TextDisabled("drop an image, face folder or .glb to load it");
+
+    const bool glossy = scene.transfer().transfer.isMatrix();
+    if (ImGui::CollapsingHeader("material", glossy ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+      materialPanel(scene);
+    if (ImGui::CollapsingHeader("display and light")) {
+      int bg = int(scene.background);
+      const char* bgNames[] = {"environment", "SH reconstruction", "black"};
+      if (ImGui::Combo("background", &bg, bgNames, 3)) scene.background = BackgroundMode(bg);
+      int tm = int(scene.toneMap);
+      const char* tmNames[] = {"clamp", "reinhard", "aces"};
+      if (ImGui::Combo("tone map", &tm, tmNames, 3)) scene.toneMap = image::ToneMap(tm);
+      ImGui::Checkbox("auto-rotate light", &scene.autoRotate);
+      float speed = float(scene.spinDegreesPerSecond);
+      if (ImGui::SliderFloat("speed", &speed, -180.0f, 180.0f, "%.0f deg/s"))
+        scene.spinDegreesPerSecond = speed;
+      if (ImGui::Button("reset light")) scene.resetLight();
+      ImGui::SameLine();
+      if (ImGui::Button("reset camera")) scene.orbit.reset();
+    }
+    if (ImGui::CollapsingHeader("help and renderer")) {
+      ImGui::TextDisabled("left drag: orbit   right/shift drag: light");
+      ImGui::TextDisabled("middle/ctrl drag: pan   wheel: zoom");
+      ImGui::TextDisabled("space: auto-rotate   B: background");
+      ImGui::TextDisabled("[ ]: bands   Tab: next environment");
+      ImGui::TextDisabled("drop an image, face folder or .glb");
+      ImGui::TextDisabled("light CPU %.3f ms", cpuMs);
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 22.0f);
+      ImGui::TextDisabled("%s", renderer.c_str());
+      // Compressed transfer: K, N and what it uploads per vertex against the dense rows.
+      if (scene.transfer().transfer.compressed()) ImGui::TextDisabled("%s", upload.c_str());
+      ImGui::PopTextWrapPos();
+    }
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 22.0f);
     for (const Message& m : messages)
       ImGui::TextColored(m.error ? ImVec4(1, 0.4f, 0.4f, 1) : ImVec4(0.7f, 1, 0.7f, 1), "%s",
                          m.text.c_str());
+    ImGui::PopTextWrapPos();
     ImGui::PopItemWidth();
     ImGui::End();
-    (void)out;
   }
 };
 
@@ -254,7 +269,9 @@ void runWindow(Scene& scene, const Options& o, const Output& out) {
     ImGui::NewFrame();
     if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(w, GLFW_TRUE);
     handleInput(scene, std::max(fbh, 1));
-    ui.panel(scene, out);
+    int ww = 0, wh = 0;
+    glfwGetWindowSize(w, &ww, &wh);
+    ui.panel(scene, ww, wh);
     ImGui::Render();
 
     if (fbw > 0 && fbh > 0) {

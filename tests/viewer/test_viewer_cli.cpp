@@ -329,30 +329,61 @@ TEST(ViewCli, MoreBandsThanTheBakeWarnsAndRuns) {
   EXPECT_NE(v.err.find("but the bake has only 3 bands"), std::string::npos) << v.err;
 }
 
-TEST(ViewCli, WindowUnderXvfbShowsTheHeadlessFrame) {
+/// The fraction of pixels where the window's screenshot differs from the bare headless frame
+/// (by more than 8 code values in a channel): what the panel covers.
+double panelCoverage(const image::Image& win, const image::Image& off) {
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < win.pixels.size(); ++i) {
+    const Rgb d = win.pixels[i] - off.pixels[i];
+    if (std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) > 8.0f / 255.0f) ++differ;
+  }
+  return double(differ) / double(win.pixels.size());
+}
+
+TEST(ViewCli, WindowUnderXvfbShowsTheHeadlessFrameAndAPanelThatLeavesItVisible) {
   // The interactive path (GLFW window, ImGui panel) needs a display: use a virtual one when the
   // machine has xvfb-run, else skip.
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)";
-  const std::string args = "'" + cornellBake() + "' --size 640x480";
-  const Result w = prt("-q view " + args + " --frames 3 --screenshot window.png",
-                       "xvfb-run -a -s '-screen 0 1024x768x24' ");
+  const auto window = [&](const std::string& size, const std::string& name) {
+    const Result w = prt("-q view '" + cornellBake() + "' " + size + " --frames 3 --screenshot " +
+                             name,
+                         "xvfb-run -a -s '-screen 0 1600x1000x24' ");
+    return w;
+  };
+  const Result w = window("--size 640x480", "small.png");
   if (w.rc != 0 && w.err.find("cannot open") != std::string::npos)
     GTEST_SKIP() << "no usable virtual display: " << w.err;
   ASSERT_EQ(w.rc, 0) << w.err;
   PRT_REQUIRE_HEADLESS_GL();
-  const Result h = prt("-q view " + args + " --headless --screenshot headless.png");
+  const Result h = prt("-q view '" + cornellBake() + "' --size 640x480 --headless --screenshot "
+                       "small-headless.png");
   ASSERT_EQ(h.rc, 0) << h.err;
-  const image::Image win = readDisplayed(path("window.png")),
-                     off = readDisplayed(path("headless.png"));
+  const image::Image win = readDisplayed(path("small.png")),
+                     off = readDisplayed(path("small-headless.png"));
   ASSERT_EQ(win.width, 640);
   ASSERT_EQ(win.height, 480);
-  // The panel sits at the top left; the bottom band of the window is the scene alone, and the
-  // same OpenGL draws it as the headless frame (both on the same Mesa here).
+  // The bottom band of the window is the scene alone, and the same OpenGL draws it as the
+  // headless frame (both on the same Mesa here).
   const image::Image a = image::crop(win, 0, 420, 640, 60), b = image::crop(off, 0, 420, 640, 60);
   EXPECT_LT(render::rmse(a, b), 2.0 / 255.0);
-  // And the panel is there: the top-left corner differs from the bare frame.
-  EXPECT_GT(render::rmse(image::crop(win, 0, 0, 200, 100), image::crop(off, 0, 0, 200, 100)), 0.02);
+  // A small window starts with the panel collapsed to its title bar, at the top left.
+  EXPECT_GT(render::rmse(image::crop(win, 0, 0, 80, 24), image::crop(off, 0, 0, 80, 24)), 0.02);
+  EXPECT_LT(panelCoverage(win, off), 0.03);
+
+  // The default window (1280×800) opens the panel, which still leaves most of the view clear.
+  const Result big = window("", "default.png");
+  ASSERT_EQ(big.rc, 0) << big.err;
+  const Result bigOff =
+      prt("-q view '" + cornellBake() + "' --headless --screenshot default-headless.png");
+  ASSERT_EQ(bigOff.rc, 0) << bigOff.err;
+  const image::Image bw = readDisplayed(path("default.png")),
+                     bo = readDisplayed(path("default-headless.png"));
+  ASSERT_EQ(bw.width, 1280);
+  ASSERT_EQ(bw.height, 800);
+  const double covered = panelCoverage(bw, bo);
+  EXPECT_GT(covered, 0.03) << "the panel is open";
+  EXPECT_LT(covered, 0.15) << "the panel covers " << 100 * covered << "% of the window";
 }
 
 }  // namespace
