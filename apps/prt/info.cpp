@@ -22,6 +22,8 @@
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/project.hpp"
+#include "prt/geometry/builtin.hpp"
+#include "prt/geometry/load.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
@@ -41,6 +43,25 @@ std::string storage(const BakedTransfer& t) {
     return fmt::format("CPCA-compressed, accessors {}*", transferCompressedPrefix(mode));
   if (x.isMatrix()) return fmt::format("accessor {}", transferMatrixName(mode));
   return fmt::format("attributes {}0..{}", transferAttributePrefix(mode), (x.stride() + 3) / 4 - 1);
+}
+
+/// A mesh file or builtin scene, before any bake: what `prt bake` would read.
+void describeMesh(const std::string& path, std::ostream& out, Json& j) {
+  const Mesh m = loadMesh(path);
+  j["kind"] = "mesh";
+  j["mesh"] = meshJson(m);
+  Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Vec3f& p : m.positions) lo = min(lo, p), hi = max(hi, p);
+  out << fmt::format("{}: mesh\n", path);
+  out << fmt::format("vertices    {}\ntriangles   {}\n", m.vertexCount(), m.triangleCount());
+  out << fmt::format("parts       {}:", m.parts.size());
+  for (const auto& p : m.parts)
+    out << fmt::format(" {} ({} v, {} t)", p.name, p.vertexCount, p.triangleCount);
+  out << '\n';
+  out << fmt::format("bounds      ({:.4g}, {:.4g}, {:.4g}) .. ({:.4g}, {:.4g}, {:.4g})\n", lo.x,
+                     lo.y, lo.z, hi.x, hi.y, hi.z);
+  out << fmt::format("attributes  normals{}{}\n", m.uvs.empty() ? "" : ", uvs",
+                     m.albedo.empty() ? "" : ", albedo");
 }
 
 void describeBake(const std::string& path, std::ostream& out, Json& j) {
@@ -275,6 +296,12 @@ void describe(const std::string& path, std::ostream& out, Json& j) {
   {
     const std::string ext = fileExtension(path);
     std::error_code ec;
+    const auto meshExts = meshExtensions();
+    if (isBuiltinScene(path) ||
+        (ext != "glb" && std::find(meshExts.begin(), meshExts.end(), ext) != meshExts.end())) {
+      describeMesh(path, out, j);
+      return;
+    }
     if (envmap::isBuiltin(path) || std::filesystem::is_directory(path, ec) ||
         image::isReadableImageExtension(ext)) {
       describeEnvironment(path, out, j);
@@ -292,7 +319,7 @@ void describe(const std::string& path, std::ostream& out, Json& j) {
         describeTransportTxt(path, out, j);
     } else {
       throw Error(path,
-                  "unknown file type (expected a bake .glb, a light .json or .txt, a "
+                  "unknown file type (expected a bake .glb, a mesh, a light .json or .txt, a "
                   "transport.txt, an environment image, a face folder or builtin:NAME)");
     }
   }

@@ -57,8 +57,12 @@ Json meshJson(const Mesh& m) {
   Json attributes = Json::array({"normals"});
   if (!m.uvs.empty()) attributes.push_back("uvs");
   if (!m.albedo.empty()) attributes.push_back("albedo");
+  Vec3f lo(0.0f), hi(0.0f);
+  if (!m.positions.empty()) lo = hi = m.positions[0];
+  for (const Vec3f& p : m.positions) lo = min(lo, p), hi = max(hi, p);
   return {{"source", m.source},
           {"vertices", m.vertexCount()},
+          {"bounds", {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}}},
           {"triangles", m.triangleCount()},
           {"parts", std::move(parts)},
           {"attributes", std::move(attributes)}};

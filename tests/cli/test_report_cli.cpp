@@ -132,5 +132,24 @@ TEST_F(ReportCli, BadReportPathsAreRefusedBeforeAnyWork) {
   expectCleanFailure("validate b.glb --light builtin:sky --json out/missing/r.json", "r.json");
 }
 
+TEST_F(ReportCli, InfoDescribesAMeshBeforeItIsBaked) {
+  // The mesh a bake reads, as the bake will record it: the same counts, and bounds.
+  const Result r = prt("info 'builtin:plane?y=-1&size=1' --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json i = Json::parse(r.out);
+  expectEnvelope(i, "info");
+  const Json& f = i["files"][0];
+  EXPECT_EQ(f["kind"], "mesh");
+  EXPECT_EQ(f["mesh"]["bounds"]["min"][1], -1.0);
+  EXPECT_EQ(f["mesh"]["bounds"]["max"][1], -1.0);
+  EXPECT_EQ(f["mesh"]["bounds"]["max"][0], 1.0);
+  ASSERT_EQ(prt("-q bake 'builtin:plane?y=-1&size=1' --mode unshadowed --samples 4 -o p.glb").rc, 0);
+  const Result b = prt("info p.glb --json -");
+  ASSERT_EQ(b.rc, 0) << b.err;
+  EXPECT_EQ(Json::parse(b.out)["files"][0]["mesh"]["vertices"], f["mesh"]["vertices"]);
+  const Result text = prt("info 'builtin:plane?y=-1&size=1'");
+  EXPECT_NE(text.out.find("bounds      (-1, -1, -1) .. (1, -1, 1)"), std::string::npos) << text.out;
+}
+
 }  // namespace
 }  // namespace prt::testing
