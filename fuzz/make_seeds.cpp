@@ -23,6 +23,7 @@
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/io/reference_file.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transport/bake.hpp"
@@ -178,6 +179,22 @@ int main(int argc, char** argv) {
   put("light_json", "light.json", slurp(tmp / "light.json"));
   prt::io::writeLightGames202((tmp / "light.txt").string(), light.coefficients);
   put("light_txt", "light.txt", slurp(tmp / "light.txt"));
+  prt::io::ReferenceFile ref;
+  ref.bakeFile = "seed.glb";
+  ref.meshVertices = 4;
+  ref.meshFingerprint = "0123456789abcdef";
+  ref.lightSource = "builtin:sky";
+  ref.environmentFingerprint = "fedcba9876543210";
+  ref.mode = "shadowed";
+  ref.material = "lambert?kd=0.8";
+  ref.eye = prt::Vec3f(0, 1, 3);
+  ref.samples = 16;
+  ref.mis = "power";
+  ref.vertices = {0, 2, 3};
+  ref.radiance = {prt::Rgb(0.5f), prt::Rgb(0.25f, 0.5f, 1.0f), prt::Rgb(0.0f)};
+  ref.stdError = {prt::Rgb(0.01f), prt::Rgb(0.02f), prt::Rgb(0.0f)};
+  prt::io::writeReferenceJson((tmp / "reference.json").string(), ref);
+  put("reference_json", "reference.json", slurp(tmp / "reference.json"));
   put("transport_txt", "vertices.txt", "2\n1 0.5 0 0\n0.25 0 0 1e-3\n");
   put("transport_txt", "faces.txt", "1\n1 0 0 0\n1 0 0 0\n1 0 0 0\n");
 

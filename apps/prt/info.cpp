@@ -297,7 +297,14 @@ void describe(const std::string& path, std::ostream& out, Json& j) {
     const std::string ext = fileExtension(path);
     std::error_code ec;
     const auto meshExts = meshExtensions();
-    if (isBuiltinScene(path) ||
+    // builtin:NAME is a scene or an environment by its name (the two sets do not meet).
+    const auto sceneNames = builtinSceneNames();
+    const std::string builtinName =
+        isBuiltinScene(path) ? path.substr(8, path.find('?') == std::string::npos
+                                                  ? std::string::npos
+                                                  : path.find('?') - 8)
+                             : "";
+    if (std::find(sceneNames.begin(), sceneNames.end(), builtinName) != sceneNames.end() ||
         (ext != "glb" && std::find(meshExts.begin(), meshExts.end(), ext) != meshExts.end())) {
       describeMesh(path, out, j);
       return;

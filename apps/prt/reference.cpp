@@ -9,10 +9,9 @@
 // default camera of `prt render` (render::frameMesh at its default 640x480), so the numbers are
 // those of the default render's view.
 //
-// Outputs, one entry per estimated vertex:
-//   .json  {"vertices": [...], "radiance": [[r,g,b],...], "stdError": [[r,g,b],...], ...}
-//   .bin   "PRTREF1\0", uint32 count, then count × (uint32 vertex, 3 float radiance,
-//          3 float standard error), all little-endian.
+// Outputs, one entry per estimated vertex (io/reference_file.hpp): .json, which names the bake
+// and environment it is for and which `prt validate --reference` and `prt render --reference`
+// read instead of recomputing, or .bin (the numbers alone).
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +37,8 @@
 #include "prt/render/validate.hpp"
 #include "prt/transfer/material.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/io/reference_file.hpp"
+#include "prt/core/version.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
 
@@ -52,47 +53,6 @@ struct ReferenceArgs {
   std::size_t vertices = 0;
   std::uint64_t seed = 0;
 };
-
-std::string toJson(const render::ReferenceResult& r, const ReferenceArgs& a,
-                   const render::ReferenceSettings& rs) {
-  const auto triples = [](const std::vector<Rgb>& v) {
-    Json out = Json::array();
-    for (const Rgb& c : v) out.push_back(jsonFloats(&c.x, 3));
-    return out;
-  };
-  Json j;
-  j["samples"] = a.samples;
-  j["mode"] = toString(rs.mode);
-  j["bounces"] = rs.bounces;
-  j["material"] = rs.material.spec();
-  if (rs.eye && rs.material.glossy()) j["eye"] = jsonFloats(&rs.eye->x, 3);
-  j["seed"] = a.seed;
-  j["rays"] = r.rays;
-  j["vertices"] = r.vertices;
-  j["radiance"] = triples(r.radiance);
-  j["stdError"] = triples(r.stdError);
-  return formatJson(j);
-}
-
-std::string toBinary(const render::ReferenceResult& r) {
-  std::string out("PRTREF1", 8);
-  const auto put32 = [&](std::uint32_t v) {
-    for (int k = 0; k < 4; ++k) out.push_back(static_cast<char>((v >> (8 * k)) & 0xffu));
-  };
-  const auto putF = [&](float f) {
-    std::uint32_t u;
-    std::memcpy(&u, &f, 4);
-    put32(u);
-  };
-  put32(static_cast<std::uint32_t>(r.vertices.size()));
-  for (std::size_t i = 0; i < r.vertices.size(); ++i) {
-    put32(r.vertices[i]);
-    for (float f : {r.radiance[i].x, r.radiance[i].y, r.radiance[i].z, r.stdError[i].x,
-                    r.stdError[i].y, r.stdError[i].z})
-      putF(f);
-  }
-  return out;
-}
 
 void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   if (a.samples < 1) throw Error("--samples must be at least 1");
@@ -143,10 +103,31 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
         throw Error(a.light, "the radiance at vertex " + std::to_string(r.vertices[i]) +
                                  " is not finite (the environment is too bright for 32-bit "
                                  "floats); nothing written");
+  io::ReferenceFile ref;
+  ref.prtkitVersion = kVersion;
+  ref.bakeFile = a.bake;
+  ref.meshVertices = file.mesh.vertexCount();
+  ref.meshFingerprint = io::meshFingerprint(file.mesh);
+  ref.lightSource = a.light;
+  ref.environmentFingerprint = io::environmentFingerprint(env.env);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) ref.rotation[3 * i + k] = rotation.m[i][k];
+  ref.mode = toString(rs.mode);
+  ref.bounces = rs.bounces;
+  ref.material = rs.material.spec();
+  if (rs.material.glossy()) ref.eye = rs.eye;
+  ref.samples = a.samples;
+  ref.seed = a.seed;
+  ref.mis = a.mis;
+  ref.rays = r.rays;
+  ref.seconds = r.seconds;
+  ref.vertices = r.vertices;
+  ref.radiance = r.radiance;
+  ref.stdError = r.stdError;
   if (ext == "json")
-    writeFileAtomically(a.output, toJson(r, a, rs));
+    io::writeReferenceJson(a.output, ref);
   else
-    writeFileAtomically(a.output, toBinary(r));
+    io::writeReferenceBinary(a.output, ref);
   char line[200];
   std::snprintf(line, sizeof line, "wrote %s: %zu vertices x %d samples, %llu rays, %.2f s",
                 a.output.c_str(), r.vertices.size(), a.samples,

@@ -29,6 +29,7 @@
 #include "prt/render/exposure.hpp"
 #include "prt/render/primary.hpp"
 #include "prt/render/render.hpp"
+#include "reference_input.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
 
@@ -54,6 +55,7 @@ struct RenderOptions {
   unsigned seed = 0;
   std::string output;
   std::string json;
+  std::string reference;  ///< --reference FILE: draw prt reference's radiance instead of PRT's
 };
 
 void checkOutput(const std::string& path, const char* what) {
@@ -99,9 +101,13 @@ void run(const RenderOptions& o) {
   for (int k = 0; k < o.turntable; ++k)
     outputs.push_back({fmt::format("-o (frame {})", k), framePath(o.output, k)});
   outputs.push_back({"--contact-sheet", o.contactSheet});
-  checkOutputs(outputs, {{"input", o.bake}, {"--light", o.light}});
+  if (!o.reference.empty() && o.turntable > 0)
+    throw Error("--reference: the reference holds one light rotation; --turntable turns it");
+  const std::vector<NamedPath> inputs = {
+      {"input", o.bake}, {"--light", o.light}, {"--reference", o.reference}};
+  checkOutputs(outputs, inputs);
   Report report("render", o.json);
-  report.check(outputs, {{"input", o.bake}, {"--light", o.light}});
+  report.check(outputs, inputs);
   const auto start = std::chrono::steady_clock::now();
 
   const BakeFile bake = readBake(o.bake);
@@ -138,6 +144,37 @@ void run(const RenderOptions& o) {
   if (render::eyeInsideMesh(bake.mesh, *occluder, camera.eye))
     warn("the camera is inside the mesh; the image will show its inside");
 
+  // --reference: the brute-force radiance of `prt reference` at every vertex, drawn as PRT's
+  // would be (the same camera, background and exposure rule), if it is of this scene.
+  std::vector<Rgb> referenceRadiance;
+  if (!o.reference.empty()) {
+    if (lighting.isShFile())
+      throw Error(o.light, "--reference needs the environment the reference was computed "
+                           "under, not an SH light file");
+    ReferenceScene scene;
+    scene.mesh = &bake.mesh;
+    scene.environment = &*lighting.image;
+    scene.bakeName = o.bake;
+    scene.lightName = o.light;
+    scene.rotation = userRotation;
+    scene.mode = baked.mode();
+    scene.bounces = baked.recipe.effectiveBounces();
+    scene.material = material;
+    if (!baked.transfer.isMatrix()) {
+      scene.material.lobe = {};
+      scene.material.specular = Rgb(0.0f);
+    }
+    if (baked.transfer.isMatrix() && scene.material.glossy()) scene.eye = camera.eye;
+    const io::ReferenceFile ref = readMatchingReference(o.reference, scene);
+    if (ref.vertices.size() != bake.mesh.vertexCount())
+      throw Error(o.reference, fmt::format("covers {} of the mesh's {} vertices: an image needs "
+                                           "them all (prt reference without --vertices)",
+                                           ref.vertices.size(), bake.mesh.vertexCount()));
+    referenceRadiance = ref.radiance;  // ascending and complete: entry i is vertex i
+    info(fmt::format("drawing the reference of {} ({} samples per vertex) instead of PRT",
+                     o.reference, ref.samples));
+  }
+
   render::Background kind = bgKind;
   if (kind == render::Background::Env && lighting.isShFile())
     kind = render::Background::Sh;  // a light file has no image
@@ -155,7 +192,10 @@ void run(const RenderOptions& o) {
                                : userRotation;
     // Matrix transfer is view-dependent: each vertex is seen from the camera's eye.
     relight::RelightInfo relit;
-    const std::span<const Rgb> radiance = relighter.relight(light, rotation, camera.eye, &relit);
+    const std::span<const Rgb> radiance =
+        referenceRadiance.empty() ? relighter.relight(light, rotation, camera.eye, &relit)
+                                  : std::span<const Rgb>(referenceRadiance);
+    if (!referenceRadiance.empty()) relit.bands = 0;  // no SH: the reference
     render::checkFiniteRadiance(radiance, o.bake);
     // --exposure auto: image/exposure.hpp's rule on the first frame's model pixels, kept for
     // every turntable frame so they compare.
@@ -204,6 +244,7 @@ void run(const RenderOptions& o) {
   if (report.wanted()) {
     report.input(o.bake);
     report.input(o.light);
+    if (!o.reference.empty()) report.input(o.reference);
     report["transfer"] = {{"mode", toString(baked.mode())}, {"layout", toString(baked.transfer.layout())},
                           {"representation", baked.transfer.compressed() ? "cpca" : "dense"}};
     report["material"] = material.spec();
@@ -270,6 +311,9 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("-o,--output", opts->output,
                   "Output image (.png tone-mapped sRGB, .exr/.hdr linear)")
       ->required();
+  cmd->add_option("--reference", opts->reference,
+                  "Draw the brute-force radiance of prt reference's .json (every vertex, this "
+                  "bake, light and --rotate) instead of PRT's, to set the two side by side");
   addJsonOption(cmd, opts->json);
   cmd->callback([opts] { run(*opts); });
 }

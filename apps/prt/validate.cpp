@@ -27,6 +27,7 @@
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/io/light_file.hpp"
+#include "reference_input.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
 
@@ -36,6 +37,9 @@ namespace {
 
 struct ValidateArgs {
   std::string bake, light, json, image, imageSize = "640x480", mis = "power", window = "none";
+  std::string reference;  ///< --reference FILE: prt reference's JSON instead of computing it
+  /// The reference options given on the command line (refused beside --reference: the file's).
+  std::vector<std::string> referenceOptionsGiven;
   int samples = 1024;
   std::string bandsList, rotate, material;
   TransferChoice transfer;
@@ -62,9 +66,15 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
     checkWritable(a.image);
   }
   refuseShLight(a.light, "validate");
+  if (!a.reference.empty() && !a.referenceOptionsGiven.empty())
+    throw Error(a.referenceOptionsGiven.front() +
+                ": the reference file's setting is used with --reference (its samples, seed, "
+                "vertices and MIS heuristic)");
   Report report("validate", a.json);
-  checkOutputs({{"--image", a.image}}, {{"input", a.bake}, {"--light", a.light}});
-  report.check({{"--image", a.image}}, {{"input", a.bake}, {"--light", a.light}});
+  const std::vector<NamedPath> inputs = {
+      {"input", a.bake}, {"--light", a.light}, {"--reference", a.reference}};
+  checkOutputs({{"--image", a.image}}, inputs);
+  report.check({{"--image", a.image}}, inputs);
 
   const BakeFile file = readBake(a.bake);
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
@@ -108,6 +118,33 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
     vs.runReference = [&](const render::ReferenceSettings& rs, const ProgressFn& p) {
       return mpi.reference(file.mesh, *occluder, env.env, rs, p);
     };
+  // --reference: the file's estimates, if they are of this scene (the reference drops the lobe
+  // of a vector bake's material, as validate does).
+  render::ReferenceResult stored;
+  if (!a.reference.empty()) {
+    ReferenceScene scene;
+    scene.mesh = &file.mesh;
+    scene.environment = &env.env;
+    scene.bakeName = a.bake;
+    scene.lightName = a.light;
+    scene.rotation = rotation;
+    scene.mode = bt.mode();
+    scene.bounces = recipe.effectiveBounces();
+    scene.material = recipe.material;
+    if (!bt.transfer.isMatrix()) {
+      scene.material.lobe = {};
+      scene.material.specular = Rgb(0.0f);
+    }
+    if (bt.transfer.isMatrix() && scene.material.glossy()) scene.eye = vs.reference.eye;
+    const io::ReferenceFile ref = readMatchingReference(a.reference, scene);
+    stored = toReferenceResult(ref);
+    vs.precomputed = &stored;
+    vs.reference.samples = ref.samples;
+    vs.reference.seed = ref.seed;
+    vs.reference.heuristic = parseMis(ref.mis);
+    info(fmt::format("reference from {}: {} vertices x {} samples", a.reference,
+                     ref.vertices.size(), ref.samples));
+  }
   const render::ValidationReport rep = render::validate(
       file.mesh, *occluder, bt.transfer, recipe, env.env, light, vs, progressBar("reference"));
   if (!mpi.root()) return;
@@ -115,14 +152,14 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   char line[200];
   std::snprintf(line, sizeof line,
                 "reference: %zu vertices x %d samples, %llu rays, %.2f s; mode %s, %d bounce(s)",
-                rep.reference.vertices.size(), a.samples,
+                rep.reference.vertices.size(), vs.reference.samples,
                 static_cast<unsigned long long>(rep.reference.rays), rep.reference.seconds,
                 toString(rep.mode), rep.bounces);
   info(line);
   std::snprintf(line, sizeof line,
                 "truncation floor: %s from the reference's samples, %zu vertices x %d samples, "
                 "%llu rays, %.2f s",
-                rep.floorMethod.c_str(), rep.floorVertices, a.samples,
+                rep.floorMethod.c_str(), rep.floorVertices, vs.reference.samples,
                 static_cast<unsigned long long>(rep.floorRays), rep.floorSeconds);
   info(line);
   // The table on standard output, unless the report is (--json -): then on stderr.
@@ -164,6 +201,7 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   if (report.wanted()) {
     report.input(a.bake);
     report.input(a.light);
+    if (!a.reference.empty()) report.input(a.reference);
     if (!a.image.empty()) report.output(a.image);
     // The members of render::reportJson (the table with its settings and timings), after ours.
     const Json table = Json::parse(render::reportJson(rep));
@@ -191,6 +229,9 @@ void addValidateCommand(CLI::App& root) {
   addMaterialOption(cmd, a->material,
                     "for both PRT and the reference (glossy surfaces are seen from the eye of "
                     "prt render's default camera)");
+  cmd->add_option("--reference", a->reference,
+                  "Read the reference from prt reference's .json (computed for this bake, light "
+                  "and --rotate) instead of computing it");
   cmd->add_option("--reference-samples", a->samples, "Reference samples per vertex")
       ->check(intRange(1, 1 << 24))
       ->capture_default_str();
@@ -209,7 +250,12 @@ void addValidateCommand(CLI::App& root) {
   addJsonOption(cmd, a->json);
   cmd->add_option("--image", a->image, "Write a false-colour per-vertex error image (.png/.exr)");
   cmd->add_option("--image-size", a->imageSize, "Error image size WxH")->capture_default_str();
-  cmd->callback([a] { runValidate(*a); });
+  cmd->callback([a, cmd] {
+    a->referenceOptionsGiven.clear();
+    for (const char* name : {"--reference-samples", "--vertices", "--seed", "--mis"})
+      if (cmd->count(name) > 0) a->referenceOptionsGiven.push_back(name);
+    runValidate(*a);
+  });
 }
 
 }  // namespace prt::cli

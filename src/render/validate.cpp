@@ -119,7 +119,14 @@ ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecip
     rs.material.lobe = {};
     rs.material.specular = Rgb(0.0f);
   }
-  rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
+  if (settings.precomputed) {
+    rs.vertices = settings.precomputed->vertices;
+    for (std::uint32_t v : rs.vertices)
+      if (v >= nv) throw Error("the reference has vertex " + std::to_string(v) +
+                               " of a mesh with " + std::to_string(nv));
+  } else {
+    rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
+  }
   // Glossy (matrix) transfer is seen from an eye.
   if (transfer.isMatrix() && !rs.eye)
     throw Error("validating glossy (matrix) transfer needs the eye the reference and PRT share");
@@ -301,7 +308,16 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     return settings.runReference ? settings.runReference(r, p)
                                  : renderReference(mesh, occluder, env, r, p);
   };
-  rep.reference = runReference(rs, part(0.0, mainShare));
+  if (settings.precomputed) {
+    PRT_CHECK(settings.precomputed->radiance.size() == rs.vertices.size() &&
+                  settings.precomputed->stdError.size() == rs.vertices.size(),
+              "a precomputed reference holds one estimate per vertex");
+    rep.reference = *settings.precomputed;
+    rep.reference.bandLimited.clear();
+    if (progress && !progress(mainShare)) throw Cancelled();
+  } else {
+    rep.reference = runReference(rs, part(0.0, mainShare));
+  }
   checkReference(env, rep);
   const auto& verts = rep.reference.vertices;
   const std::size_t n = verts.size();

@@ -59,6 +59,11 @@ struct ValidateSettings {
   /// the mesh, occluder and environment validate() is given when empty; a scheduler that
   /// spreads it over ranks sets its own (it must return renderReference's result).
   std::function<ReferenceResult(const ReferenceSettings&, const ProgressFn&)> runReference;
+  /// The reference already computed (a reference file, io/reference_file.hpp) with `reference`'s
+  /// settings and this bake's mode, bounces and material: used as it is, over its own vertices
+  /// (maxVertices is then ignored); only the floor's band-limited run is made. The caller checks
+  /// that it belongs to this mesh and environment.
+  const ReferenceResult* precomputed = nullptr;
 };
 
 /// Above this share of negative-radiance vertices a row calls for a window on the light.

@@ -1,0 +1,61 @@
+#include "reference_input.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
+
+namespace prt::cli {
+
+io::ReferenceFile readMatchingReference(const std::string& path, const ReferenceScene& s) {
+  if (fileExtension(path) != "json")
+    throw Error(path, "--reference takes the .json of prt reference (a .bin holds no scene)");
+  io::ReferenceFile ref = io::readReferenceJson(path);
+  const auto differ = [&](const std::string& what, const std::string& file,
+                          const std::string& here) {
+    throw Error(path, fmt::format("was computed for {} {}, not {} ({}): run prt reference again",
+                                  what, file, here, what == "the bake" ? s.bakeName : s.lightName));
+  };
+  if (ref.meshVertices != s.mesh->vertexCount() ||
+      ref.meshFingerprint != io::meshFingerprint(*s.mesh))
+    differ("the bake", "'" + ref.bakeFile + "'", "this mesh");
+  if (ref.environmentFingerprint != io::environmentFingerprint(*s.environment))
+    differ("the environment", "'" + ref.lightSource + "'", "this one");
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(ref.rotation[3 * i + k] - s.rotation.m[i][k]) > 1e-9)
+        throw Error(path, "was computed with another light rotation (--rotate): give the same "
+                          "--rotate as prt reference had");
+  if (ref.mode != toString(s.mode) || ref.bounces != s.bounces)
+    throw Error(path, fmt::format("holds {} transport with {} bounce(s), not {} with {}", ref.mode,
+                                  ref.bounces, toString(s.mode), s.bounces));
+  if (ref.material != s.material.spec())
+    throw Error(path, fmt::format("was computed for the material {}, not {}", ref.material,
+                                  s.material.spec()));
+  if (s.eye) {
+    if (!ref.eye)
+      throw Error(path, "holds diffuse radiance; a glossy material needs the eye it is seen from");
+    const Vec3f d = *ref.eye - *s.eye;
+    if (std::sqrt(dot(d, d)) > 1e-4f * (1.0f + std::sqrt(dot(*s.eye, *s.eye))))
+      throw Error(path, fmt::format("sees the glossy vertices from ({:.4g}, {:.4g}, {:.4g}), "
+                                    "this view from ({:.4g}, {:.4g}, {:.4g}): give prt reference "
+                                    "--eye at this camera",
+                                    ref.eye->x, ref.eye->y, ref.eye->z, s.eye->x, s.eye->y,
+                                    s.eye->z));
+  }
+  return ref;
+}
+
+render::ReferenceResult toReferenceResult(const io::ReferenceFile& ref) {
+  render::ReferenceResult r;
+  r.vertices = ref.vertices;
+  r.radiance = ref.radiance;
+  r.stdError = ref.stdError;
+  r.rays = ref.rays;
+  r.seconds = ref.seconds;
+  return r;
+}
+
+}  // namespace prt::cli

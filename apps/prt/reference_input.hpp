@@ -1,0 +1,39 @@
+#pragma once
+// `--reference FILE` (validate, render): a `prt reference` JSON read back instead of computing
+// the brute-force radiance again, refused in one line unless it was computed for this scene.
+
+#include <optional>
+#include <string>
+
+#include "prt/core/vec.hpp"
+#include "prt/envmap/environment.hpp"
+#include "prt/geometry/mesh.hpp"
+#include "prt/io/reference_file.hpp"
+#include "prt/render/reference.hpp"
+#include "prt/transfer/bake_settings.hpp"
+#include "prt/transfer/material.hpp"
+
+namespace prt::cli {
+
+/// What the reference must have been computed for: the mesh and environment (by fingerprint),
+/// the light's rotation, the transport (mode, bounces, material) and, for a glossy material,
+/// the eye the vertices were seen from.
+struct ReferenceScene {
+  const Mesh* mesh = nullptr;
+  const envmap::Environment* environment = nullptr;
+  std::string bakeName, lightName;
+  Mat3d rotation;
+  TransferMode mode = TransferMode::Shadowed;
+  int bounces = 0;
+  Material material;
+  std::optional<Vec3f> eye;  ///< set when the material is glossy
+};
+
+/// Reads `path` (io::readReferenceJson) and checks it against `scene`: throws prt::Error naming
+/// the file and the first thing that differs.
+io::ReferenceFile readMatchingReference(const std::string& path, const ReferenceScene& scene);
+
+/// The estimates of a reference file as the validator takes them.
+render::ReferenceResult toReferenceResult(const io::ReferenceFile& ref);
+
+}  // namespace prt::cli

@@ -1,0 +1,66 @@
+#pragma once
+// Reference files: `prt reference` output, read back by `prt validate --reference` and
+// `prt render --reference` instead of recomputing the brute-force radiance (docs/validation.md).
+//
+// JSON:
+//   {"format": "prtkit-reference", "formatVersion": 1, "prtkitVersion": "0.1.0",
+//    "bake": {"file": "bunny.glb", "vertices": N, "fingerprint": "…"},
+//    "light": {"source": "courtyard.exr", "fingerprint": "…", "rotation": [9 numbers, row-major]},
+//    "mode": "shadowed", "bounces": 1, "material": "lambert?kd=0.8", "eye": [x, y, z],
+//    "samples": 1024, "seed": 0, "mis": "power", "rays": R,
+//    "vertices": [...], "radiance": [[r, g, b], ...], "stdError": [[r, g, b], ...]}
+// The fingerprints tie a reference to the mesh and the environment it was computed for (an
+// FNV-1a hash of the mesh's positions, normals, albedo and triangles; of the environment's
+// texels and its radiance along fixed directions), so a reference is never compared with
+// another scene's relighting. Older reference files (before formatVersion) carry no
+// fingerprints and are refused with that reason.
+// Binary (.bin, no metadata, not read back): "PRTREF1\0", uint32 count, then count ×
+// (uint32 vertex, 3 float radiance, 3 float standard error), little-endian.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "prt/core/vec.hpp"
+#include "prt/envmap/environment.hpp"
+#include "prt/geometry/mesh.hpp"
+
+namespace prt::io {
+
+inline constexpr int kReferenceFormatVersion = 1;
+
+struct ReferenceFile {
+  std::string prtkitVersion;
+  std::string bakeFile;
+  std::size_t meshVertices = 0;
+  std::string meshFingerprint;
+  std::string lightSource;
+  std::string environmentFingerprint;
+  std::array<double, 9> rotation = {1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major
+  std::string mode;
+  int bounces = 0;
+  std::string material;
+  std::optional<Vec3f> eye;  ///< the eye glossy vertices were seen from
+  int samples = 0;
+  std::uint64_t seed = 0;
+  std::string mis;
+  std::uint64_t rays = 0;
+  double seconds = 0;  ///< not written (the file is deterministic); read when present
+  std::vector<std::uint32_t> vertices;  ///< ascending, each < meshVertices
+  std::vector<Rgb> radiance, stdError;  ///< one per entry of `vertices`
+};
+
+void writeReferenceJson(const std::string& path, const ReferenceFile& ref);
+void writeReferenceBinary(const std::string& path, const ReferenceFile& ref);
+ReferenceFile readReferenceJson(const std::string& path);
+/// The same from text in memory; `name` is used in messages.
+ReferenceFile parseReferenceJson(std::string_view text, const std::string& name);
+
+/// Fingerprints (16 hex digits) of what a reference was computed for.
+std::string meshFingerprint(const Mesh& mesh);
+std::string environmentFingerprint(const envmap::Environment& env);
+
+}  // namespace prt::io
