@@ -11,3 +11,5 @@ cd "$root"
 args=("$@")
 if [[ " ${args[*]-} " != *" -o "* && " ${args[*]-} " != *" --output "* ]]; then args+=(-o demo-out); fi
 "$root/build/prt" demo "${args[@]}"
+echo "demo: prt is $root/build/prt; for the README's tour put it on PATH:" \
+     "export PATH=\"$root/build:\$PATH\" (or cmake --install build)" >&2

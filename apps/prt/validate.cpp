@@ -150,11 +150,19 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   if (!mpi.root()) return;
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
-  std::snprintf(line, sizeof line,
-                "reference: %zu vertices x %d samples, %llu rays, %.2f s; mode %s, %d bounce(s)",
-                rep.reference.vertices.size(), vs.reference.samples,
-                static_cast<unsigned long long>(rep.reference.rays), rep.reference.seconds,
-                toString(rep.mode), rep.bounces);
+  if (a.reference.empty())
+    std::snprintf(line, sizeof line,
+                  "reference: %zu vertices x %d samples, %llu rays, %.2f s; mode %s, %d bounce(s)",
+                  rep.reference.vertices.size(), vs.reference.samples,
+                  static_cast<unsigned long long>(rep.reference.rays), rep.reference.seconds,
+                  toString(rep.mode), rep.bounces);
+  else
+    std::snprintf(line, sizeof line,
+                  "reference: %zu vertices x %d samples, %llu rays (from %s); mode %s, %d "
+                  "bounce(s)",
+                  rep.reference.vertices.size(), vs.reference.samples,
+                  static_cast<unsigned long long>(rep.reference.rays), a.reference.c_str(),
+                  toString(rep.mode), rep.bounces);
   info(line);
   std::snprintf(line, sizeof line,
                 "truncation floor: %s from the reference's samples, %zu vertices x %d samples, "
