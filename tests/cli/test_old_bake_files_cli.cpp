@@ -43,12 +43,15 @@ TEST_F(OldBakeFilesCli, RenderAsTheyDid) {
   struct Case {
     std::string bake, options, expected;
     double tolerance;  // relative to the brightest pixel; 0: bit for bit
+    std::string camera = "";  // "": the whole mesh framed, as versions 1-3 were rendered
   };
   for (const Case& c : {Case{"v1-vector", "", "v1-vector.render.exr", 0},
                         Case{"v1-vector", "--mode shadowed", "v1-vector.shadowed.render.exr", 0},
                         Case{"v2-matrix", "", "v2-matrix.render.exr", 1e-5},
                         Case{"v3-cpca-vector", "", "v3-cpca-vector.render.exr", 1e-5},
-                        Case{"v3-cpca-matrix", "", "v3-cpca-matrix.render.exr", 1e-5}}) {
+                        Case{"v3-cpca-matrix", "", "v3-cpca-matrix.render.exr", 1e-5},
+                        Case{"v4-vector", "", "v4-vector.render.exr", 0,
+                             "eye=0,3,6;target=0,0.5,0"}}) {
     SCOPED_TRACE(c.bake + " " + c.options);
     // The camera these were rendered with: the whole mesh framed (the default framed every part
     // until it learnt to leave a ground plane out).
@@ -61,6 +64,7 @@ TEST_F(OldBakeFilesCli, RenderAsTheyDid) {
     char camera[256];
     std::snprintf(camera, sizeof camera, "--camera 'eye=%.9g,%.9g,%.9g;target=%.9g,%.9g,%.9g' ",
                   cam.eye.x, cam.eye.y, cam.eye.z, cam.target.x, cam.target.y, cam.target.z);
+    if (!c.camera.empty()) std::snprintf(camera, sizeof camera, "--camera '%s' ", c.camera.c_str());
     const Result r = prt("-q render '" + fixture(c.bake + ".glb") + "' " + c.options + " " +
                          std::string(camera) + "--light builtin:sky --size 40x30 --spp 1 -o out/now.exr");
     ASSERT_EQ(r.rc, 0) << r.err;
@@ -89,7 +93,7 @@ TEST_F(OldBakeFilesCli, ExportAsTheyDid) {
 
 TEST_F(OldBakeFilesCli, InfoDescribesThem) {
   for (const char* name : {"v1-vector.glb", "v2-matrix.glb", "v3-cpca-vector.glb",
-                           "v3-cpca-matrix.glb", "v1-part0.glb"}) {
+                           "v3-cpca-matrix.glb", "v1-part0.glb", "v4-vector.glb"}) {
     const Result r = prt("info '" + fixture(name) + "'");
     EXPECT_EQ(r.rc, 0) << name << ": " << r.err;
     EXPECT_NE(r.out.find("format version"), std::string::npos) << r.out;

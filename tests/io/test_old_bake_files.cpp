@@ -70,6 +70,22 @@ TEST(OldBakeFiles, VersionOneVectorsAndRgbReadAsWritten) {
   expectRoundTrip(b);
 }
 
+TEST(OldBakeFiles, VersionFourInExtrasReadsAsWritten) {
+  // The last version that kept its object in extras.prtkit (5 moved it to the
+  // PRTKIT_radiance_transfer extension).
+  const BakeFile b = readBake(fixture("v4-vector.glb"));
+  EXPECT_EQ(b.formatVersion, 4);
+  EXPECT_TRUE(b.complete());
+  EXPECT_EQ(b.mesh.vertexCount(), 91u);
+  ASSERT_EQ(b.transfers.size(), 2u);
+  const BakedTransfer* i = b.find(TransferMode::Interreflected);
+  ASSERT_TRUE(i);
+  EXPECT_EQ(i->transfer.shape().describe(), "vector, 3 bands, scalar, 91 vertices");
+  EXPECT_EQ(i->recipe.samples, 32);
+  EXPECT_EQ(i->recipe.seed, 7u);
+  expectRoundTrip(b);
+}
+
 TEST(OldBakeFiles, VersionTwoMatricesReadAsWritten) {
   const BakeFile b = readBake(fixture("v2-matrix.glb"));
   EXPECT_EQ(b.formatVersion, 2);
