@@ -1,4 +1,4 @@
-// The bake file (.glb with _PRT attributes and extras.prtkit) through prt::decodeBake.
+// The bake file (.glb with _PRT attributes and the PRTKIT_radiance_transfer extension) through prt::decodeBake.
 #include "fuzz_common.hpp"
 #include "prt/io/bake_file.hpp"
 

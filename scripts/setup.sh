@@ -15,7 +15,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # viewer (prt view): window, UI, GL loader; EGL + Mesa (llvmpipe) headless; Xvfb for its window test
   libglfw3-dev libimgui-dev libepoxy-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri xvfb xauth
-  # browser viewer (prt web): node + npm bundle web/ (three.js, lil-gui, esbuild from npm, pinned
+  # browser viewer (prt web): node + npm bundle web/ (three.js, lil-gui, esbuild from npm, and the
+  # Khronos glTF validator the tests run on every bake; pinned
   # by web/package-lock.json); chromium runs its tests headless (SwiftShader, no GPU needed)
   # (npm is added below only when no npm command exists: NodeSource's nodejs ships its own npm and
   # conflicts with Debian's npm package)
@@ -60,6 +61,7 @@ web_packages() {
   fi
   if [[ -f "$web/node_modules/three/package.json" && -f "$web/node_modules/lil-gui/package.json" &&
         -f "$web/node_modules/esbuild/package.json" &&
+        -f "$web/node_modules/gltf-validator/package.json" &&
         "$web/node_modules/.package-lock.json" -nt "$web/package-lock.json" ]]; then
     return 0
   fi

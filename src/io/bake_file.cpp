@@ -109,7 +109,8 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
               {"triangleCount", mesh.triangleCount()},
               {"vertexRange", {{"first", rows.first}, {"count", rows.count}}}};
   if (!transfers.empty()) prt["transfers"] = std::move(transfers);
-  gltf["extras"] = {{"prtkit", std::move(prt)}};
+  gltf["extensionsUsed"] = json::array({kBakeExtension});
+  gltf["extensions"] = {{kBakeExtension, std::move(prt)}};
 
   std::string text = gltf.dump();
   const std::uint64_t total = io::glb::fileBytes(text, bin);
@@ -133,16 +134,32 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     r.fail(std::string("invalid glTF JSON (") + std::string(e.what()).substr(0, 160) + ")");
   }
   if (!gltf.is_object()) r.fail("invalid glTF: the JSON is not an object");
-  const json* extras = gltf.contains("extras") ? &gltf["extras"] : nullptr;
-  if (!extras || !extras->is_object() || !extras->contains("prtkit") ||
-      !(*extras)["prtkit"].is_object())
-    r.fail("not a prtkit bake file (a glTF without extras.prtkit)");
-  const json& prt = (*extras)["prtkit"];
-  const std::string where = "extras.prtkit";
+  // The object: the extension (version 5 on), else the root's extras.prtkit (versions 1-4).
+  const auto objectAt = [&](const char* parent, const char* key) -> const json* {
+    if (!gltf.contains(parent) || !gltf[parent].is_object() || !gltf[parent].contains(key))
+      return nullptr;
+    const json& o = gltf[parent][key];
+    if (!o.is_object()) r.fail(std::string(parent) + "." + key + " is not an object");
+    return &o;
+  };
+  const json* inExtension = objectAt("extensions", kBakeExtension);
+  const json* inExtras = objectAt("extras", "prtkit");
+  if (!inExtension && !inExtras)
+    r.fail(std::string("not a prtkit bake file (a glTF without the ") + kBakeExtension +
+           " extension or extras.prtkit)");
+  const json& prt = inExtension ? *inExtension : *inExtras;
+  const std::string where =
+      inExtension ? std::string("extensions.") + kBakeExtension : std::string("extras.prtkit");
   const auto version = r.integer(prt, "formatVersion", where, 0, 1e9);
   if (version > static_cast<std::uint64_t>(kBakeFormatVersion))
     r.fail("bake format version " + std::to_string(version) +
            " is newer than this prtkit understands (" + std::to_string(kBakeFormatVersion) + ")");
+  if (inExtension && version < static_cast<std::uint64_t>(kFirstExtensionVersion))
+    r.fail(where + ": format version " + std::to_string(version) +
+           " predates the extension (versions 1-4 live in extras.prtkit)");
+  if (!inExtension && version >= static_cast<std::uint64_t>(kFirstExtensionVersion))
+    r.fail("extras.prtkit: format version " + std::to_string(version) + " belongs in the " +
+           kBakeExtension + " extension");
   if (version < 1) r.fail("bake format version " + std::to_string(version) + " is invalid");
 
   BakeFile bake;

@@ -160,7 +160,7 @@ Mesh decodeMesh(const json& gltf, const gltf::AccessorReader& ar, std::size_t V,
     if (pa < 0) r.fail(what + " has no POSITION");
     const std::size_t n = ar.count(pa, what + " POSITION");
     if (n == 0 || mesh.positions.size() + n > V)
-      r.fail(what + " has more vertices than extras.prtkit.vertexCount");
+      r.fail(what + " has more vertices than the bake's vertexCount");
     MeshPart part;
     part.name = name;
     part.firstVertex = static_cast<std::uint32_t>(mesh.positions.size());
@@ -199,7 +199,7 @@ Mesh decodeMesh(const json& gltf, const gltf::AccessorReader& ar, std::size_t V,
     if (ni == 0 || ni % 3 != 0)
       r.fail(what + ": index count " + std::to_string(ni) + " is not a positive multiple of 3");
     if (mesh.triangles.size() + ni / 3 > T)
-      r.fail(what + " has more triangles than extras.prtkit.triangleCount");
+      r.fail(what + " has more triangles than the bake's triangleCount");
     const auto idx = ar.exact<std::uint32_t>(indices, 1, kUint, ni, what + " indices");
     for (std::size_t t = 0; t < ni / 3; ++t) {
       std::array<std::uint32_t, 3> tri;
@@ -217,7 +217,7 @@ Mesh decodeMesh(const json& gltf, const gltf::AccessorReader& ar, std::size_t V,
   }
   if (mesh.positions.size() != V || mesh.triangles.size() != T)
     r.fail("the meshes hold " + std::to_string(mesh.positions.size()) + " vertices and " +
-           std::to_string(mesh.triangles.size()) + " triangles, extras.prtkit says " +
+           std::to_string(mesh.triangles.size()) + " triangles, the bake says " +
            std::to_string(V) + " and " + std::to_string(T));
   return mesh;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// extras.prtkit of a bake file: how each transfer was made, as JSON — written one way (nlohmann,
+// The PRTKIT_radiance_transfer object of a bake file (extras.prtkit before version 5): how each transfer was made, as JSON — written one way (nlohmann,
 // numbers as numbers that read back exactly, seeds beyond 2⁵³ as decimal strings for readers in
 // JavaScript) and read with a check at every member, so a hand-edited file gives one line
 // naming the member. Private to src/io; docs/formats-bake.md is the specification.

@@ -22,6 +22,23 @@
 namespace prt {
 namespace {
 
+/// The bake's object in a file of the current format: the PRTKIT_radiance_transfer extension.
+nlohmann::json& prtObject(nlohmann::json& doc) {
+  return doc["extensions"][kBakeExtension];
+}
+const nlohmann::json& prtObject(const nlohmann::json& doc) {
+  return doc.at("extensions").at(kBakeExtension);
+}
+/// `doc` as a file of format `version` (1-4) would hold it: the object in the root's
+/// extras.prtkit, no extension.
+void asVersion(nlohmann::json& doc, int version) {
+  nlohmann::json object = prtObject(doc);
+  object["formatVersion"] = version;
+  doc.erase("extensions");
+  doc.erase("extensionsUsed");
+  doc["extras"]["prtkit"] = std::move(object);
+}
+
 // Two parts: a quad (4 vertices, 2 triangles) and a tetrahedron-like fan (5 vertices, 3 tris).
 Mesh twoPartMesh() {
   Mesh m;
@@ -247,12 +264,12 @@ TEST(BakeFile, MatricesRoundTripBitExact) {
   for (const auto& mesh : g.json["meshes"])
     for (const auto& [name, index] : mesh["primitives"][0]["attributes"].items())
       EXPECT_EQ(name.find("_M"), std::string::npos) << name;
-  const auto& t2 = g.json["extras"]["prtkit"]["transfers"][2];
+  const auto& t2 = prtObject(g.json)["transfers"][2];
   EXPECT_EQ(t2["matrixAccessor"], "_PRT_SHADOWED_M");
   EXPECT_EQ(t2["settings"]["layout"], "matrix");
   // A file that claims version 1 but holds a matrix is refused, naming the problem.
   nlohmann::json doc = g.json;
-  doc["extras"]["prtkit"]["formatVersion"] = 1;
+  asVersion(doc, 1);
   const std::string edited = withJson(bytes, doc);
   try {
     decodeBake(asBytes(edited), "old.glb");
@@ -288,7 +305,11 @@ TEST(BakeFile, GltfRulesHold) {
   const Glb g = splitGlb(bytes);
   const auto& j = g.json;
   EXPECT_EQ(j["asset"]["version"], "2.0");
-  EXPECT_EQ(j["extras"]["prtkit"]["formatVersion"], kBakeFormatVersion);
+  EXPECT_EQ(prtObject(j)["formatVersion"], kBakeFormatVersion);
+  // The vendor extension is declared as used, never as required: any viewer shows the mesh.
+  EXPECT_EQ(j["extensionsUsed"], nlohmann::json::array({kBakeExtension}));
+  EXPECT_FALSE(j.contains("extensionsRequired"));
+  EXPECT_FALSE(j.contains("extras"));
   ASSERT_EQ(j["buffers"].size(), 1u);
   EXPECT_FALSE(j["buffers"][0].contains("uri"));
   const std::size_t bufLen = j["buffers"][0]["byteLength"];
@@ -459,9 +480,10 @@ TEST(BakeFile, NewerFormatVersionIsRejectedWithOneLine) {
 
 TEST(BakeFile, ForeignGltfIsRejected) {
   std::string bytes = encodeBake(sampleBake());
-  const auto at = bytes.find("\"prtkit\":{");
+  // The extension's object renamed: a glTF that only says it uses the extension.
+  const auto at = bytes.find(std::string("\"") + kBakeExtension + "\":{");
   ASSERT_NE(at, std::string::npos);
-  bytes[at + 6] = 'X';
+  bytes[at + 1] = 'X';
   try {
     decodeBake(asBytes(bytes), "other.glb");
     FAIL();
@@ -582,18 +604,18 @@ TEST(BakeFile, CompressedTransferRoundTripsBitExact) {
   }
   EXPECT_FALSE(r.transfers[1].transfer.compressed());
   const Glb g = splitGlb(bytes);
-  const auto& t0 = g.json["extras"]["prtkit"]["transfers"][0];
+  const auto& t0 = prtObject(g.json)["transfers"][0];
   EXPECT_EQ(t0["compressed"]["clusters"], 3);
   EXPECT_EQ(t0["accessors"].size(), 4u);
   EXPECT_EQ(g.json["accessors"][t0["accessors"][0].get<int>()]["componentType"], 5123);  // uint16
-  EXPECT_EQ(g.json["extras"]["prtkit"]["transfers"][2]["accessors"].size(), 2u);
+  EXPECT_EQ(prtObject(g.json)["transfers"][2]["accessors"].size(), 2u);
   // No compressed accessor is a primitive attribute.
   for (const auto& mesh : g.json["meshes"])
     for (const auto& [name, index] : mesh["primitives"][0]["attributes"].items())
       EXPECT_EQ(name.find("_PRT_SHADOWED"), std::string::npos) << name;
   // A version-2 claim holding compressed transfer is refused, naming the version.
   nlohmann::json doc = g.json;
-  doc["extras"]["prtkit"]["formatVersion"] = 2;
+  asVersion(doc, 2);
   // (Version 2 stored the material as its spec string.)
   for (auto& t : doc["extras"]["prtkit"]["transfers"])
     t["settings"]["material"] = parseMaterial("lambert").spec();
@@ -637,15 +659,15 @@ TEST(BakeFile, MaterialIsStructuredAndReadsBackExactly) {
   const BakeFile r = decodeBake(asBytes(bytes), "m.glb");
   EXPECT_EQ(r.transfers[0].recipe.material, m);
   const nlohmann::json j =
-      splitGlb(bytes).json["extras"]["prtkit"]["transfers"][0]["settings"]["material"];
+      prtObject(splitGlb(bytes).json)["transfers"][0]["settings"]["material"];
   EXPECT_EQ(j["type"], "phong");
   EXPECT_EQ(j["exponent"].get<double>(), 17.123456789);
   EXPECT_EQ(j["ks"][0].get<double>(), 0.1234567);  // the float's shortest decimal
   EXPECT_FALSE(
-      splitGlb(bytes).json["extras"]["prtkit"]["transfers"][0]["settings"].contains("albedo"));
+      prtObject(splitGlb(bytes).json)["transfers"][0]["settings"].contains("albedo"));
   // Version 3 wrote the spec string and a separate albedo: both still read.
   nlohmann::json doc = splitGlb(bytes).json;
-  doc["extras"]["prtkit"]["formatVersion"] = 3;
+  asVersion(doc, 3);
   doc["extras"]["prtkit"]["transfers"][0]["settings"]["material"] = "ggx?roughness=0.5&ks=0.25";
   doc["extras"]["prtkit"]["transfers"][0]["settings"]["albedo"] = {0.5, 0.25, 0.125};
   const BakeFile old = decodeBake(asBytes(withJson(bytes, doc)), "old.glb");
@@ -656,7 +678,7 @@ TEST(BakeFile, MaterialIsStructuredAndReadsBackExactly) {
   EXPECT_EQ(*om.diffuse, Rgb(0.5f, 0.25f, 0.125f));
   // A structured material out of range is refused by name.
   doc = splitGlb(bytes).json;
-  doc["extras"]["prtkit"]["transfers"][0]["settings"]["material"]["exponent"] = -1;
+  prtObject(doc)["transfers"][0]["settings"]["material"]["exponent"] = -1;
   try {
     decodeBake(asBytes(withJson(bytes, doc)), "bad.glb");
     FAIL();
@@ -723,8 +745,9 @@ TEST(BakeFile, WriterAndReaderHoldTheRecipeToWhatABakeCouldMake) {
   for (const Edit& e : edits) {
     SCOPED_TRACE(e.what);
     nlohmann::json doc = g.json;
-    if (std::string(e.what) == "old albedo 2") doc["extras"]["prtkit"]["formatVersion"] = 3;
-    for (auto& t : doc["extras"]["prtkit"]["transfers"]) {
+    const bool old = std::string(e.what) == "old albedo 2";
+    if (old) asVersion(doc, 3);
+    for (auto& t : (old ? doc["extras"]["prtkit"] : prtObject(doc))["transfers"]) {
       if (std::string(e.what) == "old albedo 2") t["settings"]["material"] = "lambert";
       e.apply(t["settings"]);
     }

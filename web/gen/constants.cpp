@@ -99,7 +99,10 @@ json constants() {
   // decodeBake reads versions 1..kBakeFormatVersion.
   json versions = json::array();
   for (int v = 1; v <= kBakeFormatVersion; ++v) versions.push_back(v);
-  c["bakeFormat"] = {{"version", kBakeFormatVersion}, {"reads", versions}};
+  c["bakeFormat"] = {{"version", kBakeFormatVersion},
+                     {"reads", versions},
+                     {"extension", kBakeExtension},
+                     {"firstExtensionVersion", kFirstExtensionVersion}};
 
   // Modes, richest first, with their glTF names; layouts.
   json modes = json::array();

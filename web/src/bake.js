@@ -35,8 +35,10 @@ export async function parseBake(buffer, name, limits) {
     fail(name, `cannot be read as glTF (${String(e && e.message ? e.message : e).split('\n')[0]})`);
   }
   const json = gltf.parser.json;
-  const prt = json.extras && json.extras.prtkit;
-  if (!prt) fail(name, 'is a glTF file but not a prtkit bake (no extras.prtkit; write one with prt bake)');
+  // The bake's object: the PRTKIT_radiance_transfer extension (format 5 on), else the root's
+  // extras.prtkit (formats 1-4).
+  const prt = (json.extensions && json.extensions[bakeFormat.extension]) || (json.extras && json.extras.prtkit);
+  if (!prt) fail(name, `is a glTF file but not a prtkit bake (no ${bakeFormat.extension} extension; write one with prt bake)`);
   if (!bakeFormat.reads.includes(prt.formatVersion))
     fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads versions ${bakeFormat.reads.join(', ')})`);
   const entries = Array.isArray(prt.transfers) ? prt.transfers : [];

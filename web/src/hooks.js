@@ -89,7 +89,7 @@ export async function dropTest(page, handleDrop, messageBox) {
     ['garbage.glb', enc.encode('this is not a glb file at all, just text')],
     ['truncated.glb', plain.slice(0, plain.length - 4)],
     ['plain.glb', plain],
-    ['newer.glb', glbWith({ asset: { version: '2.0' }, extras: { prtkit: { formatVersion: 99 } } })],
+    ['newer.glb', glbWith({ asset: { version: '2.0' }, extensionsUsed: ['PRTKIT_radiance_transfer'], extensions: { PRTKIT_radiance_transfer: { formatVersion: 99 } } })],
     ['broken.json', enc.encode('{"bands": 3, "coefficients": [')],
     ['rows.json', enc.encode(JSON.stringify({ bands: 2, coefficients: [[1, 1, 1], [0, 0, 0], [0, 0, 0]] }))],
     ['picture.png', enc.encode('PNG')],

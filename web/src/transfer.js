@@ -88,7 +88,7 @@ const kPaths = {
 kPaths.CpcaMatrix = kPaths.CpcaVector;
 
 /**
- * Reads transfer entry `entry` of extras.prtkit: its shape (checked), its path, and what the
+ * Reads transfer entry `entry` of the bake (PRTKIT_radiance_transfer): its shape (checked), its path, and what the
  * path reads from the file (the compressed arrays). `gltf` is GLTFLoader's result.
  */
 export async function readTransfer(gltf, entry, vertexCount, name, limits) {

@@ -1,7 +1,7 @@
 #pragma once
 // The bake file: a glTF 2.0 binary (.glb) that any glTF viewer opens as a plain mesh, and that
 // carries one or more transfers (each a prt::Transfer with how it was baked) in
-// application-specific accessors described in `extras.prtkit`. The layout is specified byte by
+// application-specific accessors described in the PRTKIT_radiance_transfer extension. The layout is specified byte by
 // byte in docs/formats-bake.md; in short:
 //
 //   * one glTF mesh + node per MeshPart, one triangle primitive each (POSITION, NORMAL,
@@ -10,19 +10,21 @@
 //   * each transfer through the codec of its representation and layout: dense vectors as
 //     ⌈B²C/4⌉ VEC4 float vertex attributes _PRT_<MODE>_T0.., dense matrices as one SCALAR
 //     float accessor _PRT_<MODE>_M, CPCA-compressed rows as four accessors _PRT_<MODE>_CPCA_*;
-//   * extras.prtkit: formatVersion, generator, vertex range, and per transfer its shape, how it
+//   * extensions.PRTKIT_radiance_transfer: formatVersion, generator, vertex range, and per transfer its shape, how it
 //     was baked (BakeRecipe, the material as structured fields), its statistics, and the
 //     accessors that hold its rows.
 //
 // A bake may cover a vertex range [first, first + count) of the scene (split bakes): the file
-// then holds the whole mesh but only the range's transfer rows (in accessors listed in extras,
-// not as primitive attributes, since glTF attributes must cover every vertex). mergeBakes()
+// then holds the whole mesh but only the range's transfer rows (in accessors listed in the
+// extension, not as primitive attributes, since glTF attributes must cover every vertex). mergeBakes()
 // (bake_merge.hpp) concatenates ranges exactly, because a vertex's transfer depends only on the
 // inputs, the seed and its global index (see prt/transport/bake.hpp).
 //
 // Versions: 1 vector transfer, 2 adds matrices, 3 adds CPCA-compressed transfer, 4 stores the
 // material as structured fields (type, exponent or roughness, ks, kd as numbers that read back
-// exactly). This prtkit writes 4 and reads 1–4.
+// exactly), 5 moves the object from the root's extras.prtkit into the vendor extension
+// PRTKIT_radiance_transfer (declared in extensionsUsed, not required: any glTF viewer still
+// shows the mesh; docs/extensions/PRTKIT_radiance_transfer/). This prtkit writes 5 and reads 1–5.
 
 #include <cstddef>
 #include <cstdint>
@@ -40,7 +42,11 @@
 namespace prt {
 
 /// The bake-file format version this prtkit writes and the newest it reads.
-inline constexpr int kBakeFormatVersion = 4;
+inline constexpr int kBakeFormatVersion = 5;
+/// The glTF extension that holds a bake's object from version 5 (earlier: extras.prtkit).
+inline constexpr const char* kBakeExtension = "PRTKIT_radiance_transfer";
+/// The first version written as the extension.
+inline constexpr int kFirstExtensionVersion = 5;
 /// The largest bake file, written or read: a GLB's lengths are 32 bits. The one limit for both,
 /// so nothing is written that cannot be read (reading holds the file once, the transfer's rows
 /// viewing it where they can).
