@@ -1,5 +1,8 @@
 #include "prt/core/json.hpp"
 
+#include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -74,6 +77,18 @@ std::string formatJson(const Json& value, int indent) {
   std::string out;
   layout(value, indent, 0, out);
   return out + "\n";
+}
+
+nlohmann::json parseJsonText(std::string_view text, const std::string& name) {
+  checkJsonNesting(name, text);
+  try {
+    return nlohmann::json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(name, "invalid JSON at byte " + std::to_string(e.byte));
+  } catch (const nlohmann::json::exception&) {
+    // out_of_range for a number too large for a double ("1e99999"; found by fuzz_light_json)
+    throw Error(name, "invalid JSON (a number out of range)");
+  }
 }
 
 }  // namespace prt

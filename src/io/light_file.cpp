@@ -57,16 +57,7 @@ LightFile readLightJson(const std::string& path) {
 }
 
 LightFile parseLightJson(std::string_view text, const std::string& path) {
-  checkJsonNesting(path, text);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text.begin(), text.end());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error(path, "invalid JSON at byte " + std::to_string(e.byte));
-  } catch (const nlohmann::json::exception&) {
-    // out_of_range for a number too large for a double ("1e99999"; found by fuzz_light_json)
-    throw Error(path, "invalid JSON (a number out of range)");
-  }
+  nlohmann::json j = parseJsonText(text, path);  // not const: operator[] on a missing key is null
   if (!j.is_object()) throw Error(path, "expected a JSON object");
   if (!j.contains("coefficients") || !j["coefficients"].is_array())
     throw Error(path, "missing \"coefficients\" array");

@@ -123,15 +123,7 @@ ReferenceFile readReferenceJson(const std::string& path) {
 }
 
 ReferenceFile parseReferenceJson(std::string_view text, const std::string& path) {
-  checkJsonNesting(path, text);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text.begin(), text.end());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error(path, "invalid JSON at byte " + std::to_string(e.byte));
-  } catch (const nlohmann::json::exception&) {
-    throw Error(path, "invalid JSON (a number out of range)");
-  }
+  nlohmann::json j = parseJsonText(text, path);  // not const: operator[] on a missing key is null
   if (!j.is_object()) throw Error(path, "expected a JSON object");
   if (!j.contains("format")) {
     if (j.contains("radiance"))

@@ -5,6 +5,7 @@
 // too (src/io/bake_file.cpp), unordered as glTF tools expect nothing else.
 
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -23,5 +24,10 @@ Json jsonFloats(const float* v, std::size_t n);
 /// row of coefficients, a list of vertices) stays on one line. A trailing newline.
 /// indent 0: the compact form, no newline.
 std::string formatJson(const Json& value, int indent = 2);
+
+/// JSON read one way: the nesting checked before the recursive parser sees it (core/limits.hpp),
+/// then parsed; a syntax error or a number beyond double range is one prt::Error naming `name`
+/// ("invalid JSON at byte N").
+nlohmann::json parseJsonText(std::string_view text, const std::string& name);
 
 }  // namespace prt
