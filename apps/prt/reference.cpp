@@ -85,9 +85,12 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   rs.bounces = bt.recipe.effectiveBounces();
   // The bake stores its material (kd, ks and the lobe, at full precision); --material replaces
   // it, keeping the bake's kd unless it names its own.
-  rs.material = materialOption(a.material, bt, a.bake,
-                               "the reference follows --material at every bounce, the bake "
-                               "does not");
+  const Material chosen =
+      materialOption(a.material, bt, a.bake,
+                     "the reference follows --material at every bounce, the bake does not");
+  warnLobeOnVectors(chosen, bt, a.bake,
+                    "the reference of vector transfer is its diffuse part, as its relighting is");
+  rs.material = render::referenceMaterial(chosen, bt.transfer.layout());
   // The default view: the eye of `prt render`'s default camera (its default --size 640x480).
   rs.eye = eye ? *eye : render::frameMesh(file.mesh, 640, 480).eye;
   rs.seed = a.seed;

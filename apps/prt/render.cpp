@@ -159,11 +159,7 @@ void run(const RenderOptions& o) {
     scene.rotation = userRotation;
     scene.mode = baked.mode();
     scene.bounces = baked.recipe.effectiveBounces();
-    scene.material = material;
-    if (!baked.transfer.isMatrix()) {
-      scene.material.lobe = {};
-      scene.material.specular = Rgb(0.0f);
-    }
+    scene.material = render::referenceMaterial(material, baked.transfer.layout());
     if (baked.transfer.isMatrix() && scene.material.glossy()) scene.eye = camera.eye;
     const io::ReferenceFile ref = readMatchingReference(o.reference, scene);
     if (ref.vertices.size() != bake.mesh.vertexCount())

@@ -130,11 +130,7 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
     scene.rotation = rotation;
     scene.mode = bt.mode();
     scene.bounces = recipe.effectiveBounces();
-    scene.material = recipe.material;
-    if (!bt.transfer.isMatrix()) {
-      scene.material.lobe = {};
-      scene.material.specular = Rgb(0.0f);
-    }
+    scene.material = render::referenceMaterial(recipe.material, bt.transfer.layout());
     if (bt.transfer.isMatrix() && scene.material.glossy()) scene.eye = vs.reference.eye;
     const io::ReferenceFile ref = readMatchingReference(a.reference, scene);
     stored = toReferenceResult(ref);

@@ -679,4 +679,13 @@ ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, cons
   return out;
 }
 
+Material referenceMaterial(const Material& material, TransferLayout layout) {
+  Material m = material;
+  if (layout != TransferLayout::Matrix) {
+    m.lobe = {};
+    m.specular = Rgb(0.0f);
+  }
+  return m;
+}
+
 }  // namespace prt::render

@@ -113,12 +113,8 @@ ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecip
   ReferenceSettings rs = settings.reference;
   rs.mode = bake.mode;
   rs.bounces = bake.effectiveBounces();
-  rs.material = bake.material;
+  rs.material = referenceMaterial(bake.material, transfer.layout());
   rs.bandLimit.reset();
-  if (!transfer.isMatrix()) {
-    rs.material.lobe = {};
-    rs.material.specular = Rgb(0.0f);
-  }
   if (settings.precomputed) {
     rs.vertices = settings.precomputed->vertices;
     for (std::uint32_t v : rs.vertices)

@@ -130,6 +130,12 @@ struct BandLimitSettings {
   bool truncateKernel = false;
 };
 
+/// The material the reference of a transfer integrates: the material itself for matrix
+/// (glossy) transfer; for vector transfer its diffuse part alone (a vector holds no lobe, so
+/// its relighting is diffuse, and so is the reference it is compared with). The one rule for
+/// prt reference, prt validate and a reference file's check.
+Material referenceMaterial(const Material& material, TransferLayout layout);
+
 struct ReferenceSettings {
   /// Samples per vertex (each: an environment and a cosine direction, and when glossy an
   /// environment and a lobe direction).
