@@ -9,6 +9,8 @@
 #include "prt/core/version.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/core/file.hpp"
+#include "prt/io/engine_light.hpp"
 #include "prt/io/games202_transport.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/relight/view_transfer.hpp"
@@ -227,7 +229,18 @@ read_bake_file) is stored with it.)");
           prt::io::writeLightGames202(path, l);
           return;
         }
-        if (f != "json") throw py::value_error("format must be json or games202, got '" + f + "'");
+        if (f != "json") {
+          // An engine's convention (io/engine_light.hpp): threejs, gltf-ibl, cmgen, unity.
+          prt::io::EngineLight engine;
+          try {
+            engine = prt::io::parseEngineLight(f);
+          } catch (const prt::Error&) {
+            throw py::value_error("format must be json, games202, threejs, gltf-ibl, cmgen or "
+                                  "unity, got '" + f + "'");
+          }
+          prt::writeFileAtomically(path, prt::io::formatEngineLight(engine, l, source));
+          return;
+        }
         prt::io::LightFile lf;
         lf.coefficients = l;
         lf.source = source;
@@ -242,8 +255,9 @@ read_bake_file) is stored with it.)");
       py::arg("source") = "", py::arg("layout") = "", py::arg("window") = "none",
       py::arg("rotation") = py::make_tuple(0, 0, 0),
       "Writes SH lighting (B², 3) as `prt light` does: JSON, or the course's light.txt "
-      "(format='games202', the default for .txt). source, layout, window and rotation (Euler "
-      "degrees) are recorded in the JSON only.");
+      "(format='games202', the default for .txt), or an engine's convention (format='threejs', "
+      "'gltf-ibl', 'cmgen', 'unity': docs/formats-light.md). source, layout, window and "
+      "rotation (Euler degrees) are recorded in the JSON only (source also in engine files).");
 
   m.def(
       "read_games202_transport",

@@ -76,6 +76,22 @@ def test_light_files_round_trip(tmp_path, prt_cli):
     assert np.array_equal(ours, prtkit.read_light(cli))
 
 
+def test_engine_light_files_equal_prt_lights(tmp_path, prt_cli):
+    # The same light, from Python and from the CLI, in every engine's convention: byte for byte.
+    L = prtkit.project_environment("builtin:sky", 3)
+    for fmt, ext in (("threejs", "json"), ("gltf-ibl", "json"), ("cmgen", "txt"), ("unity", "json")):
+        ours, cli = tmp_path / f"py.{fmt}.{ext}", tmp_path / f"cli.{fmt}.{ext}"
+        prtkit.write_light(ours, L, format=fmt, source="builtin:sky")
+        prt_cli("light", "builtin:sky", "--format", fmt, "-o", cli)
+        assert ours.read_bytes() == cli.read_bytes(), fmt
+    # three.js's basis has no Condon-Shortley phase: coefficients 1, 3, 5, 7 change sign.
+    sh = np.array(json.loads((tmp_path / "py.threejs.json").read_text())["object"]["sh"]).reshape(9, 3)
+    signs = np.array([1, -1, 1, -1, 1, -1, 1, -1, 1], dtype=np.float32)[:, None]
+    assert np.allclose(sh, L * signs, rtol=1e-6, atol=0)
+    with pytest.raises(ValueError, match="format must be"):
+        prtkit.write_light(tmp_path / "x.json", L, format="unreal")
+
+
 def test_write_bake_is_read_by_prt(tmp_path, prt_cli, scene):
     t = prtkit.bake_transfer(scene, mode="shadowed", samples=32)
     glb = tmp_path / "py.glb"
