@@ -50,16 +50,15 @@ void describeMesh(const std::string& path, std::ostream& out, Json& j) {
   const Mesh m = loadMesh(path);
   j["kind"] = "mesh";
   j["mesh"] = meshJson(m);
-  Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (const Vec3f& p : m.positions) lo = min(lo, p), hi = max(hi, p);
+  const Bounds b = computeBounds(m);
   out << fmt::format("{}: mesh\n", path);
   out << fmt::format("vertices    {}\ntriangles   {}\n", m.vertexCount(), m.triangleCount());
   out << fmt::format("parts       {}:", m.parts.size());
   for (const auto& p : m.parts)
     out << fmt::format(" {} ({} v, {} t)", p.name, p.vertexCount, p.triangleCount);
   out << '\n';
-  out << fmt::format("bounds      ({:.4g}, {:.4g}, {:.4g}) .. ({:.4g}, {:.4g}, {:.4g})\n", lo.x,
-                     lo.y, lo.z, hi.x, hi.y, hi.z);
+  out << fmt::format("bounds      ({:.4g}, {:.4g}, {:.4g}) .. ({:.4g}, {:.4g}, {:.4g})\n", b.lo.x,
+                     b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
   out << fmt::format("attributes  normals{}{}\n", m.uvs.empty() ? "" : ", uvs",
                      m.albedo.empty() ? "" : ", albedo");
 }

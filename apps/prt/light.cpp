@@ -80,7 +80,7 @@ void runLight(const LightOptions& o) {
   // only when asked for. The extension must be the format's, so no file claims to be what it
   // is not.
   const std::string ext = fileExtension(o.output);
-  if (o.format.empty() && o.output != "-" && ext != "json" && ext != "txt")
+  if (o.format.empty() && !isStandardOutput(o.output) && ext != "json" && ext != "txt")
     throw Error(o.output, "unknown light file extension '." + ext +
                               "': use .json or .txt (GAMES202), or --format " + kLightFormats);
   const std::string format = !o.format.empty() ? o.format : ext == "txt" ? "games202" : "json";
@@ -95,7 +95,7 @@ void runLight(const LightOptions& o) {
   }
   const std::string wantExt =
       engine ? io::engineLightExtension(*engine) : format == "games202" ? "txt" : "json";
-  if (o.output != "-" && ext != wantExt)
+  if (!isStandardOutput(o.output) && ext != wantExt)
     throw Error(o.output, "--format " + format + " writes a ." + wantExt + " file");
   const std::array<double, 3> rot = parseEulerDegrees(o.rotate);
   const sh::Window window = parseWindow(o.window);

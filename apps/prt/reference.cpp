@@ -110,7 +110,7 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   ref.prtkitVersion = kVersion;
   ref.bakeFile = a.bake;
   ref.meshVertices = file.mesh.vertexCount();
-  ref.meshFingerprint = io::meshFingerprint(file.mesh);
+  ref.meshFingerprint = meshFingerprint(file.mesh);
   ref.lightSource = a.light;
   ref.environmentFingerprint = io::environmentFingerprint(env.env);
   for (int i = 0; i < 3; ++i)

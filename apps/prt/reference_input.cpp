@@ -9,20 +9,37 @@
 
 namespace prt::cli {
 
+ReferenceScene referenceScene(const Mesh& mesh, const envmap::Environment& environment,
+                              const std::string& bakeName, const std::string& lightName,
+                              const Mat3d& rotation, const BakedTransfer& baked,
+                              const Material& material, const Vec3f& eye) {
+  ReferenceScene s;
+  s.mesh = &mesh;
+  s.environment = &environment;
+  s.bakeName = bakeName;
+  s.lightName = lightName;
+  s.rotation = rotation;
+  s.mode = baked.mode();
+  s.bounces = baked.recipe.effectiveBounces();
+  s.material = render::referenceMaterial(material, baked.transfer.layout());
+  if (baked.transfer.isMatrix() && s.material.glossy()) s.eye = eye;
+  return s;
+}
+
 io::ReferenceFile readMatchingReference(const std::string& path, const ReferenceScene& s) {
   if (fileExtension(path) != "json")
     throw Error(path, "--reference takes the .json of prt reference (a .bin holds no scene)");
   io::ReferenceFile ref = io::readReferenceJson(path);
-  const auto differ = [&](const std::string& what, const std::string& file,
-                          const std::string& here) {
-    throw Error(path, fmt::format("was computed for {} {}, not {} ({}): run prt reference again",
-                                  what, file, here, what == "the bake" ? s.bakeName : s.lightName));
+  const auto differ = [&](const char* what, const std::string& theirs, const char* here,
+                          const std::string& ours) {
+    throw Error(path, fmt::format("was computed for {} '{}', not {} ({}): run prt reference again",
+                                  what, theirs, here, ours));
   };
   if (ref.meshVertices != s.mesh->vertexCount() ||
-      ref.meshFingerprint != io::meshFingerprint(*s.mesh))
-    differ("the bake", "'" + ref.bakeFile + "'", "this mesh");
+      ref.meshFingerprint != meshFingerprint(*s.mesh))
+    differ("the bake", ref.bakeFile, "this mesh", s.bakeName);
   if (ref.environmentFingerprint != io::environmentFingerprint(*s.environment))
-    differ("the environment", "'" + ref.lightSource + "'", "this one");
+    differ("the environment", ref.lightSource, "this one", s.lightName);
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k)
       if (std::abs(ref.rotation[3 * i + k] - s.rotation.m[i][k]) > 1e-9)

@@ -8,6 +8,7 @@
 #include "prt/core/vec.hpp"
 #include "prt/envmap/environment.hpp"
 #include "prt/geometry/mesh.hpp"
+#include "prt/io/bake_file.hpp"
 #include "prt/io/reference_file.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/transfer/bake_settings.hpp"
@@ -28,6 +29,14 @@ struct ReferenceScene {
   Material material;
   std::optional<Vec3f> eye;  ///< set when the material is glossy
 };
+
+/// The scene of a verb that relights `baked` with `material` under `environment` turned by
+/// `rotation`, glossy vertices seen from `eye`: what the reference integrates for it
+/// (render::referenceMaterial; the eye only for a glossy matrix transfer).
+ReferenceScene referenceScene(const Mesh& mesh, const envmap::Environment& environment,
+                              const std::string& bakeName, const std::string& lightName,
+                              const Mat3d& rotation, const BakedTransfer& baked,
+                              const Material& material, const Vec3f& eye);
 
 /// Reads `path` (io::readReferenceJson) and checks it against `scene`: throws prt::Error naming
 /// the file and the first thing that differs.

@@ -151,17 +151,9 @@ void run(const RenderOptions& o) {
     if (lighting.isShFile())
       throw Error(o.light, "--reference needs the environment the reference was computed "
                            "under, not an SH light file");
-    ReferenceScene scene;
-    scene.mesh = &bake.mesh;
-    scene.environment = &*lighting.image;
-    scene.bakeName = o.bake;
-    scene.lightName = o.light;
-    scene.rotation = userRotation;
-    scene.mode = baked.mode();
-    scene.bounces = baked.recipe.effectiveBounces();
-    scene.material = render::referenceMaterial(material, baked.transfer.layout());
-    if (baked.transfer.isMatrix() && scene.material.glossy()) scene.eye = camera.eye;
-    const io::ReferenceFile ref = readMatchingReference(o.reference, scene);
+    const io::ReferenceFile ref = readMatchingReference(
+        o.reference, referenceScene(bake.mesh, *lighting.image, o.bake, o.light, userRotation,
+                                    baked, material, camera.eye));
     if (ref.vertices.size() != bake.mesh.vertexCount())
       throw Error(o.reference, fmt::format("covers {} of the mesh's {} vertices: an image needs "
                                            "them all (prt reference without --vertices)",

@@ -57,12 +57,10 @@ Json meshJson(const Mesh& m) {
   Json attributes = Json::array({"normals"});
   if (!m.uvs.empty()) attributes.push_back("uvs");
   if (!m.albedo.empty()) attributes.push_back("albedo");
-  Vec3f lo(0.0f), hi(0.0f);
-  if (!m.positions.empty()) lo = hi = m.positions[0];
-  for (const Vec3f& p : m.positions) lo = min(lo, p), hi = max(hi, p);
+  const Bounds b = computeBounds(m);
   return {{"source", m.source},
           {"vertices", m.vertexCount()},
-          {"bounds", {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}}},
+          {"bounds", {{"min", {b.lo.x, b.lo.y, b.lo.z}}, {"max", {b.hi.x, b.hi.y, b.hi.z}}}},
           {"triangles", m.triangleCount()},
           {"parts", std::move(parts)},
           {"attributes", std::move(attributes)}};

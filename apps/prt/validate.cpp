@@ -122,17 +122,9 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   // of a vector bake's material, as validate does).
   render::ReferenceResult stored;
   if (!a.reference.empty()) {
-    ReferenceScene scene;
-    scene.mesh = &file.mesh;
-    scene.environment = &env.env;
-    scene.bakeName = a.bake;
-    scene.lightName = a.light;
-    scene.rotation = rotation;
-    scene.mode = bt.mode();
-    scene.bounces = recipe.effectiveBounces();
-    scene.material = render::referenceMaterial(recipe.material, bt.transfer.layout());
-    if (bt.transfer.isMatrix() && scene.material.glossy()) scene.eye = vs.reference.eye;
-    const io::ReferenceFile ref = readMatchingReference(a.reference, scene);
+    const io::ReferenceFile ref = readMatchingReference(
+        a.reference, referenceScene(file.mesh, env.env, a.bake, a.light, rotation, bt,
+                                    recipe.material, *vs.reference.eye));
     stored = toReferenceResult(ref);
     vs.precomputed = &stored;
     vs.reference.samples = ref.samples;
@@ -146,20 +138,11 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   if (!mpi.root()) return;
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
-  if (a.reference.empty())
-    std::snprintf(line, sizeof line,
-                  "reference: %zu vertices x %d samples, %llu rays, %.2f s; mode %s, %d bounce(s)",
-                  rep.reference.vertices.size(), vs.reference.samples,
-                  static_cast<unsigned long long>(rep.reference.rays), rep.reference.seconds,
-                  toString(rep.mode), rep.bounces);
-  else
-    std::snprintf(line, sizeof line,
-                  "reference: %zu vertices x %d samples, %llu rays (from %s); mode %s, %d "
-                  "bounce(s)",
-                  rep.reference.vertices.size(), vs.reference.samples,
-                  static_cast<unsigned long long>(rep.reference.rays), a.reference.c_str(),
-                  toString(rep.mode), rep.bounces);
-  info(line);
+  info(fmt::format("reference: {} vertices x {} samples, {} rays{}; mode {}, {} bounce(s)",
+                   rep.reference.vertices.size(), vs.reference.samples, rep.reference.rays,
+                   a.reference.empty() ? fmt::format(", {:.2f} s", rep.reference.seconds)
+                                       : " (from " + a.reference + ")",
+                   toString(rep.mode), rep.bounces));
   std::snprintf(line, sizeof line,
                 "truncation floor: %s from the reference's samples, %zu vertices x %d samples, "
                 "%llu rays, %.2f s",

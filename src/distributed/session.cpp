@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mpi_util.hpp"
+#include "prt/core/hash.hpp"
 #include "prt/core/error.hpp"
 
 namespace prt::distributed {
@@ -115,9 +116,9 @@ extern "C" void onTerminate(int) {
 std::uint64_t hostHash() {
   char name[256] = {};
   ::gethostname(name, sizeof name - 1);
-  std::uint64_t h = 1469598103934665603ull;
-  for (const char* p = name; *p; ++p) h = (h ^ static_cast<unsigned char>(*p)) * 1099511628211ull;
-  return h;
+  Fnv1a h;
+  h.add(name, std::strlen(name));
+  return h.value();
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "prt/geometry/mesh.hpp"
 
+#include "prt/core/hash.hpp"
+
 namespace prt {
 
 Bounds computeBounds(const Mesh& mesh) {
@@ -11,6 +13,15 @@ Bounds computeBounds(const Mesh& mesh) {
     b.hi = max(b.hi, p);
   }
   return b;
+}
+
+std::string meshFingerprint(const Mesh& mesh) {
+  Fnv1a h;
+  h.addAll(mesh.positions);
+  h.addAll(mesh.normals);
+  h.addAll(mesh.triangles);
+  h.addAll(mesh.albedo);
+  return h.hex();
 }
 
 }  // namespace prt

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "prt/core/error.hpp"
+#include "prt/core/hash.hpp"
 #include "prt/core/version.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/rotate.hpp"
@@ -54,11 +55,11 @@ Json rgbRows(const sh::RgbSh& f) {
 /// A fixed UUID (RFC 4122 layout, version 5 style bits) from the text it identifies, so that the
 /// same light always writes the same file.
 std::string stableUuid(const std::string& text) {
-  std::uint64_t a = 1469598103934665603ull, b = 1099511628211ull * 7;
-  for (unsigned char ch : text) {
-    a = (a ^ ch) * 1099511628211ull;
-    b = (b ^ ch) * 0x100000001b3ull + 0x9e3779b97f4a7c15ull;
-  }
+  Fnv1a first;
+  first.add(text.data(), text.size());
+  const std::uint64_t a = first.value();
+  std::uint64_t b = 1099511628211ull * 7;  // a second, differently mixed pass for 128 bits
+  for (unsigned char ch : text) b = (b ^ ch) * 0x100000001b3ull + 0x9e3779b97f4a7c15ull;
   char hex[40];
   std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(a),
                 static_cast<unsigned long long>(b));

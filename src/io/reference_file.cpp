@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "prt/core/error.hpp"
+#include "prt/core/hash.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
 #include "prt/core/limits.hpp"
@@ -17,26 +18,6 @@ namespace {
 
 constexpr const char* kFormat = "prtkit-reference";
 
-/// FNV-1a, 64 bits.
-struct Fnv {
-  std::uint64_t h = 1469598103934665603ull;
-  void add(const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  }
-  template <class T>
-  void addAll(const std::vector<T>& v) {
-    const std::uint64_t n = v.size();
-    add(&n, sizeof n);
-    if (!v.empty()) add(v.data(), v.size() * sizeof(T));
-  }
-  std::string hex() const {
-    char s[20];
-    std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(h));
-    return s;
-  }
-};
-
 Json triples(const std::vector<Rgb>& v) {
   Json out = Json::array();
   for (const Rgb& c : v) out.push_back(jsonFloats(&c.x, 3));
@@ -45,17 +26,8 @@ Json triples(const std::vector<Rgb>& v) {
 
 }  // namespace
 
-std::string meshFingerprint(const Mesh& mesh) {
-  Fnv f;
-  f.addAll(mesh.positions);
-  f.addAll(mesh.normals);
-  f.addAll(mesh.albedo);
-  f.addAll(mesh.triangles);
-  return f.hex();
-}
-
 std::string environmentFingerprint(const envmap::Environment& env) {
-  Fnv f;
+  Fnv1a f;
   const auto kind = static_cast<int>(env.kind());
   f.add(&kind, sizeof kind);
   const std::uint64_t n = env.texelCount();

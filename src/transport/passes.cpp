@@ -256,17 +256,7 @@ BakeStats BakePasses::stats(const std::vector<std::uint64_t>& rays,
 }
 
 std::string bakeIdentity(const Mesh& mesh, const BakeSettings& s) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
-  const auto add = [&h](const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
-  add(mesh.positions.data(), mesh.positions.size() * sizeof(Vec3f));
-  add(mesh.normals.data(), mesh.normals.size() * sizeof(Vec3f));
-  add(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
-  add(mesh.albedo.data(), mesh.albedo.size() * sizeof(Rgb));
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  const std::string hex = meshFingerprint(mesh);
   const RowRange rows = bakeRows(mesh, s);
   return std::to_string(mesh.vertexCount()) + " vertices, " + std::to_string(mesh.triangleCount()) +
          " triangles, mesh " + hex + "; " + toString(s.mode) + " " + toString(s.layout) + ", " +

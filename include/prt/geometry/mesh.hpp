@@ -61,4 +61,9 @@ struct Bounds {
 };
 Bounds computeBounds(const Mesh& mesh);
 
+/// 16 hex digits identifying the mesh's geometry: FNV-1a (core/hash.hpp) of its positions,
+/// normals, triangles and albedo, bitwise. A bake's checkpoint identity and a reference file's
+/// tie to their mesh by it.
+std::string meshFingerprint(const Mesh& mesh);
+
 }  // namespace prt

@@ -10,8 +10,8 @@
 //    "samples": 1024, "seed": 0, "mis": "power", "rays": R,
 //    "vertices": [...], "radiance": [[r, g, b], ...], "stdError": [[r, g, b], ...]}
 // The fingerprints tie a reference to the mesh and the environment it was computed for (an
-// FNV-1a hash of the mesh's positions, normals, albedo and triangles; of the environment's
-// texels and its radiance along fixed directions), so a reference is never compared with
+// meshFingerprint of geometry/mesh.hpp, the mesh's identity in a bake checkpoint too; FNV-1a
+// of the environment's texels and of its radiance along fixed directions), so a reference is never compared with
 // another scene's relighting. Older reference files (before formatVersion) carry no
 // fingerprints and are refused with that reason.
 // Binary (.bin, no metadata, not read back): "PRTREF1\0", uint32 count, then count ×
@@ -59,8 +59,7 @@ ReferenceFile readReferenceJson(const std::string& path);
 /// The same from text in memory; `name` is used in messages.
 ReferenceFile parseReferenceJson(std::string_view text, const std::string& name);
 
-/// Fingerprints (16 hex digits) of what a reference was computed for.
-std::string meshFingerprint(const Mesh& mesh);
+/// 16 hex digits identifying an environment (the mesh's: meshFingerprint, geometry/mesh.hpp).
 std::string environmentFingerprint(const envmap::Environment& env);
 
 }  // namespace prt::io
