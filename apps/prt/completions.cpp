@@ -264,7 +264,7 @@ void addCompletionsCommands(CLI::App& root) {
     else if (*shell == "zsh")
       std::cout << zsh(root);
     else
-      throw Error("completions: unknown shell '" + *shell + "' (bash or zsh)");
+      throw Error("unknown shell '" + *shell + "' (bash or zsh)");
   });
   CLI::App* m = root.add_subcommand("manpage", "Print the prt(1) man page (roff)");
   m->callback([&root] { std::cout << manpage(root); });
