@@ -108,7 +108,13 @@ ProgressFn progressBar(const std::string& label) {
 namespace {
 
 extern "C" void onSigint(int) {
-  if (prt::cancelRequested()) std::_Exit(130);  // second Ctrl-C: leave at once
+  if (prt::cancelRequested()) {
+    // Second Ctrl-C: leave at once (write(2) and _Exit are async-signal-safe; a writer's
+    // temporary left behind is removed by the next run that writes there).
+    static const char kText[] = "\nprt: cancelled at once\n";
+    [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, kText, sizeof kText - 1);
+    std::_Exit(130);
+  }
   prt::requestCancel();
 }
 

@@ -175,8 +175,11 @@ TEST_F(BakeCli, BadInputFailsCleanly) {
 
 TEST_F(BakeCli, CtrlCCancelsWithoutOutput) {
   // ~1.7·10⁸ rays (tens of seconds): far longer than the second before SIGINT arrives.
+  // --foreground: one SIGINT, to prt alone, as a terminal's Ctrl-C sends. Without it timeout
+  // signals the child and then its whole process group, and on a loaded machine the second
+  // copy lands after the first was handled: the "second Ctrl-C" that leaves at once.
   const Result r = prt("bake builtin:sphere --mode shadowed --samples 16384 -o out/c.glb",
-                       "timeout -k 20 -s INT 1 ");
+                       "timeout --foreground -k 20 -s INT 1 ");
   EXPECT_NE(r.rc, 0);
   EXPECT_NE(r.err.find("cancelled"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::is_empty(dir_ / "out"));
