@@ -87,6 +87,8 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
   for (const BakedTransfer& t : bake.transfers) {
     json entry = {{"settings", io::schema::settingsJson(t.transfer.shape(), t.recipe)},
                   {"stats", io::schema::statsJson(t.stats)}};
+    if (t.transfer.isMatrix())
+      entry["response"] = io::schema::responseJson(t.recipe.material, t.transfer.bands());
     const auto columns = io::codecFor(t.transfer).encode(t, bin, entry);
     if (bake.complete()) attributes.insert(attributes.end(), columns.begin(), columns.end());
     transfers.push_back(std::move(entry));

@@ -8,6 +8,7 @@
 
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
+#include "prt/sh/convolve.hpp"
 
 namespace prt::io::schema {
 
@@ -152,6 +153,17 @@ Material readMaterial(const json& v, const std::string& where, const Reader& r) 
     m.specular = readRgb(r.member(v, "ks", where), where + ".ks", r, 0.0, 1.0);
   if (r.has(v, "kd")) m.diffuse = readRgb(v["kd"], where + ".kd", r, 0.0, 1.0);
   return m;
+}
+
+json responseJson(const Material& m, int bands) {
+  const std::vector<double> a = sh::clampedCosineKernel(bands);
+  const std::vector<double> g = m.glossy() ? m.lobe.zonal(bands) : std::vector<double>(a.size());
+  json diffuse = json::array(), lobe = json::array();
+  for (int l = 0; l < bands; ++l) {
+    diffuse.push_back(a[l] / kPi);
+    lobe.push_back(g[l]);
+  }
+  return {{"diffuse", std::move(diffuse)}, {"lobe", std::move(lobe)}};
 }
 
 json settingsJson(const TransferShape& shape, const BakeRecipe& recipe) {

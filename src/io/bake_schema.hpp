@@ -55,6 +55,13 @@ json materialJson(const Material& m);
 /// Reads the structured form, or (versions 2–3) the spec string ("phong?exponent=8&ks=0.4").
 Material readMaterial(const json& v, const std::string& where, const Reader& r);
 
+/// "response" of a matrix transfer: the material's SH kernels per band l < `bands`, what turns
+/// the transferred incident light into exit radiance (transfer/prepared_material.hpp):
+/// {"diffuse": [A_l/π], "lobe": [Λ_l] (zeros without a lobe)}. Written for engines and the
+/// three.js module, which would otherwise have to integrate the lobe themselves; prtkit's own
+/// reader recomputes the kernels from "material" and ignores it.
+json responseJson(const Material& m, int bands);
+
 /// "settings": the shape's layout, domain, bands and channels, and the recipe.
 json settingsJson(const TransferShape& shape, const BakeRecipe& recipe);
 /// Reads "settings" of a file of `version` into the recipe and the shape's layout, domain,

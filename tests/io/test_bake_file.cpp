@@ -787,3 +787,38 @@ TEST(BakeFile, CompressedTransferCutBelowItsBasisIsRefusedOnTheWayOut) {
 
 }  // namespace
 }  // namespace prt
+
+namespace prt {
+namespace {
+
+// A matrix transfer carries its material's kernels per band ("response", docs/formats-bake.md)
+// for engines: against the closed forms — the clamped cosine's A_l/π = 1, 2/3, 1/4 and the
+// normalised Phong lobe's Λ_l = (s+1) ∫₀¹ t^s P_l(t) dt = 1, (s+1)/(s+2), s/(s+3) — and zero
+// lobe for a Lambertian one; a vector transfer carries none.
+TEST(BakeFile, MatrixTransfersCarryTheirMaterialsKernels) {
+  BakeFile b = sampleBake();
+  const std::size_t V = b.mesh.vertexCount();
+  b.transfers.push_back(matrixTransfer(TransferMode::Shadowed, 3, 1, V));
+  b.transfers.push_back(matrixTransfer(TransferMode::Interreflected, 3, 3, V));
+  const double s = 8;
+  const std::size_t n = b.transfers.size();
+  b.transfers[n - 2].recipe.material = parseMaterial("phong?exponent=8&ks=0.5");
+  b.transfers[n - 1].recipe.material = parseMaterial("lambert");
+  const nlohmann::json t = prtObject(splitGlb(encodeBake(b)).json)["transfers"];
+  ASSERT_EQ(t.size(), n);
+  for (std::size_t i = 0; i + 2 < n; ++i) EXPECT_FALSE(t[i].contains("response")) << i;
+  const double diffuse[3] = {1, 2.0 / 3, 0.25}, phong[3] = {1, (s + 1) / (s + 2), s / (s + 3)};
+  for (std::size_t i = n - 2; i < n; ++i) {
+    ASSERT_TRUE(t[i].contains("response")) << i;
+    const nlohmann::json& r = t[i]["response"];
+    ASSERT_EQ(r["diffuse"].size(), 3u);
+    ASSERT_EQ(r["lobe"].size(), 3u);
+    for (int l = 0; l < 3; ++l) {
+      EXPECT_NEAR(r["diffuse"][l].get<double>(), diffuse[l], 1e-12) << l;
+      EXPECT_NEAR(r["lobe"][l].get<double>(), i == n - 2 ? phong[l] : 0.0, 1e-6) << l;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace prt
