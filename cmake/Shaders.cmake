@@ -6,8 +6,8 @@
 #       writes OUT_DIR/STAGE for each stage: shaders/hosts/HOST.glsl, then the stage, every line
 #       `#include "NAME"` replaced by shaders/NAME (includes may nest; each file is put in once
 #       per stage, later includes of it are dropped). A file is rewritten only when its text
-#       changes, so an unchanged stage rebuilds nothing. HOST: gl33 (desktop viewer) or webgl2
-#       (page, read by web/build.mjs).
+#       changes, so an unchanged stage rebuilds nothing. HOST: gl33 (desktop viewer), webgl2
+#       (page) or three (the three.js module; both read by web/build.mjs).
 #   prt_embed_shaders(OUT_HEADER DIR FILE...)
 #       a header with one `inline constexpr const char*` per file of DIR (mesh.vert ->
 #       prt::shaders::kShaderMeshVert), for the desktop viewer.
@@ -110,6 +110,8 @@ set(PRT_SHADER_STAGES_VIEWER mesh.vert radiance.vert glossy.vert compressed.vert
     compressedGlossy.vert mesh.frag fullscreen.vert background.frag tone.frag)
 set(PRT_SHADER_STAGES_WEB mesh.vert compressed.vert compressedGlossy.vert mesh.frag
     fullscreen.vert background.frag tone.frag)
+# The three.js module (web/three): the page's mesh stages, as a ShaderMaterial, and its fragments.
+set(PRT_SHADER_STAGES_THREE mesh.vert compressed.vert compressedGlossy.vert three.frag)
 
 # The desktop viewer's header: its stages flattened with hosts/gl33.glsl, embedded.
 function(prt_viewer_shader_header out_header)

@@ -21,11 +21,17 @@ if(PRT_NODE AND EXISTS ${PROJECT_SOURCE_DIR}/web/node_modules/three/package.json
     COMMENT "Writing the page's constants from the C++ (web/gen/constants.cpp)")
   include(${CMAKE_CURRENT_LIST_DIR}/Shaders.cmake)
   prt_flatten_shaders(webgl2 ${PRT_WEB_GEN}/shaders ${PRT_SHADER_STAGES_WEB})
+  prt_flatten_shaders(three ${PRT_WEB_GEN}/three-shaders ${PRT_SHADER_STAGES_THREE})
   list(TRANSFORM PRT_SHADER_STAGES_WEB PREPEND ${PRT_WEB_GEN}/shaders/ OUTPUT_VARIABLE prt_web_stages)
-  file(GLOB prt_web_srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/web/src/*)
+  list(TRANSFORM PRT_SHADER_STAGES_THREE PREPEND ${PRT_WEB_GEN}/three-shaders/
+       OUTPUT_VARIABLE prt_three_stages)
+  file(GLOB prt_web_srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/web/src/*
+       ${PROJECT_SOURCE_DIR}/web/three/*.json ${PROJECT_SOURCE_DIR}/web/three/*.md
+       ${PROJECT_SOURCE_DIR}/web/three/src/* ${PROJECT_SOURCE_DIR}/web/three/example/*)
   add_custom_command(OUTPUT ${PRT_WEB_OUT}/prt-web.js ${PRT_WEB_OUT}/index.html
+           ${PRT_WEB_OUT}/three/prtkit-three.js ${PRT_WEB_OUT}/three/example/example.js
     COMMAND ${PRT_NODE} ${PROJECT_SOURCE_DIR}/web/build.mjs ${PRT_WEB_OUT} ${PRT_WEB_GEN}
-    DEPENDS ${prt_web_srcs} ${prt_web_stages} ${PRT_WEB_GEN}/constants.js
+    DEPENDS ${prt_web_srcs} ${prt_web_stages} ${prt_three_stages} ${PRT_WEB_GEN}/constants.js
             ${PROJECT_SOURCE_DIR}/web/build.mjs ${PROJECT_SOURCE_DIR}/web/package-lock.json
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}/web
     COMMENT "Bundling the browser viewer (web/) with esbuild")

@@ -2,12 +2,17 @@
 // under the names three.js gives a glTF's attributes: position (0), the linear per-vertex albedo
 // COLOR_0 (1, only with PRT_HAS_ALBEDO: without it the albedo is white, relight's rule) and, for
 // the glossy stages, the unit normal (3). prtAlbedo() is the albedo; prtClip(p) (the host's)
-// the clip position.
+// the clip position. A host that declares the inputs and the camera itself (three.js's
+// ShaderMaterial: hosts/three.glsl) defines PRT_HOST_DECLARES_INPUTS.
+#ifndef PRT_HOST_DECLARES_INPUTS
 layout(location = 0) in vec3 position;
 #ifdef PRT_HAS_ALBEDO
 layout(location = 1) in vec3 color;
+#endif
+PRT_CAMERA_UNIFORMS;
+#endif
+#ifdef PRT_HAS_ALBEDO
 vec3 prtAlbedo() { return color; }
 #else
 vec3 prtAlbedo() { return vec3(1.0); }
 #endif
-PRT_CAMERA_UNIFORMS;

@@ -1,6 +1,10 @@
 // Bundles the browser viewer into OUTDIR: index.html, prt-web.js (one classic script: three.js,
 // lil-gui, src/*.js, the constants and the GLSL; no ES-module imports, so the page works from
-// file://) and THIRD_PARTY_LICENSES.txt.  Usage: node build.mjs OUTDIR GENDIR
+// file://) and THIRD_PARTY_LICENSES.txt; and the three.js module (three/, docs/three.md) into
+// OUTDIR/three: the npm package prtkit-three (prtkit-three.js, an ES module that imports
+// 'three' from the app, package.json, README.md) and its example page (example/: index.html
+// and example.js, one classic script with three.js, as the viewer).
+// Usage: node build.mjs OUTDIR GENDIR
 //
 // GENDIR holds what CMake generates from the C++ and shaders/ (cmake/WebPage.cmake; build the
 // target prt_web_assets rather than running this by hand):
@@ -8,6 +12,8 @@
 //   GENDIR/shaders/NAME   imported as 'prt:shaders/NAME', as text: the stages of shaders/stages/
 //                         already flattened with the page's host interface by the one shader
 //                         resolver, cmake/Shaders.cmake (the desktop viewer embeds the same).
+//   GENDIR/three-shaders/NAME   'prt:three-shaders/NAME': the same stages with the three.js
+//                         module's host (shaders/hosts/three.glsl).
 // tests/web/golden/imports.mjs maps the same names for node (the golden-vector check).
 import * as esbuild from 'esbuild';
 import fs from 'node:fs';
@@ -21,7 +27,7 @@ if (process.argv.length !== 4) {
 }
 const out = path.resolve(process.argv[2]);
 const gen = path.resolve(process.argv[3]);
-for (const need of ['constants.js', 'shaders'])
+for (const need of ['constants.js', 'shaders', 'three-shaders'])
   if (!fs.existsSync(path.join(gen, need))) {
     console.error(`build.mjs: ${path.join(gen, need)} is missing (CMake generates it: ninja -C build prt_web_assets)`);
     process.exit(1);
@@ -57,6 +63,35 @@ await esbuild.build({
   logLevel: 'warning',
 });
 fs.copyFileSync(path.join(here, 'src', 'index.html'), path.join(out, 'index.html'));
+
+// The three.js module: three.js stays the app's (external), everything of ours is inside.
+const threeOut = path.join(out, 'three');
+fs.mkdirSync(path.join(threeOut, 'example'), { recursive: true });
+await esbuild.build({
+  entryPoints: [path.join(here, 'three', 'src', 'index.js')],
+  bundle: true,
+  format: 'esm',
+  target: 'es2020',
+  external: ['three', 'three/*'],
+  legalComments: 'none',
+  banner: { js: '// prtkit-three: prtkit bakes in three.js (docs/three.md). Built from prtkit\'s web/three and web/src.' },
+  outfile: path.join(threeOut, 'prtkit-three.js'),
+  plugins: [generated],
+  logLevel: 'warning',
+});
+for (const f of ['package.json', 'README.md']) fs.copyFileSync(path.join(here, 'three', f), path.join(threeOut, f));
+await esbuild.build({
+  entryPoints: [path.join(here, 'three', 'example', 'main.js')],
+  bundle: true,
+  format: 'iife',
+  target: 'es2020',
+  minify: true,
+  legalComments: 'none',
+  outfile: path.join(threeOut, 'example', 'example.js'),
+  plugins: [generated],
+  logLevel: 'warning',
+});
+fs.copyFileSync(path.join(here, 'three', 'example', 'index.html'), path.join(threeOut, 'example', 'index.html'));
 const licences = ['three', 'lil-gui'].map((p) => {
   const dir = path.join(here, 'node_modules', p);
   const pkg = JSON.parse(fs.readFileSync(path.join(dir, 'package.json'), 'utf8'));

@@ -7,7 +7,9 @@
 // were made with the light cut to b bands (the leading b² columns) and only rows i < b² are
 // summed — the leading b² × b² block, as the dense paths.
 #include "prt_mesh.glsl"
+#ifndef PRT_HOST_DECLARES_INPUTS
 layout(location = 3) in vec3 normal;  // unit
+#endif
 uniform PRT_TEXELS uWeights;   // RGBA32F, uTexelsPerVertex texels per vertex
 uniform PRT_TEXELS uClusters;  // RGBA32F, K(N + 1)·uCoeffs texels, rewritten every frame
 uniform int uTexelsPerVertex;  // ⌈(N + 1)/4⌉

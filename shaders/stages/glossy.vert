@@ -5,7 +5,9 @@
 // is L'_p = M_p L', rows i < b² read up to ⌈b²/4⌉ texels against the rotated light uL (zero
 // past b², so the padding meets zero light); then the glossy response (prt_glossy.glsl).
 #include "prt_mesh.glsl"
+#ifndef PRT_HOST_DECLARES_INPUTS
 layout(location = 3) in vec3 normal;  // unit
+#endif
 uniform PRT_TEXELS uTransfer;
 uniform int uRowTexels;     // ⌈B²/4⌉, B the transfer's bands
 uniform int uVertexTexels;  // B² · uRowTexels

@@ -15,10 +15,7 @@ function fail(name, what) {
 }
 
 /**
- * Parses GLB bytes into { name, parts: [{ geometry, name, first, vertices, hasAlbedo,
- * texels: { transfer key → { data, width, height } } }], transfers (in the library's preference
- * order: [{ key, mode, layout, bands, channels, path, texelsPerRow, compressed }]), maxBands,
- * vertices, triangles, centre, radius }. `limits` = { maxTextureSize, maxBands }.
+ * Parses GLB bytes into a bake (readBake's result). `limits` = { maxTextureSize, maxBands }.
  */
 export async function parseBake(buffer, name, limits) {
   if (!(buffer instanceof ArrayBuffer) || buffer.byteLength < 20)
@@ -34,10 +31,28 @@ export async function parseBake(buffer, name, limits) {
   } catch (e) {
     fail(name, `cannot be read as glTF (${String(e && e.message ? e.message : e).split('\n')[0]})`);
   }
+  return readBake(gltf, name, limits);
+}
+
+/** The bake's object in a parsed glTF's JSON: the PRTKIT_radiance_transfer extension (format
+ *  5 on), else the root's extras.prtkit (formats 1-4); null when the asset is not a bake. */
+export function bakeObject(json) {
+  return (json.extensions && json.extensions[bakeFormat.extension]) || (json.extras && json.extras.prtkit) || null;
+}
+
+/**
+ * Reads the bake in GLTFLoader's result `gltf` (the page's parse, or the three.js module's
+ * loader plugin) into { name, parts: [{ mesh (GLTFLoader's), geometry, name, first, vertices,
+ * hasAlbedo, texels: { transfer key → { data, width, height } } }], transfers (in the library's
+ * preference order: [{ key, mode, layout, bands, channels, path, texelsPerRow, compressed,
+ * response, recipeMaterial }]), maxBands, vertices, triangles, centre, radius }. The parts'
+ * transfer attributes move into the texels (and are deleted from the geometry).
+ */
+export async function readBake(gltf, name, limits) {
   const json = gltf.parser.json;
   // The bake's object: the PRTKIT_radiance_transfer extension (format 5 on), else the root's
   // extras.prtkit (formats 1-4).
-  const prt = (json.extensions && json.extensions[bakeFormat.extension]) || (json.extras && json.extras.prtkit);
+  const prt = bakeObject(json);
   if (!prt) fail(name, `is a glTF file but not a prtkit bake (no ${bakeFormat.extension} extension; write one with prt bake)`);
   if (!bakeFormat.reads.includes(prt.formatVersion))
     fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads versions ${bakeFormat.reads.join(', ')})`);
@@ -78,7 +93,7 @@ export async function parseBake(buffer, name, limits) {
     const posAccessor = assoc && json.meshes[assoc.meshes].primitives[assoc.primitives || 0].attributes.POSITION;
     const first = posAccessor !== undefined ? (json.accessors[posAccessor].byteOffset || 0) / 12 : -1;
     if (!(first >= 0 && first + V <= prt.vertexCount)) fail(name, `part '${m.name}' has no place in the vertex order`);
-    const part = { geometry: g, name: m.name, first, vertices: V, hasAlbedo: !!g.getAttribute('color'), texels: {} };
+    const part = { mesh: m, geometry: g, name: m.name, first, vertices: V, hasAlbedo: !!g.getAttribute('color'), texels: {} };
     for (const t of transfers) part.texels[t.key] = packRows(t, part, limits, name);
     // Normals stay for glossy matrices (the lobe about the reflected view); the rest goes.
     const keep = ['position', 'color'].concat(glossy ? ['normal'] : []);

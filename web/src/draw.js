@@ -1,13 +1,13 @@
-// The GPU side of a transfer in the page, by path (transfer.js decides the path once): the
-// stage that draws it (shaders/stages/, flattened for WebGL2 by cmake/Shaders.cmake), its
-// uniforms, and what each frame sets — as the desktop viewer's renderer does per path.
+// The GPU side of a transfer, by path (transfer.js decides the path once): the stage that
+// draws it (shaders/stages/), its uniforms, what each frame sets — as the desktop viewer's
+// renderer does per path — and the per-frame light and cluster table every material of a bake
+// shares. The stages come flattened for a host (cmake/Shaders.cmake): the page's (webgl2,
+// RawShaderMaterial into its HDR target, page_host.js) or the three.js module's (three,
+// ShaderMaterial in anyone's scene, web/three). Nothing here touches a scene.
 import * as THREE from 'three';
 import { bands as kBands } from 'prt:constants';
-import { denseTexelsPerRow } from './transfer.js';
-import meshVert from 'prt:shaders/mesh.vert';
-import compressedVert from 'prt:shaders/compressed.vert';
-import compressedGlossyVert from 'prt:shaders/compressedGlossy.vert';
-import meshFrag from 'prt:shaders/mesh.frag';
+import { denseTexelsPerRow, frameStep, frameTable } from './transfer.js';
+import { rotateLight } from './sh.js';
 
 const kGlossyCoeffs = kBands.maxShaderGlossy * kBands.maxShaderGlossy;
 
@@ -24,7 +24,7 @@ function setCompressed(u, t, rows, table) {
 
 const kDraw = {
   DenseVector: {
-    stage: meshVert,
+    stage: 'mesh.vert',
     uniforms: (light) => ({ uTransfer: { value: null }, uTexelsPerVertex: { value: 1 }, uCount: { value: 0 },
                             uRgb: { value: false }, uL: light }),
     set(u, t, f) {
@@ -35,12 +35,12 @@ const kDraw = {
     },
   },
   CpcaVector: {
-    stage: compressedVert,
+    stage: 'compressed.vert',
     uniforms: compressedUniforms,
     set: (u, t, f) => setCompressed(u, t, f.rows, f.table),
   },
   CpcaMatrix: {
-    stage: compressedGlossyVert,
+    stage: 'compressedGlossy.vert',
     uniforms: () => Object.assign(compressedUniforms(), {
       uBands: { value: 1 }, uCoeffs: { value: 1 }, uDiffuse: { value: new Float32Array(kGlossyCoeffs) },
       uGlossy: { value: new Float32Array(kGlossyCoeffs) }, uKd: { value: new THREE.Vector3() },
@@ -62,22 +62,84 @@ const kDraw = {
   },
 };
 
-/** The material that draws transfer t on a part (light: the shared uL uniform, vec4s: its
- *  length; hasAlbedo: the part has COLOR_0). */
-export function transferMaterial(t, light, vec4s, hasAlbedo) {
+/**
+ * The material that draws transfer t on a part (light: the shared uL uniform, vec4s: its
+ * length; hasAlbedo: the part has COLOR_0) for `host` = { stages: { 'mesh.vert': text, ...,
+ * fragment: text }, material(parameters) → a THREE material, uniforms: extra uniforms }.
+ */
+export function transferMaterial(t, light, vec4s, hasAlbedo, host) {
   const d = kDraw[t.path];
   const defines = { PRT_LIGHT_VEC4S: vec4s, PRT_GLOSSY_COEFFS: kGlossyCoeffs };
   if (hasAlbedo) defines.PRT_HAS_ALBEDO = 1;
-  return new THREE.RawShaderMaterial({
-    glslVersion: THREE.GLSL3, vertexShader: d.stage, fragmentShader: meshFrag, defines,
-    uniforms: d.uniforms(light), side: THREE.DoubleSide,
-  });
+  return host.material({ vertexShader: host.stages[d.stage], fragmentShader: host.stages.fragment, defines,
+                         uniforms: Object.assign(d.uniforms(light), host.uniforms || {}), hasAlbedo });
 }
 
-/** Sets a frame's uniforms of t's material: f = { bands, rows, table, eye } (rows and table:
- *  the part's and the frame's textures). */
-export function setTransferUniforms(material, t, f) {
-  kDraw[t.path].set(material.uniforms, t, f);
+/** A data texture of RGBA32F texels, read with texelFetch. */
+export function dataTexture(x) {
+  const tex = new THREE.DataTexture(x.data, x.width, x.height, THREE.RGBAFormat, THREE.FloatType);
+  tex.minFilter = tex.magFilter = THREE.NearestFilter;
+  tex.generateMipmaps = false;
+  tex.needsUpdate = true;
+  return tex;
+}
+
+/**
+ * The GPU side of a parsed bake for `host`: per part (in b.parts' order) one material and
+ * texture per transfer, per transfer its per-frame table, the light uniform they share.
+ * Returns { bake, light, tables, parts: [{ textures, materials }] }.
+ */
+export function uploadTransfers(b, limits, host) {
+  const vec4s = Math.ceil((b.maxBands * b.maxBands) / 4) * 4;
+  const light = { value: new Float32Array(vec4s * 4) };
+  const tables = {};
+  for (const t of b.transfers) {
+    const img = frameTable(t, limits, b.name);
+    if (img) tables[t.key] = { image: img, texture: dataTexture(img) };
+  }
+  const parts = b.parts.map((p) => {
+    const textures = {}, materials = {};
+    for (const t of b.transfers) {
+      textures[t.key] = dataTexture(p.texels[t.key]);
+      materials[t.key] = transferMaterial(t, light, vec4s, p.hasAlbedo, host);
+    }
+    return { textures, materials };
+  });
+  return { bake: b, light, tables, parts };
+}
+
+/** Frees what uploadTransfers made. */
+export function disposeTransfers(gpu) {
+  for (const p of gpu.parts) {
+    for (const x of Object.values(p.materials)) x.dispose();
+    for (const x of Object.values(p.textures)) x.dispose();
+  }
+  for (const t of Object.values(gpu.tables)) t.texture.dispose();
+}
+
+/**
+ * A frame's light for transfer t at b bands: L' = D(R) L for the first b bands of `coeffs`
+ * (B² RGB, the light at the bake's bands), packed into the shared uniform as (r, g, b, 0), zero
+ * past b²; then t's per-frame step into its table (CPCA: the cluster projections).
+ */
+export function setFrameLight(gpu, t, b, R, coeffs) {
+  const rotated = rotateLight(b, R, coeffs);
+  const L = gpu.light.value;
+  L.fill(0);
+  for (let i = 0; i < b * b; ++i) L[4 * i] = rotated[3 * i], L[4 * i + 1] = rotated[3 * i + 1], L[4 * i + 2] = rotated[3 * i + 2];
+  const table = gpu.tables[t.key];
+  if (table) {
+    frameStep(t, b, rotated, table.image);
+    table.texture.needsUpdate = true;
+  }
+}
+
+/** Sets a frame's uniforms of t's material on part p of `gpu` (uploadTransfers'): f = { bands,
+ *  eye } (eye: the camera's position in the part's frame). */
+export function setTransferUniforms(gpu, p, t, f) {
+  const part = gpu.parts[p], table = gpu.tables[t.key];
+  kDraw[t.path].set(part.materials[t.key].uniforms, t,
+                    { bands: f.bands, eye: f.eye, rows: part.textures[t.key], table: table ? table.texture : null });
 }
 
 /** What the status line says about how t is drawn. */

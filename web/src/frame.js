@@ -1,16 +1,15 @@
 // One frame of the page, as the desktop viewer draws it (docs/viewer.md, "How a frame is
 // made"): the light's first b bands rotated on the CPU (sh.js) and packed as vec4 uL[i] =
-// (r, g, b, 0), zero past b²; the transfer's per-frame step (transfer.js); then, into a 4×
+// (r, g, b, 0), zero past b², and the transfer's per-frame step (draw.js); then, into a 4×
 // multisampled half-float target, the background (a full-screen triangle) and the relit parts;
 // a second full-screen pass applies 2^exposure, the tone map and the sRGB encode.
 import * as THREE from 'three';
 
 import { defaultToneMap, toneMaps } from 'prt:constants';
-import { axisAngle, mul3, rotateLight } from './sh.js';
+import { axisAngle, mul3 } from './sh.js';
 import { fitProjection } from './camera.js';
 import { backgroundTexture } from './environment.js';
-import { frameStep } from './transfer.js';
-import { setTransferUniforms } from './draw.js';
+import { setFrameLight, setTransferUniforms } from './draw.js';
 import fullscreenVert from 'prt:shaders/fullscreen.vert';
 import backgroundFrag from 'prt:shaders/background.frag';
 import toneFrag from 'prt:shaders/tone.frag';
@@ -62,23 +61,13 @@ export function createFrame(renderer) {
   function draw(v, w, h, target) {
     const { gpu, transfer: t, env, state } = v;
     const b = Math.min(state.bands, t.bands);
-    // Light: L' = D(R) L for the first b bands, packed (r, g, b, 0), zero past b².
     const R = state.spin ? mul3(axisAngle([0, 1, 0], state.spin), v.lightRotation) : v.lightRotation;
-    const rotated = rotateLight(b, R, env.coeffs);
-    const L = gpu.light.value;
-    L.fill(0);
-    for (let i = 0; i < b * b; ++i) L[4 * i] = rotated[3 * i], L[4 * i + 1] = rotated[3 * i + 1], L[4 * i + 2] = rotated[3 * i + 2];
-    const table = gpu.tables[t.key];
-    if (table) {
-      frameStep(t, b, rotated, table.image);
-      table.texture.needsUpdate = true;
-    }
+    setFrameLight(gpu, t, b, R, env.coeffs);
     const forward = fitProjection(camera, w, h, gpu.bake.centre, gpu.bake.radius);
-    for (const m of gpu.meshes) {
-      m.material = m.userData.materials[t.key];
-      setTransferUniforms(m.material, t, { bands: b, rows: m.userData.textures[t.key],
-                                           table: table ? table.texture : null, eye: camera.position });
-    }
+    gpu.meshes.forEach((m, p) => {
+      m.material = gpu.parts[p].materials[t.key];
+      setTransferUniforms(gpu, p, t, { bands: b, eye: camera.position });
+    });
     const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();
     const up = new THREE.Vector3().crossVectors(right, forward);
     const tanY = Math.tan((camera.fov / 2) * Math.PI / 180), tanX = tanY * w / h;

@@ -14,8 +14,10 @@ import { bands as kBands, defaultToneMap, image as kImage } from 'prt:constants'
 import { parseBake } from './bake.js';
 import { rotationEulerXYZ } from './sh.js';
 import { base64Bytes, environment, fitEnvironment } from './environment.js';
-import { frameTable, pickTransfer } from './transfer.js';
-import { transferMaterial } from './draw.js';
+import { pickTransfer } from './transfer.js';
+import { disposeTransfers, uploadTransfers } from './draw.js';
+import { pageHost } from './page_host.js';
+import { glossyFromFile } from './glossy.js';
 import { applyView, frameView } from './camera.js';
 import { createFrame } from './frame.js';
 import { startInteractive } from './ui.js';
@@ -36,37 +38,16 @@ function fatal(text) {
   if (query.has('screenshot') || query.has('bench') || query.has('test')) report({ ok: false, error: text });
 }
 
-/** A data texture of RGBA32F texels, read with texelFetch. */
-function dataTexture(x) {
-  const tex = new THREE.DataTexture(x.data, x.width, x.height, THREE.RGBAFormat, THREE.FloatType);
-  tex.minFilter = tex.magFilter = THREE.NearestFilter;
-  tex.generateMipmaps = false;
-  tex.needsUpdate = true;
-  return tex;
-}
-
-/** The GPU side of a parsed bake: per part a mesh with one material and texture per transfer,
- *  per transfer its per-frame table, the light uniform they share. Touches no scene. */
+/** The GPU side of a parsed bake (draw.js, the page's host) and per part a mesh wearing the
+ *  first transfer's material. Touches no scene. */
 function uploadBake(b, limits) {
-  const vec4s = Math.ceil((b.maxBands * b.maxBands) / 4) * 4;
-  const light = { value: new Float32Array(vec4s * 4) };
-  const tables = {};
-  for (const t of b.transfers) {
-    const img = frameTable(t, limits, b.name);
-    if (img) tables[t.key] = { image: img, texture: dataTexture(img) };
-  }
-  const meshes = b.parts.map((p) => {
-    const textures = {}, materials = {};
-    for (const t of b.transfers) {
-      textures[t.key] = dataTexture(p.texels[t.key]);
-      materials[t.key] = transferMaterial(t, light, vec4s, p.hasAlbedo);
-    }
-    const mesh = new THREE.Mesh(p.geometry, materials[b.transfers[0].key]);
+  const gpu = uploadTransfers(b, limits, pageHost);
+  gpu.meshes = b.parts.map((p, i) => {
+    const mesh = new THREE.Mesh(p.geometry, gpu.parts[i].materials[b.transfers[0].key]);
     mesh.frustumCulled = false;
-    mesh.userData = { textures, materials };
     return mesh;
   });
-  return { bake: b, meshes, light, tables };
+  return gpu;
 }
 
 function disposeBake(gpu, scene) {
@@ -74,10 +55,8 @@ function disposeBake(gpu, scene) {
   for (const m of gpu.meshes) {
     scene.remove(m);
     m.geometry.dispose();
-    for (const x of Object.values(m.userData.materials)) x.dispose();
-    for (const x of Object.values(m.userData.textures)) x.dispose();
   }
-  for (const t of Object.values(gpu.tables)) t.texture.dispose();
+  disposeTransfers(gpu);
 }
 
 /**
@@ -193,14 +172,10 @@ async function main() {
   /** Puts a parsed bake on screen; throws (leaving the old one) if it cannot be shown. Returns
    *  the warnings (lights with fewer bands than the bake: the library's rule, lights.js). */
   page.setBake = (b) => {
-    // Compressed glossy matrices shade with the bake's material, which prt web prepared (its
-    // kernels) into prt-data.js: only for the page's own bake.
+    // Compressed glossy matrices shade with the bake's material: as prt web prepared it (with
+    // --material's override) for the page's own bake, else from the file (glossy.js).
     for (const t of b.transfers)
-      if (t.matrix) {
-        const g = b.name === data.bake.name && data.glossy && data.glossy[t.mode];
-        if (!g) throw new Error(`${b.name}: the ${t.mode} transfer is compressed glossy, whose material comes with the page (write the page for this bake with prt web)`);
-        t.material = g;
-      }
+      if (t.matrix) t.material = (b.name === data.bake.name && data.glossy && data.glossy[t.mode]) || glossyFromFile(t, b.name);
     const gpu = uploadBake(b, limits);
     disposeBake(page.gpu, page.frame.scene);
     page.gpu = gpu;

@@ -117,6 +117,16 @@ export function rotateLight(bands, r, light, out = new Float32Array(bands * band
   return out;
 }
 
+/** N_lm, the factor of Y_lm beyond the Legendre and azimuthal parts (sh::normalization):
+ *  K_l|m| = √((2l+1)/4π · (l−|m|)!/(l+|m|)!), times √2 for m ≠ 0. */
+export function shNormalization(l, m) {
+  const am = Math.abs(m);
+  let k = (2 * l + 1) / (4 * Math.PI);
+  for (let f = l - am + 1; f <= l + am; ++f) k /= f;
+  k = Math.sqrt(k);
+  return m === 0 ? k : Math.SQRT2 * k;
+}
+
 /**
  * Y_i(d) for i < B² at a unit direction (x, y, z) into `out` (Float64Array(B²)): the associated
  * Legendre recurrence in z with the Condon–Shortley phase, and the azimuthal factors
@@ -140,13 +150,11 @@ export function evalSh(bands, x, y, z, out = new Float64Array(bands * bands)) {
               : l === m + 1 ? z * (2 * m + 1) * pmm
               : ((2 * l - 1) * z * prev1 - (l + m - 1) * prev2) / (l - m);
       prev2 = prev1, prev1 = p;
-      let k = (2 * l + 1) / (4 * Math.PI);
-      for (let f = l - m + 1; f <= l + m; ++f) k /= f;
-      k = Math.sqrt(k);
+      const k = shNormalization(l, m);  // √2 K_lm for m > 0
       if (m === 0) out[l * (l + 1)] = k * p;
       else {
-        out[l * (l + 1) + m] = Math.SQRT2 * k * p * cm;
-        out[l * (l + 1) - m] = Math.SQRT2 * k * p * sm;
+        out[l * (l + 1) + m] = k * p * cm;
+        out[l * (l + 1) - m] = k * p * sm;
       }
     }
   }

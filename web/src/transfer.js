@@ -22,7 +22,7 @@ export function shaderPath(shape, compressed, name, limits) {
   if (shape.layout === 'matrix') {
     // Dense matrices are 4·B⁴ bytes per vertex (2.5 KB at 5 bands); compressed 16·⌈(N+1)/4⌉.
     if (!compressed)
-      fail(name, `the ${shape.mode} transfer holds dense glossy matrices; this page draws them CPCA-compressed only (prt compress)`);
+      fail(name, `the ${shape.mode} transfer holds dense glossy matrices; prtkit's shaders draw them CPCA-compressed only (prt compress)`);
     if (shape.bands > kBands.maxShaderGlossy)
       fail(name, bandLimitMessage(`the ${shape.mode} transfer's glossy matrices`, shape.bands, 'the shaders\' glossy response', kBands.maxShaderGlossy));
     return 'CpcaMatrix';
@@ -101,8 +101,11 @@ export async function readTransfer(gltf, entry, vertexCount, name, limits) {
   if (!Number.isInteger(bands) || bands < 1 || bands > kBands.maxLibrary)
     fail(name, bandLimitMessage(`the ${mode.name} transfer`, bands, 'a bake file', kBands.maxLibrary));
   if (channels !== 1 && channels !== 3) fail(name, `the ${mode.name} transfer has ${channels} channels (1 or 3 expected)`);
+  // (response: a matrix transfer's kernels, docs/formats-bake.md; recipeMaterial: the bake's
+  // material — glossy.js makes the shading from both.)
   const t = { mode: mode.name, layout, bands, channels, matrix: layout === 'matrix',
-              attributePrefix: mode.attributePrefix.toLowerCase(), compressed: null };
+              attributePrefix: mode.attributePrefix.toLowerCase(), compressed: null,
+              response: entry.response || null, recipeMaterial: s.material || null };
   t.path = shaderPath(t, !!entry.compressed, name, limits);
   t.describe = shaderPaths[t.path];
   const p = kPaths[t.path];

@@ -1,0 +1,158 @@
+// The three.js example (docs/three.md): a prtkit bake loaded with three.js's own GLTFLoader and
+// the prtkit-three plugin, in an ordinary scene — a ground plane, a torus knot and a sphere in
+// MeshStandardMaterial lit by a LightProbe holding the same SH light (its first three bands,
+// turned by the same rotation), orbit controls, tone mapping by the renderer.
+//
+// ?bake=URL&light=URL (default bake.glb, light.json beside the page, served over http), or
+// example-data.js beside the page. Test hook (tests/web/test_three_web.cpp):
+// ?screenshot&size=WxH&camera=eye;target;up;fov&rotate=X,Y,Z&exposure=S&mode=M&bands=B[&only]
+// draws one frame with no tone mapping (prt render --tonemap clamp) and writes its RGB bytes
+// into <pre id="prt-test">; &only hides everything but the bake (on black).
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import GUI from 'lil-gui';
+import { PRTKitRadianceTransfer, lightToSphericalHarmonics3, parseLight, rotateLight } from '../src/index.js';
+
+const query = new URLSearchParams(location.search);
+const test = query.has('screenshot');
+
+function report(result) {
+  const pre = document.createElement('pre');
+  pre.id = 'prt-test';
+  pre.textContent = JSON.stringify(result);
+  document.body.appendChild(pre);
+}
+function fail(text) {
+  document.getElementById('message').textContent = text;
+  if (test) report({ ok: false, error: text });
+}
+
+function base64Bytes(s) {
+  const bin = atob(s), out = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; ++i) out[i] = bin.charCodeAt(i);
+  return out;
+}
+
+async function fetchOr(url, what) {
+  const r = await fetch(url).catch(() => {
+    throw new Error(`${url}: the ${what} could not be fetched (serve this folder over http: python3 -m http.server)`);
+  });
+  if (!r.ok) throw new Error(`${url}: the ${what} could not be fetched (HTTP ${r.status})`);
+  return r;
+}
+
+async function main() {
+  const [w, h] = test ? (query.get('size') || '320x240').split('x').map(Number) : [innerWidth, innerHeight];
+  const renderer = new THREE.WebGLRenderer({ antialias: true });
+  renderer.setPixelRatio(test ? 1 : devicePixelRatio);
+  renderer.setSize(w, h);
+  renderer.toneMapping = test ? THREE.NoToneMapping : THREE.ACESFilmicToneMapping;
+  document.body.appendChild(renderer.domElement);
+
+  // The bake, through three.js's own loader.
+  const data = window.PRT_EXAMPLE;
+  const bakeName = data ? data.name || 'bake.glb' : query.get('bake') || 'bake.glb';
+  const loader = new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { renderer, name: bakeName, required: true }));
+  const bytes = data ? base64Bytes(data.glb).buffer : await (await fetchOr(bakeName, 'bake')).arrayBuffer();
+  const gltf = await loader.parseAsync(bytes, '');
+  const prt = gltf.userData.prtkit;
+  const lightName = data ? 'light' : query.get('light') || 'light.json';
+  const light = parseLight(data ? data.light : await (await fetchOr(lightName, 'light')).text(), lightName);
+  const warnings = prt.setLight(light);
+  if (warnings.length) document.getElementById('message').textContent = warnings.join('\n');
+
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(test ? 0x000000 : 0x30343a);
+  scene.add(gltf.scene);
+
+  // The standard side: lit by the same light (three bands) through a LightProbe.
+  const box = new THREE.Box3().setFromObject(gltf.scene);
+  const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
+  const r = Math.max(size.x, size.y, size.z) / 2;
+  const probe = new THREE.LightProbe();
+  scene.add(probe);
+  const standard = new THREE.Group();
+  const knot = new THREE.Mesh(new THREE.TorusKnotGeometry(0.35 * r, 0.12 * r, 128, 16),
+                              new THREE.MeshStandardMaterial({ color: 0xc08040, roughness: 0.6 }));
+  knot.position.set(centre.x + 2.2 * r, box.min.y + 0.6 * r, centre.z);
+  const ball = new THREE.Mesh(new THREE.SphereGeometry(0.45 * r, 48, 24),
+                              new THREE.MeshStandardMaterial({ color: 0x9aa6b2, roughness: 1 }));
+  ball.position.set(centre.x - 2.1 * r, box.min.y + 0.45 * r, centre.z);
+  const floor = new THREE.Mesh(new THREE.CircleGeometry(5 * r, 64), new THREE.MeshStandardMaterial({ color: 0x808080, roughness: 1 }));
+  floor.rotation.x = -Math.PI / 2;
+  floor.position.set(centre.x, box.min.y - 0.02 * r, centre.z);
+  standard.add(knot, ball, floor);
+  scene.add(standard);
+  standard.visible = !(test && query.has('only'));
+
+  const camera = new THREE.PerspectiveCamera(40, w / h, 0.01 * r, 100 * r);
+  const controls = test ? null : new OrbitControls(camera, renderer.domElement);
+  if (query.has('camera')) {
+    // 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg', as prt render --camera.
+    const v = Object.fromEntries(query.get('camera').split(';').map((kv) => kv.split('=')));
+    const vec = (s, d) => (s ? s.split(',').map(Number) : d);
+    camera.fov = Number(v.fov || 40);
+    camera.up.fromArray(vec(v.up, [0, 1, 0]));
+    camera.position.fromArray(vec(v.eye, [0, 0, 3]));
+    camera.lookAt(...vec(v.target, [0, 0, 0]));
+    if (controls) controls.target.fromArray(vec(v.target, [0, 0, 0]));
+  } else {
+    camera.position.set(centre.x + 1.2 * r, centre.y + 1.6 * r, centre.z + 5.2 * r);
+    camera.lookAt(centre);
+    if (controls) controls.target.copy(centre);
+  }
+  camera.updateProjectionMatrix();
+
+  // Light rotation: prt render --rotate X,Y,Z is Euler(X, Y, Z, 'ZYX').
+  const deg = (query.get('rotate') || '0,0,0').split(',').map((x) => (Number(x) || 0) * Math.PI / 180);
+  const settings = { exposure: Number(query.get('exposure') || 0), turnX: deg[0], turnY: deg[1], turnZ: deg[2],
+                     mode: query.get('mode') || prt.mode, bands: Number(query.get('bands') || 0) || prt.bands, spin: false };
+  const apply = () => {
+    prt.exposure = settings.exposure;
+    prt.mode = settings.mode;
+    prt.bands = settings.bands;
+    prt.lightRotation.setFromEuler(new THREE.Euler(settings.turnX, settings.turnY, settings.turnZ, 'ZYX'));
+    lightToSphericalHarmonics3(rotateLight(light, prt.lightRotation), probe.sh);
+    probe.intensity = Math.pow(2, settings.exposure);
+  };
+  apply();
+
+  if (test) {
+    renderer.render(scene, camera);
+    const gl = renderer.getContext(), rgba = new Uint8Array(w * h * 4), rgb = new Uint8Array(w * h * 3);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
+    for (let y = 0; y < h; ++y)
+      for (let x = 0; x < w; ++x)
+        for (let c = 0; c < 3; ++c) rgb[(y * w + x) * 3 + c] = rgba[((h - 1 - y) * w + x) * 4 + c];
+    let s = '';
+    for (let i = 0; i < rgb.length; i += 0x8000) s += String.fromCharCode(...rgb.subarray(i, i + 0x8000));
+    report({ ok: true, width: w, height: h, mode: prt.mode, bands: prt.bands, transfers: prt.transfers,
+             meshes: prt.meshes.length, rgb: btoa(s) });
+    return;
+  }
+
+  const gui = new GUI({ title: 'prtkit' });
+  gui.add(settings, 'exposure', -8, 8, 0.1).onChange(apply);
+  gui.add(settings, 'turnY', -Math.PI, Math.PI, 0.01).name('light turn').onChange(apply);
+  gui.add(settings, 'mode', prt.transfers.map((t) => t.mode)).onChange(apply);
+  gui.add(settings, 'bands', 1, prt.bands, 1).onChange(apply);
+  gui.add(settings, 'spin');
+  addEventListener('resize', () => {
+    renderer.setSize(innerWidth, innerHeight);
+    camera.aspect = innerWidth / innerHeight;
+    camera.updateProjectionMatrix();
+  });
+  const clock = new THREE.Clock();
+  renderer.setAnimationLoop(() => {
+    if (settings.spin) {
+      settings.turnY = ((settings.turnY + clock.getDelta() * 0.5 + Math.PI) % (2 * Math.PI)) - Math.PI;
+      apply();
+      gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    } else clock.getDelta();
+    controls.update();
+    renderer.render(scene, camera);
+  });
+}
+
+main().catch((e) => fail(String(e && e.message ? e.message : e)));

@@ -1,0 +1,9 @@
+// prtkit-three: prtkit bakes in three.js (docs/three.md). A GLTFLoader plugin reads a bake's
+// transfer and dresses its meshes in materials that relight them from SH lights on the GPU —
+// dense vectors, CPCA-compressed vectors and CPCA-compressed glossy matrices — with the light's
+// rotation and the exposure as properties, through the same GLSL as prtkit's page and desktop
+// viewer (shaders/, hosts/three.glsl).
+export { PRTKitRadianceTransfer } from './plugin.js';
+export { PRTBake } from './prt_bake.js';
+export { parseLight, lightFromSphericalHarmonics3, lightToSphericalHarmonics3 } from './light.js';
+export { rotateLight, rotationRows } from './rotation.js';

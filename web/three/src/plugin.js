@@ -1,0 +1,42 @@
+// The GLTFLoader plugin for prtkit bakes (the PRTKIT_radiance_transfer extension,
+// docs/extensions/PRTKIT_radiance_transfer; formats 1-4's extras.prtkit too):
+//
+//   const loader = new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { renderer }));
+//   const gltf = await loader.loadAsync('bunny.glb');
+//   const prt = gltf.userData.prtkit;   // a PRTBake; its meshes already wear prtkit materials
+//
+// An asset that is not a bake loads untouched (userData.prtkit stays undefined) unless
+// options.required; a bake that cannot be shown rejects the load with one line naming the file.
+import { bakeFormat } from 'prt:constants';
+import { bakeObject, readBake } from '../../src/bake.js';
+import { glossyFromFile } from '../../src/glossy.js';
+import { PRTBake } from './prt_bake.js';
+
+export class PRTKitRadianceTransfer {
+  /**
+   * options: { name: the file's name in messages, renderer: a WebGLRenderer whose limits apply
+   * (else WebGL2's guaranteed ones), required: reject an asset that is not a bake }.
+   */
+  constructor(parser, options = {}) {
+    this.parser = parser;
+    this.name = bakeFormat.extension;
+    this.options = options;
+  }
+
+  async afterRoot(result) {
+    const o = this.options, name = o.name || 'glTF asset';
+    if (!bakeObject(this.parser.json)) {
+      if (o.required) throw new Error(`${name}: is a glTF file but not a prtkit bake (no ${bakeFormat.extension} extension)`);
+      return;
+    }
+    const caps = o.renderer && o.renderer.capabilities;
+    // uL[pad4(B²)] plus a few other uniforms must fit the vertex shader's uniform vectors
+    // (WebGL2 guarantees 256: 15 bands).
+    const vectors = caps ? caps.maxVertexUniforms : 256;
+    const limits = { maxTextureSize: caps ? caps.maxTextureSize : 4096,
+                     maxBands: Math.min(32, Math.floor(Math.sqrt(vectors - 16))) };
+    const bake = await readBake(result, name, limits);
+    for (const t of bake.transfers) if (t.matrix) t.material = glossyFromFile(t, name);
+    result.userData.prtkit = new PRTBake(bake, result.scene, limits);
+  }
+}
