@@ -80,6 +80,8 @@ await esbuild.build({
   logLevel: 'warning',
 });
 for (const f of ['package.json', 'README.md']) fs.copyFileSync(path.join(here, 'three', f), path.join(threeOut, f));
+// The example imports 'prtkit-three' as an app would: the package just built (so the example
+// tests what ships), with three.js from web/node_modules.
 await esbuild.build({
   entryPoints: [path.join(here, 'three', 'example', 'main.js')],
   bundle: true,
@@ -87,8 +89,9 @@ await esbuild.build({
   target: 'es2020',
   minify: true,
   legalComments: 'none',
+  alias: { 'prtkit-three': path.join(threeOut, 'prtkit-three.js') },
+  nodePaths: [path.join(here, 'node_modules')],
   outfile: path.join(threeOut, 'example', 'example.js'),
-  plugins: [generated],
   logLevel: 'warning',
 });
 fs.copyFileSync(path.join(here, 'three', 'example', 'index.html'), path.join(threeOut, 'example', 'index.html'));

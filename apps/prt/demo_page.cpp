@@ -64,7 +64,10 @@ code{background:#eee;padding:0 .2em} .preview{max-width:420px}
          "left-drag orbits, right-drag (or shift-drag) turns the light, the panel switches "
          "environments, transfer modes and bands; drop another <code>.glb</code> bake or SH light "
          "<code>.json</code> on it. <a href=\"web/index.html\">Open it full-window</a>; "
-         "<code>prt web scene.glb -o DIR</code> writes the same for any bake.</p>\n";
+         "<code>prt web scene.glb -o DIR</code> writes the same for any bake. The same bake in "
+         "an ordinary three.js scene, beside standard materials: <a "
+         "href=\"web/three/index.html\">web/three/</a> (the prtkit-three module, "
+         "docs/three.md).</p>\n";
   else
     h << "<p class=\"note\">(No live viewer here: " << htmlEscape(webWhy) << ")</p>\n";
   h << "<p>Scene: " << htmlEscape(scene.description) << ", " << bake.mesh.vertexCount()

@@ -7,8 +7,9 @@
 // the shared GLSL; built from web/ by CMake with esbuild, see web/build.mjs), and prt-data.js,
 // written here: `window.PRT_DATA = {...}` holding the bake (.glb bytes, base64), each
 // environment's SH coefficients at the bake's bands and a small lat-long background (RGBE,
-// base64). Classic <script> files because Chromium refuses fetch() and ES-module imports of
-// file:// URLs.
+// base64); and three/, the three.js example (prtkit-three, docs/three.md), which shows the same
+// bake and environments from ../prt-data.js in an ordinary three.js scene. Classic <script>
+// files because Chromium refuses fetch() and ES-module imports of file:// URLs.
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -341,6 +342,14 @@ void writeWebViewer(const WebOptions& a) {
   if (!embed)
     folder.write(kBakeFileName,
                  std::string_view(reinterpret_cast<const char*>(glb.data()), glb.size()));
+  // The three.js example (prtkit-three, docs/three.md) for the same bake and lights: three/
+  // reads ../prt-data.js.
+  const fs::path example = assets / "three" / "example";
+  if (fs::is_regular_file(example / "example.js") && fs::is_regular_file(example / "index.html")) {
+    fs::create_directories(folder.file("three"));
+    for (const char* f : {"index.html", "example.js"})
+      folder.write(std::string("three/") + f, readText(example / f));
+  }
   folder.write("prt-data.js", "// Written by prt web (" + std::string(kGenerator) +
                                   "): the bake and its lights, read by prt-web.js.\n"
                                   "window.PRT_DATA = " +

@@ -206,6 +206,26 @@ TEST(Three, ExampleSceneDrawsStandardMaterialsBesideTheBake) {
   EXPECT_GT(double(drawn), 0.10 * double(black)) << drawn << " of " << black;
 }
 
+// prt web's folder carries the example as three/, reading the page's own ../prt-data.js: the
+// same bake under the page's first environment (its SH at the bake's bands).
+TEST(Three, PrtWebFolderCarriesTheExampleForItsBake) {
+  PRT_REQUIRE_EXAMPLE();
+  cornell();
+  Result r = prt("-q web three_cornell.glb --env builtin:sky --env builtin:studio -o three_web");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  ASSERT_TRUE(fs::exists(scratch() / "three_web" / "three" / "example.js"));
+  r = prt("-q render three_cornell.glb --light builtin:sky --rotate 0,40,0 --camera '" + kCamera +
+          "' --exposure 0 --tonemap clamp --background none --size 320x240 --mode shadowed -o "
+          "three_web.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string q = "only&camera=" + kCamera + "&rotate=0,40,0&exposure=0&mode=shadowed";
+  std::string log;
+  const std::string json = runPage(path("three_web/three"), "screenshot&size=320x240&" + q, &log);
+  ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json.substr(0, 300) << log;
+  EXPECT_LT(displayedRmse(unbase64(jsonField(json, "rgb")), path("three_web.png")), kMatch);
+  EXPECT_LT(quantile90, kInterior);
+}
+
 TEST(Three, PluginRefusesWhatItCannotShowNamingTheFile) {
   PRT_REQUIRE_EXAMPLE();
   cornell();

@@ -12,9 +12,10 @@ import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import GUI from 'lil-gui';
-import { PRTKitRadianceTransfer, lightToSphericalHarmonics3, parseLight, rotateLight } from '../src/index.js';
+import { PRTKitRadianceTransfer, lightToSphericalHarmonics3, parseLight, rotateLight } from 'prtkit-three';
 
 const query = new URLSearchParams(location.search);
+const page = window.PRT_DATA;  // a prt web folder's, when this is its three/ folder
 const test = query.has('screenshot');
 
 function report(result) {
@@ -42,6 +43,21 @@ async function fetchOr(url, what) {
   return r;
 }
 
+/** The bake's bytes and name and the lights [{ name, light }]: example-data.js, else a prt web
+ *  folder's ../prt-data.js, else ?bake= and ?light= fetched. */
+async function inputs() {
+  const ex = window.PRT_EXAMPLE, page = window.PRT_DATA;
+  if (ex) return { name: ex.name || 'bake.glb', bytes: base64Bytes(ex.glb).buffer, lights: [{ name: 'light', light: parseLight(ex.light, 'light') }] };
+  if (page && page.bake && Array.isArray(page.environments)) {
+    const b = page.bake;
+    const bytes = b.glb ? base64Bytes(b.glb).buffer : await (await fetchOr(`../${b.file}`, 'bake')).arrayBuffer();
+    return { name: b.name, bytes, lights: page.environments.map((e) => ({ name: e.name, light: parseLight({ bands: e.bands, coefficients: e.coefficients }, e.name) })) };
+  }
+  const bake = query.get('bake') || 'bake.glb', lightName = query.get('light') || 'light.json';
+  const bytes = await (await fetchOr(bake, 'bake')).arrayBuffer();
+  return { name: bake, bytes, lights: [{ name: lightName, light: parseLight(await (await fetchOr(lightName, 'light')).text(), lightName) }] };
+}
+
 async function main() {
   const [w, h] = test ? (query.get('size') || '320x240').split('x').map(Number) : [innerWidth, innerHeight];
   const renderer = new THREE.WebGLRenderer({ antialias: true });
@@ -50,17 +66,12 @@ async function main() {
   renderer.toneMapping = test ? THREE.NoToneMapping : THREE.ACESFilmicToneMapping;
   document.body.appendChild(renderer.domElement);
 
-  // The bake, through three.js's own loader.
-  const data = window.PRT_EXAMPLE;
-  const bakeName = data ? data.name || 'bake.glb' : query.get('bake') || 'bake.glb';
+  // The bake, through three.js's own loader, and the lights.
+  const { name: bakeName, bytes, lights } = await inputs();
   const loader = new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { renderer, name: bakeName, required: true }));
-  const bytes = data ? base64Bytes(data.glb).buffer : await (await fetchOr(bakeName, 'bake')).arrayBuffer();
   const gltf = await loader.parseAsync(bytes, '');
   const prt = gltf.userData.prtkit;
-  const lightName = data ? 'light' : query.get('light') || 'light.json';
-  const light = parseLight(data ? data.light : await (await fetchOr(lightName, 'light')).text(), lightName);
-  const warnings = prt.setLight(light);
-  if (warnings.length) document.getElementById('message').textContent = warnings.join('\n');
+  let light = lights[0].light;
 
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(test ? 0x000000 : 0x30343a);
@@ -73,13 +84,13 @@ async function main() {
   const probe = new THREE.LightProbe();
   scene.add(probe);
   const standard = new THREE.Group();
-  const knot = new THREE.Mesh(new THREE.TorusKnotGeometry(0.35 * r, 0.12 * r, 128, 16),
+  const knot = new THREE.Mesh(new THREE.TorusKnotGeometry(0.2 * r, 0.07 * r, 160, 20),
                               new THREE.MeshStandardMaterial({ color: 0xc08040, roughness: 0.6 }));
-  knot.position.set(centre.x + 2.2 * r, box.min.y + 0.6 * r, centre.z);
-  const ball = new THREE.Mesh(new THREE.SphereGeometry(0.45 * r, 48, 24),
+  knot.position.set(box.max.x + 0.45 * r, box.min.y + 0.32 * r, centre.z);
+  const ball = new THREE.Mesh(new THREE.SphereGeometry(0.25 * r, 48, 24),
                               new THREE.MeshStandardMaterial({ color: 0x9aa6b2, roughness: 1 }));
-  ball.position.set(centre.x - 2.1 * r, box.min.y + 0.45 * r, centre.z);
-  const floor = new THREE.Mesh(new THREE.CircleGeometry(5 * r, 64), new THREE.MeshStandardMaterial({ color: 0x808080, roughness: 1 }));
+  ball.position.set(box.min.x - 0.4 * r, box.min.y + 0.25 * r, centre.z);
+  const floor = new THREE.Mesh(new THREE.CircleGeometry(4 * r, 64), new THREE.MeshStandardMaterial({ color: 0x808080, roughness: 1 }));
   floor.rotation.x = -Math.PI / 2;
   floor.position.set(centre.x, box.min.y - 0.02 * r, centre.z);
   standard.add(knot, ball, floor);
@@ -98,7 +109,7 @@ async function main() {
     camera.lookAt(...vec(v.target, [0, 0, 0]));
     if (controls) controls.target.fromArray(vec(v.target, [0, 0, 0]));
   } else {
-    camera.position.set(centre.x + 1.2 * r, centre.y + 1.6 * r, centre.z + 5.2 * r);
+    camera.position.set(centre.x + 0.3 * r, centre.y + 1.4 * r, centre.z + 3.4 * r);
     camera.lookAt(centre);
     if (controls) controls.target.copy(centre);
   }
@@ -106,9 +117,12 @@ async function main() {
 
   // Light rotation: prt render --rotate X,Y,Z is Euler(X, Y, Z, 'ZYX').
   const deg = (query.get('rotate') || '0,0,0').split(',').map((x) => (Number(x) || 0) * Math.PI / 180);
-  const settings = { exposure: Number(query.get('exposure') || 0), turnX: deg[0], turnY: deg[1], turnZ: deg[2],
+  const settings = { light: lights[0].name, exposure: Number(query.get('exposure') || (page && page.view && page.view.exposure) || 0), turnX: deg[0], turnY: deg[1], turnZ: deg[2],
                      mode: query.get('mode') || prt.mode, bands: Number(query.get('bands') || 0) || prt.bands, spin: false };
   const apply = () => {
+    light = lights.find((l) => l.name === settings.light).light;
+    const warnings = prt.setLight(light);
+    document.getElementById('message').textContent = warnings.join('\n');
     prt.exposure = settings.exposure;
     prt.mode = settings.mode;
     prt.bands = settings.bands;
@@ -133,6 +147,8 @@ async function main() {
   }
 
   const gui = new GUI({ title: 'prtkit' });
+  if (query.has('nogui')) gui.hide();  // (for pictures)
+  if (lights.length > 1) gui.add(settings, 'light', lights.map((l) => l.name)).onChange(apply);
   gui.add(settings, 'exposure', -8, 8, 0.1).onChange(apply);
   gui.add(settings, 'turnY', -Math.PI, Math.PI, 0.01).name('light turn').onChange(apply);
   gui.add(settings, 'mode', prt.transfers.map((t) => t.mode)).onChange(apply);
