@@ -1,0 +1,112 @@
+// The built prtkit-three package as an app uses it, under node (no browser, no GL): imported by
+// name ('prtkit-three', resolved through its package.json) beside the app's own three.js and
+// GLTFLoader, against files prt wrote (run.sh). Checks what can be checked without drawing:
+// the plugin dresses every part, the light conversions agree with `prt light --format threejs`
+// and `--rotate` (the library), the environment stays in the world as the bake's scene turns,
+// and bad values are refused. Exits non-zero on the first failure.
+import fs from 'node:fs';
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
+import { PRTKitRadianceTransfer, lightFromSphericalHarmonics3, lightToSphericalHarmonics3, parseLight,
+         rotateLight } from 'prtkit-three';
+
+let failures = 0;
+function check(ok, what) {
+  if (!ok) {
+    console.error(`FAIL: ${what}`);
+    ++failures;
+  }
+}
+const maxDiff = (a, b) => a.reduce((m, x, i) => Math.max(m, Math.abs(x - b[i])), 0);
+const bytes = (f) => { const b = fs.readFileSync(f); return b.buffer.slice(b.byteOffset, b.byteOffset + b.byteLength); };
+
+const loader = () => new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { name: 'cornell.glb' }));
+const gltf = await loader().parseAsync(bytes('cornell.glb'), '');
+const prt = gltf.userData.prtkit;
+check(prt !== undefined, 'the plugin leaves a PRTBake in gltf.userData.prtkit');
+const parts = [];
+gltf.scene.traverse((o) => { if (o.isMesh) parts.push(o); });
+check(prt.meshes.length === parts.length && parts.length > 1, `every part is dressed (${prt.meshes.length} of ${parts.length})`);
+check(parts.every((m) => m.material.isShaderMaterial && m.material.name === 'PRTKIT_radiance_transfer'),
+      'the parts wear prtkit ShaderMaterials');
+check(prt.mode === 'interreflected' && prt.bands === 3, `the richest transfer is shown first (${prt.mode}, ${prt.bands})`);
+check(JSON.stringify(prt.transfers.map((t) => t.mode)) === '["interreflected","shadowed"]', 'transfers in the library\'s order');
+prt.mode = 'shadowed';
+check(prt.mode === 'shadowed' && parts.every((m) => m.material === prt.meshes[parts.indexOf(m)].material), 'mode switches materials');
+check(parts[0].geometry.getAttribute('_prt_shadowed_t0') === undefined, 'transfer attributes moved into textures');
+
+// Lights: prt's file, three.js's SphericalHarmonics3 both ways, against prt light --format threejs.
+const sky = parseLight(fs.readFileSync('sky.json', 'utf8'), 'sky.json');
+check(sky.bands === 3 && sky.coeffs.length === 27, 'parseLight reads prt light\'s JSON');
+const three = JSON.parse(fs.readFileSync('sky-three.json', 'utf8')).object.sh;
+const sh3 = lightToSphericalHarmonics3(sky);
+check(maxDiff(sh3.toArray(), three) < 1e-5 * Math.max(...three.map(Math.abs)),
+      `lightToSphericalHarmonics3 is prt light --format threejs (max diff ${maxDiff(sh3.toArray(), three)})`);
+check(maxDiff(lightFromSphericalHarmonics3(sh3).coeffs, sky.coeffs) < 1e-6, 'lightFromSphericalHarmonics3 inverts it');
+// Euler(X, Y, Z, 'ZYX') in radians is prt's --rotate X,Y,Z.
+const d = Math.PI / 180;
+const turned = rotateLight(sky, new THREE.Euler(30 * d, -50 * d, 20 * d, 'ZYX'));
+const prtTurned = parseLight(fs.readFileSync('sky-turned.json', 'utf8'));
+check(maxDiff(turned.coeffs, prtTurned.coeffs) < 1e-4 * Math.max(...sky.coeffs.map(Math.abs)),
+      `rotateLight(Euler 'ZYX') is prt light --rotate (max diff ${maxDiff(turned.coeffs, prtTurned.coeffs)})`);
+
+// The frame's light, as the materials read it (uL: (r, g, b, 0) per coefficient).
+const camera = new THREE.PerspectiveCamera();
+camera.position.set(0, 1, 4);
+camera.updateMatrixWorld();
+const frameLight = () => {
+  parts[0].updateMatrixWorld(true);
+  parts[0].onBeforeRender(null, null, camera);
+  const L = parts[0].material.uniforms.uL.value, out = [];
+  for (let i = 0; i < 9; ++i) out.push(L[4 * i], L[4 * i + 1], L[4 * i + 2]);
+  return out;
+};
+check(prt.setLight(sky).length === 0, 'a light with the bake\'s bands: no warning');
+check(maxDiff(frameLight(), Array.from(sky.coeffs)) < 1e-6, 'unturned, the frame\'s light is the light');
+prt.lightRotation.setFromEuler(new THREE.Euler(30 * d, -50 * d, 20 * d, 'ZYX'));
+check(maxDiff(frameLight(), Array.from(prtTurned.coeffs)) < 1e-4 * 8, 'lightRotation turns the frame\'s light as prt --rotate');
+// Turning the bake's scene by the same rotation leaves the light unturned in its frame.
+gltf.scene.quaternion.copy(prt.lightRotation);
+gltf.scene.updateMatrixWorld(true);
+check(maxDiff(frameLight(), Array.from(sky.coeffs)) < 1e-4 * 8, 'the environment stays in the world as the scene turns');
+prt.lightRotation.identity();
+gltf.scene.quaternion.identity();
+// The library's band rule: fewer bands are used as they are, with a warning; more are cut.
+const w = prt.setLight(parseLight(fs.readFileSync('sky2.json', 'utf8'), 'sky2.json'));
+check(w.length === 1 && /2 bands but the transfer 3/.test(w[0]), `a 2-band light warns: ${w}`);
+const f2 = frameLight();
+check(f2.slice(12).every((x) => x === 0) && maxDiff(f2.slice(0, 12), Array.from(sky.coeffs.slice(0, 12))) < 1e-6,
+      'a 2-band light is zero past 4 coefficients');
+prt.exposure = -2;
+check(parts.every((m) => Math.abs(m.material.uniforms.uExposureScale.value - 0.25) < 1e-12) && prt.exposure === -2,
+      'exposure is one uniform shared by the materials');
+
+// Refusals: one line naming the file, or the value.
+const throws = (f, re, what) => {
+  try {
+    f();
+  } catch (e) {
+    check(re.test(e.message), `${what}: "${e.message}"`);
+    return;
+  }
+  check(false, `${what}: did not throw`);
+};
+throws(() => { prt.bands = 0; }, /bands must be a positive integer/, 'bands 0');
+throws(() => { prt.exposure = NaN; }, /exposure must be a finite number/, 'exposure NaN');
+throws(() => prt.setLight({ bands: 2, coeffs: new Float32Array(3) }), /a light is/, 'a short light');
+throws(() => parseLight('{"bands": 2, "coefficients": [[1,1,1]]}', 'bad.json'), /^bad\.json: has 1 coefficients/, 'a bad light file');
+// The extension's object renamed (a byte in the JSON chunk): a glTF that only says it uses it.
+const foreign = new Uint8Array(bytes('cornell.glb'));
+const at = Buffer.from(foreign).indexOf('"PRTKIT_radiance_transfer":{');
+check(at > 0, 'the bake holds the extension\'s object');
+foreign[at + 1] = 'X'.charCodeAt(0);
+const plain = await loader().parseAsync(foreign.buffer, '');
+check(plain.userData.prtkit === undefined, 'a glTF that is not a bake loads untouched');
+let rejected = '';
+await new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { name: 'plain.glb', required: true }))
+  .parseAsync(foreign.buffer, '').catch((e) => { rejected = e.message; });
+check(/^plain\.glb: is a glTF file but not a prtkit bake/.test(rejected), `required: refused by name ("${rejected}")`);
+
+prt.dispose();
+if (failures) process.exit(1);
+console.log('prtkit-three under node: all checks passed');
