@@ -1,0 +1,47 @@
+#pragma once
+// The lightmap domain's geometry (issue 18): checking a UV set can hold a lightmap, placing one
+// sample per covered texel (the TexelSamples type: geometry/texel_samples.hpp), the sample's
+// point and normal on the mesh, and dilating per-texel values into the gutter around charts so
+// bilinear filtering at a chart's edge never reads an empty texel.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "prt/geometry/mesh.hpp"
+#include "prt/geometry/texel_samples.hpp"
+
+namespace prt {
+
+/// The largest lightmap side sampleTexels takes (8192² texels: ~1.4 GB of working buffers).
+inline constexpr int kMaxLightmapSide = 8192;
+
+/// Checks that `uvs` (one per vertex of `mesh`) can hold a W × H lightmap: finite, inside
+/// [0, 1]², and no texel centre strictly inside two triangles (overlapping charts would share
+/// texels). Throws prt::Error with one line naming mesh.source, `what` (the UV set: "TEXCOORD_1")
+/// and, for an overlap, the two triangles and a texel they share.
+void checkLightmapUvs(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height,
+                      const std::string& what);
+
+/// One sample per texel covered by a triangle in UV space (texel_samples.hpp has the rule).
+/// Where several triangles cover one texel (along a shared edge) the one holding its centre
+/// wins, else the nearest, ties to the lower triangle index: deterministic. Triangles with no
+/// UV area are skipped. Throws prt::Error on a size out of 1..kMaxLightmapSide or UVs that do
+/// not match the mesh.
+TexelSamples sampleTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height);
+
+/// The sample's point on the mesh (its barycentric blend of the triangle's positions).
+Vec3f samplePosition(const Mesh& mesh, const TexelSample& s);
+/// The sample's unit normal (the blend of the vertex normals, normalised; the face normal where
+/// the blend vanishes).
+Vec3f sampleNormal(const Mesh& mesh, const TexelSample& s);
+
+/// Dilates per-texel values (`stride` floats per texel, W·H texels) into at most `padding` rings
+/// of unfilled texels around the filled ones: each ring, an unfilled texel with filled
+/// neighbours (of the 8) takes their mean and becomes filled. Every texel within Chebyshev
+/// distance `padding` of a filled one is filled afterwards; no other changes.
+void dilateTexels(std::span<float> values, int stride, std::vector<std::uint8_t>& filled,
+                  int width, int height, int padding);
+
+}  // namespace prt

@@ -1,0 +1,183 @@
+// The lightmap domain's geometry (geometry/texel_sampling.hpp): every texel a triangle touches
+// in UV space gets exactly one sample, at its centre when the triangle holds it and otherwise at
+// the triangle's nearest point — checked against an independent supersampled rasterisation;
+// sample points and normals interpolate the mesh; overlapping or out-of-range UV sets are refused
+// by name; dilation fills exactly the rings it is asked for.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "prt/core/error.hpp"
+#include "prt/geometry/texel_sampling.hpp"
+
+namespace prt {
+namespace {
+
+/// A mesh of the given triangles in UV space, lifted to z = u + 2v (positions), normals +Z.
+Mesh uvMesh(const std::vector<Vec2f>& uv, std::vector<std::array<std::uint32_t, 3>> tris) {
+  Mesh m;
+  m.source = "uv.obj";
+  for (const Vec2f& t : uv) {
+    m.positions.push_back({t.x, t.y, t.x + 2 * t.y});
+    m.normals.push_back({0, 0, 1});
+  }
+  m.uvs = uv;
+  m.triangles = std::move(tris);
+  m.parts.push_back({"all", 0, std::uint32_t(uv.size()), 0, std::uint32_t(m.triangles.size())});
+  return m;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TexelSampling, AFullQuadSamplesEveryCentreAndInterpolates) {
+  const Mesh m = uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0, 1, 2}, {0, 2, 3}});
+  EXPECT_NO_THROW(checkLightmapUvs(m, m.uvs, 8, 4, "TEXCOORD_1"));
+  const TexelSamples s = sampleTexels(m, m.uvs, 8, 4);
+  ASSERT_EQ(s.samples.size(), 32u);
+  for (const TexelSample& t : s.samples) {
+    EXPECT_TRUE(t.centreInside);
+    const int x = int(t.texel % 8), y = int(t.texel / 8);
+    const float u = (x + 0.5f) / 8, v = (y + 0.5f) / 4;
+    const Vec3f p = samplePosition(m, t);
+    EXPECT_NEAR(p.x, u, 1e-6);
+    EXPECT_NEAR(p.y, v, 1e-6);
+    EXPECT_NEAR(p.z, u + 2 * v, 1e-5);
+    EXPECT_EQ(sampleNormal(m, t), Vec3f(0, 0, 1));
+    EXPECT_EQ(s.sampleOfTexel[t.texel], &t - s.samples.data());
+  }
+}
+
+// Independent check of conservative coverage on random small and thin triangles: a texel is
+// sampled iff a 32 × 32 supersampling of its square finds a point inside the triangle (up to
+// the grid's resolution at the boundary), and the sample point lies in the triangle and in (or
+// at the edge of) the texel.
+TEST(TexelSampling, CoverageIsConservativeAgainstSupersampling) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> U(0.05f, 0.95f), D(-0.15f, 0.15f);
+  constexpr int W = 24, H = 16;
+  int thin = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Vec2f a{U(rng), U(rng)};
+    Vec2f b{a.x + D(rng), a.y + D(rng)}, c{a.x + D(rng), a.y + D(rng)};
+    if (trial % 3 == 0) c = {0.5f * (a.x + b.x) + 0.002f, 0.5f * (a.y + b.y) - 0.003f};  // a sliver
+    const Mesh m = uvMesh({a, b, c}, {{0, 1, 2}});
+    const TexelSamples s = sampleTexels(m, m.uvs, W, H);
+    const auto inside = [&](double x, double y) {  // texel units
+      const auto e = [](double px, double py, double qx, double qy, double rx, double ry) {
+        return (qx - px) * (ry - py) - (qy - py) * (rx - px);
+      };
+      const double ax = a.x * W, ay = a.y * H, bx = b.x * W, by = b.y * H, cx = c.x * W, cy = c.y * H;
+      const double d0 = e(ax, ay, bx, by, x, y), d1 = e(bx, by, cx, cy, x, y), d2 = e(cx, cy, ax, ay, x, y);
+      return (d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0);
+    };
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        bool hit = false;
+        for (int j = 0; j < 32 && !hit; ++j)
+          for (int i = 0; i < 32 && !hit; ++i) hit = inside(x + (i + 0.5) / 32, y + (j + 0.5) / 32);
+        const std::size_t texel = std::size_t(y) * W + x;
+        if (hit) {
+          EXPECT_TRUE(s.covered(texel)) << "trial " << trial << " texel " << x << "," << y;
+        }
+        if (!s.covered(texel)) continue;
+        const TexelSample& t = s.samples[s.sampleOfTexel[texel]];
+        EXPECT_GE(std::min({t.barycentric.x, t.barycentric.y, t.barycentric.z}), 0.0f);
+        EXPECT_NEAR(t.barycentric.x + t.barycentric.y + t.barycentric.z, 1.0f, 1e-5f);
+        const Vec3f p = samplePosition(m, t);  // x, y are the UV
+        EXPECT_GE(p.x * W, x - 1e-3);
+        EXPECT_LE(p.x * W, x + 1 + 1e-3);
+        EXPECT_GE(p.y * H, y - 1e-3);
+        EXPECT_LE(p.y * H, y + 1 + 1e-3);
+        thin += !t.centreInside;
+      }
+  }
+  EXPECT_GT(thin, 20) << "the slivers must be sampled off-centre";
+}
+
+TEST(TexelSampling, SharedEdgesGoToOneTriangleDeterministically) {
+  // Two triangles meeting along the diagonal through texel centres of an 8 × 8 map.
+  const Mesh m = uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0, 1, 2}, {0, 2, 3}});
+  const TexelSamples s = sampleTexels(m, m.uvs, 8, 8);
+  ASSERT_EQ(s.samples.size(), 64u);
+  for (int k = 0; k < 8; ++k)  // the diagonal's centres lie in both: the lower index wins
+    EXPECT_EQ(s.samples[s.sampleOfTexel[k * 8 + k]].triangle, 0u) << k;
+  const TexelSamples again = sampleTexels(m, m.uvs, 8, 8);
+  for (std::size_t i = 0; i < s.samples.size(); ++i) {
+    EXPECT_EQ(s.samples[i].triangle, again.samples[i].triangle);
+    EXPECT_EQ(s.samples[i].barycentric, again.samples[i].barycentric);
+  }
+}
+
+TEST(TexelSampling, BadUvSetsAreRefusedByName) {
+  // Overlap: a second quad on top of the first half.
+  const Mesh over = uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.1f, 0.1f}, {0.6f, 0.1f}, {0.1f, 0.6f}},
+                           {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}});
+  std::string e = errorOf([&] { checkLightmapUvs(over, over.uvs, 16, 16, "TEXCOORD_1"); });
+  EXPECT_NE(e.find("uv.obj: TEXCOORD_1: triangles"), std::string::npos) << e;
+  EXPECT_NE(e.find("overlap in UV space"), std::string::npos) << e;
+  // A mirrored copy beside it does not overlap; sharing an edge is not an overlap.
+  const Mesh beside = uvMesh({{0, 0}, {0.5f, 0}, {0.5f, 1}, {1, 0}}, {{0, 1, 2}, {3, 1, 2}});
+  EXPECT_EQ(errorOf([&] { checkLightmapUvs(beside, beside.uvs, 16, 16, "TEXCOORD_1"); }), "");
+  // Outside [0, 1]², non-finite, the wrong count, a bad size.
+  Mesh out = uvMesh({{0, 0}, {1.5f, 0}, {0, 1}}, {{0, 1, 2}});
+  e = errorOf([&] { checkLightmapUvs(out, out.uvs, 16, 16, "TEXCOORD_0"); });
+  EXPECT_NE(e.find("uv.obj: TEXCOORD_0 of vertex 1 is (1.5"), std::string::npos) << e;
+  out.uvs[1] = {std::nanf(""), 0};
+  EXPECT_NE(errorOf([&] { checkLightmapUvs(out, out.uvs, 16, 16, "TEXCOORD_0"); }).find("vertex 1"),
+            std::string::npos);
+  const std::vector<Vec2f> two = {{0, 0}, {1, 0}};
+  EXPECT_NE(errorOf([&] { sampleTexels(out, two, 16, 16); }).find("2 coordinates for 3 vertices"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { sampleTexels(beside, beside.uvs, 0, 16); }).find("outside 1..8192"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { sampleTexels(beside, beside.uvs, 16, 9000); }).find("16 x 9000"),
+            std::string::npos);
+}
+
+// Dilation fills exactly the texels within `padding` (Chebyshev) of a chart, with means of
+// their filled neighbours: a constant chart stays constant, and nothing farther is touched.
+TEST(TexelSampling, DilationFillsExactlyThePaddingRings) {
+  constexpr int W = 32, H = 24, P = 3;
+  std::vector<std::uint8_t> filled(W * H, 0);
+  std::vector<float> values(W * H * 2, -1.0f);
+  const auto inChart = [](int x, int y) { return (x - 12) * (x - 12) + (y - 10) * (y - 10) <= 20; };
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      if (inChart(x, y)) {
+        filled[y * W + x] = 1;
+        values[(y * W + x) * 2] = 0.25f;
+        values[(y * W + x) * 2 + 1] = 4.0f;
+      }
+  const std::vector<std::uint8_t> chart = filled;
+  dilateTexels(values, 2, filled, W, H, P);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      int d = 1 << 20;  // Chebyshev distance to the chart
+      for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i)
+          if (chart[j * W + i]) d = std::min(d, std::max(std::abs(i - x), std::abs(j - y)));
+      const std::size_t t = std::size_t(y) * W + x;
+      EXPECT_EQ(filled[t] != 0, d <= P) << x << "," << y << " at " << d;
+      if (d <= P) {
+        EXPECT_FLOAT_EQ(values[t * 2], 0.25f);
+        EXPECT_FLOAT_EQ(values[t * 2 + 1], 4.0f);
+      } else {
+        EXPECT_EQ(values[t * 2], -1.0f);
+      }
+    }
+}
+
+}  // namespace
+}  // namespace prt
