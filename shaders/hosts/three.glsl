@@ -13,12 +13,7 @@
 //                               mesh may be placed anywhere in the scene)
 //   PRT_TARGET_MAX              the largest radiance written (a half-float target's)
 #define PRT_HOST_DECLARES_INPUTS
-precision highp sampler2D;
-#define PRT_TEXELS highp sampler2D
-vec4 prtTexel(highp sampler2D s, int t) {
-  int w = textureSize(s, 0).x;
-  return texelFetch(s, ivec2(t % w, t / w), 0);
-}
+#include "prt_texel_2d.glsl"
 #define PRT_LIGHT_UNIFORM uniform vec4 uL[PRT_LIGHT_VEC4S]
 #define prtClip(p) (projectionMatrix * modelViewMatrix * vec4(p, 1.0))
 #define PRT_TARGET_MAX 65504.0

@@ -14,12 +14,7 @@
 //   PRT_TARGET_MAX        the largest value the HDR target holds (a half-float target here)
 precision highp float;
 precision highp int;
-precision highp sampler2D;
-#define PRT_TEXELS highp sampler2D
-vec4 prtTexel(highp sampler2D s, int t) {
-  int w = textureSize(s, 0).x;
-  return texelFetch(s, ivec2(t % w, t / w), 0);
-}
+#include "prt_texel_2d.glsl"
 #define PRT_LIGHT_UNIFORM uniform vec4 uL[PRT_LIGHT_VEC4S]
 #define PRT_CAMERA_UNIFORMS uniform mat4 modelViewMatrix; uniform mat4 projectionMatrix
 #define prtClip(p) (projectionMatrix * modelViewMatrix * vec4(p, 1.0))

@@ -13,11 +13,21 @@ namespace {
 struct P2 {
   double x, y;
 };
-P2 operator-(P2 a, P2 b) { return {a.x - b.x, a.y - b.y}; }
-P2 operator+(P2 a, P2 b) { return {a.x + b.x, a.y + b.y}; }
-P2 operator*(double s, P2 a) { return {s * a.x, s * a.y}; }
-double dot(P2 a, P2 b) { return a.x * b.x + a.y * b.y; }
-double cross(P2 a, P2 b) { return a.x * b.y - a.y * b.x; }
+P2 operator-(P2 a, P2 b) {
+  return {a.x - b.x, a.y - b.y};
+}
+P2 operator+(P2 a, P2 b) {
+  return {a.x + b.x, a.y + b.y};
+}
+P2 operator*(double s, P2 a) {
+  return {s * a.x, s * a.y};
+}
+double dot(P2 a, P2 b) {
+  return a.x * b.x + a.y * b.y;
+}
+double cross(P2 a, P2 b) {
+  return a.x * b.y - a.y * b.x;
+}
 
 void checkSize(int width, int height, const std::string& source) {
   if (width < 1 || height < 1 || width > kMaxLightmapSide || height > kMaxLightmapSide)
@@ -64,7 +74,8 @@ std::vector<P2> clipToTexel(int x, int y, const P2 p[3]) {
   if (!poly.empty()) clip([&](P2 q) { return q.y >= y; }, onY(y));
   if (!poly.empty()) clip([&](P2 q) { return q.y <= y + 1.0; }, onY(y + 1.0));
   double area2 = 0;
-  for (std::size_t i = 0; i < poly.size(); ++i) area2 += cross(poly[i], poly[(i + 1) % poly.size()]);
+  for (std::size_t i = 0; i < poly.size(); ++i)
+    area2 += cross(poly[i], poly[(i + 1) % poly.size()]);
   if (!(std::abs(area2) > 1e-12)) poly.clear();
   return poly;
 }
@@ -89,8 +100,8 @@ P2 nearestOnPolygon(const std::vector<P2>& poly, P2 c) {
 /// in a W × H lightmap (λ: barycentric weights of the sample point: the centre, or the nearest
 /// point of the triangle to it). Triangles without UV area call nothing.
 template <typename F>
-void forEachCoveredTexel(const Mesh& mesh, std::span<const Vec2f> uvs, std::size_t t, int W,
-                         int H, F&& f) {
+void forEachCoveredTexel(const Mesh& mesh, std::span<const Vec2f> uvs, std::size_t t, int W, int H,
+                         F&& f) {
   const auto& tri = mesh.triangles[t];
   P2 p[3];
   for (int k = 0; k < 3; ++k) p[k] = {double(uvs[tri[k]].x) * W, double(uvs[tri[k]].y) * H};
@@ -110,8 +121,9 @@ void forEachCoveredTexel(const Mesh& mesh, std::span<const Vec2f> uvs, std::size
       const std::size_t texel = std::size_t(y) * W + x;
       if (l0 >= -1e-9 && l1 >= -1e-9 && l2 >= -1e-9) {
         const double s = std::max(l0, 0.0) + std::max(l1, 0.0) + std::max(l2, 0.0);
-        f(texel, Vec3f(float(std::max(l0, 0.0) / s), float(std::max(l1, 0.0) / s),
-                       float(std::max(l2, 0.0) / s)),
+        f(texel,
+          Vec3f(float(std::max(l0, 0.0) / s), float(std::max(l1, 0.0) / s),
+                float(std::max(l2, 0.0) / s)),
           true, l0 > 1e-6 && l1 > 1e-6 && l2 > 1e-6, 0.0);
       } else if (const std::vector<P2> part = clipToTexel(x, y, p); !part.empty()) {
         // Partly covered: the point of the triangle inside the texel nearest to its centre.
@@ -141,21 +153,18 @@ void checkLightmapUvs(const Mesh& mesh, std::span<const Vec2f> uvs, int width, i
   }
   std::vector<std::int32_t> owner(std::size_t(width) * height, -1);
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-    forEachCoveredTexel(mesh, uvs, t, width, height,
-                        [&](std::size_t texel, Vec3f, bool, bool strictly, double) {
-                          if (!strictly) return;
-                          if (owner[texel] >= 0)
-                            throw Error(mesh.source,
-                                        what + ": triangles " + std::to_string(owner[texel]) +
-                                            " and " + std::to_string(t) +
-                                            " overlap in UV space (both cover texel (" +
-                                            std::to_string(texel % width) + ", " +
-                                            std::to_string(texel / width) + ") of " +
-                                            std::to_string(width) + " x " +
-                                            std::to_string(height) +
-                                            "); a lightmap needs a UV set without overlaps");
-                          owner[texel] = static_cast<std::int32_t>(t);
-                        });
+    forEachCoveredTexel(
+        mesh, uvs, t, width, height, [&](std::size_t texel, Vec3f, bool, bool strictly, double) {
+          if (!strictly) return;
+          if (owner[texel] >= 0)
+            throw Error(mesh.source,
+                        what + ": triangles " + std::to_string(owner[texel]) + " and " +
+                            std::to_string(t) + " overlap in UV space (both cover texel (" +
+                            std::to_string(texel % width) + ", " + std::to_string(texel / width) +
+                            ") of " + std::to_string(width) + " x " + std::to_string(height) +
+                            "); a lightmap needs a UV set without overlaps");
+          owner[texel] = static_cast<std::int32_t>(t);
+        });
 }
 
 TexelSamples sampleTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height) {
@@ -185,8 +194,9 @@ TexelSamples sampleTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int widt
   for (std::size_t texel = 0; texel < n; ++texel) {
     if (best[texel] < 0) continue;
     out.sampleOfTexel[texel] = static_cast<std::int32_t>(out.samples.size());
-    out.samples.push_back({static_cast<std::uint32_t>(texel), static_cast<std::uint32_t>(best[texel]),
-                           bestWeights[texel], inside[texel] != 0});
+    out.samples.push_back({static_cast<std::uint32_t>(texel),
+                           static_cast<std::uint32_t>(best[texel]), bestWeights[texel],
+                           inside[texel] != 0});
   }
   return out;
 }
@@ -206,8 +216,8 @@ Vec3f sampleNormal(const Mesh& mesh, const TexelSample& s) {
                          mesh.positions[t[2]] - mesh.positions[t[0]]));
 }
 
-void dilateTexels(std::span<float> values, int stride, std::vector<std::uint8_t>& filled,
-                  int width, int height, int padding) {
+void dilateTexels(std::span<float> values, int stride, std::vector<std::uint8_t>& filled, int width,
+                  int height, int padding) {
   const std::size_t n = std::size_t(width) * height;
   PRT_CHECK(values.size() == n * std::size_t(stride) && filled.size() == n,
             "dilateTexels: buffers do not match the lightmap");

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/error_text.hpp"
 #include "prt/core/error.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 
@@ -32,14 +33,7 @@ Mesh uvMesh(const std::vector<Vec2f>& uv, std::vector<std::array<std::uint32_t, 
   return m;
 }
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::errorOf;
 
 TEST(TexelSampling, AFullQuadSamplesEveryCentreAndInterpolates) {
   const Mesh m = uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0, 1, 2}, {0, 2, 3}});
@@ -78,8 +72,10 @@ TEST(TexelSampling, CoverageIsConservativeAgainstSupersampling) {
       const auto e = [](double px, double py, double qx, double qy, double rx, double ry) {
         return (qx - px) * (ry - py) - (qy - py) * (rx - px);
       };
-      const double ax = a.x * W, ay = a.y * H, bx = b.x * W, by = b.y * H, cx = c.x * W, cy = c.y * H;
-      const double d0 = e(ax, ay, bx, by, x, y), d1 = e(bx, by, cx, cy, x, y), d2 = e(cx, cy, ax, ay, x, y);
+      const double ax = a.x * W, ay = a.y * H, bx = b.x * W, by = b.y * H, cx = c.x * W,
+                   cy = c.y * H;
+      const double d0 = e(ax, ay, bx, by, x, y), d1 = e(bx, by, cx, cy, x, y),
+                   d2 = e(cx, cy, ax, ay, x, y);
       return (d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0);
     };
     for (int y = 0; y < H; ++y)
@@ -122,8 +118,9 @@ TEST(TexelSampling, SharedEdgesGoToOneTriangleDeterministically) {
 
 TEST(TexelSampling, BadUvSetsAreRefusedByName) {
   // Overlap: a second quad on top of the first half.
-  const Mesh over = uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.1f, 0.1f}, {0.6f, 0.1f}, {0.1f, 0.6f}},
-                           {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}});
+  const Mesh over =
+      uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.1f, 0.1f}, {0.6f, 0.1f}, {0.1f, 0.6f}},
+             {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}});
   std::string e = errorOf([&] { checkLightmapUvs(over, over.uvs, 16, 16, "TEXCOORD_1"); });
   EXPECT_NE(e.find("uv.obj: TEXCOORD_1: triangles"), std::string::npos) << e;
   EXPECT_NE(e.find("overlap in UV space"), std::string::npos) << e;

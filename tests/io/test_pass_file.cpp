@@ -7,6 +7,7 @@
 #include <cstring>
 #include <functional>
 
+#include "common/error_text.hpp"
 #include "prt/core/error.hpp"
 #include "prt/io/pass_file.hpp"
 
@@ -32,14 +33,7 @@ PassPiece piece(std::size_t first, std::size_t count, float base) {
   return p;
 }
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::errorOf;
 
 TEST(PassFile, RoundTripKeepsEveryBit) {
   const PassPiece p = piece(10, 5, 3.0f);

@@ -62,8 +62,8 @@ inline const std::string& chromium() {
 
 /// Loads DIR/index.html?QUERY in headless Chromium and returns the JSON the page's test hook
 /// wrote into <pre id="prt-test"> ("" if none; `log` gets Chromium's stderr).
-inline std::string runPage(const std::string& dir, const std::string& query, std::string* log = nullptr,
-                    const std::string& extraFlags = "") {
+inline std::string runPage(const std::string& dir, const std::string& query,
+                           std::string* log = nullptr, const std::string& extraFlags = "") {
   const fs::path profile = scratch() / ("profile" + std::to_string(std::rand()));
   const std::string cmd =
       "timeout 120 '" + chromium() + "' --headless --no-sandbox --disable-gpu --disable-quic " +
@@ -146,6 +146,5 @@ inline double displayedRmse(const std::vector<unsigned char>& rgb, const std::st
 
 inline constexpr double kMatch = 0.02;
 inline constexpr double kInterior = 2.5 / 255.0;
-
 
 }  // namespace web_harness

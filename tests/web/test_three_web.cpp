@@ -34,12 +34,13 @@ std::string path(const std::string& name) {
 
 const fs::path kExample = fs::path(PRT_WEB_ASSETS_DIR) / "three" / "example";
 
-#define PRT_REQUIRE_EXAMPLE()                                                                 \
-  do {                                                                                        \
-    if (chromium().empty()) GTEST_SKIP() << "no chromium here (apt-get install chromium)";    \
-    if (!fs::exists(kExample / "example.js"))                                                 \
-      GTEST_SKIP() << kExample.string() << "/example.js is not built (node or web/node_modules " \
-                                           "missing: run scripts/setup.sh)";                 \
+#define PRT_REQUIRE_EXAMPLE()                                                              \
+  do {                                                                                     \
+    if (chromium().empty()) GTEST_SKIP() << "no chromium here (apt-get install chromium)"; \
+    if (!fs::exists(kExample / "example.js"))                                              \
+      GTEST_SKIP() << kExample.string()                                                    \
+                   << "/example.js is not built (node or web/node_modules "                \
+                      "missing: run scripts/setup.sh)";                                    \
   } while (0)
 
 std::string base64(const std::string& bytes) {
@@ -59,7 +60,8 @@ std::string base64(const std::string& bytes) {
 
 /// A copy of the example page in scratch/NAME with example-data.js holding `bake` (a file in
 /// scratch) and `light` (an SH light JSON file in scratch), so it opens from file://.
-std::string examplePage(const std::string& name, const std::string& bake, const std::string& light) {
+std::string examplePage(const std::string& name, const std::string& bake,
+                        const std::string& light) {
   const fs::path dir = scratch() / name;
   fs::create_directories(dir);
   for (const char* f : {"index.html", "example.js"})
@@ -87,8 +89,9 @@ const std::string kCamera = "eye=0.3,1.4,3.4;target=0,1,0;up=0,1,0;fov=45";
 /// studio light at 4 bands, written once.
 void cornell() {
   static const bool done = [] {
-    Result r = prt("-q bake 'builtin:cornell?grid=12' --mode interreflected --mode shadowed "
-                   "--bands 4 --samples 64 -o three_cornell.glb");
+    Result r =
+        prt("-q bake 'builtin:cornell?grid=12' --mode interreflected --mode shadowed "
+            "--bands 4 --samples 64 -o three_cornell.glb");
     EXPECT_EQ(r.rc, 0) << r.err;
     r = prt("-q light builtin:studio --bands 4 -o three_studio.json");
     EXPECT_EQ(r.rc, 0) << r.err;
@@ -107,7 +110,8 @@ double versusRender(const std::string& dir, const std::string& bake, const std::
                        " --tonemap clamp --background none --size 320x240" +
                        (mode.empty() ? "" : " --mode " + mode) + b + " -o three.png");
   EXPECT_EQ(r.rc, 0) << r.err;
-  const std::string q = "only&camera=" + camera + "&rotate=" + (pageRotate.empty() ? rotate : pageRotate) +
+  const std::string q = "only&camera=" + camera +
+                        "&rotate=" + (pageRotate.empty() ? rotate : pageRotate) +
                         "&exposure=" + exposure + (mode.empty() ? "" : "&mode=" + mode) +
                         (bands ? "&bands=" + std::to_string(bands) : "");
   return displayedRmse(exampleFrame(dir, q), path("three.png"));
@@ -125,8 +129,8 @@ TEST(Three, DenseVectorsRelightLikePrtRender) {
                                   mode, exposure, bands);
     EXPECT_LT(e, kMatch);
     EXPECT_LT(quantile90, kInterior);
-    std::cout << "three.js module vs prt render, " << mode << ": RMSE " << e
-              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+    std::cout << "three.js module vs prt render, " << mode << ": RMSE " << e << ", 90th percentile "
+              << quantile90 * 255 << "/255\n";
   }
   // The comparison can fail: the light turned otherwise on the page is far off.
   EXPECT_GT(versusRender(dir, "three_cornell.glb", "three_studio.json", kCamera, "0,70,0",
@@ -137,8 +141,9 @@ TEST(Three, DenseVectorsRelightLikePrtRender) {
 TEST(Three, CompressedVectorsAndGlossyMatricesRelightLikePrtRender) {
   PRT_REQUIRE_EXAMPLE();
   cornell();
-  Result r = prt("-q compress three_cornell.glb --mode interreflected --clusters 24 --pca 5 "
-                 "-o three_cpca.glb");
+  Result r =
+      prt("-q compress three_cornell.glb --mode interreflected --clusters 24 --pca 5 "
+          "-o three_cpca.glb");
   ASSERT_EQ(r.rc, 0) << r.err;
   std::string dir = examplePage("three_cpca", "three_cpca.glb", "three_studio.json");
   double e = versusRender(dir, "three_cpca.glb", "three_studio.json", kCamera, "20,-30,10",
@@ -148,8 +153,9 @@ TEST(Three, CompressedVectorsAndGlossyMatricesRelightLikePrtRender) {
   std::cout << "three.js module vs prt render, CPCA vectors: RMSE " << e << "\n";
 
   // Glossy: the lobe toward the camera's eye, from the kernels the file carries.
-  r = prt("-q bake 'builtin:sphere-plane?size=1.5&grid=40&subdiv=3' --mode shadowed --transfer "
-          "matrix --bands 4 --samples 64 --material 'phong?exponent=8&ks=0.6&kd=0.4' -o three_g.glb");
+  r = prt(
+      "-q bake 'builtin:sphere-plane?size=1.5&grid=40&subdiv=3' --mode shadowed --transfer "
+      "matrix --bands 4 --samples 64 --material 'phong?exponent=8&ks=0.6&kd=0.4' -o three_g.glb");
   ASSERT_EQ(r.rc, 0) << r.err;
   r = prt("-q compress three_g.glb --clusters 8 --pca 3 -o three_gc.glb");
   ASSERT_EQ(r.rc, 0) << r.err;
@@ -230,8 +236,9 @@ TEST(Three, PluginRefusesWhatItCannotShowNamingTheFile) {
   PRT_REQUIRE_EXAMPLE();
   cornell();
   // A dense glossy matrix: the shaders draw matrices compressed only.
-  Result r = prt("-q bake 'builtin:sphere?subdiv=2' --mode shadowed --transfer matrix --bands 3 "
-                 "--samples 16 --material 'phong?exponent=8&ks=0.5' -o three_m.glb");
+  Result r =
+      prt("-q bake 'builtin:sphere?subdiv=2' --mode shadowed --transfer matrix --bands 3 "
+          "--samples 16 --material 'phong?exponent=8&ks=0.5' -o three_m.glb");
   ASSERT_EQ(r.rc, 0) << r.err;
   std::string log;
   std::string json = runPage(examplePage("three_m", "three_m.glb", "three_studio.json"),

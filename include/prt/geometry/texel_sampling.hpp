@@ -41,7 +41,7 @@ Vec3f sampleNormal(const Mesh& mesh, const TexelSample& s);
 /// of unfilled texels around the filled ones: each ring, an unfilled texel with filled
 /// neighbours (of the 8) takes their mean and becomes filled. Every texel within Chebyshev
 /// distance `padding` of a filled one is filled afterwards; no other changes.
-void dilateTexels(std::span<float> values, int stride, std::vector<std::uint8_t>& filled,
-                  int width, int height, int padding);
+void dilateTexels(std::span<float> values, int stride, std::vector<std::uint8_t>& filled, int width,
+                  int height, int padding);
 
 }  // namespace prt
