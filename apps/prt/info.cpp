@@ -15,7 +15,6 @@
 
 #include "cli.hpp"
 #include "guard.hpp"
-#include "report.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/units.hpp"
@@ -30,12 +29,21 @@
 #include "prt/io/games202_transport.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/transfer/material.hpp"
+#include "report.hpp"
 
 namespace prt::cli {
 
 namespace {
 
 /// How a transfer is stored, in one line.
+/// "attributes  normals, uvs, …" (report.hpp's names).
+std::string attributesLine(const Mesh& m) {
+  std::string line = "attributes  ";
+  const std::vector<std::string> a = meshAttributes(m);
+  for (std::size_t i = 0; i < a.size(); ++i) line += (i ? ", " : "") + a[i];
+  return line + "\n";
+}
+
 std::string storage(const BakedTransfer& t) {
   const Transfer& x = t.transfer;
   const TransferMode mode = t.mode();
@@ -59,8 +67,7 @@ void describeMesh(const std::string& path, std::ostream& out, Json& j) {
   out << '\n';
   out << fmt::format("bounds      ({:.4g}, {:.4g}, {:.4g}) .. ({:.4g}, {:.4g}, {:.4g})\n", b.lo.x,
                      b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
-  out << fmt::format("attributes  normals{}{}\n", m.uvs.empty() ? "" : ", uvs",
-                     m.albedo.empty() ? "" : ", albedo");
+  out << attributesLine(m);
 }
 
 void describeBake(const std::string& path, std::ostream& out, Json& j) {
@@ -74,18 +81,17 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
   j["transfers"] = Json::array();
   for (const auto& t : b.transfers) j["transfers"].push_back(transferJson(t));
   out << fmt::format("{}: prtkit bake file, format version {} (written by {})\n", path,
-                           b.formatVersion, b.generator);
+                     b.formatVersion, b.generator);
   out << fmt::format("source      {}\n", m.source);
   out << fmt::format("vertices    {}\ntriangles   {}\n", m.vertexCount(), m.triangleCount());
   out << fmt::format("parts       {}:", m.parts.size());
   for (const auto& p : m.parts)
     out << fmt::format(" {} ({} v, {} t)", p.name, p.vertexCount, p.triangleCount);
   out << '\n';
-  out << fmt::format("attributes  normals{}{}\n", m.uvs.empty() ? "" : ", uvs",
-                           m.albedo.empty() ? "" : ", albedo");
+  out << attributesLine(m);
   const RowRange rows = b.rows();
   out << fmt::format("range       vertices {}..{} ({})\n", rows.first, rows.end() - 1,
-                           b.complete() ? "complete" : "partial: merge before use");
+                     b.complete() ? "complete" : "partial: merge before use");
   out << fmt::format("transfers   {}\n", b.transfers.size());
   for (const auto& t : b.transfers) {
     const BakeRecipe& s = t.recipe;
@@ -98,9 +104,8 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
           toString(s.mode), x.bands(), x.coeffs(), x.coeffs(), x.channels(), bytesText(dense),
           storage(t));
     else
-      out << fmt::format(
-          "  {}: vector (diffuse), {} bands ({} coefficients) x {} channel(s), {}\n",
-          toString(s.mode), x.bands(), x.coeffs(), x.channels(), storage(t));
+      out << fmt::format("  {}: vector (diffuse), {} bands ({} coefficients) x {} channel(s), {}\n",
+                         toString(s.mode), x.bands(), x.coeffs(), x.channels(), storage(t));
     if (x.compressed()) {
       const CpcaRecord& c = t.compression;
       out << fmt::format(
@@ -114,16 +119,16 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
           c.stats.iterations, c.stats.seconds);
     }
     out << fmt::format("    material {}{}\n", s.material.spec(),
-                             s.glossyBounces(x.layout()) ? " (the bounces follow its lobe)" : "");
+                       s.glossyBounces(x.layout()) ? " (the bounces follow its lobe)" : "");
     out << fmt::format("      ({})\n", describe(s.material.lobe));
-    out << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples,
-                             s.bounces, s.seed, toString(s.sampling));
+    out << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples, s.bounces,
+                       s.seed, toString(s.sampling));
     if (s.material.diffuse)
       out << fmt::format(", albedo {},{},{}", s.material.diffuse->x, s.material.diffuse->y,
-                               s.material.diffuse->z);
+                         s.material.diffuse->z);
     out << '\n';
-    out << fmt::format("    rays {}, {:.3g} Mrays/s, {:.3f} s total ({:.3f} s direct",
-                             st.rays, st.raysPerSecond / 1e6, st.secondsTotal, st.secondsDirect);
+    out << fmt::format("    rays {}, {:.3g} Mrays/s, {:.3f} s total ({:.3f} s direct", st.rays,
+                       st.raysPerSecond / 1e6, st.secondsTotal, st.secondsDirect);
     for (std::size_t k = 0; k < st.secondsBounce.size(); ++k)
       out << fmt::format(", bounce {} {:.3f} s", k + 1, st.secondsBounce[k]);
     out << fmt::format("), {} threads\n", st.threads);
@@ -147,8 +152,7 @@ void describeTransportTxt(const std::string& path, std::ostream& out, Json& j) {
       "layout      {} ({} lines{})\n", t.layout == Games202Layout::Faces ? "faces" : "vertices",
       t.rowCount,
       t.layout == Games202Layout::Faces ? fmt::format(", {} triangles", t.rowCount / 3) : "");
-  out << fmt::format("bands       {} ({} coefficients per line)\n", t.bands,
-                           t.bands * t.bands);
+  out << fmt::format("bands       {} ({} coefficients per line)\n", t.bands, t.bands * t.bands);
   out << "first line ";
   for (int i = 0; i < t.bands * t.bands; ++i) out << fmt::format(" {:.6g}", t.rows[i]);
   out << '\n';
@@ -166,8 +170,8 @@ void describeSh(const sh::RgbSh& c, std::ostream& out) {
   if (s.hasDirection) {
     const Vec3d& d = s.dominantDirection;
     out << fmt::format(
-        "dominant    direction {:.3f} {:.3f} {:.3f} (from band 1; elevation {:.1f} degrees)\n",
-        d.x, d.y, d.z, std::asin(std::clamp(d.y, -1.0, 1.0)) * 180 / kPi);
+        "dominant    direction {:.3f} {:.3f} {:.3f} (from band 1; elevation {:.1f} degrees)\n", d.x,
+        d.y, d.z, std::asin(std::clamp(d.y, -1.0, 1.0)) * 180 / kPi);
   }
 }
 
@@ -181,8 +185,7 @@ void describeLightJson(const std::string& path, std::ostream& out, Json& j) {
   j["light"] = shLightJson(lf.coefficients);
   out << fmt::format("{}: prtkit SH light (JSON)\n", path);
   out << fmt::format("source      {} ({}), window {}, rotation {},{},{} degrees\n", lf.source,
-                           lf.layout, lf.window, lf.rotationDeg[0], lf.rotationDeg[1],
-                           lf.rotationDeg[2]);
+                     lf.layout, lf.window, lf.rotationDeg[0], lf.rotationDeg[1], lf.rotationDeg[2]);
   describeSh(lf.coefficients, out);
 }
 
@@ -199,8 +202,8 @@ void describeEnvironment(const std::string& spec, std::ostream& out, Json& j) {
   out << fmt::format("{}: environment, layout {}\n", spec, e.layout);
   const auto& imgs = e.env.images();
   if (!imgs.empty())
-    out << fmt::format("size        {} image(s) of {}x{}, {} texels\n", imgs.size(),
-                             imgs[0].width, imgs[0].height, e.env.texelCount());
+    out << fmt::format("size        {} image(s) of {}x{}, {} texels\n", imgs.size(), imgs[0].width,
+                       imgs[0].height, e.env.texelCount());
   double total = 0, lumMax = -1, lumMin = std::numeric_limits<double>::infinity();
   Vec3d mean(0.0), brightest(0.0, 1.0, 0.0);
   for (std::size_t k = 0; k < e.env.texelCount(); ++k) {
@@ -214,15 +217,14 @@ void describeEnvironment(const std::string& spec, std::ostream& out, Json& j) {
   }
   mean = mean * (1.0 / (4 * kPi));
   out << fmt::format("solid angle {:.6f} x 4 pi\n", total / (4 * kPi));
-  out << fmt::format(
-      "radiance    mean {:.6g} {:.6g} {:.6g}; luminance min {:.4g}, max {:.4g}\n", mean.x, mean.y,
-      mean.z, lumMin, lumMax);
+  out << fmt::format("radiance    mean {:.6g} {:.6g} {:.6g}; luminance min {:.4g}, max {:.4g}\n",
+                     mean.x, mean.y, mean.z, lumMin, lumMax);
   out << fmt::format("brightest   direction {:.3f} {:.3f} {:.3f}\n", brightest.x, brightest.y,
-                           brightest.z);
+                     brightest.z);
   for (std::size_t k = 0; k < e.files.size(); ++k)
     if (e.stats[k].nonFinitePixels + e.stats[k].negativePixels > 0)
       out << fmt::format("repaired    {}: {} non-finite and {} negative pixels set to 0\n",
-                               e.files[k], e.stats[k].nonFinitePixels, e.stats[k].negativePixels);
+                         e.files[k], e.stats[k].nonFinitePixels, e.stats[k].negativePixels);
   out << "as 3-band SH:\n";
   const sh::RgbSh sh3 = envmap::projectEnvironment(e.env, 3);
   describeSh(sh3, out);
@@ -299,10 +301,10 @@ void describe(const std::string& path, std::ostream& out, Json& j) {
     // builtin:NAME is a scene or an environment by its name (the two sets do not meet).
     const auto sceneNames = builtinSceneNames();
     const std::string builtinName =
-        isBuiltinScene(path) ? path.substr(8, path.find('?') == std::string::npos
-                                                  ? std::string::npos
-                                                  : path.find('?') - 8)
-                             : "";
+        isBuiltinScene(path)
+            ? path.substr(
+                  8, path.find('?') == std::string::npos ? std::string::npos : path.find('?') - 8)
+            : "";
     if (std::find(sceneNames.begin(), sceneNames.end(), builtinName) != sceneNames.end() ||
         (ext != "glb" && std::find(meshExts.begin(), meshExts.end(), ext) != meshExts.end())) {
       describeMesh(path, out, j);

@@ -50,13 +50,20 @@ void addJsonOption(CLI::App* cmd, std::string& path) {
                   "docs/formats-report.md)");
 }
 
+std::vector<std::string> meshAttributes(const Mesh& m) {
+  std::vector<std::string> a = {"normals"};
+  if (!m.uvs.empty()) a.push_back("uvs");
+  if (!m.lightmapUvs.empty()) a.push_back("lightmapUvs");
+  if (!m.albedo.empty()) a.push_back("albedo");
+  return a;
+}
+
 Json meshJson(const Mesh& m) {
   Json parts = Json::array();
   for (const MeshPart& p : m.parts)
-    parts.push_back({{"name", p.name}, {"vertices", p.vertexCount}, {"triangles", p.triangleCount}});
-  Json attributes = Json::array({"normals"});
-  if (!m.uvs.empty()) attributes.push_back("uvs");
-  if (!m.albedo.empty()) attributes.push_back("albedo");
+    parts.push_back(
+        {{"name", p.name}, {"vertices", p.vertexCount}, {"triangles", p.triangleCount}});
+  const Json attributes = meshAttributes(m);
   const Bounds b = computeBounds(m);
   return {{"source", m.source},
           {"vertices", m.vertexCount()},
@@ -138,8 +145,7 @@ ShSummary summarizeSh(const sh::RgbSh& c) {
   // With Y1,-1 = −c y, Y1,0 = c z, Y1,1 = −c x (docs/conventions.md), the linear band of a lobe
   // along d is ∝ (−d_y, d_z, −d_x).
   if (c.bands >= 2) {
-    const Vec3d d(-image::luminance(c.c[3]), -image::luminance(c.c[1]),
-                  image::luminance(c.c[2]));
+    const Vec3d d(-image::luminance(c.c[3]), -image::luminance(c.c[1]), image::luminance(c.c[2]));
     const double n = length(d);
     if (n > 0) {
       s.hasDirection = true;
@@ -157,10 +163,9 @@ Json shLightJson(const sh::RgbSh& c) {
           {"coefficients", std::move(rows)},
           {"meanRadiance", {s.meanRadiance.x, s.meanRadiance.y, s.meanRadiance.z}},
           {"bandEnergy", s.bandEnergy},
-          {"dominantDirection",
-           s.hasDirection ? Json{s.dominantDirection.x, s.dominantDirection.y,
-                                 s.dominantDirection.z}
-                          : Json(nullptr)}};
+          {"dominantDirection", s.hasDirection ? Json{s.dominantDirection.x, s.dominantDirection.y,
+                                                      s.dominantDirection.z}
+                                               : Json(nullptr)}};
 }
 
 }  // namespace prt::cli

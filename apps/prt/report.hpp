@@ -55,6 +55,9 @@ void addJsonOption(CLI::App* cmd, std::string& path);
 
 /// What a scene is: {"source", "vertices", "triangles", "parts": [{"name", "vertices",
 /// "triangles"}], "attributes": ["normals", "uvs", "albedo"]}.
+/// The mesh's attributes besides positions, as reports and prt info name them: normals, uvs,
+/// lightmapUvs, albedo.
+std::vector<std::string> meshAttributes(const Mesh& m);
 Json meshJson(const Mesh& mesh);
 /// One transfer of a bake: {"mode", "layout", "bands", "coefficients", "channels", "rows":
 /// {"first", "end"}, "bytes", "representation": "dense"|"cpca", "compression" (CPCA only),

@@ -59,6 +59,13 @@ py::object meshUvs(py::handle self) {
                    py::dtype::of<float>());
 }
 
+py::object meshLightmapUvs(py::handle self) {
+  const prt::Mesh& m = self.cast<const PyMesh&>().mesh();
+  if (m.lightmapUvs.empty()) return py::none();
+  return meshArray(self, m.lightmapUvs.data(), {static_cast<py::ssize_t>(m.lightmapUvs.size()), 2},
+                   py::dtype::of<float>());
+}
+
 py::object meshAlbedo(py::handle self) {
   const prt::Mesh& m = self.cast<const PyMesh&>().mesh();
   if (m.albedo.empty()) return py::none();
@@ -309,6 +316,9 @@ a prtkit.Mesh rather than, say, a trimesh object to build it once.)")
           },
           "(T, 3) uint32 vertex indices per triangle (read-only view).")
       .def_property_readonly("uvs", &meshUvs, "(N, 2) float32 texture coordinates, or None.")
+      .def_property_readonly("lightmap_uvs", &meshLightmapUvs,
+                             "(N, 2) float32 lightmap coordinates (glTF TEXCOORD_1; the builtin "
+                             "plane's and Cornell box's packed charts), or None.")
       .def_property_readonly("albedo", &meshAlbedo,
                              "(N, 3) float32 linear albedo per vertex, or None (uniform white).")
       .def_property_readonly("vertex_count",

@@ -11,6 +11,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/limits.hpp"
 #include "prt/core/spec.hpp"
+#include "prt/geometry/chart_packing.hpp"
 
 namespace prt {
 
@@ -29,9 +30,38 @@ void append(Mesh& scene, const Mesh& part, const std::string& name) {
   scene.positions.insert(scene.positions.end(), part.positions.begin(), part.positions.end());
   scene.normals.insert(scene.normals.end(), part.normals.begin(), part.normals.end());
   scene.albedo.insert(scene.albedo.end(), part.albedo.begin(), part.albedo.end());
+  scene.lightmapUvs.insert(scene.lightmapUvs.end(), part.lightmapUvs.begin(),
+                           part.lightmapUvs.end());
   for (const auto& t : part.triangles)
     scene.triangles.push_back({t[0] + p.firstVertex, t[1] + p.firstVertex, t[2] + p.firstVertex});
   scene.parts.push_back(p);
+}
+
+/// The builtin scenes' lightmap UVs: every grid (a plane, a wall, a block's face) is one chart,
+/// its vertices' lightmapUvs holding their place in it in world units (grid() writes them);
+/// the charts are packed into [0, 1]² at one texel density with a gutter of 4 texels at 512²
+/// (2 at 256²). `charts` lists each chart's vertex count, in vertex order.
+void packLightmap(Mesh& scene, const std::vector<std::uint32_t>& charts) {
+  constexpr float kGutter = 4.0f / 512.0f;
+  std::vector<Vec2f> sizes;
+  std::uint32_t first = 0;
+  for (std::uint32_t count : charts) {
+    Vec2f size{0, 0};
+    for (std::uint32_t v = first; v < first + count; ++v)
+      size = {std::max(size.x, scene.lightmapUvs[v].x), std::max(size.y, scene.lightmapUvs[v].y)};
+    sizes.push_back(size);
+    first += count;
+  }
+  PRT_CHECK(first == scene.lightmapUvs.size(), "builtin: the charts do not cover the vertices");
+  const ChartPacking p = packCharts(sizes, kGutter);
+  first = 0;
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    for (std::uint32_t v = first; v < first + charts[c]; ++v) {
+      Vec2f& t = scene.lightmapUvs[v];
+      t = {p.offsets[c].x + p.scale * t.x, p.offsets[c].y + p.scale * t.y};
+    }
+    first += charts[c];
+  }
 }
 
 /// Icosphere: the icosahedron with each triangle split into 4 `subdiv` times, vertices pushed
@@ -82,11 +112,14 @@ Mesh icosphere(int subdiv, float radius, Vec3f centre, Rgb albedo) {
 Mesh grid(Vec3f origin, Vec3f du, Vec3f dv, int n, Rgb albedo) {
   Mesh m;
   const Vec3f normal = normalize(cross(du, dv));
+  const float lu = length(du), lv = length(dv);
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       m.positions.push_back(origin + du * (float(i) / float(n)) + dv * (float(j) / float(n)));
       m.normals.push_back(normal);
       m.albedo.push_back(albedo);
+      m.lightmapUvs.push_back(
+          {lu * float(i) / float(n), lv * float(j) / float(n)});  // packLightmap
     }
   const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
   for (int j = 0; j < n; ++j)
@@ -127,6 +160,7 @@ Mesh block(float hx, float hy, float hz, float angle, float cx, float cz, int n,
     out.positions.insert(out.positions.end(), g.positions.begin(), g.positions.end());
     out.normals.insert(out.normals.end(), g.normals.begin(), g.normals.end());
     out.albedo.insert(out.albedo.end(), g.albedo.begin(), g.albedo.end());
+    out.lightmapUvs.insert(out.lightmapUvs.end(), g.lightmapUvs.begin(), g.lightmapUvs.end());
     for (const auto& t : g.triangles)
       out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   }
@@ -179,6 +213,9 @@ Mesh makeSpherePlane(Spec& p, const std::string& full) {
   // du = +X, dv = -Z so that cross(du, dv) = +Y.
   append(scene, grid({-s, 0, s}, {2 * s, 0, 0}, {0, 0, -2 * s}, n, Rgb(float(a))), "plane");
   append(scene, icosphere(subdiv, float(r), {0, float(h), 0}, Rgb(float(a))), "sphere");
+  // No lightmap UVs: the icosphere shares every vertex across the sphere (no seams to cut
+  // charts along).
+  scene.lightmapUvs.clear();
   return scene;
 }
 
@@ -192,6 +229,7 @@ Mesh makePlane(Spec& p, const std::string& full) {
   Mesh scene;
   const float s = float(size), h = float(y);
   append(scene, grid({-s, h, s}, {2 * s, 0, 0}, {0, 0, -2 * s}, n, Rgb(float(a))), "plane");
+  packLightmap(scene, {std::uint32_t(gridSize(n).vertices)});
   return scene;
 }
 
@@ -210,6 +248,9 @@ Mesh makeCornell(Spec& p, const std::string& full) {
   const int nb = std::max(2, n / 5);
   append(scene, block(0.3f, 1.2f, 0.3f, 0.3f, -0.35f, -0.35f, nb, white), "tall-block");
   append(scene, block(0.3f, 0.6f, 0.3f, -0.3f, 0.4f, 0.35f, nb, white), "short-block");
+  std::vector<std::uint32_t> charts(5, std::uint32_t(gridSize(n).vertices));  // the walls
+  charts.insert(charts.end(), 12, std::uint32_t(gridSize(nb).vertices));      // the faces
+  packLightmap(scene, charts);
   return scene;
 }
 

@@ -70,6 +70,9 @@ void checkMeshValues(const Mesh& m, const std::string& label) {
   for (std::size_t v = 0; v < m.uvs.size(); ++v)
     if (!std::isfinite(m.uvs[v].x) || !std::isfinite(m.uvs[v].y))
       throw Error(label, "vertex " + std::to_string(v) + " has a non-finite texture coordinate");
+  for (std::size_t v = 0; v < m.lightmapUvs.size(); ++v)
+    if (!std::isfinite(m.lightmapUvs[v].x) || !std::isfinite(m.lightmapUvs[v].y))
+      throw Error(label, "vertex " + std::to_string(v) + " has a non-finite lightmap coordinate");
   for (std::size_t v = 0; v < m.albedo.size(); ++v) {
     const Rgb& a = m.albedo[v];
     for (int k = 0; k < 3; ++k)
@@ -219,6 +222,7 @@ void finishMesh(Mesh& m, const std::string& label, LoadReport& report) {
     for (int k = 0; k < 3; ++k)
       if (a[k] < 0) a[k] = 0;
   if (!m.uvs.empty() && m.uvs.size() != m.positions.size()) m.uvs.clear();
+  if (!m.lightmapUvs.empty() && m.lightmapUvs.size() != m.positions.size()) m.lightmapUvs.clear();
   if (m.parts.empty()) m.parts.push_back(MeshPart{stem(label), 0, 0, 0, 0});
   if (m.parts.size() == 1) {
     m.parts[0].vertexCount = static_cast<std::uint32_t>(m.positions.size());
@@ -333,6 +337,9 @@ void appendMesh(Mesh& scene, const Mesh& part) {
   const bool wantAlbedo = !scene.albedo.empty() || !part.albedo.empty();
   const bool wantUvs = !scene.uvs.empty() || !part.uvs.empty();
   if (wantUvs && scene.uvs.empty()) scene.uvs.assign(scene.positions.size(), Vec2f{});
+  // Lightmap UVs survive for a scene of one file only: each file packs its own [0, 1]², so a
+  // second file's charts would overlap the first's (prt unwrap makes one atlas for them all).
+  const bool keepLightmap = scene.positions.empty() && !part.lightmapUvs.empty();
   scene.positions.insert(scene.positions.end(), part.positions.begin(), part.positions.end());
   scene.normals.insert(scene.normals.end(), part.normals.begin(), part.normals.end());
   if (wantAlbedo) {
@@ -347,6 +354,10 @@ void appendMesh(Mesh& scene, const Mesh& part) {
     else
       scene.uvs.insert(scene.uvs.end(), part.uvs.begin(), part.uvs.end());
   }
+  if (keepLightmap)
+    scene.lightmapUvs = part.lightmapUvs;
+  else
+    scene.lightmapUvs.clear();
   for (const auto& t : part.triangles) scene.triangles.push_back({t[0] + v0, t[1] + v0, t[2] + v0});
   for (MeshPart p : part.parts) {
     p.firstVertex += v0;

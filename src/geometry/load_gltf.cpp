@@ -300,6 +300,7 @@ class GltfMeshBuilder {
   Reader rd_;
   Mesh mesh_;
   bool anyAlbedo_ = false, anyNormals_ = false;
+  bool noLightmap_ = false;  // some primitive lacks TEXCOORD_1: the mesh has no lightmap set
   std::vector<Rgb> albedo_;
 };
 
@@ -376,7 +377,7 @@ void GltfMeshBuilder::addPrimitive(const tinygltf::Mesh& gm, std::size_t pi, con
   const std::vector<float> pos = rd_.floats(posAcc, 3, "POSITION");
   const std::size_t n = pos.size() / 3;
   const std::uint32_t base = std::uint32_t(mesh_.positions.size());
-  std::vector<float> nrm, col, uv0;
+  std::vector<float> nrm, col, uv0, uv1;
   if (attr("NORMAL") >= 0) {
     nrm = rd_.floats(attr("NORMAL"), 3, "NORMAL");
     anyNormals_ = true;
@@ -385,9 +386,11 @@ void GltfMeshBuilder::addPrimitive(const tinygltf::Mesh& gm, std::size_t pi, con
   if (attr("COLOR_0") >= 0) col = rd_.colours(attr("COLOR_0"), colComps);
   const Surface surface = surfaceOf(prim);
   if (attr("TEXCOORD_0") >= 0) uv0 = rd_.floats(attr("TEXCOORD_0"), 2, "TEXCOORD_0");
+  if (attr("TEXCOORD_1") >= 0) uv1 = rd_.floats(attr("TEXCOORD_1"), 2, "TEXCOORD_1");
   if ((!nrm.empty() && nrm.size() != pos.size()) ||
       (!surface.uv.empty() && surface.uv.size() != 2 * n) ||
-      (!uv0.empty() && uv0.size() != 2 * n) || (!col.empty() && col.size() != n * colComps))
+      (!uv0.empty() && uv0.size() != 2 * n) || (!uv1.empty() && uv1.size() != 2 * n) ||
+      (!col.empty() && col.size() != n * colComps))
     rd_.fail("mesh '" + gm.name + "' primitive " + std::to_string(pi) +
              ": attributes have different counts");
   if ((surface.hasMaterial || !col.empty()) && !anyAlbedo_) {
@@ -396,6 +399,11 @@ void GltfMeshBuilder::addPrimitive(const tinygltf::Mesh& gm, std::size_t pi, con
   }
   if (!uv0.empty() && mesh_.uvs.size() < mesh_.positions.size())
     mesh_.uvs.resize(mesh_.positions.size());
+  // TEXCOORD_1, the lightmap set engines read: kept only when every primitive has one.
+  if (uv1.empty() || (!mesh_.positions.empty() && mesh_.lightmapUvs.empty())) {
+    mesh_.lightmapUvs.clear();
+    noLightmap_ = true;
+  }
   const Mat3d nm = normalMatrix(world.upper());
   for (std::size_t i = 0; i < n; ++i) {
     mesh_.positions.push_back(Vec3f(world.point({pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]})));
@@ -410,6 +418,7 @@ void GltfMeshBuilder::addPrimitive(const tinygltf::Mesh& gm, std::size_t pi, con
       mesh_.uvs.push_back({uv0[2 * i], uv0[2 * i + 1]});
     else if (!mesh_.uvs.empty())
       mesh_.uvs.push_back({});
+    if (!noLightmap_) mesh_.lightmapUvs.push_back({uv1[2 * i], uv1[2 * i + 1]});
     if (anyAlbedo_) {
       Rgb a = surface.factor;
       if (surface.texture)

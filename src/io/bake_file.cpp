@@ -110,6 +110,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
               {"vertexCount", mesh.vertexCount()},
               {"triangleCount", mesh.triangleCount()},
               {"vertexRange", {{"first", rows.first}, {"count", rows.count}}}};
+  if (const int set = io::lightmapTexCoord(mesh); set >= 0) prt["lightmapTexCoord"] = set;
   if (!transfers.empty()) prt["transfers"] = std::move(transfers);
   gltf["extensionsUsed"] = json::array({kBakeExtension});
   gltf["extensions"] = {{kBakeExtension, std::move(prt)}};
@@ -193,7 +194,10 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
   if (gltf.contains("images") && gltf["images"].is_array() && !gltf["images"].empty())
     r.fail("holds images; a bake file holds none (it is not a prtkit bake, or was edited)");
   const gltf::AccessorReader ar(name, gltf::documentOf(gltf, chunks.bin, name));
-  bake.mesh = io::decodeMesh(gltf, ar, V, T, r);
+  const int lightmap = r.has(prt, "lightmapTexCoord")
+                           ? static_cast<int>(r.integer(prt, "lightmapTexCoord", where, 0, 1))
+                           : -1;
+  bake.mesh = io::decodeMesh(gltf, ar, V, T, lightmap, r);
   checkMeshExtent(bake.mesh, name);  // named as given here, not as the bake's recorded source
   bake.mesh.source = text(prt, "source") ? *text(prt, "source") : name;
 

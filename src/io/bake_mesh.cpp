@@ -39,6 +39,8 @@ void checkMeshForWriting(const Mesh& m, const std::vector<MeshPart>& parts) {
   if (!m.albedo.empty() && m.albedo.size() != V)
     throw Error("bake file: mesh albedo is not per vertex");
   if (!m.uvs.empty() && m.uvs.size() != V) throw Error("bake file: mesh uvs are not per vertex");
+  if (!m.lightmapUvs.empty() && m.lightmapUvs.size() != V)
+    throw Error("bake file: mesh lightmap uvs are not per vertex");
   std::uint32_t nextV = 0, nextT = 0;
   for (const MeshPart& p : parts) {
     if (p.firstVertex != nextV || p.firstTriangle != nextT || p.vertexCount == 0 ||
@@ -67,6 +69,9 @@ void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
   const int nrmView = bin.view(mesh.normals.data(), V * 12, 12, kArrayBuffer, "normals");
   const int uvView =
       mesh.uvs.empty() ? -1 : bin.view(mesh.uvs.data(), V * 8, 8, kArrayBuffer, "texcoords");
+  const int lightmapView = mesh.lightmapUvs.empty() ? -1
+                                                    : bin.view(mesh.lightmapUvs.data(), V * 8, 8,
+                                                               kArrayBuffer, "lightmap texcoords");
   const int colView =
       mesh.albedo.empty() ? -1 : bin.view(mesh.albedo.data(), V * 12, 12, kArrayBuffer, "albedo");
   // Indices, local to each part (each part's attributes start at its first vertex), made while
@@ -105,6 +110,9 @@ void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
     attrs["NORMAL"] = bin.accessor(nrmView, p.firstVertex * 12u, n, "VEC3", kFloat);
     if (uvView >= 0)
       attrs["TEXCOORD_0"] = bin.accessor(uvView, p.firstVertex * 8u, n, "VEC2", kFloat);
+    if (lightmapView >= 0)
+      attrs["TEXCOORD_" + std::to_string(lightmapTexCoord(mesh))] =
+          bin.accessor(lightmapView, p.firstVertex * 8u, n, "VEC2", kFloat);
     if (colView >= 0)
       attrs["COLOR_0"] = bin.accessor(colView, p.firstVertex * 12u, n, "VEC3", kFloat);
     for (const auto& [name, view] : attributes)
@@ -126,9 +134,16 @@ void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
   gltf["scene"] = 0;
 }
 
+int lightmapTexCoord(const Mesh& mesh) {
+  return mesh.lightmapUvs.empty() ? -1 : mesh.uvs.empty() ? 0 : 1;
+}
+
 Mesh decodeMesh(const json& gltf, const gltf::AccessorReader& ar, std::size_t V, std::size_t T,
-                const schema::Reader& r) {
+                int lightmap, const schema::Reader& r) {
   Mesh mesh;
+  // The texture set is the TEXCOORD_0 that is not the lightmap's.
+  const std::string textureSet = lightmap == 0 ? "" : "TEXCOORD_0";
+  const std::string lightmapSet = lightmap < 0 ? "" : "TEXCOORD_" + std::to_string(lightmap);
   if (!gltf.contains("meshes") || !gltf["meshes"].is_array() || gltf["meshes"].empty())
     r.fail("holds no mesh");
   // The parts: glTF meshes in order, one triangle primitive each, concatenated.
@@ -175,7 +190,8 @@ Mesh decodeMesh(const json& gltf, const gltf::AccessorReader& ar, std::size_t V,
       mesh.positions.emplace_back(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
       mesh.normals.emplace_back(nrm[3 * v], nrm[3 * v + 1], nrm[3 * v + 2]);
     }
-    const bool hasUv = attr("TEXCOORD_0") >= 0, hasColor = attr("COLOR_0") >= 0;
+    const bool hasUv = !textureSet.empty() && attr(textureSet.c_str()) >= 0,
+               hasColor = attr("COLOR_0") >= 0;
     if (mi > 0 && (hasUv != anyUv || hasColor != anyColor))
       r.fail(what + " differs from the first part in TEXCOORD_0/COLOR_0");
     anyUv = hasUv;
@@ -183,6 +199,14 @@ Mesh decodeMesh(const json& gltf, const gltf::AccessorReader& ar, std::size_t V,
     if (hasUv) {
       const auto uv = ar.exact<float>(attr("TEXCOORD_0"), 2, kFloat, n, what + " TEXCOORD_0");
       for (std::size_t v = 0; v < n; ++v) mesh.uvs.push_back({uv[2 * v], uv[2 * v + 1]});
+    }
+    if (!lightmapSet.empty()) {
+      if (attr(lightmapSet.c_str()) < 0)
+        r.fail(what + " has no " + lightmapSet + " (lightmapTexCoord names it)");
+      const auto uv =
+          ar.exact<float>(attr(lightmapSet.c_str()), 2, kFloat, n, what + " " + lightmapSet);
+      requireFinite(uv, what + " " + lightmapSet, r);
+      for (std::size_t v = 0; v < n; ++v) mesh.lightmapUvs.push_back({uv[2 * v], uv[2 * v + 1]});
     }
     if (hasColor) {
       const auto c = ar.exact<float>(attr("COLOR_0"), 3, kFloat, n, what + " COLOR_0");

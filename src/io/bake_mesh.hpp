@@ -1,6 +1,7 @@
 #pragma once
 // The mesh in a bake file: one glTF mesh + node per MeshPart, one triangle primitive each
-// (POSITION, NORMAL, TEXCOORD_0, COLOR_0 = linear albedo, uint32 indices local to the part),
+// (POSITION, NORMAL, TEXCOORD_0 and TEXCOORD_1 (texture and lightmap sets, lightmapTexCoord),
+// COLOR_0 = linear albedo, uint32 indices local to the part),
 // all parts viewing one shared vertex buffer in the scene's global vertex order, so any glTF
 // viewer opens the file as the scene. Private to src/io.
 
@@ -32,8 +33,15 @@ void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
                 const std::vector<std::pair<std::string, int>>& attributes, const Rgb* baseColour,
                 glb::BinaryChunk& bin, nlohmann::json& gltf);
 
-/// Reads the mesh of a bake file that declares V vertices and T triangles.
+/// The glTF set that holds the mesh's lightmap UVs (Mesh::lightmapUvs): TEXCOORD_1 beside a
+/// texture set, TEXCOORD_0 when it is the only one (glTF numbers sets from 0); −1 without.
+/// The bake's object records it as "lightmapTexCoord".
+int lightmapTexCoord(const Mesh& mesh);
+
+/// Reads the mesh of a bake file that declares V vertices and T triangles; TEXCOORD_`lightmap`
+/// (−1: none) is its lightmap set, the other TEXCOORD_0 its texture set.
 Mesh decodeMesh(const nlohmann::json& gltf, const gltf::AccessorReader& accessors,
-                std::size_t vertices, std::size_t triangles, const schema::Reader& r);
+                std::size_t vertices, std::size_t triangles, int lightmap,
+                const schema::Reader& r);
 
 }  // namespace prt::io

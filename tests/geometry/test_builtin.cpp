@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 
 #include "fixtures.hpp"
@@ -11,6 +12,7 @@
 #include "prt/geometry/builtin.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/geometry/normals.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 
 namespace prt {
 namespace {
@@ -179,6 +181,41 @@ TEST(Scene, MergesFilesAndBuiltinsIntoParts) {
   EXPECT_EQ(s.source, "builtin:sphere?subdiv=1+" + obj);
   expectValid(s);
   EXPECT_THROW(loadScene({}), Error);
+}
+
+}  // namespace
+}  // namespace prt
+
+namespace prt {
+namespace {
+
+// The builtin scenes' lightmap UVs (issue 18): the plane and the Cornell box have one chart per
+// grid (a wall, a block's face) packed into [0, 1]² at one texel density, valid lightmaps at
+// any resolution from 64² (no texel centre in two charts); the sphere scenes have none (the
+// icosphere shares its vertices: no seams).
+TEST(BuiltinScenes, PlaneAndCornellHaveLightmapUvsAtOneDensity) {
+  for (const char* name : {"builtin:plane?grid=8", "builtin:cornell?grid=10", "builtin:cornell"}) {
+    SCOPED_TRACE(name);
+    const Mesh m = builtinScene(name);
+    ASSERT_EQ(m.lightmapUvs.size(), m.vertexCount());
+    EXPECT_TRUE(m.uvs.empty());
+    for (int res : {64, 256, 512}) EXPECT_NO_THROW(checkLightmapUvs(m, m.lightmapUvs, res, res, "lightmap"));
+    // Texel density: UV area over world area, the same for every triangle.
+    double lo = 1e30, hi = 0, uvArea = 0;
+    for (const auto& t : m.triangles) {
+      const Vec2f a = m.lightmapUvs[t[0]], b = m.lightmapUvs[t[1]], c = m.lightmapUvs[t[2]];
+      const double uv = 0.5 * std::abs(double(b.x - a.x) * (c.y - a.y) - double(b.y - a.y) * (c.x - a.x));
+      const double world = 0.5 * length(Vec3d(cross(m.positions[t[1]] - m.positions[t[0]],
+                                                    m.positions[t[2]] - m.positions[t[0]])));
+      lo = std::min(lo, uv / world);
+      hi = std::max(hi, uv / world);
+      uvArea += uv;
+    }
+    EXPECT_LT(hi / lo, 1.001) << "texel density varies";
+    EXPECT_GT(uvArea, 0.35) << "the charts use too little of the lightmap";
+  }
+  EXPECT_TRUE(builtinScene("builtin:sphere?subdiv=1").lightmapUvs.empty());
+  EXPECT_TRUE(builtinScene("builtin:sphere-plane?grid=4&subdiv=1").lightmapUvs.empty());
 }
 
 }  // namespace

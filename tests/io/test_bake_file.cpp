@@ -16,6 +16,7 @@
 #include "common/scratch.hpp"
 #include "prt/compress/cpca.hpp"
 #include "prt/core/error.hpp"
+#include "prt/geometry/load.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/bake_merge.hpp"
 
@@ -817,6 +818,56 @@ TEST(BakeFile, MatrixTransfersCarryTheirMaterialsKernels) {
       EXPECT_NEAR(r["diffuse"][l].get<double>(), diffuse[l], 1e-12) << l;
       EXPECT_NEAR(r["lobe"][l].get<double>(), i == n - 2 ? phong[l] : 0.0, 1e-6) << l;
     }
+  }
+}
+
+}  // namespace
+}  // namespace prt
+
+namespace prt {
+namespace {
+
+// Lightmap UVs travel with the mesh (issue 18): the only UV set goes as TEXCOORD_0, beside a
+// texture set as TEXCOORD_1, and the bake's object names which (lightmapTexCoord); both read
+// back exactly, and a glTF reader sees TEXCOORD_1 as the lightmap set.
+TEST(BakeFile, LightmapUvsRoundTripInTheirSet) {
+  BakeFile b = sampleBake();
+  b.mesh.uvs.clear();
+  const std::size_t V = b.mesh.vertexCount();
+  for (std::size_t v = 0; v < V; ++v) b.mesh.lightmapUvs.push_back({float(v) / V, 0.5f});
+  std::string bytes = encodeBake(b);
+  nlohmann::json j = splitGlb(bytes).json;
+  EXPECT_EQ(prtObject(j)["lightmapTexCoord"], 0);
+  EXPECT_TRUE(j["meshes"][0]["primitives"][0]["attributes"].contains("TEXCOORD_0"));
+  EXPECT_FALSE(j["meshes"][0]["primitives"][0]["attributes"].contains("TEXCOORD_1"));
+  BakeFile r = decodeBake(asBytes(bytes), "lm.glb");
+  EXPECT_TRUE(r.mesh.uvs.empty());
+  ASSERT_EQ(r.mesh.lightmapUvs.size(), V);
+  for (std::size_t v = 0; v < V; ++v) EXPECT_EQ(r.mesh.lightmapUvs[v].x, b.mesh.lightmapUvs[v].x);
+
+  for (std::size_t v = 0; v < V; ++v) b.mesh.uvs.push_back({0.25f, float(v)});
+  bytes = encodeBake(b);
+  j = splitGlb(bytes).json;
+  EXPECT_EQ(prtObject(j)["lightmapTexCoord"], 1);
+  r = decodeBake(asBytes(bytes), "lm2.glb");
+  ASSERT_EQ(r.mesh.uvs.size(), V);
+  ASSERT_EQ(r.mesh.lightmapUvs.size(), V);
+  for (std::size_t v = 0; v < V; ++v) {
+    EXPECT_EQ(r.mesh.uvs[v].y, float(v));
+    EXPECT_EQ(r.mesh.lightmapUvs[v].x, b.mesh.lightmapUvs[v].x);
+  }
+  const testing::ScratchDir dir("lightmap");
+  const Mesh loaded = loadMesh(dir.write("lm2.glb", bytes));
+  ASSERT_EQ(loaded.lightmapUvs.size(), V);
+  EXPECT_EQ(loaded.lightmapUvs[V - 1].x, b.mesh.lightmapUvs[V - 1].x);
+  // A lightmapTexCoord naming a set the mesh lacks is refused by name.
+  prtObject(j)["lightmapTexCoord"] = 1;
+  j["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_1");
+  try {
+    decodeBake(asBytes(withJson(bytes, j)), "bad.glb");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("TEXCOORD_1"), std::string::npos) << e.what();
   }
 }
 

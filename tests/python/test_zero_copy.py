@@ -67,6 +67,15 @@ def test_mesh_arrays_are_read_only_views(scene):
     assert scene.faces.dtype == np.uint32 and scene.faces.base is scene
 
 
+def test_lightmap_uvs_are_a_view_of_the_packed_charts():
+    box = prtkit.load_mesh("builtin:cornell?grid=4")
+    uv = box.lightmap_uvs
+    assert uv is not None and uv.shape == (len(box.vertices), 2) and uv.base is box
+    assert not uv.flags.writeable and uv.min() > 0 and uv.max() < 1  # inside, with a gutter
+    assert box.uvs is None
+    assert prtkit.load_mesh("builtin:sphere?subdiv=1").lightmap_uvs is None
+
+
 def test_transfer_views_its_compressed_arrays(scene):
     t = prtkit.compress(prtkit.bake_transfer(scene, samples=16), clusters=4, pca=2)
     for name in ("cluster_ids", "weights", "means", "basis"):

@@ -38,7 +38,9 @@ TEST(AutoExposure, ClipsAtMostTwoPercentAndScalesWithRadiance) {
       const float stops = image::autoExposure(px, op);
       EXPECT_LE(image::clippedFraction(px, op, stops), image::kAutoExposureClipFraction);
       // Exposed at 0 the wide images clip far more: the rule is doing the work.
-      if (sigma >= 3.0f) EXPECT_GT(image::clippedFraction(px, op, stops + 2.0f), 0.02f);
+      if (sigma >= 3.0f) {
+        EXPECT_GT(image::clippedFraction(px, op, stops + 2.0f), 0.02f);
+      }
       for (float k : {8.0f, 1.0f / 32.0f, 1000.0f}) {
         std::vector<Rgb> brighter = px;
         for (Rgb& p : brighter) p = p * k;

@@ -21,7 +21,9 @@
 //                 about Y. Parameter: grid (wall tessellation, default 40).
 //
 // All scenes are +Y up, counter-clockwise front faces, unit normals, per-vertex linear albedo,
-// one MeshPart per object (named "sphere", "plane", "floor", "tall-block", ...).
+// one MeshPart per object (named "sphere", "plane", "floor", "tall-block", ...). `plane` and
+// `cornell` carry lightmap UVs (Mesh::lightmapUvs): each grid one chart, packed at one texel
+// density (geometry/chart_packing.hpp); the sphere scenes none (the icosphere has no seams).
 
 #include <string>
 #include <vector>

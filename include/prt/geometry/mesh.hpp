@@ -40,7 +40,11 @@ struct Mesh {
   std::vector<Vec3f> positions;  ///< world space (scene transforms applied)
   std::vector<Vec3f> normals;    ///< unit, one per vertex
   std::vector<Rgb> albedo;       ///< linear diffuse albedo per vertex (empty: uniform)
-  std::vector<Vec2f> uvs;        ///< optional texture coordinates
+  std::vector<Vec2f> uvs;        ///< optional texture coordinates (glTF TEXCOORD_0, OBJ vt)
+  /// Optional lightmap coordinates, a second UV set for per-texel data (glTF TEXCOORD_1; the
+  /// builtin scenes' packed charts): inside [0, 1]², charts apart (geometry/texel_sampling.hpp
+  /// checks). One per vertex, or empty.
+  std::vector<Vec2f> lightmapUvs;
   std::vector<std::array<std::uint32_t, 3>> triangles;  ///< counter-clockwise = front
   std::vector<MeshPart> parts;                          ///< at least one part when loaded
   std::string source;                                   ///< file name or builtin:NAME, for messages
