@@ -22,7 +22,9 @@
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/geometry/builtin.hpp"
+#include "prt/geometry/lightmap_uvs.hpp"
 #include "prt/geometry/load.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
@@ -44,6 +46,34 @@ std::string attributesLine(const Mesh& m) {
   return line + "\n";
 }
 
+/// How the mesh's UV sets hold a side × side lightmap (geometry/lightmap_uvs.hpp's rule): the
+/// set used and its coverage, or why none can. Into the text and j["lightmap"].
+void describeLightmap(const Mesh& m, int side, std::ostream& out, Json& j) {
+  Json l = {{"resolution", side}};
+  try {
+    const LightmapUvChoice c = chooseLightmapUvs(m, UvSetOption::Auto, side, side);
+    const TexelSamples s = sampleTexels(m, c.uvs, side, side);
+    std::size_t partial = 0;
+    for (const TexelSample& t : s.samples) partial += !t.centreInside;
+    const double share = double(s.samples.size()) / double(s.texelCount());
+    l["uvSet"] = c.name;
+    l["coveredTexels"] = s.samples.size();
+    l["partialTexels"] = partial;
+    l["coverage"] = share;
+    out << fmt::format("lightmap    {} at {}x{}: {:.1f}% of the texels covered ({}; {} partly)\n",
+                       c.name, side, side, 100.0 * share, s.samples.size(), partial);
+    for (const std::string& r : c.refused) out << fmt::format("            (not {})\n", r);
+    l["refused"] = c.refused;
+  } catch (const Error& e) {
+    std::string why = e.what();
+    if (why.rfind(m.source + ": ", 0) == 0) why = why.substr(m.source.size() + 2);
+    l["uvSet"] = nullptr;
+    l["refused"] = Json::array({why});
+    out << fmt::format("lightmap    none: {}\n", why);
+  }
+  j["lightmap"] = std::move(l);
+}
+
 std::string storage(const BakedTransfer& t) {
   const Transfer& x = t.transfer;
   const TransferMode mode = t.mode();
@@ -54,7 +84,7 @@ std::string storage(const BakedTransfer& t) {
 }
 
 /// A mesh file or builtin scene, before any bake: what `prt bake` would read.
-void describeMesh(const std::string& path, std::ostream& out, Json& j) {
+void describeMesh(const std::string& path, int lightmapSide, std::ostream& out, Json& j) {
   const Mesh m = loadMesh(path);
   j["kind"] = "mesh";
   j["mesh"] = meshJson(m);
@@ -68,6 +98,7 @@ void describeMesh(const std::string& path, std::ostream& out, Json& j) {
   out << fmt::format("bounds      ({:.4g}, {:.4g}, {:.4g}) .. ({:.4g}, {:.4g}, {:.4g})\n", b.lo.x,
                      b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
   out << attributesLine(m);
+  describeLightmap(m, lightmapSide, out, j);
 }
 
 void describeBake(const std::string& path, std::ostream& out, Json& j) {
@@ -260,9 +291,9 @@ bool isLightTxt(const std::string& path) {
   return tokens == 3;
 }
 
-void describe(const std::string& path, std::ostream& out, Json& j);
+void describe(const std::string& path, int lightmapSide, std::ostream& out, Json& j);
 
-void runInfo(const std::vector<std::string>& files, const std::string& json) {
+void runInfo(const std::vector<std::string>& files, int lightmapSide, const std::string& json) {
   Report report("info", json);
   std::vector<NamedPath> inputs;
   for (const std::string& f : files) inputs.push_back({"input", f});
@@ -280,7 +311,7 @@ void runInfo(const std::vector<std::string>& files, const std::string& json) {
     // A parser's own exception (a JSON library's "number overflow ...") does not name the file:
     // name it here. Our errors already do; out-of-memory is reported as such by main.
     try {
-      describe(path, out, j);
+      describe(path, lightmapSide, out, j);
     } catch (const Error&) {
       throw;
     } catch (const std::bad_alloc&) {
@@ -293,7 +324,7 @@ void runInfo(const std::vector<std::string>& files, const std::string& json) {
   report.write();
 }
 
-void describe(const std::string& path, std::ostream& out, Json& j) {
+void describe(const std::string& path, int lightmapSide, std::ostream& out, Json& j) {
   {
     const std::string ext = fileExtension(path);
     std::error_code ec;
@@ -307,7 +338,7 @@ void describe(const std::string& path, std::ostream& out, Json& j) {
             : "";
     if (std::find(sceneNames.begin(), sceneNames.end(), builtinName) != sceneNames.end() ||
         (ext != "glb" && std::find(meshExts.begin(), meshExts.end(), ext) != meshExts.end())) {
-      describeMesh(path, out, j);
+      describeMesh(path, lightmapSide, out, j);
       return;
     }
     if (envmap::isBuiltin(path) || std::filesystem::is_directory(path, ec) ||
@@ -338,11 +369,16 @@ void describe(const std::string& path, std::ostream& out, Json& j) {
 void addInfoCommand(CLI::App& root) {
   auto files = std::make_shared<std::vector<std::string>>();
   auto json = std::make_shared<std::string>();
+  auto side = std::make_shared<int>(512);
   auto* cmd = root.add_subcommand(
-      "info", "Describe bakes, SH light files, GAMES202 text files and environments");
+      "info", "Describe bakes, meshes, SH light files, GAMES202 text files and environments");
   cmd->add_option("files", *files, "Files to describe")->required();
+  cmd->add_option("--resolution", *side,
+                  "Meshes: the lightmap side to judge their UV sets against (texels)")
+      ->check(CLI::Range(1, kMaxLightmapSide))
+      ->capture_default_str();
   addJsonOption(cmd, *json);
-  cmd->callback([files, json] { runInfo(*files, *json); });
+  cmd->callback([files, side, json] { runInfo(*files, *side, *json); });
 }
 
 }  // namespace prt::cli

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <string>
 
 #include "cli_harness.hpp"
@@ -29,8 +31,8 @@ class ReportCli : public CliTest {
     EXPECT_TRUE(j.at("outputs").is_array());
   }
   void bake(const std::string& extra = "") const {
-    const Result r = prt(std::string("-q bake ") + kSphere +
-                         " --mode shadowed --samples 16 -o b.glb" + extra);
+    const Result r =
+        prt(std::string("-q bake ") + kSphere + " --mode shadowed --samples 16 -o b.glb" + extra);
     ASSERT_EQ(r.rc, 0) << r.err;
   }
 };
@@ -82,8 +84,8 @@ TEST_F(ReportCli, LightReportHoldsTheCoefficientsItWrote) {
 
 TEST_F(ReportCli, ValidateReportGoesToStandardOutputAndTheTableToStderr) {
   bake();
-  const Result r = prt(
-      "-q validate b.glb --light builtin:sky --reference-samples 8 --vertices 12 --json -");
+  const Result r =
+      prt("-q validate b.glb --light builtin:sky --reference-samples 8 --vertices 12 --json -");
   ASSERT_EQ(r.rc, 0) << r.err;
   const Json j = Json::parse(r.out);
   expectEnvelope(j, "validate");
@@ -95,8 +97,9 @@ TEST_F(ReportCli, ValidateReportGoesToStandardOutputAndTheTableToStderr) {
 
 TEST_F(ReportCli, ReferenceRenderAndCompressReport) {
   bake();
-  Result r = prt("-q reference b.glb --light builtin:sky --samples 8 --vertices 6 -o ref.json "
-                 "--json rr.json");
+  Result r =
+      prt("-q reference b.glb --light builtin:sky --samples 8 --vertices 6 -o ref.json "
+          "--json rr.json");
   ASSERT_EQ(r.rc, 0) << r.err;
   const Json ref = load("rr.json");
   expectEnvelope(ref, "reference");
@@ -143,12 +146,45 @@ TEST_F(ReportCli, InfoDescribesAMeshBeforeItIsBaked) {
   EXPECT_EQ(f["mesh"]["bounds"]["min"][1], -1.0);
   EXPECT_EQ(f["mesh"]["bounds"]["max"][1], -1.0);
   EXPECT_EQ(f["mesh"]["bounds"]["max"][0], 1.0);
-  ASSERT_EQ(prt("-q bake 'builtin:plane?y=-1&size=1' --mode unshadowed --samples 4 -o p.glb").rc, 0);
+  ASSERT_EQ(prt("-q bake 'builtin:plane?y=-1&size=1' --mode unshadowed --samples 4 -o p.glb").rc,
+            0);
   const Result b = prt("info p.glb --json -");
   ASSERT_EQ(b.rc, 0) << b.err;
   EXPECT_EQ(Json::parse(b.out)["files"][0]["mesh"]["vertices"], f["mesh"]["vertices"]);
   const Result text = prt("info 'builtin:plane?y=-1&size=1'");
   EXPECT_NE(text.out.find("bounds      (-1, -1, -1) .. (1, -1, 1)"), std::string::npos) << text.out;
+}
+
+// The lightmap a mesh's UV sets can hold (issue 18's rule, geometry/lightmap_uvs.hpp): the
+// Cornell box's packed charts cover most of a 256² lightmap, the sphere has no UV set (said in
+// one line), and a bake file keeps the lightmap set (attributes name it).
+TEST_F(ReportCli, InfoJudgesAMeshsLightmapUvs) {
+  Result r =
+      prt("info --resolution 256 'builtin:cornell?grid=8' 'builtin:sphere?subdiv=1' --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json i = Json::parse(r.out);
+  const Json& box = i["files"][0]["lightmap"];
+  EXPECT_EQ(box["resolution"], 256);
+  EXPECT_EQ(box["uvSet"], "lightmap UVs");
+  const double coverage = box["coverage"];
+  EXPECT_GT(coverage, 0.4);
+  EXPECT_LT(coverage, 0.95);  // the gutter stays empty
+  EXPECT_EQ(box["coveredTexels"].get<double>(), std::round(coverage * 256 * 256));
+  const Json& ball = i["files"][1]["lightmap"];
+  EXPECT_TRUE(ball["uvSet"].is_null());
+  ASSERT_EQ(ball["refused"].size(), 1u);
+  EXPECT_NE(ball["refused"][0].get<std::string>().find("lightmap UVs: the mesh has none"),
+            std::string::npos);
+  r = prt("info 'builtin:sphere?subdiv=1'");
+  EXPECT_NE(r.out.find("lightmap    none: no UV set can hold a 512 x 512 lightmap"),
+            std::string::npos)
+      << r.out;
+  ASSERT_EQ(prt("-q bake 'builtin:cornell?grid=4' --mode unshadowed --samples 4 -o c.glb").rc, 0);
+  r = prt("info c.glb --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(Json::parse(r.out)["files"][0]["mesh"]["attributes"],
+            Json::array({"normals", "lightmapUvs", "albedo"}));
+  EXPECT_NE(prt("info --resolution 0 c.glb").err.find("--resolution"), std::string::npos);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include "common/error_text.hpp"
 #include "prt/core/error.hpp"
+#include "prt/geometry/lightmap_uvs.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 
 namespace prt {
@@ -174,6 +175,48 @@ TEST(TexelSampling, DilationFillsExactlyThePaddingRings) {
         EXPECT_EQ(values[t * 2], -1.0f);
       }
     }
+}
+
+}  // namespace
+}  // namespace prt
+
+namespace prt {
+namespace {
+
+// The UV-set rule (geometry/lightmap_uvs.hpp): the lightmap set when it holds a lightmap, else
+// the texture set, each refusal kept; both failing is one line naming the mesh and both reasons.
+TEST(LightmapUvs, TheRulePicksAndSaysWhy) {
+  Mesh m = uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0, 1, 2}, {0, 2, 3}});
+  // The texture set only: picked under auto, refused under 1.
+  LightmapUvChoice c = chooseLightmapUvs(m, UvSetOption::Auto, 32, 32);
+  EXPECT_EQ(c.name, "texture UVs");
+  ASSERT_EQ(c.refused.size(), 1u);
+  EXPECT_EQ(c.refused[0], "lightmap UVs: the mesh has none");
+  std::string e = testing::errorOf([&] { chooseLightmapUvs(m, UvSetOption::Lightmap, 32, 32); });
+  EXPECT_EQ(
+      e.rfind("uv.obj: no UV set can hold a 32 x 32 lightmap (lightmap UVs: the mesh has none)", 0),
+      0u)
+      << e;
+  // A lightmap set wins; an overlapping one falls back to the texture set, saying why.
+  m.lightmapUvs = {{0, 0}, {0.5f, 0}, {0.5f, 0.5f}, {0, 0.5f}};
+  EXPECT_EQ(chooseLightmapUvs(m, UvSetOption::Auto, 32, 32).name, "lightmap UVs");
+  EXPECT_EQ(chooseLightmapUvs(m, UvSetOption::Texture, 32, 32).name, "texture UVs");
+  m.lightmapUvs = {{0, 0}, {0.5f, 0}, {0.5f, 0.5f}, {0.5f, 0}};  // triangle 1 folds onto 0
+  m.lightmapUvs[3] = {0.4f, 0.1f};
+  c = chooseLightmapUvs(m, UvSetOption::Auto, 32, 32);
+  EXPECT_EQ(c.name, "texture UVs");
+  ASSERT_EQ(c.refused.size(), 1u);
+  EXPECT_NE(c.refused[0].find("lightmap UVs: triangles 0 and 1 overlap"), std::string::npos)
+      << c.refused[0];
+  // Both bad: one line with both reasons.
+  m.uvs[1] = {2, 0};
+  e = testing::errorOf([&] { chooseLightmapUvs(m, UvSetOption::Auto, 32, 32); });
+  EXPECT_NE(e.find("lightmap UVs: triangles 0 and 1 overlap"), std::string::npos) << e;
+  EXPECT_NE(e.find("; texture UVs of vertex 1 is (2"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos);
+  EXPECT_EQ(parseUvSetOption("1"), UvSetOption::Lightmap);
+  EXPECT_NE(testing::errorOf([] { parseUvSetOption("2"); }).find("auto, 0 or 1"),
+            std::string::npos);
 }
 
 }  // namespace
