@@ -65,15 +65,38 @@ struct ShEval {
   }
 };
 
-/// Sample directions of one vertex in one pass: sample s has direction dir and weight w such
+/// Where a row of the transfer is integrated: a point of the surface, its unit normal, and the
+/// row's global index, which alone seeds its samples (a vertex of the mesh today; a texel's
+/// sample point of the lightmap domain is the same to the kernels below).
+struct RowPoint {
+  Vec3f position, normal;
+  std::size_t id = 0;
+};
+
+/// The previous pass at a hit, for a vertex-domain transfer: the barycentric blend of the hit
+/// triangle's vertex rows (`stride` floats each).
+struct VertexLookup {
+  const Mesh& mesh;
+  const float* rows;
+  std::size_t stride;
+  void operator()(const Hit& h, const std::array<std::uint32_t, 3>& tri, float* out) const {
+    const float b0 = 1.0f - h.u - h.v;
+    const float* r0 = rows + tri[0] * stride;
+    const float* r1 = rows + tri[1] * stride;
+    const float* r2 = rows + tri[2] * stride;
+    for (std::size_t i = 0; i < stride; ++i) out[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
+  }
+};
+
+/// Sample directions of one row in one pass: sample s has direction dir and weight w such
 /// that T ≈ (1/N) Σ_s w_s f(dir_s) with f the integrand without the (1/π) cos factor.
-class VertexSampler {
+class RowSampler {
  public:
-  VertexSampler(const BakeSettings& s, const OwenSobol2D* sobol, std::size_t vertex, int pass,
-                const Vec3f& n)
+  RowSampler(const BakeSettings& s, const OwenSobol2D* sobol, std::size_t row, int pass,
+             const Vec3f& n)
       : sobol_(sobol), n_(n), rng_(0) {
     const std::uint64_t key = deriveSeed(deriveSeed(s.seed, static_cast<std::uint64_t>(pass)),
-                                         static_cast<std::uint64_t>(vertex));
+                                         static_cast<std::uint64_t>(row));
     seed0_ = static_cast<std::uint32_t>(key);
     seed1_ = static_cast<std::uint32_t>(key >> 32);
     if (sobol_)
@@ -163,14 +186,13 @@ struct Accumulator {
 /// evaluated for blocked rays only, and unshadowed transfer and unoccluded vertices come out
 /// exact. Uniform random sampling keeps the course's plain
 /// estimator (1/N) Σ 4 max(n·ω,0) Y_i V.
-double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
-                    std::vector<float>& y) {
-  const Mesh& mesh = ctx.mesh;
+double directRow(Context& ctx, const RowPoint& q, float* out, Accumulator& acc,
+                 std::vector<float>& y) {
   const int n = ctx.settings.samples;
   const int nc = ctx.nc;
   const bool shadowed = ctx.settings.mode != TransferMode::Unshadowed;
   const bool controlVariate = ctx.sobol != nullptr;
-  const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
+  const Vec3f p = q.position, nrm = q.normal;
   if (controlVariate) {
     sh::eval(ctx.settings.bands, Vec3d(nrm), acc.lobe.data());
     for (int l = 0; l < ctx.settings.bands; ++l)
@@ -181,7 +203,7 @@ double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
     }
   }
   const Vec3f origin = shadowed ? p + nrm * ctx.occluder.rayOffset(p) : p;
-  VertexSampler sampler(ctx.settings, ctx.sobol, v, 0, nrm);
+  RowSampler sampler(ctx.settings, ctx.sobol, q.id, 0, nrm);
 
   std::array<Ray, kBatch> rays;
   std::array<float, kBatch> w, ws;
@@ -228,19 +250,20 @@ double directVertex(Context& ctx, std::size_t v, float* out, Accumulator& acc,
 
 /// Pass k ≥ 1: Tᵏ(v) = (1/N) Σ w ρ(h) ⊙ Tᵏ⁻¹(h) over samples whose closest hit h is a front face
 /// (the light a diffuse surface sends toward v leaves its front side only; a back face blocks
-/// the direction and contributes nothing). prev: the whole mesh, prevChannels per coefficient;
-/// out gets B² × outChannels values (added to when accumulate). Returns Var(Tᵏ₀, channel 0).
-double bounceVertex(Context& ctx, std::size_t v, int pass, const float* prev, int prevChannels,
-                    float* out, int outChannels, bool accumulate, Accumulator& acc,
-                    std::vector<float>& t) {
+/// the direction and contributes nothing). prev(h, triangle, t) puts Tᵏ⁻¹ at the hit into t
+/// (prevChannels per coefficient; VertexLookup for vertex rows); out gets B² × outChannels
+/// values (added to when accumulate). Returns Var(Tᵏ₀, channel 0).
+template <typename Lookup>
+double bounceRow(Context& ctx, const RowPoint& q, int pass, const Lookup& prev, int prevChannels,
+                 float* out, int outChannels, bool accumulate, Accumulator& acc,
+                 std::vector<float>& t) {
   const Mesh& mesh = ctx.mesh;
   const int n = ctx.settings.samples;
   const int nc = ctx.nc;
-  const std::size_t prevStride = static_cast<std::size_t>(nc) * prevChannels;
   const int width = nc * outChannels;
-  const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
+  const Vec3f p = q.position, nrm = q.normal;
   const Vec3f origin = p + nrm * ctx.occluder.rayOffset(p);
-  VertexSampler sampler(ctx.settings, ctx.sobol, v, pass, nrm);
+  RowSampler sampler(ctx.settings, ctx.sobol, q.id, pass, nrm);
 
   Moments m;
   std::uint64_t cast = 0;
@@ -259,12 +282,7 @@ double bounceVertex(Context& ctx, std::size_t v, int pass, const float* prev, in
         const Vec3f p0 = mesh.positions[tri[0]];
         const Vec3f ng = cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
         if (dot(ng, d) < 0.0f) {
-          const float b0 = 1.0f - h.u - h.v;
-          const float* r0 = prev + tri[0] * prevStride;
-          const float* r1 = prev + tri[1] * prevStride;
-          const float* r2 = prev + tri[2] * prevStride;
-          for (std::size_t i = 0; i < prevStride; ++i)
-            t[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
+          prev(h, tri, t.data());
           const Rgb rho = ctx.albedo.at(tri, h.u, h.v) * wt;
           if (outChannels == 1) {
             for (int i = 0; i < nc; ++i) part[i] += rho.x * t[i];
@@ -369,15 +387,17 @@ std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
   const std::size_t width = static_cast<std::size_t>(nc) * (pass == 0 ? 1 : outChannels);
   const float* prevData = pass > 0 ? prev->values().data() : nullptr;
   const int prevChannels = pass > 0 ? prev->channels() : 1;
+  const VertexLookup lookup{mesh, prevData, static_cast<std::size_t>(nc) * prevChannels};
   parallelFor(rows.count, kVertexGrain, [&](std::size_t b, std::size_t e) {
     if (progress) progress->check();
     Accumulator acc(static_cast<std::size_t>(nc) * 3);
     std::vector<float> tmp(static_cast<std::size_t>(nc) * 3);
     for (std::size_t r = b; r < e; ++r) {
       const std::size_t v = rows.first + r;
-      const double var = pass == 0 ? directVertex(ctx, v, out + r * width, acc, tmp)
-                                   : bounceVertex(ctx, v, pass, prevData, prevChannels,
-                                                  out + r * width, outChannels, false, acc, tmp);
+      const RowPoint q{mesh.positions[v], mesh.normals[v], v};
+      const double var = pass == 0 ? directRow(ctx, q, out + r * width, acc, tmp)
+                                   : bounceRow(ctx, q, pass, lookup, prevChannels,
+                                               out + r * width, outChannels, false, acc, tmp);
       if (variance) variance[r] = var;
     }
     if (progress) progress->advance(e - b);
