@@ -27,6 +27,8 @@ const char* toString(TransferDomain domain) {
   switch (domain) {
     case TransferDomain::Vertices:
       return "vertices";
+    case TransferDomain::Texels:
+      return "texels";
   }
   return "?";
 }

@@ -65,14 +65,6 @@ struct ShEval {
   }
 };
 
-/// Where a row of the transfer is integrated: a point of the surface, its unit normal, and the
-/// row's global index, which alone seeds its samples (a vertex of the mesh today; a texel's
-/// sample point of the lightmap domain is the same to the kernels below).
-struct RowPoint {
-  Vec3f position, normal;
-  std::size_t id = 0;
-};
-
 /// The previous pass at a hit, for a vertex-domain transfer: the barycentric blend of the hit
 /// triangle's vertex rows (`stride` floats each).
 struct VertexLookup {
@@ -85,6 +77,32 @@ struct VertexLookup {
     const float* r1 = rows + tri[1] * stride;
     const float* r2 = rows + tri[2] * stride;
     for (std::size_t i = 0; i < stride; ++i) out[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
+  }
+};
+
+/// The previous pass at a hit, for a texel-domain transfer: its lightmap image (dilated) read
+/// bilinearly at the hit's lightmap UV (the hit triangle's UVs blended), texel centres at
+/// ((x + ½)/W, (y + ½)/H), clamped at the borders.
+struct TexelLookup {
+  const TexelImage& image;
+  void operator()(const Hit& h, const std::array<std::uint32_t, 3>& tri, float* out) const {
+    const float b0 = 1.0f - h.u - h.v;
+    const Vec2f a = image.uvs[tri[0]], b = image.uvs[tri[1]], c = image.uvs[tri[2]];
+    const float x = (b0 * a.x + h.u * b.x + h.v * c.x) * float(image.width) - 0.5f;
+    const float y = (b0 * a.y + h.u * b.y + h.v * c.y) * float(image.height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float wx = x - fx, wy = y - fy;
+    const auto clampTo = [](int i, int n) { return std::min(std::max(i, 0), n - 1); };
+    const int x0 = clampTo(int(fx), image.width), x1 = clampTo(int(fx) + 1, image.width);
+    const int y0 = clampTo(int(fy), image.height), y1 = clampTo(int(fy) + 1, image.height);
+    const std::size_t s = image.stride;
+    const float* r00 = image.values + (std::size_t(y0) * image.width + x0) * s;
+    const float* r10 = image.values + (std::size_t(y0) * image.width + x1) * s;
+    const float* r01 = image.values + (std::size_t(y1) * image.width + x0) * s;
+    const float* r11 = image.values + (std::size_t(y1) * image.width + x1) * s;
+    const float w00 = (1 - wx) * (1 - wy), w10 = wx * (1 - wy), w01 = (1 - wx) * wy, w11 = wx * wy;
+    for (std::size_t i = 0; i < s; ++i)
+      out[i] = w00 * r00[i] + w10 * r10[i] + w01 * r01[i] + w11 * r11[i];
   }
 };
 
@@ -370,10 +388,15 @@ bool vectorAlbedoGrey(const VectorSetup& setup) {
   return setup.albedo.grey;
 }
 
-std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
-                                const VectorSetup& setup, int pass, RowRange rows,
-                                const Transfer* prev, int outChannels, float* out, double* variance,
-                                Progress* progress) {
+namespace {
+
+/// Rows 0..count−1 of vector pass `pass` at pointOf(r), the previous pass read through `lookup`
+/// (pass ≥ 1), in parallel: the loop every domain shares.
+template <typename PointOf, typename Lookup>
+std::uint64_t computeRows(const Mesh& mesh, const Occluder& occluder, const VectorSetup& setup,
+                          int pass, std::size_t count, const PointOf& pointOf, const Lookup& lookup,
+                          int prevChannels, int outChannels, float* out, double* variance,
+                          Progress* progress) {
   Context ctx{mesh,
               occluder,
               setup.settings,
@@ -385,24 +408,50 @@ std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
               {}};
   const int nc = ctx.nc;
   const std::size_t width = static_cast<std::size_t>(nc) * (pass == 0 ? 1 : outChannels);
-  const float* prevData = pass > 0 ? prev->values().data() : nullptr;
-  const int prevChannels = pass > 0 ? prev->channels() : 1;
-  const VertexLookup lookup{mesh, prevData, static_cast<std::size_t>(nc) * prevChannels};
-  parallelFor(rows.count, kVertexGrain, [&](std::size_t b, std::size_t e) {
+  parallelFor(count, kVertexGrain, [&](std::size_t b, std::size_t e) {
     if (progress) progress->check();
     Accumulator acc(static_cast<std::size_t>(nc) * 3);
     std::vector<float> tmp(static_cast<std::size_t>(nc) * 3);
     for (std::size_t r = b; r < e; ++r) {
-      const std::size_t v = rows.first + r;
-      const RowPoint q{mesh.positions[v], mesh.normals[v], v};
+      const RowPoint q = pointOf(r);
       const double var = pass == 0 ? directRow(ctx, q, out + r * width, acc, tmp)
-                                   : bounceRow(ctx, q, pass, lookup, prevChannels,
-                                               out + r * width, outChannels, false, acc, tmp);
+                                   : bounceRow(ctx, q, pass, lookup, prevChannels, out + r * width,
+                                               outChannels, false, acc, tmp);
       if (variance) variance[r] = var;
     }
     if (progress) progress->advance(e - b);
   });
   return ctx.rays.load();
+}
+
+}  // namespace
+
+std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
+                                const VectorSetup& setup, int pass, RowRange rows,
+                                const Transfer* prev, int outChannels, float* out, double* variance,
+                                Progress* progress) {
+  const int nc = setup.settings.bands * setup.settings.bands;
+  const float* prevData = pass > 0 ? prev->values().data() : nullptr;
+  const int prevChannels = pass > 0 ? prev->channels() : 1;
+  const VertexLookup lookup{mesh, prevData, static_cast<std::size_t>(nc) * prevChannels};
+  const auto vertex = [&](std::size_t r) {
+    const std::size_t v = rows.first + r;
+    return RowPoint{mesh.positions[v], mesh.normals[v], v};
+  };
+  return computeRows(mesh, occluder, setup, pass, rows.count, vertex, lookup, prevChannels,
+                     outChannels, out, variance, progress);
+}
+
+std::uint64_t computeTexelRows(const Mesh& mesh, const Occluder& occluder, const VectorSetup& setup,
+                               int pass, std::span<const RowPoint> points, const TexelImage* prev,
+                               int outChannels, float* out, double* variance, Progress* progress) {
+  const int nc = setup.settings.bands * setup.settings.bands;
+  const TexelImage none{};
+  const TexelLookup lookup{prev ? *prev : none};
+  const int prevChannels = prev ? int(prev->stride / std::size_t(nc)) : 1;
+  return computeRows(
+      mesh, occluder, setup, pass, points.size(), [&](std::size_t r) { return points[r]; }, lookup,
+      prevChannels, outChannels, out, variance, progress);
 }
 
 BakeStats vectorStats(const std::vector<std::uint64_t>& rays, const std::vector<double>& seconds,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <memory>
+#include <span>
 
 #include "prt/core/progress.hpp"
 #include "prt/transport/bake.hpp"
@@ -80,6 +81,22 @@ void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint
 
 // The passes' kernels (passes.cpp builds the pass list on them).
 
+/// Where a row of the transfer is integrated: a point of the surface, its unit normal, and the
+/// row's global index, which alone seeds its samples (a mesh vertex, or a texel's sample point).
+struct RowPoint {
+  Vec3f position, normal;
+  std::size_t id = 0;
+};
+
+/// A texel-domain pass as a lightmap image for the next pass to read: width × height texels of
+/// `stride` floats (dilated past the charts), over the mesh's lightmap `uvs`.
+struct TexelImage {
+  const float* values = nullptr;
+  int width = 0, height = 0;
+  std::size_t stride = 0;
+  std::span<const Vec2f> uvs;
+};
+
 /// A vector bake's shared tables (bake.cpp).
 struct VectorSetup;
 std::shared_ptr<const VectorSetup> makeVectorSetup(const Mesh& mesh, const BakeSettings& s);
@@ -90,6 +107,11 @@ std::uint64_t computeVectorRows(const Mesh& mesh, const Occluder& occluder,
                                 const VectorSetup& setup, int pass, RowRange rows,
                                 const Transfer* prev, int outChannels, float* out, double* variance,
                                 Progress* progress);
+/// The same at texel sample points (bake_texels.cpp): rows 0..points.size()−1, pass k ≥ 1
+/// reading the previous pass's lightmap `prev` bilinearly at each hit's lightmap UV.
+std::uint64_t computeTexelRows(const Mesh& mesh, const Occluder& occluder, const VectorSetup& setup,
+                               int pass, std::span<const RowPoint> points, const TexelImage* prev,
+                               int outChannels, float* out, double* variance, Progress* progress);
 /// The statistics of a vector bake from its passes' rays, seconds and summed variances.
 BakeStats vectorStats(const std::vector<std::uint64_t>& rays, const std::vector<double>& seconds,
                       const std::vector<double>& variance);

@@ -43,9 +43,13 @@ TransferLayout parseTransferLayout(const std::string& s);
 /// What the rows index.
 enum class TransferDomain {
   Vertices,  ///< one row per mesh vertex, interpolated across triangles
+  /// One row per texel of a lightmap (TransferShape::lightmap), texel (x, y) row y·W + x, over
+  /// the mesh's lightmap UVs (transport/bake_texels.hpp; issue 18). Baked in memory; bake files
+  /// do not hold them yet.
+  Texels,
 };
 const char* toString(TransferDomain domain);
-/// Parses "vertices"; throws prt::Error otherwise.
+/// Parses "vertices" (the domain bake files hold); throws prt::Error otherwise.
 TransferDomain parseTransferDomain(const std::string& s);
 
 /// Rows [first, first + count) of a domain.
@@ -62,6 +66,12 @@ struct TransferShape {
   int bands = 0;
   int channels = 1;  ///< 1 (scalar) or 3 (RGB)
   RowRange rows;     ///< which rows of the domain the transfer holds
+  /// Texels: the lightmap's width and height (the domain has width · height rows).
+  struct LightmapSize {
+    int width = 0, height = 0;
+    bool operator==(const LightmapSize&) const = default;
+  };
+  LightmapSize lightmap{};
 
   int coeffs() const { return bands * bands; }
   bool isMatrix() const { return layout == TransferLayout::Matrix; }
