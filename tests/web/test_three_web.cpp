@@ -43,20 +43,6 @@ const fs::path kExample = fs::path(PRT_WEB_ASSETS_DIR) / "three" / "example";
                       "missing: run scripts/setup.sh)";                                    \
   } while (0)
 
-std::string base64(const std::string& bytes) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  unsigned v = 0;
-  int n = 0;
-  for (unsigned char c : bytes) {
-    v = (v << 8) | c;
-    n += 8;
-    while (n >= 6) out += k[(v >> (n -= 6)) & 63];
-  }
-  if (n > 0) out += k[(v << (6 - n)) & 63];
-  while (out.size() % 4) out += '=';
-  return out;
-}
 
 /// A copy of the example page in scratch/NAME with example-data.js holding `bake` (a file in
 /// scratch) and `light` (an SH light JSON file in scratch), so it opens from file://.

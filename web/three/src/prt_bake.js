@@ -14,7 +14,8 @@ import { mul3, transpose3 } from '../../src/sh.js';
 import { threeHost } from './three_host.js';
 import { rotationRows } from './rotation.js';
 
-const tmpVector = new THREE.Vector3(), tmpMatrix = new THREE.Matrix4(), tmpQuat = new THREE.Quaternion();
+const tmpVector = new THREE.Vector3(), tmpScale = new THREE.Vector3(), tmpMatrix = new THREE.Matrix4(),
+  tmpQuat = new THREE.Quaternion();
 
 export class PRTBake {
   /** (Made by the loader plugin.) bake: web/src/bake.js's readBake result; root: the glTF scene. */
@@ -29,7 +30,7 @@ export class PRTBake {
     this._light = null;      // the light as given
     this._coeffs = null;     // at the bake's bands (cut or zero-padded)
     this._version = 0;       // bumped when the light, transfer or bands change
-    this._last = '';         // what the frame's light was computed for
+    this._last = null;       // { version, rotation } the frame's light was computed for
     this._transfer = pickTransfer(bake.transfers, '');
     this._bands = this._transfer.bands;
     this._meshes.forEach((mesh, p) => {
@@ -96,20 +97,23 @@ export class PRTBake {
     ++this._version;
   }
 
-  /** The light in the bake's frame: R = Q_rootᵀ Q_light (row-major). */
+  /** The light in the bake's frame: R = Q_rootᵀ Q_light (row-major). The root's world matrix is
+   *  brought up to date here: a part's onBeforeRender may run before its ancestors' update. */
   _bakeRotation() {
     this.root.updateWorldMatrix(true, false);
-    this.root.matrixWorld.decompose(tmpVector, tmpQuat, new THREE.Vector3());
+    this.root.matrixWorld.decompose(tmpVector, tmpQuat, tmpScale);
     return mul3(transpose3(rotationRows(tmpQuat)), rotationRows(this.lightRotation));
   }
 
   _beforeRender(p, camera) {
     const t = this._transfer;
-    const R = this._bakeRotation();
-    const key = `${this._version} ${R.flat().join(',')}`;
-    if (key !== this._last) {
+    // Every part of a frame asks; the light (and CPCA's cluster table) is made once, when the
+    // light, its rotation, the bake's placement, the transfer or the bands changed.
+    const R = this._bakeRotation(), last = this._last;
+    const flat = R.flat();
+    if (!last || last.version !== this._version || flat.some((x, i) => x !== last.rotation[i])) {
       setFrameLight(this._gpu, t, this._bands, R, this._coeffs || new Float32Array(t.bands * t.bands * 3));
-      this._last = key;
+      this._last = { version: this._version, rotation: flat };
     }
     // The eye in the part's frame (glossy transfer's view; unused otherwise).
     const mesh = this._meshes[p];
