@@ -17,6 +17,7 @@
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
 #include "prt/geometry/load.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/gltf/accessor.hpp"
 #include "transfer_codecs.hpp"
 
@@ -32,13 +33,32 @@ std::string upper(TransferMode mode) {
   return m;
 }
 
+/// "vertex" or "texel": what a domain's rows are called in messages.
+const char* rowName(TransferDomain d) {
+  return d == TransferDomain::Texels ? "texel" : "vertex";
+}
+
 void checkTransfersForWriting(const BakeFile& bake) {
-  const std::size_t V = bake.mesh.vertexCount();
+  const TransferDomain domain = bake.domain();
+  const std::size_t n = bake.domainRows();
   const RowRange rows = bake.rows();
-  if (rows.count == 0 || rows.end() > V)
-    throw Error("bake file: vertex range " + std::to_string(rows.first) + "+" +
-                std::to_string(rows.count) + " is outside the mesh (" + std::to_string(V) +
-                " vertices)");
+  const char* row = rowName(domain);
+  if (domain == TransferDomain::Texels) {
+    const TransferShape::LightmapSize lm = bake.lightmap();
+    if (lm.width < 1 || lm.height < 1 || lm.width > kMaxLightmapSide ||
+        lm.height > kMaxLightmapSide || lm.padding < 0 || lm.padding > kMaxLightmapPadding)
+      throw Error("bake file: the lightmap " + std::to_string(lm.width) + " x " +
+                  std::to_string(lm.height) + " (padding " + std::to_string(lm.padding) +
+                  ") is outside 1.." + std::to_string(kMaxLightmapSide) + " (padding 0.." +
+                  std::to_string(kMaxLightmapPadding) + ")");
+    if (bake.mesh.lightmapUvs.size() != bake.mesh.vertexCount())
+      throw Error("bake file: per-texel transfer needs the mesh's lightmap UVs (it has none)");
+  }
+  if (rows.count == 0 || rows.end() > n)
+    throw Error("bake file: " + std::string(row) + " range " + std::to_string(rows.first) + "+" +
+                std::to_string(rows.count) + " is outside the " +
+                (domain == TransferDomain::Texels ? "lightmap (" : "mesh (") + std::to_string(n) +
+                (domain == TransferDomain::Texels ? " texels)" : " vertices)"));
   for (std::size_t i = 0; i < bake.transfers.size(); ++i) {
     const BakedTransfer& t = bake.transfers[i];
     for (std::size_t j = 0; j < i; ++j)
@@ -46,11 +66,13 @@ void checkTransfersForWriting(const BakeFile& bake) {
           bake.transfers[j].transfer.layout() == t.transfer.layout())
         throw Error(std::string("bake file: two ") + toString(t.transfer.layout()) +
                     " transfers of mode " + toString(t.mode()));
+    if (t.transfer.domain() != domain ||
+        (domain == TransferDomain::Texels && !(t.transfer.shape().lightmap == bake.lightmap())))
+      throw Error(
+          "bake file: the transfers are over different domains (one bake file holds "
+          "per-vertex or per-texel transfer of one lightmap)");
     if (t.transfer.rows() != rows)
-      throw Error("bake file: the transfers cover different vertex ranges");
-    if (t.transfer.domain() != TransferDomain::Vertices)
-      throw Error(std::string("bake file: a transfer over ") + toString(t.transfer.domain()) +
-                  " has no place in this format version");
+      throw Error(std::string("bake file: the transfers cover different ") + row + " ranges");
     t.transfer.shape().check("bake file");
     try {
       checkRecipe(t.recipe);
@@ -58,7 +80,7 @@ void checkTransfersForWriting(const BakeFile& bake) {
       throw Error(std::string("bake file: the ") + toString(t.mode()) + " transfer's " + e.what());
     }
     if (!t.transfer.compressed() && t.transfer.values().size() != rows.count * t.transfer.stride())
-      throw Error("bake file: transfer rows do not match the vertex range");
+      throw Error(std::string("bake file: transfer rows do not match the ") + row + " range");
     if (t.transfer.compressed()) {
       t.transfer.check("bake file");
       // A cut below its basis (Transfer::cut keeps N): more basis vectors than values per row,
@@ -108,8 +130,14 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
               {"generator", bake.generator},
               {"source", mesh.source},
               {"vertexCount", mesh.vertexCount()},
-              {"triangleCount", mesh.triangleCount()},
-              {"vertexRange", {{"first", rows.first}, {"count", rows.count}}}};
+              {"triangleCount", mesh.triangleCount()}};
+  if (bake.domain() == TransferDomain::Texels) {
+    const TransferShape::LightmapSize lm = bake.lightmap();
+    prt["lightmap"] = {{"width", lm.width}, {"height", lm.height}, {"padding", lm.padding}};
+    prt["texelRange"] = {{"first", rows.first}, {"count", rows.count}};
+  } else {
+    prt["vertexRange"] = {{"first", rows.first}, {"count", rows.count}};
+  }
   if (const int set = io::lightmapTexCoord(mesh); set >= 0) prt["lightmapTexCoord"] = set;
   if (!transfers.empty()) prt["transfers"] = std::move(transfers);
   gltf["extensionsUsed"] = json::array({kBakeExtension});
@@ -120,7 +148,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
   if (total > kMaxBakeFileBytes)
     throw Error("bake file: " + std::to_string(total >> 20) +
                 " MiB exceeds the 4 GiB a GLB file can hold (bake fewer bands, or split the "
-                "bake into vertex ranges)");
+                "bake into row ranges with --range)");
   io::glb::write(os, std::move(text), bin);
 }
 
@@ -201,13 +229,39 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
   checkMeshExtent(bake.mesh, name);  // named as given here, not as the bake's recorded source
   bake.mesh.source = text(prt, "source") ? *text(prt, "source") : name;
 
-  const json& range = r.member(prt, "vertexRange", where);
+  // The domain: the mesh's vertices (vertexRange), or a lightmap's texels (format 6 on).
+  TransferDomain domain = TransferDomain::Vertices;
+  TransferShape::LightmapSize lightmapSize;
+  std::size_t domainRows = V;
+  const char* rangeKey = "vertexRange";
+  if (r.has(prt, "texelRange") || r.has(prt, "lightmap")) {
+    if (version < 6)
+      r.fail(where + " holds per-texel transfer in a version " + std::to_string(version) +
+             " file (texels need version 6)");
+    if (r.has(prt, "vertexRange")) r.fail(where + " has both a vertexRange and a texelRange");
+    const std::string lw = where + ".lightmap";
+    const json& lm = r.member(prt, "lightmap", where);
+    lightmapSize.width = static_cast<int>(r.integer(lm, "width", lw, 1, kMaxLightmapSide));
+    lightmapSize.height = static_cast<int>(r.integer(lm, "height", lw, 1, kMaxLightmapSide));
+    lightmapSize.padding = static_cast<int>(r.integer(lm, "padding", lw, 0, kMaxLightmapPadding));
+    if (lightmap < 0)
+      r.fail(where +
+             " holds per-texel transfer but names no lightmapTexCoord (the UVs it is over)");
+    domain = TransferDomain::Texels;
+    domainRows = lightmapSize.texels();
+    rangeKey = "texelRange";
+  }
+  const std::string rw = where + "." + rangeKey;
+  const json& range = r.member(prt, rangeKey, where);
   RowRange rows;
-  rows.first = r.integer(range, "first", where + ".vertexRange", 0, 4294967295.0);
-  rows.count = r.integer(range, "count", where + ".vertexRange", 1, 4294967295.0);
-  if (rows.end() > V)
-    r.fail("vertex range " + std::to_string(rows.first) + "+" + std::to_string(rows.count) +
-           " is outside the mesh (" + std::to_string(V) + " vertices)");
+  rows.first = r.integer(range, "first", rw, 0, 4294967295.0);
+  rows.count = r.integer(range, "count", rw, 1, 4294967295.0);
+  if (rows.end() > domainRows)
+    r.fail(std::string(rowName(domain)) + " range " + std::to_string(rows.first) + "+" +
+           std::to_string(rows.count) + " is outside the " +
+           (domain == TransferDomain::Texels ? "lightmap (" : "mesh (") +
+           std::to_string(domainRows) +
+           (domain == TransferDomain::Texels ? " texels)" : " vertices)"));
 
   if (prt.contains("transfers")) {
     const json& ts = prt["transfers"];
@@ -220,7 +274,11 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
       TransferShape shape;
       io::schema::readSettings(r.member(t, "settings", tw), tw + ".settings", bake.formatVersion, r,
                                bt.recipe, shape);
+      if (shape.domain != domain)
+        r.fail(tw + ".settings.domain is " + toString(shape.domain) + " in a bake over " +
+               toString(domain));
       shape.rows = rows;
+      shape.lightmap = lightmapSize;
       if (bake.find(bt.mode(), shape.layout))
         r.fail(std::string("two ") + toString(shape.layout) + " transfers of mode " +
                toString(bt.mode()));
@@ -233,8 +291,10 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
       bake.transfers.push_back(std::move(bt));
     }
   }
-  if (bake.transfers.empty() && (rows.first != 0 || rows.count != V))
+  if (bake.transfers.empty() && (rows.first != 0 || rows.count != domainRows))
     r.fail("a partial bake without transfers");
+  if (bake.transfers.empty() && domain == TransferDomain::Texels)
+    r.fail("a per-texel bake without transfers");
   return bake;
 }
 
@@ -254,6 +314,20 @@ BakeSettings BakedTransfer::settings() const {
   return s;
 }
 
+TransferDomain BakeFile::domain() const {
+  return transfers.empty() ? TransferDomain::Vertices : transfers.front().transfer.domain();
+}
+
+TransferShape::LightmapSize BakeFile::lightmap() const {
+  return domain() == TransferDomain::Texels ? transfers.front().transfer.shape().lightmap
+                                            : TransferShape::LightmapSize{};
+}
+
+std::size_t BakeFile::domainRows() const {
+  return transfers.empty() ? mesh.vertexCount()
+                           : transfers.front().transfer.shape().domainRows(mesh.vertexCount());
+}
+
 RowRange BakeFile::rows() const {
   if (transfers.empty()) return {0, mesh.vertexCount()};
   return transfers.front().transfer.rows();
@@ -261,16 +335,24 @@ RowRange BakeFile::rows() const {
 
 bool BakeFile::complete() const {
   const RowRange r = rows();
-  return r.first == 0 && r.count == mesh.vertexCount();
+  return r.first == 0 && r.count == domainRows();
 }
 
 void BakeFile::requireComplete(const std::string& file) const {
   if (complete()) return;
   const RowRange r = rows();
-  throw Error(file, "is a partial bake: it holds transfer for vertices " + std::to_string(r.first) +
-                        ".." + std::to_string(r.end() - 1) + " of " +
-                        std::to_string(mesh.vertexCount()) +
+  throw Error(file, "is a partial bake: it holds transfer for " +
+                        std::string(domain() == TransferDomain::Texels ? "texels " : "vertices ") +
+                        std::to_string(r.first) + ".." + std::to_string(r.end() - 1) + " of " +
+                        std::to_string(domainRows()) +
                         " only (merge the pieces with prt merge first)");
+}
+
+void BakeFile::requireVertices(const std::string& file, const std::string& use) const {
+  if (domain() == TransferDomain::Vertices) return;
+  const TransferShape::LightmapSize lm = lightmap();
+  throw Error(file, "holds per-texel transfer (a " + std::to_string(lm.width) + " x " +
+                        std::to_string(lm.height) + " lightmap); " + use);
 }
 
 const BakedTransfer* BakeFile::find(TransferMode mode, std::optional<TransferLayout> layout) const {
@@ -285,6 +367,10 @@ std::string transferAttributePrefix(TransferMode mode) {
 
 std::string transferMatrixName(TransferMode mode) {
   return "_PRT_" + upper(mode) + "_M";
+}
+
+std::string transferTexelName(TransferMode mode) {
+  return "_PRT_" + upper(mode) + "_TEXELS";
 }
 
 std::string transferCompressedPrefix(TransferMode mode) {

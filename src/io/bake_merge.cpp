@@ -9,13 +9,16 @@ namespace prt {
 
 BakeFile mergeBakes(std::vector<BakeFile> pieces) {
   if (pieces.empty()) throw Error("merge: no bake files");
+  const auto rowName = [](const BakeFile& b) {
+    return b.domain() == TransferDomain::Texels ? std::string("texel") : std::string("vertex");
+  };
   std::sort(pieces.begin(), pieces.end(),
             [](const BakeFile& a, const BakeFile& b) { return a.rows().first < b.rows().first; });
   for (const BakeFile& p : pieces)
     for (const BakedTransfer& t : p.transfers)
       if (t.transfer.compressed())
-        throw Error("merge: the piece starting at vertex " + std::to_string(p.rows().first) +
-                    " holds compressed transfer (" + t.describe() +
+        throw Error("merge: the piece starting at " + rowName(p) + " " +
+                    std::to_string(p.rows().first) + " holds compressed transfer (" + t.describe() +
                     "), which cannot be merged: merge the bakes, then compress");
   BakeFile out = std::move(pieces.front());
   const Mesh& m0 = out.mesh;
@@ -27,17 +30,22 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces) {
   RowRange rows = out.rows();
   for (std::size_t i = 1; i < pieces.size(); ++i) {
     const BakeFile& p = pieces[i];
-    const std::string who = "merge: the piece starting at vertex " + std::to_string(p.rows().first);
+    const std::string who =
+        "merge: the piece starting at " + rowName(p) + " " + std::to_string(p.rows().first);
     const Mesh& m = p.mesh;
     if (m.positions != m0.positions || m.normals != m0.normals || m.triangles != m0.triangles ||
-        m.albedo != m0.albedo)
+        m.albedo != m0.albedo || m.lightmapUvs != m0.lightmapUvs)
       throw Error(who + " was baked from a different mesh");
+    if (p.domain() != out.domain() || !(p.lightmap() == out.lightmap()))
+      throw Error(who + " is over another domain (" + toString(p.domain()) + ", not " +
+                  toString(out.domain()) + ", or another lightmap)");
     if (p.rows().first < rows.end())
       throw Error(who + " overlaps the previous range (which ends at " +
                   std::to_string(rows.end()) + ")");
     if (p.rows().first > rows.end())
-      throw Error(who + " leaves a gap: vertices " + std::to_string(rows.end()) + ".." +
-                  std::to_string(p.rows().first - 1) + " are missing");
+      throw Error(who + " leaves a gap: " + (rowName(p) == "texel" ? "texels " : "vertices ") +
+                  std::to_string(rows.end()) + ".." + std::to_string(p.rows().first - 1) +
+                  " are missing");
     if (p.transfers.size() != out.transfers.size()) throw Error(who + " holds different modes");
     for (std::size_t t = 0; t < out.transfers.size(); ++t) {
       BakedTransfer& a = out.transfers[t];

@@ -112,17 +112,18 @@ class DenseVectorCodec final : public TransferCodec {
   }
 };
 
-// ---- dense matrices ---------------------------------------------------------------------------
+// ---- dense rows in one accessor: matrices (either domain), per-texel vectors ------------------
 
-class DenseMatrixCodec final : public TransferCodec {
+class DenseRowsCodec final : public TransferCodec {
  public:
   std::vector<std::pair<std::string, int>> encode(const BakedTransfer& bt, glb::BinaryChunk& bin,
                                                   json& entry) const override {
     const Transfer& t = bt.transfer;
-    const std::string name = transferMatrixName(bt.mode());
+    const bool matrix = t.isMatrix();
+    const std::string name = matrix ? transferMatrixName(bt.mode()) : transferTexelName(bt.mode());
     const FloatArray& v = t.values();
     const int view = bin.view(v.data(), v.size() * sizeof(float), 0, 0, name);
-    entry["matrixAccessor"] = name;
+    entry[matrix ? "matrixAccessor" : "texelAccessor"] = name;
     entry["accessors"] = json::array({bin.accessor(view, 0, v.size(), "SCALAR", kFloat, name)});
     return {};
   }
@@ -130,10 +131,11 @@ class DenseMatrixCodec final : public TransferCodec {
   Transfer decode(const json& entry, const std::string& where, const TransferShape& shape,
                   TransferMode mode, const gltf::AccessorReader& a, const schema::Reader& r,
                   const ByteKeeper& bytes) const override {
-    const std::vector<int> acc = accessorList(entry, 1, "the matrices", where, r);
+    const char* what = shape.isMatrix() ? " matrices" : " texel rows";
+    const std::vector<int> acc = accessorList(entry, 1, std::string("the") + what, where, r);
     // The reader checks the declared count against the bytes present before anything is read.
     return Transfer::dense(shape, floats(a, acc[0], shape.rows.count * shape.stride(),
-                                         std::string(toString(mode)) + " matrices", r, bytes));
+                                         std::string(toString(mode)) + what, r, bytes));
   }
 };
 
@@ -216,14 +218,20 @@ class CpcaCodec final : public TransferCodec {
 };
 
 const DenseVectorCodec kDenseVector;
-const DenseMatrixCodec kDenseMatrix;
+const DenseRowsCodec kDenseRows;
 const CpcaCodec kCpca;
+
+/// Dense vectors over vertices are vertex attributes; every other dense transfer is its rows.
+const TransferCodec& denseCodecFor(const TransferShape& shape) {
+  if (shape.isMatrix() || shape.domain == TransferDomain::Texels) return kDenseRows;
+  return kDenseVector;
+}
 
 }  // namespace
 
 const TransferCodec& codecFor(const Transfer& t) {
   if (t.compressed()) return kCpca;
-  return t.isMatrix() ? static_cast<const TransferCodec&>(kDenseMatrix) : kDenseVector;
+  return denseCodecFor(t.shape());
 }
 
 const TransferCodec& codecFor(const json& entry, const TransferShape& shape, int version,
@@ -234,7 +242,7 @@ const TransferCodec& codecFor(const json& entry, const TransferShape& shape, int
              " file (compression needs version 3)");
     return kCpca;
   }
-  return shape.isMatrix() ? static_cast<const TransferCodec&>(kDenseMatrix) : kDenseVector;
+  return denseCodecFor(shape);
 }
 
 }  // namespace prt::io

@@ -35,7 +35,8 @@ const char* toString(TransferDomain domain) {
 
 TransferDomain parseTransferDomain(const std::string& s) {
   if (s == "vertices") return TransferDomain::Vertices;
-  throw Error("unknown transfer domain '" + s + "' (expected vertices)");
+  if (s == "texels") return TransferDomain::Texels;
+  throw Error("unknown transfer domain '" + s + "' (expected vertices or texels)");
 }
 
 std::size_t TransferShape::rowSize() const {

@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <functional>
 #include <random>
+#include <tuple>
 
+#include "common/error_text.hpp"
 #include "common/random_data.hpp"
 #include "common/scratch.hpp"
 #include "prt/compress/cpca.hpp"
@@ -659,13 +661,11 @@ TEST(BakeFile, MaterialIsStructuredAndReadsBackExactly) {
   const std::string bytes = encodeBake(b);
   const BakeFile r = decodeBake(asBytes(bytes), "m.glb");
   EXPECT_EQ(r.transfers[0].recipe.material, m);
-  const nlohmann::json j =
-      prtObject(splitGlb(bytes).json)["transfers"][0]["settings"]["material"];
+  const nlohmann::json j = prtObject(splitGlb(bytes).json)["transfers"][0]["settings"]["material"];
   EXPECT_EQ(j["type"], "phong");
   EXPECT_EQ(j["exponent"].get<double>(), 17.123456789);
   EXPECT_EQ(j["ks"][0].get<double>(), 0.1234567);  // the float's shortest decimal
-  EXPECT_FALSE(
-      prtObject(splitGlb(bytes).json)["transfers"][0]["settings"].contains("albedo"));
+  EXPECT_FALSE(prtObject(splitGlb(bytes).json)["transfers"][0]["settings"].contains("albedo"));
   // Version 3 wrote the spec string and a separate albedo: both still read.
   nlohmann::json doc = splitGlb(bytes).json;
   asVersion(doc, 3);
@@ -869,6 +869,145 @@ TEST(BakeFile, LightmapUvsRoundTripInTheirSet) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("TEXCOORD_1"), std::string::npos) << e.what();
   }
+}
+
+/// A bake of per-texel transfer over the two-part mesh's lightmap UVs: a W × H lightmap, rows
+/// [first, first + n), scalar 3 bands and RGB 2 bands.
+BakeFile texelBake(int W, int H, std::size_t first, std::size_t n) {
+  BakeFile b;
+  b.mesh = twoPartMesh();
+  const std::size_t V = b.mesh.vertexCount();
+  for (std::size_t v = 0; v < V; ++v) b.mesh.lightmapUvs.push_back({float(v) / V, 0.25f});
+  int seed = 11;
+  for (const auto& [mode, bands, channels] : std::vector<std::tuple<TransferMode, int, int>>{
+           {TransferMode::Shadowed, 3, 1}, {TransferMode::Interreflected, 2, 3}}) {
+    BakedTransfer t = transfer(mode, bands, channels, first, n, unsigned(seed++));
+    TransferShape shape = t.transfer.shape();
+    shape.domain = TransferDomain::Texels;
+    shape.lightmap = {W, H, 2};
+    t.transfer = Transfer::dense(shape, t.transfer.values());
+    b.transfers.push_back(std::move(t));
+  }
+  return b;
+}
+
+// Per-texel transfer in the file (format 6): each transfer's rows as one float accessor, the
+// lightmap and texel range in the extension, the domain in the settings; bit-exact back, dense
+// and compressed; split ranges merge exactly; and every way a file can lie about it refused
+// by name.
+TEST(BakeFile, TexelTransferRoundTripsAndMergesExactly) {
+  const int W = 6, H = 5;
+  const BakeFile b = texelBake(W, H, 0, W * H);
+  const std::string bytes = encodeBake(b);
+  nlohmann::json j = splitGlb(bytes).json;
+  const nlohmann::json& o = prtObject(j);
+  EXPECT_EQ(o["formatVersion"], 6);
+  EXPECT_FALSE(o.contains("vertexRange"));
+  EXPECT_EQ(o["texelRange"]["count"], W * H);
+  EXPECT_EQ(o["lightmap"]["width"], W);
+  EXPECT_EQ(o["lightmap"]["padding"], 2);
+  EXPECT_EQ(o["transfers"][0]["settings"]["domain"], "texels");
+  EXPECT_EQ(o["transfers"][0]["texelAccessor"], "_PRT_SHADOWED_TEXELS");
+  // Texels are not vertex attributes: no primitive carries them.
+  for (const auto& mesh : j["meshes"])
+    for (auto it = mesh["primitives"][0]["attributes"].begin();
+         it != mesh["primitives"][0]["attributes"].end(); ++it)
+      EXPECT_NE(it.key().rfind("_PRT", 0), 0u) << it.key();
+  const BakeFile r = decodeBake(asBytes(bytes), "texels.glb");
+  expectSameBake(b, r);
+  EXPECT_EQ(r.domain(), TransferDomain::Texels);
+  EXPECT_EQ(r.domainRows(), std::size_t(W * H));
+  EXPECT_TRUE(r.complete());
+  EXPECT_EQ(r.transfers[1].transfer.shape().lightmap, (TransferShape::LightmapSize{W, H, 2}));
+  EXPECT_NE(testing::errorOf([&] {
+              r.requireVertices("texels.glb", "USE");
+            }).find("texels.glb: holds per-texel transfer (a 6 x 5 lightmap); USE"),
+            std::string::npos);
+
+  // Compressed per-texel rows round-trip too.
+  BakeFile c = b;
+  CpcaOptions cs;
+  cs.clusters = 3;
+  cs.basisCount = 2;
+  c.transfers[0].transfer = compressCpca(b.transfers[0].transfer, cs);
+  const BakeFile rc = decodeBake(asBytes(encodeBake(c)), "cpca-texels.glb");
+  EXPECT_TRUE(rc.transfers[0].transfer.compressed());
+  EXPECT_EQ(rc.transfers[0].transfer.domain(), TransferDomain::Texels);
+  EXPECT_TRUE(sameTransfer(rc.transfers[0].transfer, c.transfers[0].transfer));
+
+  // Texel ranges merge exactly, and say texels when they do not fit.
+  auto piece = [&](std::size_t first, std::size_t n) {
+    BakeFile p = texelBake(W, H, first, n);
+    for (std::size_t t = 0; t < p.transfers.size(); ++t) {
+      const std::size_t S = p.transfers[t].transfer.stride();
+      const float* all = b.transfers[t].transfer.values().data();
+      p.transfers[t].transfer =
+          Transfer::dense(p.transfers[t].transfer.shape(),
+                          FloatArray(std::vector<float>(all + first * S, all + (first + n) * S)));
+    }
+    BakeFile back = decodeBake(asBytes(encodeBake(p)), "piece.glb");
+    EXPECT_FALSE(back.complete());
+    return back;
+  };
+  const BakeFile merged = mergeBakes({piece(13, 17), piece(0, 13)});
+  EXPECT_TRUE(merged.complete());
+  for (std::size_t t = 0; t < b.transfers.size(); ++t)
+    EXPECT_TRUE(sameTransfer(merged.transfers[t].transfer, b.transfers[t].transfer));
+  EXPECT_NE(testing::errorOf([&] {
+              mergeBakes({piece(0, 10), piece(13, 17)});
+            }).find("leaves a gap: texels 10..12 are missing"),
+            std::string::npos);
+  EXPECT_NE(testing::errorOf([&] {
+              piece(0, 10).requireComplete("p.glb");
+            }).find("holds transfer for texels 0..9 of 30"),
+            std::string::npos);
+  BakeFile otherMap = texelBake(W, H + 1, 13, 17);
+  EXPECT_NE(testing::errorOf([&] {
+              mergeBakes({piece(0, 13), otherMap});
+            }).find("another lightmap"),
+            std::string::npos);
+
+  // The writer: one domain per file, UVs to be over.
+  BakeFile mixed = b;
+  mixed.transfers.push_back(transfer(TransferMode::Unshadowed, 2, 1, 0, b.mesh.vertexCount(), 5));
+  EXPECT_NE(testing::errorOf([&] { encodeBake(mixed); }).find("different domains"),
+            std::string::npos);
+  BakeFile noUvs = b;
+  noUvs.mesh.lightmapUvs.clear();
+  EXPECT_NE(testing::errorOf([&] { encodeBake(noUvs); }).find("needs the mesh's lightmap UVs"),
+            std::string::npos);
+
+  // The reader: a range past the lightmap, a domain the settings contradict, texels in a
+  // version-5 file, no UV set named, a lightmap beyond the limit.
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json e = j;
+    edit(e);
+    return testing::errorOf([&] { decodeBake(asBytes(withJson(bytes, e)), "bad.glb"); });
+  };
+  EXPECT_NE(refused([](nlohmann::json& e) {
+              prtObject(e)["texelRange"]["count"] = 31;
+            }).find("texel range 0+31 is outside the lightmap (30 texels)"),
+            std::string::npos);
+  EXPECT_NE(refused([](nlohmann::json& e) {
+              prtObject(e)["transfers"][1]["settings"]["domain"] = "vertices";
+            }).find("domain is vertices in a bake over texels"),
+            std::string::npos);
+  EXPECT_NE(refused([](nlohmann::json& e) {
+              prtObject(e)["formatVersion"] = 5;
+            }).find("texels need version 6"),
+            std::string::npos);
+  EXPECT_NE(refused([](nlohmann::json& e) {
+              prtObject(e).erase("lightmapTexCoord");
+            }).find("names no lightmapTexCoord"),
+            std::string::npos);
+  EXPECT_NE(refused([](nlohmann::json& e) {
+              prtObject(e)["lightmap"]["width"] = 9000;
+            }).find("lightmap.width"),
+            std::string::npos);
+  EXPECT_NE(refused([](nlohmann::json& e) {
+              prtObject(e)["vertexRange"] = {{"first", 0}};
+            }).find("both a vertexRange and a texelRange"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -58,6 +58,8 @@ export async function readBake(gltf, name, limits) {
     fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads versions ${bakeFormat.reads.join(', ')})`);
   const entries = Array.isArray(prt.transfers) ? prt.transfers : [];
   if (entries.length === 0) fail(name, 'the bake holds no transfer (bake it with prt bake --mode ...)');
+  if (prt.texelRange || prt.lightmap)
+    fail(name, `holds per-texel transfer (a ${(prt.lightmap || {}).width} x ${(prt.lightmap || {}).height} lightmap), which this page does not relight yet (prt render relights it per pixel)`);
   const range = prt.vertexRange || {};
   if (range.first !== 0 || range.count !== prt.vertexCount)
     fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);

@@ -102,6 +102,7 @@ using Rgbd = Vec3<double>;
 
 struct Vec2f {
   float x = 0, y = 0;
+  constexpr bool operator==(const Vec2f&) const = default;
 };
 
 /// Row-major 3x3 matrix; m[r][c]. Rotations act on column vectors: v' = M v.

@@ -16,6 +16,8 @@ namespace prt {
 
 /// The largest lightmap side sampleTexels takes (8192² texels: ~1.4 GB of working buffers).
 inline constexpr int kMaxLightmapSide = 8192;
+/// The most rings of gutter a bake dilates into (Dilation reads within that many texels).
+inline constexpr int kMaxLightmapPadding = 64;
 
 /// Checks that `uvs` (one per vertex of `mesh`) can hold a W × H lightmap: finite, inside
 /// [0, 1]², and no texel centre strictly inside two triangles (overlapping charts would share

@@ -1,8 +1,8 @@
 #pragma once
 // The bake file: a glTF 2.0 binary (.glb) that any glTF viewer opens as a plain mesh, and that
 // carries one or more transfers (each a prt::Transfer with how it was baked) in
-// application-specific accessors described in the PRTKIT_radiance_transfer extension. The layout is specified byte by
-// byte in docs/formats-bake.md; in short:
+// application-specific accessors described in the PRTKIT_radiance_transfer extension. The layout is
+// specified byte by byte in docs/formats-bake.md; in short:
 //
 //   * one glTF mesh + node per MeshPart, one triangle primitive each (POSITION, NORMAL,
 //     TEXCOORD_0 if any, COLOR_0 = linear albedo if any, uint32 indices), all parts viewing one
@@ -10,21 +10,28 @@
 //   * each transfer through the codec of its representation and layout: dense vectors as
 //     ⌈B²C/4⌉ VEC4 float vertex attributes _PRT_<MODE>_T0.., dense matrices as one SCALAR
 //     float accessor _PRT_<MODE>_M, CPCA-compressed rows as four accessors _PRT_<MODE>_CPCA_*;
-//   * extensions.PRTKIT_radiance_transfer: formatVersion, generator, vertex range, and per transfer its shape, how it
+//   * extensions.PRTKIT_radiance_transfer: formatVersion, generator, vertex range, and per transfer
+//   its shape, how it
 //     was baked (BakeRecipe, the material as structured fields), its statistics, and the
 //     accessors that hold its rows.
 //
 // A bake may cover a vertex range [first, first + count) of the scene (split bakes): the file
 // then holds the whole mesh but only the range's transfer rows (in accessors listed in the
-// extension, not as primitive attributes, since glTF attributes must cover every vertex). mergeBakes()
-// (bake_merge.hpp) concatenates ranges exactly, because a vertex's transfer depends only on the
-// inputs, the seed and its global index (see prt/transport/bake.hpp).
+// extension, not as primitive attributes, since glTF attributes must cover every vertex).
+// mergeBakes() (bake_merge.hpp) concatenates ranges exactly, because a vertex's transfer depends
+// only on the inputs, the seed and its global index (see prt/transport/bake.hpp).
+//
+// A bake's transfers share one domain: the mesh's vertices (vertexRange), or the texels of one
+// lightmap over the mesh's lightmap UVs (texelRange and lightmap {width, height, padding}; the
+// rows as one float accessor per transfer, _PRT_<MODE>_TEXELS, or CPCA's four). A texel range
+// splits and merges as a vertex range does.
 //
 // Versions: 1 vector transfer, 2 adds matrices, 3 adds CPCA-compressed transfer, 4 stores the
 // material as structured fields (type, exponent or roughness, ks, kd as numbers that read back
 // exactly), 5 moves the object from the root's extras.prtkit into the vendor extension
 // PRTKIT_radiance_transfer (declared in extensionsUsed, not required: any glTF viewer still
-// shows the mesh; docs/extensions/PRTKIT_radiance_transfer/). This prtkit writes 5 and reads 1–5.
+// shows the mesh; docs/extensions/PRTKIT_radiance_transfer/), 6 adds per-texel transfer. This
+// prtkit writes 6 and reads 1–6.
 
 #include <cstddef>
 #include <cstdint>
@@ -42,7 +49,7 @@
 namespace prt {
 
 /// The bake-file format version this prtkit writes and the newest it reads.
-inline constexpr int kBakeFormatVersion = 5;
+inline constexpr int kBakeFormatVersion = 6;
 /// The glTF extension that holds a bake's object from version 5 (earlier: extras.prtkit).
 inline constexpr const char* kBakeExtension = "PRTKIT_radiance_transfer";
 /// The first version written as the extension.
@@ -75,13 +82,23 @@ struct BakeFile {
   int formatVersion = kBakeFormatVersion;  ///< as read (writing writes kBakeFormatVersion)
   std::string generator = kGenerator;      ///< "prtkit 0.1.0"; written to asset.generator too
 
-  /// The vertex range the transfers cover (the whole mesh when there are none).
+  /// The domain the transfers share (vertices when there are none).
+  TransferDomain domain() const;
+  /// Texels: the lightmap the transfers cover (zero size for vertices).
+  TransferShape::LightmapSize lightmap() const;
+  /// Rows of the whole domain: the mesh's vertices or the lightmap's texels.
+  std::size_t domainRows() const;
+  /// The row range the transfers cover (the whole mesh when there are none).
   RowRange rows() const;
-  /// True if the transfers cover every vertex of the mesh.
+  /// True if the transfers cover every row of their domain.
   bool complete() const;
   /// Throws prt::Error("FILE: is a partial bake: it holds transfer for vertices a..b of n only
   /// (merge ...)") unless complete(): the one check every consumer of a whole bake makes.
   void requireComplete(const std::string& file) const;
+  /// Throws prt::Error("FILE: holds per-texel transfer (a W x H lightmap); USE ...") unless the
+  /// transfers are per vertex: the one check of every consumer that reads rows as vertices.
+  /// `use` says what does not take texels, e.g. "prt view relights per-vertex transfer only".
+  void requireVertices(const std::string& file, const std::string& use) const;
   /// The transfer of `mode` and `layout` (any layout if not given), or nullptr.
   const BakedTransfer* find(TransferMode mode, std::optional<TransferLayout> layout = {}) const;
 };
@@ -114,6 +131,8 @@ std::vector<std::size_t> transferPreference(const BakeFile& bake);
 std::string transferAttributePrefix(TransferMode mode);
 /// The accessor name of a mode's matrix transfer: "_PRT_SHADOWED_M" etc.
 std::string transferMatrixName(TransferMode mode);
+/// The accessor name of a mode's dense per-texel vector transfer: "_PRT_SHADOWED_TEXELS" etc.
+std::string transferTexelName(TransferMode mode);
 /// The accessor name prefix of a mode's compressed transfer: "_PRT_SHADOWED_CPCA_" etc.
 /// (then CLUSTER, WEIGHTS, MEANS, BASIS).
 std::string transferCompressedPrefix(TransferMode mode);

@@ -4,8 +4,9 @@
 // Transfer for Real-Time Rendering in Dynamic, Low-Frequency Lighting Environments",
 // SIGGRAPH 2002, §5 diffuse vectors, §6 glossy matrices).
 //
-// A transfer is a table of one *row* per element of its domain (mesh vertices; per-texel
-// lightmaps and probes are the domains to come). What a row holds depends on the layout:
+// A transfer is a table of one *row* per element of its domain: mesh vertices, or the texels
+// of a lightmap over the mesh's lightmap UVs (probes are the domain to come). What a row holds
+// depends on the layout:
 //
 //   Vector  (diffuse transfer)  B² coefficients:  T_i(p) = (1/π) ∫ Y_i(ω) V(p,ω) max(n·ω,0) dω
 //                                                 (+ inter-reflected light);
@@ -44,12 +45,11 @@ TransferLayout parseTransferLayout(const std::string& s);
 enum class TransferDomain {
   Vertices,  ///< one row per mesh vertex, interpolated across triangles
   /// One row per texel of a lightmap (TransferShape::lightmap), texel (x, y) row y·W + x, over
-  /// the mesh's lightmap UVs (transport/bake_texels.hpp; issue 18). Baked in memory; bake files
-  /// do not hold them yet.
+  /// the mesh's lightmap UVs (Mesh::lightmapUvs; transport/bake_texels.hpp), fetched bilinearly.
   Texels,
 };
 const char* toString(TransferDomain domain);
-/// Parses "vertices" (the domain bake files hold); throws prt::Error otherwise.
+/// Parses "vertices" | "texels"; throws prt::Error otherwise.
 TransferDomain parseTransferDomain(const std::string& s);
 
 /// Rows [first, first + count) of a domain.
@@ -66,12 +66,21 @@ struct TransferShape {
   int bands = 0;
   int channels = 1;  ///< 1 (scalar) or 3 (RGB)
   RowRange rows;     ///< which rows of the domain the transfer holds
-  /// Texels: the lightmap's width and height (the domain has width · height rows).
+  /// Texels: the lightmap's width and height (the domain has width · height rows) and the rings
+  /// of texels around the charts that hold their covered neighbours' values (dilation: what a
+  /// bilinear fetch at a chart's edge reads); texels beyond them hold zeros.
   struct LightmapSize {
     int width = 0, height = 0;
+    int padding = 0;
+    std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
     bool operator==(const LightmapSize&) const = default;
   };
   LightmapSize lightmap{};
+  /// Rows of the whole domain: the lightmap's texels, or `vertices` (the mesh's, which the
+  /// shape does not hold).
+  std::size_t domainRows(std::size_t vertices) const {
+    return domain == TransferDomain::Texels ? lightmap.texels() : vertices;
+  }
 
   int coeffs() const { return bands * bands; }
   bool isMatrix() const { return layout == TransferLayout::Matrix; }
