@@ -9,6 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libtbb-dev libeigen3-dev libspectra-dev
   libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libopenexr-dev zlib1g-dev
+  libpng-dev
   libcli11-dev libfmt-dev
   # MPI (mpirun -np N prt bake ...; docs/distributed.md): Open MPI, found by find_package(MPI)
   openmpi-bin libopenmpi-dev

@@ -7,6 +7,8 @@
 //   mpirun -np 8 prt bake bunny.obj --mode interreflected -o bunny.glb  (one bake across MPI
 //                                                                       ranks; docs/distributed.md)
 //   prt bake scene.obj --mode shadowed --shard 3/16 -o part3.glb      (job arrays, no MPI)
+//   prt bake builtin:cornell --mode interreflected --domain texels --resolution 256 -o box.glb
+//                                                                      (per-texel transfer)
 //   prt bake scene.obj --mode interreflected --pass 1 --previous pass0.prtpass --shard 3/16
 //            -o pass1-3.prtpass                                        (a job array's bounces)
 
@@ -17,23 +19,27 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <tuple>
 
 #include "cli.hpp"
 #include "guard.hpp"
-#include "report.hpp"
+#include "mpi_verb.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/units.hpp"
+#include "prt/geometry/lightmap_uvs.hpp"
 #include "prt/geometry/load.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/pass_file.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transport/bake.hpp"
+#include "prt/transport/bake_texels.hpp"
 #include "prt/transport/passes.hpp"
-#include "mpi_verb.hpp"
+#include "report.hpp"
 #include "transfer_options.hpp"
 #if PRT_HAVE_MPI
 #include <iostream>
@@ -58,6 +64,11 @@ struct BakeArgs {
   std::string material;
   std::string range;
   std::string output;
+  // Per-texel transfer (docs/transport.md): the lightmap and the UV set it is over.
+  std::string domain = "vertices";
+  int resolution = 0;  ///< 0: not given (kDefaultResolution)
+  std::string uv;      ///< "": not given (auto)
+  int padding = -1;    ///< −1: not given (kDefaultPadding)
   // Distributed and split bakes (docs/distributed.md).
   std::string checkpoint;  ///< MPI: folder of finished chunks
   std::size_t chunk = 0;   ///< MPI: rows per chunk (0: the default)
@@ -132,24 +143,31 @@ Rgb parseAlbedo(const std::string& s) {
   return {r, g, b};
 }
 
-/// "a:b" → [a, b); "a:" → [a, end).
-RowRange parseRange(const std::string& s, std::size_t vertices) {
+/// "a:b" → [a, b); "a:" → [a, end), of `rows` rows named `what` ("vertex", "texel").
+RowRange parseRange(const std::string& s, std::size_t rows, const char* what = "vertex") {
   const auto colon = s.find(':');
   auto num = [&](const std::string& t) -> std::size_t {
     if (t.empty() || t.find_first_not_of("0123456789") != std::string::npos)
-      throw Error("--range '" + s + "': expected FIRST:END vertex indices, e.g. 0:5000");
+      throw Error(fmt::format("--range '{}': expected FIRST:END {} indices, e.g. 0:5000", s, what));
     if (t.size() > 15)  // beyond any mesh; also keeps std::stoull from overflowing
-      throw Error(fmt::format("--range {}: {} is past the vertex count {}", s, t, vertices));
+      throw Error(fmt::format("--range {}: {} is past the {} count {}", s, t, what, rows));
     return std::stoull(t);
   };
   if (colon == std::string::npos) throw Error("--range '" + s + "': expected FIRST:END");
   const std::size_t first = num(s.substr(0, colon));
-  const std::size_t end = colon + 1 == s.size() ? vertices : num(s.substr(colon + 1));
-  if (first >= end || end > vertices)
+  const std::size_t end = colon + 1 == s.size() ? rows : num(s.substr(colon + 1));
+  if (first >= end || end > rows)
     throw Error(
-        fmt::format("--range {}: must satisfy FIRST < END <= {} (the vertex count)", s, vertices));
+        fmt::format("--range {}: must satisfy FIRST < END <= {} (the {} count)", s, rows, what));
   return {first, end - first};
 }
+
+/// A per-texel bake's lightmap, when --domain texels.
+struct TexelPlan {
+  int resolution = 512;  ///< the lightmap's side
+  int padding = 2;       ///< rings of gutter dilated
+  UvSetOption uv = UvSetOption::Auto;
+};
 
 std::string seconds(double s) {
   return s < 1 ? fmt::format("{:.0f} ms", s * 1e3) : fmt::format("{:.2f} s", s);
@@ -159,7 +177,8 @@ std::string seconds(double s) {
 struct BakePlan {
   std::vector<TransferMode> modes;
   TransferLayout layout = TransferLayout::Vector;
-  BakeRecipe recipe;  ///< all but the mode
+  BakeRecipe recipe;                ///< all but the mode
+  std::optional<TexelPlan> texels;  ///< --domain texels
 };
 
 BakePlan planOf(const BakeArgs& a) {
@@ -185,7 +204,40 @@ BakePlan planOf(const BakeArgs& a) {
   plan.layout = parseTransferLayout(a.transfer);
   if (!a.material.empty()) r.material = parseMaterial(a.material);
   if (!a.albedo.empty()) r.material.diffuse = parseAlbedo(a.albedo);
+  const TransferDomain domain = parseTransferDomain(a.domain);
+  if (domain == TransferDomain::Texels) {
+    TexelPlan t;
+    if (a.resolution) t.resolution = a.resolution;
+    if (a.padding >= 0) t.padding = a.padding;
+    if (!a.uv.empty()) t.uv = parseUvSetOption(a.uv);
+    if (t.resolution < 1 || t.resolution > kMaxLightmapSide)
+      throw Error(fmt::format("--resolution {}: must be 1..{}", t.resolution, kMaxLightmapSide));
+    if (t.padding > kMaxLightmapPadding)
+      throw Error(fmt::format("--padding {}: must be 0..{}", t.padding, kMaxLightmapPadding));
+    if (plan.layout == TransferLayout::Matrix)
+      throw Error(
+          "--domain texels bakes vector transfer only so far (per-texel glossy matrices "
+          "are to come): drop --transfer matrix");
+    if (a.pass >= 0 || !a.checkpoint.empty())
+      throw Error(
+          "--domain texels bakes in one process: --pass and --checkpoint split "
+          "per-vertex bakes (--range and --shard split texel bakes)");
+    plan.texels = t;
+  } else if (a.resolution || a.padding >= 0 || !a.uv.empty()) {
+    throw Error("--resolution, --uv and --padding shape a lightmap: add --domain texels");
+  }
   return plan;
+}
+
+/// --domain texels: picks the UV set (--uv), says which and why not another, and makes it the
+/// mesh's lightmap UVs (what the bake file records the texels over).
+void chooseTexelUvs(Mesh& mesh, const TexelPlan& t) {
+  const LightmapUvChoice c = chooseLightmapUvs(mesh, t.uv, t.resolution, t.resolution);
+  for (const std::string& why : c.refused)
+    info(fmt::format("{}: passed over {}", mesh.source, why));
+  info(fmt::format("{}: a {} x {} lightmap over its {} (padding {})", mesh.source, t.resolution,
+                   t.resolution, c.name, t.padding));
+  if (c.uvs.data() != mesh.lightmapUvs.data()) mesh.lightmapUvs.assign(c.uvs.begin(), c.uvs.end());
 }
 
 /// States the memory a mode's bake takes before the work, and refuses what a bake file cannot
@@ -216,6 +268,33 @@ void announce(const Mesh& mesh, const BakeSettings& s, const std::string& output
                                     bytesText(fileRoom)));
 }
 
+/// A per-texel bake's memory, before the work, refusing what a bake file cannot hold.
+void announceTexels(const BakeSettings& s, const TexelPlan& t, const std::string& output) {
+  const std::string what = fmt::format("{} {} per texel", toString(s.mode), toString(s.layout));
+  const std::size_t texels = std::size_t(t.resolution) * t.resolution;
+  // RGB when coloured bounces need it: state the larger.
+  const int channels = s.effectiveBounces() > 0 ? 3 : 1;
+  const std::uint64_t perTexel = std::uint64_t(s.bands) * s.bands * channels * sizeof(float);
+  const std::uint64_t bytes = perTexel * s.rows.count;
+  // The working buffers: the samples, each pass and the dilated lightmap of the last.
+  const std::uint64_t working =
+      perTexel * texels * (s.effectiveBounces() > 0 ? 3 : 1) + texels * 40;
+  info(fmt::format("{}: up to {} per texel, {} for {} texels + {} working", what,
+                   bytesText(perTexel), bytesText(bytes), s.rows.count, bytesText(working)));
+  if (s.effectiveBounces() > 0 && s.rows.count < texels)
+    info(
+        fmt::format("{}: the bounces read the whole lightmap: each range bakes every texel's "
+                    "earlier passes",
+                    what));
+  const std::uint64_t fileRoom = kMaxBakeFileBytes - (std::uint64_t(1) << 26);
+  if (bytes > fileRoom)
+    throw Error(output,
+                fmt::format("{} transfer of {} texels at {} bands is {}, more than a bake "
+                            "file holds ({}); use a smaller --resolution or split the "
+                            "bake with --range",
+                            what, s.rows.count, s.bands, bytesText(bytes), bytesText(fileRoom)));
+}
+
 /// The bake's rays, timings and Monte Carlo error, in two lines.
 void report(const BakedTransfer& t) {
   const BakeStats& st = t.stats;
@@ -241,9 +320,11 @@ void refuseNonFinite(const Mesh& mesh, const BakedTransfer& t) {
   for (std::size_t k = 0; k < values.size(); ++k)
     if (!std::isfinite(values[k]))
       throw Error(mesh.source,
-                  fmt::format("{} transfer of vertex {} is not finite (check the "
+                  fmt::format("{} transfer of {} {} is not finite (check the "
                               "material albedos and coordinates); nothing written",
-                              toString(t.mode()), t.transfer.rows().first + k / stride));
+                              toString(t.mode()),
+                              t.transfer.domain() == TransferDomain::Texels ? "texel" : "vertex",
+                              t.transfer.rows().first + k / stride));
 }
 
 /// --json: the written bake (or pass file) and how it was made. `ranks` > 0 for an MPI run.
@@ -275,9 +356,10 @@ void refuseModesAsInputs(const BakeArgs& a) {
     }
     std::error_code ec;
     if (isMode && !std::filesystem::exists(in, ec))
-      throw Error(fmt::format("'{}' is a mode, not a mesh: give each mode its own --mode "
-                              "(--mode shadowed --mode {}) or list them (--mode shadowed,{})",
-                              in, in, in));
+      throw Error(
+          fmt::format("'{}' is a mode, not a mesh: give each mode its own --mode "
+                      "(--mode shadowed --mode {}) or list them (--mode shadowed,{})",
+                      in, in, in));
   }
 }
 
@@ -305,6 +387,10 @@ void runBakeMpi(const BakeArgs& a) {
             "--shard and --pass split a bake for job arrays without MPI; under mpirun the "
             "ranks share the work (drop them)");
       plan = planOf(a);
+      if (plan.texels)
+        throw Error(
+            "--domain texels under mpirun: per-texel bakes run in one process so far (split "
+            "them with --shard or --range and join the pieces with prt merge)");
       if (fileExtension(a.output) != "glb" && !isStandardOutput(a.output))
         throw Error(a.output + ": the bake file must end in .glb");
       refuseModesAsInputs(a);
@@ -364,9 +450,10 @@ void runBakeMpi(const BakeArgs& a) {
           root ? progressBar(std::string("bake ") + toString(s.mode)) : ProgressFn{});
       if (!root) continue;
       if (rep.spilled)
-        info(fmt::format("{}: rank 0 kept the transfer ({}) in a mapped scratch file beside the "
-                         "output, not in memory",
-                         toString(s.mode), bytesText(bakeFootprint(mesh, s).transferBytes)));
+        info(
+            fmt::format("{}: rank 0 kept the transfer ({}) in a mapped scratch file beside the "
+                        "output, not in memory",
+                        toString(s.mode), bytesText(bakeFootprint(mesh, s).transferBytes)));
       for (std::size_t j = 0; j < rep.jobs.size(); ++j) {
         const distributed::JobStats& js = rep.jobs[j];
         // What moved: each rank receives the rows it did not compute, (N − 1) × the pass's
@@ -509,9 +596,9 @@ void runPassBake(const BakeArgs& a, BakeFile& file, const Occluder& occluder, Ba
       if (k > 0) r.input(a.previous);
       r.output(a.output);
       r["mesh"] = meshJson(mesh);
-      r["pass"] = {{"index", k},           {"count", count},     {"name", p.name},
-                   {"first", rows.first},  {"end", rows.end()},  {"rays", rays},
-                   {"seconds", secs},      {"shard", shard},     {"shards", shards}};
+      r["pass"] = {{"index", k},          {"count", count},    {"name", p.name},
+                   {"first", rows.first}, {"end", rows.end()}, {"rays", rays},
+                   {"seconds", secs},     {"shard", shard},    {"shards", shards}};
       r.write();
     }
     return;
@@ -535,8 +622,14 @@ void runPassBake(const BakeArgs& a, BakeFile& file, const Occluder& occluder, Ba
   info(fmt::format("wrote {} (last pass, {}{} vertices {}..{})", a.output,
                    file.complete() ? "" : "partial: ", rows.count, rows.first, rows.end() - 1));
   writeReport(a, file, 0,
-              {{"index", k}, {"count", count}, {"name", p.name}, {"first", rows.first},
-               {"end", rows.end()}, {"rays", rays}, {"seconds", secs}, {"shard", shard},
+              {{"index", k},
+               {"count", count},
+               {"name", p.name},
+               {"first", rows.first},
+               {"end", rows.end()},
+               {"rays", rays},
+               {"seconds", secs},
+               {"shard", shard},
                {"shards", shards}});
 }
 
@@ -583,11 +676,16 @@ void runBake(const BakeArgs& a) {
   // every consumer of the file (render, reference, validate, the viewer) relights with the albedo
   // the transfer's bounces were baked with.
   if (material.diffuse) file.mesh.albedo.assign(file.mesh.vertexCount(), *material.diffuse);
+  if (plan.texels) chooseTexelUvs(file.mesh, *plan.texels);
   const Mesh& mesh = file.mesh;
   const double loadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  RowRange rows =
-      a.range.empty() ? RowRange{0, mesh.vertexCount()} : parseRange(a.range, mesh.vertexCount());
+  const std::size_t domainRows =
+      plan.texels ? std::size_t(plan.texels->resolution) * plan.texels->resolution
+                  : mesh.vertexCount();
+  RowRange rows = a.range.empty()
+                      ? RowRange{0, domainRows}
+                      : parseRange(a.range, domainRows, plan.texels ? "texel" : "vertex");
   std::size_t shard = 0, shards = 1;
   if (!a.shard.empty()) std::tie(shard, shards) = parseShard(a.shard);
   const bool multiPass =
@@ -598,7 +696,7 @@ void runBake(const BakeArgs& a) {
         "--pass bakes one pass of an interreflected bake with bounces: give one --mode "
         "interreflected (the other modes bake in one pass: --shard alone splits them)");
   if (a.pass < 0 && !a.previous.empty()) throw Error("--previous goes with --pass");
-  if (a.pass < 0 && !a.shard.empty() && multiPass)
+  if (a.pass < 0 && !a.shard.empty() && multiPass && !plan.texels)
     throw Error(
         "--shard of an interreflected bake shards its passes one at a time: add --pass 0, "
         "prt merge the pieces, then --pass 1 --previous MERGED.prtpass, and so on (prt "
@@ -631,18 +729,31 @@ void runBake(const BakeArgs& a) {
     s.layout = plan.layout;
     s.bands = a.bands;
     s.rows = rows;
-    announce(mesh, s, a.output);
     BakedTransfer t;
     t.recipe = s;
-    t.transfer =
-        bake(mesh, *occluder, s, &t.stats, progressBar(std::string("bake ") + toString(mode)));
+    if (plan.texels) {
+      const TexelPlan& tp = *plan.texels;
+      announceTexels(s, tp, a.output);
+      TexelBake tb =
+          bakeTexels(mesh, *occluder, s, mesh.lightmapUvs, tp.resolution, tp.resolution, tp.padding,
+                     &t.stats, progressBar(std::string("bake ") + toString(mode)));
+      info(
+          fmt::format("{}: {} texels sampled ({} of them inside geometry, refilled from their "
+                      "neighbours)",
+                      toString(mode), tb.samples.samples.size(), tb.invalid.size()));
+      t.transfer = std::move(tb.transfer);
+    } else {
+      announce(mesh, s, a.output);
+      t.transfer =
+          bake(mesh, *occluder, s, &t.stats, progressBar(std::string("bake ") + toString(mode)));
+    }
     report(t);
     refuseNonFinite(mesh, t);
     file.transfers.push_back(std::move(t));
   }
   writeBake(a.output, file);
-  info(fmt::format("wrote {} ({}{} vertices {}..{})", a.output,
-                   file.complete() ? "" : "partial: ", rows.count, rows.first, rows.end() - 1));
+  info(fmt::format("wrote {} ({}{} {} {}..{})", a.output, file.complete() ? "" : "partial: ",
+                   rows.count, plan.texels ? "texels" : "vertices", rows.first, rows.end() - 1));
   writeReport(a, file);
 }
 
@@ -650,8 +761,8 @@ void runBake(const BakeArgs& a) {
 
 void addBakeCommand(CLI::App& root) {
   auto args = std::make_shared<BakeArgs>();
-  auto* cmd =
-      root.add_subcommand("bake", "Bake per-vertex SH transfer of a mesh or scene into a .glb");
+  auto* cmd = root.add_subcommand(
+      "bake", "Bake SH transfer of a mesh or scene (per vertex or per texel) into a .glb");
   cmd->add_option(
          "inputs", args->inputs,
          "Mesh files (OBJ, PLY, OFF, glTF) or builtin:NAME; several are baked as one scene")
@@ -686,7 +797,20 @@ void addBakeCommand(CLI::App& root) {
                   "Surface (stored as the default for relighting): " + materialGrammar())
       ->capture_default_str();
   cmd->add_option("--range", args->range,
-                  "Bake only vertices FIRST:END (split bakes; merge later)");
+                  "Bake only vertices (texels) FIRST:END (split bakes; merge later)");
+  cmd->add_option("--domain", args->domain,
+                  "vertices (transfer per vertex) | texels (per texel of a lightmap over the "
+                  "mesh's lightmap UVs)")
+      ->capture_default_str();
+  cmd->add_option("--resolution", args->resolution,
+                  "--domain texels: the lightmap's side in texels (default 512)")
+      ->check(intRange(1, kMaxLightmapSide));
+  cmd->add_option("--uv", args->uv,
+                  "--domain texels: the UV set: auto (the lightmap set, glTF TEXCOORD_1, else the "
+                  "texture set when it has no overlaps) | 1 | 0");
+  cmd->add_option("--padding", args->padding,
+                  "--domain texels: gutter texels dilated around the charts (default 2)")
+      ->check(intRange(0, kMaxLightmapPadding));
   cmd->add_option("-o,--output", args->output,
                   "Output bake file (.glb); with --pass K before the last, a pass file "
                   "(.prtpass)")

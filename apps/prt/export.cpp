@@ -1,6 +1,10 @@
 // prt export: a bake file → other formats.
 //
 //   prt export bunny.glb --format games202 -o transport.txt      (the course's transport.txt)
+//   prt export box.glb --format exr -o box-textures              (per-texel transfer: float
+//                                                                 coefficient textures + JSON)
+//   prt export box.glb --format png -o box-textures              (16-bit, scale and offset in
+//                                                                 the JSON)
 
 #include <fmt/format.h>
 
@@ -10,6 +14,7 @@
 #include "prt/core/file.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/games202_transport.hpp"
+#include "prt/io/lightmap_textures.hpp"
 #include "prt/relight/view_transfer.hpp"
 
 namespace prt::cli {
@@ -25,8 +30,59 @@ struct ExportArgs {
   std::string output;
 };
 
+/// The one transfer to export: --mode's (a vector before a matrix), else the only one.
+const BakedTransfer& exportedTransfer(const BakeFile& bake, const ExportArgs& a) {
+  if (bake.transfers.empty()) throw Error(a.input, "holds no transfer");
+  if (!a.mode.empty()) {
+    const TransferMode m = parseTransferMode(a.mode);
+    const BakedTransfer* t = bake.find(m, TransferLayout::Vector);
+    if (!t) t = bake.find(m);
+    if (!t) throw Error(a.input, "holds no " + a.mode + " transfer");
+    return *t;
+  }
+  if (bake.transfers.size() == 1) return bake.transfers[0];
+  std::string list;
+  for (const auto& x : bake.transfers) list += std::string(list.empty() ? "" : ", ") + x.describe();
+  throw Error(a.input, "holds several transfers (" + list + "): choose one with --mode");
+}
+
+/// --format exr | png: per-texel transfer as coefficient textures and transfer.json, in a
+/// folder written as a whole (replacing only an earlier export).
+void runExportTextures(const ExportArgs& a) {
+  const io::TextureEncoding encoding = io::parseTextureEncoding(a.format);
+  if (a.layout != "faces" || !a.channel.empty())
+    throw Error(
+        "--layout and --channel shape transport.txt (--format games202); coefficient "
+        "textures keep every coefficient and colour");
+  if (isStandardOutput(a.output))
+    throw Error("-o: coefficient textures are a folder, not a stream");
+  checkOutputs({{"-o", a.output}}, {{"input", a.input}});
+  const BakeFile bake = readBake(a.input);
+  bake.requireComplete(a.input);
+  const BakedTransfer& t = exportedTransfer(bake, a);
+  const io::CoefficientTextures tex =
+      io::encodeCoefficientTextures(t, bake.mesh, encoding, a.input);
+  FolderOutput folder(a.output, "prt export");
+  for (const auto& [name, bytes] : tex.files) folder.write(name, bytes);
+  folder.commit();
+  const TransferShape::LightmapSize lm = t.transfer.shape().lightmap;
+  info(fmt::format(
+      "wrote {} ({} {} textures of {}x{} for the {} transfer, {} bands x {} "
+      "channel(s), and transfer.json{})",
+      a.output, tex.files.size() - 1, a.format, lm.width, lm.height, toString(t.mode()),
+      t.transfer.bands(), t.transfer.channels(),
+      encoding == io::TextureEncoding::Unorm16Png
+          ? fmt::format("; 16-bit quantisation error at most {:.3g}", tex.maxQuantisationError)
+          : std::string()));
+}
+
 void runExport(const ExportArgs& a) {
-  if (a.format != "games202") throw Error("--format " + a.format + ": unknown (expected games202)");
+  if (a.format == "exr" || a.format == "png") {
+    runExportTextures(a);
+    return;
+  }
+  if (a.format != "games202")
+    throw Error("--format " + a.format + ": unknown (expected games202, exr or png)");
   Games202Layout layout;
   if (a.layout == "faces")
     layout = Games202Layout::Faces;
@@ -41,22 +97,11 @@ void runExport(const ExportArgs& a) {
 
   const BakeFile bake = readBake(a.input);
   bake.requireComplete(a.input);
-  if (bake.transfers.empty()) throw Error(a.input, "holds no transfer");
-  const BakedTransfer* t = nullptr;
-  if (!a.mode.empty()) {
-    // A vector of the mode before a matrix: transport.txt holds vectors.
-    const TransferMode m = parseTransferMode(a.mode);
-    t = bake.find(m, TransferLayout::Vector);
-    if (!t) t = bake.find(m);
-    if (!t) throw Error(a.input, "holds no " + a.mode + " transfer");
-  } else if (bake.transfers.size() == 1) {
-    t = &bake.transfers[0];
-  } else {
-    std::string list;
-    for (const auto& x : bake.transfers)
-      list += std::string(list.empty() ? "" : ", ") + x.describe();
-    throw Error(a.input, "holds several transfers (" + list + "): choose one with --mode");
-  }
+  bake.requireVertices(a.input,
+                       "transport.txt holds vertices: export it as coefficient "
+                       "textures (--format exr or png)");
+  // A vector of the mode before a matrix: transport.txt holds vectors.
+  const BakedTransfer* t = &exportedTransfer(bake, a);
   // transport.txt holds diffuse vectors: a compressed transfer exports its reconstruction, a
   // matrix its diffuse part t = Mᵀd(n) (what a diffuse surface relights with; never a row of M).
   Transfer field = t->transfer.toDense();
@@ -89,17 +134,24 @@ void runExport(const ExportArgs& a) {
 
 void addExportCommand(CLI::App& root) {
   auto args = std::make_shared<ExportArgs>();
-  auto* cmd = root.add_subcommand("export",
-                                  "Export a bake file to another format (GAMES202 transport.txt)");
+  auto* cmd = root.add_subcommand(
+      "export",
+      "Export a bake file to another format (GAMES202 transport.txt; coefficient textures of "
+      "per-texel transfer)");
   cmd->add_option("input", args->input, "Bake file (.glb)")->required();
-  cmd->add_option("--format", args->format, "games202")->capture_default_str();
+  cmd->add_option("--format", args->format,
+                  "games202 (transport.txt) | exr (per-texel: float coefficient textures) | png "
+                  "(per-texel: 16-bit, scale and offset in transfer.json)")
+      ->capture_default_str();
   cmd->add_option("--mode", args->mode, "Which transfer, if the file holds several");
   cmd->add_option(
          "--layout", args->layout,
          "faces (the course's file: 3 lines per triangle) | vertices (one line per vertex)")
       ->capture_default_str();
   cmd->add_option("--channel", args->channel, "For RGB transfer: luminance | r | g | b");
-  cmd->add_option("-o,--output", args->output, "Output file")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "Output file (games202), or folder (exr, png: t0.., transfer.json)")
+      ->required();
   cmd->callback([args] { runExport(*args); });
 }
 

@@ -80,6 +80,8 @@ std::string storage(const BakedTransfer& t) {
   if (x.compressed())
     return fmt::format("CPCA-compressed, accessors {}*", transferCompressedPrefix(mode));
   if (x.isMatrix()) return fmt::format("accessor {}", transferMatrixName(mode));
+  if (x.domain() == TransferDomain::Texels)
+    return fmt::format("accessor {}", transferTexelName(mode));
   return fmt::format("attributes {}0..{}", transferAttributePrefix(mode), (x.stride() + 3) / 4 - 1);
 }
 
@@ -109,6 +111,9 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
   j["generator"] = b.generator;
   j["mesh"] = meshJson(m);
   j["rows"] = {{"first", b.rows().first}, {"end", b.rows().end()}, {"complete", b.complete()}};
+  j["domain"] = toString(b.domain());
+  const bool texels = b.domain() == TransferDomain::Texels;
+  const char* per = texels ? "texel" : "vertex";
   j["transfers"] = Json::array();
   for (const auto& t : b.transfers) j["transfers"].push_back(transferJson(t));
   out << fmt::format("{}: prtkit bake file, format version {} (written by {})\n", path,
@@ -121,7 +126,22 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
   out << '\n';
   out << attributesLine(m);
   const RowRange rows = b.rows();
-  out << fmt::format("range       vertices {}..{} ({})\n", rows.first, rows.end() - 1,
+  if (texels) {
+    const TransferShape::LightmapSize lm = b.lightmap();
+    // Where the texels were sampled, counted again from the UVs the bake is over.
+    const TexelSamples s = sampleTexels(m, m.lightmapUvs, lm.width, lm.height);
+    std::size_t partial = 0;
+    for (const TexelSample& t : s.samples) partial += !t.centreInside;
+    const double share = double(s.samples.size()) / double(s.texelCount());
+    j["lightmap"] = {{"width", lm.width},        {"height", lm.height},
+                     {"padding", lm.padding},    {"coveredTexels", s.samples.size()},
+                     {"partialTexels", partial}, {"coverage", share}};
+    out << fmt::format(
+        "lightmap    {}x{} over the lightmap UVs, padding {}: {:.1f}% of the texels covered ({}; "
+        "{} partly)\n",
+        lm.width, lm.height, lm.padding, 100.0 * share, s.samples.size(), partial);
+  }
+  out << fmt::format("range       {}s {}..{} ({})\n", per, rows.first, rows.end() - 1,
                      b.complete() ? "complete" : "partial: merge before use");
   out << fmt::format("transfers   {}\n", b.transfers.size());
   for (const auto& t : b.transfers) {
@@ -131,12 +151,14 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     const std::size_t dense = x.stride() * sizeof(float);
     if (x.isMatrix())
       out << fmt::format(
-          "  {}: matrix (glossy), {} bands ({}x{} per vertex) x {} channel(s), {} per vertex, {}\n",
-          toString(s.mode), x.bands(), x.coeffs(), x.coeffs(), x.channels(), bytesText(dense),
-          storage(t));
+          "  {}: matrix (glossy), {} bands ({}x{} per {}) x {} channel(s), {} per {}, {}\n",
+          toString(s.mode), x.bands(), x.coeffs(), x.coeffs(), per, x.channels(), bytesText(dense),
+          per, storage(t));
     else
-      out << fmt::format("  {}: vector (diffuse), {} bands ({} coefficients) x {} channel(s), {}\n",
-                         toString(s.mode), x.bands(), x.coeffs(), x.channels(), storage(t));
+      out << fmt::format(
+          "  {}: vector (diffuse){}, {} bands ({} coefficients) x {} channel(s), {} per {}, {}\n",
+          toString(s.mode), texels ? " per texel" : "", x.bands(), x.coeffs(), x.channels(),
+          bytesText(dense), per, storage(t));
     if (x.compressed()) {
       const CpcaRecord& c = t.compression;
       out << fmt::format(
@@ -144,7 +166,7 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
           x.cpca().clusters, x.cpca().basisCount, c.fit.seed, bytesText(x.shape().denseBytes()),
           bytesText(x.bytes()), c.stats.compressionRatio);
       out << fmt::format(
-          "    compression error: relative RMS {:.4e}, SNR {:.2f} dB, squared {:.6e}, max vertex "
+          "    compression error: relative RMS {:.4e}, SNR {:.2f} dB, squared {:.6e}, max row "
           "{:.4e}; {} iterations, {:.2f} s\n",
           c.stats.relativeRms, c.stats.snrDb, c.stats.squaredError, c.stats.maxRowError,
           c.stats.iterations, c.stats.seconds);

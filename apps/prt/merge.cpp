@@ -108,7 +108,8 @@ void runMerge(const MergeArgs& a) {
       [](std::vector<BakeFile> two) { return mergeBakes(std::move(two)); });
   writeBake(a.output, merged);
   const RowRange rows = merged.rows();
-  info(fmt::format("wrote {} ({} vertices {}..{}{}, {} mode(s))", a.output, rows.count, rows.first,
+  info(fmt::format("wrote {} ({} {} {}..{}{}, {} mode(s))", a.output, rows.count,
+                   merged.domain() == TransferDomain::Texels ? "texels" : "vertices", rows.first,
                    rows.end() - 1, merged.complete() ? ", complete" : ", still partial",
                    merged.transfers.size()));
 }

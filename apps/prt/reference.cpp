@@ -29,16 +29,16 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
-#include "prt/image/color.hpp"
+#include "prt/core/version.hpp"
 #include "prt/envmap/load.hpp"
+#include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/light_file.hpp"
+#include "prt/io/reference_file.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transfer/material.hpp"
-#include "prt/io/light_file.hpp"
-#include "prt/io/reference_file.hpp"
-#include "prt/core/version.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
 
@@ -74,6 +74,7 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   }
 
   const BakeFile file = readBake(a.bake);
+  file.requireVertices(a.bake, "prt reference computes per-vertex references only so far");
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);

@@ -123,8 +123,14 @@ void run(const RenderOptions& o) {
   // Every frame through one relighter: the transfer cut to --bands once (Transfer::cut, the same
   // answer for dense and compressed rows), light-only frames of matrices from the view-collapsed
   // transfer.
-  relight::Relighter relighter(baked.transfer,
-                               {bake.mesh.positions, bake.mesh.normals, bake.mesh.albedo});
+  // Per-texel transfer is relit texel by texel (white: the albedo varies across a texel and is
+  // applied per pixel), then fetched bilinearly where each pixel's lightmap UV falls.
+  const bool texels = baked.transfer.domain() == TransferDomain::Texels;
+  const TransferShape::LightmapSize lightmap = bake.lightmap();
+  relight::Relighter relighter(
+      baked.transfer,
+      texels ? relight::Surface{}
+             : relight::Surface{bake.mesh.positions, bake.mesh.normals, bake.mesh.albedo});
   relighter.setMaterial(material);
   if (o.bands > baked.transfer.bands())
     warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands,
@@ -147,10 +153,14 @@ void run(const RenderOptions& o) {
   // --reference: the brute-force radiance of `prt reference` at every vertex, drawn as PRT's
   // would be (the same camera, background and exposure rule), if it is of this scene.
   std::vector<Rgb> referenceRadiance;
+  if (!o.reference.empty() && texels)
+    throw Error(o.reference, "--reference draws a per-vertex reference; " + o.bake +
+                                 " holds per-texel transfer");
   if (!o.reference.empty()) {
     if (lighting.isShFile())
-      throw Error(o.light, "--reference needs the environment the reference was computed "
-                           "under, not an SH light file");
+      throw Error(o.light,
+                  "--reference needs the environment the reference was computed "
+                  "under, not an SH light file");
     const io::ReferenceFile ref = readMatchingReference(
         o.reference, referenceScene(bake.mesh, *lighting.image, o.bake, o.light, userRotation,
                                     baked, material, camera.eye));
@@ -184,14 +194,21 @@ void run(const RenderOptions& o) {
         referenceRadiance.empty() ? relighter.relight(light, rotation, camera.eye, &relit)
                                   : std::span<const Rgb>(referenceRadiance);
     if (!referenceRadiance.empty()) relit.bands = 0;  // no SH: the reference
-    render::checkFiniteRadiance(radiance, o.bake);
+    render::checkFiniteRadiance(radiance, o.bake, texels ? "texel" : "vertex");
+    // The albedo a per-texel relight left out: the mesh's, unless the material sets kd (then
+    // the relighter applied it).
+    const std::span<const Rgb> texelAlbedo =
+        material.diffuse ? std::span<const Rgb>() : std::span<const Rgb>(bake.mesh.albedo);
+    const render::ShadeFn shade =
+        texels ? render::texelRadianceShader(bake.mesh, radiance, lightmap.width, lightmap.height,
+                                             texelAlbedo)
+               : render::vertexRadianceShader(bake.mesh, radiance);
     // --exposure auto: image/exposure.hpp's rule on the first frame's model pixels, kept for
     // every turntable frame so they compare.
     if (k == 0)
-      write.exposureStops =
-          exposure ? *exposure
-                   : render::autoExposure(bake.mesh, *occluder, radiance, camera, frame.width,
-                                          frame.height, write.toneMap);
+      write.exposureStops = exposure ? *exposure
+                                     : render::autoExposure(*occluder, shade, camera, frame.width,
+                                                            frame.height, write.toneMap);
     render::BackgroundFn bg;
     switch (kind) {
       case render::Background::Env:
@@ -209,7 +226,7 @@ void run(const RenderOptions& o) {
     const std::string label = frames > 1 ? fmt::format("frame {}/{}", k + 1, frames) : "rendering";
     const auto frameStart = std::chrono::steady_clock::now();
     image::Image img =
-        render::renderRelit(bake.mesh, *occluder, radiance, camera, frame, bg, progressBar(label));
+        render::tracePrimary(camera, frame, *occluder, shade, bg, progressBar(label));
     const std::string path = o.turntable > 0 ? framePath(o.output, k) : o.output;
     image::writeImage(path, img, write);
     report.output(path);
@@ -233,7 +250,8 @@ void run(const RenderOptions& o) {
     report.input(o.bake);
     report.input(o.light);
     if (!o.reference.empty()) report.input(o.reference);
-    report["transfer"] = {{"mode", toString(baked.mode())}, {"layout", toString(baked.transfer.layout())},
+    report["transfer"] = {{"mode", toString(baked.mode())},
+                          {"layout", toString(baked.transfer.layout())},
                           {"representation", baked.transfer.compressed() ? "cpca" : "dense"}};
     report["material"] = material.spec();
     report["width"] = frame.width;

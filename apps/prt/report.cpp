@@ -112,6 +112,10 @@ Json transferJson(const BakedTransfer& t) {
             {"denseBytes", x.shape().denseBytes()},
             {"bytes", x.bytes()},
             {"representation", x.compressed() ? "cpca" : "dense"}};
+  if (x.domain() == TransferDomain::Texels) {
+    const TransferShape::LightmapSize& lm = x.shape().lightmap;
+    j["lightmap"] = {{"width", lm.width}, {"height", lm.height}, {"padding", lm.padding}};
+  }
   if (x.compressed()) {
     const CpcaStats& s = t.compression.stats;
     j["compression"] = {{"clusters", x.cpca().clusters},

@@ -22,11 +22,11 @@
 #include "prt/envmap/project.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/light_file.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
-#include "prt/io/light_file.hpp"
 #include "reference_input.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
@@ -77,6 +77,7 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   report.check({{"--image", a.image}}, inputs);
 
   const BakeFile file = readBake(a.bake);
+  file.requireVertices(a.bake, "prt validate checks per-vertex transfer only so far");
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   // The material: the bake's, or --material (keeping the bake's kd unless it names one).
   BakeRecipe recipe = bt.recipe;
@@ -163,7 +164,6 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
                                          : "the light is windowed (" + a.window +
                                                "): the rest rings in the transfer and the "
                                                "lobe, which more bands hold"));
-
 
   if (!a.image.empty()) {
     // Per-vertex relative error at the largest band count, through the false-colour ramp,

@@ -30,12 +30,12 @@
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
 #include "prt/core/version.hpp"
+#include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
-#include "prt/envmap/builtin.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
@@ -203,6 +203,9 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(a.bake);
+  bake.requireVertices(a.bake,
+                       "the page relights per-vertex transfer only so far (prt render "
+                       "relights it per pixel)");
   if (!a.mode.empty()) prt::pickTransfer(bake, parseTransferMode(a.mode), {}, a.bake);
   return glb;
 }
@@ -223,9 +226,8 @@ float initialExposure(const WebOptions& a, const BakeFile& bake, const sh::RgbSh
   std::optional<TransferMode> mode;
   if (!a.mode.empty()) mode = parseTransferMode(a.mode);
   const BakedTransfer& t = prt::pickTransfer(bake, mode, {}, a.bake);
-  const Material material = t.transfer.isMatrix() && !a.material.empty()
-                                ? parseMaterial(a.material)
-                                : t.recipe.material;
+  const Material material =
+      t.transfer.isMatrix() && !a.material.empty() ? parseMaterial(a.material) : t.recipe.material;
   const render::Framing f = render::meshFraming(bake.mesh);
   render::Camera c = render::frameCamera(f, 640, 480);
   if (!a.camera.empty()) c = render::parseCamera(a.camera, c);

@@ -64,6 +64,9 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
+  bake.requireVertices(path,
+                       "the viewer relights per-vertex transfer only so far (prt render "
+                       "relights it per pixel)");
   for (const BakedTransfer& t : bake.transfers) {
     if (t.transfer.bands() > kMaxViewerBands)
       throw Error(path, bands::bandLimitMessage("the " + t.describe() + " transfer",

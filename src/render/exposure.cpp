@@ -14,9 +14,13 @@ namespace prt::render {
 std::vector<Rgb> modelPixels(const Mesh& mesh, const Occluder& occluder,
                              std::span<const Rgb> radiance, const Camera& camera, int width,
                              int height) {
+  return modelPixels(occluder, vertexRadianceShader(mesh, radiance), camera, width, height);
+}
+
+std::vector<Rgb> modelPixels(const Occluder& occluder, const ShadeFn& shade, const Camera& camera,
+                             int width, int height) {
   PRT_CHECK(width > 0 && height > 0, "image size must be positive");
   const RayGenerator gen(camera, width, height);
-  const ShadeFn shade = vertexRadianceShader(mesh, radiance);
   // One row per slot, joined in row order: the same pixels whatever the thread count.
   std::vector<std::vector<Rgb>> rows(static_cast<std::size_t>(height));
   parallelFor(rows.size(), 1, [&](std::size_t yb, std::size_t ye) {
@@ -34,17 +38,21 @@ std::vector<Rgb> modelPixels(const Mesh& mesh, const Occluder& occluder,
 
 float autoExposure(const Mesh& mesh, const Occluder& occluder, std::span<const Rgb> radiance,
                    const Camera& camera, int width, int height, image::ToneMap op) {
+  return autoExposure(occluder, vertexRadianceShader(mesh, radiance), camera, width, height, op);
+}
+
+float autoExposure(const Occluder& occluder, const ShadeFn& shade, const Camera& camera, int width,
+                   int height, image::ToneMap op) {
   PRT_CHECK(width > 0 && height > 0, "image size must be positive");
   const int w = std::min(width, kExposureProbeWidth);
   const int h = std::max(1, int(std::lround(double(height) * w / width)));
-  return image::autoExposure(modelPixels(mesh, occluder, radiance, camera, w, h), op);
+  return image::autoExposure(modelPixels(occluder, shade, camera, w, h), op);
 }
 
 float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& material,
                     const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera, int width,
                     int height, image::ToneMap op, int bands) {
-  const Transfer shown =
-      bands > 0 && bands < transfer.bands() ? transfer.cut(bands) : transfer;
+  const Transfer shown = bands > 0 && bands < transfer.bands() ? transfer.cut(bands) : transfer;
   const std::vector<Rgb> radiance = relight::relight(
       shown, light, material, {mesh.positions, mesh.normals, mesh.albedo}, camera.eye, rotation);
   const auto occluder = makeEmbreeOccluder(mesh);

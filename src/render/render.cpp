@@ -52,10 +52,11 @@ BackgroundFn colourBackground(const Rgb& colour) {
   return [colour](const Vec3f&) { return colour; };
 }
 
-void checkFiniteRadiance(std::span<const Rgb> radiance, const std::string& label) {
+void checkFiniteRadiance(std::span<const Rgb> radiance, const std::string& label,
+                         const std::string& row) {
   for (std::size_t v = 0; v < radiance.size(); ++v)
     if (!isFinite(radiance[v]))
-      throw Error(label, "the relit radiance at vertex " + std::to_string(v) +
+      throw Error(label, "the relit radiance at " + row + " " + std::to_string(v) +
                              " is not finite (the transfer times the light overflows 32-bit "
                              "floats); nothing written");
 }
@@ -67,6 +68,36 @@ ShadeFn vertexRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance) {
   return [&mesh, radiance](const Ray&, const Hit& h) {
     const auto& t = mesh.triangles[h.triangle];
     return radiance[t[0]] * (1.0f - h.u - h.v) + radiance[t[1]] * h.u + radiance[t[2]] * h.v;
+  };
+}
+
+ShadeFn texelRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance, int width, int height,
+                            std::span<const Rgb> albedo) {
+  if (mesh.lightmapUvs.size() != mesh.vertexCount())
+    throw Error("render: per-texel radiance needs the mesh's lightmap UVs");
+  if (width < 1 || height < 1 || radiance.size() != std::size_t(width) * std::size_t(height))
+    throw Error("render: " + std::to_string(radiance.size()) + " radiance values for a " +
+                std::to_string(width) + " x " + std::to_string(height) + " lightmap");
+  if (!albedo.empty() && albedo.size() != mesh.vertexCount())
+    throw Error("render: " + std::to_string(albedo.size()) + " albedo values for a mesh of " +
+                std::to_string(mesh.vertexCount()) + " vertices");
+  return [&mesh, radiance, width, height, albedo](const Ray&, const Hit& h) {
+    const auto& t = mesh.triangles[h.triangle];
+    const float w0 = 1.0f - h.u - h.v;
+    const Vec2f* uv = mesh.lightmapUvs.data();
+    const float u = uv[t[0]].x * w0 + uv[t[1]].x * h.u + uv[t[2]].x * h.v;
+    const float v = uv[t[0]].y * w0 + uv[t[1]].y * h.u + uv[t[2]].y * h.v;
+    // Bilinear between the four texel centres around (u, v), clamped to the edge texels.
+    const float fx = std::clamp(u * float(width) - 0.5f, 0.0f, float(width - 1));
+    const float fy = std::clamp(v * float(height) - 0.5f, 0.0f, float(height - 1));
+    const int x0 = std::min(int(fx), width - 1), y0 = std::min(int(fy), height - 1);
+    const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+    const float ax = fx - float(x0), ay = fy - float(y0);
+    const auto at = [&](int x, int y) { return radiance[std::size_t(y) * width + x]; };
+    Rgb r = (at(x0, y0) * (1.0f - ax) + at(x1, y0) * ax) * (1.0f - ay) +
+            (at(x0, y1) * (1.0f - ax) + at(x1, y1) * ax) * ay;
+    if (!albedo.empty()) r = r * (albedo[t[0]] * w0 + albedo[t[1]] * h.u + albedo[t[2]] * h.v);
+    return r;
   };
 }
 

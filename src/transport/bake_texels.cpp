@@ -7,6 +7,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/geometry/texel_sampling.hpp"
+#include "prt/transport/texel_validity.hpp"
 
 namespace prt {
 
@@ -16,17 +17,43 @@ TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSetti
                      std::span<const Vec2f> uvs, int width, int height, int padding,
                      BakeStats* stats, const ProgressFn& progressFn) {
   const auto t0 = Clock::now();
-  validateBake(mesh, settings);
+  BakeSettings whole = settings;
+  whole.rows = {};  // the rows are texels, checked below
+  validateBake(mesh, whole);
   const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
   if (settings.layout != TransferLayout::Vector)
     throw Error(name, "per-texel glossy matrices are not baked yet (bake vector transfer)");
-  if (settings.rows.first != 0 || settings.rows.count != 0)
-    throw Error(name, "a per-texel bake covers the whole lightmap (no vertex range)");
-  if (padding < 0) throw Error(name, "the dilation padding must be 0 or more texels");
+  if (padding < 0 || padding > kMaxLightmapPadding)
+    throw Error(
+        name, "the dilation padding must be 0.." + std::to_string(kMaxLightmapPadding) + " texels");
   checkLightmapUvs(mesh, uvs, width, height, "the lightmap UV set");
+  const std::size_t texels = std::size_t(width) * std::size_t(height);
+  RowRange range = settings.rows;
+  if (range.count == 0 && range.first < texels) range.count = texels - range.first;
+  if (range.first >= texels || range.count > texels - range.first)
+    throw Error(name, "texel range [" + std::to_string(range.first) + ", " +
+                          std::to_string(range.end()) + ") is outside the " +
+                          std::to_string(width) + " x " + std::to_string(height) + " lightmap");
 
   TexelBake out;
   out.samples = sampleTexels(mesh, uvs, width, height);
+  // A range of one pass needs the texels it holds and those its dilation reads (within
+  // `padding` rings: the rows of texels `padding` above and below it); the bounces read the
+  // whole previous pass. Each texel's value depends on its own seed alone, so the range's rows
+  // equal the whole bake's exactly.
+  if (settings.effectiveBounces() == 0 && range.count < texels) {
+    const int ring = std::max(padding, 1);
+    const std::size_t y0 = range.first / std::size_t(width), y1 = (range.end() - 1) / width;
+    const std::size_t lo = (y0 > std::size_t(ring) ? y0 - ring : 0) * width,
+                      hi = std::min<std::size_t>(height, y1 + ring + 1) * width;
+    std::vector<TexelSample> kept;
+    for (const TexelSample& t : out.samples.samples)
+      if (t.texel >= lo && t.texel < hi) kept.push_back(t);
+    std::fill(out.samples.sampleOfTexel.begin(), out.samples.sampleOfTexel.end(), -1);
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      out.samples.sampleOfTexel[kept[i].texel] = static_cast<std::int32_t>(i);
+    out.samples.samples = std::move(kept);
+  }
   const std::vector<TexelSample>& s = out.samples.samples;
   std::vector<RowPoint> points(s.size());
   parallelFor(s.size(), 256, [&](std::size_t b, std::size_t e) {
@@ -34,11 +61,21 @@ TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSetti
       points[i] = {samplePosition(mesh, s[i]), sampleNormal(mesh, s[i]), s[i].texel};
   });
 
+  // Points inside geometry (texel_validity.hpp) are baked like the rest but do not count as
+  // covered: their texels are refilled from valid neighbours wherever one lies within the
+  // dilation's reach, and keep their own (dark, hidden) value where none does.
+  std::vector<Vec3f> positions(s.size()), normals(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i)
+    positions[i] = points[i].position, normals[i] = points[i].normal;
+  const std::vector<std::uint8_t> inside = insideGeometry(mesh, occluder, positions, normals);
+  out.invalid.clear();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (inside[i]) out.invalid.push_back(s[i].texel);
+
   const auto setup = makeVectorSetup(mesh, settings);
   const int bounces = settings.effectiveBounces();
   const int channels = bounces > 0 && !vectorAlbedoGrey(*setup) ? 3 : 1;
   const std::size_t nc = std::size_t(settings.bands) * settings.bands;
-  const std::size_t texels = out.samples.texelCount();
   Progress progress(progressFn, s.size() * std::size_t(bounces + 1));
 
   // The passes at the samples, each also laid out and dilated as a lightmap for the next to read.
@@ -47,11 +84,18 @@ TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSetti
     image.assign(texels * stride, 0.0f);
     filled.assign(texels, 0);
     for (std::size_t i = 0; i < s.size(); ++i) {
+      if (inside[i]) continue;
       std::copy_n(rows.begin() + std::ptrdiff_t(i * stride), stride,
                   image.begin() + std::ptrdiff_t(s[i].texel * stride));
       filled[s[i].texel] = 1;
     }
     dilateTexels(image, int(stride), filled, width, height, std::max(padding, 1));
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (inside[i] && !filled[s[i].texel]) {
+        std::copy_n(rows.begin() + std::ptrdiff_t(i * stride), stride,
+                    image.begin() + std::ptrdiff_t(s[i].texel * stride));
+        filled[s[i].texel] = 1;
+      }
   };
   std::vector<std::uint64_t> rays;
   std::vector<double> passSeconds, variance(s.size(), 0.0), passVariance(s.size());
@@ -96,14 +140,22 @@ TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSetti
         std::fill_n(result.begin() + std::ptrdiff_t(t * nc * channels), nc * channels, 0.0f);
       }
   TransferShape shape{TransferDomain::Texels, TransferLayout::Vector, settings.bands, channels,
-                      RowRange{0, texels}};
-  shape.lightmap = {width, height};
+                      range};
+  shape.lightmap = {width, height, padding};
+  const std::size_t stride = nc * std::size_t(channels);
+  if (range.count < texels)
+    result = std::vector<float>(result.begin() + std::ptrdiff_t(range.first * stride),
+                                result.begin() + std::ptrdiff_t(range.end() * stride));
   out.transfer = Transfer::dense(shape, FloatArray(std::move(result)));
   if (stats) {
-    *stats = vectorStats(rays, passSeconds, variance);
+    // The error estimates over the range's covered texels (all of them for a whole bake).
+    std::vector<double> inRange;
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (s[i].texel >= range.first && s[i].texel < range.end()) inRange.push_back(variance[i]);
+    *stats = vectorStats(rays, passSeconds, inRange);
     stats->secondsTotal = seconds(t0);
     stats->threads = maxThreads();
-    stats->vertices = s.size();
+    stats->vertices = inRange.size();
   }
   return out;
 }

@@ -6,10 +6,12 @@
 //     (the same kernel), within Monte Carlo error at another, and the shadow is there;
 //   * inter-reflected transfer of the Cornell box (its packed lightmap UVs) agrees with the
 //     per-vertex bake on each wall's mean, and never gains more than the albedo per bounce;
-//   * the same values for any thread count; bad requests refused by name.
+//   * the same values for any thread count and for any texel range (a range's rows are the
+//     whole bake's, bit for bit: split bakes merge exactly); bad requests refused by name.
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -18,11 +20,13 @@
 #include "common/error_text.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/geometry/builtin.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transport/bake.hpp"
 #include "prt/transport/bake_texels.hpp"
+#include "prt/transport/texel_validity.hpp"
 
 namespace prt {
 namespace {
@@ -145,7 +149,8 @@ TEST(BakeTexels, ShadowedTexelsEqualVerticesAtTheirSamplePoints) {
 
 TEST(BakeTexels, InterreflectedCornellAgreesWithTheVertexBakeWallByWall) {
   // Per texel on a coarse box (4 × 4 quads a wall), per vertex on a fine one (64 × 64): the same
-  // surfaces, each wall's mean over its area.
+  // surfaces, each wall's mean over its area where it is not inside geometry (the floor under
+  // the blocks: the texels there are refilled from their neighbours, the vertices stay dark).
   const Mesh box = builtinScene("builtin:cornell?grid=4");
   const Mesh fine = builtinScene("builtin:cornell?grid=64");
   const auto occ = makeEmbreeOccluder(box), fineOcc = makeEmbreeOccluder(fine);
@@ -159,6 +164,11 @@ TEST(BakeTexels, InterreflectedCornellAgreesWithTheVertexBakeWallByWall) {
   const TexelBake& t = texels.back();
   ASSERT_EQ(t.transfer.channels(), 3);  // the red and green walls colour the bounces
   ASSERT_EQ(box.parts.size(), fine.parts.size());
+  std::vector<std::uint8_t> invalidTexel(t.samples.texelCount(), 0);
+  for (const std::uint32_t x : t.invalid) invalidTexel[x] = 1;
+  EXPECT_GT(t.invalid.size(), 100u) << "the floor under the blocks";
+  const std::vector<std::uint8_t> insideVertex =
+      insideGeometry(fine, *fineOcc, fine.positions, fine.normals);
   double worst = 0;
   for (std::size_t pi = 0; pi < box.parts.size(); ++pi) {
     const MeshPart& part = box.parts[pi];
@@ -168,7 +178,7 @@ TEST(BakeTexels, InterreflectedCornellAgreesWithTheVertexBakeWallByWall) {
     std::size_t nT = 0;
     for (const TexelSample& ts : t.samples.samples)
       if (ts.triangle >= part.firstTriangle &&
-          ts.triangle < part.firstTriangle + part.triangleCount) {
+          ts.triangle < part.firstTriangle + part.triangleCount && !invalidTexel[ts.texel]) {
         for (int c = 0; c < 3; ++c) sumT += t.transfer.row(ts.texel)[c];
         ++nT;
       }
@@ -178,6 +188,7 @@ TEST(BakeTexels, InterreflectedCornellAgreesWithTheVertexBakeWallByWall) {
     for (std::uint32_t f = finePart.firstTriangle;
          f < finePart.firstTriangle + finePart.triangleCount; ++f) {
       const auto& tri = fine.triangles[f];
+      if (insideVertex[tri[0]] || insideVertex[tri[1]] || insideVertex[tri[2]]) continue;
       const double a = 0.5 * length(Vec3d(cross(fine.positions[tri[1]] - fine.positions[tri[0]],
                                                 fine.positions[tri[2]] - fine.positions[tri[0]])));
       for (std::uint32_t v : tri)
@@ -238,8 +249,14 @@ TEST(BakeTexels, TheSameForAnyThreadCountAndBadRequestsRefused) {
   EXPECT_NE(errorOf([&] { bakeTexels(box, *occ, m, box.lightmapUvs, 48, 48, 2); }).find("glossy"),
             std::string::npos);
   BakeSettings r = s;
-  r.rows = {2, 5};
-  EXPECT_NE(errorOf([&] { bakeTexels(box, *occ, r, box.lightmapUvs, 48, 48, 2); }).find("range"),
+  r.rows = {2000, 400};  // past the 48² = 2304 texels
+  EXPECT_NE(errorOf([&] {
+              bakeTexels(box, *occ, r, box.lightmapUvs, 48, 48, 2);
+            }).find("texel range [2000, 2400) is outside the 48 x 48 lightmap"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              bakeTexels(box, *occ, s, box.lightmapUvs, 48, 48, 65);
+            }).find("padding must be 0..64"),
             std::string::npos);
   const Mesh ball = builtinScene("builtin:sphere?subdiv=1");
   const auto ballOcc = makeEmbreeOccluder(ball);
@@ -247,6 +264,115 @@ TEST(BakeTexels, TheSameForAnyThreadCountAndBadRequestsRefused) {
               bakeTexels(ball, *ballOcc, s, ball.lightmapUvs, 48, 48, 2);
             }).find("coordinates for"),
             std::string::npos);
+}
+
+// A range of texel rows equals the same rows of the whole bake exactly, for a one-pass mode
+// (which samples only the texels the range and its dilation need: the shadowed ranges cost
+// less) and for bounces (which read the whole previous pass); ranges that split a row of texels
+// and padding that reaches across the cut included.
+TEST(BakeTexels, ARangeOfTexelsIsTheWholeBakesRowsExactly) {
+  const Mesh box = builtinScene("builtin:cornell?grid=6");
+  const auto occ = makeEmbreeOccluder(box);
+  for (const TransferMode mode : {TransferMode::Shadowed, TransferMode::Interreflected}) {
+    BakeSettings s = settings(mode, 2, 32);
+    s.bounces = mode == TransferMode::Interreflected ? 1 : 0;
+    const int W = 40, H = 40, padding = 3;
+    BakeStats wholeStats;
+    const TexelBake whole = bakeTexels(box, *occ, s, box.lightmapUvs, W, H, padding, &wholeStats);
+    const std::size_t stride = whole.transfer.stride();
+    std::size_t covered = 0;
+    for (const RowRange range : {RowRange{0, 613}, RowRange{613, 700}, RowRange{1313, 0}}) {
+      SCOPED_TRACE(std::string(toString(mode)) + " from " + std::to_string(range.first));
+      BakeSettings r = s;
+      r.rows = range;
+      BakeStats st;
+      const TexelBake part = bakeTexels(box, *occ, r, box.lightmapUvs, W, H, padding, &st);
+      const RowRange got = part.transfer.rows();
+      EXPECT_EQ(got.first, range.first);
+      EXPECT_EQ(got.end(), range.count ? range.end() : std::size_t(W * H));
+      ASSERT_EQ(part.transfer.values().size(), got.count * stride);
+      for (std::size_t i = 0; i < got.count * stride; ++i)
+        ASSERT_EQ(part.transfer.values()[i], whole.transfer.values()[got.first * stride + i])
+            << "value " << i;
+      covered += st.vertices;
+      if (mode == TransferMode::Shadowed) EXPECT_LT(st.rays, wholeStats.rays);
+    }
+    EXPECT_EQ(covered, wholeStats.vertices) << "each covered texel counted in one range";
+  }
+}
+
+/// A closed unit cube standing on the coarse plane at its centre (outward counter-clockwise
+/// faces, no lightmap area of its own).
+Mesh planeWithCube() {
+  Mesh m = coarsePlane(false);
+  const std::uint32_t base = std::uint32_t(m.positions.size());
+  for (int v = 0; v < 8; ++v) {
+    const Vec3f p(float(v >> 2) - 0.5f, float((v >> 1) & 1), float(v & 1) - 0.5f);
+    m.positions.push_back(p);
+    m.normals.push_back(normalize(p - Vec3f(0, 0.5f, 0)));
+    m.lightmapUvs.push_back({0, 0});
+  }
+  for (const auto& t : std::vector<std::array<std::uint32_t, 3>>{{0, 1, 3},
+                                                                 {0, 3, 2},
+                                                                 {4, 6, 7},
+                                                                 {4, 7, 5},
+                                                                 {0, 4, 5},
+                                                                 {0, 5, 1},
+                                                                 {2, 3, 7},
+                                                                 {2, 7, 6},
+                                                                 {0, 2, 6},
+                                                                 {0, 6, 4},
+                                                                 {1, 5, 7},
+                                                                 {1, 7, 3}})
+    m.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+  return m;
+}
+
+// The plane's texels under the cube see only the cube's insides (its faces from behind): all
+// 8 × 8 of them are marked invalid and none outside; those within the padding of a valid
+// texel are refilled from it (no dark line along the contact), the buried rest keep their own
+// (black, hidden) values; and the validity probe is the same for any thread count.
+TEST(BakeTexels, SamplesInsideGeometryAreRefilledFromTheirNeighbours) {
+  const Mesh m = planeWithCube();
+  const auto occ = makeEmbreeOccluder(m);
+  const int N = 32, padding = 2;
+  const TexelBake b =
+      bakeTexels(m, *occ, settings(TransferMode::Shadowed, 2, 256), m.lightmapUvs, N, N, padding);
+  // The footprint u, v ∈ [0.375, 0.625]: texel centres 12.5..19.5 of 32.
+  const auto under = [](int i) { return i >= 12 && i <= 19; };
+  std::vector<std::uint32_t> expected;
+  for (int y = 0; y < N; ++y)
+    for (int x = 0; x < N; ++x)
+      if (under(x) && under(y)) expected.push_back(std::uint32_t(y * N + x));
+  EXPECT_EQ(b.invalid, expected);
+  const auto t00 = [&](int x, int y) { return b.transfer.row(std::size_t(y) * N + x)[0]; };
+  int refilled = 0, buried = 0;
+  for (const std::uint32_t t : b.invalid) {
+    const int x = int(t) % N, y = int(t) / N;
+    float lowest = 1e9f;  // the darkest valid texel within the dilation's reach
+    for (int dy = -padding; dy <= padding; ++dy)
+      for (int dx = -padding; dx <= padding; ++dx)
+        if (!(under(x + dx) && under(y + dy))) lowest = std::min(lowest, t00(x + dx, y + dy));
+    if (lowest < 1e9f) {
+      ++refilled;
+      EXPECT_GT(lowest, 0.02f);
+      EXPECT_GE(t00(x, y), lowest - 1e-6f) << "texel " << x << "," << y << " not refilled";
+    } else {
+      ++buried;
+      EXPECT_LT(std::abs(t00(x, y)), 1e-5f) << "a buried texel keeps its own (unlit) value";
+    }
+    EXPECT_TRUE(b.filled[t]);
+  }
+  EXPECT_EQ(refilled, 64 - 16);
+  EXPECT_EQ(buried, 16);
+  std::vector<Vec3f> p, n;
+  for (const TexelSample& s : b.samples.samples) {
+    p.push_back(samplePosition(m, s));
+    n.push_back(sampleNormal(m, s));
+  }
+  const std::vector<std::uint8_t> many = insideGeometry(m, *occ, p, n);
+  const ThreadLimit one(1);
+  EXPECT_EQ(insideGeometry(m, *occ, p, n), many);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Every kind of bake file passes the Khronos glTF validator with 0 errors and 0 warnings: dense
-// vectors of several modes, matrices, CPCA-compressed transfer, a vertex range of a split bake.
+// vectors of several modes, matrices, CPCA-compressed transfer, a vertex range of a split bake,
+// per-texel transfer dense and compressed.
 // The only information it gives is the vendor extension it does not know
 // (PRTKIT_radiance_transfer, docs/extensions/) and transfer accessors no primitive uses (they
 // are read through the extension). The validator runs under node from web/node_modules; the
@@ -44,12 +45,16 @@ TEST_F(GltfValidatorWeb, EveryBakeIsValidGltf) {
         std::string("bake builtin:cornell --mode interreflected --samples 8 -o rgb.glb"),
         "bake " + scene + " --mode shadowed --transfer matrix --bands 3 --samples 8 -o matrix.glb",
         std::string("compress matrix.glb --clusters 8 --pca 2 -o cpca.glb"),
-        "bake " + scene + " --mode shadowed --samples 8 --range 0:100 -o range.glb"}) {
+        "bake " + scene + " --mode shadowed --samples 8 --range 0:100 -o range.glb",
+        std::string("bake builtin:cornell --mode interreflected --domain texels --resolution 32 "
+                    "--samples 8 -o texels.glb"),
+        std::string("compress texels.glb --clusters 4 --pca 2 -o texels-cpca.glb")}) {
     const Result r = prt("-q " + cmd);
     ASSERT_EQ(r.rc, 0) << cmd << ": " << r.err;
   }
-  const Json report = validate("vectors.glb rgb.glb matrix.glb cpca.glb range.glb");
-  ASSERT_EQ(report.size(), 5u);
+  const Json report =
+      validate("vectors.glb rgb.glb matrix.glb cpca.glb range.glb texels.glb texels-cpca.glb");
+  ASSERT_EQ(report.size(), 7u);
   for (const auto& [file, r] : report.items()) {
     SCOPED_TRACE(file);
     EXPECT_EQ(r["errors"], 0) << r["messages"].dump();

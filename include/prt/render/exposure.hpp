@@ -12,6 +12,7 @@
 #include "prt/image/color.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/render/primary.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transfer/material.hpp"
 #include "prt/transfer/transfer.hpp"
@@ -27,10 +28,16 @@ inline constexpr int kExposureProbeWidth = 256;
 std::vector<Rgb> modelPixels(const Mesh& mesh, const Occluder& occluder,
                              std::span<const Rgb> radiance, const Camera& camera, int width,
                              int height);
+/// The same for any shading of the mesh (render.hpp's shaders: per-vertex or per-texel radiance).
+std::vector<Rgb> modelPixels(const Occluder& occluder, const ShadeFn& shade, const Camera& camera,
+                             int width, int height);
 /// image::autoExposure of modelPixels at kExposureProbeWidth × (its aspect's height), for an
 /// image of `width` × `height` seen through `camera` and tone-mapped with `op`.
 float autoExposure(const Mesh& mesh, const Occluder& occluder, std::span<const Rgb> radiance,
                    const Camera& camera, int width, int height, image::ToneMap op);
+/// The same for any shading of the mesh.
+float autoExposure(const Occluder& occluder, const ShadeFn& shade, const Camera& camera, int width,
+                   int height, image::ToneMap op);
 
 /// autoExposure of `transfer` relit on the CPU (relight::relight) under `light` rotated by
 /// `rotation` with `material`, seen through `camera`: what prt view and prt web open at, from

@@ -30,10 +30,23 @@ BackgroundFn colourBackground(const Rgb& colour);
 /// that is not: finite transfer times a finite light can still overflow float (CPCA weights of
 /// 3e38), and inf − inf is NaN, which no tone map can show as anything but black. Call it on
 /// relit radiance before rendering it.
-void checkFiniteRadiance(std::span<const Rgb> radiance, const std::string& label);
+/// `row` names what the values are of ("vertex"; "texel" for per-texel transfer).
+void checkFiniteRadiance(std::span<const Rgb> radiance, const std::string& label,
+                         const std::string& row = "vertex");
 
 /// Shades a hit by barycentric interpolation of per-vertex radiance.
 ShadeFn vertexRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance);
+
+/// Shades a hit from a lightmap of relit radiance (per-texel transfer relit row by row: W·H
+/// values, texel (x, y) at y·W + x) — the hit's lightmap UV interpolated with its barycentrics,
+/// the lightmap fetched bilinearly there (texel centres at ((x + ½)/W, (y + ½)/H), clamped at
+/// the edges, as a GPU samples a texture) — times the albedo interpolated the same way
+/// (`albedo`: one per vertex, or empty for white). Since relighting is linear in the transfer,
+/// fetching relit radiance equals relighting the fetched coefficients: exactly the fragment
+/// shader's per-pixel dot product. Throws prt::Error unless the mesh has lightmap UVs and the
+/// sizes match.
+ShadeFn texelRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance, int width, int height,
+                            std::span<const Rgb> albedo);
 
 /// Renders the relit mesh. `radiance` holds one value per mesh vertex (throws otherwise).
 image::Image renderRelit(const Mesh& mesh, const Occluder& occluder, std::span<const Rgb> radiance,
