@@ -27,6 +27,7 @@
 #include "prt/raytrace/occluder.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transport/bake.hpp"
+#include "prt/transport/bake_texels.hpp"
 
 namespace fs = std::filesystem;
 
@@ -112,6 +113,25 @@ std::string bakeSeed(prt::TransferLayout layout, int bands, bool compressed) {
     t.compression.fit = o;
     t.transfer = prt::compressCpca(t.transfer, o, &t.compression.stats);
   }
+  file.transfers.push_back(std::move(t));
+  return prt::encodeBake(file);
+}
+
+/// A per-texel bake of the builtin plane (a 2 × 2 grid, its packed lightmap chart) at 8 × 8
+/// texels: the lightmap, texel range and texel-row accessor of format 6.
+std::string texelBakeSeed() {
+  prt::BakeFile file;
+  file.mesh = prt::builtinScene("builtin:plane?grid=2");
+  file.generator = "prtkit make_seeds";
+  const auto occluder = prt::makeEmbreeOccluder(file.mesh);
+  prt::BakeSettings s;
+  s.mode = prt::TransferMode::Shadowed;
+  s.bands = 2;
+  s.samples = 8;
+  prt::BakedTransfer t;
+  t.recipe = s;
+  t.transfer =
+      prt::bakeTexels(file.mesh, *occluder, s, file.mesh.lightmapUvs, 8, 8, 1, &t.stats).transfer;
   file.transfers.push_back(std::move(t));
   return prt::encodeBake(file);
 }
@@ -203,6 +223,7 @@ int main(int argc, char** argv) {
   put("bake", "matrix.glb", bakeSeed(prt::TransferLayout::Matrix, 2, false));
   put("bake", "compressed_vector.glb", bakeSeed(prt::TransferLayout::Vector, 3, true));
   put("bake", "compressed_matrix.glb", bakeSeed(prt::TransferLayout::Matrix, 2, true));
+  put("bake", "texels.glb", texelBakeSeed());
   put("gltf", "bake.glb", bakeSeed(prt::TransferLayout::Vector, 2, false));
 
   // --material spec strings: every lobe, every key.

@@ -75,6 +75,8 @@ class Transfer:
     @property
     def domain(self) -> str: ...
     @property
+    def lightmap(self) -> Optional[Dict[str, int]]: ...
+    @property
     def bands(self) -> int: ...
     @property
     def channels(self) -> int: ...
@@ -178,15 +180,18 @@ def bake(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, samples: int =
          seed: int = 0, bounces: int = 1, transfer: Layout = "vector",
          material: Optional[str] = None, albedo: Optional[npt.ArrayLike] = None,
          sampling: str = "cosine", range: Union[None, Tuple[int, int], range] = None,
-         domain: str = "vertices", progress: Progress = None) -> npt.NDArray[np.float32]:
-    """Per-vertex SH transfer as a numpy array owning the C++ buffer: (N, B²), (N, B², 3),
-    (N, B², B²) or (N, B², B², 3); bit-identical to `prt bake` with the same settings."""
+         domain: str = "vertices", resolution: int = 512, uv: str = "auto", padding: int = 2,
+         progress: Progress = None) -> npt.NDArray[np.float32]:
+    """SH transfer per vertex (or per texel, domain='texels': row y*resolution + x) as a numpy
+    array owning the C++ buffer: (N, B²), (N, B², 3), (N, B², B²) or (N, B², B², 3);
+    bit-identical to `prt bake` with the same settings."""
 
 def bake_transfer(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, samples: int = 1024,
                   seed: int = 0, bounces: int = 1, transfer: Layout = "vector",
                   material: Optional[str] = None, albedo: Optional[npt.ArrayLike] = None,
                   sampling: str = "cosine", range: Union[None, Tuple[int, int], range] = None,
-                  domain: str = "vertices", progress: Progress = None) -> Transfer:
+                  domain: str = "vertices", resolution: int = 512, uv: str = "auto",
+                  padding: int = 2, progress: Progress = None) -> Transfer:
     """bake, returning a Transfer with its recipe and statistics."""
 
 def compress(transfer: TransferLike, clusters: int = 64, pca: int = 8, seed: int = 0,

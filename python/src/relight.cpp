@@ -9,6 +9,7 @@
 #include "prt/io/lighting.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/render/primary.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
@@ -71,6 +72,11 @@ py::array relightFn(py::handle transferObj, py::handle lightObj, py::handle albe
   const std::size_t first = tr.rows().first, rows = tr.rowCount();
   prt::relight::Surface surface;
   std::vector<prt::Rgb> albedoStore;
+  if (mesh && tr.domain() == prt::TransferDomain::Texels)
+    throw py::value_error(
+        "the transfer is per texel: relight it without mesh= (white, one radiance per texel) "
+        "and render it as a lightmap (render(mesh, radiance.reshape(h, w, 3)) multiplies the "
+        "albedo per pixel)");
   if (mesh) {
     const prt::Mesh& mm = mesh->mesh();
     if (mm.vertexCount() < first + rows)
@@ -155,8 +161,17 @@ py::array renderFn(py::handle meshObj, py::handle radiance, py::handle cameraObj
     prt::render::checkFrameSettings(frame);
     return 0;
   });
-  const auto rad = floats(radiance, "radiance", {static_cast<py::ssize_t>(mm.vertexCount()), 3});
-  std::vector<prt::Rgb> values(mm.vertexCount());
+  // (V, 3): per vertex; (H, W, 3): a lightmap of per-texel radiance over the lightmap UVs.
+  const py::array given = py::array::ensure(radiance);
+  const bool lightmap = given && given.ndim() == 3;
+  if (lightmap && mm.lightmapUvs.size() != mm.vertexCount())
+    throw py::value_error(
+        "radiance of shape (H, W, 3) is a lightmap: the mesh has no lightmap UVs");
+  const py::ssize_t H = lightmap ? given.shape(0) : 0, W = lightmap ? given.shape(1) : 0;
+  const auto rad =
+      lightmap ? floats(radiance, "radiance", {H, W, 3})
+               : floats(radiance, "radiance", {static_cast<py::ssize_t>(mm.vertexCount()), 3});
+  std::vector<prt::Rgb> values(lightmap ? std::size_t(H * W) : mm.vertexCount());
   std::memcpy(static_cast<void*>(values.data()), rad.data(), values.size() * sizeof(prt::Rgb));
   const prt::render::Camera camera = cameraOf(cameraObj, mm, frame.width, frame.height);
   const prt::Mat3d r = rotation(rot);
@@ -193,7 +208,11 @@ py::array renderFn(py::handle meshObj, py::handle radiance, py::handle cameraObj
       break;
   }
   prt::image::Image img = runLong("rendering", progress, [&](const prt::ProgressFn& fn) {
-    prt::render::checkFiniteRadiance(values, "radiance");
+    prt::render::checkFiniteRadiance(values, "radiance", lightmap ? "texel" : "vertex");
+    if (lightmap)
+      return prt::render::tracePrimary(
+          camera, frame, mesh->occluder(),
+          prt::render::texelRadianceShader(mm, values, int(W), int(H), mm.albedo), bgFn, fn);
     return prt::render::renderRelit(mm, mesh->occluder(), values, camera, frame, bgFn, fn);
   });
   const auto h = static_cast<py::ssize_t>(img.height), w = static_cast<py::ssize_t>(img.width);
@@ -246,6 +265,9 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
   const prt::Mesh& mm = mesh->mesh();
   const TransferPtr t = toTransfer(transferObj);
   const prt::Transfer& tr = t->transfer;
+  if (tr.domain() == prt::TransferDomain::Texels)
+    throw py::value_error(
+        "validate checks per-vertex transfer only so far (this one is per texel)");
   if (tr.rows().first != 0 || tr.rowCount() != mm.vertexCount())
     throw py::value_error("validate needs the transfer of every vertex of the mesh (" +
                           std::to_string(mm.vertexCount()) + "), it holds " +
@@ -364,6 +386,9 @@ frame of gluLookAt. frame_mesh(mesh, width, height) gives prt render's default v
         py::arg("progress") = py::none(),
         R"(Renders the mesh shaded with per-vertex radiance (relight's output): an (H, W, 3) linear
 float32 image, as `prt render` draws it (Embree primary rays, stratified samples per pixel).
+radiance: (V, 3) per vertex, or (h, w, 3) a lightmap over the mesh's lightmap UVs (a per-texel
+    transfer relit without mesh=, reshaped: relight(t, L).reshape(h, w, 3)), fetched
+    bilinearly per pixel and multiplied by the mesh's albedo, as `prt render` does.
 
 camera: a prtkit.Camera, a spec 'eye=x,y,z;target=x,y,z;up=x,y,z;fov=deg' (missing keys from
     the default), or None: frame_mesh(mesh, width, height).

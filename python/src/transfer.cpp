@@ -7,7 +7,10 @@
 #include "objects.hpp"
 #include "prt/compress/cpca.hpp"
 #include "prt/core/band_limits.hpp"
+#include "prt/geometry/lightmap_uvs.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/transport/bake.hpp"
+#include "prt/transport/bake_texels.hpp"
 
 namespace prtpy {
 
@@ -102,7 +105,7 @@ std::optional<prt::BakeRecipe> recipeOf(py::handle mode, py::handle samples, py:
   return r;
 }
 
-prt::RowRange rowRange(py::handle range, std::size_t vertices) {
+prt::RowRange rowRange(py::handle range, std::size_t vertices, const char* what = "vertex") {
   if (range.is_none()) return {0, vertices};
   long long first = 0, end = 0;
   if (py::isinstance(range, py::module_::import("builtins").attr("range"))) {
@@ -118,17 +121,24 @@ prt::RowRange rowRange(py::handle range, std::size_t vertices) {
   if (first < 0 || first >= end || static_cast<unsigned long long>(end) > vertices)
     throw py::value_error("range (" + std::to_string(first) + ", " + std::to_string(end) +
                           "): must satisfy 0 <= first < end <= " + std::to_string(vertices) +
-                          " (the vertex count)");
+                          " (the " + what + " count)");
   return {static_cast<std::size_t>(first), static_cast<std::size_t>(end - first)};
 }
 
 /// The settings `prt bake` would bake with (apps/prt/bake.cpp, planOf and runBake), checked
 /// before any work: ValueError on a bad argument.
+/// domain='texels': the lightmap (apps/prt/bake.cpp's TexelPlan).
+struct Lightmap {
+  int resolution = 512;
+  std::string uv = "auto";
+  int padding = 2;
+};
+
 prt::BakeSettings bakeSettings(const prt::Mesh& mesh, const std::string& mode, int bands,
                                long long samples, std::uint64_t seed, int bounces,
                                const std::string& transfer, py::handle spec, py::handle albedo,
                                const std::string& sampling, py::handle range,
-                               const std::string& domain) {
+                               const std::string& domain, const Lightmap& lightmap) {
   prt::BakeSettings s;
   asValueError([&] {
     s.mode = prt::parseTransferMode(mode);
@@ -136,10 +146,18 @@ prt::BakeSettings bakeSettings(const prt::Mesh& mesh, const std::string& mode, i
     s.sampling = prt::parseSampling(sampling == "cosine" ? "cosine-sobol" : sampling);
     return 0;
   });
-  if (domain != "vertices")
-    throw py::value_error("domain '" + domain +
-                          "': this prtkit bakes per-vertex transfer only (domain='vertices'); "
-                          "per-texel transfer is not implemented yet");
+  const prt::TransferDomain d = asValueError([&] { return prt::parseTransferDomain(domain); });
+  if (d == prt::TransferDomain::Texels) {
+    if (lightmap.resolution < 1 || lightmap.resolution > prt::kMaxLightmapSide)
+      throw py::value_error("resolution=" + std::to_string(lightmap.resolution) + ": must be 1.." +
+                            std::to_string(prt::kMaxLightmapSide));
+    if (lightmap.padding < 0 || lightmap.padding > prt::kMaxLightmapPadding)
+      throw py::value_error("padding=" + std::to_string(lightmap.padding) + ": must be 0.." +
+                            std::to_string(prt::kMaxLightmapPadding));
+    if (s.layout != prt::TransferLayout::Vector)
+      throw py::value_error("domain='texels' bakes vector transfer only so far");
+    asValueError([&] { return prt::parseUvSetOption(lightmap.uv); });
+  }
   if (bands < 1 || bands > prt::bands::kMaxBake)
     throw py::value_error("bands=" + std::to_string(bands) + ": must be 1.." +
                           std::to_string(prt::bands::kMaxBake));
@@ -167,7 +185,9 @@ prt::BakeSettings bakeSettings(const prt::Mesh& mesh, const std::string& mode, i
   }
   s.bounces = s.effectiveBounces();  // what a bake file records: 0 unless inter-reflected
   s.bands = bands;
-  s.rows = rowRange(range, mesh.vertexCount());
+  s.rows = d == prt::TransferDomain::Texels
+               ? rowRange(range, std::size_t(lightmap.resolution) * lightmap.resolution, "texel")
+               : rowRange(range, mesh.vertexCount());
   return s;
 }
 
@@ -179,14 +199,28 @@ struct Baked {
 Baked runBake(py::handle meshObj, const std::string& mode, int bands, long long samples,
               std::uint64_t seed, int bounces, const std::string& transfer, py::handle spec,
               py::handle albedo, const std::string& sampling, py::handle range,
-              const std::string& domain, py::handle progress, prt::BakeSettings* used) {
+              const std::string& domain, const Lightmap& lightmap, py::handle progress,
+              prt::BakeSettings* used) {
   const MeshPtr mesh = toMesh(meshObj);
-  const prt::BakeSettings s = bakeSettings(mesh->mesh(), mode, bands, samples, seed, bounces,
-                                           transfer, spec, albedo, sampling, range, domain);
+  const prt::BakeSettings s =
+      bakeSettings(mesh->mesh(), mode, bands, samples, seed, bounces, transfer, spec, albedo,
+                   sampling, range, domain, lightmap);
   if (used) *used = s;
+  const bool texels = domain == "texels";
+  const int N = lightmap.resolution;
+  std::span<const prt::Vec2f> uvs;
+  if (texels)
+    uvs = asValueError([&] {
+            return prt::chooseLightmapUvs(mesh->mesh(), prt::parseUvSetOption(lightmap.uv), N, N);
+          }).uvs;
   return runLong("bake", progress, [&](const prt::ProgressFn& fn) {
     Baked b;
-    b.transfer = prt::bake(mesh->mesh(), mesh->occluder(), s, &b.stats, fn);
+    if (texels)
+      b.transfer = prt::bakeTexels(mesh->mesh(), mesh->occluder(), s, uvs, N, N, lightmap.padding,
+                                   &b.stats, fn)
+                       .transfer;
+    else
+      b.transfer = prt::bake(mesh->mesh(), mesh->occluder(), s, &b.stats, fn);
     // What `prt bake` refuses to write, refused here too: a non-finite coefficient.
     b.transfer.check(mesh->mesh().source);
     return b;
@@ -206,8 +240,12 @@ material: a spec ('lambert', 'phong?exponent=32&ks=0.5', 'ggx?roughness=0.3&ks=0
     bounce albedo; an inter-reflected matrix bake bounces light off its lobe.
 albedo: a uniform bounce albedo (grey or r, g, b in [0, 1]), replacing the mesh's.
 sampling: 'cosine' (cosine-weighted Owen-scrambled Sobol') | 'uniform' (the course's).
-range: (first, end) or range(first, end): bake only those vertices (split bakes).
-domain: 'vertices' (the only domain so far).
+range: (first, end) or range(first, end): bake only those vertices (texels) (split bakes).
+domain: 'vertices' (one row per vertex) | 'texels' (one row per texel of a resolution x
+    resolution lightmap over the mesh's lightmap UVs, texel (x, y) row y*resolution + x: reshape
+    to (resolution, resolution, ...) for an image; vector transfer only).
+resolution, uv, padding: domain='texels': the lightmap's side; the UV set, 'auto' (the
+    lightmap set, else the texture set when it holds one), '1' or '0'; gutter texels dilated.
 progress: None, True (a tqdm bar, when tqdm is installed) or a callable(fraction) that may
     return False to cancel (prtkit.Cancelled). Ctrl-C cancels within a fraction of a second
     (KeyboardInterrupt).
@@ -328,6 +366,19 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
           "'vector' (diffuse) or 'matrix' (glossy).")
       .def_property_readonly("domain",
                              [](const PyTransfer& t) { return prt::toString(t.transfer.domain()); })
+      .def_property_readonly(
+          "lightmap",
+          [](const PyTransfer& t) -> py::object {
+            if (t.transfer.domain() != prt::TransferDomain::Texels) return py::none();
+            const auto& lm = t.transfer.shape().lightmap;
+            py::dict d;
+            d["width"] = lm.width;
+            d["height"] = lm.height;
+            d["padding"] = lm.padding;
+            return std::move(d);
+          },
+          "domain 'texels': {'width', 'height', 'padding'} of the lightmap (rows y*width + x); "
+          "None per vertex.")
       .def_property_readonly("bands", [](const PyTransfer& t) { return t.transfer.bands(); })
       .def_property_readonly(
           "channels", [](const PyTransfer& t) { return t.transfer.channels(); },
@@ -481,17 +532,18 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       "bake",
       [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
          int bounces, const std::string& transfer, py::object spec, py::object albedo,
-         const std::string& sampling, py::object range, const std::string& domain,
-         py::object progress) {
+         const std::string& sampling, py::object range, const std::string& domain, int resolution,
+         const std::string& uv, int padding, py::object progress) {
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                          sampling, range, domain, progress, nullptr);
+                          sampling, range, domain, {resolution, uv, padding}, progress, nullptr);
         return transferArray(std::move(b.transfer), true);
       },
       py::arg("mesh"), py::arg("mode") = "shadowed", py::arg("bands") = 3,
       py::arg("samples") = 1024, py::arg("seed") = 0, py::arg("bounces") = 1,
       py::arg("transfer") = "vector", py::arg("material") = py::none(),
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
-      py::arg("domain") = "vertices", py::arg("progress") = py::none(),
+      py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
+      py::arg("padding") = 2, py::arg("progress") = py::none(),
       (std::string(
            "Bakes per-vertex SH transfer and returns its dense rows as a numpy array, without a "
            "copy:\n"
@@ -504,11 +556,11 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       "bake_transfer",
       [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
          int bounces, const std::string& transfer, py::object spec, py::object albedo,
-         const std::string& sampling, py::object range, const std::string& domain,
-         py::object progress) {
+         const std::string& sampling, py::object range, const std::string& domain, int resolution,
+         const std::string& uv, int padding, py::object progress) {
         prt::BakeSettings s;
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                          sampling, range, domain, progress, &s);
+                          sampling, range, domain, {resolution, uv, padding}, progress, &s);
         auto t = std::make_shared<PyTransfer>();
         t->transfer = std::move(b.transfer);
         t->recipe = s;
@@ -519,7 +571,8 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       py::arg("samples") = 1024, py::arg("seed") = 0, py::arg("bounces") = 1,
       py::arg("transfer") = "vector", py::arg("material") = py::none(),
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
-      py::arg("domain") = "vertices", py::arg("progress") = py::none(),
+      py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
+      py::arg("padding") = 2, py::arg("progress") = py::none(),
       (std::string(
            "bake, returning a prtkit.Transfer (values, recipe, stats) for write_bake, relight,\n"
            "compress and validate.\n") +

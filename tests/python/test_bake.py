@@ -84,10 +84,19 @@ def test_bake_transfer_carries_recipe_and_stats(scene):
     assert np.array_equal(t.values, prtkit.bake(scene, mode="shadowed", samples=64, seed=3))
 
 
-def test_only_vertices_are_a_domain(scene):
+def test_domains_and_what_texels_need(scene):
     assert prtkit.bake(scene, samples=8, domain="vertices").shape[0] == scene.vertex_count
-    with pytest.raises(ValueError, match="per-vertex transfer only"):
+    # The sphere-plane has no UV set a lightmap could lie in: said, with why each set failed.
+    with pytest.raises(ValueError, match="no UV set can hold a 512 x 512 lightmap"):
         prtkit.bake(scene, samples=8, domain="texels")
+    with pytest.raises(ValueError, match="unknown transfer domain 'probes'"):
+        prtkit.bake(scene, samples=8, domain="probes")
+    box = prtkit.load_mesh("builtin:cornell?grid=4")
+    with pytest.raises(ValueError, match="vector transfer only"):
+        prtkit.bake(box, samples=8, domain="texels", transfer="matrix")
+    with pytest.raises(ValueError, match="resolution=0"):
+        prtkit.bake(box, samples=8, domain="texels", resolution=0)
+    assert prtkit.bake(box, samples=8, domain="texels", resolution=16).shape == (256, 9)
 
 
 def test_read_bake_picks_as_every_verb(tmp_path, prt_cli):

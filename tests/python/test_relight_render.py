@@ -105,3 +105,39 @@ def test_render_backgrounds(scene):
     sh = prtkit.render(scene, R, size=(16, 12), spp=1,
                        light=prtkit.project_environment("builtin:sky", 3))
     assert sh[0, 0].sum() > 0
+
+
+def test_texel_transfer_bakes_relights_and_renders_as_prt_render(tmp_path, prt_cli):
+    """Per-texel transfer (domain='texels'): the bake equals `prt bake --domain texels` bit for
+    bit, a range is the whole bake's rows, and relit without a mesh and rendered as a lightmap
+    it draws prt render's image; a mesh given to relight is refused (the albedo is per pixel)."""
+    box = "builtin:cornell?grid=6"
+    mesh = prtkit.load_mesh(box)
+    t = prtkit.bake_transfer(mesh, mode="shadowed", domain="texels", resolution=24, samples=32)
+    assert t.domain == "texels" and t.lightmap == {"width": 24, "height": 24, "padding": 2}
+    glb = tmp_path / "t.glb"
+    prt_cli("bake", box, "--mode", "shadowed", "--domain", "texels", "--resolution", 24,
+            "--samples", 32, "-o", glb)
+    f = prtkit.read_bake_file(glb)
+    cli = f.pick()
+    assert cli.domain == "texels"
+    assert np.array_equal(np.asarray(cli.values), np.asarray(t.values))
+    part = prtkit.bake(mesh, mode="shadowed", domain="texels", resolution=24, samples=32,
+                       range=(100, 350))
+    assert np.array_equal(part, np.asarray(t.values)[100:350])
+    L = prtkit.project_environment("builtin:sky", 3)
+    radiance = prtkit.relight(t, L)
+    assert radiance.shape == (24 * 24, 3)
+    with pytest.raises(ValueError, match="per texel"):
+        prtkit.relight(t, L, mesh=mesh)
+    camera = prtkit.frame_mesh(f.mesh, *SIZE)
+    ours = prtkit.render(f.mesh, radiance.reshape(24, 24, 3), camera=camera, size=SIZE, spp=2,
+                         background="none")
+    theirs = cli_render(prt_cli, tmp_path, glb, "builtin:sky", (0, 0, 0))
+    assert np.abs(np.maximum(ours, 0) - theirs).max() < 1e-4 * max(theirs.max(), 1)
+    # Read upside down it is another image: the fetch really follows the lightmap.
+    flipped = prtkit.render(f.mesh, radiance.reshape(24, 24, 3)[::-1].copy(), camera=camera,
+                            size=SIZE, spp=2, background="none")
+    assert np.abs(flipped - theirs).mean() > 10 * np.abs(np.maximum(ours, 0) - theirs).mean()
+    with pytest.raises(ValueError, match="texel count"):
+        prtkit.bake(mesh, domain="texels", resolution=8, range=(0, 100))
