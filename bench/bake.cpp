@@ -15,11 +15,17 @@
 //                                    bounce surfaces (lambert; the vector pre-pass) and glossy
 //                                    ones (phong; the shadowed matrices first) against the
 //                                    shadowed matrix bake, same run: ns per sample and ratios.
+//     BM_TexelShadowed/SCENE/RES     per-texel shadowed bake (3 bands, 256 samples) of a RES²
+//                                    lightmap against raw Embree on the same rays (its texels'
+//                                    sample points and seeds), and the per-vertex bake of the
+//                                    same scene against its raw rays, same run: vs_raw of the
+//                                    pass, and of the whole bake (sampling and the validity
+//                                    probe included).
 //   bench_bake --equal-error         RMS error of T₀ against a 65536-sample bake at 64…4096
 //                                    samples, cosine-Sobol' vs uniform random.
 //
 // Scenes: bunny = /usr/share/glmark2/models/bunny.obj (skipped with a message if absent),
-// sphere-plane = builtin:sphere-plane.
+// sphere-plane = builtin:sphere-plane, cornell = builtin:cornell (its packed lightmap UVs).
 
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
@@ -43,7 +49,9 @@
 #include "prt/geometry/load.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transfer/material.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/transport/bake.hpp"
+#include "prt/transport/bake_texels.hpp"
 
 namespace {
 
@@ -64,6 +72,8 @@ Scene* scene(const std::string& name) {
   if (name == "bunny") {
     if (!std::filesystem::exists(kBunny)) return nullptr;
     s->mesh = prt::loadMesh(kBunny);
+  } else if (name == "cornell") {
+    s->mesh = prt::builtinScene("builtin:cornell");
   } else {
     s->mesh = prt::builtinScene("builtin:sphere-plane");
   }
@@ -110,16 +120,28 @@ RawScene* rawScene(const std::string& name) {
   return cache.emplace(name, std::make_unique<RawScene>(scene(name)->mesh)).first->second.get();
 }
 
-/// The shadowed pass's rays for vertices [lo, hi), exactly as bake() casts them (pass 0,
-/// cosine-Sobol'): same seeds, points, frames and origins.
-void bakeRays(const Scene& s, const prt::OwenSobol2D& sobol, std::uint64_t seed, std::size_t lo,
-              std::size_t hi, std::vector<RTCRay>& out) {
+/// Where a row is integrated: a vertex, or a texel's sample point (its id seeds its rays).
+struct RowPoint {
+  prt::Vec3f p, n;
+  std::size_t id = 0;
+};
+
+std::vector<RowPoint> vertexPoints(const prt::Mesh& m) {
+  std::vector<RowPoint> out(m.vertexCount());
+  for (std::size_t v = 0; v < out.size(); ++v) out[v] = {m.positions[v], m.normals[v], v};
+  return out;
+}
+
+/// The shadowed pass's rays for points [lo, hi), exactly as bake() and bakeTexels() cast them
+/// (pass 0, cosine-Sobol'): same seeds, points, frames and origins.
+void bakeRays(const Scene& s, const std::vector<RowPoint>& points, const prt::OwenSobol2D& sobol,
+              std::uint64_t seed, std::size_t lo, std::size_t hi, std::vector<RTCRay>& out) {
   const std::size_t n = sobol.size();
   out.resize((hi - lo) * n);
   tbb::parallel_for(lo, hi, [&](std::size_t v) {
-    const prt::Vec3f p = s.mesh.positions[v], nrm = s.mesh.normals[v];
+    const prt::Vec3f p = points[v].p, nrm = points[v].n;
     const prt::Vec3f o = p + nrm * s.occluder->rayOffset(p);
-    const std::uint64_t key = prt::deriveSeed(prt::deriveSeed(seed, 0), v);
+    const std::uint64_t key = prt::deriveSeed(prt::deriveSeed(seed, 0), points[v].id);
     prt::Vec3f t, b;
     prt::orthonormalBasis(nrm, t, b);
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -143,16 +165,19 @@ struct RawTimes {
 
 /// Traces the bake's rays through the bare scene, in blocks of vertices (ray generation is not
 /// timed), in parallel over chunks of 64 rays like the bake.
-RawTimes traceRaw(const std::string& name, int samples, std::uint64_t seed) {
+RawTimes traceRaw(const std::string& name, int samples, std::uint64_t seed,
+                  const std::vector<RowPoint>* given = nullptr) {
   const Scene& s = *scene(name);
   const RTCScene rs = rawScene(name)->scene();
   const prt::OwenSobol2D sobol(static_cast<std::uint32_t>(samples));
+  const std::vector<RowPoint> vertices = given ? std::vector<RowPoint>() : vertexPoints(s.mesh);
+  const std::vector<RowPoint>& points = given ? *given : vertices;
   RawTimes out;
   std::vector<RTCRay> rays, copy;
   const std::size_t block = std::max<std::size_t>(1, (1u << 20) / samples);
-  for (std::size_t lo = 0; lo < s.mesh.vertexCount(); lo += block) {
-    const std::size_t hi = std::min(lo + block, s.mesh.vertexCount());
-    bakeRays(s, sobol, seed, lo, hi, rays);
+  for (std::size_t lo = 0; lo < points.size(); lo += block) {
+    const std::size_t hi = std::min(lo + block, points.size());
+    bakeRays(s, points, sobol, seed, lo, hi, rays);
     copy = rays;
     const std::size_t chunks = (rays.size() + 63) / 64;
     auto t0 = Clock::now();
@@ -216,6 +241,51 @@ void BM_Shadowed(benchmark::State& state, const std::string& name) {
   state.counters["rawM_Mrays/s"] = rawM * 1e-6;
   state.counters["vs_raw"] = bakeRate / std::max(raw1, rawM);
   state.counters["threads"] = stats.threads;
+}
+
+void BM_TexelShadowed(benchmark::State& state, const std::string& name) {
+  Scene* s = scene(name);
+  const int res = static_cast<int>(state.range(0));
+  prt::BakeSettings settings;
+  settings.mode = prt::TransferMode::Shadowed;
+  settings.bands = 3;
+  settings.samples = 256;
+  settings.seed = 7;
+  // The texels' sample points, as bakeTexels makes them.
+  const prt::TexelSamples ts = prt::sampleTexels(s->mesh, s->mesh.lightmapUvs, res, res);
+  std::vector<RowPoint> points;
+  for (const prt::TexelSample& t : ts.samples)
+    points.push_back({prt::samplePosition(s->mesh, t), prt::sampleNormal(s->mesh, t), t.texel});
+  double pass = 0, total = 0, vertexPass = 0, raw = 0, rawVertex = 0;
+  std::uint64_t rays = 0, rawRays = 0, vertexRays = 0, rawVertexRays = 0;
+  for (auto _ : state) {
+    const RawTimes r = traceRaw(name, settings.samples, settings.seed, &points);
+    prt::BakeStats st;
+    const prt::TexelBake b = prt::bakeTexels(s->mesh, *s->occluder, settings,
+                                             s->mesh.lightmapUvs, res, res, 2, &st);
+    benchmark::DoNotOptimize(b.transfer.values().data());
+    const RawTimes rv = traceRaw(name, settings.samples, settings.seed);
+    prt::BakeStats sv;
+    const prt::Transfer v = prt::bake(s->mesh, *s->occluder, settings, &sv);
+    benchmark::DoNotOptimize(v.values().data());
+    pass += st.secondsDirect;
+    total += st.secondsTotal;
+    rays += st.rays;
+    raw += std::min(r.single, r.stream);
+    rawRays += r.rays;
+    vertexPass += sv.secondsDirect;
+    vertexRays += sv.rays;
+    rawVertex += std::min(rv.single, rv.stream);
+    rawVertexRays += rv.rays;
+    state.SetIterationTime(st.secondsTotal);
+  }
+  const double rawRate = rawRays / raw;
+  state.counters["texels"] = double(points.size());
+  state.counters["texel_Mrays/s"] = rays / pass * 1e-6;
+  state.counters["raw_Mrays/s"] = rawRate * 1e-6;
+  state.counters["vs_raw"] = rays / pass / rawRate;
+  state.counters["vs_raw_total"] = rays / total / rawRate;
+  state.counters["vertex_vs_raw"] = (vertexRays / vertexPass) / (rawVertexRays / rawVertex);
 }
 
 void BM_Interreflected(benchmark::State& state, const std::string& name) {
@@ -347,6 +417,12 @@ BENCHMARK_CAPTURE(BM_Shadowed, sphere_plane, std::string("sphere-plane"))
     ->Iterations(2)
     ->UseManualTime()
     ->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_TexelShadowed, cornell, std::string("cornell"))
+    ->Arg(256)
+    ->Arg(512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
 BENCHMARK_CAPTURE(BM_Interreflected, bunny, std::string("bunny"))
     ->Arg(2)
     ->Iterations(1)
