@@ -47,9 +47,9 @@
 #include "prt/core/sampling.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/geometry/load.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transfer/material.hpp"
-#include "prt/geometry/texel_sampling.hpp"
 #include "prt/transport/bake.hpp"
 #include "prt/transport/bake_texels.hpp"
 
@@ -261,8 +261,8 @@ void BM_TexelShadowed(benchmark::State& state, const std::string& name) {
   for (auto _ : state) {
     const RawTimes r = traceRaw(name, settings.samples, settings.seed, &points);
     prt::BakeStats st;
-    const prt::TexelBake b = prt::bakeTexels(s->mesh, *s->occluder, settings,
-                                             s->mesh.lightmapUvs, res, res, 2, &st);
+    const prt::TexelBake b =
+        prt::bakeTexels(s->mesh, *s->occluder, settings, s->mesh.lightmapUvs, res, res, 2, &st);
     benchmark::DoNotOptimize(b.transfer.values().data());
     const RawTimes rv = traceRaw(name, settings.samples, settings.seed);
     prt::BakeStats sv;

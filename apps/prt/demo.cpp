@@ -21,6 +21,9 @@
 // The matrices go to glossy.glb (the demo's scene.glb stays the small diffuse bake the web page
 // loads); prt view and prt render relight it.
 //
+// Per-texel row (demo_texels.hpp): the builtin Cornell box as a coarse mesh, per vertex, per
+// texel and per vertex at the lightmap's bytes, against its Monte Carlo reference.
+//
 // Everything the demo writes comes from the library calls the verbs use (bake, relight,
 // renderRelit, validate), so the pictures are exactly what `prt bake/render/validate` give.
 
@@ -36,6 +39,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "demo_page.hpp"
+#include "demo_texels.hpp"
 #include "guard.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
@@ -285,8 +289,7 @@ void renderTurntable(const LightScene& ls, const BakedTransfer& bt, const sh::Rg
   render::FrameSettings small = ls.frame;
   small.width = ls.frame.width * 2 / 3;
   small.height = ls.frame.height * 2 / 3;
-  const render::Camera cam =
-      render::frameMesh(ls.mesh, small.width, small.height);
+  const render::Camera cam = render::frameMesh(ls.mesh, small.width, small.height);
   std::vector<image::Image> sheet;
   relight::Relighter relighter(bt.transfer, {ls.mesh.positions, ls.mesh.normals, ls.mesh.albedo});
   relighter.setMaterial(bt.recipe.material);
@@ -370,8 +373,7 @@ void runDemo(const DemoArgs& a) {
   std::optional<GlossyBake> glossy;
   if (glossyMaterial) glossy = bakeGlossy(scene.mesh, *occluder, a, *glossyMaterial, file);
 
-  const render::Camera camera =
-      render::frameMesh(scene.mesh, frame.width, frame.height);
+  const render::Camera camera = render::frameMesh(scene.mesh, frame.width, frame.height);
   std::vector<LightResult> lights;
   for (std::size_t li = 0; li < envs.size(); ++li) {
     const auto tl = Clock::now();
@@ -413,9 +415,12 @@ void runDemo(const DemoArgs& a) {
     lights.push_back(std::move(L));
   }
 
+  // The per-texel row, under the first environment.
+  const TexelRow texels =
+      demoTexelRow(envs.front().env, envSpecs.front(), a, frame, file.root.string());
   const std::string webWhy = writeLiveViewer(envSpecs, file, a.output, lights.front().exposure);
   writeDemoPage(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0), webWhy,
-                glossy ? &*glossy : nullptr);
+                glossy ? &*glossy : nullptr, &texels);
   // Into place: replace an earlier demo folder only now that the new one is complete.
   folder.commit();
   info(

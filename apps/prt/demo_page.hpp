@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "demo_texels.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/render/validate.hpp"
 
@@ -67,6 +68,7 @@ struct GlossyBake {
 /// per environment its preview, every mode's pictures and validation table, and the turntable.
 void writeDemoPage(const std::string& path, const DemoScene& scene, const BakeFile& bake,
                    const std::vector<LightResult>& lights, const DemoArgs& a, double bakeSeconds,
-                   double totalSeconds, const std::string& webWhy, const GlossyBake* glossy);
+                   double totalSeconds, const std::string& webWhy, const GlossyBake* glossy,
+                   const TexelRow* texels);
 
 }  // namespace prt::cli
