@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -26,6 +27,7 @@
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/render/render.hpp"
+#include "prt/render/texel_points.hpp"
 #include "prt/render/validate.hpp"
 #include "reference_input.hpp"
 #include "report.hpp"
@@ -77,7 +79,6 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   report.check({{"--image", a.image}}, inputs);
 
   const BakeFile file = readBake(a.bake);
-  file.requireVertices(a.bake, "prt validate checks per-vertex transfer only so far");
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   // The material: the bake's, or --material (keeping the bake's kd unless it names one).
   BakeRecipe recipe = bt.recipe;
@@ -93,8 +94,17 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.transfer.bands());
   auto occluder = makeEmbreeOccluder(file.mesh);
+  // Per-texel transfer: the rows are the texels' sample points; a subset of the valid ones is
+  // validated (--vertices counts texels then).
+  const bool texels = bt.transfer.domain() == TransferDomain::Texels;
+  if (texels && !a.reference.empty())
+    throw Error(a.reference, "a reference file holds vertices; " + a.bake +
+                                 " holds per-texel transfer (validate it without --reference)");
 
   render::ValidateSettings vs;
+  if (texels)
+    vs.reference.points = std::make_shared<const render::RowPoints>(
+        render::texelRowPoints(file.mesh, *occluder, file.lightmap()));
   vs.reference.samples = a.samples;
   vs.reference.seed = a.seed;
   vs.reference.rotation = rotation;
@@ -139,8 +149,9 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   if (!mpi.root()) return;
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
-  info(fmt::format("reference: {} vertices x {} samples, {} rays{}; mode {}, {} bounce(s)",
-                   rep.reference.vertices.size(), vs.reference.samples, rep.reference.rays,
+  info(fmt::format("reference: {} {} x {} samples, {} rays{}; mode {}, {} bounce(s)",
+                   rep.reference.vertices.size(), texels ? "texels" : "vertices",
+                   vs.reference.samples, rep.reference.rays,
                    a.reference.empty() ? fmt::format(", {:.2f} s", rep.reference.seconds)
                                        : " (from " + a.reference + ")",
                    toString(rep.mode), rep.bounces));
@@ -165,7 +176,29 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
                                                "): the rest rings in the transfer and the "
                                                "lobe, which more bands hold"));
 
-  if (!a.image.empty()) {
+  if (!a.image.empty() && texels) {
+    // Per texel: the lightmap itself, each validated texel's relative error at the largest
+    // band count through the false-colour ramp (scaled to its 99th percentile), black elsewhere.
+    const TransferShape::LightmapSize lm = file.lightmap();
+    std::vector<float> sorted(rep.vertexError.begin(), rep.vertexError.end());
+    std::sort(sorted.begin(), sorted.end());
+    const float scale =
+        sorted.empty() ? 1.0f
+                       : std::max(sorted[std::size_t(0.99 * double(sorted.size() - 1))], 1e-6f);
+    image::Image img(lm.width, lm.height, Rgb(0.0f));
+    for (std::size_t i = 0; i < rep.reference.vertices.size(); ++i) {
+      const std::uint32_t t = rep.reference.vertices[i];
+      img.at(int(t % std::uint32_t(lm.width)), int(t / std::uint32_t(lm.width))) =
+          render::falseColour(std::min(rep.vertexError[i] / scale, 1.0f));
+    }
+    image::WriteOptions wo;
+    wo.toneMap = image::ToneMap::Clamp;
+    image::writeImage(a.image, img, wo);
+    info(
+        fmt::format("error image {}: the {}x{} lightmap, relative error per validated texel at {} "
+                    "bands, black 0% .. white {:.2f}%",
+                    a.image, lm.width, lm.height, rep.rows.back().bands, 100.0 * scale));
+  } else if (!a.image.empty()) {
     // Per-vertex relative error at the largest band count, through the false-colour ramp,
     // scaled to its 99th percentile (a Voronoi fill between the vertices of a --vertices subset).
     float scale = 1.0f;
@@ -226,7 +259,8 @@ void addValidateCommand(CLI::App& root) {
                   "Band counts to tabulate, e.g. 1,2,3 (default 1..B)");
   cmd->add_option("--rotate", a->rotate, "Rotate the environment: Euler X,Y,Z degrees");
   cmd->add_option("--vertices", a->vertices,
-                  "Validate a deterministic random subset of N vertices (0: all)")
+                  "Validate a deterministic random subset of N vertices (0: all); of a per-texel "
+                  "bake, N of its valid texels")
       ->check(unsignedInt(UINT32_MAX));
   cmd->add_option("--seed", a->seed, "Reference seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();
@@ -235,7 +269,9 @@ void addValidateCommand(CLI::App& root) {
                   "lanczos | dering")
       ->capture_default_str();
   addJsonOption(cmd, a->json);
-  cmd->add_option("--image", a->image, "Write a false-colour per-vertex error image (.png/.exr)");
+  cmd->add_option("--image", a->image,
+                  "Write a false-colour per-vertex error image (.png/.exr); of a per-texel bake, "
+                  "the error per texel in the lightmap (UV space)");
   cmd->add_option("--image-size", a->imageSize, "Error image size WxH")->capture_default_str();
   cmd->callback([a, cmd] {
     a->referenceOptionsGiven.clear();

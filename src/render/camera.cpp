@@ -144,8 +144,10 @@ bool isGroundPart(const Mesh& mesh, const MeshPart& part) {
   float othersLow = std::numeric_limits<float>::max();
   for (const MeshPart& q : mesh.parts) {
     if (&q == &part) continue;
-    const std::size_t e = std::min(mesh.positions.size(), std::size_t(q.firstVertex) + q.vertexCount);
-    for (std::size_t v = q.firstVertex; v < e; ++v) othersLow = std::min(othersLow, mesh.positions[v].y);
+    const std::size_t e =
+        std::min(mesh.positions.size(), std::size_t(q.firstVertex) + q.vertexCount);
+    for (std::size_t v = q.firstVertex; v < e; ++v)
+      othersLow = std::min(othersLow, mesh.positions[v].y);
   }
   return othersLow >= hi.y - 1e-4f * width;
 }
@@ -154,8 +156,10 @@ std::vector<Vec3f> framedVertices(const Mesh& mesh) {
   std::vector<Vec3f> out;
   for (const MeshPart& p : mesh.parts) {
     if (isGroundPart(mesh, p)) continue;
-    const std::size_t e = std::min(mesh.positions.size(), std::size_t(p.firstVertex) + p.vertexCount);
-    out.insert(out.end(), mesh.positions.begin() + std::ptrdiff_t(std::min<std::size_t>(p.firstVertex, e)),
+    const std::size_t e =
+        std::min(mesh.positions.size(), std::size_t(p.firstVertex) + p.vertexCount);
+    out.insert(out.end(),
+               mesh.positions.begin() + std::ptrdiff_t(std::min<std::size_t>(p.firstVertex, e)),
                mesh.positions.begin() + std::ptrdiff_t(e));
   }
   if (out.empty()) out = mesh.positions;

@@ -603,10 +603,15 @@ ReferenceRows::ReferenceRows(const Mesh& mesh, const Occluder& occluder, const E
   if (settings.bounces < 0 || settings.bounces > 16)
     throw Error("reference bounces must be in 0..16 (got " + std::to_string(settings.bounces) +
                 ")");
-  const std::size_t nv = mesh.vertexCount();
-  if (mesh.normals.size() != nv) throw Error(mesh.source, "has no per-vertex normals");
-  if (mesh.hasAlbedo() && mesh.albedo.size() != nv)
+  const RowPoints* points = settings.points.get();
+  const std::size_t nv = points ? points->positions.size() : mesh.vertexCount();
+  if (mesh.normals.size() != mesh.vertexCount())
+    throw Error(mesh.source, "has no per-vertex normals");
+  if (mesh.hasAlbedo() && mesh.albedo.size() != mesh.vertexCount())
     throw Error(mesh.source, "albedo count differs from vertex count");
+  if (points &&
+      (points->normals.size() != nv || (!points->albedo.empty() && points->albedo.size() != nv)))
+    throw Error(mesh.source, "the reference's row points lack normals or albedo");
   if (settings.material.glossy() && !settings.eye)
     throw Error("a glossy reference (" + settings.material.spec() +
                 ") needs the eye position for its view directions");
@@ -637,11 +642,13 @@ void ReferenceRows::compute(std::size_t first, std::size_t count, Rgb* radiance,
     for (std::size_t i = b; i < e; ++i) {
       if (progress) progress->check();
       const std::uint32_t v = vertices_[first + i];
-      const Vec3f& p = mesh.positions[v];
-      const Vec3f& n = mesh.normals[v];
-      const Rgb kd = settings.material.diffuse ? *settings.material.diffuse
-                     : mesh.hasAlbedo()        ? mesh.albedo[v]
-                                               : Rgb(1.0f);
+      const RowPoints* points = settings.points.get();
+      const Vec3f& p = points ? points->positions[v] : mesh.positions[v];
+      const Vec3f& n = points ? points->normals[v] : mesh.normals[v];
+      const Rgb kd = settings.material.diffuse           ? *settings.material.diffuse
+                     : points && !points->albedo.empty() ? points->albedo[v]
+                     : !points && mesh.hasAlbedo()       ? mesh.albedo[v]
+                                                         : Rgb(1.0f);
       // v = normalize(eye − p); an eye on the vertex (or none) looks along the normal.
       const Vec3f toEye = settings.eye ? *settings.eye - p : n;
       const Vec3f view = length(toEye) > 0 ? normalize(toEye) : n;

@@ -118,8 +118,15 @@ ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecip
   if (settings.precomputed) {
     rs.vertices = settings.precomputed->vertices;
     for (std::uint32_t v : rs.vertices)
-      if (v >= nv) throw Error("the reference has vertex " + std::to_string(v) +
-                               " of a mesh with " + std::to_string(nv));
+      if (v >= nv)
+        throw Error("the reference has vertex " + std::to_string(v) + " of a mesh with " +
+                    std::to_string(nv));
+  } else if (rs.points && !rs.points->valid.empty()) {
+    // Per-texel rows: a subset of the valid texels (never the gutter or one inside geometry).
+    const std::vector<std::uint32_t>& valid = rs.points->valid;
+    rs.vertices.clear();
+    for (std::uint32_t k : vertexSubset(valid.size(), settings.maxVertices, rs.seed))
+      rs.vertices.push_back(valid[k]);
   } else {
     rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
   }
@@ -269,10 +276,14 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
                           const BakeRecipe& bake, const envmap::Environment& env,
                           const sh::RgbSh& light, const ValidateSettings& settings,
                           const ProgressFn& progress) {
-  const std::size_t nv = mesh.vertexCount();
-  if (transfer.rowCount() != nv)
-    throw Error(mesh.source, "transfer has " + std::to_string(transfer.rowCount()) +
-                                 " vertices, mesh has " + std::to_string(nv) +
+  const RowPoints* points = settings.reference.points.get();
+  const bool texels = transfer.domain() == TransferDomain::Texels;
+  if (texels && !points)
+    throw Error(mesh.source, "validating per-texel transfer needs its texels' sample points");
+  const std::size_t nv = points ? points->positions.size() : mesh.vertexCount();
+  if (transfer.rowCount() != nv || transfer.rows().first != 0)
+    throw Error(mesh.source, "transfer has " + std::to_string(transfer.rowCount()) + " rows, " +
+                                 (points ? "the points " : "the mesh ") + std::to_string(nv) +
                                  " (validation needs a complete bake)");
   if (light.bands < 1 || transfer.bands() < 1) throw Error("light or transfer has no bands");
 
@@ -349,22 +360,29 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   rep.floorSeconds = floorRun.seconds;
 
   // Vertices whose negative radiance counts: for glossy transfer those facing the eye.
+  // Where the rows are: the mesh's vertices, or the points given (per-texel sample points).
+  const std::span<const Vec3f> positions =
+      points ? std::span<const Vec3f>(points->positions) : std::span<const Vec3f>(mesh.positions);
+  const std::span<const Vec3f> normals =
+      points ? std::span<const Vec3f>(points->normals) : std::span<const Vec3f>(mesh.normals);
   std::vector<char> counted(n, 1);
   if (glossy)
     for (std::size_t i = 0; i < n; ++i)
-      counted[i] = dot(mesh.normals[verts[i]], *rs.eye - mesh.positions[verts[i]]) > 0;
+      counted[i] = dot(normals[verts[i]], *rs.eye - positions[verts[i]]) > 0;
   rep.negativeVertices = static_cast<std::size_t>(std::count(counted.begin(), counted.end(), 1));
 
   std::vector<Rgb> albedo;
-  if (mesh.hasAlbedo()) albedo = mesh.albedo;
+  if (points)
+    albedo = points->albedo;
+  else if (mesh.hasAlbedo())
+    albedo = mesh.albedo;
   std::vector<Rgb> prt(n);
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const int b = kept[k];
     // PRT radiance at b bands (relight rotates the light itself).
     std::vector<Rgb> all(nv);
-    relight::relight(transfer.cut(b), lights[k], rs.material,
-                     {mesh.positions, mesh.normals, albedo}, rs.eye ? *rs.eye : Vec3f(0.0f), all,
-                     rs.rotation);
+    relight::relight(transfer.cut(b), lights[k], rs.material, {positions, normals, albedo},
+                     rs.eye ? *rs.eye : Vec3f(0.0f), all, rs.rotation);
     for (std::size_t i = 0; i < n; ++i) {
       prt[i] = all[verts[i]];
       if (!isFinite(prt[i]))

@@ -184,6 +184,45 @@ TEST_F(TexelCli, ExportWritesCoefficientTexturesThatDecodeToTheTransfer) {
   expectCleanFailure("export t.glb -o out/x.txt", "t.glb: holds per-texel transfer");
 }
 
+/// The last row's numbers of prt validate --json FILE.
+nlohmann::json lastRow(const std::string& file) {
+  return nlohmann::json::parse(slurp(file))["rows"].back();
+}
+
+// prt validate per texel: a seeded subset of the valid texels against the brute-force reference
+// at their sample points, the same table as for vertices. The bake's error is what the band
+// limit and the reference's noise explain; the same transfer over UVs flipped upside down (its
+// rows meeting other points) is not; the error image is the lightmap.
+TEST_F(TexelCli, ValidatePerTexelExplainsItsErrorAndCatchesAMisplacedLightmap) {
+  ASSERT_EQ(prt("-q bake " + kBox +
+                " --mode interreflected --domain texels --resolution 48 "
+                "--samples 512 -o t.glb")
+                .rc,
+            0);
+  const std::string validate = " --light builtin:sky --vertices 800 --reference-samples 256 ";
+  const Result r = prt("validate t.glb" + validate + "--json t.json --image out-err.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("reference: 800 texels"), std::string::npos) << r.err;
+  const nlohmann::json row = lastRow(path("t.json"));
+  std::printf("per texel: rel RMSE %.3f, floor %.3f, ref std err %.3f, explained %.3f\n",
+              row["relRmse"].get<double>(), row["truncationFloor"].get<double>(),
+              row["refStdErr"].get<double>(), row["explained"].get<double>());
+  EXPECT_GT(row["explained"].get<double>(), 0.8);
+  const image::Image err = image::readImage(path("out-err.png"));
+  EXPECT_EQ(err.width, 48);
+  EXPECT_EQ(err.height, 48);
+
+  BakeFile flipped = readBake(path("t.glb"));
+  for (Vec2f& uv : flipped.mesh.lightmapUvs) uv.y = 1.0f - uv.y;
+  writeBake(path("flipped.glb"), flipped);
+  ASSERT_EQ(prt("-q validate flipped.glb" + validate + "--json f.json").rc, 0);
+  const nlohmann::json bad = lastRow(path("f.json"));
+  std::printf("flipped: rel RMSE %.3f, explained %.3f\n", bad["relRmse"].get<double>(),
+              bad["explained"].get<double>());
+  EXPECT_GT(bad["relRmse"].get<double>(), 1.5 * row["relRmse"].get<double>());
+  EXPECT_LT(bad["explained"].get<double>(), 0.7);
+}
+
 TEST_F(TexelCli, WhatCannotTakeTexelsSaysSoByName) {
   ASSERT_EQ(prt("-q bake " + kBox +
                 " --mode shadowed --domain texels --resolution 16 "
@@ -192,7 +231,9 @@ TEST_F(TexelCli, WhatCannotTakeTexelsSaysSoByName) {
             0);
   const std::string per = "t.glb: holds per-texel transfer (a 16 x 16 lightmap)";
   expectCleanFailure("web t.glb -o out/page", per);
-  expectCleanFailure("validate t.glb --light builtin:sky", per);
+  write("r.json", "{}");
+  expectCleanFailure("validate t.glb --light builtin:sky --reference r.json",
+                     "r.json: a reference file holds vertices");
   expectCleanFailure("reference t.glb --light builtin:sky -o out/r.json", per);
   expectCleanFailure("view t.glb --headless --screenshot out/v.png", per);
   // And the bake's own refusals.

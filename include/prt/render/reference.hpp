@@ -136,6 +136,16 @@ struct BandLimitSettings {
 /// prt reference, prt validate and a reference file's check.
 Material referenceMaterial(const Material& material, TransferLayout layout);
 
+/// Where the rows are when they are not the mesh's vertices — per-texel transfer: each texel's
+/// sample point (transport/bake_texels.hpp) — one position, unit normal and albedo per row
+/// (rows no triangle covers hold anything: they are never estimated).
+struct RowPoints {
+  std::vector<Vec3f> positions, normals;
+  std::vector<Rgb> albedo;           ///< per row, or empty: white (or the material's kd)
+  std::vector<std::uint32_t> valid;  ///< the rows that may be estimated (covered, not inside
+                                     ///< geometry), ascending; validation draws its subset here
+};
+
 struct ReferenceSettings {
   /// Samples per vertex (each: an environment and a cosine direction, and when glossy an
   /// environment and a lobe direction).
@@ -151,6 +161,9 @@ struct ReferenceSettings {
   MisHeuristic heuristic = MisHeuristic::Power;
   /// The vertices to estimate (global indices); empty: every vertex.
   std::vector<std::uint32_t> vertices;
+  /// When set, the rows are these points instead of the mesh's vertices (`vertices` then index
+  /// them, each seeded by its index as a vertex is); the mesh and occluder are still the scene.
+  std::shared_ptr<const RowPoints> points;
   /// When set, also e_b − e per band limit (ReferenceResult::bandLimited); the radiance is the
   /// same, bit for bit (the band-limited lanes draw no random numbers of the main streams).
   std::optional<BandLimitSettings> bandLimit;
