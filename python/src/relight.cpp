@@ -12,6 +12,7 @@
 #include "prt/render/primary.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/render/render.hpp"
+#include "prt/render/texel_points.hpp"
 #include "prt/render/validate.hpp"
 
 namespace prtpy {
@@ -265,10 +266,12 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
   const prt::Mesh& mm = mesh->mesh();
   const TransferPtr t = toTransfer(transferObj);
   const prt::Transfer& tr = t->transfer;
-  if (tr.domain() == prt::TransferDomain::Texels)
-    throw py::value_error(
-        "validate checks per-vertex transfer only so far (this one is per texel)");
-  if (tr.rows().first != 0 || tr.rowCount() != mm.vertexCount())
+  const bool texels = tr.domain() == prt::TransferDomain::Texels;
+  if (texels && mm.lightmapUvs.size() != mm.vertexCount())
+    throw py::value_error("the transfer is per texel: the mesh needs its lightmap UVs");
+  if (texels && (tr.rows().first != 0 || tr.rowCount() != tr.shape().lightmap.texels()))
+    throw py::value_error("validate needs the transfer of every texel (a complete bake)");
+  if (!texels && (tr.rows().first != 0 || tr.rowCount() != mm.vertexCount()))
     throw py::value_error("validate needs the transfer of every vertex of the mesh (" +
                           std::to_string(mm.vertexCount()) + "), it holds " +
                           std::to_string(tr.rowCount()) + " rows from " +
@@ -294,6 +297,10 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
   vs.floorVertices = floorVertices;
   vs.window = windowOf(window);
   vs.bakeName = "transfer";
+  // Per texel: the texels' sample points (a subset of the valid ones is validated).
+  if (texels)
+    vs.reference.points = std::make_shared<const prt::render::RowPoints>(
+        prt::render::texelRowPoints(mm, mesh->occluder(), tr.shape().lightmap));
   prt::render::ValidationReport rep =
       runLong("validating", progress, [&](const prt::ProgressFn& fn) {
         const prt::sh::RgbSh light = prt::envmap::projectEnvironment(env->env, tr.bands());

@@ -1,6 +1,8 @@
 """relight and render against `prt render`: a rotated light relit and drawn in Python gives the
 image the command line writes, for vectors, matrices seen from the camera, and CPCA."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -141,3 +143,20 @@ def test_texel_transfer_bakes_relights_and_renders_as_prt_render(tmp_path, prt_c
     assert np.abs(flipped - theirs).mean() > 10 * np.abs(np.maximum(ours, 0) - theirs).mean()
     with pytest.raises(ValueError, match="texel count"):
         prtkit.bake(mesh, domain="texels", resolution=8, range=(0, 100))
+
+
+def test_texel_transfer_validates_as_prt_validate(tmp_path, prt_cli):
+    """validate of a per-texel transfer: the same subset of valid texels and the same table as
+    `prt validate`, its error explained by the band limit and the reference's noise."""
+    box = "builtin:cornell?grid=6"
+    mesh = prtkit.load_mesh(box)
+    t = prtkit.bake_transfer(mesh, mode="shadowed", domain="texels", resolution=32, samples=256)
+    r = prtkit.validate(mesh, t, "builtin:sky", samples=128, vertices=300)
+    assert r["rows"][-1]["explained"] > 0.8
+    glb = tmp_path / "t.glb"
+    prt_cli("bake", box, "--mode", "shadowed", "--domain", "texels", "--resolution", 32,
+            "--samples", 256, "-o", glb)
+    prt_cli("validate", glb, "--light", "builtin:sky", "--reference-samples", 128,
+            "--vertices", 300, "--json", tmp_path / "v.json")
+    cli = json.load(open(tmp_path / "v.json"))
+    assert abs(cli["rows"][-1]["relRmse"] - r["rows"][-1]["relRmse"]) < 1e-6
