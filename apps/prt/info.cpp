@@ -30,6 +30,7 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/io/games202_transport.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/render/lightmap_seams.hpp"
 #include "prt/transfer/material.hpp"
 #include "report.hpp"
 
@@ -140,6 +141,26 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
         "lightmap    {}x{} over the lightmap UVs, padding {}: {:.1f}% of the texels covered ({}; "
         "{} partly)\n",
         lm.width, lm.height, lm.padding, 100.0 * share, s.samples.size(), partial);
+    // The seams of the richest vector transfer (render/lightmap_seams.hpp).
+    for (std::size_t i : transferPreference(b)) {
+      const Transfer& x = b.transfers[i].transfer;
+      if (x.isMatrix() || !b.complete()) continue;
+      const render::SeamStats seams = render::measureSeams(m, x);
+      j["lightmap"]["seams"] = {{"transfer", b.transfers[i].describe()},
+                                {"edges", seams.edges},
+                                {"length", seams.length},
+                                {"mismatch", seams.mismatch},
+                                {"maxMismatch", seams.maxMismatch}};
+      if (seams.edges == 0)
+        out << "seams       none (no smooth edge is cut between charts)\n";
+      else
+        out << fmt::format(
+            "seams       {} edges ({:.4g} long): bilinear mismatch across them {:.2f}% of the "
+            "white-sky radiance there (max {:.2f}%), {}\n",
+            seams.edges, seams.length, 100 * seams.mismatch, 100 * seams.maxMismatch,
+            b.transfers[i].describe());
+      break;
+    }
   }
   out << fmt::format("range       {}s {}..{} ({})\n", per, rows.first, rows.end() - 1,
                      b.complete() ? "complete" : "partial: merge before use");

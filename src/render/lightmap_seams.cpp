@@ -1,0 +1,103 @@
+#include "prt/render/lightmap_seams.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <vector>
+
+#include "prt/core/error.hpp"
+
+namespace prt::render {
+
+namespace {
+
+constexpr int kPointsPerEdge = 16;
+constexpr float kSmoothCos = 0.999f;  // normals within ~2.5° on both sides: not a crease
+
+std::array<std::uint32_t, 3> bits(const Vec3f& p) {
+  std::array<std::uint32_t, 3> b{};
+  std::memcpy(b.data(), &p.x, 12);
+  return b;
+}
+
+}  // namespace
+
+SeamStats measureSeams(const Mesh& mesh, const Transfer& transfer) {
+  const TransferShape& shape = transfer.shape();
+  if (shape.domain != TransferDomain::Texels || transfer.rows().first != 0 ||
+      transfer.rowCount() != shape.lightmap.texels())
+    throw Error(mesh.source, "the seam metric is of a complete per-texel transfer");
+  if (mesh.lightmapUvs.size() != mesh.vertexCount())
+    throw Error(mesh.source, "the seam metric needs the mesh's lightmap UVs");
+  const int W = shape.lightmap.width, H = shape.lightmap.height, C = shape.channels;
+  // Exit radiance under a white sky per texel: √(4π) T₀, the mean over channels.
+  const Transfer dense = transfer.toDense();
+  std::vector<float> white(shape.lightmap.texels());
+  const float k = float(std::sqrt(4.0 * 3.14159265358979323846)) / float(C);
+  for (std::size_t t = 0; t < white.size(); ++t) {
+    float s = 0;
+    for (int c = 0; c < C; ++c) s += dense.row(t)[c];
+    white[t] = k * s;
+  }
+  const auto fetch = [&](Vec2f uv) {
+    const float fx = std::clamp(uv.x * float(W) - 0.5f, 0.0f, float(W - 1));
+    const float fy = std::clamp(uv.y * float(H) - 0.5f, 0.0f, float(H - 1));
+    const int x0 = std::min(int(fx), W - 1), y0 = std::min(int(fy), H - 1);
+    const int x1 = std::min(x0 + 1, W - 1), y1 = std::min(y0 + 1, H - 1);
+    const float ax = fx - float(x0), ay = fy - float(y0);
+    const auto at = [&](int x, int y) { return white[std::size_t(y) * W + x]; };
+    return (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) +
+           (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
+  };
+  // Edges by their endpoints' positions: (lower, higher) bits → the (vertex, vertex) pairs.
+  using Key = std::pair<std::array<std::uint32_t, 3>, std::array<std::uint32_t, 3>>;
+  std::map<Key, std::vector<std::array<std::uint32_t, 2>>> edges;
+  for (const auto& tri : mesh.triangles)
+    for (int e = 0; e < 3; ++e) {
+      std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
+      auto ka = bits(mesh.positions[a]), kb = bits(mesh.positions[b]);
+      if (kb < ka) std::swap(a, b), std::swap(ka, kb);
+      edges[{ka, kb}].push_back({a, b});
+    }
+  const auto sameUv = [](Vec2f p, Vec2f q) { return p.x == q.x && p.y == q.y; };
+  SeamStats st;
+  double weighted = 0, sumR = 0, points = 0;
+  std::vector<std::pair<double, double>> diffs;  // (|ΔR|, length weight)
+  for (const auto& [key, sides] : edges) {
+    if (sides.size() != 2) continue;
+    const auto [a0, b0] = sides[0];
+    const auto [a1, b1] = sides[1];
+    const std::vector<Vec2f>& uv = mesh.lightmapUvs;
+    if (sameUv(uv[a0], uv[a1]) && sameUv(uv[b0], uv[b1])) continue;  // one chart: no seam
+    if (dot(mesh.normals[a0], mesh.normals[a1]) < kSmoothCos ||
+        dot(mesh.normals[b0], mesh.normals[b1]) < kSmoothCos)
+      continue;  // a crease
+    const double len = length(mesh.positions[b0] - mesh.positions[a0]);
+    ++st.edges;
+    st.length += len;
+    for (int i = 0; i < kPointsPerEdge; ++i) {
+      const float s = (float(i) + 0.5f) / kPointsPerEdge;
+      const auto lerp = [s](Vec2f p, Vec2f q) {
+        return Vec2f{p.x + (q.x - p.x) * s, p.y + (q.y - p.y) * s};
+      };
+      const float ra = fetch(lerp(uv[a0], uv[b0])), rb = fetch(lerp(uv[a1], uv[b1]));
+      diffs.emplace_back(std::abs(double(ra) - double(rb)), len);
+      sumR += 0.5 * (double(ra) + double(rb));
+      points += 1;
+    }
+  }
+  if (points == 0) return st;
+  const double meanR = std::max(sumR / points, 1e-30);
+  double wsum = 0;
+  for (const auto& [d, w] : diffs) {
+    weighted += d * w;
+    wsum += w;
+    st.maxMismatch = std::max(st.maxMismatch, d / meanR);
+  }
+  st.mismatch = wsum > 0 ? weighted / wsum / meanR : 0.0;
+  return st;
+}
+
+}  // namespace prt::render
