@@ -9,8 +9,9 @@ namespace prt {
 
 BakeFile mergeBakes(std::vector<BakeFile> pieces) {
   if (pieces.empty()) throw Error("merge: no bake files");
-  const auto rowName = [](const BakeFile& b) {
-    return b.domain() == TransferDomain::Texels ? std::string("texel") : std::string("vertex");
+  const auto rowName = [](const BakeFile& b, bool plural = false) {
+    return std::string(b.domain() == TransferDomain::Texels ? (plural ? "texels" : "texel")
+                                                            : (plural ? "vertices" : "vertex"));
   };
   std::sort(pieces.begin(), pieces.end(),
             [](const BakeFile& a, const BakeFile& b) { return a.rows().first < b.rows().first; });
@@ -43,9 +44,8 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces) {
       throw Error(who + " overlaps the previous range (which ends at " +
                   std::to_string(rows.end()) + ")");
     if (p.rows().first > rows.end())
-      throw Error(who + " leaves a gap: " + (rowName(p) == "texel" ? "texels " : "vertices ") +
-                  std::to_string(rows.end()) + ".." + std::to_string(p.rows().first - 1) +
-                  " are missing");
+      throw Error(who + " leaves a gap: " + rowName(p, true) + " " + std::to_string(rows.end()) +
+                  ".." + std::to_string(p.rows().first - 1) + " are missing");
     if (p.transfers.size() != out.transfers.size()) throw Error(who + " holds different modes");
     for (std::size_t t = 0; t < out.transfers.size(); ++t) {
       BakedTransfer& a = out.transfers[t];

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "prt/core/error.hpp"
+#include "prt/geometry/texel_samples.hpp"
 
 namespace prt::render {
 
@@ -42,14 +43,10 @@ SeamStats measureSeams(const Mesh& mesh, const Transfer& transfer) {
     white[t] = k * s;
   }
   const auto fetch = [&](Vec2f uv) {
-    const float fx = std::clamp(uv.x * float(W) - 0.5f, 0.0f, float(W - 1));
-    const float fy = std::clamp(uv.y * float(H) - 0.5f, 0.0f, float(H - 1));
-    const int x0 = std::min(int(fx), W - 1), y0 = std::min(int(fy), H - 1);
-    const int x1 = std::min(x0 + 1, W - 1), y1 = std::min(y0 + 1, H - 1);
-    const float ax = fx - float(x0), ay = fy - float(y0);
-    const auto at = [&](int x, int y) { return white[std::size_t(y) * W + x]; };
-    return (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) +
-           (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
+    const TexelTaps taps = bilinearTaps(uv, W, H);
+    float r = 0;
+    for (int k = 0; k < 4; ++k) r += white[taps.texel[k]] * taps.weight[k];
+    return r;
   };
   // Edges by their endpoints' positions: (lower, higher) bits → the (vertex, vertex) pairs.
   using Key = std::pair<std::array<std::uint32_t, 3>, std::array<std::uint32_t, 3>>;

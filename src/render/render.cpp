@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "prt/core/error.hpp"
+#include "prt/geometry/texel_samples.hpp"
 #include "prt/image/color.hpp"
 #include "prt/sh/rotate.hpp"
 
@@ -85,17 +86,11 @@ ShadeFn texelRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance, int
     const auto& t = mesh.triangles[h.triangle];
     const float w0 = 1.0f - h.u - h.v;
     const Vec2f* uv = mesh.lightmapUvs.data();
-    const float u = uv[t[0]].x * w0 + uv[t[1]].x * h.u + uv[t[2]].x * h.v;
-    const float v = uv[t[0]].y * w0 + uv[t[1]].y * h.u + uv[t[2]].y * h.v;
-    // Bilinear between the four texel centres around (u, v), clamped to the edge texels.
-    const float fx = std::clamp(u * float(width) - 0.5f, 0.0f, float(width - 1));
-    const float fy = std::clamp(v * float(height) - 0.5f, 0.0f, float(height - 1));
-    const int x0 = std::min(int(fx), width - 1), y0 = std::min(int(fy), height - 1);
-    const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
-    const float ax = fx - float(x0), ay = fy - float(y0);
-    const auto at = [&](int x, int y) { return radiance[std::size_t(y) * width + x]; };
-    Rgb r = (at(x0, y0) * (1.0f - ax) + at(x1, y0) * ax) * (1.0f - ay) +
-            (at(x0, y1) * (1.0f - ax) + at(x1, y1) * ax) * ay;
+    const TexelTaps taps = bilinearTaps({uv[t[0]].x * w0 + uv[t[1]].x * h.u + uv[t[2]].x * h.v,
+                                         uv[t[0]].y * w0 + uv[t[1]].y * h.u + uv[t[2]].y * h.v},
+                                        width, height);
+    Rgb r(0.0f);
+    for (int k = 0; k < 4; ++k) r += radiance[taps.texel[k]] * taps.weight[k];
     if (!albedo.empty()) r = r * (albedo[t[0]] * w0 + albedo[t[1]] * h.u + albedo[t[2]] * h.v);
     return r;
   };

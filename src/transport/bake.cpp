@@ -27,6 +27,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
+#include "prt/geometry/texel_samples.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/sh/sh_fixed.hpp"
@@ -81,28 +82,23 @@ struct VertexLookup {
 };
 
 /// The previous pass at a hit, for a texel-domain transfer: its lightmap image (dilated) read
-/// bilinearly at the hit's lightmap UV (the hit triangle's UVs blended), texel centres at
-/// ((x + ½)/W, (y + ½)/H), clamped at the borders.
+/// bilinearly at the hit's lightmap UV (the hit triangle's UVs blended; bilinearTaps).
 struct TexelLookup {
   const TexelImage& image;
   void operator()(const Hit& h, const std::array<std::uint32_t, 3>& tri, float* out) const {
     const float b0 = 1.0f - h.u - h.v;
     const Vec2f a = image.uvs[tri[0]], b = image.uvs[tri[1]], c = image.uvs[tri[2]];
-    const float x = (b0 * a.x + h.u * b.x + h.v * c.x) * float(image.width) - 0.5f;
-    const float y = (b0 * a.y + h.u * b.y + h.v * c.y) * float(image.height) - 0.5f;
-    const float fx = std::floor(x), fy = std::floor(y);
-    const float wx = x - fx, wy = y - fy;
-    const auto clampTo = [](int i, int n) { return std::min(std::max(i, 0), n - 1); };
-    const int x0 = clampTo(int(fx), image.width), x1 = clampTo(int(fx) + 1, image.width);
-    const int y0 = clampTo(int(fy), image.height), y1 = clampTo(int(fy) + 1, image.height);
+    const TexelTaps taps =
+        bilinearTaps({b0 * a.x + h.u * b.x + h.v * c.x, b0 * a.y + h.u * b.y + h.v * c.y},
+                     image.width, image.height);
     const std::size_t s = image.stride;
-    const float* r00 = image.values + (std::size_t(y0) * image.width + x0) * s;
-    const float* r10 = image.values + (std::size_t(y0) * image.width + x1) * s;
-    const float* r01 = image.values + (std::size_t(y1) * image.width + x0) * s;
-    const float* r11 = image.values + (std::size_t(y1) * image.width + x1) * s;
-    const float w00 = (1 - wx) * (1 - wy), w10 = wx * (1 - wy), w01 = (1 - wx) * wy, w11 = wx * wy;
+    const float* r00 = image.values + taps.texel[0] * s;
+    const float* r10 = image.values + taps.texel[1] * s;
+    const float* r01 = image.values + taps.texel[2] * s;
+    const float* r11 = image.values + taps.texel[3] * s;
+    const auto& w = taps.weight;
     for (std::size_t i = 0; i < s; ++i)
-      out[i] = w00 * r00[i] + w10 * r10[i] + w01 * r01[i] + w11 * r11[i];
+      out[i] = w[0] * r00[i] + w[1] * r10[i] + w[2] * r01[i] + w[3] * r11[i];
   }
 };
 
