@@ -85,7 +85,7 @@ double relativeDifference(const image::Image& a, const image::Image& b) {
 // The Cornell box inter-reflected per texel (a 128² lightmap) and per vertex on 64 × 64 grids,
 // rendered alike: they agree to Monte Carlo error and discretisation (what is left is mostly
 // the vertex render's: interpolation spreads a concave corner's darkness over a grid cell —
-// 6.8% at 24 × 24 grids, 3.3% at 64 × 64). The same lightmap fetched upside down (its UVs' v
+// 7.1% at 24 × 24 grids, 3.3% at 64 × 64). The same lightmap fetched upside down (its UVs' v
 // flipped in the file) is 64% off.
 TEST_F(TexelCli, RenderRelightsPerPixelAndMatchesTheVertexRender) {
   const std::string scene = "'builtin:cornell?grid=64'";
