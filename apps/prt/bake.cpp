@@ -40,6 +40,7 @@
 #include "prt/transport/bake_texels.hpp"
 #include "prt/transport/passes.hpp"
 #include "report.hpp"
+#include "seam_fix.hpp"
 #include "transfer_options.hpp"
 #if PRT_HAVE_MPI
 #include <iostream>
@@ -69,6 +70,7 @@ struct BakeArgs {
   int resolution = 0;  ///< 0: not given (kDefaultResolution)
   std::string uv;      ///< "": not given (auto)
   int padding = -1;    ///< −1: not given (kDefaultPadding)
+  bool seamFix = false;  ///< --seam-fix
   // Distributed and split bakes (docs/distributed.md).
   std::string checkpoint;  ///< MPI: folder of finished chunks
   std::size_t chunk = 0;   ///< MPI: rows per chunk (0: the default)
@@ -167,6 +169,7 @@ struct TexelPlan {
   int resolution = 512;  ///< the lightmap's side
   int padding = 2;       ///< rings of gutter dilated
   UvSetOption uv = UvSetOption::Auto;
+  bool seamFix = false;  ///< the least-squares seam fix after the bake
 };
 
 std::string seconds(double s) {
@@ -210,6 +213,7 @@ BakePlan planOf(const BakeArgs& a) {
     if (a.resolution) t.resolution = a.resolution;
     if (a.padding >= 0) t.padding = a.padding;
     if (!a.uv.empty()) t.uv = parseUvSetOption(a.uv);
+    t.seamFix = a.seamFix;
     if (t.resolution < 1 || t.resolution > kMaxLightmapSide)
       throw Error(fmt::format("--resolution {}: must be 1..{}", t.resolution, kMaxLightmapSide));
     if (t.padding > kMaxLightmapPadding)
@@ -223,8 +227,9 @@ BakePlan planOf(const BakeArgs& a) {
           "--domain texels bakes in one process: --pass and --checkpoint split "
           "per-vertex bakes (--range and --shard split texel bakes)");
     plan.texels = t;
-  } else if (a.resolution || a.padding >= 0 || !a.uv.empty()) {
-    throw Error("--resolution, --uv and --padding shape a lightmap: add --domain texels");
+  } else if (a.resolution || a.padding >= 0 || !a.uv.empty() || a.seamFix) {
+    throw Error(
+        "--resolution, --uv, --padding and --seam-fix shape a lightmap: add --domain texels");
   }
   return plan;
 }
@@ -688,6 +693,10 @@ void runBake(const BakeArgs& a) {
                       : parseRange(a.range, domainRows, plan.texels ? "texel" : "vertex");
   std::size_t shard = 0, shards = 1;
   if (!a.shard.empty()) std::tie(shard, shards) = parseShard(a.shard);
+  if (plan.texels && plan.texels->seamFix && (rows.count < domainRows || shards > 1))
+    throw Error(
+        "--seam-fix needs the whole lightmap (a seam joins texels of other ranges): bake the "
+        "pieces without it, then prt merge --seam-fix");
   const bool multiPass =
       plan.recipe.bounces > 0 && std::find(plan.modes.begin(), plan.modes.end(),
                                            TransferMode::Interreflected) != plan.modes.end();
@@ -751,6 +760,7 @@ void runBake(const BakeArgs& a) {
     refuseNonFinite(mesh, t);
     file.transfers.push_back(std::move(t));
   }
+  if (plan.texels && plan.texels->seamFix) fixBakeSeams(file, a.output);
   writeBake(a.output, file);
   info(fmt::format("wrote {} ({}{} {} {}..{})", a.output, file.complete() ? "" : "partial: ",
                    rows.count, plan.texels ? "texels" : "vertices", rows.first, rows.end() - 1));
@@ -811,6 +821,9 @@ void addBakeCommand(CLI::App& root) {
   cmd->add_option("--padding", args->padding,
                   "--domain texels: gutter texels dilated around the charts (default 2)")
       ->check(intRange(0, kMaxLightmapPadding));
+  cmd->add_flag("--seam-fix", args->seamFix,
+                "--domain texels: the least-squares seam fix (Sylvan 2015): texels on the two "
+                "sides of a UV seam agree under bilinear filtering");
   cmd->add_option("-o,--output", args->output,
                   "Output bake file (.glb); with --pass K before the last, a pass file "
                   "(.prtpass)")

@@ -135,7 +135,8 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     for (const TexelSample& t : s.samples) partial += !t.centreInside;
     const double share = double(s.samples.size()) / double(s.texelCount());
     j["lightmap"] = {{"width", lm.width},        {"height", lm.height},
-                     {"padding", lm.padding},    {"coveredTexels", s.samples.size()},
+                     {"padding", lm.padding},    {"seamsFixed", lm.seamsFixed},
+                     {"coveredTexels", s.samples.size()},
                      {"partialTexels", partial}, {"coverage", share}};
     out << fmt::format(
         "lightmap    {}x{} over the lightmap UVs, padding {}: {:.1f}% of the texels covered ({}; "
@@ -156,9 +157,10 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
       else
         out << fmt::format(
             "seams       {} edges ({:.4g} long): bilinear mismatch across them {:.2f}% of the "
-            "white-sky radiance there (max {:.2f}%), {}\n",
+            "white-sky radiance there (max {:.2f}%), {}{}\n",
             seams.edges, seams.length, 100 * seams.mismatch, 100 * seams.maxMismatch,
-            b.transfers[i].describe());
+            b.transfers[i].describe(),
+            lm.seamsFixed ? ", after the seam fix" : " (prt bake --seam-fix closes them)");
       break;
     }
   }

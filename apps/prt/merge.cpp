@@ -17,6 +17,7 @@
 
 #include "cli.hpp"
 #include "guard.hpp"
+#include "seam_fix.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/io/bake_merge.hpp"
@@ -29,6 +30,7 @@ namespace {
 struct MergeArgs {
   std::vector<std::string> inputs;
   std::string output;
+  bool seamFix = false;  ///< --seam-fix: of the merged per-texel bake
 };
 
 /// Merges pieces (each with the file it came from) in the order of their first row, one at a time,
@@ -82,6 +84,7 @@ void runMerge(const MergeArgs& a) {
         return fileExtension(in) == "prtpass";
       });
   if (passFiles) {
+    if (a.seamFix) throw Error("--seam-fix is of merged per-texel bakes, not pass files");
     runMergePasses(a);
     return;
   }
@@ -103,9 +106,10 @@ void runMerge(const MergeArgs& a) {
                             "), which cannot be merged: merge the uncompressed pieces, then "
                             "compress");
   }
-  const BakeFile merged = mergeInRowOrder(
+  BakeFile merged = mergeInRowOrder(
       std::move(pieces), [](const BakeFile& f) { return f.rows().first; },
       [](std::vector<BakeFile> two) { return mergeBakes(std::move(two)); });
+  if (a.seamFix) fixBakeSeams(merged, a.output);
   writeBake(a.output, merged);
   const RowRange rows = merged.rows();
   info(fmt::format("wrote {} ({} {} {}..{}{}, {} mode(s))", a.output, rows.count,
@@ -125,6 +129,9 @@ void addMergeCommand(CLI::App& root) {
                   "Bake pieces (.glb) or pass files (.prtpass), in any order")
       ->required();
   cmd->add_option("-o,--output", args->output, "Output bake file (.glb)")->required();
+  cmd->add_flag("--seam-fix", args->seamFix,
+                "Per-texel bakes: the least-squares seam fix of the merged lightmap (Sylvan "
+                "2015; as prt bake --seam-fix)");
   cmd->callback([args] { runMerge(*args); });
 }
 

@@ -11,6 +11,7 @@
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/transport/bake.hpp"
 #include "prt/transport/bake_texels.hpp"
+#include "prt/transport/lightmap_seam_fix.hpp"
 
 namespace prtpy {
 
@@ -132,6 +133,7 @@ struct Lightmap {
   int resolution = 512;
   std::string uv = "auto";
   int padding = 2;
+  bool seamFix = false;  ///< the least-squares seam fix (prt bake --seam-fix)
 };
 
 prt::BakeSettings bakeSettings(const prt::Mesh& mesh, const std::string& mode, int bands,
@@ -157,6 +159,8 @@ prt::BakeSettings bakeSettings(const prt::Mesh& mesh, const std::string& mode, i
     if (s.layout != prt::TransferLayout::Vector)
       throw py::value_error("domain='texels' bakes vector transfer only so far");
     asValueError([&] { return prt::parseUvSetOption(lightmap.uv); });
+  } else if (lightmap.seamFix) {
+    throw py::value_error("seam_fix=True is of domain='texels'");
   }
   if (bands < 1 || bands > prt::bands::kMaxBake)
     throw py::value_error("bands=" + std::to_string(bands) + ": must be 1.." +
@@ -188,6 +192,9 @@ prt::BakeSettings bakeSettings(const prt::Mesh& mesh, const std::string& mode, i
   s.rows = d == prt::TransferDomain::Texels
                ? rowRange(range, std::size_t(lightmap.resolution) * lightmap.resolution, "texel")
                : rowRange(range, mesh.vertexCount());
+  if (lightmap.seamFix && s.rows.count < std::size_t(lightmap.resolution) * lightmap.resolution)
+    throw py::value_error(
+        "seam_fix=True needs the whole lightmap (a seam joins texels of other ranges)");
   return s;
 }
 
@@ -215,10 +222,12 @@ Baked runBake(py::handle meshObj, const std::string& mode, int bands, long long 
           }).uvs;
   return runLong("bake", progress, [&](const prt::ProgressFn& fn) {
     Baked b;
-    if (texels)
+    if (texels) {
       b.transfer = prt::bakeTexels(mesh->mesh(), mesh->occluder(), s, uvs, N, N, lightmap.padding,
                                    &b.stats, fn)
                        .transfer;
+      if (lightmap.seamFix) b.transfer = prt::fixLightmapSeams(mesh->mesh(), uvs, b.transfer);
+    }
     else
       b.transfer = prt::bake(mesh->mesh(), mesh->occluder(), s, &b.stats, fn);
     // What `prt bake` refuses to write, refused here too: a non-finite coefficient.
@@ -246,6 +255,8 @@ domain: 'vertices' (one row per vertex) | 'texels' (one row per texel of a resol
     to (resolution, resolution, ...) for an image; vector transfer only).
 resolution, uv, padding: domain='texels': the lightmap's side; the UV set, 'auto' (the
     lightmap set, else the texture set when it holds one), '1' or '0'; gutter texels dilated.
+seam_fix: domain='texels': the least-squares seam fix (Sylvan 2015; prt bake --seam-fix):
+    texels on the two sides of a UV seam agree under bilinear filtering.
 progress: None, True (a tqdm bar, when tqdm is installed) or a callable(fraction) that may
     return False to cancel (prtkit.Cancelled). Ctrl-C cancels within a fraction of a second
     (KeyboardInterrupt).
@@ -375,9 +386,11 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
             d["width"] = lm.width;
             d["height"] = lm.height;
             d["padding"] = lm.padding;
+            d["seams_fixed"] = lm.seamsFixed;
             return std::move(d);
           },
-          "domain 'texels': {'width', 'height', 'padding'} of the lightmap (rows y*width + x); "
+          "domain 'texels': {'width', 'height', 'padding', 'seams_fixed'} of the lightmap (rows "
+          "y*width + x); "
           "None per vertex.")
       .def_property_readonly("bands", [](const PyTransfer& t) { return t.transfer.bands(); })
       .def_property_readonly(
@@ -533,9 +546,10 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
          int bounces, const std::string& transfer, py::object spec, py::object albedo,
          const std::string& sampling, py::object range, const std::string& domain, int resolution,
-         const std::string& uv, int padding, py::object progress) {
+         const std::string& uv, int padding, bool seamFix, py::object progress) {
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                          sampling, range, domain, {resolution, uv, padding}, progress, nullptr);
+                          sampling, range, domain, {resolution, uv, padding, seamFix}, progress,
+                          nullptr);
         return transferArray(std::move(b.transfer), true);
       },
       py::arg("mesh"), py::arg("mode") = "shadowed", py::arg("bands") = 3,
@@ -543,7 +557,7 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       py::arg("transfer") = "vector", py::arg("material") = py::none(),
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
       py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
-      py::arg("padding") = 2, py::arg("progress") = py::none(),
+      py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("progress") = py::none(),
       (std::string(
            "Bakes per-vertex SH transfer and returns its dense rows as a numpy array, without a "
            "copy:\n"
@@ -557,10 +571,11 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
          int bounces, const std::string& transfer, py::object spec, py::object albedo,
          const std::string& sampling, py::object range, const std::string& domain, int resolution,
-         const std::string& uv, int padding, py::object progress) {
+         const std::string& uv, int padding, bool seamFix, py::object progress) {
         prt::BakeSettings s;
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                          sampling, range, domain, {resolution, uv, padding}, progress, &s);
+                          sampling, range, domain, {resolution, uv, padding, seamFix}, progress,
+                          &s);
         auto t = std::make_shared<PyTransfer>();
         t->transfer = std::move(b.transfer);
         t->recipe = s;
@@ -572,7 +587,7 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       py::arg("transfer") = "vector", py::arg("material") = py::none(),
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
       py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
-      py::arg("padding") = 2, py::arg("progress") = py::none(),
+      py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("progress") = py::none(),
       (std::string(
            "bake, returning a prtkit.Transfer (values, recipe, stats) for write_bake, relight,\n"
            "compress and validate.\n") +

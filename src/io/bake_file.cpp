@@ -134,6 +134,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
   if (bake.domain() == TransferDomain::Texels) {
     const TransferShape::LightmapSize lm = bake.lightmap();
     prt["lightmap"] = {{"width", lm.width}, {"height", lm.height}, {"padding", lm.padding}};
+    if (lm.seamsFixed) prt["lightmap"]["seamsFixed"] = true;
     prt["texelRange"] = {{"first", rows.first}, {"count", rows.count}};
   } else {
     prt["vertexRange"] = {{"first", rows.first}, {"count", rows.count}};
@@ -244,6 +245,7 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     lightmapSize.width = static_cast<int>(r.integer(lm, "width", lw, 1, kMaxLightmapSide));
     lightmapSize.height = static_cast<int>(r.integer(lm, "height", lw, 1, kMaxLightmapSide));
     lightmapSize.padding = static_cast<int>(r.integer(lm, "padding", lw, 0, kMaxLightmapPadding));
+    lightmapSize.seamsFixed = r.has(lm, "seamsFixed") && r.boolean(lm, "seamsFixed", lw);
     if (lightmap < 0)
       r.fail(where +
              " holds per-texel transfer but names no lightmapTexCoord (the UVs it is over)");

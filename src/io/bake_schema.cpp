@@ -68,6 +68,12 @@ std::string Reader::string(const json& obj, const std::string& key,
   return v.get<std::string>();
 }
 
+bool Reader::boolean(const json& obj, const std::string& key, const std::string& where) const {
+  const json& v = member(obj, key, where);
+  if (!v.is_boolean()) fail(where + "." + key + " is not true or false");
+  return v.get<bool>();
+}
+
 json exactInteger(std::uint64_t n) {
   if (n < (std::uint64_t(1) << 53)) return n;
   return std::to_string(n);

@@ -37,6 +37,7 @@ class Reader {
   std::uint64_t integer(const json& obj, const std::string& key, const std::string& where,
                         double lo = 0, double hi = 18446744073709551615.0) const;
   std::string string(const json& obj, const std::string& key, const std::string& where) const;
+  bool boolean(const json& obj, const std::string& key, const std::string& where) const;
   /// Runs f(); a prt::Error from it that does not already name the file is reworded as
   /// "NAME: WHERE: message".
   template <class F>

@@ -1,27 +1,18 @@
 #include "prt/render/lightmap_seams.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstring>
-#include <map>
 #include <vector>
 
 #include "prt/core/error.hpp"
 #include "prt/geometry/texel_samples.hpp"
+#include "prt/geometry/uv_seams.hpp"
 
 namespace prt::render {
 
 namespace {
 
 constexpr int kPointsPerEdge = 16;
-constexpr float kSmoothCos = 0.999f;  // normals within ~2.5° on both sides: not a crease
-
-std::array<std::uint32_t, 3> bits(const Vec3f& p) {
-  std::array<std::uint32_t, 3> b{};
-  std::memcpy(b.data(), &p.x, 12);
-  return b;
-}
 
 }  // namespace
 
@@ -48,39 +39,22 @@ SeamStats measureSeams(const Mesh& mesh, const Transfer& transfer) {
     for (int k = 0; k < 4; ++k) r += white[taps.texel[k]] * taps.weight[k];
     return r;
   };
-  // Edges by their endpoints' positions: (lower, higher) bits → the (vertex, vertex) pairs.
-  using Key = std::pair<std::array<std::uint32_t, 3>, std::array<std::uint32_t, 3>>;
-  std::map<Key, std::vector<std::array<std::uint32_t, 2>>> edges;
-  for (const auto& tri : mesh.triangles)
-    for (int e = 0; e < 3; ++e) {
-      std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
-      auto ka = bits(mesh.positions[a]), kb = bits(mesh.positions[b]);
-      if (kb < ka) std::swap(a, b), std::swap(ka, kb);
-      edges[{ka, kb}].push_back({a, b});
-    }
-  const auto sameUv = [](Vec2f p, Vec2f q) { return p.x == q.x && p.y == q.y; };
   SeamStats st;
   double weighted = 0, sumR = 0, points = 0;
   std::vector<std::pair<double, double>> diffs;  // (|ΔR|, length weight)
-  for (const auto& [key, sides] : edges) {
-    if (sides.size() != 2) continue;
-    const auto [a0, b0] = sides[0];
-    const auto [a1, b1] = sides[1];
-    const std::vector<Vec2f>& uv = mesh.lightmapUvs;
-    if (sameUv(uv[a0], uv[a1]) && sameUv(uv[b0], uv[b1])) continue;  // one chart: no seam
-    if (dot(mesh.normals[a0], mesh.normals[a1]) < kSmoothCos ||
-        dot(mesh.normals[b0], mesh.normals[b1]) < kSmoothCos)
-      continue;  // a crease
-    const double len = length(mesh.positions[b0] - mesh.positions[a0]);
+  const std::vector<Vec2f>& uv = mesh.lightmapUvs;
+  for (const UvSeamEdge& edge : findUvSeams(mesh, uv)) {
+    const auto [a0, b0] = edge.side[0];
+    const auto [a1, b1] = edge.side[1];
     ++st.edges;
-    st.length += len;
+    st.length += edge.length;
     for (int i = 0; i < kPointsPerEdge; ++i) {
       const float s = (float(i) + 0.5f) / kPointsPerEdge;
       const auto lerp = [s](Vec2f p, Vec2f q) {
         return Vec2f{p.x + (q.x - p.x) * s, p.y + (q.y - p.y) * s};
       };
       const float ra = fetch(lerp(uv[a0], uv[b0])), rb = fetch(lerp(uv[a1], uv[b1]));
-      diffs.emplace_back(std::abs(double(ra) - double(rb)), len);
+      diffs.emplace_back(std::abs(double(ra) - double(rb)), edge.length);
       sumR += 0.5 * (double(ra) + double(rb));
       points += 1;
     }

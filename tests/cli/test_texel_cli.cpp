@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
+#include "common/two_chart_plane.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 
@@ -224,6 +225,70 @@ TEST_F(TexelCli, ValidatePerTexelExplainsItsErrorAndCatchesAMisplacedLightmap) {
   EXPECT_LT(bad["explained"].get<double>(), 0.7);
 }
 
+/// The two-chart plane of the seam tests (one seam, the right chart turned and at half the
+/// density) as an OBJ whose texture UVs (vt) are the lightmap set: `--uv 0` bakes over them.
+std::string twoChartPlaneObj() {
+  const Mesh m = twoChartPlane(/*rotatedRightChart=*/true);
+  std::string obj;
+  for (std::size_t v = 0; v < m.vertexCount(); ++v) {
+    const Vec3f p = m.positions[v], n = m.normals[v];
+    const Vec2f t = m.lightmapUvs[v];
+    obj += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) +
+           "\nvn " + std::to_string(n.x) + " " + std::to_string(n.y) + " " +
+           std::to_string(n.z) + "\nvt " + std::to_string(t.x) + " " + std::to_string(t.y) + "\n";
+  }
+  for (const auto& t : m.triangles) {
+    std::string f = "f";
+    for (std::uint32_t i : t) f += " " + std::to_string(i + 1) + "/" + std::to_string(i + 1) + "/" +
+                                   std::to_string(i + 1);
+    obj += f + "\n";
+  }
+  return obj;
+}
+
+TEST_F(TexelCli, SeamFixClosesTheSeamsInBakeAndMerge) {
+  write("plane.obj", twoChartPlaneObj());
+  const std::string bake =
+      "bake plane.obj --mode shadowed --domain texels --resolution 16 --uv 0 --samples 512";
+  ASSERT_EQ(prt("-q " + bake + " -o plain.glb").rc, 0);
+  const Result fixedRun = prt(bake + " --seam-fix -o fixed.glb");
+  ASSERT_EQ(fixedRun.rc, 0) << fixedRun.err;
+  EXPECT_NE(fixedRun.err.find("seam fix over 1 seam edges"), std::string::npos) << fixedRun.err;
+  const auto seams = [&](const std::string& file) {
+    const Result r = prt("info " + file + " --json -");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return nlohmann::json::parse(r.out)["files"][0]["lightmap"];
+  };
+  const nlohmann::json plain = seams("plain.glb"), fixed = seams("fixed.glb");
+  EXPECT_FALSE(plain["seamsFixed"].get<bool>());
+  EXPECT_TRUE(fixed["seamsFixed"].get<bool>());
+  EXPECT_EQ(fixed["seams"]["edges"].get<int>(), 1);
+  EXPECT_LT(fixed["seams"]["mismatch"].get<double>(),
+            plain["seams"]["mismatch"].get<double>() / 4);
+  EXPECT_NE(prt("info fixed.glb").out.find("after the seam fix"), std::string::npos);
+
+  // Pieces baked without it, merged with it: the same file as the whole bake with it.
+  ASSERT_EQ(prt("-q " + bake + " --range 0:100 -o a.glb").rc, 0);
+  ASSERT_EQ(prt("-q " + bake + " --range 100: -o b.glb").rc, 0);
+  const Result m = prt("-q merge b.glb a.glb --seam-fix -o merged.glb");
+  ASSERT_EQ(m.rc, 0) << m.err;
+  const BakeFile whole = readBake(path("fixed.glb")), merged = readBake(path("merged.glb"));
+  EXPECT_TRUE(merged.lightmap().seamsFixed);
+  const FloatArray &x = whole.transfers[0].transfer.values(),
+                   &y = merged.transfers[0].transfer.values();
+  ASSERT_EQ(x.size(), y.size());
+  EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0);
+
+  expectCleanFailure(bake + " --seam-fix --range 0:100 -o out/x.glb",
+                     "--seam-fix needs the whole lightmap");
+  expectCleanFailure(bake + " --seam-fix --shard 1/2 -o out/x.glb",
+                     "--seam-fix needs the whole lightmap");
+  expectCleanFailure("bake plane.obj --mode shadowed --seam-fix -o out/x.glb",
+                     "add --domain texels");
+  ASSERT_EQ(prt("-q " + bake + " --range 100:200 -o c.glb").rc, 0);
+  expectCleanFailure("merge a.glb c.glb --seam-fix -o out/x.glb", "is a partial bake");
+}
+
 TEST_F(TexelCli, WhatCannotTakeTexelsSaysSoByName) {
   ASSERT_EQ(prt("-q bake " + kBox +
                 " --mode shadowed --domain texels --resolution 16 "
@@ -231,12 +296,10 @@ TEST_F(TexelCli, WhatCannotTakeTexelsSaysSoByName) {
                 .rc,
             0);
   const std::string per = "t.glb: holds per-texel transfer (a 16 x 16 lightmap)";
-  expectCleanFailure("web t.glb -o out/page", per);
   write("r.json", "{}");
   expectCleanFailure("validate t.glb --light builtin:sky --reference r.json",
                      "r.json: a reference file holds vertices");
   expectCleanFailure("reference t.glb --light builtin:sky -o out/r.json", per);
-  expectCleanFailure("view t.glb --headless --screenshot out/v.png", per);
   // And the bake's own refusals.
   expectCleanFailure("bake " + kBox + " --mode shadowed --resolution 64 -o out/x.glb",
                      "add --domain texels");

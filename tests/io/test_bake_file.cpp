@@ -1008,6 +1008,22 @@ TEST(BakeFile, TexelTransferRoundTripsAndMergesExactly) {
               prtObject(e)["vertexRange"] = {{"first", 0}};
             }).find("both a vertexRange and a texelRange"),
             std::string::npos);
+  EXPECT_NE(refused([](nlohmann::json& e) {
+              prtObject(e)["lightmap"]["seamsFixed"] = 1;
+            }).find("lightmap.seamsFixed is not true or false"),
+            std::string::npos);
+
+  // The seam fix is recorded in the lightmap (absent: not applied) and read back.
+  EXPECT_FALSE(o["lightmap"].contains("seamsFixed"));
+  BakeFile fixed = b;
+  for (BakedTransfer& t : fixed.transfers) {
+    TransferShape shape = t.transfer.shape();
+    shape.lightmap.seamsFixed = true;
+    t.transfer = Transfer::dense(shape, t.transfer.values());
+  }
+  const std::string fixedBytes = encodeBake(fixed);
+  EXPECT_EQ(prtObject(splitGlb(fixedBytes).json)["lightmap"]["seamsFixed"], true);
+  EXPECT_TRUE(decodeBake(asBytes(fixedBytes), "fixed.glb").lightmap().seamsFixed);
 }
 
 }  // namespace

@@ -111,3 +111,51 @@ def test_read_bake_picks_as_every_verb(tmp_path, prt_cli):
     f = prtkit.read_bake_file(glb)
     assert [t.mode for t in f.transfers] == ["unshadowed", "shadowed"]
     assert f.complete and f.rows == (0, f.mesh.vertex_count)
+
+
+def two_chart_plane_obj(path):
+    """Two quads x in [-2, 0] and [0, 2] facing +Y, each its own chart in the texture UVs (the
+    right one turned a quarter, at half the density): one UV seam at x = 0; a box above the
+    seam (no UV area) casts a shadow across it."""
+    v, vt, f = [], [], []
+    for side in (0, 1):
+        x0 = -2.0 if side == 0 else 0.0
+        base = len(v)
+        for dx, z in ((0, -2), (2, -2), (2, 2), (0, 2)):
+            v.append((x0 + dx, 0.0, z))
+            vt.append((0.05 + 0.2 * dx, 0.05 + 0.9 * (z + 2) / 4) if side == 0
+                      else (0.55 + 0.1 * (z + 2), 0.05 + 0.1 * dx))
+        f += [(base, base + 3, base + 2), (base, base + 2, base + 1)]
+    base = len(v)
+    for x in (-0.4, 0.4):
+        for y in (0.6, 1.2):
+            for z in (0.6, 1.4):
+                v.append((x, y, z))
+                vt.append((0.0, 0.0))
+    for a, b, c, d in ((0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4),
+                       (1, 5, 7, 3)):
+        f += [(base + a, base + b, base + c), (base + a, base + c, base + d)]
+    lines = [f"v {x} {y} {z}" for x, y, z in v] + [f"vt {s} {t}" for s, t in vt]
+    lines += ["f " + " ".join(f"{i + 1}/{i + 1}" for i in tri) for tri in f]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_seam_fix_is_the_clis(tmp_path, prt_cli):
+    obj = tmp_path / "plane.obj"
+    two_chart_plane_obj(obj)
+    glb = tmp_path / "fixed.glb"
+    prt_cli("bake", obj, "--mode", "shadowed", "--domain", "texels", "--resolution", "16",
+            "--uv", "0", "--samples", "256", "--seam-fix", "-o", glb)
+    mesh = prtkit.load_mesh(obj)
+    kw = dict(mode="shadowed", samples=256, domain="texels", resolution=16, uv="0")
+    fixed = prtkit.bake_transfer(mesh, seam_fix=True, **kw)
+    plain = prtkit.bake_transfer(mesh, **kw)
+    assert fixed.lightmap["seams_fixed"] and not plain.lightmap["seams_fixed"]
+    cli = prtkit.read_bake_file(glb).pick()
+    assert np.array_equal(np.asarray(cli.values), np.asarray(fixed.values))
+    assert not np.array_equal(np.asarray(plain.values), np.asarray(fixed.values))
+    with pytest.raises(ValueError, match="seam_fix=True is of domain='texels'"):
+        prtkit.bake(mesh, samples=8, seam_fix=True)
+    with pytest.raises(ValueError, match="needs the whole lightmap"):
+        prtkit.bake(mesh, seam_fix=True, range=(0, 10), **{k: kw[k] for k in kw if k != "samples"},
+                    samples=8)

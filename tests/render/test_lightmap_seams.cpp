@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "common/error_text.hpp"
+#include "common/two_chart_plane.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/render/lightmap_seams.hpp"
@@ -18,38 +19,8 @@
 namespace prt {
 namespace {
 
-/// Two quads x ∈ [−2, 0] and [0, 2], z ∈ [−2, 2] facing +Y, each its own chart (u ∈ [0.05,
-/// 0.45] and [0.55, 0.95]); a ball of radius 0.6 at height 1 above the seam at z = 1 (its shadow
-/// not symmetric along the seam), without lightmap
-/// area.
-Mesh twoChartPlane() {
-  Mesh m;
-  m.source = "two-chart plane";
-  for (int side = 0; side < 2; ++side) {
-    const float x0 = side == 0 ? -2.0f : 0.0f, u0 = side == 0 ? 0.05f : 0.55f;
-    const std::uint32_t base = std::uint32_t(m.positions.size());
-    for (const auto& [dx, z] :
-         std::vector<std::pair<float, float>>{{0, -2}, {2, -2}, {2, 2}, {0, 2}}) {
-      m.positions.push_back({x0 + dx, 0, z});
-      m.normals.push_back({0, 1, 0});
-      m.lightmapUvs.push_back({u0 + 0.2f * dx, 0.05f + 0.9f * (z + 2) / 4});
-    }
-    m.triangles.push_back({base + 0, base + 3, base + 2});
-    m.triangles.push_back({base + 0, base + 2, base + 1});
-  }
-  const Mesh s = builtinScene("builtin:sphere?subdiv=3&r=0.6");
-  const std::uint32_t base = std::uint32_t(m.positions.size());
-  for (std::size_t v = 0; v < s.vertexCount(); ++v) {
-    m.positions.push_back(s.positions[v] + Vec3f(0, 1, 1));
-    m.normals.push_back(s.normals[v]);
-    m.lightmapUvs.push_back({0, 0});
-  }
-  for (const auto& t : s.triangles) m.triangles.push_back({base + t[0], base + t[1], base + t[2]});
-  return m;
-}
-
 TEST(LightmapSeams, TheSeamOfASmoothSurfaceAgreesAndAMisplacedChartDoesNot) {
-  Mesh m = twoChartPlane();
+  Mesh m = testing::twoChartPlane();
   const auto occ = makeEmbreeOccluder(m);
   BakeSettings s;
   s.mode = TransferMode::Shadowed;

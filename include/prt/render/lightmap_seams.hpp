@@ -1,13 +1,13 @@
 #pragma once
 // The seam metric of per-texel transfer (issue 18): where a smooth surface is cut into two
 // charts, the edge has two places in the lightmap, and a bilinear fetch on either side should
-// give the same light. Over every seam edge — an edge two triangles share in space (equal
-// endpoint positions and, at both ends, normals within 2.5°) whose lightmap UVs differ on the
-// two sides; creases are not seams — at 16 points along it, the exit radiance under a white sky
+// give the same light. Over every seam edge (geometry/uv_seams.hpp: shared in space, smooth,
+// cut in UV; creases are not seams) at 16 points along it, the exit radiance under a white sky
 // (R = √(4π) T₀, the mean of the channels) is fetched bilinearly on each side (texel centres,
 // clamped, as render::texelRadianceShader and a GPU sample), and the mismatch |R_a − R_b| is
 // averaged over the points weighted by the edge's length, relative to the mean of R over the
-// same points. What a seam fix (Sylvan 2015's least squares) would drive towards zero.
+// same points. What the seam fix (transport/lightmap_seam_fix.hpp, Sylvan 2015's least
+// squares) drives towards zero.
 
 #include <cstddef>
 

@@ -68,10 +68,12 @@ struct TransferShape {
   RowRange rows;     ///< which rows of the domain the transfer holds
   /// Texels: the lightmap's width and height (the domain has width · height rows) and the rings
   /// of texels around the charts that hold their covered neighbours' values (dilation: what a
-  /// bilinear fetch at a chart's edge reads); texels beyond them hold zeros.
+  /// bilinear fetch at a chart's edge reads); texels beyond them hold zeros. seamsFixed: the
+  /// least-squares seam fix (transport/lightmap_seam_fix.hpp) has been applied.
   struct LightmapSize {
     int width = 0, height = 0;
     int padding = 0;
+    bool seamsFixed = false;
     std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
     bool operator==(const LightmapSize&) const = default;
   };
