@@ -48,6 +48,7 @@ void addMergeCommand(CLI::App& root);
 void addCompressCommand(CLI::App& root);
 void addDemoCommand(CLI::App& root);
 void addWebCommand(CLI::App& root);
+void addUnwrapCommand(CLI::App& root);
 /// `prt completions bash|zsh` and `prt manpage`, generated from `root` (add them last).
 void addCompletionsCommands(CLI::App& root);
 

@@ -6,12 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 #include "cli.hpp"
 #include "guard.hpp"
@@ -393,6 +395,21 @@ void describe(const std::string& path, int lightmapSide, std::ostream& out, Json
     }
     const auto bytes = readFileBytes(path);
     if (bytes.size() >= 4 && std::string(bytes.begin(), bytes.begin() + 4) == "glTF") {
+      // A glTF binary without prtkit's extension is a mesh (prt unwrap writes those): its JSON
+      // chunk (GLB §4.4: length at byte 12, text from byte 20) names no prtkit object.
+      std::string_view json;
+      // A truncated file goes to the bake reader, which says what is missing.
+      if (bytes.size() >= 20) {
+        const std::size_t length = std::uint32_t(bytes[12]) | std::uint32_t(bytes[13]) << 8 |
+                                   std::uint32_t(bytes[14]) << 16 | std::uint32_t(bytes[15]) << 24;
+        if (length <= bytes.size() - 20)
+          json = std::string_view(reinterpret_cast<const char*>(bytes.data()) + 20, length);
+      }
+      if (!json.empty() && json.find("PRTKIT_radiance_transfer") == std::string_view::npos &&
+          json.find("\"prtkit\"") == std::string_view::npos) {
+        describeMesh(path, lightmapSide, out, j);
+        return;
+      }
       describeBake(path, out, j);
     } else if (ext == "json") {
       describeLightJson(path, out, j);

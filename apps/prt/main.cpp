@@ -139,6 +139,7 @@ const char* activity(const std::string& verb) {
   if (verb == "prt compress") return "compressing the transfer";
   if (verb == "prt demo") return "running the demo";
   if (verb == "prt web") return "writing the browser viewer";
+  if (verb == "prt unwrap") return "unwrapping the mesh";
   if (verb == "prt completions" || verb == "prt manpage") return "writing the text";
   return "reading the command line";
 }
@@ -169,6 +170,7 @@ int main(int argc, char** argv) {
   addCompressCommand(app);
   addDemoCommand(app);
   addWebCommand(app);
+  addUnwrapCommand(app);
   addCompletionsCommands(app);
   oneValuePerOption(app);
 

@@ -1,4 +1,5 @@
-// Every kind of bake file passes the Khronos glTF validator with 0 errors and 0 warnings: dense
+// Every kind of bake file, and prt unwrap's plain mesh, passes the Khronos glTF validator with
+// 0 errors and 0 warnings: dense
 // vectors of several modes, matrices, CPCA-compressed transfer, a vertex range of a split bake,
 // per-texel transfer dense and compressed.
 // The only information it gives is the vendor extension it does not know
@@ -69,6 +70,24 @@ TEST_F(GltfValidatorWeb, EveryBakeIsValidGltf) {
       }
     }
     EXPECT_TRUE(extensionNamed) << "the validator saw no extensionsUsed";
+  }
+}
+
+TEST_F(GltfValidatorWeb, UnwrappedMeshesAreValidGltf) {
+  // prt unwrap's plain glTF (no extension): with and without parts, with and without albedo.
+  for (const std::string& cmd : {std::string("unwrap builtin:cornell -o cornell.glb"),
+                                 std::string("unwrap 'builtin:sphere?subdiv=2' -o sphere.glb")}) {
+    const Result r = prt("-q " + cmd);
+    ASSERT_EQ(r.rc, 0) << cmd << ": " << r.err;
+  }
+  const Json report = validate("cornell.glb sphere.glb");
+  ASSERT_EQ(report.size(), 2u);
+  for (const auto& [file, r] : report.items()) {
+    SCOPED_TRACE(file);
+    EXPECT_EQ(r["errors"], 0) << r["messages"].dump();
+    EXPECT_EQ(r["warnings"], 0) << r["messages"].dump();
+    // Only the texture coordinates no material samples are reported, as information.
+    for (const Json& m : r["messages"]) EXPECT_EQ(m[1], "UNUSED_OBJECT") << m.dump();
   }
 }
 

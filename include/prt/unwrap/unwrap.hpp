@@ -1,0 +1,54 @@
+#pragma once
+// prtkit's own lightmap atlas (issue 18, `prt unwrap`): no unwrapper library is packaged in
+// Debian, so the mesh is unwrapped here, in three steps, each in its own file:
+//
+//   1. charts grown by normal cone over edge-adjacent triangles (unwrap/charts.hpp);
+//   2. each chart flattened by least squares conformal maps (Lévy et al. 2002,
+//      unwrap/lscm.hpp) and checked (unwrap/chart_layout.hpp): a chart whose map flips a
+//      triangle, overlaps itself or stretches more than a limit (Sander et al. 2001's L2) is
+//      cut in two across its longest extent and each part flattened again, down to single
+//      triangles, which always lay out;
+//   3. the charts scaled to their surface area (one texel density everywhere), turned onto
+//      their smallest bounding rectangles and packed into [0, 1]² with a gutter
+//      (geometry/chart_packing.hpp).
+//
+// Vertices on chart boundaries are split (a vertex in two charts needs two lightmap UVs): the
+// result is a new mesh with the vertices copied (position, normal, albedo, texture UV) once per
+// chart using them, in the input's vertex order, the triangles in theirs.
+
+#include <cstdint>
+#include <vector>
+
+#include "prt/core/progress.hpp"
+#include "prt/geometry/mesh.hpp"
+#include "prt/unwrap/atlas_stats.hpp"
+
+namespace prt {
+
+struct UnwrapSettings {
+  int resolution = 512;        ///< the lightmap side the gutter is measured in (prt bake's default)
+  int padding = 2;             ///< texels kept empty between charts (and from the border), ≥ 0
+  double maxConeDegrees = 60;  ///< largest angle between a triangle's normal and its chart's mean
+  std::uint32_t minChartTriangles = 8;  ///< smaller charts merge into a neighbour where they fit
+  /// A chart whose conformal map stretches more than this (Sander's L2, normalised per chart:
+  /// atlas_stats.hpp) is cut like one that folds.
+  double maxStretch = 1.1;
+};
+
+struct UnwrapResult {
+  Mesh mesh;                                ///< the input with split vertices and lightmapUvs
+  std::vector<std::uint32_t> sourceVertex;  ///< per vertex of `mesh`: the input vertex it copies
+  std::vector<std::uint32_t> chartOfTriangle;
+  std::size_t grownCharts = 0;  ///< charts the normal cone grew
+  std::size_t splitCharts = 0;  ///< cuts made where a conformal map folded or stretched
+  AtlasStats stats;             ///< measured at settings.resolution; `seconds` is the unwrap's
+};
+
+/// Unwraps `mesh` (see the header comment). Deterministic, independent of the thread count.
+/// Throws prt::Error naming mesh.source for a mesh without triangles, settings out of range
+/// (resolution 1..kMaxLightmapSide, padding 0..kMaxLightmapPadding, cone in (0°, 90°)), or
+/// charts that cannot fit the square with that gutter; Cancelled through `progress`.
+UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings = {},
+                    const ProgressFn& progress = {});
+
+}  // namespace prt
