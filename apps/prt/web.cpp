@@ -173,10 +173,10 @@ void checkOptions(const WebOptions& a) {
 }
 
 /// The bake, validated here (one clear line now rather than on the page): complete, and every
-/// transfer on a GPU path of relight/shader_transfer.hpp — vectors (dense or compressed) and
-/// compressed matrices. Dense matrices (2.5 KB per vertex at 5 bands) are refused, as the page
-/// refuses such a file dropped on it. A file beyond what the page takes is refused before it is
-/// read.
+/// transfer on a GPU path of relight/shader_transfer.hpp — vectors (dense or compressed; per
+/// vertex, or per texel relit per pixel) and compressed matrices. Dense matrices (2.5 KB per vertex
+/// at 5 bands) are refused, as the page refuses such a file dropped on it. A file beyond what the
+/// page takes is refused before it is read.
 std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) {
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(a.bake, ec);
@@ -203,9 +203,6 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(a.bake);
-  bake.requireVertices(a.bake,
-                       "the page relights per-vertex transfer only so far (prt render "
-                       "relights it per pixel)");
   if (!a.mode.empty()) prt::pickTransfer(bake, parseTransferMode(a.mode), {}, a.bake);
   return glb;
 }

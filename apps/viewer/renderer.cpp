@@ -38,10 +38,10 @@ namespace {
 // Each source gets the desktop's #version here and the sizes its arrays take from the C++
 // limits: the light block's kMaxPackedCoeffs vec4s, the glossy kernels' kMaxShaderGlossy².
 
-std::string glsl330(const char* body) {
+std::string glsl330(const char* body, const char* defines = "") {
   return fmt::format(
-      "#version 330 core\n#define PRT_LIGHT_VEC4S {}\n#define PRT_GLOSSY_COEFFS {}\n{}",
-      kMaxViewerCoeffs, bands::kMaxShaderGlossy * bands::kMaxShaderGlossy, body);
+      "#version 330 core\n#define PRT_LIGHT_VEC4S {}\n#define PRT_GLOSSY_COEFFS {}\n{}{}",
+      kMaxViewerCoeffs, bands::kMaxShaderGlossy * bands::kMaxShaderGlossy, defines, body);
 }
 
 GLuint compile(GLenum type, const std::string& source, const char* name) {
@@ -167,7 +167,15 @@ Renderer::Renderer() {
   compressedGlossyProgram_ = link(glsl330(kShaderCompressedGlossyVert), glsl330(kShaderMeshFrag),
                                   "compressed glossy mesh");
   radianceProgram_ = link(glsl330(kShaderRadianceVert), glsl330(kShaderMeshFrag), "radiance mesh");
+  // Per-texel transfer: the lightmap UV through, relit per pixel (dense, or CPCA).
+  lightmapProgram_ = link(glsl330(kShaderLightmapVert),
+                          glsl330(kShaderMeshFrag, "#define PRT_LIGHTMAP 1\n"), "lightmap mesh");
+  lightmapCompressedProgram_ =
+      link(glsl330(kShaderLightmapVert),
+           glsl330(kShaderMeshFrag, "#define PRT_LIGHTMAP 1\n#define PRT_LIGHTMAP_CPCA 1\n"),
+           "compressed lightmap mesh");
   glUniformBlockBinding(meshProgram_, glGetUniformBlockIndex(meshProgram_, "Light"), 0);
+  glUniformBlockBinding(lightmapProgram_, glGetUniformBlockIndex(lightmapProgram_, "Light"), 0);
   glUniformBlockBinding(glossyProgram_, glGetUniformBlockIndex(glossyProgram_, "Light"), 0);
   glGenVertexArrays(1, &vao_);
   glGenVertexArrays(1, &emptyVao_);
@@ -184,13 +192,13 @@ Renderer::Renderer() {
 }
 
 Renderer::~Renderer() {
-  const GLuint programs[] = {meshProgram_,    backgroundProgram_, toneProgram_,
-                             glossyProgram_,  compressedProgram_, compressedGlossyProgram_,
-                             radianceProgram_};
+  const GLuint programs[] = {meshProgram_,     backgroundProgram_, toneProgram_,
+                             glossyProgram_,   compressedProgram_, compressedGlossyProgram_,
+                             radianceProgram_, lightmapProgram_,   lightmapCompressedProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
-  const GLuint buffers[] = {positions_, albedo_,   indices_, transferBuffer_,
-                            lightUbo_,  radiance_, normals_, clusterBuffer_};
-  glDeleteBuffers(8, buffers);
+  const GLuint buffers[] = {positions_, albedo_,  indices_,       transferBuffer_, lightUbo_,
+                            radiance_,  normals_, clusterBuffer_, lightmapUvs_};
+  glDeleteBuffers(9, buffers);
   const GLuint textures[] = {transferTexture_, envTexture_,    shTexture_,
                              msColour_,        resolveColour_, clusterTexture_};
   glDeleteTextures(6, textures);
@@ -229,6 +237,8 @@ void uploadVertexAttribute(GLuint& buffer, GLuint location, const void* data, st
   glEnableVertexAttribArray(location);
 }
 
+static_assert(sizeof(Vec2f) == 2 * sizeof(float));
+
 }  // namespace
 
 void Renderer::setMesh(const Mesh& mesh) {
@@ -250,6 +260,19 @@ void Renderer::setMesh(const Mesh& mesh) {
     glDisableVertexAttribArray(3);
     glVertexAttrib3f(3, 0.0f, 1.0f, 0.0f);
   }
+  // The lightmap UVs per-texel transfer is fetched at (location 4, two floats).
+  hasLightmapUvs_ = !mesh.lightmapUvs.empty() && mesh.lightmapUvs.size() == mesh.positions.size();
+  if (hasLightmapUvs_) {
+    if (!lightmapUvs_) glGenBuffers(1, &lightmapUvs_);
+    glBindBuffer(GL_ARRAY_BUFFER, lightmapUvs_);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sizeof(Vec2f) * mesh.lightmapUvs.size()),
+                 mesh.lightmapUvs.data(), GL_STATIC_DRAW);
+    glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(Vec2f), nullptr);
+    glEnableVertexAttribArray(4);
+  } else {
+    glDisableVertexAttribArray(4);
+    glVertexAttrib2f(4, 0.0f, 0.0f);
+  }
   if (!indices_) glGenBuffers(1, &indices_);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(mesh.triangles[0]) * mesh.triangles.size(),
@@ -270,9 +293,15 @@ void Renderer::setTransfer(const relight::ShaderRows& rows, const TransferShape&
   const double texels = double(rows.texelsPerRow) * double(shape.rowCount());
   const bool compressed =
       rows.path == ShaderPath::CpcaVector || rows.path == ShaderPath::CpcaMatrix;
-  if (shape.rowCount() != vertices_)
+  if (rows.perPixel) {
+    if (shape.rows.first != 0 || shape.rowCount() != rows.lightmap.texels())
+      throw Error(fmt::format("the transfer has {} rows for a {} x {} lightmap", shape.rowCount(),
+                              rows.lightmap.width, rows.lightmap.height));
+    if (!hasLightmapUvs_) throw Error("per-texel transfer needs the mesh's lightmap UVs");
+  } else if (shape.rowCount() != vertices_) {
     throw Error(
         fmt::format("the transfer has {} rows for {} vertices", shape.rowCount(), vertices_));
+  }
   if (rows.path != ShaderPath::CpuRadiance) {
     requireTextureBufferTexels(texels,
                                compressed ? "the compressed transfer's weights" : "the transfer",
@@ -285,6 +314,8 @@ void Renderer::setTransfer(const relight::ShaderRows& rows, const TransferShape&
     requireTextureBufferTexels(tableTexels, "the per-frame cluster table", "use fewer clusters");
   }
   path_ = rows.path;
+  perPixel_ = rows.perPixel;
+  lightmap_ = rows.lightmap;
   texelsPerRow_ = rows.texelsPerRow;
   basisCount_ = basisCount;
   transferBands_ = shape.bands;
@@ -436,7 +467,9 @@ void Renderer::drawMesh(const FrameParams& f, const float* viewProj) {
       triangles_ > 0 && hasTransfer_ && (path_ != ShaderPath::CpuRadiance || hasRadiance_);
   if (drawable) {
     // The program of the path and its per-vertex texels; then what the path needs per frame.
-    const GLuint p = path_ == ShaderPath::DenseMatrix   ? glossyProgram_
+    const GLuint p = perPixel_ ? (path_ == ShaderPath::CpcaVector ? lightmapCompressedProgram_
+                                                                  : lightmapProgram_)
+                     : path_ == ShaderPath::DenseMatrix ? glossyProgram_
                      : path_ == ShaderPath::CpcaVector  ? compressedProgram_
                      : path_ == ShaderPath::CpcaMatrix  ? compressedGlossyProgram_
                      : path_ == ShaderPath::CpuRadiance ? radianceProgram_
@@ -454,39 +487,54 @@ void Renderer::drawMesh(const FrameParams& f, const float* viewProj) {
     beginMesh(p);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, transferTexture_);
-    switch (path_) {
-      case ShaderPath::DenseVector:
-        glUniform1i(loc(p, "uTransfer"), 1);
-        glUniform1i(loc(p, "uTexelsPerVertex"), texelsPerRow_);
-        glUniform1i(loc(p, "uRgb"), transferChannels_ == 3);
-        glUniform1i(loc(p, "uCount"), transferChannels_ == 3 ? b * b : paddedCoeffs(b) / 4);
-        break;
-      case ShaderPath::CpuRadiance:  // the radiance attribute, made on the CPU
-        break;
-      case ShaderPath::DenseMatrix:
-        glUniform1i(loc(p, "uTransfer"), 1);
-        glUniform1i(loc(p, "uBands"), std::min(b, bands::kMaxShaderGlossy));
-        glUniform1i(loc(p, "uRowTexels"), texelsPerRow_ / (transferBands_ * transferBands_));
-        glUniform1i(loc(p, "uVertexTexels"), texelsPerRow_);
-        setGlossyUniforms(p, c.eye);
-        break;
-      case ShaderPath::CpcaVector:
-      case ShaderPath::CpcaMatrix:
-        glUniform1i(loc(p, "uWeights"), 1);
+    if (perPixel_) {
+      // Per-texel rows, relit per pixel at the lightmap UV (prt_lightmap.glsl).
+      glUniform1i(loc(p, "uRows"), 1);
+      glUniform2i(loc(p, "uLightmapSize"), lightmap_.width, lightmap_.height);
+      glUniform1i(loc(p, "uTexelsPerRow"), texelsPerRow_);
+      if (path_ == ShaderPath::CpcaVector) {
         glActiveTexture(GL_TEXTURE2);
         glBindTexture(GL_TEXTURE_BUFFER, clusterTexture_);
         glUniform1i(loc(p, "uClusters"), 2);
-        glUniform1i(loc(p, "uTexelsPerVertex"), texelsPerRow_);
         glUniform1i(loc(p, "uBasisCount"), basisCount_);
-        if (path_ == ShaderPath::CpcaMatrix) {
-          // The table was projected from the transfer cut to the shown bands: b² values per
-          // cluster vector.
+      } else {
+        glUniform1i(loc(p, "uRgb"), transferChannels_ == 3);
+        glUniform1i(loc(p, "uCount"), transferChannels_ == 3 ? b * b : paddedCoeffs(b) / 4);
+      }
+    } else
+      switch (path_) {
+        case ShaderPath::DenseVector:
+          glUniform1i(loc(p, "uTransfer"), 1);
+          glUniform1i(loc(p, "uTexelsPerVertex"), texelsPerRow_);
+          glUniform1i(loc(p, "uRgb"), transferChannels_ == 3);
+          glUniform1i(loc(p, "uCount"), transferChannels_ == 3 ? b * b : paddedCoeffs(b) / 4);
+          break;
+        case ShaderPath::CpuRadiance:  // the radiance attribute, made on the CPU
+          break;
+        case ShaderPath::DenseMatrix:
+          glUniform1i(loc(p, "uTransfer"), 1);
           glUniform1i(loc(p, "uBands"), std::min(b, bands::kMaxShaderGlossy));
-          glUniform1i(loc(p, "uCoeffs"), b * b);
+          glUniform1i(loc(p, "uRowTexels"), texelsPerRow_ / (transferBands_ * transferBands_));
+          glUniform1i(loc(p, "uVertexTexels"), texelsPerRow_);
           setGlossyUniforms(p, c.eye);
-        }
-        break;
-    }
+          break;
+        case ShaderPath::CpcaVector:
+        case ShaderPath::CpcaMatrix:
+          glUniform1i(loc(p, "uWeights"), 1);
+          glActiveTexture(GL_TEXTURE2);
+          glBindTexture(GL_TEXTURE_BUFFER, clusterTexture_);
+          glUniform1i(loc(p, "uClusters"), 2);
+          glUniform1i(loc(p, "uTexelsPerVertex"), texelsPerRow_);
+          glUniform1i(loc(p, "uBasisCount"), basisCount_);
+          if (path_ == ShaderPath::CpcaMatrix) {
+            // The table was projected from the transfer cut to the shown bands: b² values per
+            // cluster vector.
+            glUniform1i(loc(p, "uBands"), std::min(b, bands::kMaxShaderGlossy));
+            glUniform1i(loc(p, "uCoeffs"), b * b);
+            setGlossyUniforms(p, c.eye);
+          }
+          break;
+      }
     glBindVertexArray(vao_);
     glDrawElements(GL_TRIANGLES, GLsizei(3 * triangles_), GL_UNSIGNED_INT, nullptr);
     glDisable(GL_DEPTH_TEST);

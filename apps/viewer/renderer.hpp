@@ -25,6 +25,10 @@
 //   CpcaVector   compressed.vert        ids + weights, the per-frame cluster table
 //   CpcaMatrix   compressedGlossy.vert  ids + weights, the cluster table of B² values
 //   CpuRadiance  mesh.vert (uDirect)    exit radiance relit on the CPU (setRadiance)
+// Per-texel transfer (rows.perPixel; dense or CPCA vectors) draws lightmap.vert, which passes
+// the lightmap UV (location 4) and albedo, and mesh.frag compiled with PRT_LIGHTMAP (and
+// PRT_LIGHTMAP_CPCA), which relights the four texels of prt render's bilinear fetch per pixel
+// (shaders/prt_lightmap.glsl).
 // Truncating to b < B bands only shortens the shaders' loops: nothing is re-uploaded.
 
 #include <cstdint>
@@ -138,6 +142,7 @@ class Renderer {
 
   unsigned meshProgram_ = 0, backgroundProgram_ = 0, toneProgram_ = 0, glossyProgram_ = 0;
   unsigned compressedProgram_ = 0, compressedGlossyProgram_ = 0, radianceProgram_ = 0;
+  unsigned lightmapProgram_ = 0, lightmapCompressedProgram_ = 0, lightmapUvs_ = 0;
   unsigned clusterBuffer_ = 0, clusterTexture_ = 0;
   std::size_t clusterTableBytes_ = 0;
   unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0, normals_ = 0;
@@ -145,7 +150,9 @@ class Renderer {
   unsigned envTexture_ = 0, shTexture_ = 0;
   unsigned msFbo_ = 0, msColour_ = 0, msDepth_ = 0, resolveFbo_ = 0, resolveColour_ = 0;
   int fbWidth_ = 0, fbHeight_ = 0;
-  bool hasAlbedo_ = false, hasTransfer_ = false, hasRadiance_ = false;
+  bool hasAlbedo_ = false, hasTransfer_ = false, hasRadiance_ = false, hasLightmapUvs_ = false;
+  bool perPixel_ = false;  ///< per-texel rows, relit per pixel
+  TransferShape::LightmapSize lightmap_{};
   relight::ShaderPath path_ = relight::ShaderPath::DenseVector;
   int texelsPerRow_ = 0, basisCount_ = 0;
   // Kernels × the SH normalisation, kMaxShaderGlossy² each (relight::shaderKernel).

@@ -64,10 +64,15 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
-  bake.requireVertices(path,
-                       "the viewer relights per-vertex transfer only so far (prt render "
-                       "relights it per pixel)");
   for (const BakedTransfer& t : bake.transfers) {
+    // Per-texel transfer is relit per pixel (vectors only): refused here, naming the file.
+    if (t.transfer.domain() == TransferDomain::Texels) {
+      try {
+        relight::shaderPath(t.transfer, true);
+      } catch (const Error& e) {
+        throw Error(path, std::string(e.what()) + " (" + t.describe() + ")");
+      }
+    }
     if (t.transfer.bands() > kMaxViewerBands)
       throw Error(path, bands::bandLimitMessage("the " + t.describe() + " transfer",
                                                 t.transfer.bands(), "the viewer", kMaxViewerBands));
@@ -296,6 +301,20 @@ std::string SceneView::uploadSummary(const Scene& scene) const {
       densePath == relight::ShaderPath::CpuRadiance
           ? sizeof(Rgb)
           : 16 * std::size_t(relight::shaderTexelsPerRow(t, densePath));  // from the shape
+  if (t.domain() == TransferDomain::Texels) {
+    const TransferShape::LightmapSize lm = t.shape().lightmap;
+    const std::size_t texels = lm.texels();
+    if (t.compressed())
+      return fmt::format(
+          "relit compressed (CPCA {} x {}) per pixel from a {} x {} lightmap: {} bytes per texel "
+          "uploaded once ({:.1f} MB; dense: {}), {} bytes of cluster table per frame",
+          t.cpca().clusters, t.cpca().basisCount, lm.width, lm.height, renderer_.bytesPerVertex(),
+          double(texels * renderer_.bytesPerVertex()) / 1e6, dense, renderer_.clusterTableBytes());
+    return fmt::format(
+        "dense transfer relit per pixel from a {} x {} lightmap: {} bytes per texel uploaded "
+        "({:.1f} MB)",
+        lm.width, lm.height, dense, double(texels * dense) / 1e6);
+  }
   switch (path_) {
     case relight::ShaderPath::CpuRadiance:
       return fmt::format(

@@ -14,7 +14,8 @@
 // texels uploaded once; dense matrices on the CPU (relight::Relighter, the code prt render
 // runs, with the orbit camera's eye) into a radiance buffer the shader only displays, or with
 // --glossy-on gpu in the vertex shader. Why the CPU by default: docs/viewer.md, "Glossy
-// transfer".
+// transfer". Per-texel (lightmap) vectors, dense or compressed, are relit per pixel in the
+// fragment shader from the same per-row texels (docs/viewer.md, "Per-texel transfer").
 //
 // What is drawn is one value, DrawState: the bake, the transfer, the band count, the material,
 // the environment and the background. A SceneView keeps the state its GPU buffers were made

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "prt/core/error.hpp"
+#include "prt/geometry/texel_samples.hpp"
 
 namespace prt::relight {
 
@@ -26,6 +27,7 @@ namespace {
 
 void checkPath(const Transfer& t, ShaderPath path) {
   const std::string what = std::string("the ") + toString(t.layout()) + " transfer";
+  if (t.domain() == TransferDomain::Texels && t.isMatrix()) throw Error(kPerTexelMatricesRefusal);
   switch (path) {
     case ShaderPath::DenseVector:
     case ShaderPath::CpcaVector:
@@ -88,6 +90,9 @@ ShaderRows packShaderRows(const Transfer& t, ShaderPath path) {
   ShaderRows out;
   out.path = path;
   out.texelsPerRow = shaderTexelsPerRow(t, path);
+  out.channels = t.channels();
+  out.perPixel = t.domain() == TransferDomain::Texels;
+  if (out.perPixel) out.lightmap = t.shape().lightmap;
   const std::size_t rows = t.rowCount(), slots = 4 * static_cast<std::size_t>(out.texelsPerRow);
   out.rgba.assign(rows * slots, 0.0f);
   const std::size_t n = static_cast<std::size_t>(t.coeffs());
@@ -165,6 +170,33 @@ void evalPackedRow(const ShaderRows& rows, const std::vector<float>& table, int 
     }
     out[i] = e;
   }
+}
+
+Rgb evalPerPixel(const ShaderRows& rows, std::span<const float> light, int bands,
+                 const std::vector<float>& table, Vec2f uv) {
+  PRT_CHECK(rows.perPixel, "evalPerPixel of per-vertex rows");
+  const TexelTaps taps = bilinearTaps(uv, rows.lightmap.width, rows.lightmap.height);
+  const std::size_t slots = 4 * static_cast<std::size_t>(rows.texelsPerRow);
+  Rgb r(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    Rgb e(0.0f);
+    if (rows.path == ShaderPath::CpcaVector) {
+      evalPackedRow(rows, table, 1, taps.texel[k], &e);
+    } else {
+      PRT_CHECK(rows.path == ShaderPath::DenseVector, "evalPerPixel: vector paths only");
+      // prt_relight.glsl: scalar rows four coefficients a texel, RGB rows one texel (r, g, b, 0)
+      // per coefficient, against the packed light (r, g, b, 0) per coefficient.
+      const float* row = rows.rgba.data() + taps.texel[k] * slots;
+      for (int i = 0; i < bands * bands; ++i) {
+        const float* l = light.data() + 4 * i;
+        e += rows.channels == 3
+                 ? Rgb(row[4 * i] * l[0], row[4 * i + 1] * l[1], row[4 * i + 2] * l[2])
+                 : row[i] * Rgb(l[0], l[1], l[2]);
+      }
+    }
+    r += e * taps.weight[k];
+  }
+  return r;
 }
 
 std::array<float, 64> shaderKernel(std::span<const float> perCoefficient) {

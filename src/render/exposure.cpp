@@ -53,9 +53,20 @@ float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& 
                     const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera, int width,
                     int height, image::ToneMap op, int bands) {
   const Transfer shown = bands > 0 && bands < transfer.bands() ? transfer.cut(bands) : transfer;
+  const auto occluder = makeEmbreeOccluder(mesh);
+  if (transfer.domain() == TransferDomain::Texels) {
+    // As prt render: every texel relit white (the albedo applied per pixel unless the material
+    // sets kd), fetched bilinearly at each pixel's lightmap UV.
+    const std::vector<Rgb> radiance =
+        relight::relight(shown, light, material, relight::Surface{}, camera.eye, rotation);
+    const TransferShape::LightmapSize lm = transfer.shape().lightmap;
+    const std::span<const Rgb> albedo =
+        material.diffuse ? std::span<const Rgb>() : std::span<const Rgb>(mesh.albedo);
+    return autoExposure(*occluder, texelRadianceShader(mesh, radiance, lm.width, lm.height, albedo),
+                        camera, width, height, op);
+  }
   const std::vector<Rgb> radiance = relight::relight(
       shown, light, material, {mesh.positions, mesh.normals, mesh.albedo}, camera.eye, rotation);
-  const auto occluder = makeEmbreeOccluder(mesh);
   return autoExposure(mesh, *occluder, radiance, camera, width, height, op);
 }
 

@@ -2,7 +2,9 @@
 // representation takes; the per-vertex texels of every path hold exactly the documented slots;
 // the shader's sum over the compressed packings (evalPackedRow) equals relighting (vectors) and
 // the reconstructed matrices times the light (matrices), scalar and RGB, N = 0 .. 7 (so one and
-// several texels per vertex), light of as many and of fewer bands than the transfer.
+// several texels per vertex), light of as many and of fewer bands than the transfer; per-texel
+// rows relit per pixel (evalPerPixel, the fragment stage's sum) equal the texels relit on the CPU
+// and fetched bilinearly, as prt render fetches them.
 
 #include <gtest/gtest.h>
 
@@ -13,6 +15,7 @@
 #include "prt/compress/cpca.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/sampling.hpp"
+#include "prt/geometry/texel_samples.hpp"
 #include "prt/relight/cluster_projection.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/relight/shader_transfer.hpp"
@@ -185,6 +188,77 @@ TEST(GlossyShader, KernelsCarryTheShNormalisation) {
                           1.092548 / 3, 2 * 0.315392, 1.092548 / 3, 0.546274 / 3};
   for (int i = 0; i < 9; ++i) EXPECT_NEAR(k[i], want[i], 2e-6) << i;
   for (int i = 9; i < 64; ++i) EXPECT_EQ(k[i], 0.0f) << i;  // past the kernel's bands
+}
+
+/// A random per-texel vector transfer over a W × H lightmap.
+Transfer randomTexels(int bands, int channels, int w, int h, std::uint64_t seed) {
+  TransferShape s = testdata::shapeOf(TransferLayout::Vector, bands, channels, std::size_t(w) * h);
+  s.domain = TransferDomain::Texels;
+  s.lightmap = {w, h, 1};
+  Transfer f = Transfer::zeros(s);
+  Pcg32 rng(seed);
+  float* x = f.mutableValues();
+  for (std::size_t i = 0; i < f.values().size(); ++i) x[i] = rng.uniform() - 0.3f;
+  return f;
+}
+
+TEST(ShaderTransfer, PerTexelRowsRelitPerPixelAreTheBilinearFetchOfTheRelitTexels) {
+  const int W = 7, H = 5, B = 4;
+  for (int channels : {1, 3})
+    for (bool compressed : {false, true})
+      for (int b : {4, 3}) {
+        SCOPED_TRACE(::testing::Message()
+                     << "C " << channels << " cpca " << compressed << " b " << b);
+        Transfer t = randomTexels(B, channels, W, H, 40 + channels);
+        if (compressed) t = compressCpca(t, opts(3, 2, 4, 5));
+        EXPECT_EQ(relight::shaderPath(t, false),
+                  compressed ? ShaderPath::CpcaVector : ShaderPath::DenseVector);
+        const relight::ShaderRows rows = relight::packShaderRows(
+            t, compressed ? ShaderPath::CpcaVector : ShaderPath::DenseVector);
+        ASSERT_TRUE(rows.perPixel);
+        EXPECT_EQ(rows.lightmap, t.shape().lightmap);
+        // What the fragment stage reads per frame: the packed light, or the cluster table.
+        const sh::RgbSh light = randomLight(B, 11);
+        relight::LightPacker packer;
+        packer.setLight(light);
+        packer.pack(Mat3d::identity(), b);
+        const std::span<const float> packed(packer.data(), packer.bytes() / sizeof(float));
+        const Transfer shown = t.cut(b);
+        std::vector<float> table;
+        if (compressed)
+          relight::packClusterTable(
+              relight::projectClusters(shown, relight::prepareLight(packer.rotated(), b)), table);
+        // The reference: every texel relit (white), fetched bilinearly (render's fetch).
+        std::vector<Rgb> texels(shown.rowCount());
+        relight::relight(shown, light.truncated(b), Material{}, relight::Surface{}, Vec3f(0.0f),
+                         texels);
+        Pcg32 rng(3);
+        double worst = 0, scale = 0;
+        for (int k = 0; k < 400; ++k) {
+          // Inside and a little outside [0, 1]² (clamped to the edge texels).
+          const Vec2f uv(rng.uniform() * 1.2f - 0.1f, rng.uniform() * 1.2f - 0.1f);
+          const TexelTaps taps = bilinearTaps(uv, W, H);
+          Rgb want(0.0f);
+          for (int q = 0; q < 4; ++q) want += texels[taps.texel[q]] * taps.weight[q];
+          const Rgb got = relight::evalPerPixel(rows, packed, b, table, uv);
+          for (int c = 0; c < 3; ++c) {
+            worst = std::max(worst, std::abs(double(got[c]) - want[c]));
+            scale = std::max(scale, std::abs(double(want[c])));
+          }
+        }
+        EXPECT_GT(scale, 0.1);
+        EXPECT_LT(worst, 1e-5 * scale);
+      }
+  // Matrices per texel are refused by name.
+  TransferShape m = testdata::shapeOf(TransferLayout::Matrix, 2, 1, 4);
+  m.domain = TransferDomain::Texels;
+  m.lightmap = {2, 2, 0};
+  try {
+    relight::shaderPath(Transfer::zeros(m), true);
+    ADD_FAILURE() << "a per-texel matrix transfer was given a path";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(relight::kPerTexelMatricesRefusal), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -181,6 +181,46 @@ TEST(ViewCli, CompressedVectorBakeMatchesRender) {
   EXPECT_NE(d.out.find("dense transfer: 48 bytes per vertex"), std::string::npos) << d.out;
 }
 
+// Per-texel transfer (prt bake --domain texels) is relit per pixel: the fragment shader fetches
+// the four texels of prt render's bilinear fetch at the interpolated lightmap UV, relights each
+// (dense T·L', or CPCA from the cluster table) and blends them, times the interpolated albedo.
+// prt render relights every texel on the CPU and makes the same fetch at each ray's hit, so a
+// matching frame meets the per-vertex thresholds (the remaining differences are the same: sample
+// positions, round-off, 8-bit codes).
+TEST(ViewCli, TexelBakeRelitPerPixelMatchesRender) {
+  PRT_REQUIRE_HEADLESS_GL();
+  EXPECT_LT(compareWithRender(texelBake(), "--mode interreflected"), kMatch);
+  EXPECT_LT(compareWithRender(texelBake(), "--mode shadowed --bands 3"), kMatch);
+  EXPECT_LT(compareWithRender(texelBake(), "--mode interreflected --rotate 30,60,10"), kMatch);
+  EXPECT_LT(compareWithRender(texelBake(),
+                              "--mode interreflected --camera "
+                              "'eye=0.3,0.5,1.6;target=0,0.2,0;fov=50'"),
+            kMatch);
+  EXPECT_LT(compareWithRender(compressedTexelBake(), "--mode interreflected --rotate 0,40,0"),
+            kMatch);
+  // The comparison can fail: the same view under a turned light is far off.
+  const Result r = prt("-q render '" + texelBake() + "' " + std::string(kSize) +
+                       " --mode interreflected -o render.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Result v = prt("view '" + texelBake() + "' --headless " + std::string(kSize) +
+                       " --mode interreflected --rotate 0,120,0 --stats --screenshot turned.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_GT(displayedRmse(path("turned.png"), path("render.png")), 4 * kMatch);
+  // --stats says it relit per pixel, and what it uploaded: 16 RGB coefficients, 16 texels (256
+  // bytes) per lightmap texel.
+  EXPECT_NE(v.out.find("dense transfer relit per pixel from a 64 x 64 lightmap: 256 bytes per "
+                       "texel uploaded"),
+            std::string::npos)
+      << v.out;
+  const Result c = prt("view '" + compressedTexelBake() + "' --headless " + std::string(kSize) +
+                       " --mode interreflected --stats --screenshot c.png");
+  ASSERT_EQ(c.rc, 0) << c.err;
+  EXPECT_NE(c.out.find("relit compressed (CPCA 8 x 3) per pixel from a 64 x 64 lightmap: 16 "
+                       "bytes per texel"),
+            std::string::npos)
+      << c.out;
+}
+
 // Compressed glossy matrices: on the CPU by relight::Relighter (the default), or in the
 // vertex shader (--glossy-on gpu) from per-cluster L'_kj = B_kj L' tables. Both against prt
 // render of the same compressed bake.

@@ -107,6 +107,27 @@ inline const std::string& compressedGlossyBake() {
   return p;
 }
 
+/// Per-texel transfer (prt bake --domain texels) of a Cornell box over a 64 × 64 lightmap, RGB
+/// inter-reflected and scalar shadowed, 4 bands; and a CPCA copy of its inter-reflected rows
+/// (K 8, N 3: one texel of id + weights per lightmap texel). 256 samples: the viewer shades a
+/// pixel once at its centre (MSAA multiplies coverage only) where prt render fetches at each of
+/// its 4 samples, and across a noisy lightmap (32 samples) that alone costs ~0.01 of RMSE.
+inline const std::string& texelBake() {
+  static const std::string p = [] {
+    const Result r =
+        prt("-q bake 'builtin:cornell?grid=8' --mode interreflected --mode shadowed --bands 4 "
+            "--domain texels --resolution 64 --samples 256 -o texels.glb");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return path("texels.glb");
+  }();
+  return p;
+}
+inline const std::string& compressedTexelBake() {
+  static const std::string p =
+      compressedCopy(texelBake(), "texels-cpca.glb", "--mode interreflected --clusters 8 --pca 3");
+  return p;
+}
+
 /// A PNG as displayed: sRGB-encoded values in [0, 1].
 inline image::Image readDisplayed(const std::string& file) {
   image::Image img = image::readImage(file);

@@ -3,10 +3,10 @@
 // ?screenshot frame of the bake alone (&only, no tone mapping) must match prt render of the same
 // bake, light, rotation, camera and exposure (--tonemap clamp --background none) as the page
 // must: dense scalar and RGB vectors, CPCA-compressed vectors and CPCA-compressed glossy matrices
-// shaded with the kernels the file carries. A turned light must not match. The full scene draws
-// standard materials beside the bake without disturbing it, and the plugin refuses what it
-// cannot show with one line naming the file. Each test skips, saying why, where chromium or the
-// built module is missing.
+// shaded with the kernels the file carries, and per-texel transfer relit per pixel. A turned light
+// must not match. The full scene draws standard materials beside the bake without disturbing it,
+// and the plugin refuses what it cannot show with one line naming the file. Each test skips, saying
+// why, where chromium or the built module is missing.
 
 #include <gtest/gtest.h>
 
@@ -42,7 +42,6 @@ const fs::path kExample = fs::path(PRT_WEB_ASSETS_DIR) / "three" / "example";
                    << "/example.js is not built (node or web/node_modules "                \
                       "missing: run scripts/setup.sh)";                                    \
   } while (0)
-
 
 /// A copy of the example page in scratch/NAME with example-data.js holding `bake` (a file in
 /// scratch) and `light` (an SH light JSON file in scratch), so it opens from file://.
@@ -164,6 +163,36 @@ TEST(Three, CompressedVectorsAndGlossyMatricesRelightLikePrtRender) {
   EXPECT_GT(displayedRmse(exampleFrame(dir, "only&camera=" + cam + "&rotate=0,0,0&exposure=-1"),
                           path("three_lambert.png")),
             2 * kMatch);
+}
+
+// Per-texel transfer (prt bake --domain texels): the module wears lightmap.vert and three.frag
+// compiled with PRT_LIGHTMAP, which fetch, relight and blend the four texels of prt render's
+// bilinear fetch per pixel at the lightmap UV (the glTF's TEXCOORD_n, under the name
+// prtLightmapUv); dense RGB rows and CPCA rows from the per-frame cluster table.
+TEST(Three, TexelBakesRelightPerPixelLikePrtRender) {
+  PRT_REQUIRE_EXAMPLE();
+  cornell();
+  Result r =
+      prt("-q bake 'builtin:cornell?grid=8' --mode interreflected --bands 4 --domain texels "
+          "--resolution 64 --samples 256 -o three_texels.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q compress three_texels.glb --clusters 8 --pca 3 -o three_texels_cpca.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const std::string bake : {"three_texels", "three_texels_cpca"}) {
+    SCOPED_TRACE(bake);
+    const std::string dir = examplePage(bake, bake + ".glb", "three_studio.json");
+    const double e =
+        versusRender(dir, bake + ".glb", "three_studio.json", kCamera, "20,-30,10", "", "0", 0);
+    EXPECT_LT(e, kMatch);
+    EXPECT_LT(quantile90, kInterior);
+    std::cout << "three.js module vs prt render, per texel " << bake << ": RMSE " << e
+              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+  }
+  // The comparison can fail: the same frame under a turned light is far off.
+  const std::string dir = examplePage("three_texels", "three_texels.glb", "three_studio.json");
+  EXPECT_GT(versusRender(dir, "three_texels.glb", "three_studio.json", kCamera, "20,-30,10", "",
+                         "0", 0, "0,150,0"),
+            4 * kMatch);
 }
 
 TEST(Three, ExampleSceneDrawsStandardMaterialsBesideTheBake) {

@@ -22,6 +22,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/version.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
@@ -139,6 +140,8 @@ json constants() {
       {"CpcaMatrix", relight::toString(relight::ShaderPath::CpcaMatrix)},
   };
   c["maxShaderClusters"] = relight::kMaxShaderClusters;
+  c["perTexelMatricesRefusal"] = relight::kPerTexelMatricesRefusal;
+  c["maxLightmapSide"] = kMaxLightmapSide;
   // The tone maps by name, valued as shaders/prt_display.glsl's op (the enum's order).
   // The default is the PNG writer's (what prt render writes without --tonemap).
   json tone = json::object();

@@ -1,13 +1,14 @@
 // Reading a prtkit bake (.glb, docs/formats-bake.md) in the page: three.js's GLTFLoader parses
 // the glTF (it keeps the custom `_PRT_<MODE>_T<k>` VEC4 attributes, lower-cased), this file
-// checks the container and the mesh, and every transfer goes through the one reader
+// checks the container and the mesh (the domain: every vertex, or every texel of a lightmap over
+// the mesh's lightmap UVs, relit per pixel), and every transfer goes through the one reader
 // (transfer.js). Every problem is an Error with one line naming the file; nothing here touches
 // the scene. tests/web/golden_check.mjs checks the texels, the pick order and the framing
 // against the library (relight::packShaderRows, io::transferPreference, render::meshFraming).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 
-import { bakeFormat } from 'prt:constants';
+import { bakeFormat, maxLightmapSide } from 'prt:constants';
 import { packRows, preferenceOrder, readTransfer } from './transfer.js';
 
 function fail(name, what) {
@@ -45,8 +46,10 @@ export function bakeObject(json) {
  * loader plugin) into { name, parts: [{ mesh (GLTFLoader's), geometry, name, first, vertices,
  * hasAlbedo, texels: { transfer key → { data, width, height } } }], transfers (in the library's
  * preference order: [{ key, mode, layout, bands, channels, path, texelsPerRow, compressed,
- * response, recipeMaterial }]), maxBands, vertices, triangles, centre, radius }. The parts'
- * transfer attributes move into the texels (and are deleted from the geometry).
+ * response, recipeMaterial, perPixel, lightmap }]), lightmap ({ width, height } of a per-texel
+ * bake, else null), maxBands, vertices, triangles, centre, radius }. The parts' transfer
+ * attributes move into the texels (and are deleted from the geometry); a per-texel bake's rows
+ * are one image every part shares, its lightmap UVs the attribute prtLightmapUv.
  */
 export async function readBake(gltf, name, limits) {
   const json = gltf.parser.json;
@@ -58,15 +61,30 @@ export async function readBake(gltf, name, limits) {
     fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads versions ${bakeFormat.reads.join(', ')})`);
   const entries = Array.isArray(prt.transfers) ? prt.transfers : [];
   if (entries.length === 0) fail(name, 'the bake holds no transfer (bake it with prt bake --mode ...)');
-  if (prt.texelRange || prt.lightmap)
-    fail(name, `holds per-texel transfer (a ${(prt.lightmap || {}).width} x ${(prt.lightmap || {}).height} lightmap), which this page does not relight yet (prt render relights it per pixel)`);
-  const range = prt.vertexRange || {};
-  if (range.first !== 0 || range.count !== prt.vertexCount)
-    fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);
+  // The domain: the vertices, or the texels of one lightmap over the mesh's lightmap UVs (format
+  // 6; relit per pixel). Either must be complete.
+  let lightmap = null, rowCount = prt.vertexCount, uvName = null;
+  if (prt.texelRange || prt.lightmap) {
+    const lm = prt.lightmap || {}, range = prt.texelRange || {};
+    if (!(Number.isInteger(lm.width) && Number.isInteger(lm.height) && lm.width >= 1 && lm.height >= 1 && lm.width <= maxLightmapSide && lm.height <= maxLightmapSide))
+      fail(name, `holds per-texel transfer over a lightmap of ${lm.width} x ${lm.height} texels (1..${maxLightmapSide} a side expected)`);
+    lightmap = { width: lm.width, height: lm.height };
+    rowCount = lm.width * lm.height;
+    if (range.first !== 0 || range.count !== rowCount)
+      fail(name, `holds transfer for texels ${range.first}..${range.first + range.count} of ${rowCount} only (merge the pieces with prt merge first)`);
+    const set = prt.lightmapTexCoord;
+    if (!(Number.isInteger(set) && set >= 0 && set <= 3))
+      fail(name, `holds per-texel transfer but names no lightmapTexCoord (0..3) it is over`);
+    uvName = set === 0 ? 'uv' : `uv${set}`;  // GLTFLoader's names of TEXCOORD_n
+  } else {
+    const range = prt.vertexRange || {};
+    if (range.first !== 0 || range.count !== prt.vertexCount)
+      fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);
+  }
 
   const read = [];
   for (const e of entries) {
-    const t = await readTransfer(gltf, e, prt.vertexCount, name, limits);
+    const t = await readTransfer(gltf, e, rowCount, name, limits, lightmap);
     t.key = `${t.mode} ${t.layout}`;
     if (read.some((u) => u.key === t.key)) fail(name, `holds two ${t.key} transfers`);
     read.push(t);
@@ -97,8 +115,16 @@ export async function readBake(gltf, name, limits) {
     if (!(first >= 0 && first + V <= prt.vertexCount)) fail(name, `part '${m.name}' has no place in the vertex order`);
     const part = { mesh: m, geometry: g, name: m.name, first, vertices: V, hasAlbedo: !!g.getAttribute('color'), texels: {} };
     for (const t of transfers) part.texels[t.key] = packRows(t, part, limits, name);
-    // Normals stay for glossy matrices (the lobe about the reflected view); the rest goes.
-    const keep = ['position', 'color'].concat(glossy ? ['normal'] : []);
+    // Per-texel transfer: the lightmap UVs, under the name the lightmap stage reads.
+    if (lightmap) {
+      const uv = g.getAttribute(uvName);
+      if (!uv || uv.itemSize !== 2 || uv.count !== V)
+        fail(name, `part '${m.name}' has no lightmap UVs (TEXCOORD_${prt.lightmapTexCoord}), which its per-texel transfer is over`);
+      g.setAttribute('prtLightmapUv', uv);
+    }
+    // Normals stay for glossy matrices (the lobe about the reflected view), the lightmap UVs for
+    // per-texel transfer; the rest goes.
+    const keep = ['position', 'color'].concat(glossy ? ['normal'] : [], lightmap ? ['prtLightmapUv'] : []);
     for (const a of Object.keys(g.attributes)) if (!keep.includes(a)) g.deleteAttribute(a);
     if (glossy && !g.getAttribute('normal')) fail(name, `part '${m.name}' has no normals (glossy transfer needs them)`);
     parts.push(part);
@@ -114,6 +140,6 @@ export async function readBake(gltf, name, limits) {
       r2 = Math.max(r2, dx * dx + dy * dy + dz * dz);
     }
   }
-  return { name, parts, transfers, maxBands: Math.max(...transfers.map((t) => t.bands)),
+  return { name, parts, transfers, lightmap, maxBands: Math.max(...transfers.map((t) => t.bands)),
            vertices, triangles, centre, radius: Math.max(Math.sqrt(r2), 1e-6) };
 }

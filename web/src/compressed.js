@@ -51,7 +51,7 @@ export async function readCompressed(gltf, json, t, shape, vertexCount, name, ma
   const means = await get('MEANS', K * D);
   const basis = N ? await get('BASIS', K * N * D) : new Float32Array(0);
   for (let v = 0; v < vertexCount; ++v)
-    if (!(cluster[v] < K)) fail(name, `${prefix}CLUSTER: vertex ${v} names cluster ${cluster[v]} of ${K}`);
+    if (!(cluster[v] < K)) fail(name, `${prefix}CLUSTER: ${shape.perPixel ? "texel" : "vertex"} ${v} names cluster ${cluster[v]} of ${K}`);
   for (const [part, arr] of [['WEIGHTS', weights], ['MEANS', means], ['BASIS', basis]])
     for (let i = 0; i < arr.length; ++i) if (!Number.isFinite(arr[i])) fail(name, `${prefix}${part}: value ${i} is not finite`);
   return { clusters: K, basisCount: N, stride: D, texelsPerVertex: Math.ceil((N + 1) / 4),

@@ -22,6 +22,42 @@ function setCompressed(u, t, rows, table) {
   u.uBasisCount.value = t.compressed.basisCount;
 }
 
+// Per-texel transfer (t.perPixel) is drawn per pixel: lightmap.vert passes the lightmap UV and
+// the albedo, the host's fragment stage compiled with PRT_LIGHTMAP (and PRT_LIGHTMAP_CPCA)
+// fetches the four texels of prt render's bilinear fetch, relights each and blends them
+// (shaders/prt_lightmap.glsl) — the same rows and per-frame light or cluster table.
+const lightmapUniforms = () => ({ uRows: { value: null }, uLightmapSize: { value: new THREE.Vector2(1, 1) },
+                                  uTexelsPerRow: { value: 1 } });
+function setLightmap(u, t, f) {
+  u.uRows.value = f.rows;
+  u.uLightmapSize.value.set(t.lightmap.width, t.lightmap.height);
+  u.uTexelsPerRow.value = t.texelsPerRow;
+}
+const kDrawPerPixel = {
+  DenseVector: {
+    stage: 'lightmap.vert',
+    defines: { PRT_LIGHTMAP: 1 },
+    uniforms: (light) => Object.assign(lightmapUniforms(), { uCount: { value: 0 }, uRgb: { value: false }, uL: light }),
+    set(u, t, f) {
+      setLightmap(u, t, f);
+      u.uRgb.value = t.channels === 3;
+      u.uCount.value = t.channels === 3 ? f.bands * f.bands : Math.ceil((f.bands * f.bands) / 4);
+    },
+  },
+  CpcaVector: {
+    stage: 'lightmap.vert',
+    defines: { PRT_LIGHTMAP: 1, PRT_LIGHTMAP_CPCA: 1 },
+    uniforms: () => Object.assign(lightmapUniforms(), { uClusters: { value: null }, uBasisCount: { value: 0 } }),
+    set(u, t, f) {
+      setLightmap(u, t, f);
+      u.uClusters.value = f.table;
+      u.uBasisCount.value = t.compressed.basisCount;
+    },
+  },
+};
+/** How t is drawn: by its path, per pixel for per-texel transfer. */
+const drawOf = (t) => (t.perPixel ? kDrawPerPixel : kDraw)[t.path];
+
 const kDraw = {
   DenseVector: {
     stage: 'mesh.vert',
@@ -68,8 +104,8 @@ const kDraw = {
  * fragment: text }, material(parameters) → a THREE material, uniforms: extra uniforms }.
  */
 export function transferMaterial(t, light, vec4s, hasAlbedo, host) {
-  const d = kDraw[t.path];
-  const defines = { PRT_LIGHT_VEC4S: vec4s, PRT_GLOSSY_COEFFS: kGlossyCoeffs };
+  const d = drawOf(t);
+  const defines = Object.assign({ PRT_LIGHT_VEC4S: vec4s, PRT_GLOSSY_COEFFS: kGlossyCoeffs }, d.defines || {});
   if (hasAlbedo) defines.PRT_HAS_ALBEDO = 1;
   return host.material({ vertexShader: host.stages[d.stage], fragmentShader: host.stages.fragment, defines,
                          uniforms: Object.assign(d.uniforms(light), host.uniforms || {}), hasAlbedo });
@@ -97,10 +133,13 @@ export function uploadTransfers(b, limits, host) {
     const img = frameTable(t, limits, b.name);
     if (img) tables[t.key] = { image: img, texture: dataTexture(img) };
   }
+  // One texture per image: a per-texel transfer's rows are one image every part shares.
+  const made = new Map();
+  const textureOf = (img) => made.get(img) || made.set(img, dataTexture(img)).get(img);
   const parts = b.parts.map((p) => {
     const textures = {}, materials = {};
     for (const t of b.transfers) {
-      textures[t.key] = dataTexture(p.texels[t.key]);
+      textures[t.key] = textureOf(p.texels[t.key]);
       materials[t.key] = transferMaterial(t, light, vec4s, p.hasAlbedo, host);
     }
     return { textures, materials };
@@ -110,10 +149,12 @@ export function uploadTransfers(b, limits, host) {
 
 /** Frees what uploadTransfers made. */
 export function disposeTransfers(gpu) {
+  const textures = new Set();
   for (const p of gpu.parts) {
     for (const x of Object.values(p.materials)) x.dispose();
-    for (const x of Object.values(p.textures)) x.dispose();
+    for (const x of Object.values(p.textures)) textures.add(x);
   }
+  for (const x of textures) x.dispose();
   for (const t of Object.values(gpu.tables)) t.texture.dispose();
 }
 
@@ -138,7 +179,7 @@ export function setFrameLight(gpu, t, b, R, coeffs) {
  *  eye } (eye: the camera's position in the part's frame). */
 export function setTransferUniforms(gpu, p, t, f) {
   const part = gpu.parts[p], table = gpu.tables[t.key];
-  kDraw[t.path].set(part.materials[t.key].uniforms, t,
+  drawOf(t).set(part.materials[t.key].uniforms, t,
                     { bands: f.bands, eye: f.eye, rows: part.textures[t.key], table: table ? table.texture : null });
 }
 
@@ -146,9 +187,10 @@ export function setTransferUniforms(gpu, p, t, f) {
 export function describeTransfer(t) {
   const lines = [];
   if (t.matrix) lines.push(`glossy ${t.material.material}, toward the eye`);
+  if (t.perPixel) lines.push(`relit per pixel from a ${t.lightmap.width} x ${t.lightmap.height} lightmap`);
   if (t.compressed) {
     const c = t.compressed, dense = 16 * denseTexelsPerRow(t);
-    lines.push(`relit compressed: CPCA ${c.clusters} x ${c.basisCount}, ${16 * c.texelsPerVertex} bytes/vertex ` +
+    lines.push(`relit compressed: CPCA ${c.clusters} x ${c.basisCount}, ${16 * c.texelsPerVertex} bytes/${t.perPixel ? 'texel' : 'vertex'} ` +
                `(dense ${dense}), ${16 * c.clusters * (c.basisCount + 1) * c.coeffs} bytes of cluster table per frame`);
   }
   return lines;

@@ -19,8 +19,8 @@ export function screenshotHook(page) {
   const rgb = page.read(w, h);
   const t = page.transfer(), c = t.compressed;
   report({ ok: true, width: w, height: h, renderer: page.rendererName, mode: t.mode, layout: t.layout,
-           path: t.path, compressed: c ? `${c.clusters}x${c.basisCount}, ${16 * c.texelsPerVertex} bytes per vertex` : 'no',
-           rgb: bytesBase64(rgb) });
+           path: t.path, compressed: c ? `${c.clusters}x${c.basisCount}, ${16 * c.texelsPerVertex} bytes per ${t.perPixel ? 'texel' : 'vertex'}` : 'no',
+           perPixel: !!t.perPixel, rgb: bytesBase64(rgb) });
 }
 
 /** ?bench=N: N frames drawn back to back into the canvas, each waited for with a 1-pixel

@@ -108,6 +108,8 @@ async function main() {
     maxTextureSize: gl.getParameter(gl.MAX_TEXTURE_SIZE),
     // uL[pad4(B²)] plus a few other uniforms must fit the vertex shader's uniform vectors.
     maxBands: Math.min(kBands.maxPackedLight, Math.floor(Math.sqrt(gl.getParameter(gl.MAX_VERTEX_UNIFORM_VECTORS) - 16))),
+    // Per-texel transfer is relit per pixel: uL[] in the fragment shader's uniform vectors.
+    maxFragmentBands: Math.min(kBands.maxPackedLight, Math.floor(Math.sqrt(gl.getParameter(gl.MAX_FRAGMENT_UNIFORM_VECTORS) - 16))),
   };
   const debugInfo = gl.getExtension('WEBGL_debug_renderer_info');
   const rendererName = debugInfo ? gl.getParameter(debugInfo.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);

@@ -5,11 +5,13 @@ import * as THREE from 'three';
 import meshVert from 'prt:shaders/mesh.vert';
 import compressedVert from 'prt:shaders/compressed.vert';
 import compressedGlossyVert from 'prt:shaders/compressedGlossy.vert';
+import lightmapVert from 'prt:shaders/lightmap.vert';
 import meshFrag from 'prt:shaders/mesh.frag';
 
 export const pageHost = {
   stages: { 'mesh.vert': meshVert, 'compressed.vert': compressedVert,
-            'compressedGlossy.vert': compressedGlossyVert, fragment: meshFrag },
+            'compressedGlossy.vert': compressedGlossyVert, 'lightmap.vert': lightmapVert,
+            fragment: meshFrag },
   material: ({ vertexShader, fragmentShader, defines, uniforms }) => new THREE.RawShaderMaterial({
     glslVersion: THREE.GLSL3, vertexShader, fragmentShader, defines, uniforms, side: THREE.DoubleSide,
   }),

@@ -5,8 +5,11 @@
 // work, the shader and its uniforms (draw.js) — is looked up by that path, never re-decided from
 // the layout or the representation. The pick order is the library's (transferPreference,
 // generated into 'prt:constants').
-import { bands as kBands, layouts, maxShaderClusters, modes, shaderPaths, transferPreference }
-  from 'prt:constants';
+// Per-texel transfer (t.perPixel: rows are the texels of a W × H lightmap, row y·W + x) takes
+// the same paths (vectors only) and the same per-row packing, once for the whole bake (every part
+// reads the one lightmap); draw.js gives it the per-pixel stage (shaders/prt_lightmap.glsl).
+import { bands as kBands, layouts, maxShaderClusters, modes, perTexelMatricesRefusal, shaderPaths,
+  transferPreference } from 'prt:constants';
 import { bandLimitMessage } from './messages.js';
 import { clusterTableImage, packWeights, projectClusters, readCompressed } from './compressed.js';
 import { textureShape } from './texels.js';
@@ -19,6 +22,13 @@ function fail(name, what) {
  *  the line saying why the page cannot draw it. */
 export function shaderPath(shape, compressed, name, limits) {
   const what = `the ${shape.mode} ${shape.layout} transfer`;
+  if (shape.perPixel) {
+    if (shape.layout === 'matrix') fail(name, `${perTexelMatricesRefusal} (the ${shape.mode} transfer)`);
+    // Relit per pixel: the light must fit the fragment shader's uniforms.
+    if (shape.bands > limits.maxFragmentBands)
+      fail(name, bandLimitMessage(what, shape.bands, 'this page\'s per-pixel light (the fragment shader\'s uniforms)', limits.maxFragmentBands));
+    return compressed ? 'CpcaVector' : 'DenseVector';
+  }
   if (shape.layout === 'matrix') {
     // Dense matrices are 4·B⁴ bytes per vertex (2.5 KB at 5 bands); compressed 16·⌈(N+1)/4⌉.
     if (!compressed)
@@ -45,9 +55,21 @@ const kPaths = {
   DenseVector: {
     // Per vertex: scalar ⌈B²/4⌉ texels of four coefficients, RGB B² texels (r, g, b, 0) —
     // relight::packShaderRows, read from the VEC4 attributes GLTFLoader put on each part.
-    async read() { return null; },
+    // Per texel: the same texels from the SCALAR accessor texelAccessor (B²·C floats a row).
+    async read(gltf, json, entry, t, rowCount, name) {
+      if (!t.perPixel) return null;
+      const idx = (entry.accessors || []).find((i) => json.accessors[i] && json.accessors[i].name === entry.texelAccessor);
+      if (idx === undefined) fail(name, `the ${t.mode} transfer lacks its accessor ${entry.texelAccessor}`);
+      const a = await gltf.parser.getDependency('accessor', idx);
+      const count = rowCount * t.bands * t.bands * t.channels;
+      if (!a || a.itemSize !== 1 || a.array.length !== count)
+        fail(name, `${entry.texelAccessor} holds ${a ? a.array.length : 0} values, ${count} expected`);
+      for (let i = 0; i < a.array.length; ++i) if (!Number.isFinite(a.array[i])) fail(name, `${entry.texelAccessor}: value ${i} is not finite`);
+      return a.array;
+    },
     texelsPerRow: denseTexelsPerRow,
     rows(t, part, limits, name) {
+      if (t.perPixel) return packTexelRows(t, limits, name);
       const g = part.geometry, V = g.getAttribute('position').count;
       const attributes = Math.ceil((t.bands * t.bands * t.channels) / 4);
       const attrs = [];
@@ -79,7 +101,9 @@ const kPaths = {
   CpcaVector: {
     read: readCompressed,
     texelsPerRow: (t) => t.compressed.texelsPerVertex,
-    rows: (t, part, limits, name) => packWeights(t.compressed, part.first, part.vertices, limits, name, t.mode),
+    rows: (t, part, limits, name) => t.perPixel
+      ? once(t, () => packWeights(t.compressed, 0, t.rowCount, limits, name, t.mode))
+      : packWeights(t.compressed, part.first, part.vertices, limits, name, t.mode),
     table: (t, limits, name) => clusterTableImage(t.compressed, limits, name, t.mode),
     // The once-per-frame step: K(N+1) projections of L' (b bands).
     frame: (t, b, rotated, table) => projectClusters(t.compressed, b, t.channels, rotated, table.data),
@@ -87,11 +111,36 @@ const kPaths = {
 };
 kPaths.CpcaMatrix = kPaths.CpcaVector;
 
+/** Per-texel rows are packed once for every part (they are the one lightmap's). */
+function once(t, pack) {
+  if (!t.packedRows) t.packedRows = pack();
+  return t.packedRows;
+}
+
+/** Dense per-texel rows (t.texelValues: B²·C floats a row, value e·C + c) packed as
+ *  relight::packShaderRows packs them: scalar ⌈B²/4⌉ texels, RGB B² texels (r, g, b, 0). */
+function packTexelRows(t, limits, name) {
+  return once(t, () => {
+    const n = t.bands * t.bands, C = t.channels, T = t.texelsPerRow, x = t.texelValues;
+    const img = textureShape(t.rowCount * T, limits, name, `the ${t.mode} transfer`, ' (use fewer bands, or compress it: prt compress)');
+    for (let r = 0; r < t.rowCount; ++r) {
+      const src = r * n * C, dst = r * T * 4;
+      if (C === 1) img.data.set(x.subarray(src, src + n), dst);
+      else
+        for (let i = 0; i < n; ++i)
+          img.data[dst + 4 * i] = x[src + 3 * i], img.data[dst + 4 * i + 1] = x[src + 3 * i + 1], img.data[dst + 4 * i + 2] = x[src + 3 * i + 2];
+    }
+    return img;
+  });
+}
+
 /**
  * Reads transfer entry `entry` of the bake (PRTKIT_radiance_transfer): its shape (checked), its path, and what the
- * path reads from the file (the compressed arrays). `gltf` is GLTFLoader's result.
+ * path reads from the file (the compressed arrays, a per-texel transfer's dense rows). `gltf` is GLTFLoader's
+ * result; `rowCount` the domain's rows (the vertices, or the lightmap's texels); `lightmap` { width, height } for
+ * per-texel transfer, else null.
  */
-export async function readTransfer(gltf, entry, vertexCount, name, limits) {
+export async function readTransfer(gltf, entry, rowCount, name, limits, lightmap = null) {
   const s = entry.settings || {};
   const mode = modes.find((m) => m.name === String(s.mode));
   if (!mode) fail(name, `unknown transfer mode '${s.mode}'`);
@@ -105,17 +154,22 @@ export async function readTransfer(gltf, entry, vertexCount, name, limits) {
   // material — glossy.js makes the shading from both.)
   const t = { mode: mode.name, layout, bands, channels, matrix: layout === 'matrix',
               attributePrefix: mode.attributePrefix.toLowerCase(), compressed: null,
-              response: entry.response || null, recipeMaterial: s.material || null };
+              response: entry.response || null, recipeMaterial: s.material || null,
+              perPixel: !!lightmap, lightmap, rowCount };
+  if ((s.domain === 'texels') !== t.perPixel)
+    fail(name, `the ${mode.name} transfer is over ${s.domain || 'vertices'}, the bake over ${lightmap ? 'texels' : 'vertices'}`);
   t.path = shaderPath(t, !!entry.compressed, name, limits);
-  t.describe = shaderPaths[t.path];
+  t.describe = shaderPaths[t.path] + (t.perPixel ? ' per texel, relit per pixel' : '');
   const p = kPaths[t.path];
-  t.compressed = await p.read(gltf, gltf.parser.json, entry, t, vertexCount, name, maxShaderClusters);
+  const read = await p.read(gltf, gltf.parser.json, entry, t, rowCount, name, maxShaderClusters);
+  if (t.path === 'DenseVector') t.texelValues = read;
+  else t.compressed = read;
   t.texelsPerRow = p.texelsPerRow(t);
   return t;
 }
 
 /** A part's per-vertex texels of transfer t as a data image (part: { geometry, name, first,
- *  vertices }). */
+ *  vertices }); of a per-texel transfer, the lightmap's rows (the same image for every part). */
 export function packRows(t, part, limits, name) {
   return kPaths[t.path].rows(t, part, limits, name);
 }

@@ -40,6 +40,17 @@
 //
 // Fewer bands than baked: the shaders loop over the first b² coefficients (vectors) or rows and
 // columns (matrices) — the same numbers Transfer::cut(b) keeps.
+//
+// Per-texel transfer (TransferDomain::Texels: a W × H lightmap over the mesh's lightmap UVs) is
+// packed exactly as per-vertex transfer, row by row — row y·W + x is texel (x, y), so the data
+// texture is indexed by texel row — and drawn per pixel (ShaderRows::perPixel): the vertex stage
+// passes the lightmap UV and the albedo (shaders/stages/lightmap.vert), the fragment stage takes
+// the four texels of render::texelRadianceShader's bilinear fetch (geometry/texel_samples.hpp,
+// bilinearTaps: centres at ((x + ½)/W, (y + ½)/H), clamped to the edge), relights each — dense
+// T·L', or CPCA's c_k + Σ_j w_j d_kj from the same cluster table — and blends the four results
+// with the bilinear weights (relighting is linear, so this is the fetch of the relit lightmap
+// prt render makes), times the interpolated albedo (shaders/prt_lightmap.glsl). Only vector
+// transfer is baked per texel; matrices per texel are refused by name.
 
 #include <algorithm>
 #include <array>
@@ -65,16 +76,26 @@ const char* toString(ShaderPath path);
 
 /// The one dispatch of the GPU viewers: how `t` is drawn (matricesOnGpu: dense matrices in the
 /// vertex shader instead of relit on the CPU; compressed matrices are always drawn on the GPU
-/// when matricesOnGpu, else relit on the CPU). Throws prt::Error with one line when the path
-/// cannot draw it (bands past the shaders' limits, RGB matrices in the vertex shader).
+/// when matricesOnGpu, else relit on the CPU). Per-texel vectors take the same paths, relit per
+/// pixel (see the top). Throws prt::Error with one line when the path cannot draw it (bands past
+/// the shaders' limits, RGB matrices in the vertex shader, matrices per texel).
 ShaderPath shaderPath(const Transfer& t, bool matricesOnGpu);
+
+/// Why a per-texel matrix transfer is not drawn (shaderPath's refusal; the page's, generated).
+inline constexpr const char* kPerTexelMatricesRefusal =
+    "the viewers relight per-texel vector transfer only (matrices are not baked per texel)";
 
 /// The per-row texels of a path (uploaded once).
 struct ShaderRows {
   ShaderPath path = ShaderPath::DenseVector;
   int texelsPerRow = 0;     ///< T (0 for CpuRadiance)
   int basisCount = 0;       ///< N (compressed paths)
+  int channels = 1;         ///< the transfer's (1 or 3)
   std::vector<float> rgba;  ///< rows × T × 4
+  /// Per-texel transfer: the rows are lightmap texels (row y·W + x), relit per pixel from the
+  /// mesh's lightmap UVs; else per-vertex rows relit per vertex.
+  bool perPixel = false;
+  TransferShape::LightmapSize lightmap{};  ///< perPixel: W × H
   /// Bytes one row uploads (16·T).
   std::size_t bytesPerRow() const { return 16 * static_cast<std::size_t>(texelsPerRow); }
 };
@@ -85,6 +106,12 @@ inline constexpr int kMaxShaderClusters = 1 << 24;
 int shaderTexelsPerRow(const Transfer& t, ShaderPath path);
 /// Packs the rows for `path` (checked against the transfer as shaderPath does).
 ShaderRows packShaderRows(const Transfer& t, ShaderPath path);
+/// What the per-pixel stage computes at lightmap UV `uv` before albedo, on the CPU: the four
+/// taps of bilinearTaps, each relit from the packed rows — dense against the packed light
+/// (LightPacker::data(), `bands` shown), compressed from the cluster table — and blended. The
+/// reference the per-pixel shaders follow (tests/relight).
+Rgb evalPerPixel(const ShaderRows& rows, std::span<const float> light, int bands,
+                 const std::vector<float>& table, Vec2f uv);
 
 /// Texels of the per-frame cluster table of a compressed transfer: K(N + 1)·Q.
 std::size_t clusterTableTexels(const Transfer& t);

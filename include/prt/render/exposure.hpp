@@ -42,7 +42,8 @@ float autoExposure(const Occluder& occluder, const ShadeFn& shade, const Camera&
 /// autoExposure of `transfer` relit on the CPU (relight::relight) under `light` rotated by
 /// `rotation` with `material`, seen through `camera`: what prt view and prt web open at, from
 /// the bake and light they show (an Embree occluder of the mesh is built for the probe rays).
-/// `bands` > 0 cuts the transfer first, as the viewers' band control does.
+/// `bands` > 0 cuts the transfer first, as the viewers' band control does. Per-texel transfer is
+/// drawn as prt render draws it (texelRadianceShader).
 float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& material,
                     const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera, int width,
                     int height, image::ToneMap op, int bands = 0);

@@ -75,7 +75,7 @@ const maxAbs = (xs) => largest(Array.from(xs, Math.abs));
 }
 
 // ---- cluster projection and packing (compressed.js) against relight::projectClusters -----------
-const limits = { maxTextureSize: 16384, maxBands: 15 };
+const limits = { maxTextureSize: 16384, maxBands: 15, maxFragmentBands: 14 };
 /** The arrays as bake.js reads them (readCompressed's result) from a golden transfer. */
 function compressedOf(c) {
   const n = c.bands * c.bands, matrix = c.layout === 'matrix';
@@ -134,6 +134,31 @@ function compressedOf(c) {
                      [...g.camera.eye, ...g.camera.target, ...g.camera.up, g.camera.fov], 1e-5);
   console.log(`bake: ${b.transfers.length} transfers in the library's order, ${values} packed texel values exact over ` +
               `${b.parts.length} parts, framing within ${largest([dc, dr]).toExponential(2)}, camera ${dv.toExponential(2)}`);
+}
+
+// ---- a per-texel bake (bake.js, transfer.js): the lightmap's rows packed once, as the library --
+{
+  const g = golden.texelBake;
+  const bytes = fs.readFileSync(path.join(dir, g.file));
+  const b = await parseBake(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength), g.file, limits);
+  expect(b.lightmap && b.lightmap.width === g.width && b.lightmap.height === g.height,
+         `texel bake: lightmap ${JSON.stringify(b.lightmap)}, the library's ${g.width} x ${g.height}`);
+  let values = 0;
+  for (const w of g.transfers) {
+    const t = b.transfers.find((u) => u.mode === w.mode);
+    expect(!!t, `texel bake: no ${w.mode} transfer read`);
+    if (!t) continue;
+    const what = `texel bake: the ${w.mode} transfer`;
+    expect(t.perPixel === w.perPixel && !!t.compressed === w.compressed, `${what}: perPixel ${t.perPixel}, compressed ${!!t.compressed}`);
+    expect(t.texelsPerRow === w.texelsPerRow, `${what}: ${t.texelsPerRow} texels per row, the library's packShaderRows ${w.texelsPerRow}`);
+    for (const p of b.parts) {
+      expect(p.texels[t.key] === b.parts[0].texels[t.key], `${what}: part ${p.name} has rows of its own (one lightmap for all)`);
+      expect(!!p.geometry.getAttribute('prtLightmapUv'), `${what}: part ${p.name} has no prtLightmapUv`);
+    }
+    compare(`${what}: packed texel rows`, b.parts[0].texels[t.key].data.subarray(0, w.packedRows.length), w.packedRows, 0);
+    values += w.packedRows.length;
+  }
+  console.log(`texel bake: ${g.transfers.length} per-texel transfers, ${values} packed values exact, one image for ${b.parts.length} parts`);
 }
 
 // ---- light files (lights.js) against io::loadLighting + io::padded -----------------------------

@@ -236,6 +236,51 @@ json bakeCase(const fs::path& dir) {
           {"camera", {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"up", vec(c.up)}, {"fov", c.fovY}}}};
 }
 
+/// A per-texel bake (format 6): a 6 × 5 lightmap over the Cornell box's parts, dense RGB
+/// inter-reflected rows and CPCA-compressed scalar shadowed rows; the library's packing of each
+/// (packShaderRows: rows by texel, y·W + x), which the page packs once for every part.
+json texelBakeCase(const fs::path& dir) {
+  BakeFile b;
+  b.mesh = builtinScene("cornell?grid=3");
+  b.mesh.lightmapUvs.clear();
+  for (std::size_t v = 0; v < b.mesh.vertexCount(); ++v) {
+    const std::vector<float> uv = randoms(2, 0.0f, 1.0f);
+    b.mesh.lightmapUvs.push_back({uv[0], uv[1]});
+  }
+  const int W = 6, H = 5;
+  const std::size_t rows = std::size_t(W) * H;
+  const auto texels = [&](TransferShape s) {
+    s.domain = TransferDomain::Texels;
+    s.lightmap = {W, H, 1};
+    return s;
+  };
+  BakedTransfer dense;
+  dense.recipe.mode = TransferMode::Interreflected;
+  TransferShape shape;
+  shape.bands = 3;
+  shape.channels = 3;
+  shape.rows = {0, rows};
+  shape = texels(shape);
+  dense.transfer = Transfer::dense(shape, FloatArray(randoms(rows * shape.stride())));
+  BakedTransfer compressed;
+  compressed.recipe.mode = TransferMode::Shadowed;
+  const Transfer c = randomCpca(TransferLayout::Vector, 3, 1, rows, 4, 2);
+  compressed.transfer = Transfer::cpca(texels(c.shape()), c.cpca());
+  b.transfers = {compressed, dense};
+  const std::string file = (dir / "golden-texels.glb").string();
+  writeBake(file, b);
+  const BakeFile read = readBake(file);
+  json order = json::array();
+  for (std::size_t i : transferPreference(read)) {
+    const Transfer& t = read.transfers[i].transfer;
+    const relight::ShaderRows r = relight::packShaderRows(t, relight::shaderPath(t, true));
+    order.push_back({{"mode", toString(read.transfers[i].mode())}, {"compressed", t.compressed()},
+                     {"perPixel", r.perPixel}, {"texelsPerRow", r.texelsPerRow},
+                     {"packedRows", array(r.rgba)}});
+  }
+  return {{"file", "golden-texels.glb"}, {"width", W}, {"height", H}, {"transfers", order}};
+}
+
 json lightCases(const fs::path& dir) {
   json cases = json::array();
   for (const auto& [lightBands, transferBands] : {std::pair{2, 4}, std::pair{3, 4}, std::pair{5, 3}, std::pair{3, 3}}) {
@@ -269,6 +314,7 @@ int main(int argc, char** argv) {
     g["evalSh"] = evalShCases();
     g["clusters"] = clusterCases();
     g["bake"] = bakeCase(dir);
+    g["texelBake"] = texelBakeCase(dir);
     g["lights"] = lightCases(dir);
     g["messages"] = json::array();
     for (const auto& [what, b, who, max] :

@@ -7,7 +7,7 @@
 //
 // An asset that is not a bake loads untouched (userData.prtkit stays undefined) unless
 // options.required; a bake that cannot be shown rejects the load with one line naming the file.
-import { bakeFormat } from 'prt:constants';
+import { bakeFormat, bands as kBands } from 'prt:constants';
 import { bakeObject, readBake } from '../../src/bake.js';
 import { glossyFromFile } from '../../src/glossy.js';
 import { PRTBake } from './prt_bake.js';
@@ -32,9 +32,12 @@ export class PRTKitRadianceTransfer {
     const caps = o.renderer && o.renderer.capabilities;
     // uL[pad4(B²)] plus a few other uniforms must fit the vertex shader's uniform vectors
     // (WebGL2 guarantees 256: 15 bands).
-    const vectors = caps ? caps.maxVertexUniforms : 256;
+    // (WebGL2 guarantees 256: 15 bands); per-texel transfer, relit per pixel, the fragment
+    // shader's (224 guaranteed: 14 bands).
+    const vectors = caps ? caps.maxVertexUniforms : 256, fragment = caps ? caps.maxFragmentUniforms : 224;
     const limits = { maxTextureSize: caps ? caps.maxTextureSize : 4096,
-                     maxBands: Math.min(32, Math.floor(Math.sqrt(vectors - 16))) };
+                     maxBands: Math.min(kBands.maxPackedLight, Math.floor(Math.sqrt(vectors - 16))),
+                     maxFragmentBands: Math.min(kBands.maxPackedLight, Math.floor(Math.sqrt(fragment - 16))) };
     const bake = await readBake(result, name, limits);
     for (const t of bake.transfers) if (t.matrix) t.material = glossyFromFile(t, name);
     result.userData.prtkit = new PRTBake(bake, result.scene, limits);

@@ -6,13 +6,15 @@ import * as THREE from 'three';
 import meshVert from 'prt:three-shaders/mesh.vert';
 import compressedVert from 'prt:three-shaders/compressed.vert';
 import compressedGlossyVert from 'prt:three-shaders/compressedGlossy.vert';
+import lightmapVert from 'prt:three-shaders/lightmap.vert';
 import threeFrag from 'prt:three-shaders/three.frag';
 
 /** The host of one bake: its materials share `exposure` ({ value: 2^stops }). */
 export function threeHost(exposure) {
   return {
     stages: { 'mesh.vert': meshVert, 'compressed.vert': compressedVert,
-              'compressedGlossy.vert': compressedGlossyVert, fragment: threeFrag },
+              'compressedGlossy.vert': compressedGlossyVert, 'lightmap.vert': lightmapVert,
+            fragment: threeFrag },
     uniforms: { uExposureScale: exposure },
     material: ({ vertexShader, fragmentShader, defines, uniforms, hasAlbedo }) => {
       const m = new THREE.ShaderMaterial({ vertexShader, fragmentShader, defines, uniforms,

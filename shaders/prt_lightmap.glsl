@@ -1,0 +1,41 @@
+// Per-pixel relighting of per-texel transfer (a W × H lightmap over the mesh's lightmap UVs;
+// relight/shader_transfer.hpp, "Per-texel transfer"), shared by the desktop viewer's and the web
+// page's fragment stages (prt_fragment.glsl). The rows are packed as per-vertex rows are, row
+// y·W + x for texel (x, y), uTexelsPerRow texels each, in the data texture uRows:
+//   dense (default)      prt_relight.glsl's layout, against the rotated light uL[]
+//   PRT_LIGHTMAP_CPCA    prt_compressed.glsl's ids and weights, against this frame's cluster
+//                        table uClusters (the same table as per-vertex CPCA vectors)
+// prtLightmapRadiance(uv) is render::texelRadianceShader's fetch (prt render): the four texels
+// of geometry/texel_samples.hpp's bilinearTaps — texel centres at ((x + ½)/W, (y + ½)/H), row 0
+// at v = 0, indices clamped to the edge — each relit, blended with the bilinear weights in the
+// same order. Relighting is linear, so blending relit taps is fetching the relit lightmap.
+uniform PRT_TEXELS uRows;
+uniform ivec2 uLightmapSize;  // W, H
+uniform int uTexelsPerRow;    // T
+#ifdef PRT_LIGHTMAP_CPCA
+uniform PRT_TEXELS uClusters;  // RGBA32F, K(N + 1) texels, rewritten every frame
+uniform int uBasisCount;       // N
+vec4 prtWeightTexel(int t) { return prtTexel(uRows, t); }
+vec4 prtClusterTexel(int t) { return prtTexel(uClusters, t); }
+#include "prt_compressed.glsl"
+vec3 prtLightmapRow(int r) { return prtRelightCompressed(r * uTexelsPerRow, uBasisCount); }
+#else
+uniform int uCount;  // scalar: texels to read = roundUp4(b²)/4; RGB: b²
+uniform bool uRgb;
+PRT_LIGHT_UNIFORM;   // D(R) L, (r, g, b, 0) per coefficient, zero past b²
+vec4 prtTransferTexel(int t) { return prtTexel(uRows, t); }
+#include "prt_relight.glsl"
+vec3 prtLightmapRow(int r) { return prtRelight(r * uTexelsPerRow, uCount, uRgb); }
+#endif
+vec3 prtLightmapRadiance(vec2 uv) {
+  vec2 p = uv * vec2(uLightmapSize) - 0.5;
+  vec2 f = floor(p), w = p - f;
+  ivec2 hi = uLightmapSize - 1, i = ivec2(f);
+  ivec2 a = clamp(i, ivec2(0), hi), b = clamp(i + 1, ivec2(0), hi);
+  int W = uLightmapSize.x;
+  vec3 r = prtLightmapRow(a.y * W + a.x) * ((1.0 - w.x) * (1.0 - w.y));
+  r += prtLightmapRow(a.y * W + b.x) * (w.x * (1.0 - w.y));
+  r += prtLightmapRow(b.y * W + a.x) * ((1.0 - w.x) * w.y);
+  r += prtLightmapRow(b.y * W + b.x) * (w.x * w.y);
+  return r;
+}
