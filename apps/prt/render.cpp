@@ -195,13 +195,9 @@ void run(const RenderOptions& o) {
                                   : std::span<const Rgb>(referenceRadiance);
     if (!referenceRadiance.empty()) relit.bands = 0;  // no SH: the reference
     render::checkFiniteRadiance(radiance, o.bake, texels ? "texel" : "vertex");
-    // The albedo a per-texel relight left out: the mesh's, unless the material sets kd (then
-    // the relighter applied it).
-    const std::span<const Rgb> texelAlbedo =
-        material.diffuse ? std::span<const Rgb>() : std::span<const Rgb>(bake.mesh.albedo);
     const render::ShadeFn shade =
         texels ? render::texelRadianceShader(bake.mesh, radiance, lightmap.width, lightmap.height,
-                                             texelAlbedo)
+                                             render::texelAlbedo(bake.mesh, material))
                : render::vertexRadianceShader(bake.mesh, radiance);
     // --exposure auto: image/exposure.hpp's rule on the first frame's model pixels, kept for
     // every turntable frame so they compare.

@@ -60,9 +60,9 @@ float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& 
     const std::vector<Rgb> radiance =
         relight::relight(shown, light, material, relight::Surface{}, camera.eye, rotation);
     const TransferShape::LightmapSize lm = transfer.shape().lightmap;
-    const std::span<const Rgb> albedo =
-        material.diffuse ? std::span<const Rgb>() : std::span<const Rgb>(mesh.albedo);
-    return autoExposure(*occluder, texelRadianceShader(mesh, radiance, lm.width, lm.height, albedo),
+    return autoExposure(*occluder,
+                        texelRadianceShader(mesh, radiance, lm.width, lm.height,
+                                            texelAlbedo(mesh, material)),
                         camera, width, height, op);
   }
   const std::vector<Rgb> radiance = relight::relight(

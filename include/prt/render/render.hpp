@@ -11,6 +11,7 @@
 #include "prt/envmap/environment.hpp"
 #include "prt/render/primary.hpp"
 #include "prt/sh/sh.hpp"
+#include "prt/transfer/material.hpp"
 
 namespace prt::render {
 
@@ -47,6 +48,11 @@ ShadeFn vertexRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance);
 /// sizes match.
 ShadeFn texelRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance, int width, int height,
                             std::span<const Rgb> albedo);
+/// The albedo texelRadianceShader multiplies, the one rule for every per-texel image: the mesh's,
+/// unless the material sets kd (then relighting applied it already: empty).
+inline std::span<const Rgb> texelAlbedo(const Mesh& mesh, const Material& material) {
+  return material.diffuse ? std::span<const Rgb>() : std::span<const Rgb>(mesh.albedo);
+}
 
 /// Renders the relit mesh. `radiance` holds one value per mesh vertex (throws otherwise).
 image::Image renderRelit(const Mesh& mesh, const Occluder& occluder, std::span<const Rgb> radiance,
