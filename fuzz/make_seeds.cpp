@@ -90,8 +90,10 @@ const char* kGltf = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[
 {"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]})";
 
 /// A bake of the 12-vertex icosahedron: one transfer of `layout` at `bands`, CPCA-compressed
-/// (2 clusters, 1 basis vector) when `compressed`.
-std::string bakeSeed(prt::TransferLayout layout, int bands, bool compressed) {
+/// (2 clusters, 1 basis vector) when `compressed`; with a 2 × 2 base-colour texture (the one
+/// image a bake holds, an embedded PNG) over planar texture UVs when `textured`.
+std::string bakeSeed(prt::TransferLayout layout, int bands, bool compressed,
+                     bool textured = false) {
   prt::BakeFile file;
   file.mesh = prt::builtinScene("builtin:sphere?subdiv=0");
   file.generator = "prtkit make_seeds";
@@ -114,6 +116,15 @@ std::string bakeSeed(prt::TransferLayout layout, int bands, bool compressed) {
     t.transfer = prt::compressCpca(t.transfer, o, &t.compression.stats);
   }
   file.transfers.push_back(std::move(t));
+  if (textured) {
+    for (const prt::Vec3f& p : file.mesh.positions)
+      file.mesh.uvs.push_back({0.5f + 0.5f * p.x, 0.5f - 0.5f * p.y});
+    prt::BaseColourTexture tex;
+    tex.name = "seed.png";
+    tex.image.width = tex.image.height = 2;
+    tex.image.rgb = {255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
+    file.mesh.baseColour = tex;
+  }
   return prt::encodeBake(file);
 }
 
@@ -215,6 +226,12 @@ int main(int argc, char** argv) {
   ref.stdError = {prt::Rgb(0.01f), prt::Rgb(0.02f), prt::Rgb(0.0f)};
   prt::io::writeReferenceJson((tmp / "reference.json").string(), ref);
   put("reference_json", "reference.json", slurp(tmp / "reference.json"));
+  ref.lightmapWidth = 4;  // a per-texel reference: rows are texels of a 4 x 4 lightmap
+  ref.lightmapHeight = 4;
+  ref.lightmapUvFingerprint = "00112233445566aa";
+  ref.vertices = {1, 5, 15};
+  prt::io::writeReferenceJson((tmp / "reference-texels.json").string(), ref);
+  put("reference_json", "reference-texels.json", slurp(tmp / "reference-texels.json"));
   put("transport_txt", "vertices.txt", "2\n1 0.5 0 0\n0.25 0 0 1e-3\n");
   put("transport_txt", "faces.txt", "1\n1 0 0 0\n1 0 0 0\n1 0 0 0\n");
 
@@ -225,6 +242,9 @@ int main(int argc, char** argv) {
   put("bake", "compressed_matrix.glb", bakeSeed(prt::TransferLayout::Matrix, 2, true));
   put("bake", "texels.glb", texelBakeSeed());
   put("gltf", "bake.glb", bakeSeed(prt::TransferLayout::Vector, 2, false));
+  // A base-colour texture: the bake reader's and the glTF loader's image paths.
+  put("bake", "textured.glb", bakeSeed(prt::TransferLayout::Vector, 2, false, true));
+  put("gltf", "textured.glb", bakeSeed(prt::TransferLayout::Vector, 2, false, true));
 
   // --material spec strings: every lobe, every key.
   put("material", "lambert.txt", "lambert");

@@ -39,6 +39,7 @@
 #include "prt/transport/bake.hpp"
 #include "prt/transport/bake_texels.hpp"
 #include "prt/transport/passes.hpp"
+#include "prt/unwrap/unwrap.hpp"
 #include "report.hpp"
 #include "seam_fix.hpp"
 #include "transfer_options.hpp"
@@ -218,10 +219,6 @@ BakePlan planOf(const BakeArgs& a) {
       throw Error(fmt::format("--resolution {}: must be 1..{}", t.resolution, kMaxLightmapSide));
     if (t.padding > kMaxLightmapPadding)
       throw Error(fmt::format("--padding {}: must be 0..{}", t.padding, kMaxLightmapPadding));
-    if (plan.layout == TransferLayout::Matrix)
-      throw Error(
-          "--domain texels bakes vector transfer only so far (per-texel glossy matrices "
-          "are to come): drop --transfer matrix");
     if (a.pass >= 0 || !a.checkpoint.empty())
       throw Error(
           "--domain texels bakes in one process: --pass and --checkpoint split "
@@ -235,9 +232,31 @@ BakePlan planOf(const BakeArgs& a) {
 }
 
 /// --domain texels: picks the UV set (--uv), says which and why not another, and makes it the
-/// mesh's lightmap UVs (what the bake file records the texels over).
+/// mesh's lightmap UVs (what the bake file records the texels over). With --uv auto and no set
+/// that can hold the lightmap, the mesh is unwrapped (prt unwrap's atlas at this resolution and
+/// padding, unwrap/unwrap.hpp) and the bake is of the unwrapped mesh, which the file keeps.
 void chooseTexelUvs(Mesh& mesh, const TexelPlan& t) {
-  const LightmapUvChoice c = chooseLightmapUvs(mesh, t.uv, t.resolution, t.resolution);
+  LightmapUvChoice c = t.uv == UvSetOption::Auto
+                           ? findLightmapUvs(mesh, t.uv, t.resolution, t.resolution)
+                           : chooseLightmapUvs(mesh, t.uv, t.resolution, t.resolution);
+  if (c.uvs.empty()) {
+    UnwrapSettings us;
+    us.resolution = t.resolution;
+    us.padding = t.padding;
+    UnwrapResult u = unwrap(mesh, us, progressBar("unwrap"));
+    std::string why;
+    for (const std::string& r : c.refused) why += (why.empty() ? "" : "; ") + r;
+    info(
+        fmt::format("{}: no UV set of its own can hold the lightmap ({}): unwrapped it, {} charts "
+                    "({} cut), {:.1f}% of the texels wasted, L2 stretch {:.3f}, in {} (prt "
+                    "unwrap makes the same atlas)",
+                    mesh.source, why, u.stats.charts, u.splitCharts, 100 * u.stats.wastedTexels,
+                    u.stats.stretchL2, seconds(u.stats.seconds)));
+    u.mesh.source = mesh.source;
+    mesh = std::move(u.mesh);
+    c = chooseLightmapUvs(mesh, UvSetOption::Lightmap, t.resolution, t.resolution);
+    c.name = "atlas (prt unwrap)";
+  }
   for (const std::string& why : c.refused)
     info(fmt::format("{}: passed over {}", mesh.source, why));
   info(fmt::format("{}: a {} x {} lightmap over its {} (padding {})", mesh.source, t.resolution,
@@ -273,31 +292,34 @@ void announce(const Mesh& mesh, const BakeSettings& s, const std::string& output
                                     bytesText(fileRoom)));
 }
 
-/// A per-texel bake's memory, before the work, refusing what a bake file cannot hold.
-void announceTexels(const BakeSettings& s, const TexelPlan& t, const std::string& output) {
+/// A per-texel bake's memory, before the work (texelBakeFootprint), refusing what a bake file
+/// cannot hold.
+void announceTexels(const Mesh& mesh, const BakeSettings& s, const TexelPlan& t,
+                    const std::string& output) {
   const std::string what = fmt::format("{} {} per texel", toString(s.mode), toString(s.layout));
   const std::size_t texels = std::size_t(t.resolution) * t.resolution;
-  // RGB when coloured bounces need it: state the larger.
-  const int channels = s.effectiveBounces() > 0 ? 3 : 1;
-  const std::uint64_t perTexel = std::uint64_t(s.bands) * s.bands * channels * sizeof(float);
-  const std::uint64_t bytes = perTexel * s.rows.count;
-  // The working buffers: the samples, each pass and the dilated lightmap of the last.
-  const std::uint64_t working =
-      perTexel * texels * (s.effectiveBounces() > 0 ? 3 : 1) + texels * 40;
-  info(fmt::format("{}: up to {} per texel, {} for {} texels + {} working", what,
-                   bytesText(perTexel), bytesText(bytes), s.rows.count, bytesText(working)));
+  const TexelBakeFootprint fp = texelBakeFootprint(mesh, s, t.resolution, t.resolution);
+  info(fmt::format("{}: {} per texel, {} for {} texels + {} working", what,
+                   bytesText(fp.bytesPerTexel), bytesText(fp.transferBytes), s.rows.count,
+                   bytesText(fp.workingBytes)));
+  if (s.glossyBounces(s.layout))
+    info(
+        fmt::format("{}: the bounces follow the material's lobe ({}): {} matrix passes over the "
+                    "whole lightmap",
+                    what, s.material.spec(), s.bounces + 1));
   if (s.effectiveBounces() > 0 && s.rows.count < texels)
     info(
         fmt::format("{}: the bounces read the whole lightmap: each range bakes every texel's "
                     "earlier passes",
                     what));
   const std::uint64_t fileRoom = kMaxBakeFileBytes - (std::uint64_t(1) << 26);
-  if (bytes > fileRoom)
-    throw Error(output,
-                fmt::format("{} transfer of {} texels at {} bands is {}, more than a bake "
-                            "file holds ({}); use a smaller --resolution or split the "
-                            "bake with --range",
-                            what, s.rows.count, s.bands, bytesText(bytes), bytesText(fileRoom)));
+  if (fp.transferBytes > fileRoom)
+    throw Error(
+        output,
+        fmt::format("{} transfer of {} texels at {} bands is {}, more than a bake "
+                    "file holds ({}); use a smaller --resolution, fewer bands or split "
+                    "the bake with --range",
+                    what, s.rows.count, s.bands, bytesText(fp.transferBytes), bytesText(fileRoom)));
 }
 
 /// The bake's rays, timings and Monte Carlo error, in two lines.
@@ -415,7 +437,10 @@ void runBakeMpi(const BakeArgs& a) {
         material = materialFromGloss(*file.mesh.gloss);
         material.diffuse = kd;
       }
-      if (material.diffuse) file.mesh.albedo.assign(file.mesh.vertexCount(), *material.diffuse);
+      if (material.diffuse) {
+        file.mesh.albedo.assign(file.mesh.vertexCount(), *material.diffuse);
+        file.mesh.baseColour.reset();
+      }
       rows = a.range.empty() ? RowRange{0, file.mesh.vertexCount()}
                              : parseRange(a.range, file.mesh.vertexCount());
       occluder = makeEmbreeOccluder(file.mesh);
@@ -680,7 +705,11 @@ void runBake(const BakeArgs& a) {
   // --albedo (or --material kd=...) replaces the mesh's own albedo in the mesh the bake stores, so
   // every consumer of the file (render, reference, validate, the viewer) relights with the albedo
   // the transfer's bounces were baked with.
-  if (material.diffuse) file.mesh.albedo.assign(file.mesh.vertexCount(), *material.diffuse);
+  // kd replaces the whole diffuse colour, the base-colour texture with it.
+  if (material.diffuse) {
+    file.mesh.albedo.assign(file.mesh.vertexCount(), *material.diffuse);
+    file.mesh.baseColour.reset();
+  }
   if (plan.texels) chooseTexelUvs(file.mesh, *plan.texels);
   const Mesh& mesh = file.mesh;
   const double loadSeconds =
@@ -742,7 +771,7 @@ void runBake(const BakeArgs& a) {
     t.recipe = s;
     if (plan.texels) {
       const TexelPlan& tp = *plan.texels;
-      announceTexels(s, tp, a.output);
+      announceTexels(mesh, s, tp, a.output);
       TexelBake tb =
           bakeTexels(mesh, *occluder, s, mesh.lightmapUvs, tp.resolution, tp.resolution, tp.padding,
                      &t.stats, progressBar(std::string("bake ") + toString(mode)));
@@ -817,7 +846,8 @@ void addBakeCommand(CLI::App& root) {
       ->check(intRange(1, kMaxLightmapSide));
   cmd->add_option("--uv", args->uv,
                   "--domain texels: the UV set: auto (the lightmap set, glTF TEXCOORD_1, else the "
-                  "texture set when it has no overlaps) | 1 | 0");
+                  "texture set when it has no overlaps, else an atlas made as prt unwrap makes "
+                  "it) | 1 | 0");
   cmd->add_option("--padding", args->padding,
                   "--domain texels: gutter texels dilated around the charts (default 2)")
       ->check(intRange(0, kMaxLightmapPadding));

@@ -1,4 +1,5 @@
-// prt reference: per-vertex exit radiance by brute-force Monte Carlo, no SH
+// prt reference: exit radiance per vertex, or per texel of a per-texel bake (at the texels'
+// sample points, a subset among the valid ones), by brute-force Monte Carlo, no SH
 // (render/reference.hpp; docs/validation.md).
 //
 //   prt reference BAKE.glb --light ENV [--mode M] [--samples N] [--rotate X,Y,Z]
@@ -37,6 +38,7 @@
 #include "prt/io/reference_file.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/reference.hpp"
+#include "prt/render/texel_points.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transfer/material.hpp"
 #include "report.hpp"
@@ -74,8 +76,11 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   }
 
   const BakeFile file = readBake(a.bake);
-  file.requireVertices(a.bake, "prt reference computes per-vertex references only so far");
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
+  // Per-texel transfer: the rows are the texels' sample points (render/texel_points.hpp), and a
+  // subset is drawn among the valid ones (--vertices counts texels then).
+  const bool texels = bt.transfer.domain() == TransferDomain::Texels;
+  const char* row = texels ? "texel" : "vertex";
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   auto occluder = makeEmbreeOccluder(file.mesh);
@@ -97,14 +102,20 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   rs.seed = a.seed;
   rs.rotation = rotation;
   rs.heuristic = mis;
-  rs.vertices = render::vertexSubset(file.mesh.vertexCount(), a.vertices, a.seed);
+  if (texels)
+    rs.points = std::make_shared<const render::RowPoints>(
+        render::texelRowPoints(file.mesh, *occluder, file.lightmap()));
+  rs.vertices = render::rowSubset(rs.points.get(),
+                                  texels ? file.lightmap().texels() : file.mesh.vertexCount(),
+                                  a.vertices, a.seed);
   const render::ReferenceResult r =
       mpi.reference(file.mesh, *occluder, env.env, rs, progressBar("reference"));
   if (!mpi.root()) return;
   for (std::size_t i = 0; i < r.radiance.size(); ++i)
     for (int c = 0; c < 3; ++c)
       if (!std::isfinite(r.radiance[i][c]) || !std::isfinite(r.stdError[i][c]))
-        throw Error(a.light, "the radiance at vertex " + std::to_string(r.vertices[i]) +
+        throw Error(a.light, std::string("the radiance at ") + row + " " +
+                                 std::to_string(r.vertices[i]) +
                                  " is not finite (the environment is too bright for 32-bit "
                                  "floats); nothing written");
   io::ReferenceFile ref;
@@ -112,6 +123,11 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   ref.bakeFile = a.bake;
   ref.meshVertices = file.mesh.vertexCount();
   ref.meshFingerprint = meshFingerprint(file.mesh);
+  if (texels) {
+    ref.lightmapWidth = file.lightmap().width;
+    ref.lightmapHeight = file.lightmap().height;
+    ref.lightmapUvFingerprint = io::lightmapUvFingerprint(file.mesh);
+  }
   ref.lightSource = a.light;
   ref.environmentFingerprint = io::environmentFingerprint(env.env);
   for (int i = 0; i < 3; ++i)
@@ -133,8 +149,8 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   else
     io::writeReferenceBinary(a.output, ref);
   char line[200];
-  std::snprintf(line, sizeof line, "wrote %s: %zu vertices x %d samples, %llu rays, %.2f s",
-                a.output.c_str(), r.vertices.size(), a.samples,
+  std::snprintf(line, sizeof line, "wrote %s: %zu %s x %d samples, %llu rays, %.2f s",
+                a.output.c_str(), r.vertices.size(), texels ? "texels" : "vertices", a.samples,
                 static_cast<unsigned long long>(r.rays), r.seconds);
   info(line);
   if (report.wanted()) {
@@ -146,7 +162,7 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
     report["material"] = rs.material.spec();
     report["samples"] = a.samples;
     report["seed"] = a.seed;
-    report["vertices"] = r.vertices.size();
+    report[texels ? "texels" : "vertices"] = r.vertices.size();
     report["rays"] = r.rays;
     report["seconds"] = r.seconds;
     if (mpi.active()) report["mpiRanks"] = mpi.size();
@@ -175,18 +191,21 @@ void runReference(const ReferenceArgs& a) {
 
 void addReferenceCommand(CLI::App& root) {
   auto* cmd = root.add_subcommand(
-      "reference", "Per-vertex exit radiance by brute-force Monte Carlo (no SH), for validation");
+      "reference",
+      "Exit radiance per vertex (or per texel) by brute-force Monte Carlo (no SH), for "
+      "validation");
   auto a = std::make_shared<ReferenceArgs>();
   cmd->add_option("bake", a->bake, "Bake file (.glb): its mesh and transport settings")->required();
   cmd->add_option("--light", a->light, "Environment: image, face folder or builtin:NAME")
       ->required();
   addTransferChoice(cmd, a->transfer, "whose transport the reference follows");
-  cmd->add_option("--samples", a->samples, "Samples per vertex")
+  cmd->add_option("--samples", a->samples, "Samples per vertex (texel)")
       ->check(intRange(1, 1 << 24))
       ->capture_default_str();
   cmd->add_option("--rotate", a->rotate, "Rotate the environment: Euler X,Y,Z degrees");
   cmd->add_option("--vertices", a->vertices,
-                  "Estimate a deterministic random subset of N vertices (0: all)")
+                  "Estimate a deterministic random subset of N vertices (0: all); of a per-texel "
+                  "bake, N of its valid texels")
       ->check(unsignedInt(UINT32_MAX));
   addMaterialOption(cmd, a->material, "the reference renders");
   cmd->add_option("--eye", a->eye,

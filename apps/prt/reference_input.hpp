@@ -18,7 +18,7 @@ namespace prt::cli {
 
 /// What the reference must have been computed for: the mesh and environment (by fingerprint),
 /// the light's rotation, the transport (mode, bounces, material) and, for a glossy material,
-/// the eye the vertices were seen from.
+/// the eye the vertices were seen from; for per-texel transfer the lightmap.
 struct ReferenceScene {
   const Mesh* mesh = nullptr;
   const envmap::Environment* environment = nullptr;
@@ -28,6 +28,9 @@ struct ReferenceScene {
   int bounces = 0;
   Material material;
   std::optional<Vec3f> eye;  ///< set when the material is glossy
+  /// Per-texel transfer: the lightmap its rows are texels of (the reference's must be the same,
+  /// over the same lightmap UVs).
+  std::optional<TransferShape::LightmapSize> lightmap;
 };
 
 /// The scene of a verb that relights `baked` with `material` under `environment` turned by

@@ -25,10 +25,12 @@
 #include "prt/io/lighting.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relighter.hpp"
+#include "prt/render/base_colour.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/exposure.hpp"
 #include "prt/render/primary.hpp"
 #include "prt/render/render.hpp"
+#include "prt/render/texel_points.hpp"
 #include "reference_input.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
@@ -123,19 +125,35 @@ void run(const RenderOptions& o) {
   // Every frame through one relighter: the transfer cut to --bands once (Transfer::cut, the same
   // answer for dense and compressed rows), light-only frames of matrices from the view-collapsed
   // transfer.
-  // Per-texel transfer is relit texel by texel (white: the albedo varies across a texel and is
-  // applied per pixel), then fetched bilinearly where each pixel's lightmap UV falls.
+  // Per-texel transfer is relit texel by texel (render::texelRelight: vectors white, the albedo
+  // applied per pixel; matrices at the texels' sample points), then fetched bilinearly where
+  // each pixel's lightmap UV falls.
   const bool texels = baked.transfer.domain() == TransferDomain::Texels;
   const TransferShape::LightmapSize lightmap = bake.lightmap();
-  relight::Relighter relighter(
-      baked.transfer,
-      texels ? relight::Surface{}
-             : relight::Surface{bake.mesh.positions, bake.mesh.normals, bake.mesh.albedo});
-  relighter.setMaterial(material);
+  const auto occluder = makeEmbreeOccluder(bake.mesh);
+  const render::TexelRelight texelRelight =
+      texels ? render::texelRelight(bake.mesh, *occluder, baked.transfer, material)
+             : render::TexelRelight{};
+  const relight::Surface surface =
+      texels ? texelRelight.surface()
+             : relight::Surface{bake.mesh.positions, bake.mesh.normals, bake.mesh.albedo};
+  // The base-colour texture multiplies the diffuse radiance per pixel (render/base_colour.hpp);
+  // under a glossy matrix material the highlight is relit apart and added untextured.
+  const BaseColourTexture* texture = render::pixelTexture(bake.mesh, material);
+  const render::TextureSplit split = render::splitForTexture(material, texture, baked.transfer);
+  relight::Relighter relighter(baked.transfer, surface);
+  relighter.setMaterial(split.diffuse);
+  std::optional<relight::Relighter> glossyRelighter;
+  if (split.glossy) {
+    glossyRelighter.emplace(baked.transfer, surface);
+    glossyRelighter->setMaterial(*split.glossy);
+  }
   if (o.bands > baked.transfer.bands())
     warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands,
                      baked.transfer.bands(), baked.transfer.bands()));
   if (o.bands > 0) relighter.setBands(std::min(o.bands, baked.transfer.bands()));
+  if (o.bands > 0 && glossyRelighter)
+    glossyRelighter->setBands(std::min(o.bands, baked.transfer.bands()));
   if (baked.transfer.isMatrix()) warnLobeEnergyLoss(material, relighter.bands(), o.bake);
 
   // The light: an SH light file, or an environment projected to the transfer's bands.
@@ -144,7 +162,6 @@ void run(const RenderOptions& o) {
   for (const std::string& w : lighting.warnings) warn(w);
   const sh::RgbSh& light = lighting.coefficients;
 
-  const auto occluder = makeEmbreeOccluder(bake.mesh);
   render::Camera camera = render::frameMesh(bake.mesh, frame.width, frame.height);
   if (!o.camera.empty()) camera = render::parseCamera(o.camera, camera);
   if (render::eyeInsideMesh(bake.mesh, *occluder, camera.eye))
@@ -195,10 +212,24 @@ void run(const RenderOptions& o) {
                                   : std::span<const Rgb>(referenceRadiance);
     if (!referenceRadiance.empty()) relit.bands = 0;  // no SH: the reference
     render::checkFiniteRadiance(radiance, o.bake, texels ? "texel" : "vertex");
-    const render::ShadeFn shade =
-        texels ? render::texelRadianceShader(bake.mesh, radiance, lightmap.width, lightmap.height,
-                                             render::texelAlbedo(bake.mesh, material))
-               : render::vertexRadianceShader(bake.mesh, radiance);
+    const auto draw = [&](std::span<const Rgb> values, std::span<const Rgb> pixelAlbedo) {
+      return texels ? render::texelRadianceShader(bake.mesh, values, lightmap.width,
+                                                  lightmap.height, pixelAlbedo)
+                    : render::vertexRadianceShader(bake.mesh, values);
+    };
+    render::ShadeFn shade = draw(radiance, texelRelight.pixelAlbedo);
+    // The reference's radiance holds the texture already, folded in at its vertices as every
+    // per-vertex stage sees it (geometry/mesh.hpp): drawn as it is.
+    if (texture && referenceRadiance.empty()) {
+      render::ShadeFn glossy;
+      if (glossyRelighter && referenceRadiance.empty()) {
+        const std::span<const Rgb> highlight =
+            glossyRelighter->relight(light, rotation, camera.eye);
+        render::checkFiniteRadiance(highlight, o.bake, texels ? "texel" : "vertex");
+        glossy = draw(highlight, {});
+      }
+      shade = render::texturedShader(bake.mesh, *texture, std::move(shade), std::move(glossy));
+    }
     // --exposure auto: image/exposure.hpp's rule on the first frame's model pixels, kept for
     // every turntable frame so they compare.
     if (k == 0)

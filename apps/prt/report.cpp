@@ -55,6 +55,7 @@ std::vector<std::string> meshAttributes(const Mesh& m) {
   if (!m.uvs.empty()) a.push_back("uvs");
   if (!m.lightmapUvs.empty()) a.push_back("lightmapUvs");
   if (!m.albedo.empty()) a.push_back("albedo");
+  if (m.baseColour) a.push_back("baseColourTexture");
   return a;
 }
 

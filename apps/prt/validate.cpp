@@ -97,9 +97,6 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   // Per-texel transfer: the rows are the texels' sample points; a subset of the valid ones is
   // validated (--vertices counts texels then).
   const bool texels = bt.transfer.domain() == TransferDomain::Texels;
-  if (texels && !a.reference.empty())
-    throw Error(a.reference, "a reference file holds vertices; " + a.bake +
-                                 " holds per-texel transfer (validate it without --reference)");
 
   render::ValidateSettings vs;
   if (texels)
@@ -141,8 +138,8 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
     vs.reference.samples = ref.samples;
     vs.reference.seed = ref.seed;
     vs.reference.heuristic = parseMis(ref.mis);
-    info(fmt::format("reference from {}: {} vertices x {} samples", a.reference,
-                     ref.vertices.size(), ref.samples));
+    info(fmt::format("reference from {}: {} {} x {} samples", a.reference, ref.vertices.size(),
+                     texels ? "texels" : "vertices", ref.samples));
   }
   const render::ValidationReport rep = render::validate(
       file.mesh, *occluder, bt.transfer, recipe, env.env, light, vs, progressBar("reference"));

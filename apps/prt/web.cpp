@@ -204,6 +204,13 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(a.bake);
   if (!a.mode.empty()) prt::pickTransfer(bake, parseTransferMode(a.mode), {}, a.bake);
+  // The page shades per vertex (and per texel) from the file's COLOR_0: a base-colour texture is
+  // folded into it (geometry/mesh.hpp), as every per-vertex consumer sees it.
+  if (bake.mesh.baseColour) {
+    foldBaseColour(bake.mesh);
+    const std::string bytes = encodeBake(bake);
+    glb.assign(bytes.begin(), bytes.end());
+  }
   return glb;
 }
 

@@ -61,6 +61,9 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   // CPCA-compressed transfer (prt compress) stays compressed: it is relit in the compressed
   // space (SceneView).
   BakeFile bake = readBake(path);
+  // The viewer shades per vertex (and per texel): a base-colour texture is folded into the
+  // vertices' albedo (geometry/mesh.hpp), as every per-vertex consumer sees it.
+  foldBaseColour(bake.mesh);
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);

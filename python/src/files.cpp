@@ -56,7 +56,9 @@ struct PyBakeFile {
 
 prt::BakeFile readFile(const std::string& path) {
   py::gil_scoped_release nogil;
-  return prt::readBake(path);
+  prt::BakeFile f = prt::readBake(path);
+  prt::foldBaseColour(f.mesh);  // as load_mesh: the module shades per vertex (and per texel)
+  return f;
 }
 
 py::dict lightDict(const prt::io::LightFile& f) {

@@ -373,6 +373,9 @@ a prtkit.Mesh rather than, say, a trimesh object to build it once.)")
         {
           py::gil_scoped_release nogil;
           mesh = prt::loadScene(inputs, &report);
+          // The module shades per vertex (and per texel): a base-colour texture is folded
+          // into the vertices' albedo (geometry/mesh.hpp), as every per-vertex consumer sees it.
+          prt::foldBaseColour(mesh);
         }
         for (const std::string& w : report.warnings) warn(w);
         return std::make_shared<PyMesh>(std::move(mesh));

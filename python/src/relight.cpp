@@ -73,12 +73,23 @@ py::array relightFn(py::handle transferObj, py::handle lightObj, py::handle albe
   const std::size_t first = tr.rows().first, rows = tr.rowCount();
   prt::relight::Surface surface;
   std::vector<prt::Rgb> albedoStore;
-  if (mesh && tr.domain() == prt::TransferDomain::Texels)
+  const bool texels = tr.domain() == prt::TransferDomain::Texels;
+  if (mesh && texels && !tr.isMatrix())
     throw py::value_error(
         "the transfer is per texel: relight it without mesh= (white, one radiance per texel) "
         "and render it as a lightmap (render(mesh, radiance.reshape(h, w, 3)) multiplies the "
         "albedo per pixel)");
-  if (mesh) {
+  // Per-texel matrices: relit at the texels' sample points with their albedo (render::
+  // texelRelight, as prt render does), so the lightmap is shown without the albedo again.
+  prt::render::TexelRelight texelPoints;
+  if (mesh && texels) {
+    if (tr.rows().first != 0 || tr.rowCount() != tr.shape().lightmap.texels())
+      throw py::value_error("relighting per-texel matrices needs every texel (a complete bake)");
+    texelPoints = asValueError([&] {
+      return prt::render::texelRelight(mesh->mesh(), mesh->occluder(), tr, prt::Material{});
+    });
+    surface = texelPoints.surface();
+  } else if (mesh) {
     const prt::Mesh& mm = mesh->mesh();
     if (mm.vertexCount() < first + rows)
       throw py::value_error("mesh has " + std::to_string(mm.vertexCount()) +

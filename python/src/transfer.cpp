@@ -156,8 +156,6 @@ prt::BakeSettings bakeSettings(const prt::Mesh& mesh, const std::string& mode, i
     if (lightmap.padding < 0 || lightmap.padding > prt::kMaxLightmapPadding)
       throw py::value_error("padding=" + std::to_string(lightmap.padding) + ": must be 0.." +
                             std::to_string(prt::kMaxLightmapPadding));
-    if (s.layout != prt::TransferLayout::Vector)
-      throw py::value_error("domain='texels' bakes vector transfer only so far");
     asValueError([&] { return prt::parseUvSetOption(lightmap.uv); });
   } else if (lightmap.seamFix) {
     throw py::value_error("seam_fix=True is of domain='texels'");
@@ -252,7 +250,7 @@ sampling: 'cosine' (cosine-weighted Owen-scrambled Sobol') | 'uniform' (the cour
 range: (first, end) or range(first, end): bake only those vertices (texels) (split bakes).
 domain: 'vertices' (one row per vertex) | 'texels' (one row per texel of a resolution x
     resolution lightmap over the mesh's lightmap UVs, texel (x, y) row y*resolution + x: reshape
-    to (resolution, resolution, ...) for an image; vector transfer only).
+    to (resolution, resolution, ...) for an image; vectors and matrices).
 resolution, uv, padding: domain='texels': the lightmap's side; the UV set, 'auto' (the
     lightmap set, else the texture set when it holds one), '1' or '0'; gutter texels dilated.
 seam_fix: domain='texels': the least-squares seam fix (Sylvan 2015; prt bake --seam-fix):

@@ -12,7 +12,7 @@ UvSetOption parseUvSetOption(const std::string& s) {
   throw Error("unknown UV set '" + s.substr(0, 40) + "' (auto, 0 or 1)");
 }
 
-LightmapUvChoice chooseLightmapUvs(const Mesh& mesh, UvSetOption option, int width, int height) {
+LightmapUvChoice findLightmapUvs(const Mesh& mesh, UvSetOption option, int width, int height) {
   struct Candidate {
     const std::vector<Vec2f>* uvs;
     const char* name;
@@ -40,11 +40,18 @@ LightmapUvChoice chooseLightmapUvs(const Mesh& mesh, UvSetOption option, int wid
     choice.name = c.name;
     return choice;
   }
+  return choice;
+}
+
+LightmapUvChoice chooseLightmapUvs(const Mesh& mesh, UvSetOption option, int width, int height) {
+  LightmapUvChoice choice = findLightmapUvs(mesh, option, width, height);
+  if (!choice.uvs.empty()) return choice;
   std::string reasons;
   for (const std::string& r : choice.refused) reasons += (reasons.empty() ? "" : "; ") + r;
-  throw Error(mesh.source, "no UV set can hold a " + std::to_string(width) + " x " +
-                               std::to_string(height) + " lightmap (" + reasons +
-                               "); give the mesh a lightmap UV set (glTF TEXCOORD_1)");
+  throw Error(mesh.source,
+              "no UV set can hold a " + std::to_string(width) + " x " + std::to_string(height) +
+                  " lightmap (" + reasons +
+                  "); give the mesh a lightmap UV set (glTF TEXCOORD_1, or prt unwrap)");
 }
 
 }  // namespace prt

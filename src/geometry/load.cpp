@@ -173,15 +173,6 @@ std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsi
   return out;
 }
 
-Rgb sampleTexture(const image::Image& img, Vec2f uv, bool vUp) {
-  if (img.empty() || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return Rgb(1.0f);
-  const double u = uv.x - std::floor(uv.x);
-  double v = uv.y - std::floor(uv.y);
-  if (vUp) v = 1.0 - v;
-  // Continuous pixel coordinates: u = 0 is the left edge of the image, u = 1 its right edge.
-  return image::sampleBilinear(img, u * img.width, v * img.height, true);
-}
-
 }  // namespace detail
 
 namespace {
@@ -222,6 +213,8 @@ void finishMesh(Mesh& m, const std::string& label, LoadReport& report) {
     for (int k = 0; k < 3; ++k)
       if (a[k] < 0) a[k] = 0;
   if (!m.uvs.empty() && m.uvs.size() != m.positions.size()) m.uvs.clear();
+  if (m.baseColour && m.uvs.size() != m.positions.size())
+    throw Error(label, "internal: a base colour texture without a UV per vertex");
   if (!m.lightmapUvs.empty() && m.lightmapUvs.size() != m.positions.size()) m.lightmapUvs.clear();
   if (m.parts.empty()) m.parts.push_back(MeshPart{stem(label), 0, 0, 0, 0});
   if (m.parts.size() == 1) {
@@ -328,6 +321,18 @@ Mesh loadMeshBytes(const std::string& name, std::span<const unsigned char> bytes
 }
 
 void appendMesh(Mesh& scene, const Mesh& part) {
+  // A base-colour texture survives for a scene of one file only (one texture per scene): the
+  // second file folds the first's into its albedo, and its own is folded too.
+  if (!scene.positions.empty() && (scene.baseColour || part.baseColour)) {
+    foldBaseColour(scene);
+    if (part.baseColour) {
+      Mesh folded = part;
+      foldBaseColour(folded);
+      appendMesh(scene, folded);
+      return;
+    }
+  }
+  if (scene.positions.empty()) scene.baseColour = part.baseColour;
   if (!scene.gloss) scene.gloss = part.gloss;  // the first file's glossy surface
   const std::uint32_t v0 = static_cast<std::uint32_t>(scene.positions.size());
   const std::uint32_t t0 = static_cast<std::uint32_t>(scene.triangles.size());

@@ -10,17 +10,24 @@
 // inverse transpose of its upper 3×3 (then renormalised); a mirroring matrix (det < 0) reverses
 // the triangles' winding so counter-clockwise stays front.
 //
-// Albedo (§3.9.2): baseColorFactor (linear) × baseColorTexture (sRGB-encoded, decoded to linear,
-// sampled bilinearly at the vertex's TEXCOORD_n with repeat wrapping; (0,0) is the image's top
-// left corner) × COLOR_0 (linear). Primitives without a material use the default material
-// (white). A file whose primitives have neither materials nor COLOR_0 leaves the albedo empty.
+// Albedo (§3.9.2): baseColorFactor (linear) × baseColorTexture (sRGB-encoded, decoded to linear;
+// (0,0) is the image's top left corner) × COLOR_0 (linear). Primitives without a material use
+// the default material (white). A file whose primitives have neither materials nor COLOR_0
+// leaves the albedo empty.
+//
+// The texture: when every triangle primitive uses the same image as its baseColorTexture, on
+// TEXCOORD_0, it is kept as the mesh's base-colour texture (geometry/base_colour.hpp) and the
+// albedo holds baseColorFactor × COLOR_0 alone, so images multiply the texture per pixel.
+// Otherwise (textures that differ between primitives, a primitive without one, another UV set)
+// each texture is sampled bilinearly at the vertices into the albedo, with a warning. Images
+// are decoded by image::readSrgb8Bytes (PNG and JPEG, sizes checked before any allocation); one
+// that is missing or cannot be decoded is not used, with a warning naming it.
 
 #include <tiny_gltf.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -30,8 +37,8 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
+#include "prt/geometry/base_colour.hpp"
 #include "prt/gltf/accessor.hpp"
-#include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 
 namespace prt::detail {
@@ -124,12 +131,20 @@ Mat4 localMatrix(const tinygltf::Node& n) {
   return t * r * s;
 }
 
+/// Why an image could not be decoded, by image index (filled by loadImage while tinygltf parses).
+using ImageFailures = std::map<int, std::string>;
+
 /// The model's accessors (through the one checked reader, prt/gltf/accessor.hpp) and its base
 /// colour textures.
 class Reader {
  public:
-  Reader(const std::string& label, const tinygltf::Model& model, LoadReport& report)
-      : label_(label), model_(model), report_(report), accessors_(label, gltf::documentOf(model)) {}
+  Reader(const std::string& label, const tinygltf::Model& model, const ImageFailures& failures,
+         LoadReport& report)
+      : label_(label),
+        model_(model),
+        failures_(failures),
+        report_(report),
+        accessors_(label, gltf::documentOf(model)) {}
 
   /// Accessor `index` as `count` × `comps` floats (normalised integers mapped per §3.11).
   std::vector<float> floats(int index, int comps, const char* what) {
@@ -143,44 +158,39 @@ class Reader {
   std::vector<std::uint32_t> indices(int index) { return accessors_.indices(index, "indices"); }
   std::size_t count(int index, const char* what) { return accessors_.count(index, what); }
 
-  /// The base colour texture of image `img`, linear, decoded once.
-  const image::Image* texture(int tex, const std::filesystem::path& dir) {
-    if (tex < 0 || tex >= int(model_.textures.size())) return nullptr;
+  /// The image texture `tex` shows, or −1.
+  int imageOf(int tex) const {
+    if (tex < 0 || tex >= int(model_.textures.size())) return -1;
     const int src = model_.textures[tex].source;
+    return src >= 0 && src < int(model_.images.size()) ? src : -1;
+  }
+  /// Image `src` as a base colour texture, converted once; nullptr (and one warning) when it
+  /// could not be read.
+  const BaseColourTexture* texture(int src) {
     if (src < 0 || src >= int(model_.images.size())) return nullptr;
-    auto it = images_.find(src);
-    if (it != images_.end()) return it->second.empty() ? nullptr : &it->second;
-    image::Image& out = images_[src];
+    auto it = textures_.find(src);
+    if (it != textures_.end()) return it->second ? &*it->second : nullptr;
+    std::optional<BaseColourTexture>& out = textures_[src];
     const tinygltf::Image& im = model_.images[src];
-    if (!im.image.empty() && im.width > 0 && im.height > 0 && im.component >= 1 &&
-        (im.bits == 8 || im.bits == 16) &&
-        im.image.size() >= std::size_t(im.width) * im.height * im.component * (im.bits / 8)) {
-      out = image::Image(im.width, im.height);
-      for (std::size_t i = 0; i < out.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-          const int ch = std::min(c, im.component >= 3 ? 2 : 0);
-          const std::size_t at = i * im.component + ch;
-          float v;
-          if (im.bits == 8) {
-            v = image::srgb8ToLinear(im.image[at]);
-          } else {
-            std::uint16_t x;
-            std::memcpy(&x, &im.image[2 * at], 2);
-            v = image::srgbToLinear(x / 65535.0f);
-          }
-          out.pixels[i][c] = v;
-        }
-    } else if (!im.uri.empty() && im.uri.rfind("data:", 0) != 0) {
-      try {
-        out = image::readImage((dir / im.uri).string());
-      } catch (const Error& e) {
-        report_.warnings.push_back(label_ + ": base colour texture not used: " + e.what());
-      }
-    } else {
-      report_.warnings.push_back(label_ + ": image " + std::to_string(src) +
-                                 " could not be decoded; base colour texture not used");
+    std::string name = "image " + std::to_string(src);
+    if (!im.uri.empty() && im.uri.rfind("data:", 0) != 0)
+      name += " (" + im.uri.substr(0, 80) + ")";
+    else if (!im.name.empty())
+      name += " ('" + im.name.substr(0, 60) + "')";
+    // loadImage stores what it decoded as 8-bit RGB codes; anything else is a failure.
+    if (im.component == 3 && im.bits == 8 && im.width > 0 && im.height > 0 &&
+        im.image.size() == std::size_t(im.width) * std::size_t(im.height) * 3) {
+      out = BaseColourTexture{{im.width, im.height, im.image}, name};
+      return &*out;
     }
-    return out.empty() ? nullptr : &out;
+    const auto why = failures_.find(src);
+    report_.warnings.push_back(label_ + ": " + name + ": base colour texture not used: " +
+                               (why != failures_.end() ? why->second
+                                : !im.uri.empty()
+                                    ? std::string("the file cannot be read (missing, or not a "
+                                                  "regular file beside the glTF)")
+                                    : std::string("no image data")));
+    return nullptr;
   }
 
   [[noreturn]] void fail(const std::string& msg) const { throw Error(label_, msg); }
@@ -188,9 +198,10 @@ class Reader {
  private:
   const std::string& label_;
   const tinygltf::Model& model_;
+  const ImageFailures& failures_;
   LoadReport& report_;
   gltf::AccessorReader accessors_;
-  std::map<int, image::Image> images_;
+  std::map<int, std::optional<BaseColourTexture>> textures_;
 };
 
 }  // namespace
@@ -231,20 +242,27 @@ bool fsWrite(std::string* err, const std::string&, const std::vector<unsigned ch
   return false;
 }
 
-/// tinygltf decodes embedded images with stb_image while parsing; check the size each declares
-/// against the image limits first, so a 100-byte PNG header cannot ask for gigabytes.
-bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
-               int reqW, int reqH, const unsigned char* bytes, int size, void* user) {
+/// tinygltf hands every image's bytes (embedded, data: URI, or an external file read through
+/// fsRead) to this callback while parsing. Decoded by the image module's checked reader (PNG and
+/// JPEG, the declared size against the limits before anything is allocated, so a 100-byte PNG
+/// header cannot ask for gigabytes) into 8-bit RGB codes. An image that fails is not fatal for
+/// the mesh: its reason is kept for Reader::texture's warning and the image left empty.
+bool loadImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+               const unsigned char* bytes, int size, void* user) {
   try {
-    image::checkEncodedImageSize(
-        "image " + std::to_string(index),
-        std::span<const unsigned char>(bytes, std::size_t(std::max(size, 0))));
+    image::Srgb8Image img = image::readSrgb8Bytes(
+        "", std::span<const unsigned char>(bytes, std::size_t(std::max(size, 0))));
+    image->width = img.width;
+    image->height = img.height;
+    image->component = 3;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(img.rgb);
   } catch (const Error& e) {
-    // Not fatal for the mesh: the texture is skipped (Reader::texture warns).
-    if (warn) *warn += std::string(e.what()) + "\n";
-    return true;
+    (*static_cast<ImageFailures*>(user))[index] = e.what();
+    image->image.clear();
   }
-  return tinygltf::LoadImageData(image, index, err, warn, reqW, reqH, bytes, size, user);
+  return true;
 }
 
 }  // namespace
@@ -266,12 +284,13 @@ namespace {
 
 /// The mesh a glTF scene makes: every triangle primitive of every mesh instance, transformed to
 /// world space, with its normals, its first UV set, and an albedo from the base colour factor,
-/// texture and COLOR_0 (all white where one primitive has an albedo and another has none).
+/// texture and COLOR_0 (all white where one primitive has an albedo and another has none); the
+/// texture kept apart when every primitive shares one (see the file comment).
 class GltfMeshBuilder {
  public:
-  GltfMeshBuilder(const std::string& path, const tinygltf::Model& model, const std::string& baseDir,
-                  LoadReport& report)
-      : path_(path), model_(model), dir_(baseDir), report_(report), rd_(path, model, report) {}
+  GltfMeshBuilder(const std::string& path, const tinygltf::Model& model,
+                  const ImageFailures& failures, LoadReport& report)
+      : path_(path), model_(model), report_(report), rd_(path, model, failures, report) {}
 
   /// Mesh `meshIndex` instanced with `world` as one part.
   void addMesh(int meshIndex, const Mat4& world, const std::string& partName);
@@ -285,7 +304,9 @@ class GltfMeshBuilder {
   struct Surface {
     bool hasMaterial = false;
     Rgb factor{1.0f};
-    const image::Image* texture = nullptr;
+    const BaseColourTexture* texture = nullptr;
+    int image = -1;     ///< the texture's image
+    int texCoord = -1;  ///< the UV set it reads
     std::vector<float> uv;
   };
   Surface surfaceOf(const tinygltf::Primitive& prim);
@@ -295,13 +316,17 @@ class GltfMeshBuilder {
 
   const std::string& path_;
   const tinygltf::Model& model_;
-  const std::filesystem::path dir_;
   LoadReport& report_;
   Reader rd_;
   Mesh mesh_;
   bool anyAlbedo_ = false, anyNormals_ = false;
   bool noLightmap_ = false;  // some primitive lacks TEXCOORD_1: the mesh has no lightmap set
-  std::vector<Rgb> albedo_;
+  // Per vertex: the albedo with the texture sampled at the vertex, and without it (factor ×
+  // COLOR_0); finish() keeps one.
+  std::vector<Rgb> albedo_, untextured_;
+  // The image every primitive so far shows on TEXCOORD_0 (−1: none), until two differ.
+  int sharedImage_ = -1;
+  bool firstPrimitive_ = true, oneTexture_ = true, anyTexture_ = false;
 };
 
 void GltfMeshBuilder::addMesh(int meshIndex, const Mat4& world, const std::string& partName) {
@@ -348,8 +373,12 @@ GltfMeshBuilder::Surface GltfMeshBuilder::surfaceOf(const tinygltf::Primitive& p
     const std::string set = "TEXCOORD_" + std::to_string(std::max(0, bt.texCoord));
     const auto it = prim.attributes.find(set);
     if (it != prim.attributes.end()) {
-      out.texture = rd_.texture(bt.index, dir_);
-      if (out.texture) out.uv = rd_.floats(it->second, 2, set.c_str());
+      out.image = rd_.imageOf(bt.index);
+      out.texture = rd_.texture(out.image);
+      if (out.texture) {
+        out.texCoord = std::max(0, bt.texCoord);
+        out.uv = rd_.floats(it->second, 2, set.c_str());
+      }
     }
   }
   return out;
@@ -396,7 +425,14 @@ void GltfMeshBuilder::addPrimitive(const tinygltf::Mesh& gm, std::size_t pi, con
   if ((surface.hasMaterial || !col.empty()) && !anyAlbedo_) {
     anyAlbedo_ = true;
     albedo_.assign(mesh_.positions.size(), Rgb(1.0f));  // earlier primitives: default material
+    untextured_ = albedo_;
   }
+  // One texture for the scene: the same image on TEXCOORD_0 in every primitive.
+  const int image = surface.texture && surface.texCoord == 0 ? surface.image : -1;
+  anyTexture_ |= surface.texture != nullptr;
+  if (firstPrimitive_) sharedImage_ = image;
+  oneTexture_ &= image == sharedImage_;
+  firstPrimitive_ = false;
   if (!uv0.empty() && mesh_.uvs.size() < mesh_.positions.size())
     mesh_.uvs.resize(mesh_.positions.size());
   // TEXCOORD_1, the lightmap set engines read: kept only when every primitive has one.
@@ -420,11 +456,16 @@ void GltfMeshBuilder::addPrimitive(const tinygltf::Mesh& gm, std::size_t pi, con
       mesh_.uvs.push_back({});
     if (!noLightmap_) mesh_.lightmapUvs.push_back({uv1[2 * i], uv1[2 * i + 1]});
     if (anyAlbedo_) {
-      Rgb a = surface.factor;
+      Rgb a = surface.factor, plain = surface.factor;
       if (surface.texture)
-        a *= sampleTexture(*surface.texture, {surface.uv[2 * i], surface.uv[2 * i + 1]}, false);
-      if (!col.empty()) a *= Rgb{col[colComps * i], col[colComps * i + 1], col[colComps * i + 2]};
+        a *= sampleBaseColour(*surface.texture, {surface.uv[2 * i], surface.uv[2 * i + 1]});
+      if (!col.empty()) {
+        const Rgb c{col[colComps * i], col[colComps * i + 1], col[colComps * i + 2]};
+        a *= c;
+        plain *= c;
+      }
       albedo_.push_back(a);
+      untextured_.push_back(plain);
     }
   }
   std::vector<std::uint32_t> idx;
@@ -513,7 +554,19 @@ void GltfMeshBuilder::addScene() {
 
 Mesh GltfMeshBuilder::finish() {
   if (mesh_.positions.empty()) throw Error(path_, "has no triangle meshes in its scene");
-  if (anyAlbedo_) mesh_.albedo = std::move(albedo_);
+  const bool keepTexture = oneTexture_ && sharedImage_ >= 0 && anyAlbedo_;
+  if (keepTexture) {
+    mesh_.baseColour = *rd_.texture(sharedImage_);
+    mesh_.albedo = std::move(untextured_);
+  } else if (anyAlbedo_) {
+    mesh_.albedo = std::move(albedo_);
+    if (anyTexture_)
+      report_.warnings.push_back(
+          path_ +
+          ": the primitives do not all use one base colour texture on TEXCOORD_0, so each "
+          "texture is sampled at the vertices only (prtkit applies one texture per scene per "
+          "pixel)");
+  }
   if (!anyNormals_) mesh_.normals.clear();  // all computed, no warning
   if (!mesh_.uvs.empty() && mesh_.uvs.size() != mesh_.positions.size())
     mesh_.uvs.resize(mesh_.positions.size());
@@ -531,7 +584,8 @@ Mesh readGltfBytes(const std::string& path, std::span<const unsigned char> bytes
   tinygltf::TinyGLTF loader;
   FsContext fsContext{allowFiles};
   loader.SetFsCallbacks(tinygltf::FsCallbacks{&fsExists, &fsExpand, &fsRead, &fsWrite, &fsContext});
-  loader.SetImageLoader(&loadImage, nullptr);
+  ImageFailures imageFailures;
+  loader.SetImageLoader(&loadImage, &imageFailures);
   std::string err, warn;
   if (bytes.size() > std::numeric_limits<unsigned int>::max())
     throw Error(path, "file too large for a glTF");
@@ -547,7 +601,7 @@ Mesh readGltfBytes(const std::string& path, std::span<const unsigned char> bytes
     if (err.size() > 200) err = err.substr(0, 200) + "...";
     throw Error(path, err.empty() ? "cannot parse glTF" : err);
   }
-  GltfMeshBuilder builder(path, model, baseDir, report);
+  GltfMeshBuilder builder(path, model, imageFailures, report);
   builder.addScene();
   return builder.finish();
 }

@@ -8,9 +8,16 @@
 // welded, so a position used with two normals or two UVs stays two vertices. Polygons are
 // fan-triangulated (0,1,2), (0,2,3), ..., which does not change the order of first appearance.
 //
-// Albedo: the face's material Kd, multiplied by map_Kd sampled at the vertex's UV (decoded from
-// sRGB by the image module), as the MTL specification states. A vertex takes the material of the
-// first face that uses it. A file without materials leaves the albedo empty (uniform).
+// Albedo: the face's material Kd, multiplied by map_Kd (decoded from sRGB by the image module),
+// as the MTL specification states. A vertex takes the material of the first face that uses it.
+// A file without materials leaves the albedo empty (uniform).
+//
+// The texture: when every face has a material whose map_Kd is the same image file, and a
+// texture coordinate at every corner, it is kept as the mesh's base-colour texture
+// (geometry/base_colour.hpp, stored bottom row first since OBJ's v runs up) and the albedo is
+// Kd alone, so images multiply the texture per pixel. Otherwise each map_Kd is sampled
+// bilinearly at the vertices into the albedo, with a warning. A map_Kd that is missing or
+// cannot be decoded is not used, with a warning naming the file (as a missing .mtl is).
 
 #include <tiny_obj_loader.h>
 
@@ -31,6 +38,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
+#include "prt/geometry/base_colour.hpp"
 #include "prt/image/image_io.hpp"
 
 namespace prt::detail {
@@ -257,28 +265,46 @@ std::optional<SurfaceGloss> checkMaterials(const std::string& path,
   return gloss;
 }
 
-/// The diffuse textures (map_Kd), decoded once per material, relative to `baseDir`; one that
-/// cannot be read is left empty with a warning.
-std::vector<image::Image> loadTextures(const std::string& path, const std::string& baseDir,
-                                       const std::vector<tinyobj::material_t>& materials,
-                                       LoadReport& report) {
-  // Textures, decoded once per material.
+/// The diffuse textures (map_Kd), each file decoded once, relative to `baseDir`, stored as
+/// base_colour.hpp wants them: row 0 at v = 0, which in OBJ is the image's bottom row.
+struct ObjTextures {
+  std::vector<BaseColourTexture> images;
+  std::vector<int> ofMaterial;  ///< per material, its image, or −1 (none, or not readable)
+};
+
+ObjTextures loadTextures(const std::string& path, const std::string& baseDir,
+                         const std::vector<tinyobj::material_t>& materials, LoadReport& report) {
   const std::filesystem::path dir = baseDir;
-  std::vector<image::Image> textures(materials.size());
+  ObjTextures out;
+  out.ofMaterial.assign(materials.size(), -1);
+  std::map<std::string, int> byFile;  // a file several materials share is read once
   for (std::size_t m = 0; m < materials.size(); ++m) {
     std::string name = materials[m].diffuse_texname;
     if (name.empty()) continue;
     std::replace(name.begin(), name.end(), '\\', '/');
     const std::string file = (dir / name).string();
+    if (const auto it = byFile.find(file); it != byFile.end()) {
+      out.ofMaterial[m] = it->second;
+      continue;
+    }
+    int& index = byFile[file] = -1;
     try {
-      textures[m] = image::readImage(file);
+      image::Srgb8Image img = image::readSrgb8Image(file);
+      // Flip the rows: OBJ's v = 0 is the image's bottom row.
+      const std::size_t row = std::size_t(img.width) * 3;
+      for (int y = 0; y < img.height / 2; ++y)
+        std::swap_ranges(img.rgb.begin() + std::ptrdiff_t(y * row),
+                         img.rgb.begin() + std::ptrdiff_t((y + 1) * row),
+                         img.rgb.begin() + std::ptrdiff_t((img.height - 1 - y) * row));
+      index = int(out.images.size());
+      out.images.push_back({std::move(img), name.substr(0, 120)});
     } catch (const Error& e) {
-      report.warnings.push_back(path + ": material '" + materials[m].name +
+      report.warnings.push_back(path + ": material '" + materials[m].name.substr(0, 80) +
                                 "': texture not used: " + e.what());
     }
+    out.ofMaterial[m] = index;
   }
-
-  return textures;
+  return out;
 }
 
 }  // namespace
@@ -326,9 +352,15 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
   const std::size_t np = attrib.vertices.size() / 3, nt = attrib.texcoords.size() / 2,
                     nn = attrib.normals.size() / 3;
 
-  const std::vector<image::Image> textures = mtlText
-                                                 ? std::vector<image::Image>(materials.size())
-                                                 : loadTextures(path, baseDir, materials, report);
+  ObjTextures textures;
+  if (mtlText)
+    textures.ofMaterial.assign(materials.size(), -1);
+  else
+    textures = loadTextures(path, baseDir, materials, report);
+  // The texture of a face (its material's, −1 for none or no UV at some corner): one for every
+  // face is the scene's base-colour texture.
+  int sharedTexture = -2;  // no face yet
+  bool oneTexture = true, anyTexture = false;
 
   Mesh mesh;
   std::unordered_map<std::array<int, 3>, std::uint32_t, TripleHash> index;
@@ -364,6 +396,14 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
       }
       offset += n;
       if (n < 3) continue;  // points and lines carry no surface
+      int texture = material >= 0 && std::size_t(material) < materials.size()
+                        ? textures.ofMaterial[std::size_t(material)]
+                        : -1;
+      anyTexture |= texture >= 0;
+      for (std::size_t k = 0; k < n; ++k)
+        if (shape.mesh.indices[offset - n + k].texcoord_index < 0) texture = -1;
+      if (sharedTexture == -2) sharedTexture = texture;
+      oneTexture &= texture == sharedTexture;
       if (n > 3) ++report.polygonsTriangulated;
       for (std::size_t k = 1; k + 1 < n; ++k)
         mesh.triangles.push_back({corners[0], corners[k], corners[k + 1]});
@@ -373,6 +413,12 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
     throw Error(path, "has no faces (" + std::to_string(np) +
                           " vertices but no triangles; a point cloud cannot be baked)");
 
+  const bool keepTexture = oneTexture && sharedTexture >= 0;
+  if (anyTexture && !keepTexture)
+    report.warnings.push_back(
+        path +
+        ": the faces do not all use one map_Kd with texture coordinates, so each texture is "
+        "sampled at the vertices only (prtkit applies one texture per scene per pixel)");
   const std::size_t nv = triples.size();
   mesh.positions.resize(nv);
   if (anyNormal) mesh.normals.assign(nv, Vec3f(0.0f));  // zero marks "no normal" for repair
@@ -390,11 +436,14 @@ Mesh readObjText(const std::string& path, std::string_view text, const std::stri
     if (m >= 0 && std::size_t(m) < materials.size()) {
       const auto& d = materials[m].diffuse;
       Rgb a{float(d[0]), float(d[1]), float(d[2])};
-      if (!textures[m].empty() && ti >= 0) a *= sampleTexture(textures[m], mesh.uvs[v], true);
+      const int t = textures.ofMaterial[std::size_t(m)];
+      if (!keepTexture && t >= 0 && ti >= 0)
+        a *= sampleBaseColour(textures.images[std::size_t(t)], mesh.uvs[v]);
       mesh.albedo[v] = a;
     }
   }
   mesh.gloss = gloss;
+  if (keepTexture) mesh.baseColour = std::move(textures.images[std::size_t(sharedTexture)]);
   return mesh;
 }
 

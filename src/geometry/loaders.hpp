@@ -38,10 +38,6 @@ bool isOffKeyword(std::string_view key);
 std::vector<unsigned char> gunzip(const std::string& label, std::span<const unsigned char> bytes,
                                   std::string_view format = {});
 
-/// Bilinear lookup at texture coordinates (u, v) with repeat wrapping; v = 0 is the image's
-/// bottom row when `vUp` (OBJ), its top row otherwise (glTF).
-Rgb sampleTexture(const image::Image& img, Vec2f uv, bool vUp);
-
 /// Validates a freshly read mesh and brings it to the invariants stated in load.hpp.
 void finishMesh(Mesh& m, const std::string& label, LoadReport& report);
 

@@ -279,6 +279,22 @@ AccessorSpan AccessorReader::span(int index, const std::string& what) const {
   return s;
 }
 
+std::span<const unsigned char> AccessorReader::viewBytes(int index, const std::string& what) const {
+  if (index < 0 || std::size_t(index) >= doc_.bufferViews.size())
+    fail(what + ": bufferView " + std::to_string(index) + " does not exist (the file has " +
+         std::to_string(doc_.bufferViews.size()) + ")");
+  const std::string view = "bufferView " + std::to_string(index);
+  const Document::BufferView& v = doc_.bufferViews[std::size_t(index)];
+  if (v.buffer < 0 || std::size_t(v.buffer) >= doc_.buffers.size())
+    fail(what + ": " + view + " has no valid buffer");
+  const std::span<const unsigned char> buf = doc_.buffers[std::size_t(v.buffer)];
+  if (v.byteOffset > buf.size() || v.byteLength > buf.size() - v.byteOffset)
+    fail(what + ": " + view + " (" + std::to_string(v.byteLength) + " bytes at " +
+         std::to_string(v.byteOffset) + ") lies outside its buffer of " +
+         std::to_string(buf.size()) + " bytes (truncated file?)");
+  return buf.subspan(v.byteOffset, v.byteLength);
+}
+
 std::vector<float> AccessorReader::floats(int index, int want, const std::string& what) const {
   const AccessorSpan s = span(index, what);  // checks the index
   const std::string& type = doc_.accessors[std::size_t(index)].type;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -191,18 +192,23 @@ void checkPngChunks(const std::string& path, std::span<const unsigned char> b) {
   }
 }
 
-Image readStbLdr(const std::string& path, std::span<const unsigned char> bytes, LdrDecode decode,
-                 bool jpegByName) {
-  // Decode by content (a PNG named .jpg still reads), but only PNG and JPEG: stb_image would
-  // also take GIF, PSD, PIC, PNM, TGA and HDR data under these names.
+/// The checks before stb_image sees PNG or JPEG bytes; true for a JPEG. Decode by content (a PNG
+/// named .jpg still reads), but only PNG and JPEG: stb_image would also take GIF, PSD, PIC, PNM,
+/// TGA and HDR data under these names. `expected` names the format for the bad-signature error.
+bool checkStbInput(const std::string& path, std::span<const unsigned char> bytes,
+                   const std::string& expected) {
   const bool png = isPng(bytes), jpeg = isJpeg(bytes);
-  if (!png && !jpeg)
-    throw Error(path,
-                std::string("not a ") + (jpegByName ? "JPEG" : "PNG") + " file (bad signature)");
+  if (!png && !jpeg) throw Error(path, "not a " + expected + " (bad signature)");
   if (png) checkPngChunks(path, bytes);
   if (jpeg && !jpegComplete(bytes))
     throw Error(path, "truncated JPEG file (no end-of-image marker)");
   checkEncodedImageSize(path, bytes);
+  return jpeg;
+}
+
+Image readStbLdr(const std::string& path, std::span<const unsigned char> bytes, LdrDecode decode,
+                 bool jpegByName) {
+  const bool jpeg = checkStbInput(path, bytes, jpegByName ? "JPEG file" : "PNG file");
   MemoryReader reader{bytes.data(), bytes.size()};
   const bool sixteen =
       !jpeg && stbi_is_16_bit_from_memory(bytes.data(), static_cast<int>(bytes.size()));
@@ -520,6 +526,52 @@ Image readImageBytes(const std::string& path, const std::string& ext,
   return img;
 }
 
+Srgb8Image readSrgb8Bytes(const std::string& label, std::span<const unsigned char> bytes) {
+  if (bytes.empty()) throw Error(label, "empty file");
+  const bool jpeg = checkStbInput(label, bytes, "PNG or JPEG image");
+  MemoryReader reader{bytes.data(), bytes.size()};
+  const bool sixteen =
+      !jpeg && stbi_is_16_bit_from_memory(bytes.data(), static_cast<int>(bytes.size()));
+  int w = 0, h = 0, n = 0;
+  Srgb8Image img;
+  if (sixteen) {
+    std::unique_ptr<stbi_us, void (*)(void*)> data(
+        stbi_load_16_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3), stbi_image_free);
+    if (!data) throw Error(label, "cannot decode image (" + stbReason() + ")");
+    img.rgb.resize(std::size_t(w) * std::size_t(h) * 3);
+    // 8-bit code c widens to 257 c: rounding v / 257 inverts it exactly.
+    for (std::size_t i = 0; i < img.rgb.size(); ++i)
+      img.rgb[i] = static_cast<std::uint8_t>((std::uint32_t(data.get()[i]) + 128) / 257);
+  } else {
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(
+        stbi_load_from_callbacks(&kCallbacks, &reader, &w, &h, &n, 3), stbi_image_free);
+    if (!data) throw Error(label, "cannot decode image (" + stbReason() + ")");
+    img.rgb.assign(data.get(), data.get() + std::size_t(w) * std::size_t(h) * 3);
+  }
+  if (reader.readPastEnd) throw Error(label, "truncated image file");
+  if (w <= 0 || h <= 0) throw Error(label, "image has no pixels");
+  img.width = w;
+  img.height = h;
+  return img;
+}
+
+Srgb8Image readSrgb8Image(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  if (ext == "png" || ext == "jpg" || ext == "jpeg")
+    return readSrgb8Bytes(path, readFileBytes(path));
+  // A linear image (or an unknown extension, which readImage names) encoded as an LDR texture.
+  const Image linear = readImage(path);
+  Srgb8Image img;
+  img.width = linear.width;
+  img.height = linear.height;
+  img.rgb.resize(linear.size() * 3);
+  for (std::size_t i = 0; i < linear.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      img.rgb[3 * i + c] =
+          static_cast<std::uint8_t>(std::lround(linearToSrgb((&linear.pixels[i].x)[c]) * 255.0f));
+  return img;
+}
+
 namespace {
 
 void stbWriteToStream(void* context, void* data, int size) {
@@ -567,6 +619,19 @@ std::string exrBytes(const std::string& path, const Image& img) {
 }
 
 }  // namespace
+
+std::string encodePng(const Srgb8Image& img, const std::string& name) {
+  if (img.width < 1 || img.height < 1 ||
+      img.rgb.size() != std::size_t(img.width) * std::size_t(img.height) * 3)
+    throw Error(name, "cannot encode a PNG of " + std::to_string(img.width) + " x " +
+                          std::to_string(img.height) + " pixels from " +
+                          std::to_string(img.rgb.size()) + " codes");
+  std::ostringstream os;
+  if (!stbi_write_png_to_func(stbWriteToStream, &os, img.width, img.height, 3, img.rgb.data(),
+                              img.width * 3))
+    throw Error(name, "cannot encode PNG");
+  return os.str();
+}
 
 void writeImage(const std::string& path, const Image& img, const WriteOptions& options) {
   const std::string ext = isStandardOutput(path) ? "png" : fileExtension(path);

@@ -220,13 +220,14 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
             "refers to an external file (" +
             (b["uri"].is_string() ? b["uri"].get<std::string>().substr(0, 80) : b["uri"].dump()) +
             "); a bake is one .glb");
-  if (gltf.contains("images") && gltf["images"].is_array() && !gltf["images"].empty())
-    r.fail("holds images; a bake file holds none (it is not a prtkit bake, or was edited)");
   const gltf::AccessorReader ar(name, gltf::documentOf(gltf, chunks.bin, name));
   const int lightmap = r.has(prt, "lightmapTexCoord")
                            ? static_cast<int>(r.integer(prt, "lightmapTexCoord", where, 0, 1))
                            : -1;
   bake.mesh = io::decodeMesh(gltf, ar, V, T, lightmap, r);
+  // The one image a bake holds: the mesh's base-colour texture (any version reads it; files
+  // without one are as before).
+  bake.mesh.baseColour = io::decodeBaseColour(gltf, ar, bake.mesh, r);
   checkMeshExtent(bake.mesh, name);  // named as given here, not as the bake's recorded source
   bake.mesh.source = text(prt, "source") ? *text(prt, "source") : name;
 

@@ -35,7 +35,8 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces) {
         "merge: the piece starting at " + rowName(p) + " " + std::to_string(p.rows().first);
     const Mesh& m = p.mesh;
     if (m.positions != m0.positions || m.normals != m0.normals || m.triangles != m0.triangles ||
-        m.albedo != m0.albedo || m.lightmapUvs != m0.lightmapUvs)
+        m.albedo != m0.albedo || m.lightmapUvs != m0.lightmapUvs || m.uvs != m0.uvs ||
+        m.baseColour != m0.baseColour)
       throw Error(who + " was baked from a different mesh");
     if (p.domain() != out.domain() || !(p.lightmap() == out.lightmap()))
       throw Error(who + " is over another domain (" + toString(p.domain()) + ", not " +

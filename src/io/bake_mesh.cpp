@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "prt/core/error.hpp"
+#include "prt/image/image_io.hpp"
 
 namespace prt::io {
 
@@ -13,6 +15,7 @@ namespace {
 using nlohmann::json;
 constexpr int kFloat = gltf::kFloat, kUint = gltf::kUnsignedInt;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963, kTriangles = 4;
+constexpr int kLinear = 9729, kRepeat = 10497;  // sampler filters and wrap modes (§5.26)
 
 void requireFinite(const std::vector<float>& x, const std::string& what, const schema::Reader& r) {
   for (std::size_t i = 0; i < x.size(); ++i)
@@ -41,6 +44,15 @@ void checkMeshForWriting(const Mesh& m, const std::vector<MeshPart>& parts) {
   if (!m.uvs.empty() && m.uvs.size() != V) throw Error("bake file: mesh uvs are not per vertex");
   if (!m.lightmapUvs.empty() && m.lightmapUvs.size() != V)
     throw Error("bake file: mesh lightmap uvs are not per vertex");
+  if (m.baseColour) {
+    const image::Srgb8Image& im = m.baseColour->image;
+    if (m.uvs.size() != V)
+      throw Error("bake file: the mesh's base colour texture has no texture UV per vertex");
+    if (im.width < 1 || im.height < 1 ||
+        im.rgb.size() != std::size_t(im.width) * std::size_t(im.height) * 3)
+      throw Error("bake file: the mesh's base colour texture is not a " + std::to_string(im.width) +
+                  " x " + std::to_string(im.height) + " RGB image");
+  }
   std::uint32_t nextV = 0, nextT = 0;
   for (const MeshPart& p : parts) {
     if (p.firstVertex != nextV || p.firstTriangle != nextT || p.vertexCount == 0 ||
@@ -96,6 +108,23 @@ void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
   if (baseColour && mesh.albedo.empty())
     material["pbrMetallicRoughness"]["baseColorFactor"] = {baseColour->x, baseColour->y,
                                                            baseColour->z, 1.0};
+  // The base-colour texture as the material's baseColorTexture on TEXCOORD_0 (the texture set,
+  // Mesh::uvs): one embedded PNG of its sRGB codes, sampled bilinearly with repeat wrapping, as
+  // geometry/base_colour.hpp samples it, so a glTF viewer shows COLOR_0 × texture as prt render
+  // does. The PNG is encoded once here and streamed with the binary chunk.
+  if (mesh.baseColour) {
+    const auto png = std::make_shared<const std::string>(
+        image::encodePng(mesh.baseColour->image, "bake file: base colour texture"));
+    const int imageView =
+        bin.view(png->size(), 0, 0, "base colour texture",
+                 [png](std::ostream& os) { os.write(png->data(), std::streamsize(png->size())); });
+    gltf["images"] = json::array(
+        {{{"bufferView", imageView}, {"mimeType", "image/png"}, {"name", mesh.baseColour->name}}});
+    gltf["samplers"] = json::array(
+        {{{"magFilter", kLinear}, {"minFilter", kLinear}, {"wrapS", kRepeat}, {"wrapT", kRepeat}}});
+    gltf["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+    material["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}, {"texCoord", 0}};
+  }
   json meshes = json::array(), nodes = json::array(), sceneNodes = json::array();
   for (const MeshPart& p : parts) {
     const std::size_t n = p.vertexCount;
@@ -132,6 +161,50 @@ void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
   gltf["nodes"] = std::move(nodes);
   gltf["scenes"] = json::array({{{"name", mesh.source}, {"nodes", std::move(sceneNodes)}}});
   gltf["scene"] = 0;
+}
+
+std::optional<BaseColourTexture> decodeBaseColour(const json& gltf,
+                                                  const gltf::AccessorReader& accessors,
+                                                  const Mesh& mesh, const schema::Reader& r) {
+  const auto listed = [&](const char* key) {
+    return gltf.contains(key) && gltf[key].is_array() ? gltf[key].size() : std::size_t(0);
+  };
+  const json* texture = nullptr;  // materials[0].pbrMetallicRoughness.baseColorTexture
+  if (listed("materials") > 0 && gltf["materials"][0].is_object() &&
+      gltf["materials"][0].contains("pbrMetallicRoughness") &&
+      gltf["materials"][0]["pbrMetallicRoughness"].is_object() &&
+      gltf["materials"][0]["pbrMetallicRoughness"].contains("baseColorTexture"))
+    texture = &gltf["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"];
+  if (!texture && listed("images") == 0 && listed("textures") == 0) return std::nullopt;
+  // Only the layout encodeMesh writes: one PNG in the binary chunk, one texture showing it, the
+  // first material's baseColorTexture on TEXCOORD_0.
+  const std::string what = "the base colour texture";
+  if (!texture || listed("images") != 1 || listed("textures") != 1)
+    r.fail(
+        "holds images or textures other than one base colour texture of material 0 (it is "
+        "not a prtkit bake, or was edited)");
+  if (r.integer(*texture, "index", "materials[0] baseColorTexture", 0, 0) != 0 ||
+      (r.has(*texture, "texCoord") &&
+       r.integer(*texture, "texCoord", "materials[0] baseColorTexture", 0, 0) != 0) ||
+      r.integer(gltf["textures"][0], "source", "textures[0]", 0, 0) != 0)
+    r.fail(what + " is not texture 0 on TEXCOORD_0 showing image 0");
+  const json& img = gltf["images"][0];
+  if (r.has(img, "uri")) r.fail("refers to an external image; a bake is one .glb");
+  if (!r.has(img, "mimeType") || img["mimeType"] != "image/png")
+    r.fail(what + " is not an embedded PNG (mimeType image/png)");
+  if (mesh.uvs.size() != mesh.vertexCount())
+    r.fail("has a base colour texture but no TEXCOORD_0 texture set to read it at");
+  const auto view = r.integer(img, "bufferView", "images[0]", 0, 2147483647.0);
+  const std::span<const unsigned char> bytes = accessors.viewBytes(int(view), what);
+  BaseColourTexture out;
+  try {
+    out.image = image::readSrgb8Bytes(what, bytes);
+  } catch (const Error& e) {
+    r.fail(e.what());
+  }
+  out.name = r.has(img, "name") && img["name"].is_string() ? img["name"].get<std::string>()
+                                                           : std::string("base colour texture");
+  return out;
 }
 
 int lightmapTexCoord(const Mesh& mesh) {

@@ -3,8 +3,10 @@
 // (POSITION, NORMAL, TEXCOORD_0 and TEXCOORD_1 (texture and lightmap sets, lightmapTexCoord),
 // COLOR_0 = linear albedo, uint32 indices local to the part),
 // all parts viewing one shared vertex buffer in the scene's global vertex order, so any glTF
-// viewer opens the file as the scene. Private to src/io.
+// viewer opens the file as the scene; the mesh's base-colour texture, if any, as material 0's
+// baseColorTexture (one embedded PNG). Private to src/io.
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,10 +27,11 @@ std::vector<MeshPart> partsOf(const Mesh& mesh);
 /// whose triangles stay inside their part.
 void checkMeshForWriting(const Mesh& mesh, const std::vector<MeshPart>& parts);
 
-/// Describes the mesh in `bin` and writes glTF's meshes, nodes, scenes and material into
-/// `gltf`. `attributes` (name, view of VEC4 columns over all vertices) become extra primitive
-/// attributes of every part (a complete bake's vector transfer); `baseColour` the material's
-/// baseColorFactor when the mesh has no per-vertex albedo.
+/// Describes the mesh in `bin` and writes glTF's meshes, nodes, scenes and material (with the
+/// base-colour texture's image, sampler and texture) into `gltf`. `attributes` (name, view of VEC4
+/// columns over all vertices) become extra primitive attributes of every part (a complete bake's
+/// vector transfer); `baseColour` the material's baseColorFactor when the mesh has no per-vertex
+/// albedo.
 void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
                 const std::vector<std::pair<std::string, int>>& attributes, const Rgb* baseColour,
                 glb::BinaryChunk& bin, nlohmann::json& gltf);
@@ -38,10 +41,16 @@ void encodeMesh(const Mesh& mesh, const std::vector<MeshPart>& parts,
 /// The bake's object records it as "lightmapTexCoord".
 int lightmapTexCoord(const Mesh& mesh);
 
+/// The base-colour texture of a bake file's material 0 (encodeMesh's layout only; anything else
+/// that holds images is refused), or none. `mesh` is the decoded mesh (its TEXCOORD_0 must be
+/// there to read the texture at).
+std::optional<BaseColourTexture> decodeBaseColour(const nlohmann::json& gltf,
+                                                  const gltf::AccessorReader& accessors,
+                                                  const Mesh& mesh, const schema::Reader& r);
+
 /// Reads the mesh of a bake file that declares V vertices and T triangles; TEXCOORD_`lightmap`
 /// (−1: none) is its lightmap set, the other TEXCOORD_0 its texture set.
 Mesh decodeMesh(const nlohmann::json& gltf, const gltf::AccessorReader& accessors,
-                std::size_t vertices, std::size_t triangles, int lightmap,
-                const schema::Reader& r);
+                std::size_t vertices, std::size_t triangles, int lightmap, const schema::Reader& r);
 
 }  // namespace prt::io

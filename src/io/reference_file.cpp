@@ -7,10 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "prt/core/error.hpp"
-#include "prt/core/hash.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/hash.hpp"
 #include "prt/core/json.hpp"
 #include "prt/core/limits.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 
 namespace prt::io {
 
@@ -25,6 +26,14 @@ Json triples(const std::vector<Rgb>& v) {
 }
 
 }  // namespace
+
+std::string lightmapUvFingerprint(const Mesh& mesh) {
+  Fnv1a f;
+  const std::uint64_t n = mesh.lightmapUvs.size();
+  f.add(&n, sizeof n);
+  if (n) f.add(mesh.lightmapUvs.data(), n * sizeof(Vec2f));
+  return f.hex();
+}
 
 std::string environmentFingerprint(const envmap::Environment& env) {
   Fnv1a f;
@@ -51,6 +60,10 @@ void writeReferenceJson(const std::string& path, const ReferenceFile& r) {
   j["formatVersion"] = kReferenceFormatVersion;
   j["prtkitVersion"] = r.prtkitVersion;
   j["bake"] = {{"file", r.bakeFile}, {"vertices", r.meshVertices}, {"fingerprint", r.meshFingerprint}};
+  if (r.texels())
+    j["bake"]["lightmap"] = {{"width", r.lightmapWidth},
+                             {"height", r.lightmapHeight},
+                             {"uvFingerprint", r.lightmapUvFingerprint}};
   j["light"] = {{"source", r.lightSource},
                 {"fingerprint", r.environmentFingerprint},
                 {"rotation", r.rotation}};
@@ -62,7 +75,7 @@ void writeReferenceJson(const std::string& path, const ReferenceFile& r) {
   j["seed"] = r.seed;
   j["mis"] = r.mis;
   j["rays"] = r.rays;  // no timings: the same run writes the same file
-  j["vertices"] = r.vertices;
+  j[r.texels() ? "texels" : "vertices"] = r.vertices;
   j["radiance"] = triples(r.radiance);
   j["stdError"] = triples(r.stdError);
   writeFileAtomically(path, formatJson(j));
@@ -133,6 +146,14 @@ ReferenceFile parseReferenceJson(std::string_view text, const std::string& path)
   r.bakeFile = str(bake, "file", " in \"bake\"");
   r.meshFingerprint = str(bake, "fingerprint", " in \"bake\"");
   r.meshVertices = uint(bake, "vertices", limits().maxVertices);
+  if (bake.contains("lightmap")) {
+    const nlohmann::json& lm = bake["lightmap"];
+    r.lightmapWidth = int(uint(lm, "width", kMaxLightmapSide));
+    r.lightmapHeight = int(uint(lm, "height", kMaxLightmapSide));
+    if (r.lightmapWidth < 1 || r.lightmapHeight < 1)
+      throw Error(path, "\"lightmap\" must be at least 1 x 1 texels");
+    r.lightmapUvFingerprint = str(lm, "uvFingerprint", " in \"lightmap\"");
+  }
   const nlohmann::json& light = member(j, "light", "");
   r.lightSource = str(light, "source", " in \"light\"");
   r.environmentFingerprint = str(light, "fingerprint", " in \"light\"");
@@ -159,15 +180,19 @@ ReferenceFile parseReferenceJson(std::string_view text, const std::string& path)
     r.eye = Vec3f(e[0].get<float>(), e[1].get<float>(), e[2].get<float>());
     if (!isFinite(*r.eye)) throw Error(path, "\"eye\" is not finite");
   }
-  const nlohmann::json& vs = member(j, "vertices", "");
+  const char* rows = r.texels() ? "texels" : "vertices";
+  const char* row = r.texels() ? "texel" : "vertex";
+  const nlohmann::json& vs = member(j, rows, "");
   const nlohmann::json& rad = member(j, "radiance", "");
   const nlohmann::json& err = member(j, "stdError", "");
   if (!vs.is_array() || !rad.is_array() || !err.is_array() || rad.size() != vs.size() ||
       err.size() != vs.size())
-    throw Error(path, "\"vertices\", \"radiance\" and \"stdError\" must be arrays of one length");
-  if (vs.size() > r.meshVertices)
-    throw Error(path, std::to_string(vs.size()) + " vertices for a mesh of " +
-                          std::to_string(r.meshVertices));
+    throw Error(path, std::string("\"") + rows +
+                          "\", \"radiance\" and \"stdError\" must be arrays of one length");
+  const std::size_t bound = r.rowCount();
+  if (vs.size() > bound)
+    throw Error(path, std::to_string(vs.size()) + " " + rows + " for " +
+                          (r.texels() ? "a lightmap of " : "a mesh of ") + std::to_string(bound));
   r.vertices.reserve(vs.size());
   r.radiance.reserve(vs.size());
   r.stdError.reserve(vs.size());
@@ -180,12 +205,13 @@ ReferenceFile parseReferenceJson(std::string_view text, const std::string& path)
     return c;
   };
   for (std::size_t i = 0; i < vs.size(); ++i) {
-    if (!vs[i].is_number_unsigned() || vs[i].get<std::uint64_t>() >= r.meshVertices)
-      throw Error(path, "vertex entry " + std::to_string(i) + " is not a vertex index below " +
-                            std::to_string(r.meshVertices));
+    if (!vs[i].is_number_unsigned() || vs[i].get<std::uint64_t>() >= bound)
+      throw Error(path, std::string(row) + " entry " + std::to_string(i) + " is not a " + row +
+                            " index below " + std::to_string(bound));
     const auto v = static_cast<std::uint32_t>(vs[i].get<std::uint64_t>());
     if (i > 0 && v <= r.vertices.back())
-      throw Error(path, "the vertices must be ascending (entry " + std::to_string(i) + ")");
+      throw Error(path, std::string("the ") + rows + " must be ascending (entry " +
+                            std::to_string(i) + ")");
     r.vertices.push_back(v);
     r.radiance.push_back(rgb(rad[i], "radiance", i));
     r.stdError.push_back(rgb(err[i], "stdError", i));

@@ -8,6 +8,7 @@
 #include "prt/image/exposure.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/render.hpp"
+#include "prt/render/texel_points.hpp"
 
 namespace prt::render {
 
@@ -55,14 +56,13 @@ float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& 
   const Transfer shown = bands > 0 && bands < transfer.bands() ? transfer.cut(bands) : transfer;
   const auto occluder = makeEmbreeOccluder(mesh);
   if (transfer.domain() == TransferDomain::Texels) {
-    // As prt render: every texel relit white (the albedo applied per pixel unless the material
-    // sets kd), fetched bilinearly at each pixel's lightmap UV.
+    // As prt render (texelRelight), fetched bilinearly at each pixel's lightmap UV.
+    const TexelRelight how = texelRelight(mesh, *occluder, shown, material);
     const std::vector<Rgb> radiance =
-        relight::relight(shown, light, material, relight::Surface{}, camera.eye, rotation);
+        relight::relight(shown, light, material, how.surface(), camera.eye, rotation);
     const TransferShape::LightmapSize lm = transfer.shape().lightmap;
     return autoExposure(*occluder,
-                        texelRadianceShader(mesh, radiance, lm.width, lm.height,
-                                            texelAlbedo(mesh, material)),
+                        texelRadianceShader(mesh, radiance, lm.width, lm.height, how.pixelAlbedo),
                         camera, width, height, op);
   }
   const std::vector<Rgb> radiance = relight::relight(

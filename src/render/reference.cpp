@@ -75,6 +75,7 @@ ReferenceIntegrator::ReferenceIntegrator(const Mesh& mesh, const Occluder& occlu
                                          const EnvironmentSampler& sampler,
                                          const ReferenceSettings& settings)
     : mesh_(mesh),
+      albedo_(mesh.hasAlbedo() || mesh.baseColour ? albedoAtVertices(mesh) : std::vector<Rgb>()),
       occluder_(occluder),
       sampler_(sampler),
       settings_(settings),
@@ -124,9 +125,9 @@ double ReferenceIntegrator::misWeight(double pa, double pb, double pc) const {
 
 Rgb ReferenceIntegrator::hitAlbedo(std::uint32_t tri, float u, float v) const {
   if (settings_.material.diffuse) return *settings_.material.diffuse;
-  if (!mesh_.hasAlbedo()) return Rgb(1.0f);
+  if (albedo_.empty()) return Rgb(1.0f);
   const auto& t = mesh_.triangles[tri];
-  return mesh_.albedo[t[0]] * (1.0f - u - v) + mesh_.albedo[t[1]] * u + mesh_.albedo[t[2]] * v;
+  return albedo_[t[0]] * (1.0f - u - v) + albedo_[t[1]] * u + albedo_[t[2]] * v;
 }
 
 namespace {
@@ -596,7 +597,9 @@ Estimate ReferenceIntegrator::estimateBandLimited(const Vec3f& p, const Vec3f& n
 
 ReferenceRows::ReferenceRows(const Mesh& mesh, const Occluder& occluder, const Environment& env,
                              const ReferenceSettings& settings)
-    : mesh_(mesh), settings_(settings) {
+    : mesh_(mesh),
+      albedo_(mesh.hasAlbedo() || mesh.baseColour ? albedoAtVertices(mesh) : std::vector<Rgb>()),
+      settings_(settings) {
   if (settings.samples < 1 || settings.samples > (1 << 24))
     throw Error("reference samples must be in 1..16777216 (got " +
                 std::to_string(settings.samples) + ")");
@@ -647,7 +650,7 @@ void ReferenceRows::compute(std::size_t first, std::size_t count, Rgb* radiance,
       const Vec3f& n = points ? points->normals[v] : mesh.normals[v];
       const Rgb kd = settings.material.diffuse           ? *settings.material.diffuse
                      : points && !points->albedo.empty() ? points->albedo[v]
-                     : !points && mesh.hasAlbedo()       ? mesh.albedo[v]
+                     : !points && !albedo_.empty()       ? albedo_[v]
                                                          : Rgb(1.0f);
       // v = normalize(eye − p); an eye on the vertex (or none) looks along the normal.
       const Vec3f toEye = settings.eye ? *settings.eye - p : n;

@@ -33,6 +33,15 @@ std::vector<std::uint32_t> vertexSubset(std::size_t n, std::size_t count, std::u
   return all;
 }
 
+std::vector<std::uint32_t> rowSubset(const RowPoints* points, std::size_t n, std::size_t count,
+                                     std::uint64_t seed) {
+  if (!points || points->valid.empty()) return vertexSubset(n, count, seed);
+  const std::vector<std::uint32_t>& valid = points->valid;
+  std::vector<std::uint32_t> rows;
+  for (std::uint32_t k : vertexSubset(valid.size(), count, seed)) rows.push_back(valid[k]);
+  return rows;
+}
+
 namespace {
 
 /// Per-vertex values as a one-row image, so render::metrics applies unchanged.
@@ -121,14 +130,8 @@ ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecip
       if (v >= nv)
         throw Error("the reference has vertex " + std::to_string(v) + " of a mesh with " +
                     std::to_string(nv));
-  } else if (rs.points && !rs.points->valid.empty()) {
-    // Per-texel rows: a subset of the valid texels (never the gutter or one inside geometry).
-    const std::vector<std::uint32_t>& valid = rs.points->valid;
-    rs.vertices.clear();
-    for (std::uint32_t k : vertexSubset(valid.size(), settings.maxVertices, rs.seed))
-      rs.vertices.push_back(valid[k]);
   } else {
-    rs.vertices = vertexSubset(nv, settings.maxVertices, rs.seed);
+    rs.vertices = rowSubset(rs.points.get(), nv, settings.maxVertices, rs.seed);
   }
   // Glossy (matrix) transfer is seen from an eye.
   if (transfer.isMatrix() && !rs.eye)
@@ -374,8 +377,8 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   std::vector<Rgb> albedo;
   if (points)
     albedo = points->albedo;
-  else if (mesh.hasAlbedo())
-    albedo = mesh.albedo;
+  else if (mesh.hasAlbedo() || mesh.baseColour)
+    albedo = albedoAtVertices(mesh);  // the texture folded in at the vertices, as the reference
   std::vector<Rgb> prt(n);
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const int b = kept[k];

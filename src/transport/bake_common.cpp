@@ -51,10 +51,11 @@ BounceAlbedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s) {
   if (s.material.diffuse) {
     a.uniform = *s.material.diffuse;
     a.grey = a.uniform.x == a.uniform.y && a.uniform.y == a.uniform.z;
-  } else if (mesh.hasAlbedo()) {
+  } else if (mesh.hasAlbedo() || mesh.baseColour) {
     a.perVertex = true;
-    a.values = &mesh.albedo;
-    a.grey = std::all_of(mesh.albedo.begin(), mesh.albedo.end(),
+    a.store = std::make_shared<const std::vector<Rgb>>(albedoAtVertices(mesh));
+    a.values = a.store.get();
+    a.grey = std::all_of(a.values->begin(), a.values->end(),
                          [](const Rgb& c) { return c.x == c.y && c.y == c.z; });
   }
   return a;

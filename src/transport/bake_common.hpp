@@ -28,6 +28,9 @@ struct BounceAlbedo {
   bool perVertex = false;
   bool grey = true;
   Rgb uniform{1.0f};
+  /// The diffuse colour at each vertex (albedoAtVertices: the base-colour texture folded in at
+  /// the vertices, as every per-vertex consumer sees it), shared by the copies in the setups.
+  std::shared_ptr<const std::vector<Rgb>> store;
   const std::vector<Rgb>* values = nullptr;
 
   Rgb at(const std::array<std::uint32_t, 3>& tri, float u, float v) const {
@@ -125,6 +128,13 @@ std::shared_ptr<const MatrixSetup> makeMatrixSetup(const Mesh& mesh, const BakeS
 std::uint64_t computeMatrixRows(const Mesh& mesh, const Occluder& occluder,
                                 const MatrixSetup& setup, RowRange rows, const Transfer* bounced,
                                 float* out, double* variance, Progress* progress);
+/// The same at texel sample points (bake_texels.cpp): rows 0..points.size()−1, a bounce reading
+/// `bounced` — the previous order's lightmap (the diffuse vector sum, or the glossy matrices of
+/// one order less), dilated — bilinearly at each hit's lightmap UV.
+std::uint64_t computeMatrixTexelRows(const Mesh& mesh, const Occluder& occluder,
+                                     const MatrixSetup& setup, std::span<const RowPoint> points,
+                                     const TexelImage* bounced, float* out, double* variance,
+                                     Progress* progress);
 /// The seed of the glossy bounce order `order` baked under a bake of seed `seed`.
 std::uint64_t matrixBounceOrderSeed(std::uint64_t seed, int order);
 

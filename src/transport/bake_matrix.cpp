@@ -1,4 +1,4 @@
-// Glossy transfer matrices per vertex (Sloan, Kautz & Snyder 2002, §6):
+// Glossy transfer matrices per vertex or per texel sample point (Sloan, Kautz & Snyder 2002, §6):
 //
 //   M_ij(p) = ∫_{n·ω>0} Y_i(ω) V(p,ω) Y_j(ω) dω   (+ the light bounced off the scene)
 //
@@ -28,8 +28,9 @@
 // exit radiance relighting computes, seen from p. So the bounced term's column is
 // z = M^{K−1}(h)ᵀ r, with M^{K−1} the matrices of K − 1 bounces, baked first over the whole mesh
 // (the recursion ends at the shadowed matrices) and interpolated over the hit triangle as
-// Σ_k b_k M_kᵀ r. Each order draws its own directions (the seed is derived per order), so the
-// orders' errors are independent.
+// Σ_k b_k M_kᵀ r — per texel, the previous order's lightmap is read at the hit's lightmap UV
+// through its four bilinear taps instead, Σ_k w_k M_kᵀ r (bake_texels.cpp). Each order draws its
+// own directions (the seed is derived per order), so the orders' errors are independent.
 //
 // Speed. Samples are batched 64 at a time; the blocked ones form the columns of Y (B² × k) and
 // enter as one symmetric rank-k update P += Y Yᵀ (Eigen's selfadjointView::rankUpdate, the
@@ -50,6 +51,7 @@
 #include "prt/core/parallel.hpp"
 #include "prt/core/quadrature.hpp"
 #include "prt/core/sampling.hpp"
+#include "prt/geometry/texel_samples.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transfer/prepared_material.hpp"
@@ -136,6 +138,45 @@ class HemisphereSampler {
   std::uint32_t seed0_ = 0, seed1_ = 0, index_ = 0;
 };
 
+/// Where a bounce reads the transfer of one order less at a hit: the barycentric blend of the
+/// hit triangle's vertex rows (vertex domain), or the four bilinear taps of its dilated lightmap
+/// at the hit's lightmap UV (texel domain, bake_texels.cpp; bilinearTaps).
+struct BouncedSource {
+  const Transfer* vertices = nullptr;
+  const TexelImage* texels = nullptr;
+  int channels = 1;  ///< of the bounced rows (interleaved after each coefficient)
+  bool present() const { return vertices != nullptr || texels != nullptr; }
+};
+
+/// The rows a hit reads and their weights (3 vertices or 4 texels).
+struct BounceTaps {
+  std::array<const float*, 4> row{};
+  std::array<float, 4> weight{};
+  int count = 0;
+};
+
+BounceTaps bounceTaps(const BouncedSource& src, const Mesh& mesh, const Hit& h) {
+  const auto& tri = mesh.triangles[h.triangle];
+  const float b0 = 1.0f - h.u - h.v;
+  BounceTaps t;
+  if (src.vertices) {
+    t.count = 3;
+    for (int k = 0; k < 3; ++k) t.row[k] = src.vertices->row(tri[k]);
+    t.weight = {b0, h.u, h.v, 0.0f};
+    return t;
+  }
+  const TexelImage& im = *src.texels;
+  const Vec2f a = im.uvs[tri[0]], b = im.uvs[tri[1]], c = im.uvs[tri[2]];
+  const TexelTaps taps = bilinearTaps(
+      {b0 * a.x + h.u * b.x + h.v * c.x, b0 * a.y + h.u * b.y + h.v * c.y}, im.width, im.height);
+  t.count = 4;
+  for (int k = 0; k < 4; ++k) {
+    t.row[k] = im.values + taps.texel[k] * im.stride;
+    t.weight[k] = taps.weight[k];
+  }
+  return t;
+}
+
 struct MatrixContext {
   const Mesh& mesh;
   const Occluder& occluder;
@@ -145,8 +186,8 @@ struct MatrixContext {
   const OwenSobol2D* sobol;
   const BounceAlbedo& albedo;
   /// The bounced light's source over the whole mesh: diffuse vector transfer T^{K−1}, or for
-  /// glossy bounce surfaces the matrices M^{K−1} (then `glossy` is set). Null without bounces.
-  const Transfer* bounced = nullptr;
+  /// glossy bounce surfaces the matrices M^{K−1} (then `glossy` is set). Empty without bounces.
+  BouncedSource bounced;
   bool glossy = false;
   const PreparedMaterial& kernels;  ///< the material's d and g kernels (glossy bounces)
   std::atomic<std::uint64_t> rays{0};
@@ -194,7 +235,8 @@ void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, 
   ctx.kernels.responses(q, nq, q - w, ws.d.data(), ws.g.data(), ws.scratch.data());
   const Rgb rho = ctx.albedo.at(tri, h.u, h.v);
   const Rgb ks = ctx.settings.material.specular;
-  const int nc = ctx.nc, bChannels = ctx.bounced->channels();
+  const int nc = ctx.nc, bChannels = ctx.bounced.channels;
+  const BounceTaps taps = bounceTaps(ctx.bounced, mesh, h);
   for (int c = 0; c < ctx.channels; ++c) {
     float* r = ws.response.data() + static_cast<std::size_t>(c) * nc;
     for (int i = 0; i < nc; ++i) r[i] = rho[c] * ws.d[i] + ks[c] * ws.g[i];
@@ -202,16 +244,17 @@ void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, 
     z.setZero();
     const Eigen::Map<const Eigen::VectorXf> rc(r, nc);
     const int src = bChannels == 1 ? 0 : c;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < taps.count; ++k) {
+      if (taps.weight[k] == 0.0f) continue;
       // M_k row-major (row i = arriving coefficient, column j = source), channels interleaved.
-      const float* m = ctx.bounced->row(tri[k]) + src;
+      const float* m = taps.row[k] + src;
       if (bChannels == 1) {
         const Eigen::Map<const RowMatF> mk(m, nc, nc);
-        z.noalias() += b[k] * (mk.transpose() * rc);
+        z.noalias() += taps.weight[k] * (mk.transpose() * rc);
       } else {
         const Eigen::Map<const RowMatF, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>> mk(
             m, nc, nc, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(nc * bChannels, bChannels));
-        z.noalias() += b[k] * (mk.transpose() * rc);
+        z.noalias() += taps.weight[k] * (mk.transpose() * rc);
       }
     }
   }
@@ -221,13 +264,12 @@ void glossyBounceColumn(const MatrixContext& ctx, const Hit& h, const Vec3f& w, 
 /// interpolated at the hit, times the albedo there (per channel).
 void diffuseBounceColumn(const MatrixContext& ctx, const Hit& h, Workspace& ws, int kz) {
   const auto& tri = ctx.mesh.triangles[h.triangle];
-  const std::size_t stride = ctx.bounced->stride();
-  const int bChannels = ctx.bounced->channels();
-  const float b0 = 1.0f - h.u - h.v;
-  const float* r0 = ctx.bounced->row(tri[0]);
-  const float* r1 = ctx.bounced->row(tri[1]);
-  const float* r2 = ctx.bounced->row(tri[2]);
-  for (std::size_t i = 0; i < stride; ++i) ws.interp[i] = b0 * r0[i] + h.u * r1[i] + h.v * r2[i];
+  const int bChannels = ctx.bounced.channels;
+  const std::size_t stride = static_cast<std::size_t>(ctx.nc) * bChannels;
+  const BounceTaps taps = bounceTaps(ctx.bounced, ctx.mesh, h);
+  std::fill_n(ws.interp.begin(), stride, 0.0f);
+  for (int k = 0; k < taps.count; ++k)
+    for (std::size_t i = 0; i < stride; ++i) ws.interp[i] += taps.weight[k] * taps.row[k][i];
   const Rgb rho = ctx.albedo.at(tri, h.u, h.v);
   for (int c = 0; c < ctx.channels; ++c) {
     float* zc = ws.z[c].col(kz).data();
@@ -236,11 +278,12 @@ void diffuseBounceColumn(const MatrixContext& ctx, const Hit& h, Workspace& ws, 
   }
 }
 
-/// One vertex: writes its B² × B² (× C) row to out; returns Var of the M_00 estimator's mean.
-double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws) {
+/// One row at `point` (a vertex, or a texel's sample point): writes its B² × B² (× C) row to
+/// out; returns Var of the M_00 estimator's mean.
+double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspace& ws) {
   const Mesh& mesh = ctx.mesh;
   const int nc = ctx.nc, channels = ctx.channels;
-  const Vec3f p = mesh.positions[v], nrm = mesh.normals[v];
+  const Vec3f p = point.position, nrm = point.normal;
   hemisphereProduct(ctx.hz, ctx.bands, Vec3d(nrm), ws.h, ws.tmp, ws.tmpT);
   auto write = [&](const MatD& m, int c) {
     for (int i = 0; i < nc; ++i)
@@ -251,10 +294,10 @@ double matrixVertex(MatrixContext& ctx, std::size_t v, float* out, Workspace& ws
     for (int c = 0; c < channels; ++c) write(ws.h, c);
     return 0.0;
   }
-  const bool inter = ctx.bounced != nullptr;
+  const bool inter = ctx.bounced.present();
   const int n = ctx.settings.samples;
   const Vec3f origin = p + nrm * ctx.occluder.rayOffset(p);
-  HemisphereSampler sampler(ctx.settings, *ctx.sobol, v, nrm);
+  HemisphereSampler sampler(ctx.settings, *ctx.sobol, point.id, nrm);
   ws.total.setZero();
   ws.part.setZero();
   for (int c = 0; c < channels; ++c) {
@@ -378,9 +421,13 @@ std::shared_ptr<const MatrixSetup> makeMatrixSetup(const Mesh& mesh, const BakeS
   return setup;
 }
 
-std::uint64_t computeMatrixRows(const Mesh& mesh, const Occluder& occluder,
-                                const MatrixSetup& setup, RowRange rows, const Transfer* bounced,
-                                float* out, double* variance, Progress* progress) {
+namespace {
+
+/// Rows 0..count−1 at point(r), in parallel, reading `bounced` at the hits.
+template <class PointOf>
+std::uint64_t matrixRows(const Mesh& mesh, const Occluder& occluder, const MatrixSetup& setup,
+                         std::size_t count, const PointOf& pointOf, BouncedSource bounced,
+                         float* out, double* variance, Progress* progress) {
   const BakeSettings& s = setup.settings;
   MatrixContext ctx{mesh,
                     occluder,
@@ -391,22 +438,51 @@ std::uint64_t computeMatrixRows(const Mesh& mesh, const Occluder& occluder,
                     setup.hz,
                     setup.sobol.get(),
                     setup.albedo,
-                    setup.bounce ? bounced : nullptr,
+                    setup.bounce ? bounced : BouncedSource{},
                     setup.glossy,
                     setup.kernels,
                     {}};
   const std::size_t stride =
       static_cast<std::size_t>(ctx.nc) * static_cast<std::size_t>(ctx.nc) * setup.channels;
-  parallelFor(rows.count, kVertexGrain, [&](std::size_t b, std::size_t e) {
+  parallelFor(count, kVertexGrain, [&](std::size_t b, std::size_t e) {
     if (progress) progress->check();
     Workspace ws(ctx.nc, ctx.channels);
     for (std::size_t r = b; r < e; ++r) {
-      const double var = matrixVertex(ctx, rows.first + r, out + r * stride, ws);
+      const double var = matrixRow(ctx, pointOf(r), out + r * stride, ws);
       if (variance) variance[r] = var;
     }
     if (progress) progress->advance(e - b);
   });
   return ctx.rays.load();
+}
+
+}  // namespace
+
+std::uint64_t computeMatrixRows(const Mesh& mesh, const Occluder& occluder,
+                                const MatrixSetup& setup, RowRange rows, const Transfer* bounced,
+                                float* out, double* variance, Progress* progress) {
+  BouncedSource src;
+  if (setup.bounce) src = {bounced, nullptr, bounced->channels()};
+  const auto vertex = [&](std::size_t r) {
+    const std::size_t v = rows.first + r;
+    return RowPoint{mesh.positions[v], mesh.normals[v], v};
+  };
+  return matrixRows(mesh, occluder, setup, rows.count, vertex, src, out, variance, progress);
+}
+
+std::uint64_t computeMatrixTexelRows(const Mesh& mesh, const Occluder& occluder,
+                                     const MatrixSetup& setup, std::span<const RowPoint> points,
+                                     const TexelImage* bounced, float* out, double* variance,
+                                     Progress* progress) {
+  BouncedSource src;
+  if (setup.bounce) {
+    const std::size_t nc = std::size_t(setup.settings.bands) * setup.settings.bands;
+    const std::size_t perChannel = setup.glossy ? nc * nc : nc;
+    src = {nullptr, bounced, int(bounced->stride / perChannel)};
+  }
+  return matrixRows(
+      mesh, occluder, setup, points.size(), [&](std::size_t r) { return points[r]; }, src, out,
+      variance, progress);
 }
 
 std::uint64_t matrixBounceOrderSeed(std::uint64_t seed, int order) {

@@ -273,6 +273,7 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   Mesh& out = r.mesh;
   out.source = mesh.source;
   out.gloss = mesh.gloss;
+  out.baseColour = mesh.baseColour;  // read at `uvs`, which each split vertex keeps
   const std::size_t V = uses.size();
   out.positions.resize(V);
   if (!mesh.normals.empty()) out.normals.resize(V);

@@ -18,6 +18,7 @@
 
 #include "cli_harness.hpp"
 #include "common/two_chart_plane.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 
@@ -225,6 +226,132 @@ TEST_F(TexelCli, ValidatePerTexelExplainsItsErrorAndCatchesAMisplacedLightmap) {
   EXPECT_LT(bad["explained"].get<double>(), 0.7);
 }
 
+// Glossy matrices per texel through every verb: ranges merge bit for bit into the whole bake;
+// prt render relights each texel at its sample point seen from the camera, so the lobe adds a
+// view-dependent highlight a diffuse relighting of the same file has not; CPCA through prt
+// compress renders within its compression error of the dense bake; prt validate explains the
+// error; the viewers refuse the file by name.
+TEST_F(TexelCli, GlossyMatricesPerTexelBakeMergeRenderCompressAndValidate) {
+  const std::string bake = "-q bake " + kBox +
+                           " --mode interreflected --bounces 1 --transfer matrix --domain texels "
+                           "--resolution 32 --bands 3 --samples 128 "
+                           "--material 'phong?ks=0.4&exponent=6'";
+  const Result b = prt(bake.substr(3) + " -o m.glb");
+  ASSERT_EQ(b.rc, 0) << b.err;
+  EXPECT_NE(b.err.find("interreflected matrix per texel: 972 B per texel"), std::string::npos)
+      << b.err;
+  ASSERT_EQ(prt(bake + " --range 0:500 -o a.glb").rc, 0);
+  ASSERT_EQ(prt(bake + " --range 500: -o b.glb").rc, 0);
+  ASSERT_EQ(prt("-q merge b.glb a.glb -o merged.glb").rc, 0);
+  const BakeFile whole = readBake(path("m.glb")), merged = readBake(path("merged.glb"));
+  ASSERT_EQ(whole.transfers[0].transfer.layout(), TransferLayout::Matrix);
+  ASSERT_EQ(whole.transfers[0].transfer.domain(), TransferDomain::Texels);
+  const FloatArray &x = whole.transfers[0].transfer.values(),
+                   &y = merged.transfers[0].transfer.values();
+  ASSERT_EQ(x.size(), std::size_t(32 * 32 * 81 * 3));
+  ASSERT_EQ(x.size(), y.size());
+  EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0);
+
+  const std::string render = " --light builtin:sky --background none --size 160x120 ";
+  ASSERT_EQ(prt("-q render m.glb" + render + "--exposure 0 -o glossy.exr").rc, 0);
+  ASSERT_EQ(prt("-q render m.glb" + render + "--exposure 0 --material lambert -o diffuse.exr").rc,
+            0);
+  const image::Image glossy = image::readImage(path("glossy.exr")),
+                     diffuse = image::readImage(path("diffuse.exr"));
+  double sumG = 0, sumD = 0;
+  for (std::size_t i = 0; i < glossy.pixels.size(); ++i) {
+    sumG += glossy.pixels[i].x + glossy.pixels[i].y + glossy.pixels[i].z;
+    sumD += diffuse.pixels[i].x + diffuse.pixels[i].y + diffuse.pixels[i].z;
+  }
+  EXPECT_GT(sumD, 0.0);
+  EXPECT_GT(sumG, 1.05 * sumD) << "the lobe adds the reflected light";
+
+  const Result c = prt("compress m.glb --clusters 16 --pca 8 -o c.glb");
+  ASSERT_EQ(c.rc, 0) << c.err;
+  ASSERT_EQ(prt("-q render c.glb" + render + "--exposure 0 -o compressed.exr").rc, 0);
+  const double dc = relativeDifference(glossy, image::readImage(path("compressed.exr")));
+  std::printf("per-texel glossy matrices, CPCA K16 N8 vs dense render: %.4f\n", dc);
+  EXPECT_LT(dc, 0.05);
+  EXPECT_GT(dc, 0.0);
+
+  const Result v =
+      prt("validate m.glb --light builtin:sky --vertices 300 "
+          "--reference-samples 256 --json v.json");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_NE(v.err.find("reference: 300 texels"), std::string::npos) << v.err;
+  const nlohmann::json row = lastRow(path("v.json"));
+  std::printf("per-texel glossy matrices: rel RMSE %.3f, floor %.3f, explained %.3f\n",
+              row["relRmse"].get<double>(), row["truncationFloor"].get<double>(),
+              row["explained"].get<double>());
+  // A 6-exponent lobe at 3 bands: the error is the band limit's (measured: explained 1.01).
+  EXPECT_GT(row["explained"].get<double>(), 0.8);
+  EXPECT_LT(row["explained"].get<double>(), 1.25);
+  expectCleanFailure("web c.glb -o out/page", "per-texel glossy matrices");
+}
+
+// prt reference per texel: a seeded subset of the valid texels at their sample points, read
+// back by prt validate --reference to the same table as validate computing it itself (the same
+// rows, samples and seed); a reference of another lightmap is refused by name.
+TEST_F(TexelCli, ReferencePerTexelIsWhatValidateComputes) {
+  const std::string bake =
+      "-q bake " + kBox + " --mode interreflected --domain texels --samples 256 --resolution ";
+  ASSERT_EQ(prt(bake + "32 -o t.glb").rc, 0);
+  ASSERT_EQ(prt(bake + "24 -o small.glb").rc, 0);
+  const Result r =
+      prt("reference t.glb --light builtin:sky --vertices 150 --samples 128 -o r.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("150 texels x 128 samples"), std::string::npos) << r.err;
+  const nlohmann::json ref = nlohmann::json::parse(slurp(path("r.json")));
+  EXPECT_EQ(ref["bake"]["lightmap"]["width"], 32);
+  ASSERT_EQ(ref["texels"].size(), 150u);
+  EXPECT_FALSE(ref.contains("vertices"));
+  // Every row a covered texel of the lightmap, none in the gutter.
+  const BakeFile t = readBake(path("t.glb"));
+  const TexelSamples s = sampleTexels(t.mesh, t.mesh.lightmapUvs, 32, 32);
+  for (const auto& x : ref["texels"]) ASSERT_GE(s.sampleOfTexel[x.get<std::size_t>()], 0) << x;
+
+  const std::string validate = "validate t.glb --light builtin:sky ";
+  ASSERT_EQ(prt("-q " + validate + "--vertices 150 --reference-samples 128 --json own.json").rc, 0);
+  const Result v = prt(validate + "--reference r.json --json read.json");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_NE(v.err.find("reference from r.json: 150 texels x 128 samples"), std::string::npos)
+      << v.err;
+  const nlohmann::json own = lastRow(path("own.json")), read = lastRow(path("read.json"));
+  for (const char* key : {"relRmse", "truncationFloor", "refStdErr", "explained"})
+    EXPECT_DOUBLE_EQ(own[key].get<double>(), read[key].get<double>()) << key;
+  expectCleanFailure("validate small.glb --light builtin:sky --reference r.json",
+                     "r.json: was computed for a 32 x 32 lightmap");
+}
+
+// --uv auto on a mesh with no UV set that can hold a lightmap: the bake unwraps it (the atlas
+// prt unwrap makes, at the bake's resolution and padding), says so with the atlas's figures,
+// and the file keeps the unwrapped mesh, which renders; the same atlas as prt unwrap's.
+TEST_F(TexelCli, AutoUvsUnwrapAMeshWithoutALightmapSet) {
+  const std::string ball = "'builtin:sphere?subdiv=3'";
+  const Result b = prt("bake " + ball +
+                       " --mode shadowed --domain texels --resolution 64 --samples 16 -o b.glb");
+  ASSERT_EQ(b.rc, 0) << b.err;
+  EXPECT_NE(b.err.find("no UV set of its own can hold the lightmap (lightmap UVs: the mesh has "
+                       "none; texture UVs: the mesh has none): unwrapped it"),
+            std::string::npos)
+      << b.err;
+  EXPECT_NE(b.err.find("a 64 x 64 lightmap over its atlas (prt unwrap)"), std::string::npos)
+      << b.err;
+  const BakeFile f = readBake(path("b.glb"));
+  EXPECT_EQ(f.domain(), TransferDomain::Texels);
+  ASSERT_EQ(f.mesh.lightmapUvs.size(), f.mesh.vertexCount());
+  ASSERT_EQ(prt("-q unwrap " + ball + " --resolution 64 -o atlas.glb").rc, 0);
+  ASSERT_EQ(prt("-q bake atlas.glb --mode shadowed --domain texels --resolution 64 --samples 16 "
+                "-o a.glb")
+                .rc,
+            0);
+  const BakeFile a = readBake(path("a.glb"));
+  ASSERT_EQ(a.mesh.vertexCount(), f.mesh.vertexCount());
+  for (std::size_t v = 0; v < a.mesh.vertexCount(); ++v)
+    ASSERT_EQ(a.mesh.lightmapUvs[v], f.mesh.lightmapUvs[v]) << v;
+  ASSERT_EQ(prt("-q render b.glb --light builtin:sky --size 64x48 -o b.png").rc, 0);
+}
+
 /// The two-chart plane of the seam tests (one seam, the right chart turned and at half the
 /// density) as an OBJ whose texture UVs (vt) are the lightmap set: `--uv 0` bakes over them.
 std::string twoChartPlaneObj() {
@@ -295,20 +422,23 @@ TEST_F(TexelCli, WhatCannotTakeTexelsSaysSoByName) {
                 "--samples 8 -o t.glb")
                 .rc,
             0);
-  const std::string per = "t.glb: holds per-texel transfer (a 16 x 16 lightmap)";
-  write("r.json", "{}");
-  expectCleanFailure("validate t.glb --light builtin:sky --reference r.json",
-                     "r.json: a reference file holds vertices");
-  expectCleanFailure("reference t.glb --light builtin:sky -o out/r.json", per);
+  ASSERT_EQ(prt("-q bake " + kBox + " --mode shadowed --samples 8 -o v.glb").rc, 0);
+  ASSERT_EQ(prt("-q reference v.glb --light builtin:sky --samples 4 --vertices 10 -o rv.json").rc,
+            0);
+  expectCleanFailure("validate t.glb --light builtin:sky --reference rv.json",
+                     "rv.json: holds per-vertex radiance; t.glb holds per-texel transfer");
+  expectCleanFailure("render t.glb --light builtin:sky --reference rv.json -o out/x.png",
+                     "--reference draws a per-vertex reference");
   // And the bake's own refusals.
   expectCleanFailure("bake " + kBox + " --mode shadowed --resolution 64 -o out/x.glb",
                      "add --domain texels");
   expectCleanFailure("bake " + kBox +
-                         " --mode shadowed --domain texels --transfer matrix -o "
-                         "out/x.glb",
-                     "vector transfer only");
-  expectCleanFailure("bake 'builtin:sphere?subdiv=1' --mode shadowed --domain texels -o out/x.glb",
-                     "no UV set can hold a 512 x 512 lightmap");
+                         " --mode shadowed --domain texels --transfer matrix --bands 8 "
+                         "--resolution 4096 -o out/x.glb",
+                     "more than a bake file holds");
+  expectCleanFailure(
+      "bake 'builtin:sphere?subdiv=1' --mode shadowed --domain texels --uv 1 -o out/x.glb",
+      "no UV set can hold a 512 x 512 lightmap (lightmap UVs: the mesh has none)");
   expectCleanFailure("bake " + kBox + " --mode shadowed --domain texels --uv 0 -o out/x.glb",
                      "texture UVs: the mesh has none");
   expectCleanFailure("bake " + kBox +

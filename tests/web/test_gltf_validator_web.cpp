@@ -15,6 +15,7 @@
 
 #include "cli/cli_harness.hpp"
 #include "prt/core/json.hpp"
+#include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 
 namespace prt::testing {
@@ -88,6 +89,44 @@ TEST_F(GltfValidatorWeb, UnwrappedMeshesAreValidGltf) {
     EXPECT_EQ(r["warnings"], 0) << r["messages"].dump();
     // Only the texture coordinates no material samples are reported, as information.
     for (const Json& m : r["messages"]) EXPECT_EQ(m[1], "UNUSED_OBJECT") << m.dump();
+  }
+}
+
+TEST_F(GltfValidatorWeb, TexturedBakesAreValidGltf) {
+  // An OBJ quad with a map_Kd (a 4 x 2 PNG): its bake, per vertex and per texel, and its
+  // unwrapped mesh hold the texture as material 0's baseColorTexture (one embedded PNG).
+  image::Srgb8Image tex;
+  tex.width = 4;
+  tex.height = 2;
+  tex.rgb.assign(4 * 2 * 3, 0);
+  for (std::size_t i = 0; i < tex.rgb.size(); ++i) tex.rgb[i] = std::uint8_t(31 * i);
+  std::ofstream(dir_ / "tex.png", std::ios::binary) << image::encodePng(tex, "tex.png");
+  std::ofstream(dir_ / "m.mtl") << "newmtl m\nKd 0.8 0.7 0.6\nmap_Kd tex.png\n";
+  std::ofstream(dir_ / "quad.obj") << "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                                      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nusemtl m\n"
+                                      "f 1/1/1 2/2/1 3/3/1 4/4/1\n";
+  for (const std::string& cmd :
+       {std::string("bake quad.obj --mode shadowed --samples 8 -o vertices.glb"),
+        std::string("bake quad.obj --mode shadowed --samples 8 --domain texels --resolution 8 "
+                    "-o texels.glb"),
+        std::string("unwrap quad.obj -o unwrapped.glb")}) {
+    const Result r = prt("-q " + cmd);
+    ASSERT_EQ(r.rc, 0) << cmd << ": " << r.err;
+  }
+  const Json report = validate("vertices.glb texels.glb unwrapped.glb");
+  ASSERT_EQ(report.size(), 3u);
+  for (const auto& [file, r] : report.items()) {
+    SCOPED_TRACE(file);
+    EXPECT_EQ(r["errors"], 0) << r["messages"].dump();
+    EXPECT_EQ(r["warnings"], 0) << r["messages"].dump();
+    for (const Json& m : r["messages"]) {
+      const std::string code = m[1];
+      EXPECT_TRUE(code == "UNSUPPORTED_EXTENSION" || code == "UNUSED_OBJECT") << m.dump();
+      // The texture set is sampled now: only the lightmap set may go unused.
+      if (code == "UNUSED_OBJECT") {
+        EXPECT_EQ(m[2].get<std::string>().find("TEXCOORD_0"), std::string::npos) << m.dump();
+      }
+    }
   }
 }
 

@@ -24,8 +24,11 @@ struct LightmapUvChoice {
   std::vector<std::string> refused;  ///< why each set tried before it was passed over
 };
 
-/// The set `option` picks for a W × H lightmap. Throws prt::Error with one line naming the mesh
-/// and why each candidate set cannot hold it (absent, outside [0, 1]², overlapping charts).
+/// The set `option` picks for a W × H lightmap; empty `uvs` (and every candidate in `refused`)
+/// when none can hold it.
+LightmapUvChoice findLightmapUvs(const Mesh& mesh, UvSetOption option, int width, int height);
+/// The same, throwing prt::Error with one line naming the mesh and why each candidate set cannot
+/// hold it (absent, outside [0, 1]², overlapping charts) when none can.
 LightmapUvChoice chooseLightmapUvs(const Mesh& mesh, UvSetOption option, int width, int height);
 
 }  // namespace prt

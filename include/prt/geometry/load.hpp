@@ -2,11 +2,13 @@
 // Loading meshes and scenes from files. One entry point dispatches on the extension
 // (case-insensitive; a trailing ".gz" is decompressed first):
 //
-//   .obj        Wavefront OBJ (tinyobjloader) with its .mtl: Kd and map_Kd → albedo
+//   .obj        Wavefront OBJ (tinyobjloader) with its .mtl: Kd → albedo, map_Kd → base colour
+//               texture (Mesh::baseColour; sampled into the albedo where faces differ)
 //   .ply        Stanford PLY, ASCII or binary little/big endian (our own reader)
 //   .off        Object File Format (OFF, COFF, NOFF, CNOFF), ASCII
 //   .gltf .glb  glTF 2.0 (tinygltf): all triangle primitives of the default scene, node transforms
-//               applied, baseColorFactor × baseColorTexture × COLOR_0 → albedo
+//               applied, baseColorFactor × COLOR_0 → albedo, baseColorTexture → base colour
+//               texture (sampled into the albedo where primitives differ)
 //   builtin:NAME  a generated scene (see builtin.hpp)
 //
 // The vertex order of each format, the colour conventions and what is repaired or rejected are
@@ -72,7 +74,9 @@ Mesh loadMeshBytes(const std::string& name, std::span<const unsigned char> bytes
 Mesh loadScene(const std::vector<std::string>& inputs, LoadReport* report = nullptr);
 
 /// Appends `part` to `scene` (indices offset, parts appended; albedo filled with kDefaultAlbedo
-/// on whichever side lacks it when exactly one side has it).
+/// on whichever side lacks it when exactly one side has it). A base-colour texture is kept for
+/// a scene of one mesh only: appending to a non-empty scene folds both sides' textures into
+/// their albedo (foldBaseColour, mesh.hpp).
 void appendMesh(Mesh& scene, const Mesh& part);
 
 /// The extensions loadMesh accepts (without dot, lower case; "gz" variants not listed).

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "prt/core/vec.hpp"
+#include "prt/geometry/base_colour.hpp"
 
 namespace prt {
 
@@ -39,8 +40,13 @@ struct SurfaceGloss {
 struct Mesh {
   std::vector<Vec3f> positions;  ///< world space (scene transforms applied)
   std::vector<Vec3f> normals;    ///< unit, one per vertex
-  std::vector<Rgb> albedo;       ///< linear diffuse albedo per vertex (empty: uniform)
-  std::vector<Vec2f> uvs;        ///< optional texture coordinates (glTF TEXCOORD_0, OBJ vt)
+  /// Linear diffuse albedo per vertex (empty: uniform). With a base-colour texture, the factor
+  /// it multiplies (glTF baseColorFactor × COLOR_0, MTL Kd): the diffuse colour at p is
+  /// albedo(p) × sampleBaseColour(texture, uv(p)). Per-vertex stages (the bake's bounces, prt
+  /// reference and validate, the viewers, Python) see the texture folded in at the vertices
+  /// (albedoAtVertices, foldBaseColour); images multiply it per pixel (render/base_colour.hpp).
+  std::vector<Rgb> albedo;
+  std::vector<Vec2f> uvs;  ///< optional texture coordinates (glTF TEXCOORD_0, OBJ vt)
   /// Optional lightmap coordinates, a second UV set for per-texel data (glTF TEXCOORD_1; the
   /// builtin scenes' packed charts): inside [0, 1]², charts apart (geometry/texel_sampling.hpp
   /// checks). One per vertex, or empty.
@@ -51,6 +57,10 @@ struct Mesh {
   /// The scene's glossy surface when a file describes one: one for the whole scene (the first
   /// material with a specular term), as relighting applies one lobe.
   std::optional<SurfaceGloss> gloss;
+  /// The scene's base-colour texture, read at `uvs` (which then has one UV per vertex): one for
+  /// the whole scene, kept when every part uses the same one (the loaders sample textures into
+  /// the albedo at the vertices otherwise). geometry/base_colour.hpp.
+  std::optional<BaseColourTexture> baseColour;
 
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return triangles.size(); }
@@ -65,8 +75,16 @@ struct Bounds {
 };
 Bounds computeBounds(const Mesh& mesh);
 
+/// The diffuse colour at each vertex: the albedo (white where empty) times the base-colour
+/// texture sampled at the vertex's UV; the albedo as it is without a texture.
+std::vector<Rgb> albedoAtVertices(const Mesh& mesh);
+/// Folds the base-colour texture into the per-vertex albedo (albedoAtVertices) and drops it:
+/// the mesh as a consumer that shades per vertex sees it. Nothing without a texture.
+void foldBaseColour(Mesh& mesh);
+
 /// 16 hex digits identifying the mesh's geometry: FNV-1a (core/hash.hpp) of its positions,
-/// normals, triangles and albedo, bitwise. A bake's checkpoint identity and a reference file's
+/// normals, triangles and albedo, bitwise (and, when it has one, of its base-colour texture and
+/// the texture UVs it is read at). A bake's checkpoint identity and a reference file's
 /// tie to their mesh by it.
 std::string meshFingerprint(const Mesh& mesh);
 

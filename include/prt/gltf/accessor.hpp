@@ -131,6 +131,10 @@ class AccessorReader {
   AccessorSpan spanExact(int index, int components, int componentType, std::size_t count,
                          const std::string& what, std::size_t valueSize) const;
 
+  /// The bytes of bufferView `index` (an embedded image's), the view checked to lie inside its
+  /// buffer.
+  std::span<const unsigned char> viewBytes(int index, const std::string& what) const;
+
   /// Throws prt::Error(label, msg).
   [[noreturn]] void fail(const std::string& msg) const;
 

@@ -4,6 +4,7 @@
 // (x + 0.5, y + 0.5).
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "prt/core/vec.hpp"
@@ -29,6 +30,23 @@ struct Image {
   std::size_t size() const { return pixels.size(); }
   Rgb& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
   const Rgb& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+};
+
+/// An image of 8-bit sRGB-encoded RGB codes, row-major, top row first: a colour texture as PNG
+/// and JPEG hold it (a material's base colour, geometry/base_colour.hpp). Kept as its codes, not
+/// decoded, so it is written back bit for bit and decoded where it is sampled (srgb8ToLinear),
+/// as a GPU's sRGB texture format does.
+struct Srgb8Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;  ///< 3 codes per pixel (r, g, b), width·height pixels
+
+  bool empty() const { return rgb.empty(); }
+  /// The code of channel c (0..2) of pixel (x, y).
+  std::uint8_t code(int x, int y, int c) const {
+    return rgb[3 * (static_cast<std::size_t>(y) * width + x) + c];
+  }
+  bool operator==(const Srgb8Image&) const = default;
 };
 
 /// A copy of the w×h block whose top-left pixel is (x0, y0) (must lie inside `src`).

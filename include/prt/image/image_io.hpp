@@ -57,6 +57,20 @@ Image readImageBytes(const std::string& label, const std::string& ext,
 /// (throws Error(label, ...) otherwise).
 void checkEncodedImageSize(const std::string& label, std::span<const unsigned char> bytes);
 
+/// Decodes a PNG or JPEG held in memory (by content) to its 8-bit sRGB codes, exactly: grey
+/// expands to RGB, alpha is dropped, a 16-bit PNG is rounded to 8 bits (round(v / 257)). The
+/// checks of readImageBytes come first (signature, PNG chunk lengths, a JPEG's end marker, the
+/// declared size against prt::limits()), so a small file cannot ask for a large allocation.
+/// Throws prt::Error(label, ...).
+Srgb8Image readSrgb8Bytes(const std::string& label, std::span<const unsigned char> bytes);
+/// Reads a colour texture file as 8-bit sRGB codes: PNG and JPEG as readSrgb8Bytes, HDR and EXR
+/// (linear) encoded to sRGB, each channel clamped to [0, 1] and rounded. Throws
+/// prt::Error("PATH: ...").
+Srgb8Image readSrgb8Image(const std::string& path);
+/// The PNG bytes of `img` (8-bit RGB, stb_image_write: the same bytes for the same codes).
+/// Throws prt::Error(name, ...) for an empty or inconsistent image.
+std::string encodePng(const Srgb8Image& img, const std::string& name);
+
 /// Applies the pixel policy in place and returns the counts (used by the readers; exposed for
 /// images built in memory).
 ReadStats sanitize(Image& img);

@@ -6,7 +6,8 @@
 //
 //   * one glTF mesh + node per MeshPart, one triangle primitive each (POSITION, NORMAL,
 //     TEXCOORD_0 if any, COLOR_0 = linear albedo if any, uint32 indices), all parts viewing one
-//     shared vertex buffer in the scene's global vertex order;
+//     shared vertex buffer in the scene's global vertex order; the mesh's base-colour texture,
+//     if any, as material 0's baseColorTexture on TEXCOORD_0 (one embedded PNG);
 //   * each transfer through the codec of its representation and layout: dense vectors as
 //     ⌈B²C/4⌉ VEC4 float vertex attributes _PRT_<MODE>_T0.., dense matrices as one SCALAR
 //     float accessor _PRT_<MODE>_M, CPCA-compressed rows as four accessors _PRT_<MODE>_CPCA_*;

@@ -83,7 +83,8 @@ ShaderPath shaderPath(const Transfer& t, bool matricesOnGpu);
 
 /// Why a per-texel matrix transfer is not drawn (shaderPath's refusal; the page's, generated).
 inline constexpr const char* kPerTexelMatricesRefusal =
-    "the viewers relight per-texel vector transfer only (matrices are not baked per texel)";
+    "the viewers relight per-texel vector transfer only (per-texel glossy matrices: prt render "
+    "draws them)";
 
 /// The per-row texels of a path (uploaded once).
 struct ShaderRows {

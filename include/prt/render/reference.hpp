@@ -238,6 +238,7 @@ class ReferenceIntegrator {
   Rgb hitAlbedo(std::uint32_t tri, float u, float v) const;
 
   const Mesh& mesh_;
+  std::vector<Rgb> albedo_;  ///< the diffuse colour at each vertex (geometry: albedoAtVertices)
   const Occluder& occluder_;
   const EnvironmentSampler& sampler_;
   ReferenceSettings settings_;
@@ -268,6 +269,7 @@ class ReferenceRows {
 
  private:
   const Mesh& mesh_;
+  std::vector<Rgb> albedo_;  ///< the diffuse colour at each vertex (geometry: albedoAtVertices)
   ReferenceSettings settings_;
   std::vector<std::uint32_t> vertices_;
   std::size_t lanes_ = 0;

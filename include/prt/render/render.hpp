@@ -49,7 +49,8 @@ ShadeFn vertexRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance);
 ShadeFn texelRadianceShader(const Mesh& mesh, std::span<const Rgb> radiance, int width, int height,
                             std::span<const Rgb> albedo);
 /// The albedo texelRadianceShader multiplies, the one rule for every per-texel image: the mesh's,
-/// unless the material sets kd (then relighting applied it already: empty).
+/// unless the material sets kd (then relighting applied it already: empty). The base-colour
+/// texture follows the same rule, for every image (pixelTexture, base_colour.hpp).
 inline std::span<const Rgb> texelAlbedo(const Mesh& mesh, const Material& material) {
   return material.diffuse ? std::span<const Rgb>() : std::span<const Rgb>(mesh.albedo);
 }

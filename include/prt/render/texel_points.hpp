@@ -4,15 +4,43 @@
 // (geometry/texel_sampling.hpp), and which texels may be validated — covered, and not inside
 // geometry (transport/texel_validity.hpp; those hold their neighbours' values, not their own).
 
+#include <span>
+
 #include "prt/geometry/mesh.hpp"
 #include "prt/raytrace/occluder.hpp"
+#include "prt/relight/relight.hpp"
 #include "prt/render/reference.hpp"
+#include "prt/transfer/material.hpp"
 #include "prt/transfer/shape.hpp"
+#include "prt/transfer/transfer.hpp"
 
 namespace prt::render {
 
-/// W·H rows over the mesh's lightmap UVs (throws prt::Error without them or on a bad size).
+/// W·H rows over the mesh's lightmap UVs (throws prt::Error without them or on a bad size). Rows
+/// that are not valid — the gutter and the texels inside geometry — take the point, normal and
+/// albedo of their valid neighbours, dilated as the bake dilates their transfer (max(padding, 1)
+/// rings; inside texels no valid texel reaches keep their own), so that a row relit where the
+/// view and the lobe matter (matrices) is relit where its transfer came from.
+/// The albedo at a point is the diffuse colour there with the base-colour texture folded in at
+/// the vertices (albedoAtVertices, as the bake's bounces and the reference see it); without
+/// `withTexture` the mesh's albedo alone (an image multiplies the texture per pixel).
 RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
-                         const TransferShape::LightmapSize& lightmap);
+                         const TransferShape::LightmapSize& lightmap, bool withTexture = true);
+
+/// How a per-texel transfer is relit for an image, the one rule for prt render, auto exposure
+/// and the Python module:
+///  * vectors are relit white, texel by texel, and the albedo multiplies per pixel (pixelAlbedo,
+///    texelAlbedo of render.hpp), as it varies across a texel;
+///  * matrices are relit at each texel's sample point (`points`: the eye's direction and the lobe
+///    need its position and normal) with the texel's albedo, since only their diffuse term takes
+///    the albedo (kd ⊙ diffuse + ks ⊙ glossy): the pixel multiplies nothing more but the
+///    base-colour texture (render/base_colour.hpp), which the rows' albedo leaves out.
+struct TexelRelight {
+  RowPoints points;                  ///< matrices: the rows' points (empty for vectors)
+  std::span<const Rgb> pixelAlbedo;  ///< what texelRadianceShader multiplies (empty: nothing)
+  relight::Surface surface() const { return {points.positions, points.normals, points.albedo}; }
+};
+TexelRelight texelRelight(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+                          const Material& material);
 
 }  // namespace prt::render

@@ -112,6 +112,11 @@ struct ValidationReport {
 
 /// A deterministic random subset of `count` of [0, n) (all when count is 0 or ≥ n), sorted.
 std::vector<std::uint32_t> vertexSubset(std::size_t n, std::size_t count, std::uint64_t seed);
+/// The rows a reference estimates, the one rule for prt reference and validation: of `n`
+/// vertices, vertexSubset; of per-texel rows (`points`), the same draw among their valid texels
+/// only (never the gutter, never a texel inside geometry), ascending.
+std::vector<std::uint32_t> rowSubset(const RowPoints* points, std::size_t n, std::size_t count,
+                                     std::uint64_t seed);
 
 /// Validates `transfer` (every vertex of `mesh`, baked with `bake` settings) lit by `light` (the
 /// projection of `env`) against the reference. Band counts beyond min(transfer, light) are

@@ -1,10 +1,13 @@
 #pragma once
-// Per-texel transfer (the lightmap domain, issue 18): the vector bake of transport/bake.hpp —
-// unshadowed, shadowed and inter-reflected, the same estimators and per-row seeding — at one
-// sample point per texel of a W × H lightmap that a triangle covers in the mesh's lightmap UVs
-// (geometry/texel_sampling.hpp: the centre, else the nearest point of the triangle inside the
-// texel), instead of at the vertices. Bounces read the previous pass where a ray lands through
-// the hit's lightmap UV, bilinearly, from that pass dilated into the gutter.
+// Per-texel transfer (the lightmap domain, issue 18): the bakes of transport/bake.hpp — diffuse
+// vectors and glossy matrices; unshadowed, shadowed and inter-reflected (diffuse or glossy
+// bounce surfaces); the same estimators and per-row seeding — at one sample point per texel of a
+// W × H lightmap that a triangle covers in the mesh's lightmap UVs (geometry/texel_sampling.hpp:
+// the centre, else the nearest point of the triangle inside the texel), instead of at the
+// vertices. Bounces read the previous pass (or order, or the diffuse sum a matrix gathers) where
+// a ray lands through the hit's lightmap UV, bilinearly, from that pass dilated into the gutter.
+// Matrices per texel are large — B⁴ floats per texel and channel: 1024² texels at 5 bands are
+// 2.6 GB — so texelBakeFootprint states the memory first, and the bake refuses what would not fit.
 //
 // The result is a Transfer over TransferDomain::Texels: W·H rows, texel (x, y) row y·W + x;
 // the texels no triangle covers hold the dilation of their covered neighbours up to `padding`
@@ -36,11 +39,22 @@ struct TexelBake {
   std::vector<std::uint32_t> invalid;
 };
 
-/// Bakes vector transfer (settings.layout Vector) at the covered texels of a width × height
+/// What a per-texel bake holds in memory, known before it starts (the channels rule is
+/// bakeFootprint's: RGB when a bounce's albedo, or a glossy bounce's ks, is coloured).
+struct TexelBakeFootprint {
+  int channels = 1;               ///< of the transfer the bake will return
+  std::size_t bytesPerTexel = 0;  ///< of the transfer
+  std::size_t transferBytes = 0;  ///< the returned transfer (the range's texels)
+  std::size_t workingBytes = 0;   ///< passes at the samples and their dilated lightmaps
+};
+TexelBakeFootprint texelBakeFootprint(const Mesh& mesh, const BakeSettings& settings, int width,
+                                      int height);
+
+/// Bakes settings.layout transfer at the covered texels of a width × height
 /// lightmap over `uvs` (one per vertex, checked by checkLightmapUvs), dilated `padding` rings
 /// (0..kMaxLightmapPadding); settings.rows is a range of texel rows (count 0: to the last). Throws
-/// prt::Error as bake() does, and on a UV set that cannot hold the lightmap, a matrix layout or
-/// a range outside the lightmap.
+/// prt::Error as bake() does, on a UV set that cannot hold the lightmap or a range outside it,
+/// and when texelBakeFootprint would not fit in this machine's memory (stating the figure).
 TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
                      std::span<const Vec2f> uvs, int width, int height, int padding,
                      BakeStats* stats = nullptr, const ProgressFn& progress = {});
