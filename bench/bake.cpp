@@ -21,6 +21,10 @@
 //                                    same scene against its raw rays, same run: vs_raw of the
 //                                    pass, and of the whole bake (sampling and the validity
 //                                    probe included).
+//     BM_TexelMatrix/SCENE/RES       per-texel shadowed glossy matrices (3 bands, 256 samples) of a
+//                                    RES² lightmap against the per-vertex matrix bake of the same
+//                                    scene and the per-texel vector bake, same run: ns per sample
+//                                    of each, texel/vertex and matrix/vector.
 //   bench_bake --equal-error         RMS error of T₀ against a 65536-sample bake at 64…4096
 //                                    samples, cosine-Sobol' vs uniform random.
 //
@@ -288,6 +292,45 @@ void BM_TexelShadowed(benchmark::State& state, const std::string& name) {
   state.counters["vertex_vs_raw"] = (vertexRays / vertexPass) / (rawVertexRays / rawVertex);
 }
 
+void BM_TexelMatrix(benchmark::State& state, const std::string& name) {
+  Scene* s = scene(name);
+  const int res = static_cast<int>(state.range(0));
+  prt::BakeSettings settings;
+  settings.mode = prt::TransferMode::Shadowed;
+  settings.layout = prt::TransferLayout::Matrix;
+  settings.bands = 3;
+  settings.samples = 256;
+  settings.seed = 7;
+  prt::BakeSettings vector = settings;
+  vector.layout = prt::TransferLayout::Vector;
+  double texel = 0, vertex = 0, texelVector = 0;
+  double texelSamples = 0, vertexSamples = 0;
+  for (auto _ : state) {
+    prt::BakeStats st, sv, sx;
+    const prt::TexelBake b =
+        prt::bakeTexels(s->mesh, *s->occluder, settings, s->mesh.lightmapUvs, res, res, 2, &st);
+    benchmark::DoNotOptimize(b.transfer.values().data());
+    const prt::Transfer v = prt::bake(s->mesh, *s->occluder, settings, &sv);
+    benchmark::DoNotOptimize(v.values().data());
+    const prt::TexelBake x =
+        prt::bakeTexels(s->mesh, *s->occluder, vector, s->mesh.lightmapUvs, res, res, 2, &sx);
+    benchmark::DoNotOptimize(x.transfer.values().data());
+    texel += st.secondsDirect;
+    vertex += sv.secondsDirect;
+    texelVector += sx.secondsDirect;
+    texelSamples += double(st.vertices) * settings.samples;
+    vertexSamples += double(sv.vertices) * settings.samples;
+    state.SetIterationTime(st.secondsTotal);
+  }
+  const double nsTexel = texel / texelSamples * 1e9, nsVertex = vertex / vertexSamples * 1e9,
+               nsVector = texelVector / texelSamples * 1e9;
+  state.counters["texels"] = texelSamples / settings.samples / double(state.iterations());
+  state.counters["ns/sample"] = nsTexel;
+  state.counters["vertex_ns/sample"] = nsVertex;
+  state.counters["texel_vs_vertex"] = nsTexel / nsVertex;
+  state.counters["matrix_vs_vector"] = nsTexel / nsVector;
+}
+
 void BM_Interreflected(benchmark::State& state, const std::string& name) {
   Scene* s = scene(name);
   if (!s) {
@@ -420,6 +463,12 @@ BENCHMARK_CAPTURE(BM_Shadowed, sphere_plane, std::string("sphere-plane"))
 BENCHMARK_CAPTURE(BM_TexelShadowed, cornell, std::string("cornell"))
     ->Arg(256)
     ->Arg(512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+BENCHMARK_CAPTURE(BM_TexelMatrix, cornell, std::string("cornell"))
+    ->Arg(128)
+    ->Arg(256)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
