@@ -6,7 +6,11 @@
 centroid in vec2 vLightmapUv;
 in vec3 vAlbedo;
 #include "prt_lightmap.glsl"
+#ifdef PRT_LIGHTMAP_GLOSSY
+vec3 prtRadiance() { return prtLightmapRadiance(vLightmapUv); }  // the rows hold their albedo
+#else
 vec3 prtRadiance() { return vAlbedo * prtLightmapRadiance(vLightmapUv); }
+#endif
 #else
 in vec3 vRadiance;
 vec3 prtRadiance() { return vRadiance; }

@@ -5,6 +5,12 @@
 //   dense (default)      prt_relight.glsl's layout, against the rotated light uL[]
 //   PRT_LIGHTMAP_CPCA    prt_compressed.glsl's ids and weights, against this frame's cluster
 //                        table uClusters (the same table as per-vertex CPCA vectors)
+//   + PRT_LIGHTMAP_GLOSSY  CPCA glossy matrices (desktop viewer): each tap forms the light its
+//                        texel receives, L'_i = L'_k0,i + Σ_j w_j L'_kj,i (uCoeffs values per
+//                        cluster vector), and shades it with the glossy response at the texel's
+//                        own sample point, normal and albedo (uPoints: three texels per row,
+//                        render::packTexelPoints) — the radiance prt render relights each texel
+//                        to (render::texelRelight) before its bilinear fetch
 // prtLightmapRadiance(uv) is render::texelRadianceShader's fetch (prt render): the four texels
 // of geometry/texel_samples.hpp's bilinearTaps — texel centres at ((x + ½)/W, (y + ½)/H), row 0
 // at v = 0, indices clamped to the edge — each relit, blended with the bilinear weights in the
@@ -18,7 +24,21 @@ uniform int uBasisCount;       // N
 vec4 prtWeightTexel(int t) { return prtTexel(uRows, t); }
 vec4 prtClusterTexel(int t) { return prtTexel(uClusters, t); }
 #include "prt_compressed.glsl"
+#ifdef PRT_LIGHTMAP_GLOSSY
+uniform PRT_TEXELS uPoints;  // per row: (position, 0), (normal, 0), (albedo, 0)
+uniform int uCoeffs;         // values per cluster vector in the table (b²)
+int gBase, gRow;             // the tap being shaded: its first weight texel and cluster row
+#include "prt_glossy.glsl"
+vec3 prtGlossyLight(int i) { return prtCompressedValue(gBase, gRow, uBasisCount, uCoeffs, i); }
+vec3 prtLightmapRow(int r) {
+  gBase = r * uTexelsPerRow;
+  gRow = prtCompressedRow(gBase, uBasisCount);
+  return prtGlossy(prtTexel(uPoints, 3 * r).xyz, prtTexel(uPoints, 3 * r + 1).xyz,
+                   prtTexel(uPoints, 3 * r + 2).rgb);
+}
+#else
 vec3 prtLightmapRow(int r) { return prtRelightCompressed(r * uTexelsPerRow, uBasisCount); }
+#endif
 #else
 uniform int uCount;  // scalar: texels to read = roundUp4(b²)/4; RGB: b²
 uniform bool uRgb;

@@ -189,6 +189,9 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
   std::vector<unsigned char> glb = readFileBytes(a.bake, kMaxPageBakeBytes, "the page's limit");
   bake = decodeBake(glb, a.bake);
   for (const BakedTransfer& t : bake.transfers) {
+    if (t.transfer.isMatrix() && t.transfer.domain() == TransferDomain::Texels)
+      throw Error(a.bake, std::string(relight::kPageTexelMatricesRefusal) + " (" + t.describe() +
+                              ")");
     if (t.transfer.isMatrix() && !t.transfer.compressed())
       throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices; the browser "
                                       "viewer draws them CPCA-compressed only (prt compress), or "

@@ -52,12 +52,17 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
   std::printf("frame time (draw + glFinish): median %.3f ms, min %.3f ms\n",
               median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
   const bool table = path == ShaderPath::CpcaVector || path == ShaderPath::CpcaMatrix;
+  const bool perPixel = t.domain() == TransferDomain::Texels;
   std::printf("CPU per frame (light rotation + packing%s): median %.4f ms\n",
               table                             ? " + cluster projections"
               : path == ShaderPath::CpuRadiance ? " + CPU relighting"
                                                 : "",
               median(steady(cpuMs)));
-  if (path == ShaderPath::DenseMatrix || path == ShaderPath::CpcaMatrix) {
+  if (path == ShaderPath::CpcaMatrix && perPixel) {
+    std::printf(
+        "glossy relighting: per pixel in the fragment shader (four texels a pixel), inside the "
+        "frame time\n");
+  } else if (path == ShaderPath::DenseMatrix || path == ShaderPath::CpcaMatrix) {
     std::printf(
         "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
   } else if (path == ShaderPath::CpuRadiance) {

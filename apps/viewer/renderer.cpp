@@ -174,6 +174,11 @@ Renderer::Renderer() {
       link(glsl330(kShaderLightmapVert),
            glsl330(kShaderMeshFrag, "#define PRT_LIGHTMAP 1\n#define PRT_LIGHTMAP_CPCA 1\n"),
            "compressed lightmap mesh");
+  lightmapGlossyProgram_ = link(glsl330(kShaderLightmapVert),
+                                glsl330(kShaderMeshFrag,
+                                        "#define PRT_LIGHTMAP 1\n#define PRT_LIGHTMAP_CPCA 1\n"
+                                        "#define PRT_LIGHTMAP_GLOSSY 1\n"),
+                                "compressed glossy lightmap mesh");
   glUniformBlockBinding(meshProgram_, glGetUniformBlockIndex(meshProgram_, "Light"), 0);
   glUniformBlockBinding(lightmapProgram_, glGetUniformBlockIndex(lightmapProgram_, "Light"), 0);
   glUniformBlockBinding(glossyProgram_, glGetUniformBlockIndex(glossyProgram_, "Light"), 0);
@@ -194,14 +199,17 @@ Renderer::Renderer() {
 Renderer::~Renderer() {
   const GLuint programs[] = {meshProgram_,     backgroundProgram_, toneProgram_,
                              glossyProgram_,   compressedProgram_, compressedGlossyProgram_,
-                             radianceProgram_, lightmapProgram_,   lightmapCompressedProgram_};
+                             radianceProgram_, lightmapProgram_,   lightmapCompressedProgram_,
+                             lightmapGlossyProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
   const GLuint buffers[] = {positions_, albedo_,  indices_,       transferBuffer_, lightUbo_,
-                            radiance_,  normals_, clusterBuffer_, lightmapUvs_};
-  glDeleteBuffers(9, buffers);
+                            radiance_,  normals_, clusterBuffer_, lightmapUvs_,
+                            pointsBuffer_};
+  glDeleteBuffers(10, buffers);
   const GLuint textures[] = {transferTexture_, envTexture_,    shTexture_,
-                             msColour_,        resolveColour_, clusterTexture_};
-  glDeleteTextures(6, textures);
+                             msColour_,        resolveColour_, clusterTexture_,
+                             pointsTexture_};
+  glDeleteTextures(7, textures);
   glDeleteRenderbuffers(1, &msDepth_);
   const GLuint fbos[] = {msFbo_, resolveFbo_};
   glDeleteFramebuffers(2, fbos);
@@ -321,6 +329,13 @@ void Renderer::setTransfer(const relight::ShaderRows& rows, const TransferShape&
   transferBands_ = shape.bands;
   transferChannels_ = shape.channels;
   hasTransfer_ = true;
+}
+
+void Renderer::setTexelPoints(std::span<const float> texels) {
+  requireTextureBufferTexels(double(texels.size() / 4), "the texels' points",
+                             "use a smaller lightmap");
+  uploadTextureBuffer(pointsBuffer_, pointsTexture_, texels, GL_STATIC_DRAW);
+  hasTexelPoints_ = true;
 }
 
 void Renderer::setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
@@ -467,8 +482,9 @@ void Renderer::drawMesh(const FrameParams& f, const float* viewProj) {
       triangles_ > 0 && hasTransfer_ && (path_ != ShaderPath::CpuRadiance || hasRadiance_);
   if (drawable) {
     // The program of the path and its per-vertex texels; then what the path needs per frame.
-    const GLuint p = perPixel_ ? (path_ == ShaderPath::CpcaVector ? lightmapCompressedProgram_
-                                                                  : lightmapProgram_)
+    const GLuint p = perPixel_ ? (path_ == ShaderPath::CpcaVector   ? lightmapCompressedProgram_
+                                  : path_ == ShaderPath::CpcaMatrix ? lightmapGlossyProgram_
+                                                                    : lightmapProgram_)
                      : path_ == ShaderPath::DenseMatrix ? glossyProgram_
                      : path_ == ShaderPath::CpcaVector  ? compressedProgram_
                      : path_ == ShaderPath::CpcaMatrix  ? compressedGlossyProgram_
@@ -492,11 +508,21 @@ void Renderer::drawMesh(const FrameParams& f, const float* viewProj) {
       glUniform1i(loc(p, "uRows"), 1);
       glUniform2i(loc(p, "uLightmapSize"), lightmap_.width, lightmap_.height);
       glUniform1i(loc(p, "uTexelsPerRow"), texelsPerRow_);
-      if (path_ == ShaderPath::CpcaVector) {
+      if (path_ == ShaderPath::CpcaVector || path_ == ShaderPath::CpcaMatrix) {
         glActiveTexture(GL_TEXTURE2);
         glBindTexture(GL_TEXTURE_BUFFER, clusterTexture_);
         glUniform1i(loc(p, "uClusters"), 2);
         glUniform1i(loc(p, "uBasisCount"), basisCount_);
+        if (path_ == ShaderPath::CpcaMatrix) {
+          // Glossy per pixel: the texels' points, and the table of b² values per vector.
+          PRT_CHECK(hasTexelPoints_, "per-texel matrices need setTexelPoints");
+          glActiveTexture(GL_TEXTURE3);
+          glBindTexture(GL_TEXTURE_BUFFER, pointsTexture_);
+          glUniform1i(loc(p, "uPoints"), 3);
+          glUniform1i(loc(p, "uBands"), std::min(b, bands::kMaxShaderGlossy));
+          glUniform1i(loc(p, "uCoeffs"), b * b);
+          setGlossyUniforms(p, c.eye);
+        }
       } else {
         glUniform1i(loc(p, "uRgb"), transferChannels_ == 3);
         glUniform1i(loc(p, "uCount"), transferChannels_ == 3 ? b * b : paddedCoeffs(b) / 4);

@@ -107,6 +107,9 @@ class Renderer {
   /// Uploads exit radiance, one value per mesh vertex (albedo already applied): what the
   /// CpuRadiance path draws.
   void setRadiance(std::span<const Rgb> radiance);
+  /// Per-texel glossy matrices (CpcaMatrix per pixel): the texels' sample points, normals and
+  /// albedo (render::packTexelPoints, three RGBA texels per lightmap texel), uploaded once.
+  void setTexelPoints(std::span<const float> texels);
   /// The material for the glossy programs: per-coefficient kernels (A_l/π and Λ_l, as
   /// PreparedMaterial, at least b² of them), kd (unset: the mesh's albedo) and ks.
   void setGlossyMaterial(std::span<const float> diffuse, std::span<const float> glossy,
@@ -144,6 +147,7 @@ class Renderer {
   unsigned compressedProgram_ = 0, compressedGlossyProgram_ = 0, radianceProgram_ = 0;
   unsigned lightmapProgram_ = 0, lightmapCompressedProgram_ = 0, lightmapUvs_ = 0;
   unsigned clusterBuffer_ = 0, clusterTexture_ = 0;
+  unsigned lightmapGlossyProgram_ = 0, pointsBuffer_ = 0, pointsTexture_ = 0;
   std::size_t clusterTableBytes_ = 0;
   unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0, normals_ = 0;
   unsigned transferBuffer_ = 0, transferTexture_ = 0, lightUbo_ = 0, radiance_ = 0;
@@ -152,6 +156,7 @@ class Renderer {
   int fbWidth_ = 0, fbHeight_ = 0;
   bool hasAlbedo_ = false, hasTransfer_ = false, hasRadiance_ = false, hasLightmapUvs_ = false;
   bool perPixel_ = false;  ///< per-texel rows, relit per pixel
+  bool hasTexelPoints_ = false;
   TransferShape::LightmapSize lightmap_{};
   relight::ShaderPath path_ = relight::ShaderPath::DenseVector;
   int texelsPerRow_ = 0, basisCount_ = 0;

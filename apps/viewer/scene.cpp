@@ -12,7 +12,9 @@
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
+#include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/render/texel_points.hpp"
 
 namespace prt::viewer {
 
@@ -211,6 +213,12 @@ void SceneView::setTransfer(const DrawState& now) {
   renderer_.setTransfer(relight::packShaderRows(t, path_), t.shape(), c ? c->clusters : 0,
                         c ? c->basisCount : 0);
   const Mesh& mesh = now.bake->mesh;
+  if (t.domain() == TransferDomain::Texels && t.isMatrix()) {
+    // Glossy per pixel: each texel shaded at its own sample point (render::texelRelight).
+    const auto occluder = makeEmbreeOccluder(mesh);
+    renderer_.setTexelPoints(
+        render::packTexelPoints(render::texelRelight(mesh, *occluder, t, now.material).points));
+  }
   relighter_ = path_ == relight::ShaderPath::CpuRadiance
                    ? relight::Relighter(t, {mesh.positions, mesh.normals, mesh.albedo})
                    : relight::Relighter();
@@ -306,17 +314,21 @@ std::string SceneView::uploadSummary(const Scene& scene) const {
           : 16 * std::size_t(relight::shaderTexelsPerRow(t, densePath));  // from the shape
   if (t.domain() == TransferDomain::Texels) {
     const TransferShape::LightmapSize lm = t.shape().lightmap;
+    // A dense per-texel matrix is B⁴ floats per channel (no GPU path draws it).
+    const std::size_t denseTexel =
+        t.isMatrix() ? sizeof(float) * std::size_t(t.coeffs()) * t.coeffs() * t.channels() : dense;
     const std::size_t texels = lm.texels();
     if (t.compressed())
       return fmt::format(
-          "relit compressed (CPCA {} x {}) per pixel from a {} x {} lightmap: {} bytes per texel "
-          "uploaded once ({:.1f} MB; dense: {}), {} bytes of cluster table per frame",
-          t.cpca().clusters, t.cpca().basisCount, lm.width, lm.height, renderer_.bytesPerVertex(),
-          double(texels * renderer_.bytesPerVertex()) / 1e6, dense, renderer_.clusterTableBytes());
+          "relit compressed {}(CPCA {} x {}) per pixel from a {} x {} lightmap: {} bytes per "
+          "texel uploaded once ({:.1f} MB; dense: {}), {} bytes of cluster table per frame",
+          t.isMatrix() ? "glossy matrices " : "", t.cpca().clusters, t.cpca().basisCount, lm.width,
+          lm.height, renderer_.bytesPerVertex(), double(texels * renderer_.bytesPerVertex()) / 1e6,
+          denseTexel, renderer_.clusterTableBytes());
     return fmt::format(
         "dense transfer relit per pixel from a {} x {} lightmap: {} bytes per texel uploaded "
         "({:.1f} MB)",
-        lm.width, lm.height, dense, double(texels * dense) / 1e6);
+        lm.width, lm.height, denseTexel, double(texels * denseTexel) / 1e6);
   }
   switch (path_) {
     case relight::ShaderPath::CpuRadiance:

@@ -27,7 +27,8 @@ namespace {
 
 void checkPath(const Transfer& t, ShaderPath path) {
   const std::string what = std::string("the ") + toString(t.layout()) + " transfer";
-  if (t.domain() == TransferDomain::Texels && t.isMatrix()) throw Error(kPerTexelMatricesRefusal);
+  if (t.domain() == TransferDomain::Texels && t.isMatrix() && path != ShaderPath::CpcaMatrix)
+    throw Error(kPerTexelMatricesRefusal);
   switch (path) {
     case ShaderPath::DenseVector:
     case ShaderPath::CpcaVector:
@@ -61,6 +62,8 @@ ShaderPath shaderPath(const Transfer& t, bool matricesOnGpu) {
   ShaderPath path;
   if (!t.isMatrix())
     path = t.compressed() ? ShaderPath::CpcaVector : ShaderPath::DenseVector;
+  else if (t.domain() == TransferDomain::Texels)
+    path = t.compressed() ? ShaderPath::CpcaMatrix : ShaderPath::DenseMatrix;  // (refused)
   else if (!matricesOnGpu)
     path = ShaderPath::CpuRadiance;
   else

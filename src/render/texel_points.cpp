@@ -69,6 +69,21 @@ RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
   return out;
 }
 
+std::vector<float> packTexelPoints(const RowPoints& points) {
+  const std::size_t rows = points.positions.size();
+  std::vector<float> out(rows * 12, 0.0f);
+  for (std::size_t r = 0; r < rows; ++r) {
+    float* t = out.data() + r * 12;
+    const Vec3f& p = points.positions[r];
+    const Vec3f& n = points.normals[r];
+    const Rgb a = points.albedo.empty() ? Rgb(1.0f) : points.albedo[r];
+    t[0] = p.x, t[1] = p.y, t[2] = p.z;
+    t[4] = n.x, t[5] = n.y, t[6] = n.z;
+    t[8] = a.x, t[9] = a.y, t[10] = a.z;
+  }
+  return out;
+}
+
 TexelRelight texelRelight(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
                           const Material& material) {
   TexelRelight r;

@@ -221,6 +221,35 @@ TEST(ViewCli, TexelBakeRelitPerPixelMatchesRender) {
       << c.out;
 }
 
+// Per-texel glossy matrices, CPCA-compressed, relit per pixel: each of the four taps forms its
+// texel's received light from the cluster table and shades it at the texel's own point (what
+// prt render relights each texel to), under turned lights and cameras; a diffuse material
+// instead (the lobe left out) is far off. The dense file is refused by name.
+TEST(ViewCli, TexelGlossyMatricesRelitPerPixelMatchRender) {
+  PRT_REQUIRE_HEADLESS_GL();
+  const std::string& c = compressedGlossyTexelBake();
+  const std::string close = "--exposure 0 --camera 'eye=0.4,1.3,2.3;target=0,0.8,0;fov=45'";
+  for (const std::string& args : {std::string(), std::string("--exposure 0 --rotate 20,70,0"), close}) {
+    const double e = compareWithRender(c, args);
+    std::printf("per-texel glossy CPCA, view vs render (%s): RMSE %.4f\n", args.c_str(), e);
+    EXPECT_LT(e, kMatch) << args;
+  }
+  const Result d = prt("view '" + c + "' --headless " + std::string(kSize) + " " + close +
+                       " --material 'lambert' --stats --screenshot diffuse.png");
+  ASSERT_EQ(d.rc, 0) << d.err;
+  const double off = displayedRmse(path("diffuse.png"), path("render.png"));
+  std::printf("the lobe left out: RMSE %.4f\n", off);
+  EXPECT_GT(off, 2 * kMatch);
+  EXPECT_NE(d.out.find("relit compressed glossy matrices (CPCA 16 x 6) per pixel from a 64 x 64 "
+                       "lightmap"),
+            std::string::npos)
+      << d.out;
+  const Result dense = prt("view '" + path("glossy-texels.glb") + "' --headless " +
+                           std::string(kSize) + " --screenshot dense.png");
+  EXPECT_NE(dense.rc, 0);
+  EXPECT_NE(dense.err.find("drawn CPCA-compressed (prt compress)"), std::string::npos) << dense.err;
+}
+
 // Compressed glossy matrices: on the CPU by relight::Relighter (the default), or in the
 // vertex shader (--glossy-on gpu) from per-cluster L'_kj = B_kj L' tables. Both against prt
 // render of the same compressed bake.

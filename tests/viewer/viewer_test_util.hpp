@@ -128,6 +128,22 @@ inline const std::string& compressedTexelBake() {
   return p;
 }
 
+/// Glossy matrices per texel (a Phong lobe), RGB inter-reflected with glossy bounces, over a
+/// 64 × 64 lightmap of the Cornell box, 3 bands, CPCA-compressed (K 16, N 6): what prt view draws
+/// per pixel (dense per-texel matrices it refuses).
+inline const std::string& compressedGlossyTexelBake() {
+  static const std::string p = [] {
+    const Result r = prt(
+        "-q bake 'builtin:cornell?grid=8' --mode interreflected --bounces 1 --transfer matrix "
+        "--bands 3 --domain texels --resolution 64 --samples 256 "
+        "--material 'phong?ks=0.4&exponent=6' -o glossy-texels.glb");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return compressedCopy(path("glossy-texels.glb"), "glossy-texels-cpca.glb",
+                          "--clusters 16 --pca 6");
+  }();
+  return p;
+}
+
 /// A PNG as displayed: sRGB-encoded values in [0, 1].
 inline image::Image readDisplayed(const std::string& file) {
   image::Image img = image::readImage(file);

@@ -140,7 +140,7 @@ json constants() {
       {"CpcaMatrix", relight::toString(relight::ShaderPath::CpcaMatrix)},
   };
   c["maxShaderClusters"] = relight::kMaxShaderClusters;
-  c["perTexelMatricesRefusal"] = relight::kPerTexelMatricesRefusal;
+  c["perTexelMatricesRefusal"] = relight::kPageTexelMatricesRefusal;
   c["maxLightmapSide"] = kMaxLightmapSide;
   // The tone maps by name, valued as shaders/prt_display.glsl's op (the enum's order).
   // The default is the PNG writer's (what prt render writes without --tonemap).

@@ -49,8 +49,13 @@
 // bilinearTaps: centres at ((x + ½)/W, (y + ½)/H), clamped to the edge), relights each — dense
 // T·L', or CPCA's c_k + Σ_j w_j d_kj from the same cluster table — and blends the four results
 // with the bilinear weights (relighting is linear, so this is the fetch of the relit lightmap
-// prt render makes), times the interpolated albedo (shaders/prt_lightmap.glsl). Only vector
-// transfer is baked per texel; matrices per texel are refused by name.
+// prt render makes), times the interpolated albedo (shaders/prt_lightmap.glsl). CPCA-compressed
+// glossy matrices per texel (CpcaMatrix, desktop viewer) take the same four taps, each forming
+// its received light L' from the cluster table and shading it with the glossy response at the
+// texel's own sample point, normal and albedo (a second data texture, render::packTexelPoints;
+// render::texelRelight, what prt render relights at), then blend: prt render's relit lightmap
+// again. Dense matrices per texel (B⁴ floats a texel) are refused by name, and the page refuses
+// every per-texel matrix transfer (it cannot compute the texels' points).
 
 #include <algorithm>
 #include <array>
@@ -81,10 +86,14 @@ const char* toString(ShaderPath path);
 /// the shaders' limits, RGB matrices in the vertex shader, matrices per texel).
 ShaderPath shaderPath(const Transfer& t, bool matricesOnGpu);
 
-/// Why a per-texel matrix transfer is not drawn (shaderPath's refusal; the page's, generated).
+/// Why a dense per-texel matrix transfer is not drawn (shaderPath's refusal).
 inline constexpr const char* kPerTexelMatricesRefusal =
-    "the viewers relight per-texel vector transfer only (per-texel glossy matrices: prt render "
-    "draws them)";
+    "per-texel glossy matrices are drawn CPCA-compressed (prt compress), relit per pixel; dense "
+    "ones (B⁴ floats a texel) by prt render only";
+/// Why the browser viewers refuse per-texel matrices (the page's, generated).
+inline constexpr const char* kPageTexelMatricesRefusal =
+    "the browser viewers relight per-texel vector transfer only (per-texel glossy matrices: prt "
+    "view draws them CPCA-compressed, prt render any)";
 
 /// The per-row texels of a path (uploaded once).
 struct ShaderRows {

@@ -43,4 +43,8 @@ struct TexelRelight {
 TexelRelight texelRelight(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
                           const Material& material);
 
+/// The rows' points as a GPU viewer reads them (shaders/prt_lightmap.glsl, uPoints): three RGBA
+/// texels per row, (position, 0), (normal, 0), (albedo, 0) — white where the points hold none.
+std::vector<float> packTexelPoints(const RowPoints& points);
+
 }  // namespace prt::render
