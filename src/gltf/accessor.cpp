@@ -245,16 +245,12 @@ AccessorSpan AccessorReader::span(int index, const std::string& what) const {
   if (a.bufferView < 0 || std::size_t(a.bufferView) >= doc_.bufferViews.size())
     fail(what + ": " + acc + " has no valid bufferView");
   const std::string view = "bufferView " + std::to_string(a.bufferView);
+  // The view's bytes, checked to lie inside their buffer (viewBytes). Offsets, lengths, strides
+  // and counts come from the file: every comparison below is written so that it cannot overflow
+  // (subtract from a bound already checked, or divide).
+  const std::span<const unsigned char> bytes = viewBytes(a.bufferView, what);
   const Document::BufferView& v = doc_.bufferViews[std::size_t(a.bufferView)];
-  if (v.buffer < 0 || std::size_t(v.buffer) >= doc_.buffers.size())
-    fail(what + ": " + view + " has no valid buffer");
   const std::span<const unsigned char> buf = doc_.buffers[std::size_t(v.buffer)];
-  // Offsets, lengths, strides and counts come from the file: every comparison below is written
-  // so that it cannot overflow (subtract from a bound already checked, or divide).
-  if (v.byteOffset > buf.size() || v.byteLength > buf.size() - v.byteOffset)
-    fail(what + ": " + view + " (" + std::to_string(v.byteLength) + " bytes at " +
-         std::to_string(v.byteOffset) + ") lies outside its buffer of " +
-         std::to_string(buf.size()) + " bytes (truncated file?)");
   const std::size_t elem = csize * std::size_t(s.components);
   const std::size_t stride = v.byteStride ? v.byteStride : elem;
   if (stride < elem)
@@ -273,7 +269,7 @@ AccessorSpan AccessorReader::span(int index, const std::string& what) const {
          " bytes, stride " + std::to_string(stride) + ", at " + std::to_string(a.byteOffset) +
          ") runs past the end of its " + view + " (" + std::to_string(len) +
          " bytes; truncated file?)");
-  s.data = buf.data() + v.byteOffset + a.byteOffset;
+  s.data = bytes.data() + a.byteOffset;
   s.count = n;
   s.stride = stride;
   return s;
