@@ -86,16 +86,12 @@ struct VertexLookup {
 struct TexelLookup {
   const TexelImage& image;
   void operator()(const Hit& h, const std::array<std::uint32_t, 3>& tri, float* out) const {
-    const float b0 = 1.0f - h.u - h.v;
-    const Vec2f a = image.uvs[tri[0]], b = image.uvs[tri[1]], c = image.uvs[tri[2]];
-    const TexelTaps taps =
-        bilinearTaps({b0 * a.x + h.u * b.x + h.v * c.x, b0 * a.y + h.u * b.y + h.v * c.y},
-                     image.width, image.height);
+    const TexelTaps taps = image.tapsAt(tri, h.u, h.v);
     const std::size_t s = image.stride;
-    const float* r00 = image.values + taps.texel[0] * s;
-    const float* r10 = image.values + taps.texel[1] * s;
-    const float* r01 = image.values + taps.texel[2] * s;
-    const float* r11 = image.values + taps.texel[3] * s;
+    const float* r00 = image.row(taps.texel[0]);
+    const float* r10 = image.row(taps.texel[1]);
+    const float* r01 = image.row(taps.texel[2]);
+    const float* r11 = image.row(taps.texel[3]);
     const auto& w = taps.weight;
     for (std::size_t i = 0; i < s; ++i)
       out[i] = w[0] * r00[i] + w[1] * r10[i] + w[2] * r01[i] + w[3] * r11[i];

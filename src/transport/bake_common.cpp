@@ -53,12 +53,63 @@ BounceAlbedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s) {
     a.grey = a.uniform.x == a.uniform.y && a.uniform.y == a.uniform.z;
   } else if (mesh.hasAlbedo() || mesh.baseColour) {
     a.perVertex = true;
-    a.store = std::make_shared<const std::vector<Rgb>>(albedoAtVertices(mesh));
-    a.values = a.store.get();
+    if (mesh.baseColour) a.store = std::make_shared<const std::vector<Rgb>>(albedoAtVertices(mesh));
+    a.values = a.store ? a.store.get() : &mesh.albedo;
     a.grey = std::all_of(a.values->begin(), a.values->end(),
                          [](const Rgb& c) { return c.x == c.y && c.y == c.z; });
   }
   return a;
+}
+
+BakeSettings diffuseBounceSource(const BakeSettings& matrixBake) {
+  BakeSettings vs = matrixBake;
+  vs.layout = TransferLayout::Vector;
+  vs.rows = {};
+  vs.bounces = matrixBake.effectiveBounces() - 1;
+  vs.mode = vs.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
+  return vs;
+}
+
+std::vector<BakeSettings> glossyBounceOrders(const BakeSettings& matrixBake) {
+  const int bounces = matrixBake.effectiveBounces();
+  std::vector<BakeSettings> orders(static_cast<std::size_t>(bounces) + 1, matrixBake);
+  for (int j = bounces - 1; j >= 0; --j) {
+    BakeSettings& o = orders[static_cast<std::size_t>(j)];
+    o.rows = {};
+    o.bounces = j;
+    o.mode = j > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
+    o.seed = matrixBounceOrderSeed(orders[static_cast<std::size_t>(j) + 1].seed, j);
+  }
+  return orders;
+}
+
+BakeStats matrixStats(MatrixPassKind kind, const std::vector<std::uint64_t>& rays,
+                      const std::vector<double>& seconds, const std::vector<double>& variance,
+                      double secondsTotal) {
+  BakeStats st;
+  const std::size_t last = seconds.size() - 1;
+  for (std::uint64_t r : rays) st.rays += r;
+  st.secondsDirect = seconds[last];
+  if (kind == MatrixPassKind::DiffuseBounces) {
+    double s = 0;
+    std::uint64_t r = 0;
+    for (std::size_t k = 0; k < last; ++k) s += seconds[k], r += rays[k];
+    st.secondsBounce = {s};
+    st.raysBounce = {r};
+  } else if (kind == MatrixPassKind::GlossyBounces) {
+    st.secondsDirect = seconds[0];
+    for (std::size_t k = 1; k <= last; ++k) {
+      st.secondsBounce.push_back(seconds[k]);
+      st.raysBounce.push_back(rays[k]);
+    }
+  }
+  st.raysPerSecond = raysPerSecondOf(st.rays, secondsTotal);
+  // L00 = √(4π) gives L'_00 Y00 = M_00: the white-sky radiance's error is M_00's.
+  const StandardErrors m00 = standardErrors(variance);
+  st.stdErrT0Mean = st.stdErrConstMean = m00.mean;
+  st.stdErrT0Max = st.stdErrConstMax = m00.max;
+  st.secondsTotal = secondsTotal;
+  return st;
 }
 
 std::size_t physicalMemoryBytes() {

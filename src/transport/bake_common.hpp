@@ -13,6 +13,7 @@
 #include <span>
 
 #include "prt/core/progress.hpp"
+#include "prt/geometry/texel_samples.hpp"
 #include "prt/transport/bake.hpp"
 
 namespace prt::bakedetail {
@@ -98,7 +99,34 @@ struct TexelImage {
   int width = 0, height = 0;
   std::size_t stride = 0;
   std::span<const Vec2f> uvs;
+  /// The four texels a hit reads (bilinearTaps at its interpolated lightmap UV): the one lookup
+  /// every bounce over a lightmap makes, vector or matrix.
+  TexelTaps tapsAt(const std::array<std::uint32_t, 3>& tri, float u, float v) const {
+    const float b0 = 1.0f - u - v;
+    const Vec2f a = uvs[tri[0]], b = uvs[tri[1]], c = uvs[tri[2]];
+    return bilinearTaps({b0 * a.x + u * b.x + v * c.x, b0 * a.y + u * b.y + v * c.y}, width,
+                        height);
+  }
+  const float* row(std::size_t texel) const { return values + texel * stride; }
 };
+
+/// The bounce recipes a matrix bake is made of, the one rule for every driver (passes.cpp per
+/// vertex, bake_texels.cpp per texel): with diffuse bounce surfaces, the vector transfer of one
+/// bounce less the matrices gather; with glossy ones, the matrices of orders 0..K, each from the
+/// one before, order j's seed derived down the chain from the bake's (order K is the bake's).
+/// The passes a later one reads have their rows cleared (they cover the whole domain); order K
+/// is the bake itself.
+BakeSettings diffuseBounceSource(const BakeSettings& matrixBake);
+std::vector<BakeSettings> glossyBounceOrders(const BakeSettings& matrixBake);
+
+/// How a matrix bake's passes are reported, from each pass's rays and seconds (in pass order)
+/// and the variance of M_00 per row of its range: the direct seconds are the matrices' own (the
+/// first order's, with glossy bounces), a diffuse bake's vector passes count as its one bounce;
+/// the standard error is that of M_00, the transferred radiance under the constant light.
+enum class MatrixPassKind { Direct, DiffuseBounces, GlossyBounces };
+BakeStats matrixStats(MatrixPassKind kind, const std::vector<std::uint64_t>& rays,
+                      const std::vector<double>& seconds, const std::vector<double>& variance,
+                      double secondsTotal);
 
 /// A vector bake's shared tables (bake.cpp).
 struct VectorSetup;

@@ -51,7 +51,6 @@
 #include "prt/core/parallel.hpp"
 #include "prt/core/quadrature.hpp"
 #include "prt/core/sampling.hpp"
-#include "prt/geometry/texel_samples.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transfer/prepared_material.hpp"
@@ -165,13 +164,10 @@ BounceTaps bounceTaps(const BouncedSource& src, const Mesh& mesh, const Hit& h) 
     t.weight = {b0, h.u, h.v, 0.0f};
     return t;
   }
-  const TexelImage& im = *src.texels;
-  const Vec2f a = im.uvs[tri[0]], b = im.uvs[tri[1]], c = im.uvs[tri[2]];
-  const TexelTaps taps = bilinearTaps(
-      {b0 * a.x + h.u * b.x + h.v * c.x, b0 * a.y + h.u * b.y + h.v * c.y}, im.width, im.height);
+  const TexelTaps taps = src.texels->tapsAt(tri, h.u, h.v);
   t.count = 4;
   for (int k = 0; k < 4; ++k) {
-    t.row[k] = im.values + taps.texel[k] * im.stride;
+    t.row[k] = src.texels->row(taps.texel[k]);
     t.weight[k] = taps.weight[k];
   }
   return t;

@@ -198,7 +198,7 @@ TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSetti
 
   int channels = 1;
   std::vector<float> sum;  // the transfer per sample, channels interleaved per coefficient
-  BakeStats matrixStats;   // how a matrix bake's passes are reported (as bake() reports them)
+  MatrixPassKind matrixKind = MatrixPassKind::Direct;  // how its passes are reported
   if (settings.layout == TransferLayout::Vector) {
     sum = vectorPasses(settings, true, channels);
   } else {
@@ -206,39 +206,21 @@ TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSetti
     if (bounces == 0) {
       // Unshadowed or shadowed matrices: one pass.
       sum = matrixPass(settings, false, false, channels, nullptr, true);
-      matrixStats.secondsDirect = passSeconds[0];
     } else if (!settings.glossyBounces(TransferLayout::Matrix)) {
       // Diffuse bounce surfaces: the vector transfer with K − 1 bounces (its passes summed),
       // dilated, then the matrices that gather it through the hits' lightmap UVs.
-      BakeSettings vs = settings;
-      vs.layout = TransferLayout::Vector;
-      vs.bounces = bounces - 1;
-      vs.mode = vs.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
       int vc = 1;
-      const std::vector<float> vsum = vectorPasses(vs, false, vc);
+      const std::vector<float> vsum = vectorPasses(diffuseBounceSource(settings), false, vc);
       std::vector<float> image;
       std::vector<std::uint8_t> filled;
       asImage(vsum, nc * vc, image, filled);
       const TexelImage bounced{image.data(), width, height, nc * std::size_t(vc), uvs};
       sum = matrixPass(settings, true, false, channels, &bounced, true);
-      double vsec = 0;
-      std::uint64_t vrays = 0;
-      for (std::size_t k = 0; k + 1 < passSeconds.size(); ++k)
-        vsec += passSeconds[k], vrays += rays[k];
-      matrixStats.secondsDirect = passSeconds.back();
-      matrixStats.secondsBounce = {vsec};
-      matrixStats.raysBounce = {vrays};
+      matrixKind = MatrixPassKind::DiffuseBounces;
     } else {
       // Glossy bounce surfaces: the matrices of orders 0..K, each from the one before read
-      // through its dilated lightmap; order j's seed is derived down the chain from the
-      // bake's, as per vertex (passes.cpp), so order K uses the bake's own.
-      std::vector<BakeSettings> orders(std::size_t(bounces) + 1, settings);
-      for (int j = bounces - 1; j >= 0; --j) {
-        BakeSettings& o = orders[std::size_t(j)];
-        o.bounces = j;
-        o.mode = j > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
-        o.seed = matrixBounceOrderSeed(orders[std::size_t(j) + 1].seed, j);
-      }
+      // through its dilated lightmap.
+      const std::vector<BakeSettings> orders = glossyBounceOrders(settings);
       std::vector<float> image;
       std::vector<std::uint8_t> filled;
       int prevChannels = 1;
@@ -251,11 +233,7 @@ TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSetti
         if (j < bounces) asImage(sum, nc * nc * std::size_t(c), image, filled);
         prevChannels = c;
       }
-      matrixStats.secondsDirect = passSeconds[0];
-      for (std::size_t k = 1; k < passSeconds.size(); ++k) {
-        matrixStats.secondsBounce.push_back(passSeconds[k]);
-        matrixStats.raysBounce.push_back(rays[k]);
-      }
+      matrixKind = MatrixPassKind::GlossyBounces;
     }
   }
   const std::size_t perChannel = settings.layout == TransferLayout::Matrix ? nc * nc : nc;
@@ -281,20 +259,10 @@ TexelBake bakeTexels(const Mesh& mesh, const Occluder& occluder, const BakeSetti
     std::vector<double> inRange;
     for (std::size_t i = 0; i < s.size(); ++i)
       if (s[i].texel >= range.first && s[i].texel < range.end()) inRange.push_back(variance[i]);
-    if (settings.layout == TransferLayout::Vector) {
-      *stats = vectorStats(rays, passSeconds, inRange);
-    } else {
-      // For matrices the standard error is that of M_00 (the transferred radiance under the
-      // constant light), as per vertex.
-      *stats = matrixStats;
-      for (std::uint64_t r : rays) stats->rays += r;
-      const StandardErrors m00 = standardErrors(inRange);
-      stats->stdErrT0Mean = stats->stdErrConstMean = m00.mean;
-      stats->stdErrT0Max = stats->stdErrConstMax = m00.max;
-    }
+    *stats = settings.layout == TransferLayout::Vector
+                 ? vectorStats(rays, passSeconds, inRange)
+                 : matrixStats(matrixKind, rays, passSeconds, inRange, seconds(t0));
     stats->secondsTotal = seconds(t0);
-    if (settings.layout == TransferLayout::Matrix)
-      stats->raysPerSecond = raysPerSecondOf(stats->rays, stats->secondsTotal);
     stats->threads = maxThreads();
     stats->vertices = inRange.size();
   }

@@ -100,27 +100,14 @@ BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSet
   } else if (!settings.glossyBounces(TransferLayout::Matrix)) {
     // Diffuse bounce surfaces: the vector transfer with K − 1 bounces over the whole mesh (the
     // sum of its passes), then the matrices that gather it.
-    BakeSettings vs = settings;
-    vs.layout = TransferLayout::Vector;
-    vs.rows = {};
-    vs.bounces = bounces - 1;
-    vs.mode = vs.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
-    m.addVectorPasses(vs, all, all, false);
+    m.addVectorPasses(diffuseBounceSource(settings), all, all, false);
     m.add("matrices", TransferLayout::Matrix, channels, m.rows, PassInput::Sum, true, nullptr,
           makeMatrixSetup(mesh, settings, true, false, channels));
     m.fullSum = true;
     m.statsKind = StatsKind::MatrixDiffuse;
   } else {
-    // Glossy bounce surfaces: the matrices of orders 0..K, each from the one before; order j
-    // has its own seed, derived down the chain from the bake's (order K uses the bake's).
-    std::vector<BakeSettings> orders(static_cast<std::size_t>(bounces) + 1, settings);
-    for (int j = bounces - 1; j >= 0; --j) {
-      BakeSettings& o = orders[static_cast<std::size_t>(j)];
-      o.rows = {};
-      o.bounces = j;
-      o.mode = j > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
-      o.seed = matrixBounceOrderSeed(orders[static_cast<std::size_t>(j) + 1].seed, j);
-    }
+    // Glossy bounce surfaces: the matrices of orders 0..K, each from the one before.
+    const std::vector<BakeSettings> orders = glossyBounceOrders(settings);
     for (int j = 0; j <= bounces; ++j) {
       const BakeSettings& o = orders[static_cast<std::size_t>(j)];
       const int c = bakeFootprint(mesh, o).channels;
@@ -226,28 +213,10 @@ BakeStats BakePasses::stats(const std::vector<std::uint64_t>& rays,
   if (m.statsKind == StatsKind::Vector) {
     st = vectorStats(rays, seconds, variance);
   } else {
-    const std::size_t last = m.info.size() - 1;
-    for (std::uint64_t r : rays) st.rays += r;
-    st.secondsDirect = seconds[last];
-    if (m.statsKind == StatsKind::MatrixDiffuse) {
-      double s = 0;
-      std::uint64_t r = 0;
-      for (std::size_t k = 0; k < last; ++k) s += seconds[k], r += rays[k];
-      st.secondsBounce = {s};
-      st.raysBounce = {r};
-    } else if (m.statsKind == StatsKind::MatrixGlossy) {
-      st.secondsDirect = seconds[0];
-      for (std::size_t k = 1; k <= last; ++k) {
-        st.secondsBounce.push_back(seconds[k]);
-        st.raysBounce.push_back(rays[k]);
-      }
-    }
-    st.raysPerSecond = raysPerSecondOf(st.rays, secondsTotal);
-    // For matrices the standard error is that of M_00, the transferred radiance under the
-    // constant light L = 1 (L00 = √(4π), so L'_00 Y00 = M_00).
-    const StandardErrors m00 = standardErrors(variance);
-    st.stdErrT0Mean = st.stdErrConstMean = m00.mean;
-    st.stdErrT0Max = st.stdErrConstMax = m00.max;
+    st = matrixStats(m.statsKind == StatsKind::MatrixDiffuse  ? MatrixPassKind::DiffuseBounces
+                     : m.statsKind == StatsKind::MatrixGlossy ? MatrixPassKind::GlossyBounces
+                                                              : MatrixPassKind::Direct,
+                     rays, seconds, variance, secondsTotal);
   }
   st.threads = threads;
   st.vertices = m.rows.count;
