@@ -349,8 +349,7 @@ void refuseNonFinite(const Mesh& mesh, const BakedTransfer& t) {
       throw Error(mesh.source,
                   fmt::format("{} transfer of {} {} is not finite (check the "
                               "material albedos and coordinates); nothing written",
-                              toString(t.mode()),
-                              t.transfer.domain() == TransferDomain::Texels ? "texel" : "vertex",
+                              toString(t.mode()), rowName(t.transfer.domain()),
                               t.transfer.rows().first + k / stride));
 }
 

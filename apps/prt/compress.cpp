@@ -136,15 +136,14 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   const Transfer& field = picked.transfer;
   const std::size_t D = field.stride(), rows = field.rowCount();
   if (a.basis > static_cast<int>(D))
-    throw Error(fmt::format("--pca {}: the {} transfer has only {} values per vertex", a.basis,
-                            toString(field.layout()), D));
+    throw Error(fmt::format("--pca {}: the {} transfer has only {} values per {}", a.basis,
+                            toString(field.layout()), D, rowName(field.domain())));
   if (static_cast<std::size_t>(a.clusters) > rows)
-    throw Error(fmt::format("--clusters {}: the bake has only {} vertices", a.clusters, rows));
-  info(
-      fmt::format("{}: {} {} transfer, {} bands x {} channel(s) = {} values per vertex, {} "
-                  "vertices",
-                  a.bake, toString(picked.mode()), toString(field.layout()), field.bands(),
-                  field.channels(), D, rows));
+    throw Error(fmt::format("--clusters {}: the bake has only {} {}", a.clusters, rows,
+                            toString(field.domain())));
+  info(fmt::format("{}: {} {} transfer, {} bands x {} channel(s) = {} values per {}, {} {}",
+                   a.bake, toString(picked.mode()), toString(field.layout()), field.bands(),
+                   field.channels(), D, rowName(field.domain()), rows, toString(field.domain())));
 
   CpcaOptions opt;
   opt.clusters = a.clusters;

@@ -116,7 +116,7 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
   j["rows"] = {{"first", b.rows().first}, {"end", b.rows().end()}, {"complete", b.complete()}};
   j["domain"] = toString(b.domain());
   const bool texels = b.domain() == TransferDomain::Texels;
-  const char* per = texels ? "texel" : "vertex";
+  const char* per = rowName(b.domain());
   j["transfers"] = Json::array();
   for (const auto& t : b.transfers) j["transfers"].push_back(transferJson(t));
   out << fmt::format("{}: prtkit bake file, format version {} (written by {})\n", path,

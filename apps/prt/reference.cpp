@@ -80,7 +80,7 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   // Per-texel transfer: the rows are the texels' sample points (render/texel_points.hpp), and a
   // subset is drawn among the valid ones (--vertices counts texels then).
   const bool texels = bt.transfer.domain() == TransferDomain::Texels;
-  const char* row = texels ? "texel" : "vertex";
+  const char* row = rowName(bt.transfer.domain());
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   auto occluder = makeEmbreeOccluder(file.mesh);
@@ -150,7 +150,7 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
     io::writeReferenceBinary(a.output, ref);
   char line[200];
   std::snprintf(line, sizeof line, "wrote %s: %zu %s x %d samples, %llu rays, %.2f s",
-                a.output.c_str(), r.vertices.size(), texels ? "texels" : "vertices", a.samples,
+                a.output.c_str(), r.vertices.size(), toString(bt.transfer.domain()), a.samples,
                 static_cast<unsigned long long>(r.rays), r.seconds);
   info(line);
   if (report.wanted()) {
@@ -162,7 +162,7 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
     report["material"] = rs.material.spec();
     report["samples"] = a.samples;
     report["seed"] = a.seed;
-    report[texels ? "texels" : "vertices"] = r.vertices.size();
+    report[toString(bt.transfer.domain())] = r.vertices.size();
     report["rays"] = r.rays;
     report["seconds"] = r.seconds;
     if (mpi.active()) report["mpiRanks"] = mpi.size();

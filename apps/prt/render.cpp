@@ -211,7 +211,7 @@ void run(const RenderOptions& o) {
         referenceRadiance.empty() ? relighter.relight(light, rotation, camera.eye, &relit)
                                   : std::span<const Rgb>(referenceRadiance);
     if (!referenceRadiance.empty()) relit.bands = 0;  // no SH: the reference
-    render::checkFiniteRadiance(radiance, o.bake, texels ? "texel" : "vertex");
+    render::checkFiniteRadiance(radiance, o.bake, rowName(baked.transfer.domain()));
     const auto draw = [&](std::span<const Rgb> values, std::span<const Rgb> pixelAlbedo) {
       return texels ? render::texelRadianceShader(bake.mesh, values, lightmap.width,
                                                   lightmap.height, pixelAlbedo)
@@ -225,7 +225,7 @@ void run(const RenderOptions& o) {
       if (glossyRelighter && referenceRadiance.empty()) {
         const std::span<const Rgb> highlight =
             glossyRelighter->relight(light, rotation, camera.eye);
-        render::checkFiniteRadiance(highlight, o.bake, texels ? "texel" : "vertex");
+        render::checkFiniteRadiance(highlight, o.bake, rowName(baked.transfer.domain()));
         glossy = draw(highlight, {});
       }
       shade = render::texturedShader(bake.mesh, *texture, std::move(shade), std::move(glossy));

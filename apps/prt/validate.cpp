@@ -139,7 +139,7 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
     vs.reference.seed = ref.seed;
     vs.reference.heuristic = parseMis(ref.mis);
     info(fmt::format("reference from {}: {} {} x {} samples", a.reference, ref.vertices.size(),
-                     texels ? "texels" : "vertices", ref.samples));
+                     toString(bt.transfer.domain()), ref.samples));
   }
   const render::ValidationReport rep = render::validate(
       file.mesh, *occluder, bt.transfer, recipe, env.env, light, vs, progressBar("reference"));
@@ -147,7 +147,7 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
   info(fmt::format("reference: {} {} x {} samples, {} rays{}; mode {}, {} bounce(s)",
-                   rep.reference.vertices.size(), texels ? "texels" : "vertices",
+                   rep.reference.vertices.size(), toString(bt.transfer.domain()),
                    vs.reference.samples, rep.reference.rays,
                    a.reference.empty() ? fmt::format(", {:.2f} s", rep.reference.seconds)
                                        : " (from " + a.reference + ")",

@@ -33,11 +33,6 @@ std::string upper(TransferMode mode) {
   return m;
 }
 
-/// "vertex" or "texel": what a domain's rows are called in messages.
-const char* rowName(TransferDomain d) {
-  return d == TransferDomain::Texels ? "texel" : "vertex";
-}
-
 void checkTransfersForWriting(const BakeFile& bake) {
   const TransferDomain domain = bake.domain();
   const std::size_t n = bake.domainRows();

@@ -33,6 +33,10 @@ const char* toString(TransferDomain domain) {
   return "?";
 }
 
+const char* rowName(TransferDomain domain) {
+  return domain == TransferDomain::Texels ? "texel" : "vertex";
+}
+
 TransferDomain parseTransferDomain(const std::string& s) {
   if (s == "vertices") return TransferDomain::Vertices;
   if (s == "texels") return TransferDomain::Texels;

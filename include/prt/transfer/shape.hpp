@@ -48,7 +48,9 @@ enum class TransferDomain {
   /// the mesh's lightmap UVs (Mesh::lightmapUvs; transport/bake_texels.hpp), fetched bilinearly.
   Texels,
 };
-const char* toString(TransferDomain domain);
+const char* toString(TransferDomain domain);  ///< "vertices", "texels" (the rows, plural)
+/// One row of a domain in messages: "vertex", "texel".
+const char* rowName(TransferDomain domain);
 /// Parses "vertices" | "texels"; throws prt::Error otherwise.
 TransferDomain parseTransferDomain(const std::string& s);
 
