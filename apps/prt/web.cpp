@@ -37,9 +37,11 @@
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/lighting.hpp"
+#include "prt/raytrace/occluder.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/exposure.hpp"
+#include "prt/render/texel_points.hpp"
 #include "prt/transfer/prepared_material.hpp"
 #include "transfer_options.hpp"
 #include "web.hpp"
@@ -174,7 +176,8 @@ void checkOptions(const WebOptions& a) {
 
 /// The bake, validated here (one clear line now rather than on the page): complete, and every
 /// transfer on a GPU path of relight/shader_transfer.hpp — vectors (dense or compressed; per
-/// vertex, or per texel relit per pixel) and compressed matrices. Dense matrices (2.5 KB per vertex
+/// vertex, or per texel relit per pixel) and compressed matrices (per vertex, or per texel
+/// shaded at the texels' points, texelPointsBytes). Dense matrices (2.5 KB per vertex
 /// at 5 bands) are refused, as the page refuses such a file dropped on it. A file beyond what the
 /// page takes is refused before it is read.
 std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) {
@@ -189,9 +192,6 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
   std::vector<unsigned char> glb = readFileBytes(a.bake, kMaxPageBakeBytes, "the page's limit");
   bake = decodeBake(glb, a.bake);
   for (const BakedTransfer& t : bake.transfers) {
-    if (t.transfer.isMatrix() && t.transfer.domain() == TransferDomain::Texels)
-      throw Error(a.bake, std::string(relight::kPageTexelMatricesRefusal) + " (" + t.describe() +
-                              ")");
     if (t.transfer.isMatrix() && !t.transfer.compressed())
       throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices; the browser "
                                       "viewer draws them CPCA-compressed only (prt compress), or "
@@ -215,6 +215,21 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
     glb.assign(bytes.begin(), bytes.end());
   }
   return glb;
+}
+
+/// Per-texel glossy matrices are shaded at each texel's own sample point, normal and albedo
+/// (render::texelRelight, what prt render and prt view relight them at), which the page cannot
+/// compute (the inside-geometry probe traces rays): prt web ships them beside the bake as
+/// render::packTexelPoints' texels, three RGBA32F texels a lightmap texel. Empty when no
+/// transfer needs them. The mesh is the page's copy (its base colour folded into the albedo).
+std::vector<float> texelPointsFor(const BakeFile& bake) {
+  for (const BakedTransfer& t : bake.transfers) {
+    if (!t.transfer.isMatrix() || t.transfer.domain() != TransferDomain::Texels) continue;
+    const auto occluder = makeEmbreeOccluder(bake.mesh);
+    return render::packTexelPoints(
+        render::texelRelight(bake.mesh, *occluder, t.transfer, t.recipe.material).points);
+  }
+  return {};
 }
 
 Json vec3(const Vec3f& v) {
@@ -330,13 +345,24 @@ void writeWebViewer(const WebOptions& a) {
 
   // Small bakes inside prt-data.js (base64: the page then works opened from disk); larger ones
   // beside it as bake.glb, which the page fetches (over http; a browser refuses file:// fetches).
-  const bool embed =
-      a.embed == "always" || (a.embed == "auto" && glb.size() <= kMaxEmbeddedBakeBytes);
+  // Per-texel glossy matrices' points go where the bake goes.
+  const std::vector<float> points = texelPointsFor(bake);
+  const std::size_t pointBytes = points.size() * sizeof(float);
+  const bool embed = a.embed == "always" ||
+                     (a.embed == "auto" && glb.size() + pointBytes <= kMaxEmbeddedBakeBytes);
   Json bakeEntry = {{"name", fs::path(a.bake).filename().string()}, {"bytes", glb.size()}};
   if (embed)
     bakeEntry["glb"] = base64(glb.data(), glb.size());
   else
     bakeEntry["file"] = kBakeFileName;
+  if (!points.empty()) {
+    Json p = {{"rows", points.size() / 12}, {"bytes", pointBytes}};
+    if (embed)
+      p["base64"] = base64(points.data(), pointBytes);
+    else
+      p["file"] = kTexelPointsFileName;
+    bakeEntry["texelPoints"] = std::move(p);
+  }
   Json data;
   data["generator"] = kGenerator;
   data["view"] = viewJson(a, bake.mesh, initialExposure(a, bake, envs.front().light));
@@ -351,6 +377,9 @@ void writeWebViewer(const WebOptions& a) {
   if (!embed)
     folder.write(kBakeFileName,
                  std::string_view(reinterpret_cast<const char*>(glb.data()), glb.size()));
+  if (!embed && !points.empty())
+    folder.write(kTexelPointsFileName,
+                 std::string_view(reinterpret_cast<const char*>(points.data()), pointBytes));
   // The three.js example (prtkit-three, docs/three.md) for the same bake and lights: three/
   // reads ../prt-data.js.
   const fs::path example = assets / "three" / "example";

@@ -13,6 +13,8 @@ namespace prt::cli {
 /// (a browser refuses file:// fetches), without the 4/3 and the decoding of a script that size.
 inline constexpr std::uint64_t kMaxEmbeddedBakeBytes = std::uint64_t(32) << 20;
 inline constexpr const char* kBakeFileName = "bake.glb";
+/// Beside it, per-texel glossy matrices' points (little-endian float32, render::packTexelPoints).
+inline constexpr const char* kTexelPointsFileName = "texel-points.bin";
 /// The largest bake the page takes: its transfer is uploaded as float textures, and Chromium
 /// holds the file, the parsed glTF and the textures at once (docs/web.md, "Large bakes").
 inline constexpr std::uint64_t kMaxPageBakeBytes = std::uint64_t(1) << 30;

@@ -247,6 +247,50 @@ TEST(Three, PrtWebFolderCarriesTheExampleForItsBake) {
   EXPECT_LT(quantile90, kInterior);
 }
 
+// Per-texel glossy matrices (CPCA) through the plugin's texelPoints option: the prt web folder's
+// example passes the points prt web wrote beside the bake, and each tap is shaded at its texel's
+// point as prt render relights it. The same file on its own (no points) is refused by name.
+TEST(Three, TexelGlossyMatricesShadeAtThePointsPrtWebWrites) {
+  PRT_REQUIRE_EXAMPLE();
+  cornell();
+  Result r =
+      prt("-q bake 'builtin:cornell?grid=8' --mode shadowed --transfer matrix --bands 3 "
+          "--domain texels --resolution 64 --samples 256 --material 'phong?ks=0.4&exponent=6' "
+          "-o three_gt.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q compress three_gt.glb --clusters 16 --pca 6 -o three_gtc.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q web three_gtc.glb --env builtin:studio -o three_web_gt");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string cam = "eye=0.4,1.3,2.3;target=0,0.8,0;up=0,1,0;fov=45";
+  for (const std::string& camera : {kCamera, cam}) {
+    SCOPED_TRACE(camera);
+    r = prt("-q render three_gtc.glb --light builtin:studio --rotate 20,70,0 --camera '" + camera +
+            "' --exposure 0 --tonemap clamp --background none --size 320x240 -o three_gt.png");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    std::string log;
+    const std::string json =
+        runPage(path("three_web_gt/three"),
+                "screenshot&size=320x240&only&camera=" + camera + "&rotate=20,70,0&exposure=0", &log);
+    ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json.substr(0, 300) << log;
+    const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("three_gt.png"));
+    std::cout << "three.js module vs prt render, per-texel glossy CPCA: RMSE " << e
+              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+    EXPECT_LT(e, kMatch);
+    EXPECT_LT(quantile90, kInterior);
+  }
+  r = prt("-q light builtin:studio --bands 3 -o three_studio3.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  std::string log;
+  const std::string json = runPage(examplePage("three_gt_alone", "three_gtc.glb", "three_studio3.json"),
+                                   "screenshot&size=64x48", &log);
+  EXPECT_NE(json.find("\"ok\":false"), std::string::npos) << json.substr(0, 300) << log;
+  EXPECT_NE(json.find("three_gtc.glb: per-texel glossy matrices are shaded at their texels' "
+                      "sample points, which prt web writes beside its own bake"),
+            std::string::npos)
+      << json.substr(0, 400);
+}
+
 TEST(Three, PluginRefusesWhatItCannotShowNamingTheFile) {
   PRT_REQUIRE_EXAMPLE();
   cornell();

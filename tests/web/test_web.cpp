@@ -302,6 +302,72 @@ TEST(Web, TexelBakeRelitPerPixelMatchesPrtRender) {
   EXPECT_GT(displayedRmse(unbase64(jsonField(json, "rgb")), path("t.png")), 4 * kMatch);
 }
 
+// Per-texel glossy matrices, CPCA-compressed (prt bake --transfer matrix --domain texels): each
+// of the four taps of prt render's bilinear fetch forms its texel's received light from the
+// per-frame cluster table and shades it with the glossy response at the texel's own sample
+// point, normal and albedo, which prt web computes (render::texelRelight) and ships beside the
+// bake — the texel radiance prt render relights and fetches. Turned lights, a close camera (the
+// lobe fills the image), the points beside the page as a file; a diffuse material (the lobe left
+// out) is far off, and the bake without its points (dropped on a page) is refused by name.
+TEST(Web, TexelGlossyMatricesRelitPerPixelMatchPrtRender) {
+  PRT_REQUIRE_PAGE();
+  Result r =
+      prt("-q bake 'builtin:cornell?grid=8' --mode shadowed --transfer matrix --bands 3 "
+          "--domain texels --resolution 64 --samples 256 --material 'phong?ks=0.4&exponent=6' "
+          "-o gtexels.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q compress gtexels.glb --clusters 16 --pca 6 -o gtexels-cpca.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string cam = "eye=0.4,1.3,2.3;target=0,0.8,0;fov=45";
+  r = prt("-q web gtexels-cpca.glb --env builtin:sky --env builtin:studio -o page_gt");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q web gtexels-cpca.glb --env builtin:sky --env builtin:studio --camera '" + cam +
+          "' --embed never -o page_gt_close");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(prt::testing::slurp(path("page_gt/prt-data.js")).find("\"texelPoints\":{"),
+            std::string::npos);
+  ASSERT_TRUE(fs::exists(path("page_gt_close/texel-points.bin")));
+  EXPECT_EQ(fs::file_size(path("page_gt_close/texel-points.bin")), 64u * 64u * 12u * 4u);
+  struct Case {
+    std::string page, render, query, flags;
+  };
+  for (const Case& c :
+       {Case{"page_gt", "--light builtin:sky", "env=0", ""},
+        Case{"page_gt", "--light builtin:studio --rotate 20,70,0", "env=1&rotate=20,70,0", ""},
+        Case{"page_gt_close", "--light builtin:studio --rotate 20,70,0 --camera '" + cam + "'",
+             "env=1&rotate=20,70,0", "--allow-file-access-from-files"}}) {
+    SCOPED_TRACE(c.page + " " + c.query);
+    r = prt("-q render --exposure 0 gtexels-cpca.glb --size 320x240 " + c.render + " -o gt.png");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    std::string log;
+    const std::string json =
+        runPage(path(c.page), "screenshot&size=320x240&exposure=0&" + c.query, &log, c.flags);
+    ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
+    EXPECT_EQ(jsonField(json, "compressed"), "16x6, 32 bytes per texel");
+    EXPECT_NE(json.find("\"perPixel\":true"), std::string::npos) << json.substr(0, 300);
+    const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("gt.png"));
+    EXPECT_LT(e, kMatch);
+    EXPECT_LT(quantile90, kInterior);
+    std::cout << "page vs prt render, per-texel glossy CPCA " << c.query << ": RMSE " << e
+              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+  }
+  // The comparison can fail: close up, the diffuse part alone is far off.
+  r = prt("-q render --exposure 0 gtexels-cpca.glb --size 320x240 --light builtin:studio "
+          "--rotate 20,70,0 --camera '" + cam + "' --material lambert -o gd.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string json = runPage(path("page_gt_close"),
+                                   "screenshot&size=320x240&exposure=0&env=1&rotate=20,70,0",
+                                   nullptr, "--allow-file-access-from-files");
+  const double off = displayedRmse(unbase64(jsonField(json, "rgb")), path("gd.png"));
+  std::cout << "the lobe left out: RMSE " << off << "\n";
+  EXPECT_GT(off, 2 * kMatch);
+  // Dense per-texel matrices: prt web refuses them by name, before writing anything.
+  r = prt("web gtexels.glb -o nope_gt");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("dense glossy matrices"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("nope_gt")));
+}
+
 TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
   PRT_REQUIRE_PAGE();
   std::string log;

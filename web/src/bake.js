@@ -10,15 +10,17 @@ import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 
 import { bakeFormat, maxLightmapSide } from 'prt:constants';
 import { packRows, preferenceOrder, readTransfer } from './transfer.js';
+import { textureShape } from './texels.js';
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
 }
 
 /**
- * Parses GLB bytes into a bake (readBake's result). `limits` = { maxTextureSize, maxBands }.
+ * Parses GLB bytes into a bake (readBake's result). `limits` = { maxTextureSize, maxBands };
+ * `extras` as readBake's.
  */
-export async function parseBake(buffer, name, limits) {
+export async function parseBake(buffer, name, limits, extras = {}) {
   if (!(buffer instanceof ArrayBuffer) || buffer.byteLength < 20)
     fail(name, 'is not a glTF binary (.glb) file (too short)');
   const head = new DataView(buffer);
@@ -32,7 +34,18 @@ export async function parseBake(buffer, name, limits) {
   } catch (e) {
     fail(name, `cannot be read as glTF (${String(e && e.message ? e.message : e).split('\n')[0]})`);
   }
-  return readBake(gltf, name, limits);
+  return readBake(gltf, name, limits, extras);
+}
+
+/** The texels' points (render::packTexelPoints' twelve floats a row) as a data image of three
+ *  texels a row, checked: one row per texel, finite. */
+function texelPointsImage(x, rows, limits, name) {
+  if (!(x instanceof Float32Array) || x.length !== rows * 12)
+    fail(name, `its texel points hold ${x && x.length} floats, ${rows * 12} expected (twelve a texel of the lightmap)`);
+  for (let i = 0; i < x.length; ++i) if (!Number.isFinite(x[i])) fail(name, `its texel points: value ${i} is not finite`);
+  const img = textureShape(rows * 3, limits, name, 'the texels\' points');
+  img.data.set(x);
+  return img;
 }
 
 /** The bake's object in a parsed glTF's JSON: the PRTKIT_radiance_transfer extension (format
@@ -50,8 +63,12 @@ export function bakeObject(json) {
  * bake, else null), maxBands, vertices, triangles, centre, radius }. The parts' transfer
  * attributes move into the texels (and are deleted from the geometry); a per-texel bake's rows
  * are one image every part shares, its lightmap UVs the attribute prtLightmapUv.
+ * extras.texelPoints: per-texel glossy matrices' points (a Float32Array of W·H rows of twelve
+ * floats, render::packTexelPoints: position, normal, albedo, each padded to four), which prt web
+ * writes beside its own bake; the bake then carries them as the data image texelPoints (three
+ * texels a row, shaders/prt_lightmap.glsl's uPoints). Without them such matrices are refused.
  */
-export async function readBake(gltf, name, limits) {
+export async function readBake(gltf, name, limits, extras = {}) {
   const json = gltf.parser.json;
   // The bake's object: the PRTKIT_radiance_transfer extension (format 5 on), else the root's
   // extras.prtkit (formats 1-4).
@@ -82,9 +99,10 @@ export async function readBake(gltf, name, limits) {
       fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);
   }
 
+  const points = lightmap && extras.texelPoints ? texelPointsImage(extras.texelPoints, rowCount, limits, name) : null;
   const read = [];
   for (const e of entries) {
-    const t = await readTransfer(gltf, e, rowCount, name, limits, lightmap);
+    const t = await readTransfer(gltf, e, rowCount, name, limits, lightmap, !!points);
     t.key = `${t.mode} ${t.layout}`;
     if (read.some((u) => u.key === t.key)) fail(name, `holds two ${t.key} transfers`);
     read.push(t);
@@ -140,6 +158,7 @@ export async function readBake(gltf, name, limits) {
       r2 = Math.max(r2, dx * dx + dy * dy + dz * dz);
     }
   }
-  return { name, parts, transfers, lightmap, maxBands: Math.max(...transfers.map((t) => t.bands)),
+  return { name, parts, transfers, lightmap, texelPoints: transfers.some((t) => t.perPixel && t.matrix) ? points : null,
+           maxBands: Math.max(...transfers.map((t) => t.bands)),
            vertices, triangles, centre, radius: Math.max(Math.sqrt(r2), 1e-6) };
 }

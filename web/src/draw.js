@@ -11,6 +11,25 @@ import { rotateLight } from './sh.js';
 
 const kGlossyCoeffs = kBands.maxShaderGlossy * kBands.maxShaderGlossy;
 
+// Compressed glossy matrices (per vertex, or per texel relit per pixel): prt_glossy.glsl's
+// uniforms. Each frame: the shaded bands, the table's values per cluster vector (the transfer
+// cut to them), the material's kernels, kd (else the albedo), ks, and the camera's eye.
+const glossyUniforms = () => ({
+  uBands: { value: 1 }, uCoeffs: { value: 1 }, uDiffuse: { value: new Float32Array(kGlossyCoeffs) },
+  uGlossy: { value: new Float32Array(kGlossyCoeffs) }, uKd: { value: new THREE.Vector3() },
+  uKs: { value: new THREE.Vector3() }, uEye: { value: new THREE.Vector3() }, uHasKd: { value: false },
+});
+function setGlossy(u, t, f) {
+  u.uBands.value = Math.min(f.bands, kBands.maxShaderGlossy);
+  u.uCoeffs.value = f.bands * f.bands;
+  u.uDiffuse.value.set(t.material.diffuse);
+  u.uGlossy.value.set(t.material.lobe);
+  u.uHasKd.value = !!t.material.kd;
+  if (t.material.kd) u.uKd.value.fromArray(t.material.kd);
+  u.uKs.value.fromArray(t.material.ks);
+  u.uEye.value.copy(f.eye);
+}
+
 const compressedUniforms = () => ({
   uWeights: { value: null }, uClusters: { value: null },
   uTexelsPerVertex: { value: 1 }, uBasisCount: { value: 0 },
@@ -25,7 +44,8 @@ function setCompressed(u, t, rows, table) {
 // Per-texel transfer (t.perPixel) is drawn per pixel: lightmap.vert passes the lightmap UV and
 // the albedo, the host's fragment stage compiled with PRT_LIGHTMAP (and PRT_LIGHTMAP_CPCA)
 // fetches the four texels of prt render's bilinear fetch, relights each and blends them
-// (shaders/prt_lightmap.glsl) — the same rows and per-frame light or cluster table.
+// (shaders/prt_lightmap.glsl) — the same rows and per-frame light or cluster table; CPCA glossy
+// matrices (PRT_LIGHTMAP_GLOSSY) shade each tap at its texel's point.
 const lightmapUniforms = () => ({ uRows: { value: null }, uLightmapSize: { value: new THREE.Vector2(1, 1) },
                                   uTexelsPerRow: { value: 1 } });
 function setLightmap(u, t, f) {
@@ -55,6 +75,19 @@ const kDrawPerPixel = {
     },
   },
 };
+// CPCA glossy matrices per texel: each tap forms its texel's received light from the cluster
+// table and shades it at the texel's own point, normal and albedo (uPoints, the bake's
+// texelPoints from prt web) — the texel radiance prt render fetches.
+kDrawPerPixel.CpcaMatrix = {
+  stage: 'lightmap.vert',
+  defines: { PRT_LIGHTMAP: 1, PRT_LIGHTMAP_CPCA: 1, PRT_LIGHTMAP_GLOSSY: 1 },
+  uniforms: () => Object.assign(kDrawPerPixel.CpcaVector.uniforms(), glossyUniforms(), { uPoints: { value: null } }),
+  set(u, t, f) {
+    kDrawPerPixel.CpcaVector.set(u, t, f);
+    setGlossy(u, t, f);
+    u.uPoints.value = f.points;
+  },
+};
 /** How t is drawn: by its path, per pixel for per-texel transfer. */
 const drawOf = (t) => (t.perPixel ? kDrawPerPixel : kDraw)[t.path];
 
@@ -77,23 +110,10 @@ const kDraw = {
   },
   CpcaMatrix: {
     stage: 'compressedGlossy.vert',
-    uniforms: () => Object.assign(compressedUniforms(), {
-      uBands: { value: 1 }, uCoeffs: { value: 1 }, uDiffuse: { value: new Float32Array(kGlossyCoeffs) },
-      uGlossy: { value: new Float32Array(kGlossyCoeffs) }, uKd: { value: new THREE.Vector3() },
-      uKs: { value: new THREE.Vector3() }, uEye: { value: new THREE.Vector3() }, uHasKd: { value: false },
-    }),
+    uniforms: () => Object.assign(compressedUniforms(), glossyUniforms()),
     set(u, t, f) {
       setCompressed(u, t, f.rows, f.table);
-      // The shaded bands, the table's values per cluster vector (the transfer cut to them), the
-      // material's kernels, kd (else the albedo), ks, and each vertex seen from the camera's eye.
-      u.uBands.value = Math.min(f.bands, kBands.maxShaderGlossy);
-      u.uCoeffs.value = f.bands * f.bands;
-      u.uDiffuse.value.set(t.material.diffuse);
-      u.uGlossy.value.set(t.material.lobe);
-      u.uHasKd.value = !!t.material.kd;
-      if (t.material.kd) u.uKd.value.fromArray(t.material.kd);
-      u.uKs.value.fromArray(t.material.ks);
-      u.uEye.value.copy(f.eye);
+      setGlossy(u, t, f);
     },
   },
 };
@@ -123,7 +143,8 @@ export function dataTexture(x) {
 /**
  * The GPU side of a parsed bake for `host`: per part (in b.parts' order) one material and
  * texture per transfer, per transfer its per-frame table, the light uniform they share.
- * Returns { bake, light, tables, parts: [{ textures, materials }] }.
+ * Returns { bake, light, tables, parts: [{ textures, materials }], points (the texels' points'
+ * texture, or null) }.
  */
 export function uploadTransfers(b, limits, host) {
   const vec4s = Math.ceil((b.maxBands * b.maxBands) / 4) * 4;
@@ -144,7 +165,9 @@ export function uploadTransfers(b, limits, host) {
     }
     return { textures, materials };
   });
-  return { bake: b, light, tables, parts };
+  // Per-texel glossy matrices' points: one image for the bake.
+  const points = b.texelPoints ? dataTexture(b.texelPoints) : null;
+  return { bake: b, light, tables, parts, points };
 }
 
 /** Frees what uploadTransfers made. */
@@ -156,6 +179,7 @@ export function disposeTransfers(gpu) {
   }
   for (const x of textures) x.dispose();
   for (const t of Object.values(gpu.tables)) t.texture.dispose();
+  if (gpu.points) gpu.points.dispose();
 }
 
 /**
@@ -180,7 +204,8 @@ export function setFrameLight(gpu, t, b, R, coeffs) {
 export function setTransferUniforms(gpu, p, t, f) {
   const part = gpu.parts[p], table = gpu.tables[t.key];
   drawOf(t).set(part.materials[t.key].uniforms, t,
-                    { bands: f.bands, eye: f.eye, rows: part.textures[t.key], table: table ? table.texture : null });
+                    { bands: f.bands, eye: f.eye, rows: part.textures[t.key], table: table ? table.texture : null,
+                      points: gpu.points });
 }
 
 /** What the status line says about how t is drawn. */

@@ -60,26 +60,36 @@ function disposeBake(gpu, scene) {
 }
 
 /**
- * The bake beside the page (data.bake.file, written there by prt web for bakes too large to
- * carry inside prt-data.js). Browsers fetch files only over http(s): opened from disk, the page
- * says how to serve it.
+ * A file beside the page (data.bake.file and its texel points' file, written there by prt web
+ * for bakes too large to carry inside prt-data.js). Browsers fetch files only over http(s):
+ * opened from disk, the page says how to serve it.
  */
-async function fetchBake(bake) {
+async function fetchBeside(bake, entry) {
   const megabytes = (bake.bytes / 1e6).toFixed(0);
   let response;
   try {
-    response = await fetch(bake.file);
+    response = await fetch(entry.file);
   } catch (e) {
-    throw new Error(`${bake.name}: this bake (${megabytes} MB) is beside the page as ${bake.file}, ` +
+    throw new Error(`${bake.name}: this bake (${megabytes} MB) is beside the page as ${entry.file}, ` +
                     'which a browser loads only when the folder is served over http: run ' +
                     '`python3 -m http.server -d FOLDER` and open http://localhost:8000/ ' +
                     '(or write the page with prt web --embed always to open it from disk)');
   }
-  if (!response.ok) throw new Error(`${bake.name}: ${bake.file} could not be loaded (HTTP ${response.status})`);
+  if (!response.ok) throw new Error(`${bake.name}: ${entry.file} could not be loaded (HTTP ${response.status})`);
   const buffer = await response.arrayBuffer();
-  if (buffer.byteLength !== bake.bytes)
-    throw new Error(`${bake.name}: ${bake.file} has ${buffer.byteLength} bytes, prt-data.js says ${bake.bytes}`);
+  if (buffer.byteLength !== entry.bytes)
+    throw new Error(`${bake.name}: ${entry.file} has ${buffer.byteLength} bytes, prt-data.js says ${entry.bytes}`);
   return buffer;
+}
+
+/** What prt web writes beside its bake for the page (bake.js, readBake's extras): per-texel
+ *  glossy matrices' points (data.bake.texelPoints), inside prt-data.js or beside it. */
+async function bakeExtras(bake) {
+  const p = bake.texelPoints;
+  if (!p) return {};
+  const bytes = p.base64 ? base64Bytes(p.base64).buffer : await fetchBeside(bake, p);
+  if (bytes.byteLength % 4) throw new Error(`${bake.name}: its texel points are ${bytes.byteLength} bytes, not whole floats`);
+  return { texelPoints: new Float32Array(bytes) };
 }
 
 async function main() {
@@ -193,8 +203,8 @@ async function main() {
   // ---- the bake: inside prt-data.js (small bakes), or beside it (prt web --embed) -----------
   let warnings;
   try {
-    const bytes = data.bake.glb ? base64Bytes(data.bake.glb).buffer : await fetchBake(data.bake);
-    warnings = page.setBake(await parseBake(bytes, data.bake.name, limits));
+    const bytes = data.bake.glb ? base64Bytes(data.bake.glb).buffer : await fetchBeside(data.bake, data.bake);
+    warnings = page.setBake(await parseBake(bytes, data.bake.name, limits, await bakeExtras(data.bake)));
   } catch (e) {
     return fatal(e.message);
   }

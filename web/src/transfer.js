@@ -6,8 +6,10 @@
 // the layout or the representation. The pick order is the library's (transferPreference,
 // generated into 'prt:constants').
 // Per-texel transfer (t.perPixel: rows are the texels of a W × H lightmap, row y·W + x) takes
-// the same paths (vectors only) and the same per-row packing, once for the whole bake (every part
-// reads the one lightmap); draw.js gives it the per-pixel stage (shaders/prt_lightmap.glsl).
+// the same paths and the same per-row packing, once for the whole bake (every part reads the one
+// lightmap); draw.js gives it the per-pixel stage (shaders/prt_lightmap.glsl). Its glossy
+// matrices (CPCA only) are shaded at the texels' points, which only prt web can compute: they
+// come beside its bake (bake.js, texelPoints), and without them the matrices are refused.
 import { bands as kBands, layouts, maxShaderClusters, modes, perTexelMatricesRefusal, shaderPaths,
   transferPreference } from 'prt:constants';
 import { bandLimitMessage } from './messages.js';
@@ -22,8 +24,16 @@ function fail(name, what) {
  *  the line saying why the page cannot draw it. */
 export function shaderPath(shape, compressed, name, limits) {
   const what = `the ${shape.mode} ${shape.layout} transfer`;
+  if (shape.perPixel && shape.layout === 'matrix') {
+    // CPCA-compressed, each tap shaded at its texel's point (prt web's texelPoints, bake.js).
+    if (!compressed)
+      fail(name, `the ${shape.mode} transfer holds dense per-texel glossy matrices; the browser viewers draw them CPCA-compressed only (prt compress)`);
+    if (!shape.hasTexelPoints) fail(name, `${perTexelMatricesRefusal} (the ${shape.mode} transfer)`);
+    if (shape.bands > kBands.maxShaderGlossy)
+      fail(name, bandLimitMessage(`the ${shape.mode} transfer's glossy matrices`, shape.bands, 'the shaders\' glossy response', kBands.maxShaderGlossy));
+    return 'CpcaMatrix';
+  }
   if (shape.perPixel) {
-    if (shape.layout === 'matrix') fail(name, `${perTexelMatricesRefusal} (the ${shape.mode} transfer)`);
     // Relit per pixel: the light must fit the fragment shader's uniforms.
     if (shape.bands > limits.maxFragmentBands)
       fail(name, bandLimitMessage(what, shape.bands, 'this page\'s per-pixel light (the fragment shader\'s uniforms)', limits.maxFragmentBands));
@@ -138,9 +148,10 @@ function packTexelRows(t, limits, name) {
  * Reads transfer entry `entry` of the bake (PRTKIT_radiance_transfer): its shape (checked), its path, and what the
  * path reads from the file (the compressed arrays, a per-texel transfer's dense rows). `gltf` is GLTFLoader's
  * result; `rowCount` the domain's rows (the vertices, or the lightmap's texels); `lightmap` { width, height } for
- * per-texel transfer, else null.
+ * per-texel transfer, else null; hasTexelPoints: the bake comes with its texels' points (per-texel
+ * glossy matrices need them).
  */
-export async function readTransfer(gltf, entry, rowCount, name, limits, lightmap = null) {
+export async function readTransfer(gltf, entry, rowCount, name, limits, lightmap = null, hasTexelPoints = false) {
   const s = entry.settings || {};
   const mode = modes.find((m) => m.name === String(s.mode));
   if (!mode) fail(name, `unknown transfer mode '${s.mode}'`);
@@ -155,7 +166,7 @@ export async function readTransfer(gltf, entry, rowCount, name, limits, lightmap
   const t = { mode: mode.name, layout, bands, channels, matrix: layout === 'matrix',
               attributePrefix: mode.attributePrefix.toLowerCase(), compressed: null,
               response: entry.response || null, recipeMaterial: s.material || null,
-              perPixel: !!lightmap, lightmap, rowCount };
+              perPixel: !!lightmap, lightmap, rowCount, hasTexelPoints };
   if ((s.domain === 'texels') !== t.perPixel)
     fail(name, `the ${mode.name} transfer is over ${s.domain || 'vertices'}, the bake over ${lightmap ? 'texels' : 'vertices'}`);
   t.path = shaderPath(t, !!entry.compressed, name, limits);

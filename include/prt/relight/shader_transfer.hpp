@@ -54,8 +54,9 @@
 // its received light L' from the cluster table and shading it with the glossy response at the
 // texel's own sample point, normal and albedo (a second data texture, render::packTexelPoints;
 // render::texelRelight, what prt render relights at), then blend: prt render's relit lightmap
-// again. Dense matrices per texel (B⁴ floats a texel) are refused by name, and the page refuses
-// every per-texel matrix transfer (it cannot compute the texels' points).
+// again. Dense matrices per texel (B⁴ floats a texel) are refused by name. The browser viewers
+// shade the same way from the points prt web computes and ships beside its bake (they cannot
+// trace the inside-geometry probe that places them); without them they refuse by name.
 
 #include <algorithm>
 #include <array>
@@ -90,10 +91,12 @@ ShaderPath shaderPath(const Transfer& t, bool matricesOnGpu);
 inline constexpr const char* kPerTexelMatricesRefusal =
     "per-texel glossy matrices are drawn CPCA-compressed (prt compress), relit per pixel; dense "
     "ones (B⁴ floats a texel) by prt render only";
-/// Why the browser viewers refuse per-texel matrices (the page's, generated).
+/// Why the browser viewers refuse per-texel matrices they have no texel points for (the page's
+/// and the three.js module's, generated): the points come from prt web, beside its own bake.
 inline constexpr const char* kPageTexelMatricesRefusal =
-    "the browser viewers relight per-texel vector transfer only (per-texel glossy matrices: prt "
-    "view draws them CPCA-compressed, prt render any)";
+    "per-texel glossy matrices are shaded at their texels' sample points, which prt web writes "
+    "beside its own bake (write a page for this file with prt web; prt view draws it "
+    "CPCA-compressed, prt render any)";
 
 /// The per-row texels of a path (uploaded once).
 struct ShaderRows {

@@ -51,7 +51,11 @@ async function inputs() {
   if (page && page.bake && Array.isArray(page.environments)) {
     const b = page.bake;
     const bytes = b.glb ? base64Bytes(b.glb).buffer : await (await fetchOr(`../${b.file}`, 'bake')).arrayBuffer();
-    return { name: b.name, bytes, lights: page.environments.map((e) => ({ name: e.name, light: parseLight({ bands: e.bands, coefficients: e.coefficients }, e.name) })) };
+    // Per-texel glossy matrices' points, which prt web writes beside its bake (the plugin's option).
+    const p = b.texelPoints;
+    const texelPoints = !p ? undefined : new Float32Array(p.base64 ? base64Bytes(p.base64).buffer
+                                                                   : await (await fetchOr(`../${p.file}`, 'texel points')).arrayBuffer());
+    return { name: b.name, bytes, texelPoints, lights: page.environments.map((e) => ({ name: e.name, light: parseLight({ bands: e.bands, coefficients: e.coefficients }, e.name) })) };
   }
   const bake = query.get('bake') || 'bake.glb', lightName = query.get('light') || 'light.json';
   const bytes = await (await fetchOr(bake, 'bake')).arrayBuffer();
@@ -67,8 +71,8 @@ async function main() {
   document.body.appendChild(renderer.domElement);
 
   // The bake, through three.js's own loader, and the lights.
-  const { name: bakeName, bytes, lights } = await inputs();
-  const loader = new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { renderer, name: bakeName, required: true }));
+  const { name: bakeName, bytes, texelPoints, lights } = await inputs();
+  const loader = new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { renderer, name: bakeName, required: true, texelPoints }));
   const gltf = await loader.parseAsync(bytes, '');
   const prt = gltf.userData.prtkit;
   let light = lights[0].light;

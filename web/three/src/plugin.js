@@ -15,7 +15,9 @@ import { PRTBake } from './prt_bake.js';
 export class PRTKitRadianceTransfer {
   /**
    * options: { name: the file's name in messages, renderer: a WebGLRenderer whose limits apply
-   * (else WebGL2's guaranteed ones), required: reject an asset that is not a bake }.
+   * (else WebGL2's guaranteed ones), required: reject an asset that is not a bake, texelPoints:
+   * per-texel glossy matrices' points (a Float32Array, what prt web writes beside its bake:
+   * data.bake.texelPoints; such matrices are refused without them) }.
    */
   constructor(parser, options = {}) {
     this.parser = parser;
@@ -38,7 +40,7 @@ export class PRTKitRadianceTransfer {
     const limits = { maxTextureSize: caps ? caps.maxTextureSize : 4096,
                      maxBands: Math.min(kBands.maxPackedLight, Math.floor(Math.sqrt(vectors - 16))),
                      maxFragmentBands: Math.min(kBands.maxPackedLight, Math.floor(Math.sqrt(fragment - 16))) };
-    const bake = await readBake(result, name, limits);
+    const bake = await readBake(result, name, limits, { texelPoints: o.texelPoints });
     for (const t of bake.transfers) if (t.matrix) t.material = glossyFromFile(t, name);
     result.userData.prtkit = new PRTBake(bake, result.scene, limits);
   }
