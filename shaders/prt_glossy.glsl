@@ -16,7 +16,9 @@ uniform float uGlossy[PRT_GLOSSY_COEFFS];   // Λ_l · N_lm
 uniform vec3 uKd, uKs, uEye;
 uniform bool uHasKd;
 vec3 prtGlossyLight(int i);
-vec3 prtGlossy(vec3 p, vec3 n, vec3 albedo) {
+// The two parts apart: returns Σ kd d_i L'_i (what a base-colour texture multiplies,
+// render/base_colour.hpp), `lobe` = Σ ks g_i L'_i (added untextured).
+vec3 prtGlossyParts(vec3 p, vec3 n, vec3 albedo, out vec3 lobe) {
   vec3 toEye = uEye - p;
   float len = length(toEye);
   vec3 v = len > 0.0 ? toEye / len : n;
@@ -25,8 +27,17 @@ vec3 prtGlossy(vec3 p, vec3 n, vec3 albedo) {
   shBasis(n, uBands, yn);
   shBasis(r, uBands, yr);
   vec3 kd = uHasKd ? uKd : albedo;
-  vec3 e = vec3(0.0);
-  for (int i = 0; i < uBands * uBands; ++i)
-    e += (kd * (uDiffuse[i] * yn[i]) + uKs * (uGlossy[i] * yr[i])) * prtGlossyLight(i);
-  return e;
+  vec3 d = vec3(0.0), g = vec3(0.0);
+  for (int i = 0; i < uBands * uBands; ++i) {
+    vec3 l = prtGlossyLight(i);
+    d += (uDiffuse[i] * yn[i]) * l;
+    g += (uGlossy[i] * yr[i]) * l;
+  }
+  lobe = uKs * g;
+  return kd * d;
+}
+vec3 prtGlossy(vec3 p, vec3 n, vec3 albedo) {
+  vec3 lobe;
+  vec3 d = prtGlossyParts(p, n, albedo, lobe);
+  return d + lobe;
 }

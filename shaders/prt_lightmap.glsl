@@ -28,13 +28,14 @@ vec4 prtClusterTexel(int t) { return prtTexel(uClusters, t); }
 uniform PRT_TEXELS uPoints;  // per row: (position, 0), (normal, 0), (albedo, 0)
 uniform int uCoeffs;         // values per cluster vector in the table (b²)
 int gBase, gRow;             // the tap being shaded: its first weight texel and cluster row
+vec3 gTapLobe;               // its lobe (the part a base-colour texture leaves alone)
 #include "prt_glossy.glsl"
 vec3 prtGlossyLight(int i) { return prtCompressedValue(gBase, gRow, uBasisCount, uCoeffs, i); }
 vec3 prtLightmapRow(int r) {
   gBase = r * uTexelsPerRow;
   gRow = prtCompressedRow(gBase, uBasisCount);
-  return prtGlossy(prtTexel(uPoints, 3 * r).xyz, prtTexel(uPoints, 3 * r + 1).xyz,
-                   prtTexel(uPoints, 3 * r + 2).rgb);
+  return prtGlossyParts(prtTexel(uPoints, 3 * r).xyz, prtTexel(uPoints, 3 * r + 1).xyz,
+                        prtTexel(uPoints, 3 * r + 2).rgb, gTapLobe);
 }
 #else
 vec3 prtLightmapRow(int r) { return prtRelightCompressed(r * uTexelsPerRow, uBasisCount); }
@@ -47,15 +48,24 @@ vec4 prtTransferTexel(int t) { return prtTexel(uRows, t); }
 #include "prt_relight.glsl"
 vec3 prtLightmapRow(int r) { return prtRelight(r * uTexelsPerRow, uCount, uRgb); }
 #endif
-vec3 prtLightmapRadiance(vec2 uv) {
+// With PRT_LIGHTMAP_GLOSSY the blend is of the taps' diffuse parts (what a base-colour texture
+// multiplies); `lobe` gets the blend of their lobes (zero otherwise).
+vec3 prtLightmapRadiance(vec2 uv, out vec3 lobe) {
   vec2 p = uv * vec2(uLightmapSize) - 0.5;
   vec2 f = floor(p), w = p - f;
   ivec2 hi = uLightmapSize - 1, i = ivec2(f);
   ivec2 a = clamp(i, ivec2(0), hi), b = clamp(i + 1, ivec2(0), hi);
   int W = uLightmapSize.x;
-  vec3 r = prtLightmapRow(a.y * W + a.x) * ((1.0 - w.x) * (1.0 - w.y));
-  r += prtLightmapRow(a.y * W + b.x) * (w.x * (1.0 - w.y));
-  r += prtLightmapRow(b.y * W + a.x) * ((1.0 - w.x) * w.y);
-  r += prtLightmapRow(b.y * W + b.x) * (w.x * w.y);
+  int rows[4] = int[4](a.y * W + a.x, a.y * W + b.x, b.y * W + a.x, b.y * W + b.x);
+  float weights[4] = float[4]((1.0 - w.x) * (1.0 - w.y), w.x * (1.0 - w.y), (1.0 - w.x) * w.y,
+                              w.x * w.y);
+  vec3 r = vec3(0.0);
+  lobe = vec3(0.0);
+  for (int t = 0; t < 4; ++t) {
+    r += prtLightmapRow(rows[t]) * weights[t];
+#ifdef PRT_LIGHTMAP_GLOSSY
+    lobe += gTapLobe * weights[t];
+#endif
+  }
   return r;
 }

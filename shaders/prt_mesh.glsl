@@ -16,3 +16,21 @@ vec3 prtAlbedo() { return color; }
 #else
 vec3 prtAlbedo() { return vec3(1.0); }
 #endif
+// PRT_BASE_COLOUR (a base-colour texture, render/base_colour.hpp): the texture's UV set (glTF
+// TEXCOORD_0: location 5 on the desktop, three.js's `uv`) goes to the fragment stage, which
+// multiplies the texture into vRadiance, the part of the exit radiance it multiplies (the
+// diffuse part), and adds vGlossy, the part it does not (the glossy stages' lobe; zero
+// otherwise). prtPassBaseColour() sets both; a glossy stage then sets vGlossy.
+#ifdef PRT_BASE_COLOUR
+#ifndef PRT_HOST_DECLARES_INPUTS
+layout(location = 5) in vec2 uv;
+#endif
+out vec2 vBaseUv;
+out vec3 vGlossy;
+void prtPassBaseColour() {
+  vBaseUv = uv;
+  vGlossy = vec3(0.0);
+}
+#else
+void prtPassBaseColour() {}
+#endif

@@ -207,13 +207,7 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(a.bake);
   if (!a.mode.empty()) prt::pickTransfer(bake, parseTransferMode(a.mode), {}, a.bake);
-  // The page shades per vertex (and per texel) from the file's COLOR_0: a base-colour texture is
-  // folded into it (geometry/mesh.hpp), as every per-vertex consumer sees it.
-  if (bake.mesh.baseColour) {
-    foldBaseColour(bake.mesh);
-    const std::string bytes = encodeBake(bake);
-    glb.assign(bytes.begin(), bytes.end());
-  }
+  // A base-colour texture stays in the file: the page multiplies it per pixel, as prt render.
   return glb;
 }
 
@@ -221,7 +215,8 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
 /// (render::texelRelight, what prt render and prt view relight them at), which the page cannot
 /// compute (the inside-geometry probe traces rays): prt web ships them beside the bake as
 /// render::packTexelPoints' texels, three RGBA32F texels a lightmap texel. Empty when no
-/// transfer needs them. The mesh is the page's copy (its base colour folded into the albedo).
+/// transfer needs them. Their albedo leaves the base-colour texture out: the page multiplies
+/// it per pixel.
 std::vector<float> texelPointsFor(const BakeFile& bake) {
   for (const BakedTransfer& t : bake.transfers) {
     if (!t.transfer.isMatrix() || t.transfer.domain() != TransferDomain::Texels) continue;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include "prt/core/error.hpp"
@@ -197,19 +198,18 @@ Renderer::Renderer() {
 }
 
 Renderer::~Renderer() {
-  const GLuint programs[] = {meshProgram_,     backgroundProgram_, toneProgram_,
-                             glossyProgram_,   compressedProgram_, compressedGlossyProgram_,
-                             radianceProgram_, lightmapProgram_,   lightmapCompressedProgram_,
+  const GLuint programs[] = {meshProgram_,          backgroundProgram_, toneProgram_,
+                             glossyProgram_,        compressedProgram_, compressedGlossyProgram_,
+                             radianceProgram_,      lightmapProgram_,   lightmapCompressedProgram_,
                              lightmapGlossyProgram_};
   for (GLuint p : programs) glDeleteProgram(p);
-  const GLuint buffers[] = {positions_, albedo_,  indices_,       transferBuffer_, lightUbo_,
-                            radiance_,  normals_, clusterBuffer_, lightmapUvs_,
-                            pointsBuffer_};
-  glDeleteBuffers(10, buffers);
-  const GLuint textures[] = {transferTexture_, envTexture_,    shTexture_,
-                             msColour_,        resolveColour_, clusterTexture_,
-                             pointsTexture_};
-  glDeleteTextures(7, textures);
+  const GLuint buffers[] = {positions_,   albedo_,       indices_, transferBuffer_,
+                            lightUbo_,    radiance_,     normals_, clusterBuffer_,
+                            lightmapUvs_, pointsBuffer_, baseUvs_, lobe_};
+  glDeleteBuffers(GLsizei(std::size(buffers)), buffers);
+  const GLuint textures[] = {transferTexture_, envTexture_,     shTexture_,     msColour_,
+                             resolveColour_,   clusterTexture_, pointsTexture_, baseColourTexture_};
+  glDeleteTextures(GLsizei(std::size(textures)), textures);
   glDeleteRenderbuffers(1, &msDepth_);
   const GLuint fbos[] = {msFbo_, resolveFbo_};
   glDeleteFramebuffers(2, fbos);
@@ -281,6 +281,37 @@ void Renderer::setMesh(const Mesh& mesh) {
     glDisableVertexAttribArray(4);
     glVertexAttrib2f(4, 0.0f, 0.0f);
   }
+  // The base-colour texture (geometry/base_colour.hpp: sRGB codes decoded before bilinear
+  // filtering, repeat wrapping, no mipmaps, row 0 at v = 0 — GL's t = 0) at the texture UVs
+  // (location 5); without one a white texel, which uBaseColourOn leaves unread anyway.
+  const bool textured = mesh.baseColour && !mesh.baseColour->image.empty() &&
+                        mesh.uvs.size() == mesh.positions.size();
+  if (!baseColourTexture_) glGenTextures(1, &baseColourTexture_);
+  glBindTexture(GL_TEXTURE_2D, baseColourTexture_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  static const std::uint8_t kWhite[3] = {255, 255, 255};
+  const image::Srgb8Image* tex = textured ? &mesh.baseColour->image : nullptr;
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8, tex ? tex->width : 1, tex ? tex->height : 1, 0, GL_RGB,
+               GL_UNSIGNED_BYTE, tex ? tex->rgb.data() : kWhite);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  if (textured) {
+    if (!baseUvs_) glGenBuffers(1, &baseUvs_);
+    glBindBuffer(GL_ARRAY_BUFFER, baseUvs_);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sizeof(Vec2f) * mesh.uvs.size()), mesh.uvs.data(),
+                 GL_STATIC_DRAW);
+    glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, sizeof(Vec2f), nullptr);
+    glEnableVertexAttribArray(5);
+  } else {
+    glDisableVertexAttribArray(5);
+    glVertexAttrib2f(5, 0.0f, 0.0f);
+  }
+  glDisableVertexAttribArray(6);  // the CPU's lobe, until setRadiance gives one
+  glVertexAttrib3f(6, 0.0f, 0.0f, 0.0f);
   if (!indices_) glGenBuffers(1, &indices_);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof(mesh.triangles[0]) * mesh.triangles.size(),
@@ -349,11 +380,18 @@ void Renderer::setGlossyMaterial(std::span<const float> diffuse, std::span<const
   glossyKs_ = ks;
 }
 
-void Renderer::setRadiance(std::span<const Rgb> radiance) {
+void Renderer::setRadiance(std::span<const Rgb> radiance, std::span<const Rgb> lobe) {
   PRT_CHECK(radiance.size() == vertices_, "setRadiance needs one value per vertex");
+  PRT_CHECK(lobe.empty() || lobe.size() == vertices_, "setRadiance: one lobe value per vertex");
   glBindVertexArray(vao_);
   // Orphan and refill: the previous frame may still be reading the old contents.
   uploadVertexAttribute(radiance_, 2, radiance.data(), radiance.size(), GL_STREAM_DRAW);
+  if (!lobe.empty()) {
+    uploadVertexAttribute(lobe_, 6, lobe.data(), lobe.size(), GL_STREAM_DRAW);
+  } else {
+    glDisableVertexAttribArray(6);
+    glVertexAttrib3f(6, 0.0f, 0.0f, 0.0f);
+  }
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   hasRadiance_ = true;
@@ -475,6 +513,10 @@ void Renderer::drawMesh(const FrameParams& f, const float* viewProj) {
     glDepthFunc(GL_LESS);
     glUseProgram(program);
     glUniformMatrix4fv(loc(program, "uViewProj"), 1, GL_FALSE, viewProj);
+    glActiveTexture(GL_TEXTURE4);
+    glBindTexture(GL_TEXTURE_2D, baseColourTexture_);
+    glUniform1i(loc(program, "uBaseColour"), 4);
+    glUniform1i(loc(program, "uBaseColourOn"), f.baseColour);
   };
   using relight::ShaderPath;
   const int b = std::min(f.bands, transferBands_);

@@ -65,6 +65,9 @@ struct FrameParams {
   /// (relight::packClusterTable) at the shown bands, uploaded by draw.
   std::span<const float> clusterTable;
   BackgroundMode background = BackgroundMode::Env;
+  /// The mesh's base-colour texture multiplies the diffuse part per pixel
+  /// (render::pixelTexture: the mesh has one and the material sets no kd).
+  bool baseColour = false;
   float exposureStops = 0.0f;
   image::ToneMap toneMap = image::ToneMap::Aces;
 };
@@ -96,7 +99,8 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  /// Uploads positions, albedo (white when the mesh has none) and triangles.
+  /// Uploads positions, albedo (white when the mesh has none), triangles, and the base-colour
+  /// texture with its UVs (white and constant without one).
   void setMesh(const Mesh& mesh);
   /// The one upload path: the per-vertex texels of a transfer packed for `rows.path`
   /// (relight::packShaderRows) over `shape` (bands, channels); `clusters` and `basisCount` for
@@ -105,8 +109,9 @@ class Renderer {
   void setTransfer(const relight::ShaderRows& rows, const TransferShape& shape, int clusters = 0,
                    int basisCount = 0);
   /// Uploads exit radiance, one value per mesh vertex (albedo already applied): what the
-  /// CpuRadiance path draws.
-  void setRadiance(std::span<const Rgb> radiance);
+  /// CpuRadiance path draws. Under a base-colour texture `radiance` is the part it multiplies
+  /// and `lobe` the glossy part added after (render::splitForTexture; empty: none).
+  void setRadiance(std::span<const Rgb> radiance, std::span<const Rgb> lobe = {});
   /// Per-texel glossy matrices (CpcaMatrix per pixel): the texels' sample points, normals and
   /// albedo (render::packTexelPoints, three RGBA texels per lightmap texel), uploaded once.
   void setTexelPoints(std::span<const float> texels);
@@ -152,6 +157,7 @@ class Renderer {
   unsigned vao_ = 0, emptyVao_ = 0, positions_ = 0, albedo_ = 0, indices_ = 0, normals_ = 0;
   unsigned transferBuffer_ = 0, transferTexture_ = 0, lightUbo_ = 0, radiance_ = 0;
   unsigned envTexture_ = 0, shTexture_ = 0;
+  unsigned baseColourTexture_ = 0, baseUvs_ = 0, lobe_ = 0;
   unsigned msFbo_ = 0, msColour_ = 0, msDepth_ = 0, resolveFbo_ = 0, resolveColour_ = 0;
   int fbWidth_ = 0, fbHeight_ = 0;
   bool hasAlbedo_ = false, hasTransfer_ = false, hasRadiance_ = false, hasLightmapUvs_ = false;

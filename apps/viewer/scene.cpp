@@ -14,6 +14,7 @@
 #include "prt/envmap/project.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/render/base_colour.hpp"
 #include "prt/render/texel_points.hpp"
 
 namespace prt::viewer {
@@ -62,10 +63,9 @@ void OrbitCamera::zoom(double factor) {
 BakeFile Scene::readCheckedBake(const std::string& path) {
   // CPCA-compressed transfer (prt compress) stays compressed: it is relit in the compressed
   // space (SceneView).
+  // A base-colour texture stays with the mesh: the fragment stage multiplies it per pixel, as
+  // prt render does (render/base_colour.hpp; SceneView::prepare).
   BakeFile bake = readBake(path);
-  // The viewer shades per vertex (and per texel): a base-colour texture is folded into the
-  // vertices' albedo (geometry/mesh.hpp), as every per-vertex consumer sees it.
-  foldBaseColour(bake.mesh);
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
@@ -222,6 +222,11 @@ void SceneView::setTransfer(const DrawState& now) {
   relighter_ = path_ == relight::ShaderPath::CpuRadiance
                    ? relight::Relighter(t, {mesh.positions, mesh.normals, mesh.albedo})
                    : relight::Relighter();
+  // Under a base-colour texture a glossy material's lobe is relit apart (splitForTexture): the
+  // texture multiplies the diffuse part only. (The transfer's rows are shared, not copied.)
+  lobeRelighter_ = path_ == relight::ShaderPath::CpuRadiance && mesh.baseColour
+                       ? relight::Relighter(t, {mesh.positions, mesh.normals, mesh.albedo})
+                       : relight::Relighter();
 }
 
 FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
@@ -235,9 +240,17 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   if (newTransfer || now.bands != drawn_.bands)
     shown_ = path_ == ShaderPath::CpcaVector || path_ == ShaderPath::CpcaMatrix ? t.cut(now.bands)
                                                                                 : Transfer();
+  // The base-colour texture multiplies per pixel unless the material's kd replaces it.
+  const BaseColourTexture* texture = render::pixelTexture(now.bake->mesh, now.material);
+  const render::TextureSplit split = render::splitForTexture(now.material, texture, t);
+  const bool cpuLobe = path_ == ShaderPath::CpuRadiance && split.glossy.has_value();
   if (path_ == ShaderPath::CpuRadiance) {
     relighter_.setBands(now.bands);
-    relighter_.setMaterial(now.material);
+    relighter_.setMaterial(split.diffuse);
+  }
+  if (cpuLobe) {
+    lobeRelighter_.setBands(now.bands);
+    lobeRelighter_.setMaterial(*split.glossy);
   }
   const bool glossyKernels = path_ == ShaderPath::DenseMatrix || path_ == ShaderPath::CpcaMatrix;
   if (glossyKernels && (newTransfer || !(now.material == drawn_.material))) {
@@ -274,10 +287,12 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
     f.clusterTable = clusterTable_;
   } else if (path_ == ShaderPath::CpuRadiance) {
     const auto tr = std::chrono::steady_clock::now();
-    const int before = relighter_.frames();
+    const int before = relighter_.frames() + lobeRelighter_.frames();
     relighter_.relightRotated(packer_.rotated(), now.bands, f.camera.eye);
-    if (relighter_.frames() != before) {
-      renderer_.setRadiance(relighter_.radiance());
+    if (cpuLobe) lobeRelighter_.relightRotated(packer_.rotated(), now.bands, f.camera.eye);
+    if (relighter_.frames() + lobeRelighter_.frames() != before) {
+      renderer_.setRadiance(relighter_.radiance(),
+                            cpuLobe ? lobeRelighter_.radiance() : std::span<const Rgb>());
       relightSeconds_ =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
     }
@@ -285,6 +300,7 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   f.light = &packer_;
   f.background = now.background;
+  f.baseColour = texture != nullptr;
   f.exposureStops = scene.exposureStops;
   f.toneMap = scene.toneMap;
   return f;

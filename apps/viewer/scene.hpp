@@ -225,6 +225,7 @@ class SceneView {
   relight::ShaderPath path_ = relight::ShaderPath::DenseVector;
   Transfer shown_;  ///< the transfer cut to the shown bands (compressed projections)
   relight::Relighter relighter_;
+  relight::Relighter lobeRelighter_;  ///< CpuRadiance under a texture: the lobe, relit apart
   std::vector<float> clusterTable_;
   double lightSeconds_ = 0, relightSeconds_ = 0;
 };

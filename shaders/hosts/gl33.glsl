@@ -11,6 +11,9 @@
 //   PRT_TARGET_MAX        the largest value the HDR target holds (RGBA32F here: float's)
 //   PRT_HAS_ALBEDO        defined: the renderer always feeds location 1 (the albedo, or one
 //                         constant colour when the mesh has none)
+//   PRT_BASE_COLOUR       defined: the renderer always binds a base-colour texture and feeds
+//                         its UVs (location 5), white and constant without one; uBaseColourOn
+//                         says whether it applies
 #define PRT_TEXELS samplerBuffer
 vec4 prtTexel(samplerBuffer s, int t) { return texelFetch(s, t); }
 #define PRT_LIGHT_UNIFORM layout(std140) uniform Light { vec4 uL[PRT_LIGHT_VEC4S]; }
@@ -18,3 +21,4 @@ vec4 prtTexel(samplerBuffer s, int t) { return texelFetch(s, t); }
 #define prtClip(p) (uViewProj * vec4(p, 1.0))
 #define PRT_TARGET_MAX 3.4028235e38
 #define PRT_HAS_ALBEDO 1
+#define PRT_BASE_COLOUR 1

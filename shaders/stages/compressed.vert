@@ -14,5 +14,6 @@ vec4 prtClusterTexel(int t) { return prtTexel(uClusters, t); }
 #include "prt_compressed.glsl"
 void main() {
   vRadiance = prtAlbedo() * prtRelightCompressed(gl_VertexID * uTexelsPerVertex, uBasisCount);
+  prtPassBaseColour();
   gl_Position = prtClip(position);
 }

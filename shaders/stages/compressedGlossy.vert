@@ -25,6 +25,11 @@ vec3 prtGlossyLight(int i) { return prtCompressedValue(gBase, gRow, uBasisCount,
 void main() {
   gBase = gl_VertexID * uTexelsPerVertex;
   gRow = prtCompressedRow(gBase, uBasisCount);
+  prtPassBaseColour();
+#ifdef PRT_BASE_COLOUR
+  vRadiance = prtGlossyParts(position, normal, prtAlbedo(), vGlossy);  // the texture's, the lobe
+#else
   vRadiance = prtGlossy(position, normal, prtAlbedo());
+#endif
   gl_Position = prtClip(position);
 }

@@ -26,6 +26,11 @@ vec3 prtGlossyLight(int i) {  // (M_p L')_i
   return row;
 }
 void main() {
+  prtPassBaseColour();
+#ifdef PRT_BASE_COLOUR
+  vRadiance = prtGlossyParts(position, normal, prtAlbedo(), vGlossy);  // the texture's, the lobe
+#else
   vRadiance = prtGlossy(position, normal, prtAlbedo());
+#endif
   gl_Position = prtClip(position);
 }

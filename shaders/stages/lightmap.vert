@@ -13,5 +13,6 @@ out vec3 vAlbedo;
 void main() {
   vLightmapUv = prtLightmapUv;
   vAlbedo = prtAlbedo();
+  prtPassBaseColour();
   gl_Position = prtClip(position);
 }

@@ -12,5 +12,6 @@ vec4 prtTransferTexel(int t) { return prtTexel(uTransfer, t); }
 #include "prt_relight.glsl"
 void main() {
   vRadiance = prtAlbedo() * prtRelight(gl_VertexID * uTexelsPerVertex, uCount, uRgb);
+  prtPassBaseColour();
   gl_Position = prtClip(position);
 }

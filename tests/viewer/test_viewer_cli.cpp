@@ -18,6 +18,7 @@
 
 #include <algorithm>
 
+#include "common/checker_plane.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/io/bake_file.hpp"
 #include "viewer_test_util.hpp"
@@ -78,8 +79,9 @@ TEST(ViewCli, AutoRotationAndCameraMatchRender) {
   const Result r = prt("-q render --exposure 0 '" + spherePlaneBake() + "' " + std::string(kSize) +
                        " --rotate 0,90,0 -o render.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const Result v = prt("-q view --exposure 0 '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
-                       " --frames 31 --auto-rotate --spin 180 --screenshot spun.png");
+  const Result v =
+      prt("-q view --exposure 0 '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
+          " --frames 31 --auto-rotate --spin 180 --screenshot spun.png");
   ASSERT_EQ(v.rc, 0) << v.err;
   EXPECT_LT(displayedRmse(path("spun.png"), path("render.png")), kMatch);
   const Result v1 = prt("-q view '" + spherePlaneBake() + "' --headless " + std::string(kSize) +
@@ -142,16 +144,17 @@ TEST(ViewCli, GlossyOnGpuMatchesRender) {
   const Result r = prt("-q render --exposure 0 '" + glossyBake() + "' " + std::string(kSize) +
                        " --rotate 0,90,0 -o render.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const Result v = prt("-q view --exposure 0 '" + glossyBake() + "' --headless " + std::string(kSize) +
-                       " --frames 31 --auto-rotate --spin 180 --glossy-on gpu --screenshot g.png");
+  const Result v =
+      prt("-q view --exposure 0 '" + glossyBake() + "' --headless " + std::string(kSize) +
+          " --frames 31 --auto-rotate --spin 180 --glossy-on gpu --screenshot g.png");
   ASSERT_EQ(v.rc, 0) << v.err;
   EXPECT_LT(displayedRmse(path("g.png"), path("render.png")), kMatch);
 }
 
 // CPCA-compressed transfer (bake version 3) is relit in the compressed space on the GPU: per
 // frame the cluster projections on the CPU, per vertex N weighted sums in the vertex shader.
-// prt render relights the same compressed rows on the CPU (relight::relight of the compressed rows), so a matching
-// frame meets the same thresholds as a dense one.
+// prt render relights the same compressed rows on the CPU (relight::relight of the compressed
+// rows), so a matching frame meets the same thresholds as a dense one.
 TEST(ViewCli, CompressedVectorBakeMatchesRender) {
   PRT_REQUIRE_HEADLESS_GL();
   EXPECT_LT(compareWithRender(compressedSphereBake(), ""), kMatch);
@@ -229,7 +232,8 @@ TEST(ViewCli, TexelGlossyMatricesRelitPerPixelMatchRender) {
   PRT_REQUIRE_HEADLESS_GL();
   const std::string& c = compressedGlossyTexelBake();
   const std::string close = "--exposure 0 --camera 'eye=0.4,1.3,2.3;target=0,0.8,0;fov=45'";
-  for (const std::string& args : {std::string(), std::string("--exposure 0 --rotate 20,70,0"), close}) {
+  for (const std::string& args :
+       {std::string(), std::string("--exposure 0 --rotate 20,70,0"), close}) {
     const double e = compareWithRender(c, args);
     std::printf("per-texel glossy CPCA, view vs render (%s): RMSE %.4f\n", args.c_str(), e);
     EXPECT_LT(e, kMatch) << args;
@@ -248,6 +252,61 @@ TEST(ViewCli, TexelGlossyMatricesRelitPerPixelMatchRender) {
                            std::string(kSize) + " --screenshot dense.png");
   EXPECT_NE(dense.rc, 0);
   EXPECT_NE(dense.err.find("drawn CPCA-compressed (prt compress)"), std::string::npos) << dense.err;
+}
+
+// The base-colour texture multiplies the diffuse part per pixel in every path, as prt render
+// (render/base_colour.hpp): a checker on a two-triangle square, per vertex (dense vectors; glossy
+// matrices on the CPU — the lobe relit apart — and on the GPU; CPCA glossy) and per texel
+// (vectors; CPCA glossy, shaded at the texels' points). The square without its texture is far
+// off (its four vertices cannot carry the checker); a material kd replaces the texture, as in
+// prt render.
+TEST(ViewCli, BaseColourTextureMultipliesPerPixelInEveryPath) {
+  PRT_REQUIRE_HEADLESS_GL();
+  const std::string obj = prt::testing::writeCheckerPlane(scratch());
+  const std::string plain = prt::testing::writeCheckerPlane(scratch(), true);
+  const std::string lobe = "--material 'phong?exponent=8&ks=0.4'";
+  const std::string texels = "--domain texels --resolution 32 --uv auto";
+  for (const std::string& bake : std::vector<std::string>{
+           "-q bake '" + obj + "' --mode shadowed --bands 4 --samples 64 -o tv.glb",
+           "-q bake '" + plain + "' --mode shadowed --bands 4 --samples 64 -o tp.glb",
+           "-q bake '" + obj + "' --mode shadowed --transfer matrix --bands 4 --samples 64 " +
+               lobe + " -o tg.glb",
+           "-q compress tg.glb --clusters 2 --pca 2 -o tgc.glb",
+           "-q bake '" + obj + "' --mode shadowed --bands 3 --samples 64 " + texels + " -o ttv.glb",
+           "-q bake '" + obj + "' --mode shadowed --transfer matrix --bands 3 --samples 64 " +
+               texels + " " + lobe + " -o ttg.glb",
+           "-q compress ttg.glb --clusters 4 --pca 3 -o ttgc.glb"}) {
+    const Result r = prt(bake);
+    ASSERT_EQ(r.rc, 0) << bake << "\n" << r.err;
+  }
+  const std::string close =
+      "--light builtin:studio --exposure 0 --camera 'eye=0,2.5,3.5;target=0,0,0;fov=45'";
+  struct Case {
+    std::string bake, view;
+  };
+  for (const Case& c :
+       {Case{"tv.glb", ""}, Case{"tg.glb", "--glossy-on cpu"}, Case{"tg.glb", "--glossy-on gpu"},
+        Case{"tgc.glb", ""}, Case{"ttv.glb", ""}, Case{"ttgc.glb", ""}}) {
+    const double e = compareWithRender(path(c.bake), close, c.view);
+    std::printf("textured %s %s, view vs render: RMSE %.4f\n", c.bake.c_str(), c.view.c_str(), e);
+    EXPECT_LT(e, kMatch) << c.bake << " " << c.view;
+  }
+  // A material kd replaces the texture in both.
+  EXPECT_LT(compareWithRender(path("tg.glb"),
+                              close + " --material 'phong?exponent=8&ks=0.4&kd=0.5,0.5,0.5'"),
+            kMatch);
+  // The control: the textured view against the untextured square's render.
+  ASSERT_EQ(prt("-q view '" + path("tv.glb") + "' --headless " + std::string(kSize) + " " + close +
+                " --screenshot textured.png")
+                .rc,
+            0);
+  ASSERT_EQ(prt("-q render '" + path("tp.glb") + "' " + std::string(kSize) + " " + close +
+                " -o plain.png")
+                .rc,
+            0);
+  const double off = displayedRmse(path("textured.png"), path("plain.png"));
+  std::printf("the texture left out: RMSE %.4f\n", off);
+  EXPECT_GT(off, 4 * kMatch);
 }
 
 // Compressed glossy matrices: on the CPU by relight::Relighter (the default), or in the
@@ -415,9 +474,9 @@ TEST(ViewCli, WindowUnderXvfbShowsTheHeadlessFrameAndAPanelThatLeavesItVisible) 
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)";
   const auto window = [&](const std::string& size, const std::string& name) {
-    const Result w = prt("-q view '" + cornellBake() + "' " + size + " --frames 3 --screenshot " +
-                             name,
-                         "xvfb-run -a -s '-screen 0 1600x1000x24' ");
+    const Result w =
+        prt("-q view '" + cornellBake() + "' " + size + " --frames 3 --screenshot " + name,
+            "xvfb-run -a -s '-screen 0 1600x1000x24' ");
     return w;
   };
   const Result w = window("--size 640x480", "small.png");
@@ -425,7 +484,8 @@ TEST(ViewCli, WindowUnderXvfbShowsTheHeadlessFrameAndAPanelThatLeavesItVisible) 
     GTEST_SKIP() << "no usable virtual display: " << w.err;
   ASSERT_EQ(w.rc, 0) << w.err;
   PRT_REQUIRE_HEADLESS_GL();
-  const Result h = prt("-q view '" + cornellBake() + "' --size 640x480 --headless --screenshot "
+  const Result h = prt("-q view '" + cornellBake() +
+                       "' --size 640x480 --headless --screenshot "
                        "small-headless.png");
   ASSERT_EQ(h.rc, 0) << h.err;
   const image::Image win = readDisplayed(path("small.png")),

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli/cli_harness.hpp"
+#include "common/checker_plane.hpp"
 #include "web/page_harness.hpp"
 
 namespace {
@@ -269,9 +270,9 @@ TEST(Three, TexelGlossyMatricesShadeAtThePointsPrtWebWrites) {
             "' --exposure 0 --tonemap clamp --background none --size 320x240 -o three_gt.png");
     ASSERT_EQ(r.rc, 0) << r.err;
     std::string log;
-    const std::string json =
-        runPage(path("three_web_gt/three"),
-                "screenshot&size=320x240&only&camera=" + camera + "&rotate=20,70,0&exposure=0", &log);
+    const std::string json = runPage(
+        path("three_web_gt/three"),
+        "screenshot&size=320x240&only&camera=" + camera + "&rotate=20,70,0&exposure=0", &log);
     ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json.substr(0, 300) << log;
     const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("three_gt.png"));
     std::cout << "three.js module vs prt render, per-texel glossy CPCA: RMSE " << e
@@ -282,13 +283,61 @@ TEST(Three, TexelGlossyMatricesShadeAtThePointsPrtWebWrites) {
   r = prt("-q light builtin:studio --bands 3 -o three_studio3.json");
   ASSERT_EQ(r.rc, 0) << r.err;
   std::string log;
-  const std::string json = runPage(examplePage("three_gt_alone", "three_gtc.glb", "three_studio3.json"),
-                                   "screenshot&size=64x48", &log);
+  const std::string json =
+      runPage(examplePage("three_gt_alone", "three_gtc.glb", "three_studio3.json"),
+              "screenshot&size=64x48", &log);
   EXPECT_NE(json.find("\"ok\":false"), std::string::npos) << json.substr(0, 300) << log;
   EXPECT_NE(json.find("three_gtc.glb: per-texel glossy matrices are shaded at their texels' "
                       "sample points, which prt web writes beside its own bake"),
             std::string::npos)
       << json.substr(0, 400);
+}
+
+// The base-colour texture: the plugin keeps GLTFLoader's map of the bake's baseColorTexture and
+// the module's stages multiply it into the diffuse part per pixel at TEXCOORD_0, the lobe added
+// after, as prt render does (render/base_colour.hpp). A checker on a two-triangle square, per
+// vertex (dense vectors, CPCA glossy) and per texel (vectors); the untextured square is far off.
+TEST(Three, BaseColourTextureMultipliesPerPixel) {
+  PRT_REQUIRE_EXAMPLE();
+  cornell();
+  const std::string obj = prt::testing::writeCheckerPlane(scratch());
+  const std::string plain = prt::testing::writeCheckerPlane(scratch(), true);
+  for (const std::string& cmd : std::vector<std::string>{
+           "-q bake '" + obj + "' --mode shadowed --bands 4 --samples 64 -o three_tv.glb",
+           "-q bake '" + plain + "' --mode shadowed --bands 4 --samples 64 -o three_tp.glb",
+           "-q bake '" + obj +
+               "' --mode shadowed --transfer matrix --bands 4 --samples 64 "
+               "--material 'phong?exponent=8&ks=0.4' -o three_tg.glb",
+           "-q compress three_tg.glb --clusters 2 --pca 2 -o three_tgc.glb",
+           "-q bake '" + obj +
+               "' --mode shadowed --bands 4 --samples 64 --domain texels "
+               "--resolution 32 --uv auto -o three_ttv.glb"}) {
+    const Result r = prt(cmd);
+    ASSERT_EQ(r.rc, 0) << cmd << "\n" << r.err;
+  }
+  const std::string cam = "eye=0,2.5,3.5;target=0,0,0;up=0,1,0;fov=45";
+  for (const std::string bake : {"three_tv", "three_tgc", "three_ttv"}) {
+    SCOPED_TRACE(bake);
+    const std::string dir = examplePage(bake, bake + ".glb", "three_studio.json");
+    const double e =
+        versusRender(dir, bake + ".glb", "three_studio.json", cam, "0,30,0", "", "0", 0);
+    EXPECT_LT(e, kMatch);
+    EXPECT_LT(quantile90, kInterior);
+    std::cout << "three.js module vs prt render, textured " << bake << ": RMSE " << e
+              << ", 90th percentile " << quantile90 * 255 << "/255\n";
+  }
+  // The comparison can fail: the textured frame against the untextured square's render.
+  const Result r =
+      prt("-q render three_tp.glb --light three_studio.json --rotate 0,30,0 --camera '" + cam +
+          "' --exposure 0 --tonemap clamp --background none --size 320x240 "
+          "-o three_tp.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const double off =
+      displayedRmse(exampleFrame(examplePage("three_tv", "three_tv.glb", "three_studio.json"),
+                                 "only&camera=" + cam + "&rotate=0,30,0&exposure=0"),
+                    path("three_tp.png"));
+  std::cout << "the texture left out: RMSE " << off << "\n";
+  EXPECT_GT(off, 4 * kMatch);
 }
 
 TEST(Three, PluginRefusesWhatItCannotShowNamingTheFile) {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "cli/cli_harness.hpp"
+#include "common/checker_plane.hpp"
 #include "common/scratch.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
@@ -77,7 +78,8 @@ std::vector<unsigned char> pageFrame(const std::string& query) {
   std::string log;
   // At exposure 0 unless asked: these compare the drawing, and the written auto exposure is the
   // page's first view's, not that of the query's light.
-  const std::string q = query.find("exposure=") == std::string::npos ? "exposure=0&" + query : query;
+  const std::string q =
+      query.find("exposure=") == std::string::npos ? "exposure=0&" + query : query;
   const std::string json = runPage(webFolder(nullptr), "screenshot&size=320x240&" + q, &log);
   EXPECT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
   return unbase64(jsonField(json, "rgb"));
@@ -125,7 +127,8 @@ TEST(Web, GivenCameraMatchesPrtRender) {
   r = prt("-q render --exposure 0 cornell.glb --light builtin:studio --camera '" + cam +
           "' --mode shadowed --size 320x240 -o cam.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const std::string json = runPage(path("page_cam"), "screenshot&size=320x240&exposure=0&mode=shadowed");
+  const std::string json =
+      runPage(path("page_cam"), "screenshot&size=320x240&exposure=0&mode=shadowed");
   const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("cam.png"));
   EXPECT_LT(e, kMatch) << json.substr(0, 200);
   EXPECT_LT(quantile90, kInterior);
@@ -158,7 +161,8 @@ TEST(Web, CompressedFirstFrameMatchesPrtRender) {
     r = prt("-q render --exposure 0 cpca.glb --size 320x240 " + c.render + " -o cpca.png");
     ASSERT_EQ(r.rc, 0) << r.err;
     std::string log;
-    const std::string json = runPage(path("page_cpca"), "screenshot&size=320x240&exposure=0&" + c.query, &log);
+    const std::string json =
+        runPage(path("page_cpca"), "screenshot&size=320x240&exposure=0&" + c.query, &log);
     ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
     EXPECT_EQ(jsonField(json, "compressed"), c.compressed);
     const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path("cpca.png"));
@@ -247,9 +251,12 @@ TEST(Web, MeshWithoutAlbedoMatchesPrtRender) {
   ASSERT_EQ(r.rc, 0) << r.err;
   r = prt("-q web box.glb --env builtin:studio -o page_box");
   ASSERT_EQ(r.rc, 0) << r.err;
-  r = prt("-q render --exposure 0 box.glb --light builtin:studio --rotate 0,40,0 --size 320x240 -o box.png");
+  r =
+      prt("-q render --exposure 0 box.glb --light builtin:studio --rotate 0,40,0 --size 320x240 -o "
+          "box.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const std::string json = runPage(path("page_box"), "screenshot&size=320x240&exposure=0&rotate=0,40,0");
+  const std::string json =
+      runPage(path("page_box"), "screenshot&size=320x240&exposure=0&rotate=0,40,0");
   EXPECT_LT(displayedRmse(unbase64(jsonField(json, "rgb")), path("box.png")), kMatch)
       << json.substr(0, 200);
   EXPECT_LT(quantile90, kInterior);
@@ -352,12 +359,14 @@ TEST(Web, TexelGlossyMatricesRelitPerPixelMatchPrtRender) {
               << ", 90th percentile " << quantile90 * 255 << "/255\n";
   }
   // The comparison can fail: close up, the diffuse part alone is far off.
-  r = prt("-q render --exposure 0 gtexels-cpca.glb --size 320x240 --light builtin:studio "
-          "--rotate 20,70,0 --camera '" + cam + "' --material lambert -o gd.png");
+  r =
+      prt("-q render --exposure 0 gtexels-cpca.glb --size 320x240 --light builtin:studio "
+          "--rotate 20,70,0 --camera '" +
+          cam + "' --material lambert -o gd.png");
   ASSERT_EQ(r.rc, 0) << r.err;
-  const std::string json = runPage(path("page_gt_close"),
-                                   "screenshot&size=320x240&exposure=0&env=1&rotate=20,70,0",
-                                   nullptr, "--allow-file-access-from-files");
+  const std::string json =
+      runPage(path("page_gt_close"), "screenshot&size=320x240&exposure=0&env=1&rotate=20,70,0",
+              nullptr, "--allow-file-access-from-files");
   const double off = displayedRmse(unbase64(jsonField(json, "rgb")), path("gd.png"));
   std::cout << "the lobe left out: RMSE " << off << "\n";
   EXPECT_GT(off, 2 * kMatch);
@@ -366,6 +375,59 @@ TEST(Web, TexelGlossyMatricesRelitPerPixelMatchPrtRender) {
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.err.find("dense glossy matrices"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("nope_gt")));
+}
+
+// The base-colour texture (render/base_colour.hpp) multiplies the diffuse part per pixel on the
+// page, as in prt render: GLTFLoader's map of the bake's baseColorTexture, sampled at TEXCOORD_0
+// (sRGB decoded before filtering, repeat wrapping, no mipmaps) in prt_fragment.glsl, the lobe
+// added after. A checker on a two-triangle square: per vertex (dense vectors, CPCA glossy
+// matrices) and per texel (vectors, CPCA glossy matrices at the points prt web ships). Four
+// vertices cannot carry the checker: the untextured square's render is far off.
+TEST(Web, BaseColourTextureMultipliesPerPixel) {
+  PRT_REQUIRE_PAGE();
+  const std::string obj = prt::testing::writeCheckerPlane(scratch());
+  const std::string plain = prt::testing::writeCheckerPlane(scratch(), true);
+  const std::string lobe = " --material 'phong?exponent=8&ks=0.4'";
+  const std::string texels = " --domain texels --resolution 32 --uv auto";
+  for (const std::string& cmd : std::vector<std::string>{
+           "-q bake '" + obj + "' --mode shadowed --bands 4 --samples 64 -o wtv.glb",
+           "-q bake '" + plain + "' --mode shadowed --bands 4 --samples 64 -o wtp.glb",
+           "-q bake '" + obj + "' --mode shadowed --transfer matrix --bands 4 --samples 64" + lobe +
+               " -o wtg.glb",
+           "-q compress wtg.glb --clusters 2 --pca 2 -o wtgc.glb",
+           "-q bake '" + obj + "' --mode shadowed --bands 3 --samples 64" + texels + " -o wttv.glb",
+           "-q bake '" + obj + "' --mode shadowed --transfer matrix --bands 3 --samples 64" +
+               texels + lobe + " -o wttg.glb",
+           "-q compress wttg.glb --clusters 4 --pca 3 -o wttgc.glb"}) {
+    const Result r = prt(cmd);
+    ASSERT_EQ(r.rc, 0) << cmd << "\n" << r.err;
+  }
+  const std::string cam = " --camera 'eye=0,2.5,3.5;target=0,0,0;fov=45'";
+  for (const std::string bake : {"wtv", "wtgc", "wttv", "wttgc"}) {
+    SCOPED_TRACE(bake);
+    Result r = prt("-q web " + bake + ".glb --env builtin:studio" + cam + " -o page_" + bake);
+    ASSERT_EQ(r.rc, 0) << r.err;
+    r = prt("-q render --exposure 0 " + bake + ".glb --size 320x240 --light builtin:studio" + cam +
+            " -o " + bake + ".png");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    std::string log;
+    const std::string json =
+        runPage(path("page_" + bake), "screenshot&size=320x240&exposure=0&env=0", &log);
+    ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json.substr(0, 400) << "\n" << log;
+    const double e = displayedRmse(unbase64(jsonField(json, "rgb")), path(bake + ".png"));
+    EXPECT_LT(e, kMatch);
+    EXPECT_LT(quantile90, kInterior);
+    std::cout << "page vs prt render, textured " << bake << ": RMSE " << e << ", 90th percentile "
+              << quantile90 * 255 << "/255\n";
+  }
+  // The comparison can fail: the page's frame against the untextured square's render.
+  const Result r = prt("-q render --exposure 0 wtp.glb --size 320x240 --light builtin:studio" +
+                       cam + " -o wtp.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string json = runPage(path("page_wtv"), "screenshot&size=320x240&exposure=0&env=0");
+  const double off = displayedRmse(unbase64(jsonField(json, "rgb")), path("wtp.png"));
+  std::cout << "the texture left out: RMSE " << off << "\n";
+  EXPECT_GT(off, 4 * kMatch);
 }
 
 TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
@@ -478,8 +540,9 @@ TEST(Web, LargeBakesGoBesideThePageAndAreFetched) {
   EXPECT_NE(data.find("\"file\":\"bake.glb\""), std::string::npos);
   // Fetched (Chromium allows file:// fetches with this flag, as a server would serve them).
   std::string log;
-  std::string json = runPage(path("page_beside"), "screenshot&size=320x240&exposure=0&env=0&mode=shadowed",
-                             &log, "--allow-file-access-from-files");
+  std::string json =
+      runPage(path("page_beside"), "screenshot&size=320x240&exposure=0&env=0&mode=shadowed", &log,
+              "--allow-file-access-from-files");
   ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json << "\n" << log;
   const std::vector<unsigned char> beside = unbase64(jsonField(json, "rgb"));
   EXPECT_EQ(beside, pageFrame("env=0&mode=shadowed")) << "the same frame as the embedded bake";

@@ -37,6 +37,25 @@ export async function parseBake(buffer, name, limits, extras = {}) {
   return readBake(gltf, name, limits, extras);
 }
 
+/** A part's base-colour texture (glTF baseColorTexture, which GLTFLoader put on its material as
+ *  `map`) sampled as prt render samples it (geometry/base_colour.hpp): sRGB decoded before
+ *  bilinear filtering, repeat wrapping, no mipmaps, row 0 at v = 0 (GLTFLoader's flipY false);
+ *  null without one. It multiplies the diffuse part per pixel at the part's TEXCOORD_0. */
+function baseColourTexture(mesh, geometry, name) {
+  const map = mesh.material && mesh.material.map;
+  if (!map) return null;
+  const uv = geometry.getAttribute('uv');
+  if (!uv || uv.itemSize !== 2 || uv.count !== geometry.getAttribute('position').count)
+    fail(name, `part '${mesh.name}' has a base-colour texture but no texture UVs (TEXCOORD_0) for it`);
+  map.colorSpace = THREE.SRGBColorSpace;
+  map.wrapS = map.wrapT = THREE.RepeatWrapping;
+  map.minFilter = map.magFilter = THREE.LinearFilter;
+  map.generateMipmaps = false;
+  map.flipY = false;
+  map.needsUpdate = true;
+  return map;
+}
+
 /** The texels' points (render::packTexelPoints' twelve floats a row) as a data image of three
  *  texels a row, checked: one row per texel, finite. */
 function texelPointsImage(x, rows, limits, name) {
@@ -57,7 +76,7 @@ export function bakeObject(json) {
 /**
  * Reads the bake in GLTFLoader's result `gltf` (the page's parse, or the three.js module's
  * loader plugin) into { name, parts: [{ mesh (GLTFLoader's), geometry, name, first, vertices,
- * hasAlbedo, texels: { transfer key → { data, width, height } } }], transfers (in the library's
+ * hasAlbedo, baseColour (a THREE.Texture or null), texels: { transfer key → { data, width, height } } }], transfers (in the library's
  * preference order: [{ key, mode, layout, bands, channels, path, texelsPerRow, compressed,
  * response, recipeMaterial, perPixel, lightmap }]), lightmap ({ width, height } of a per-texel
  * bake, else null), maxBands, vertices, triangles, centre, radius }. The parts' transfer
@@ -131,7 +150,8 @@ export async function readBake(gltf, name, limits, extras = {}) {
     const posAccessor = assoc && json.meshes[assoc.meshes].primitives[assoc.primitives || 0].attributes.POSITION;
     const first = posAccessor !== undefined ? (json.accessors[posAccessor].byteOffset || 0) / 12 : -1;
     if (!(first >= 0 && first + V <= prt.vertexCount)) fail(name, `part '${m.name}' has no place in the vertex order`);
-    const part = { mesh: m, geometry: g, name: m.name, first, vertices: V, hasAlbedo: !!g.getAttribute('color'), texels: {} };
+    const part = { mesh: m, geometry: g, name: m.name, first, vertices: V, hasAlbedo: !!g.getAttribute('color'),
+                   baseColour: baseColourTexture(m, g, name), texels: {} };
     for (const t of transfers) part.texels[t.key] = packRows(t, part, limits, name);
     // Per-texel transfer: the lightmap UVs, under the name the lightmap stage reads.
     if (lightmap) {
@@ -142,7 +162,8 @@ export async function readBake(gltf, name, limits, extras = {}) {
     }
     // Normals stay for glossy matrices (the lobe about the reflected view), the lightmap UVs for
     // per-texel transfer; the rest goes.
-    const keep = ['position', 'color'].concat(glossy ? ['normal'] : [], lightmap ? ['prtLightmapUv'] : []);
+    const keep = ['position', 'color'].concat(glossy ? ['normal'] : [], lightmap ? ['prtLightmapUv'] : [],
+                                              part.baseColour ? ['uv'] : []);
     for (const a of Object.keys(g.attributes)) if (!keep.includes(a)) g.deleteAttribute(a);
     if (glossy && !g.getAttribute('normal')) fail(name, `part '${m.name}' has no normals (glossy transfer needs them)`);
     parts.push(part);

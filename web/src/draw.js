@@ -120,15 +120,23 @@ const kDraw = {
 
 /**
  * The material that draws transfer t on a part (light: the shared uL uniform, vec4s: its
- * length; hasAlbedo: the part has COLOR_0) for `host` = { stages: { 'mesh.vert': text, ...,
+ * length; hasAlbedo: the part has COLOR_0; baseColour: its base-colour texture, or null) for
+ * `host` = { stages: { 'mesh.vert': text, ...,
  * fragment: text }, material(parameters) → a THREE material, uniforms: extra uniforms }.
  */
-export function transferMaterial(t, light, vec4s, hasAlbedo, host) {
+export function transferMaterial(t, light, vec4s, hasAlbedo, host, baseColour = null) {
   const d = drawOf(t);
   const defines = Object.assign({ PRT_LIGHT_VEC4S: vec4s, PRT_GLOSSY_COEFFS: kGlossyCoeffs }, d.defines || {});
   if (hasAlbedo) defines.PRT_HAS_ALBEDO = 1;
+  const uniforms = Object.assign(d.uniforms(light), host.uniforms || {});
+  if (baseColour) {
+    // prt_fragment.glsl multiplies it into the diffuse part, unless the material's kd replaces
+    // it (render::pixelTexture; setTransferUniforms).
+    defines.PRT_BASE_COLOUR = 1;
+    Object.assign(uniforms, { uBaseColour: { value: baseColour }, uBaseColourOn: { value: true } });
+  }
   return host.material({ vertexShader: host.stages[d.stage], fragmentShader: host.stages.fragment, defines,
-                         uniforms: Object.assign(d.uniforms(light), host.uniforms || {}), hasAlbedo });
+                         uniforms, hasAlbedo });
 }
 
 /** A data texture of RGBA32F texels, read with texelFetch. */
@@ -161,7 +169,7 @@ export function uploadTransfers(b, limits, host) {
     const textures = {}, materials = {};
     for (const t of b.transfers) {
       textures[t.key] = textureOf(p.texels[t.key]);
-      materials[t.key] = transferMaterial(t, light, vec4s, p.hasAlbedo, host);
+      materials[t.key] = transferMaterial(t, light, vec4s, p.hasAlbedo, host, p.baseColour);
     }
     return { textures, materials };
   });
@@ -170,9 +178,11 @@ export function uploadTransfers(b, limits, host) {
   return { bake: b, light, tables, parts, points };
 }
 
-/** Frees what uploadTransfers made. */
+/** Frees what uploadTransfers made, and the parts' base-colour textures it drew with (the
+ *  loader's, whose materials the transfer materials replaced). */
 export function disposeTransfers(gpu) {
   const textures = new Set();
+  for (const p of gpu.bake.parts) if (p.baseColour) textures.add(p.baseColour);
   for (const p of gpu.parts) {
     for (const x of Object.values(p.materials)) x.dispose();
     for (const x of Object.values(p.textures)) textures.add(x);
@@ -202,8 +212,9 @@ export function setFrameLight(gpu, t, b, R, coeffs) {
 /** Sets a frame's uniforms of t's material on part p of `gpu` (uploadTransfers'): f = { bands,
  *  eye } (eye: the camera's position in the part's frame). */
 export function setTransferUniforms(gpu, p, t, f) {
-  const part = gpu.parts[p], table = gpu.tables[t.key];
-  drawOf(t).set(part.materials[t.key].uniforms, t,
+  const part = gpu.parts[p], table = gpu.tables[t.key], u = part.materials[t.key].uniforms;
+  if (u.uBaseColourOn) u.uBaseColourOn.value = !(t.material && t.material.kd);
+  drawOf(t).set(u, t,
                     { bands: f.bands, eye: f.eye, rows: part.textures[t.key], table: table ? table.texture : null,
                       points: gpu.points });
 }

@@ -43,8 +43,9 @@ struct Mesh {
   /// Linear diffuse albedo per vertex (empty: uniform). With a base-colour texture, the factor
   /// it multiplies (glTF baseColorFactor × COLOR_0, MTL Kd): the diffuse colour at p is
   /// albedo(p) × sampleBaseColour(texture, uv(p)). Per-vertex stages (the bake's bounces, prt
-  /// reference and validate, the viewers, Python) see the texture folded in at the vertices
-  /// (albedoAtVertices, foldBaseColour); images multiply it per pixel (render/base_colour.hpp).
+  /// reference and validate, Python) see the texture folded in at the vertices
+  /// (albedoAtVertices, foldBaseColour); images and the viewers multiply it per pixel
+  /// (render/base_colour.hpp).
   std::vector<Rgb> albedo;
   std::vector<Vec2f> uvs;  ///< optional texture coordinates (glTF TEXCOORD_0, OBJ vt)
   /// Optional lightmap coordinates, a second UV set for per-texel data (glTF TEXCOORD_1; the

@@ -21,8 +21,9 @@
 //
 // A material that sets kd (--material lambert?kd=...) replaces the whole diffuse colour — the
 // albedo, as relighting does, and the texture with it: nothing then multiplies at the pixel.
-// Per-vertex stages (the bake's bounces, prt reference and validate, the viewers, Python) see the
-// texture folded in at the vertices (geometry/mesh.hpp: albedoAtVertices, foldBaseColour).
+// The viewers apply the same rule in their fragment stage (shaders/prt_fragment.glsl). Per-vertex
+// stages (the bake's bounces, prt reference and validate, Python) see the texture folded in at
+// the vertices (geometry/mesh.hpp: albedoAtVertices, foldBaseColour).
 
 #include <optional>
 
