@@ -46,11 +46,13 @@ void runUnwrap(const UnwrapArgs& a) {
       "{:.2f} s",
       mesh.source, s.charts, r.grownCharts, r.splitCharts, mesh.vertexCount(), r.mesh.vertexCount(),
       s.seconds));
-  info(
-      fmt::format("atlas {0}x{0}, padding {1}: charts cover {2:.1f}% of the square ({3:.1f}% "
-                  "wasted), {4:.1f}% of the texels ({5:.1f}% wasted)",
-                  a.settings.resolution, a.settings.padding, 100 * s.chartArea, 100 * s.wastedArea,
-                  100 * s.texelsCovered, 100 * s.wastedTexels));
+  info(fmt::format(
+      "atlas {0}x{0}, padding {1}, packed by {6}: charts cover {2:.1f}% of the square ({3:.1f}% "
+      "wasted), {4:.1f}% of the texels ({5:.1f}% wasted)",
+      a.settings.resolution, a.settings.padding, 100 * s.chartArea, 100 * s.wastedArea,
+      100 * s.texelsCovered, 100 * s.wastedTexels,
+      r.packedByShape ? "shape"
+                      : "bounding rectangle (the search by shape found no room or took too long)"));
   info(fmt::format(
       "texel density / mean: 5-95% {:.2f}-{:.2f} (min {:.2f}, max {:.2f}); L2 "
       "stretch {:.3f} (worst triangle {:.2f})",

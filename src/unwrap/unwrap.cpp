@@ -11,6 +11,7 @@
 #include "prt/core/parallel.hpp"
 #include "prt/geometry/chart_packing.hpp"
 #include "prt/geometry/texel_sampling.hpp"
+#include "prt/unwrap/atlas_packing.hpp"
 #include "prt/unwrap/chart_layout.hpp"
 #include "prt/unwrap/charts.hpp"
 #include "prt/unwrap/lscm.hpp"
@@ -204,6 +205,8 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   for (double a : adj.faceArea) totalArea += a;
   const double minSide = 1e-6 * std::sqrt(std::max(totalArea, 1e-300) / double(T));
   std::vector<Vec2f> sizes(charts.size());
+  std::vector<ChartShape> shapes(charts.size());
+  double chartArea = 0;
   for (std::size_t c = 0; c < charts.size(); ++c) {
     Piece& p = charts[c];
     double area3 = 0, areaUv = 0;
@@ -216,6 +219,8 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
     for (Uv2& q : p.uv) q = {q[0] * scale, q[1] * scale};
     const std::array<double, 2> size = placeOnBoundingRectangle(p.uv);
     sizes[c] = {float(std::max(size[0], minSide)), float(std::max(size[1], minSide))};
+    shapes[c] = {p.uv, p.local, size[0], size[1]};
+    chartArea += areaUv * scale * scale;
   }
   // The gutter: padding + 1 texels between rectangles leave at least `padding` texels that no
   // chart touches between any two (a chart's last touched texel and the next one's first are
@@ -232,23 +237,37 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
                                  "; raise the resolution or lower the padding)");
   }
 
+  // Then by their shapes (unwrap/atlas_packing.hpp), from the rectangles' scale up to the one at
+  // which the charts would fill the square; the rectangles stand where the shapes do not fit.
+  const double side = settings.resolution;
+  AtlasPacking shaped;
+  const bool byShape =
+      packChartShapes(shapes, settings.resolution, settings.padding, double(packing.scale) * side,
+                      side / std::sqrt(std::max(chartArea, 1e-300)), shaped);
+  const auto atlasUv = [&](std::size_t c, const Uv2& q) {
+    if (byShape) {
+      const Uv2 t = shaped.texelPosition(shapes, c, q);
+      return Vec2f{std::clamp(float(t[0] / side), 0.0f, 1.0f),
+                   std::clamp(float(t[1] / side), 0.0f, 1.0f)};
+    }
+    const Vec2f o = packing.offsets[c];
+    return Vec2f{std::clamp(float(o.x + double(packing.scale) * q[0]), 0.0f, 1.0f),
+                 std::clamp(float(o.y + double(packing.scale) * q[1]), 0.0f, 1.0f)};
+  };
+
   // Corner UVs in the square, and each triangle's chart.
   UnwrapResult r;
   r.grownCharts = seg.count;
+  r.packedByShape = byShape;
   for (std::size_t c : cuts) r.splitCharts += c;
   r.chartOfTriangle.assign(T, kNone);
   std::vector<std::array<Vec2f, 3>> cornerUv(T);
   for (std::size_t c = 0; c < charts.size(); ++c) {
     const Piece& p = charts[c];
-    const Vec2f o = packing.offsets[c];
     for (std::size_t i = 0; i < p.triangles.size(); ++i) {
       const std::uint32_t t = p.triangles[i];
       r.chartOfTriangle[t] = std::uint32_t(c);
-      for (int k = 0; k < 3; ++k) {
-        const Uv2& q = p.uv[p.local[i][k]];
-        cornerUv[t][k] = {std::clamp(float(o.x + double(packing.scale) * q[0]), 0.0f, 1.0f),
-                          std::clamp(float(o.y + double(packing.scale) * q[1]), 0.0f, 1.0f)};
-      }
+      for (int k = 0; k < 3; ++k) cornerUv[t][k] = atlasUv(c, p.uv[p.local[i][k]]);
     }
   }
 

@@ -2,7 +2,8 @@
 // Packing rectangular charts into the unit square of a lightmap UV set: one scale for every
 // chart (the same texel density everywhere), a gutter between charts and around the border so
 // that dilation and bilinear filtering never mix two charts. Used for the builtin scenes'
-// lightmap UVs; prt unwrap's charts (issue 18) pack by their bounding rectangles the same way.
+// lightmap UVs; prt unwrap's charts (issue 18) start from their bounding rectangles packed this
+// way, then pack by shape (unwrap/atlas_packing.hpp).
 
 #include <span>
 #include <vector>

@@ -9,8 +9,9 @@
 //      cut in two across its longest extent and each part flattened again, down to single
 //      triangles, which always lay out;
 //   3. the charts scaled to their surface area (one texel density everywhere), turned onto
-//      their smallest bounding rectangles and packed into [0, 1]² with a gutter
-//      (geometry/chart_packing.hpp).
+//      their smallest bounding rectangles, packed by those (geometry/chart_packing.hpp), then
+//      by their rasterised shapes into each other's gaps at a larger scale where that fits
+//      (unwrap/atlas_packing.hpp), with a gutter.
 //
 // Vertices on chart boundaries are split (a vertex in two charts needs two lightmap UVs): the
 // result is a new mesh with the vertices copied (position, normal, albedo, texture UV) once per
@@ -41,7 +42,11 @@ struct UnwrapResult {
   std::vector<std::uint32_t> chartOfTriangle;
   std::size_t grownCharts = 0;  ///< charts the normal cone grew
   std::size_t splitCharts = 0;  ///< cuts made where a conformal map folded or stretched
-  AtlasStats stats;             ///< measured at settings.resolution; `seconds` is the unwrap's
+  /// Packed by the charts' shapes (unwrap/atlas_packing.hpp); false: by their bounding
+  /// rectangles, where the shapes' search would take too long (thousands of charts) or found
+  /// no room at the rectangles' scale.
+  bool packedByShape = false;
+  AtlasStats stats;  ///< measured at settings.resolution; `seconds` is the unwrap's
 };
 
 /// Unwraps `mesh` (see the header comment). Deterministic, independent of the thread count.
