@@ -301,14 +301,18 @@ Uv2 AtlasPacking::texelPosition(const std::vector<ChartShape>& shapes, std::size
 }
 
 bool packChartShapes(const std::vector<ChartShape>& charts, int side, int padding,
-                     double minTexelsPerUnit, double maxTexelsPerUnit, AtlasPacking& out) {
+                     double minTexelsPerUnit, AtlasPacking& out) {
   // Largest area first (ties by index): a fixed order.
   std::vector<double> area(charts.size(), 0.0);
-  for (std::size_t c = 0; c < charts.size(); ++c)
+  double totalArea = 0;
+  for (std::size_t c = 0; c < charts.size(); ++c) {
     for (const auto& t : charts[c].triangles) {
       const Uv2 &a = charts[c].uv[t[0]], &b = charts[c].uv[t[1]], &d = charts[c].uv[t[2]];
       area[c] += 0.5 * std::abs((b[0] - a[0]) * (d[1] - a[1]) - (d[0] - a[0]) * (b[1] - a[1]));
     }
+    totalArea += area[c];
+  }
+  const double maxTexelsPerUnit = side / std::sqrt(std::max(totalArea, 1e-300));
   std::vector<std::size_t> order(charts.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::stable_sort(order.begin(), order.end(),

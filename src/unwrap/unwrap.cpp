@@ -206,7 +206,6 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   const double minSide = 1e-6 * std::sqrt(std::max(totalArea, 1e-300) / double(T));
   std::vector<Vec2f> sizes(charts.size());
   std::vector<ChartShape> shapes(charts.size());
-  double chartArea = 0;
   for (std::size_t c = 0; c < charts.size(); ++c) {
     Piece& p = charts[c];
     double area3 = 0, areaUv = 0;
@@ -220,7 +219,6 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
     const std::array<double, 2> size = placeOnBoundingRectangle(p.uv);
     sizes[c] = {float(std::max(size[0], minSide)), float(std::max(size[1], minSide))};
     shapes[c] = {p.uv, p.local, size[0], size[1]};
-    chartArea += areaUv * scale * scale;
   }
   // The gutter: padding + 1 texels between rectangles leave at least `padding` texels that no
   // chart touches between any two (a chart's last touched texel and the next one's first are
@@ -241,9 +239,8 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   // which the charts would fill the square; the rectangles stand where the shapes do not fit.
   const double side = settings.resolution;
   AtlasPacking shaped;
-  const bool byShape =
-      packChartShapes(shapes, settings.resolution, settings.padding, double(packing.scale) * side,
-                      side / std::sqrt(std::max(chartArea, 1e-300)), shaped);
+  const bool byShape = packChartShapes(shapes, settings.resolution, settings.padding,
+                                       double(packing.scale) * side, shaped);
   const auto atlasUv = [&](std::size_t c, const Uv2& q) {
     if (byShape) {
       const Uv2 t = shaped.texelPosition(shapes, c, q);

@@ -87,7 +87,7 @@ TEST(AtlasPacking, SmallChartsFillTheGapsOfLargeOnesWhereRectanglesCannot) {
     const ChartPacking rect = packCharts(boxes, float((pad + 1 + 1e-3) / side));  // unwrap.cpp's
     const double rectK = double(rect.scale) * side;
     AtlasPacking p;
-    ASSERT_TRUE(packChartShapes(shapes, side, pad, rectK, 4 * rectK, p));
+    ASSERT_TRUE(packChartShapes(shapes, side, pad, rectK, p));
     // The squares' 8 · 0.64 of the boxes' 37.1 units² go: the scale may grow by up to
     // √(37.1 / 32) ≈ 1.08 less the texels lost to conservative rasterisation.
     EXPECT_GT(p.texelsPerUnit, 1.04 * rectK) << "rectangles " << rectK;
@@ -117,7 +117,7 @@ TEST(AtlasPacking, LargeAtlasesPackWholeCellsAndKeepThePadding) {
   const std::vector<ChartShape> shapes(24, l.shape());
   const int side = 3000, pad = 2;  // cells of three texels: a gutter of one cell
   AtlasPacking p;
-  ASSERT_TRUE(packChartShapes(shapes, side, pad, 100, 1000, p));
+  ASSERT_TRUE(packChartShapes(shapes, side, pad, 100, p));
   EXPECT_EQ(p.cell, 3);
   expectApart(owners(shapes, p, side), side, pad);
 }
@@ -127,7 +127,7 @@ TEST(AtlasPacking, SaysWhenNothingFits) {
   const std::vector<ChartShape> shapes(4, l.shape());
   AtlasPacking p;
   // At 20 texels a unit four 40-texel Ls cannot share 32 × 32 texels.
-  EXPECT_FALSE(packChartShapes(shapes, 32, 2, 20, 40, p));
+  EXPECT_FALSE(packChartShapes(shapes, 32, 2, 20, p));
   EXPECT_TRUE(p.charts.empty());
 }
 

@@ -52,10 +52,11 @@ struct AtlasPacking {
 };
 
 /// Packs `charts` into `side` × `side` texels with `padding` texels between charts and from the
-/// border, at the largest texels-per-unit in [minTexelsPerUnit, maxTexelsPerUnit] (to 0.2%) at
-/// which the greedy placement fits. Deterministic. Returns false (leaving `out` untouched) when
-/// it does not fit even at minTexelsPerUnit.
+/// border, at the largest texels-per-unit (to 0.2%) at which the greedy placement fits, from
+/// minTexelsPerUnit up to the one at which the charts' area would fill the square.
+/// Deterministic. Returns false (leaving `out` untouched) when it does not fit even at
+/// minTexelsPerUnit.
 bool packChartShapes(const std::vector<ChartShape>& charts, int side, int padding,
-                     double minTexelsPerUnit, double maxTexelsPerUnit, AtlasPacking& out);
+                     double minTexelsPerUnit, AtlasPacking& out);
 
 }  // namespace prt
