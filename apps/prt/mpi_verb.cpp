@@ -1,5 +1,8 @@
 #include "mpi_verb.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 
@@ -30,8 +33,8 @@ void refuseUnjoinedCopies(const std::string& verb) {
 #endif
 }
 
-MpiVerb::MpiVerb(const std::string& verb) {
-  refuseUnjoinedCopies(verb);
+MpiVerb::MpiVerb(const std::string& verb, bool refuseCopies) {
+  if (refuseCopies) refuseUnjoinedCopies(verb);
 #if PRT_HAVE_MPI
   if (!distributed::launchedByMpi()) return;
   session_ = std::make_unique<distributed::Session>(verb, [verb](const std::string& line) {
@@ -104,6 +107,52 @@ void MpiVerb::collective(const std::function<void()>& fn) {
   }
 #endif
   fn();
+}
+
+std::unique_ptr<PassExecutor> MpiVerb::bakeExecutor(const RankOptions& options) const {
+#if PRT_HAVE_MPI
+  if (session_) {
+    distributed::RunOptions o;
+    o.chunkRows = options.chunkRows;
+    o.checkpoint = options.checkpoint;
+    o.spillFolder = options.spillFolder;
+    o.spillAbove = options.spillAbove;
+    return std::make_unique<distributed::RankExecutor>(*session_, o);
+  }
+#else
+  (void)options;
+#endif
+  return std::make_unique<ThreadExecutor>();
+}
+
+std::vector<std::string> MpiVerb::bakeExchange(const PassExecutor& executor) const {
+  std::vector<std::string> lines;
+#if PRT_HAVE_MPI
+  const auto* ranks = dynamic_cast<const distributed::RankExecutor*>(&executor);
+  if (!ranks || !root()) return lines;
+  const distributed::RunReport& rep = ranks->report();
+  if (rep.spilled)
+    lines.push_back("rank 0 kept the transfer in a mapped scratch file beside the output, not "
+                    "in memory");
+  for (std::size_t j = 0; j < rep.jobs.size(); ++j) {
+    const distributed::JobStats& js = rep.jobs[j];
+    // What moved: each rank receives the rows it did not compute, (N − 1) × the pass's bytes
+    // over all ranks for an all-gather (rank 0 alone, its share, for the last pass); rank 0
+    // also receives each row's variance (8 B) for the error estimate.
+    lines.push_back(fmt::format(
+        "{}: {} chunks ({} on rank 0{}), {:.3f} s, exchange {:.3f} s; rows received {} B "
+        "({:.2f} x the pass's {} B), variances {} B",
+        rep.names[j], js.chunks, js.chunksHere,
+        js.chunksResumed ? fmt::format(", {} from the checkpoint", js.chunksResumed)
+                         : std::string(),
+        js.seconds, js.exchangeSeconds, js.rowBytesAll,
+        double(js.rowBytesAll) / double(std::max<std::uint64_t>(rep.passBytes[j], 1)),
+        rep.passBytes[j], js.sideBytesAll));
+  }
+#else
+  (void)executor;
+#endif
+  return lines;
 }
 
 render::ReferenceResult MpiVerb::reference(const Mesh& mesh, const Occluder& occluder,

@@ -10,7 +10,8 @@
 #include "prt/geometry/lightmap_uvs.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/transport/bake.hpp"
-#include "prt/transport/bake_texels.hpp"
+#include "prt/transport/bake_request.hpp"
+#include "prt/transport/passes.hpp"
 #include "prt/transport/lightmap_seam_fix.hpp"
 
 namespace prtpy {
@@ -126,9 +127,9 @@ prt::RowRange rowRange(py::handle range, std::size_t vertices, const char* what 
   return {static_cast<std::size_t>(first), static_cast<std::size_t>(end - first)};
 }
 
-/// The settings `prt bake` would bake with (apps/prt/bake.cpp, planOf and runBake), checked
-/// before any work: ValueError on a bad argument.
-/// domain='texels': the lightmap (apps/prt/bake.cpp's TexelPlan).
+/// The request `prt bake` would make of the same options (bake_setup.cpp), checked before any
+/// work by the library's one check, with Python's spelling: ValueError on a bad argument.
+/// domain='texels': the lightmap.
 struct Lightmap {
   int resolution = 512;
   std::string uv = "auto";
@@ -136,64 +137,42 @@ struct Lightmap {
   bool seamFix = false;  ///< the least-squares seam fix (prt bake --seam-fix)
 };
 
-prt::BakeSettings bakeSettings(const prt::Mesh& mesh, const std::string& mode, int bands,
-                               long long samples, std::uint64_t seed, int bounces,
-                               const std::string& transfer, py::handle spec, py::handle albedo,
-                               const std::string& sampling, py::handle range,
-                               const std::string& domain, const Lightmap& lightmap) {
-  prt::BakeSettings s;
+prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int bands,
+                             long long samples, std::uint64_t seed, int bounces,
+                             const std::string& transfer, py::handle spec, py::handle albedo,
+                             const std::string& sampling, py::handle range,
+                             const std::string& domain, const Lightmap& lightmap) {
+  prt::BakeRequest r;
   asValueError([&] {
-    s.mode = prt::parseTransferMode(mode);
-    s.layout = prt::parseTransferLayout(transfer);
-    s.sampling = prt::parseSampling(sampling == "cosine" ? "cosine-sobol" : sampling);
+    r.modes = {prt::parseTransferMode(mode)};
+    r.layout = prt::parseTransferLayout(transfer);
+    r.sampling = prt::parseSampling(sampling == "cosine" ? "cosine-sobol" : sampling);
+    r.domain = prt::parseTransferDomain(domain);
+    r.lightmap.uv = prt::parseUvSetOption(lightmap.uv);
     return 0;
   });
-  const prt::TransferDomain d = asValueError([&] { return prt::parseTransferDomain(domain); });
-  if (d == prt::TransferDomain::Texels) {
-    if (lightmap.resolution < 1 || lightmap.resolution > prt::kMaxLightmapSide)
-      throw py::value_error("resolution=" + std::to_string(lightmap.resolution) + ": must be 1.." +
-                            std::to_string(prt::kMaxLightmapSide));
-    if (lightmap.padding < 0 || lightmap.padding > prt::kMaxLightmapPadding)
-      throw py::value_error("padding=" + std::to_string(lightmap.padding) + ": must be 0.." +
-                            std::to_string(prt::kMaxLightmapPadding));
-    asValueError([&] { return prt::parseUvSetOption(lightmap.uv); });
-  } else if (lightmap.seamFix) {
-    throw py::value_error("seam_fix=True is of domain='texels'");
-  }
-  if (bands < 1 || bands > prt::bands::kMaxBake)
-    throw py::value_error("bands=" + std::to_string(bands) + ": must be 1.." +
-                          std::to_string(prt::bands::kMaxBake));
-  if (samples < 1 || samples > prt::kMaxBakeSamples)
-    throw py::value_error("samples=" + std::to_string(samples) + ": must be 1.." +
-                          std::to_string(prt::kMaxBakeSamples));
-  if (bounces < 0 || bounces > prt::kMaxBounces)
-    throw py::value_error("bounces=" + std::to_string(bounces) + ": must be 0.." +
-                          std::to_string(prt::kMaxBounces));
-  s.samples = static_cast<int>(samples);
-  s.bounces = bounces;
-  s.seed = seed;
-  s.material = material(spec);
-  if (!albedo.is_none()) {
-    const prt::Rgb kd = rgb(albedo, "albedo");
-    for (float x : {kd.x, kd.y, kd.z})
-      if (!(x >= 0.0f && x <= 1.0f)) throw py::value_error("albedo: components must lie in [0, 1]");
-    s.material.diffuse = kd;
-  }
-  // Without a material, the file's own glossy surface, keeping the albedo given.
-  if (spec.is_none() && mesh.gloss) {
-    const std::optional<prt::Rgb> kd = s.material.diffuse;
-    s.material = prt::materialFromGloss(*mesh.gloss);
-    s.material.diffuse = kd;
-  }
-  s.bounces = s.effectiveBounces();  // what a bake file records: 0 unless inter-reflected
-  s.bands = bands;
-  s.rows = d == prt::TransferDomain::Texels
-               ? rowRange(range, std::size_t(lightmap.resolution) * lightmap.resolution, "texel")
-               : rowRange(range, mesh.vertexCount());
-  if (lightmap.seamFix && s.rows.count < std::size_t(lightmap.resolution) * lightmap.resolution)
-    throw py::value_error(
-        "seam_fix=True needs the whole lightmap (a seam joins texels of other ranges)");
-  return s;
+  r.bands = bands;
+  r.samples = samples;
+  r.bounces = bounces;
+  r.seed = seed;
+  if (!spec.is_none()) r.material = material(spec);
+  if (!albedo.is_none()) r.albedo = rgb(albedo, "albedo");
+  r.lightmap.resolution = lightmap.resolution;
+  r.lightmap.padding = lightmap.padding;
+  r.lightmap.seamFix = lightmap.seamFix;
+  asValueError([&] {
+    prt::checkBakeRequest(r, prt::OptionSpelling::Python);
+    return 0;
+  });
+  const std::size_t rows = r.domain == prt::TransferDomain::Texels
+                               ? std::size_t(r.lightmap.resolution) * r.lightmap.resolution
+                               : mesh.vertexCount();
+  r.rows = rowRange(range, rows, prt::rowName(r.domain));
+  asValueError([&] {  // the seam fix against the range
+    prt::checkBakeRequest(r, prt::OptionSpelling::Python);
+    return 0;
+  });
+  return r;
 }
 
 struct Baked {
@@ -207,29 +186,28 @@ Baked runBake(py::handle meshObj, const std::string& mode, int bands, long long 
               const std::string& domain, const Lightmap& lightmap, py::handle progress,
               prt::BakeSettings* used) {
   const MeshPtr mesh = toMesh(meshObj);
-  const prt::BakeSettings s =
-      bakeSettings(mesh->mesh(), mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                   sampling, range, domain, lightmap);
-  if (used) *used = s;
-  const bool texels = domain == "texels";
-  const int N = lightmap.resolution;
-  std::span<const prt::Vec2f> uvs;
-  if (texels)
-    uvs = asValueError([&] {
-            return prt::chooseLightmapUvs(mesh->mesh(), prt::parseUvSetOption(lightmap.uv), N, N);
-          }).uvs;
+  const prt::BakeRequest request =
+      bakeRequest(mesh->mesh(), mode, bands, samples, seed, bounces, transfer, spec, albedo,
+                  sampling, range, domain, lightmap);
+  // The mesh as the request bakes it (its albedo, its lightmap UV set), over the mesh's own BVH:
+  // a copy, so that the Mesh object stays as the caller made it.
+  prt::Mesh prepared = mesh->mesh();
+  const prt::BakeMeshPreparation prep =
+      asValueError([&] { return prt::prepareBakeMesh(prepared, request); });
+  if (!prep.lightmapUvsFound)  // said as prt bake --uv 1|0 says it, each set's reason
+    asValueError([&] {
+      const int n = request.lightmap.resolution;
+      return prt::chooseLightmapUvs(prepared, request.lightmap.uv, n, n).name;
+    });
+  if (used) *used = prt::bakeSettings(request, prepared, request.modes[0]);
   return runLong("bake", progress, [&](const prt::ProgressFn& fn) {
-    Baked b;
-    if (texels) {
-      b.transfer = prt::bakeTexels(mesh->mesh(), mesh->occluder(), s, uvs, N, N, lightmap.padding,
-                                   &b.stats, fn)
-                       .transfer;
-      if (lightmap.seamFix) b.transfer = prt::fixLightmapSeams(mesh->mesh(), uvs, b.transfer);
-    }
-    else
-      b.transfer = prt::bake(mesh->mesh(), mesh->occluder(), s, &b.stats, fn);
-    // What `prt bake` refuses to write, refused here too: a non-finite coefficient.
-    b.transfer.check(mesh->mesh().source);
+    prt::ThreadExecutor threads;
+    prt::BakeObserver observer;
+    observer.progress = [&](const prt::BakeSettings&) { return fn; };
+    std::vector<prt::BakeResult> results =
+        prt::bake(request, prepared, mesh->occluder(), threads, observer);
+    Baked b{std::move(results[0].transfer), results[0].stats};
+    if (lightmap.seamFix) b.transfer = prt::fixLightmapSeams(prepared, b.transfer);
     return b;
   });
 }
@@ -385,7 +363,7 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
             d["height"] = lm.height;
             d["padding"] = lm.padding;
             d["seams_fixed"] = lm.seamsFixed;
-            return std::move(d);
+            return py::object(std::move(d));
           },
           "domain 'texels': {'width', 'height', 'padding', 'seams_fixed'} of the lightmap (rows "
           "y*width + x); "

@@ -87,89 +87,79 @@ std::size_t defaultChunkRows(bool matrix, int bands) {
   return std::max<std::size_t>(8, 1024 / static_cast<std::size_t>(bands * bands));
 }
 
-Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
-              const BakeSettings& settings, const RunOptions& options, BakeStats* stats,
-              RunReport* report, const ProgressFn& progressFn) {
-  const auto start = Clock::now();
-  std::unique_ptr<BakePasses> plan;
-  std::exception_ptr failure;
-  const bool root = session.root();
-  bool spill = false;
-  try {
-    plan = std::make_unique<BakePasses>(mesh, occluder, settings, false);
-    // Memory per rank: the whole-mesh passes every rank holds, and of the last pass rank 0 the
-    // whole transfer (twice for summed vectors: the sum and the pass) unless it spills a
+RankExecutor::RankExecutor(Session& session, const RunOptions& options)
+    : session_(session), options_(options), threads_(totalThreads()) {}
+
+BakePassOptions RankExecutor::passOptions() const {
+    BakePassOptions o;
+    o.checkMemory = false;  // begin() checks what this rank holds
+    return o;
+}
+
+void RankExecutor::begin(const BakePasses& passes) {
+    // Memory per rank: the whole-domain passes every rank holds, and of the last pass rank 0
+    // the whole transfer (twice for summed vectors: the sum and the pass) unless it spills a
     // matrix transfer to a mapped file, the others their share.
-    const BakeFootprint fp = bakeFootprint(mesh, settings);
+    const BakeSettings& settings = passes.settings();
+    const BakeFootprint fp = bakeFootprint(passes.mesh(), settings);
     const std::size_t have = physicalMemory();
-    const std::size_t limit = options.spillAbove ? options.spillAbove : have / 2;
-    const std::size_t output = plan->resultIsSum() ? 2 * fp.transferBytes : fp.transferBytes;
-    spill = root && !plan->resultIsSum() && !options.spillFolder.empty() &&
-            fp.workingBytes + output > limit;
+    const std::size_t limit = options_.spillAbove ? options_.spillAbove : have / 2;
+    const std::size_t output = passes.resultIsSum() ? 2 * fp.transferBytes : fp.transferBytes;
+    const bool root = session_.root();
+    spill_ = root && !passes.resultIsSum() && !options_.spillFolder.empty() &&
+             fp.workingBytes + output > limit;
     const std::size_t need =
-        fp.workingBytes +
-        (root ? (spill ? 0 : output) : fp.transferBytes / static_cast<std::size_t>(session.size()));
+        fp.workingBytes + (root ? (spill_ ? 0 : output)
+                                : fp.transferBytes / static_cast<std::size_t>(session_.size()));
     if (need > have / 10 * 9)
       throw Error(std::string(toString(settings.layout)) + " transfer at " +
-                  std::to_string(settings.bands) + " bands needs " + bytesText(need) + " on rank " +
-                  std::to_string(session.rank()) + ", whose machine has " + bytesText(have) +
-                  " (fewer bands, a vertex range, or a smaller mesh)");
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  session.agree(failure);
-  const BakePasses& passes = *plan;
-  const int count = passes.count();
-  const std::size_t n = mesh.vertexCount();
-  const TransferShape& result = passes.resultShape();
-  const RowRange rows = result.rows;
-  const auto chunkOf = [&](const TransferShape& s) {
-    return options.chunkRows ? options.chunkRows : defaultChunkRows(s.isMatrix(), s.bands);
-  };
-  if (!options.checkpoint.empty()) {
-    std::string id = "prt bake; " + bakeIdentity(mesh, settings) + "; rows per chunk";
-    for (int k = 0; k < count; ++k) id += " " + std::to_string(chunkOf(passes.pass(k).shape));
-    claimCheckpoint(session, options.checkpoint, id);
-  }
+                  std::to_string(settings.bands) + " bands needs " + bytesText(need) +
+                  " on rank " + std::to_string(session_.rank()) + ", whose machine has " +
+                  bytesText(have) + " (fewer bands, a range, or a smaller mesh)");
+    report_ = RunReport();
+    report_.ranks = session_.size();
+    report_.threads = threads_;
+    report_.spilled = spill_;
+    // A folder per mode under the checkpoint folder, claimed (collectively) in agree().
+    checkpoint_.clear();
+    claimPending_.clear();
+    if (!options_.checkpoint.empty()) {
+      checkpoint_ = options_.checkpoint + "/" + toString(settings.mode);
+      claimPending_ = "prt bake; " + bakeIdentity(passes.mesh(), settings) + "; rows per chunk";
+      for (int k = 0; k < passes.count(); ++k)
+        claimPending_ += " " + std::to_string(chunkRows(passes.pass(k).shape));
+    }
+}
 
-  // The running sum: on rank 0 over the bake's rows; on every rank over the whole mesh when a
-  // pass reads it.
-  const bool summing = passes.resultIsSum() || passes.needsFullSum();
-  const bool keepSum = summing && (root || passes.needsFullSum());
-  TransferShape sumShape = result;
-  sumShape.layout = TransferLayout::Vector;
-  sumShape.channels = passes.sumChannels();
-  sumShape.rows = passes.needsFullSum() ? RowRange{0, n} : rows;
-  Transfer sum = keepSum ? Transfer::zeros(sumShape) : Transfer();
-  float* const sumData = keepSum ? sum.mutableValues() : nullptr;
+void RankExecutor::agree(std::exception_ptr failure) {
+    session_.agree(failure);
+    if (!claimPending_.empty()) {
+      claimCheckpoint(session_, checkpoint_, claimPending_);
+      claimPending_.clear();
+    }
+}
 
-  std::vector<double> variance(root ? rows.count : 0, 0.0);
-  std::vector<std::uint64_t> rays;
-  std::vector<double> seconds;
-  Transfer prev;
-  RunReport rep;
-  rep.ranks = session.size();
-  rep.threads = totalThreads();
-  for (int k = 0; k < count; ++k) {
+PassExecutor::Rows RankExecutor::run(const BakePasses& passes, int k, const PassSource& input,
+                                     const ProgressFn& progress) {
     const BakePassInfo& p = passes.pass(k);
-    const bool last = k == count - 1;
+    const bool last = k == passes.count() - 1, root = session_.root();
     const RowRange pr = p.shape.rows;
     // The rows: every rank holds a pass the next one reads; the last, rank 0 only.
-    const bool spilled = last && spill;
-    Transfer out = (!last || root) && !spilled ? Transfer::zeros(p.shape) : Transfer();
-    unsigned char* outBytes = (!last || root) && !spilled
-                                  ? reinterpret_cast<unsigned char*>(out.mutableValues())
-                                  : nullptr;
+    const bool spilled = last && spill_;
+    Rows out;
+    Transfer values = (!last || root) && !spilled ? Transfer::zeros(p.shape) : Transfer();
+    unsigned char* bytes = (!last || root) && !spilled
+                               ? reinterpret_cast<unsigned char*>(values.mutableValues())
+                               : nullptr;
     std::shared_ptr<void> mapping;
-    if (spilled) mapping = scratchMapping(options.spillFolder, p.shape.denseBytes(), &outBytes);
-    std::vector<double> var(root && p.variance ? pr.count : 0);
-    const Transfer& input = p.input == PassInput::Sum ? sum : prev;
+    if (spilled) mapping = scratchMapping(options_.spillFolder, p.shape.denseBytes(), &bytes);
+    if (root && p.variance) out.variance.assign(pr.count, 0.0);
     RowJob job;
     job.name = "pass " + std::to_string(k) + " '" + p.name + "'";
     job.rows = pr.count;
     job.firstRow = pr.first;
-    job.rowNoun = "vertices";
-    job.chunkRows = chunkOf(p.shape);
+    job.rowNoun = toString(p.shape.domain);
+    job.chunkRows = chunkRows(p.shape);
     job.rowBytes = p.shape.stride() * sizeof(float);
     job.sideBytes = p.variance ? sizeof(double) : 0;
     job.allGather = !last;
@@ -177,35 +167,39 @@ Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
       return passes.compute(k, RowRange{pr.first + lo, hi - lo}, input, reinterpret_cast<float*>(r),
                             reinterpret_cast<double*>(side));
     };
-    if (!options.checkpoint.empty())
-      job.checkpoint = options.checkpoint + "/pass-" + std::to_string(k);
-    const ProgressFn sub = root ? passes.passProgress(k, progressFn) : ProgressFn();
-    const JobStats js =
-        runJob(session, job, outBytes,
-               var.empty() ? nullptr : reinterpret_cast<unsigned char*>(var.data()), sub);
-    rays.push_back(js.rays);
-    seconds.push_back(js.seconds);
-    rep.names.push_back(job.name);
-    rep.jobs.push_back(js);
-    rep.passBytes.push_back(p.shape.denseBytes());
-    if (root && p.variance)
-      for (std::size_t v = std::max(rows.first, pr.first); v < std::min(rows.end(), pr.end()); ++v)
-        variance[v - rows.first] += var[v - pr.first];
-    if (keepSum && !(last && !passes.resultIsSum()) && (root || !last))
-      passes.accumulate(k, pr, out.values().data(), sumShape.rows, sumData);
+    if (!checkpoint_.empty()) job.checkpoint = checkpoint_ + "/pass-" + std::to_string(k);
+    const JobStats js = runJob(
+        session_, job, bytes,
+        out.variance.empty() ? nullptr : reinterpret_cast<unsigned char*>(out.variance.data()),
+        root ? progress : ProgressFn());
+    out.rays = js.rays;
+    out.seconds = js.seconds;
+    report_.names.push_back(job.name);
+    report_.jobs.push_back(js);
+    report_.passBytes.push_back(p.shape.denseBytes());
+    report_.bytesReceived = session_.bytesReceived();
     if (spilled)
-      out = Transfer::dense(p.shape, FloatArray::view(mapping, reinterpret_cast<float*>(outBytes),
-                                                      p.shape.rows.count * p.shape.stride()));
-    prev = std::move(out);
-  }
-  rep.spilled = spill;
-  rep.bytesReceived = session.bytesReceived();
-  if (report) *report = rep;
-  if (!root) return Transfer();
-  if (stats)
-    *stats = passes.stats(rays, seconds, variance,
-                          std::chrono::duration<double>(Clock::now() - start).count(), rep.threads);
-  return passes.resultIsSum() ? sum : prev;
+      values = Transfer::dense(p.shape, FloatArray::view(mapping, reinterpret_cast<float*>(bytes),
+                                                         pr.count * p.shape.stride()));
+    out.values = std::move(values);
+    return out;
+}
+
+int RankExecutor::threads() const {
+  return threads_;
+}
+
+std::size_t RankExecutor::chunkRows(const TransferShape& s) const {
+  return options_.chunkRows ? options_.chunkRows : defaultChunkRows(s.isMatrix(), s.bands);
+}
+
+Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
+              const BakeSettings& settings, const RunOptions& options, BakeStats* stats,
+              RunReport* report, const ProgressFn& progress) {
+  RankExecutor ranks(session, options);
+  Transfer t = prt::bake(mesh, occluder, settings, ranks, stats, progress);
+  if (report) *report = ranks.report();
+  return t;
 }
 
 render::ReferenceResult renderReference(Session& session, const Mesh& mesh,

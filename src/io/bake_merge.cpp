@@ -59,7 +59,9 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces) {
         throw Error(who + " was baked with different settings (" + a.describe() + ")");
       values[t].insert(values[t].end(), b->transfer.values().data(),
                        b->transfer.values().data() + b->transfer.values().size());
-      a.stats = combineBakeStats(a.stats, rows.count, b->stats, p.rows().count);
+      // Weighted by the rows each piece's error estimate is over (its sampled rows: every
+      // vertex, the covered texels), so that the merged means are one bake's.
+      a.stats = combineBakeStats(a.stats, a.stats.vertices, b->stats, b->stats.vertices);
     }
     rows.count += p.rows().count;
   }

@@ -6,6 +6,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 
 namespace prt {
 
@@ -39,6 +40,12 @@ std::string encodePassPiece(const PassPiece& p) {
   j["passes"] = p.passes;
   j["name"] = p.name;
   j["layout"] = toString(p.shape.layout);
+  if (p.shape.domain == TransferDomain::Texels) {
+    j["domain"] = toString(p.shape.domain);
+    j["lightmap"] = {{"width", p.shape.lightmap.width},
+                     {"height", p.shape.lightmap.height},
+                     {"padding", p.shape.lightmap.padding}};
+  }
   j["bands"] = p.shape.bands;
   j["channels"] = p.shape.channels;
   j["first"] = p.shape.rows.first;
@@ -72,9 +79,27 @@ PassPiece decodePassPiece(std::span<const unsigned char> b, const std::string& n
     p.passes = j.at("passes").get<int>();
     p.name = j.at("name").get<std::string>();
     p.shape.layout = parseTransferLayout(j.at("layout").get<std::string>());
+    // Per texel (absent: per vertex, as every pass file before the texel domain).
+    if (j.contains("domain")) {
+      p.shape.domain = parseTransferDomain(j.at("domain").get<std::string>());
+      if (p.shape.domain == TransferDomain::Texels) {
+        const Json& lm = j.at("lightmap");
+        p.shape.lightmap.width = lm.at("width").get<int>();
+        p.shape.lightmap.height = lm.at("height").get<int>();
+        p.shape.lightmap.padding = lm.at("padding").get<int>();
+        if (p.shape.lightmap.width < 1 || p.shape.lightmap.width > kMaxLightmapSide ||
+            p.shape.lightmap.height < 1 || p.shape.lightmap.height > kMaxLightmapSide ||
+            p.shape.lightmap.padding < 0 || p.shape.lightmap.padding > kMaxLightmapPadding)
+          throw Error(name, "bad pass file header (lightmap size)");
+      }
+    }
     p.shape.bands = j.at("bands").get<int>();
     p.shape.channels = j.at("channels").get<int>();
     p.shape.rows = {j.at("first").get<std::size_t>(), j.at("count").get<std::size_t>()};
+    if (p.shape.domain == TransferDomain::Texels &&
+        (p.shape.rows.count > p.shape.lightmap.texels() ||
+         p.shape.rows.first > p.shape.lightmap.texels() - p.shape.rows.count))
+      throw Error(name, "bad pass file header (rows outside the lightmap)");
     p.sumChannels = j.at("sumChannels").get<int>();
     p.rays = j.at("rays").get<std::vector<std::uint64_t>>();
     p.seconds = j.at("seconds").get<std::vector<double>>();
@@ -126,7 +151,8 @@ PassPiece mergePassPieces(std::vector<PassPiece> pieces) {
   for (std::size_t i = 1; i < pieces.size(); ++i) {
     const PassPiece& p = pieces[i];
     const std::string who =
-        "merge: the piece starting at vertex " + std::to_string(p.shape.rows.first);
+        std::string("merge: the piece starting at ") + rowName(p.shape.domain) + " " +
+        std::to_string(p.shape.rows.first);
     if (p.identity != out.identity) throw Error(who + " is of another bake (" + p.identity + ")");
     if (p.pass != out.pass)
       throw Error(who + " is of pass " + std::to_string(p.pass) + ", not " +

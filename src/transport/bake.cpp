@@ -462,8 +462,8 @@ BakeStats vectorStats(const std::vector<std::uint64_t>& rays, const std::vector<
 
 Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
               BakeStats* stats, const ProgressFn& progressFn) {
-  const BakePasses passes(mesh, occluder, settings);
-  return runBakePasses(passes, stats, progressFn);
+  ThreadExecutor threads;
+  return bake(mesh, occluder, settings, threads, stats, progressFn);
 }
 
 }  // namespace prt

@@ -10,9 +10,14 @@
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/units.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/sh/sh.hpp"
 
 namespace prt::bakedetail {
+
+std::size_t domainRows(const Mesh& mesh, const BakeSettings& s) {
+  return s.domain == TransferDomain::Texels ? s.lightmap.texels() : mesh.vertexCount();
+}
 
 void validateBake(const Mesh& mesh, const BakeSettings& s) {
   const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
@@ -34,14 +39,31 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
   if (s.bands < 1 || s.bands > bands::kMaxBake)
     throw Error(bands::bandLimitMessage("the bake", s.bands, "baking", bands::kMaxBake));
   checkRecipe(s);
-  if (s.rows.first >= mesh.vertexCount() || s.rows.count > mesh.vertexCount() - s.rows.first)
+  if (s.domain == TransferDomain::Texels) {
+    const auto& lm = s.lightmap;
+    if (lm.width < 1 || lm.width > kMaxLightmapSide || lm.height < 1 ||
+        lm.height > kMaxLightmapSide)
+      throw Error(name, "a " + std::to_string(lm.width) + " x " + std::to_string(lm.height) +
+                            " lightmap: each side must be 1.." + std::to_string(kMaxLightmapSide));
+    if (lm.padding < 0 || lm.padding > kMaxLightmapPadding)
+      throw Error(name, "the dilation padding must be 0.." +
+                            std::to_string(kMaxLightmapPadding) + " texels");
+  }
+  const std::size_t rows = domainRows(mesh, s);
+  if (s.rows.first >= rows || s.rows.count > rows - s.rows.first) {
+    if (s.domain == TransferDomain::Texels)
+      throw Error(name, "texel range [" + std::to_string(s.rows.first) + ", " +
+                            std::to_string(s.rows.end()) + ") is outside the " +
+                            std::to_string(s.lightmap.width) + " x " +
+                            std::to_string(s.lightmap.height) + " lightmap");
     throw Error(name, "vertex range [" + std::to_string(s.rows.first) + ", " +
                           std::to_string(s.rows.first + s.rows.count) + ") is outside the mesh (" +
                           std::to_string(mesh.vertexCount()) + " vertices)");
+  }
 }
 
 RowRange bakeRows(const Mesh& mesh, const BakeSettings& s) {
-  const std::size_t n = mesh.vertexCount();
+  const std::size_t n = domainRows(mesh, s);
   const std::size_t first = std::min(s.rows.first, n);
   return {first, s.rows.count ? std::min(s.rows.count, n - first) : n - first};
 }
@@ -124,12 +146,20 @@ void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint
           ? std::numeric_limits<std::size_t>::max()
           : f.transferBytes + f.workingBytes;
   const std::size_t have = physicalMemoryBytes();
-  if (need > have / 10 * 9)
-    throw Error(mesh.source.empty() ? "mesh" : mesh.source,
-                std::string(toString(s.layout)) + " transfer at " + std::to_string(s.bands) +
-                    " bands needs " + bytesText(f.bytesPerVertex) + " per vertex, " +
-                    bytesText(need) + " in all; this machine has " + bytesText(have) +
-                    " (fewer bands, a vertex range, or a smaller mesh)");
+  if (need <= have / 10 * 9) return;
+  const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
+  if (s.domain == TransferDomain::Texels)
+    throw Error(name, std::string(toString(s.layout)) + " transfer of a " +
+                          std::to_string(s.lightmap.width) + " x " +
+                          std::to_string(s.lightmap.height) + " lightmap at " +
+                          std::to_string(s.bands) + " bands needs " + bytesText(f.bytesPerRow) +
+                          " per texel, " + bytesText(need) + " in all; this machine has " +
+                          bytesText(have) +
+                          " (fewer bands, a smaller --resolution, or vector transfer)");
+  throw Error(name, std::string(toString(s.layout)) + " transfer at " + std::to_string(s.bands) +
+                        " bands needs " + bytesText(f.bytesPerRow) + " per vertex, " +
+                        bytesText(need) + " in all; this machine has " + bytesText(have) +
+                        " (fewer bands, a vertex range, or a smaller mesh)");
 }
 
 }  // namespace prt::bakedetail
@@ -139,7 +169,7 @@ namespace prt {
 BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   using namespace bakedetail;
   BakeFootprint f;
-  const std::size_t n = mesh.vertexCount();
+  const std::size_t n = domainRows(mesh, s);
   const std::size_t count = bakeRows(mesh, s).count;
   const bool inter = s.effectiveBounces() > 0;
   const BounceAlbedo a = resolveAlbedo(mesh, s);
@@ -153,8 +183,23 @@ BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
     shape.rows.count = rows;
     return shape.denseBytes();
   };
-  f.bytesPerVertex = bytes(s.layout, 1);
+  f.bytesPerRow = bytes(s.layout, 1);
   f.transferBytes = bytes(s.layout, count);
+  if (s.domain == TransferDomain::Texels) {
+    // Per texel of the whole lightmap: the pass being baked and the pass (or sum, or order) it
+    // reads, that one laid out once more as a dilated lightmap, and the sample points (~40 B).
+    const std::size_t all = bytes(s.layout, n), vec = bytes(TransferLayout::Vector, n);
+    if (s.layout == TransferLayout::Vector)
+      f.workingBytes = all * (inter ? 3 : 1);
+    else if (!inter)
+      f.workingBytes = all;
+    else if (glossy)
+      f.workingBytes = 3 * all;
+    else
+      f.workingBytes = all + 4 * vec;
+    f.workingBytes += n * 40;
+    return f;
+  }
   if (glossy) {
     // The matrices with K − 1 bounces over the whole mesh, and while they are baked those with
     // K − 2 (each order is baked from the one before and then dropped).

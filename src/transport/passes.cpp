@@ -8,6 +8,8 @@
 #include <string>
 
 #include "bake_common.hpp"
+#include "prt/core/hash.hpp"
+#include "texel_domain.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/sh/sh.hpp"
@@ -31,7 +33,7 @@ struct BakePasses::Impl {
   const Mesh& mesh;
   const Occluder& occluder;
   BakeSettings settings;
-  RowRange rows;
+  RowRange rows;  ///< the bake's range
   std::vector<BakePassInfo> info;
   /// Per pass: the vector tables (its pass index in the vector bake is its own k) or the matrix
   /// tables.
@@ -41,16 +43,23 @@ struct BakePasses::Impl {
   bool sum = false, fullSum = false;
   int sumChannels = 1;
   StatsKind statsKind = StatsKind::Vector;
+  /// Per texel: the lightmap's samples (empty domain per vertex).
+  std::unique_ptr<TexelDomain> texels;
+  TexelSamples noSamples;
+  std::vector<std::uint32_t> noTexels;
 
   Impl(const Mesh& m, const Occluder& o, const BakeSettings& s)
       : mesh(m), occluder(o), settings(s) {}
+
+  bool perTexel() const { return texels != nullptr; }
 
   void add(std::string name, TransferLayout layout, int channels, RowRange r, PassInput input,
            bool variance, std::shared_ptr<const VectorSetup> v,
            std::shared_ptr<const MatrixSetup> mx) {
     BakePassInfo p;
     p.name = std::move(name);
-    p.shape = TransferShape{TransferDomain::Vertices, layout, settings.bands, channels, r};
+    p.shape = TransferShape{settings.domain, layout, settings.bands, channels, r};
+    if (perTexel()) p.shape.lightmap = {texels->width, texels->height, texels->padding, false};
     p.input = input;
     p.variance = variance;
     info.push_back(std::move(p));
@@ -58,8 +67,8 @@ struct BakePasses::Impl {
     matrix.push_back(std::move(mx));
   }
 
-  /// The vector passes 0..K of `vs` (K = its bounces): all over the whole mesh except the last,
-  /// which covers `last`.
+  /// The vector passes 0..K of `vs` (K = its bounces): all over the whole domain except the
+  /// last, which covers `last`.
   void addVectorPasses(const BakeSettings& vs, RowRange all, RowRange last, bool variance) {
     const auto setup = makeVectorSetup(mesh, vs);
     const int bounces = vs.effectiveBounces();
@@ -73,36 +82,43 @@ struct BakePasses::Impl {
   }
 };
 
-BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings)
-    : BakePasses(mesh, occluder, settings, true) {}
-
 BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
-                       bool checkMemory)
+                       const BakePassOptions& options)
     : impl_(std::make_unique<Impl>(mesh, occluder, settings)) {
   validateBake(mesh, settings);
-  if (checkMemory) checkFootprint(mesh, settings, bakeFootprint(mesh, settings));
+  const BakeFootprint footprint = bakeFootprint(mesh, settings);
+  if (options.checkMemory) checkFootprint(mesh, settings, footprint);
   Impl& m = *impl_;
   m.rows = bakeRows(mesh, settings);
-  const RowRange all{0, mesh.vertexCount()};
+  const RowRange all{0, bakedetail::domainRows(mesh, settings)};
   const int bounces = settings.effectiveBounces();
-  if (settings.layout == TransferLayout::Vector) {
-    m.addVectorPasses(settings, all, m.rows, true);
-    m.sum = bounces > 0;
-    m.result = m.info.back().shape;
-    m.statsKind = StatsKind::Vector;
-    return;
+  // The last pass's rows: the range, per texel widened by the dilation's reach; the samples
+  // kept are those the passes compute (all of them when an earlier pass is read whole).
+  RowRange last = m.rows;
+  if (settings.domain == TransferDomain::Texels) {
+    const auto& lm = settings.lightmap;
+    const std::span<const Vec2f> uvs =
+        options.lightmapUvs.empty() ? std::span<const Vec2f>(mesh.lightmapUvs) : options.lightmapUvs;
+    TexelDomain probe;
+    probe.width = lm.width, probe.height = lm.height, probe.padding = lm.padding;
+    last = probe.widen(m.rows);
+    m.texels = std::make_unique<TexelDomain>(makeTexelDomain(
+        mesh, occluder, uvs, lm.width, lm.height, lm.padding, bounces > 0 ? all : last));
   }
-  const int channels = bakeFootprint(mesh, settings).channels;
-  if (bounces == 0) {
-    m.add("matrices", TransferLayout::Matrix, channels, m.rows, PassInput::None, true, nullptr,
-          makeMatrixSetup(mesh, settings, false, false, channels));
+  if (settings.layout == TransferLayout::Vector) {
+    m.addVectorPasses(settings, all, last, true);
+    m.sum = bounces > 0;
+    m.statsKind = StatsKind::Vector;
+  } else if (bounces == 0) {
+    m.add("matrices", TransferLayout::Matrix, footprint.channels, last, PassInput::None, true,
+          nullptr, makeMatrixSetup(mesh, settings, false, false, footprint.channels));
     m.statsKind = StatsKind::Matrix;
   } else if (!settings.glossyBounces(TransferLayout::Matrix)) {
-    // Diffuse bounce surfaces: the vector transfer with K − 1 bounces over the whole mesh (the
-    // sum of its passes), then the matrices that gather it.
+    // Diffuse bounce surfaces: the vector transfer with K − 1 bounces over the whole domain
+    // (the sum of its passes), then the matrices that gather it.
     m.addVectorPasses(diffuseBounceSource(settings), all, all, false);
-    m.add("matrices", TransferLayout::Matrix, channels, m.rows, PassInput::Sum, true, nullptr,
-          makeMatrixSetup(mesh, settings, true, false, channels));
+    m.add("matrices", TransferLayout::Matrix, footprint.channels, last, PassInput::Sum, true,
+          nullptr, makeMatrixSetup(mesh, settings, true, false, footprint.channels));
     m.fullSum = true;
     m.statsKind = StatsKind::MatrixDiffuse;
   } else {
@@ -112,13 +128,14 @@ BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSet
       const BakeSettings& o = orders[static_cast<std::size_t>(j)];
       const int c = bakeFootprint(mesh, o).channels;
       m.add(j == bounces ? "matrices" : "matrices of order " + std::to_string(j),
-            TransferLayout::Matrix, c, j == bounces ? m.rows : all,
+            TransferLayout::Matrix, c, j == bounces ? last : all,
             j == 0 ? PassInput::None : PassInput::Previous, j == bounces, nullptr,
             makeMatrixSetup(mesh, o, j > 0, j > 0, c));
     }
     m.statsKind = StatsKind::MatrixGlossy;
   }
   m.result = m.info.back().shape;
+  m.result.rows = m.rows;
 }
 
 BakePasses::~BakePasses() = default;
@@ -136,11 +153,11 @@ const TransferShape& BakePasses::resultShape() const {
 bool BakePasses::resultIsSum() const {
   return impl_->sum;
 }
-bool BakePasses::needsFullSum() const {
-  return impl_->fullSum;
-}
 int BakePasses::sumChannels() const {
   return impl_->sumChannels;
+}
+bool BakePasses::sums() const {
+  return impl_->sum || impl_->fullSum;
 }
 ProgressFn BakePasses::passProgress(int k, const ProgressFn& whole) const {
   if (!whole) return {};
@@ -160,25 +177,75 @@ const BakeSettings& BakePasses::settings() const {
 const Mesh& BakePasses::mesh() const {
   return impl_->mesh;
 }
+std::size_t BakePasses::domainRows() const {
+  return bakedetail::domainRows(impl_->mesh, impl_->settings);
+}
+const TexelSamples& BakePasses::texelSamples() const {
+  return impl_->perTexel() ? impl_->texels->samples : impl_->noSamples;
+}
+const std::vector<std::uint32_t>& BakePasses::texelsInsideGeometry() const {
+  return impl_->perTexel() ? impl_->texels->invalid : impl_->noTexels;
+}
 
-std::uint64_t BakePasses::compute(int k, RowRange rows, const Transfer& input, float* out,
+PassSource BakePasses::prepare(int k, const Transfer& input) const {
+  PassSource src;
+  if (pass(k).input == PassInput::None) return src;
+  PRT_CHECK(input.rows().first == 0 && input.rowCount() == domainRows(),
+            "a pass input covers the whole domain");
+  src.stride_ = input.stride();
+  if (!impl_->perTexel()) {
+    src.transfer_ = &input;
+    return src;
+  }
+  std::vector<std::uint8_t> filled;
+  src.image_ = std::make_shared<const std::vector<float>>(
+      impl_->texels->layOut(input.values().data(), input.rows(), src.stride_, filled));
+  return src;
+}
+
+std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input, float* out,
                                   double* variance, Progress* progress) const {
   const BakePassInfo& p = pass(k);
   PRT_CHECK(rows.first >= p.shape.rows.first && rows.end() <= p.shape.rows.end(),
             "rows outside the pass");
+  PRT_CHECK(p.input == PassInput::None || input.transfer_ || input.image_,
+            "the pass's input is prepared");
   const Impl& m = *impl_;
-  const Transfer* in = nullptr;
-  if (p.input != PassInput::None) {
-    PRT_CHECK(input.rows().first == 0 && input.rowCount() == m.mesh.vertexCount(),
-              "a pass input covers the whole mesh");
-    in = &input;
-  }
   if (rows.count == 0) return 0;
   const auto k0 = static_cast<std::size_t>(k);
-  if (m.vector[k0])
-    return computeVectorRows(m.mesh, m.occluder, *m.vector[k0], k, rows, in, p.shape.channels, out,
-                             variance, progress);
-  return computeMatrixRows(m.mesh, m.occluder, *m.matrix[k0], rows, in, out, variance, progress);
+  if (!m.perTexel()) {
+    const Transfer* in = input.transfer_;
+    if (m.vector[k0])
+      return computeVectorRows(m.mesh, m.occluder, *m.vector[k0], k, rows, in, p.shape.channels,
+                               out, variance, progress);
+    return computeMatrixRows(m.mesh, m.occluder, *m.matrix[k0], rows, in, out, variance,
+                             progress);
+  }
+  // Per texel: the rows' covered texels, computed as one run of sample points, then placed at
+  // their texels; the texels no triangle covers hold zeros.
+  const TexelDomain& d = *m.texels;
+  const auto [b, e] = d.samplesIn(rows);
+  const std::span<const RowPoint> points(d.points.data() + b, e - b);
+  const std::size_t stride = p.shape.stride();
+  std::vector<float> values(points.size() * stride);
+  std::vector<double> var(points.size());
+  const TexelImage image = input.image_ ? texelImage(d, *input.image_, input.stride_) : TexelImage{};
+  const TexelImage* source = input.image_ ? &image : nullptr;
+  const std::uint64_t rays =
+      m.vector[k0] ? computeTexelRows(m.mesh, m.occluder, *m.vector[k0], k, points, source,
+                                      p.shape.channels, values.data(), var.data(), progress)
+                   : computeMatrixTexelRows(m.mesh, m.occluder, *m.matrix[k0], points, source,
+                                            values.data(), var.data(), progress);
+  std::fill_n(out, rows.count * stride, 0.0f);
+  if (variance) std::fill_n(variance, rows.count, 0.0);
+  const auto& s = d.samples.samples;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::size_t r = s[b + i].texel - rows.first;
+    std::copy_n(values.data() + i * stride, stride, out + r * stride);
+    if (variance) variance[r] = var[i];
+  }
+  if (progress) progress->advance(rows.count - points.size());
+  return rays;
 }
 
 void BakePasses::accumulate(int k, RowRange passRows, const float* values, RowRange sumRows,
@@ -204,22 +271,55 @@ void BakePasses::accumulate(int k, RowRange passRows, const float* values, RowRa
   }
 }
 
+Transfer BakePasses::finish(const Transfer& last, std::vector<std::uint8_t>* filled) const {
+  const Impl& m = *impl_;
+  if (!m.perTexel()) {
+    PRT_CHECK(last.rows() == m.rows, "the result covers the bake's range");
+    return last;
+  }
+  const TexelDomain& d = *m.texels;
+  const std::size_t stride = last.stride();
+  std::vector<std::uint8_t> mask;
+  std::vector<float> image = d.layOut(last.values().data(), last.rows(), stride, mask);
+  if (d.padding == 0)  // the dilation fed the bounces; without padding the gutter stays empty
+    for (std::size_t t = 0; t < d.texels(); ++t)
+      if (d.samples.sampleOfTexel[t] < 0) {
+        mask[t] = 0;
+        std::fill_n(image.begin() + std::ptrdiff_t(t * stride), stride, 0.0f);
+      }
+  if (filled) *filled = std::move(mask);
+  if (m.rows.count < d.texels())
+    image = std::vector<float>(image.begin() + std::ptrdiff_t(m.rows.first * stride),
+                               image.begin() + std::ptrdiff_t(m.rows.end() * stride));
+  TransferShape shape = last.shape();
+  shape.rows = m.rows;
+  return Transfer::dense(shape, FloatArray(std::move(image)));
+}
+
 BakeStats BakePasses::stats(const std::vector<std::uint64_t>& rays,
-                            const std::vector<double>& seconds, const std::vector<double>& variance,
-                            double secondsTotal, int threads) const {
+                            const std::vector<double>& seconds, RowRange varianceRows,
+                            const std::vector<double>& variance, double secondsTotal,
+                            int threads) const {
   const Impl& m = *impl_;
   PRT_CHECK(rays.size() == m.info.size() && seconds.size() == m.info.size(), "one figure per pass");
+  PRT_CHECK(variance.size() == varianceRows.count, "one variance per row");
+  // The error estimate over the range's sampled rows: every vertex, the covered texels.
+  std::vector<double> sampled;
+  const RowRange r = overlap(varianceRows, m.rows);
+  for (std::size_t v = r.first; v < r.end(); ++v)
+    if (!m.perTexel() || m.texels->samples.sampleOfTexel[v] >= 0)
+      sampled.push_back(variance[v - varianceRows.first]);
   BakeStats st;
   if (m.statsKind == StatsKind::Vector) {
-    st = vectorStats(rays, seconds, variance);
+    st = vectorStats(rays, seconds, sampled);
   } else {
     st = matrixStats(m.statsKind == StatsKind::MatrixDiffuse  ? MatrixPassKind::DiffuseBounces
                      : m.statsKind == StatsKind::MatrixGlossy ? MatrixPassKind::GlossyBounces
                                                               : MatrixPassKind::Direct,
-                     rays, seconds, variance, secondsTotal);
+                     rays, seconds, sampled, secondsTotal);
   }
   st.threads = threads;
-  st.vertices = m.rows.count;
+  st.vertices = sampled.size();
   st.secondsTotal = secondsTotal;
   return st;
 }
@@ -227,53 +327,164 @@ BakeStats BakePasses::stats(const std::vector<std::uint64_t>& rays,
 std::string bakeIdentity(const Mesh& mesh, const BakeSettings& s) {
   const std::string hex = meshFingerprint(mesh);
   const RowRange rows = bakeRows(mesh, s);
+  std::string domain = "vertices";
+  if (s.domain == TransferDomain::Texels) {
+    Fnv1a uv;
+    uv.addAll(mesh.lightmapUvs);
+    domain = "texels of a " + std::to_string(s.lightmap.width) + "x" +
+             std::to_string(s.lightmap.height) + " lightmap (padding " +
+             std::to_string(s.lightmap.padding) + ", UVs " + uv.hex() + ")";
+  }
   return std::to_string(mesh.vertexCount()) + " vertices, " + std::to_string(mesh.triangleCount()) +
          " triangles, mesh " + hex + "; " + toString(s.mode) + " " + toString(s.layout) + ", " +
          std::to_string(s.bands) + " bands, " + std::to_string(s.samples) + " samples, " +
          std::to_string(s.effectiveBounces()) + " bounces, seed " + std::to_string(s.seed) + ", " +
-         toString(s.sampling) + ", " + s.material.spec() + ", vertices " +
+         toString(s.sampling) + ", " + s.material.spec() + ", " + domain + " " +
          std::to_string(rows.first) + ".." + std::to_string(rows.end());
 }
 
-Transfer runBakePasses(const BakePasses& passes, BakeStats* stats, const ProgressFn& progressFn) {
-  const auto start = Clock::now();
-  const int count = passes.count();
-  const std::size_t n = passes.mesh().vertexCount();
-  const TransferShape& result = passes.resultShape();
-  const RowRange rows = result.rows;
+int PassExecutor::threads() const {
+  return maxThreads();
+}
 
-  const bool summing = passes.resultIsSum() || passes.needsFullSum();
-  TransferShape sumShape = result;
-  sumShape.layout = TransferLayout::Vector;
-  sumShape.channels = passes.sumChannels();
-  sumShape.rows = passes.needsFullSum() ? RowRange{0, n} : rows;
-  Transfer sum = summing ? Transfer::zeros(sumShape) : Transfer();
-  float* const sumData = summing ? sum.mutableValues() : nullptr;
+void PassExecutor::agree(std::exception_ptr failure) {
+  if (failure) std::rethrow_exception(failure);
+}
 
-  std::vector<double> variance(rows.count, 0.0);
-  std::vector<std::uint64_t> rays;
-  std::vector<double> secs;
-  Transfer prev;
-  for (int k = 0; k < count; ++k) {
-    const BakePassInfo& p = passes.pass(k);
-    const auto t0 = Clock::now();
-    Progress progress(passes.passProgress(k, progressFn), p.shape.rows.count);
-    Transfer out = Transfer::zeros(p.shape);
-    std::vector<double> var(p.variance ? p.shape.rows.count : 0);
-    const Transfer& input = p.input == PassInput::Sum ? sum : prev;
-    rays.push_back(passes.compute(k, p.shape.rows, input, out.mutableValues(),
-                                  p.variance ? var.data() : nullptr, &progress));
-    if (p.variance)
-      for (std::size_t v = std::max(rows.first, p.shape.rows.first);
-           v < std::min(rows.end(), p.shape.rows.end()); ++v)
-        variance[v - rows.first] += var[v - p.shape.rows.first];
-    if (summing && !(k == count - 1 && !passes.resultIsSum()))
-      passes.accumulate(k, p.shape.rows, out.values().data(), sumShape.rows, sumData);
-    prev = std::move(out);
-    secs.push_back(seconds(t0));
+PassExecutor::Rows ThreadExecutor::run(const BakePasses& passes, int k, const PassSource& input,
+                                       const ProgressFn& progressFn) {
+  const auto t0 = Clock::now();
+  const BakePassInfo& p = passes.pass(k);
+  Rows r;
+  r.values = Transfer::zeros(p.shape);
+  if (p.variance) r.variance.assign(p.shape.rows.count, 0.0);
+  Progress progress(progressFn, p.shape.rows.count);
+  r.rays = passes.compute(k, p.shape.rows, input, r.values.mutableValues(),
+                          p.variance ? r.variance.data() : nullptr, &progress);
+  r.seconds = seconds(t0);
+  return r;
+}
+
+namespace {
+
+/// The rows of `t` in `rows` (inside t's), as a transfer of its shape.
+Transfer cropRows(const Transfer& t, RowRange rows) {
+  if (t.rows() == rows) return t;
+  TransferShape shape = t.shape();
+  shape.rows = rows;
+  const std::size_t stride = t.stride();
+  const float* v = t.values().data() + (rows.first - t.rows().first) * stride;
+  return Transfer::dense(shape, FloatArray(std::vector<float>(v, v + rows.count * stride)));
+}
+
+}  // namespace
+
+PassState startPasses(const BakePasses& passes) {
+  PassState st;
+  const RowRange all{0, passes.domainRows()};
+  if (passes.sums()) {
+    TransferShape shape = passes.resultShape();
+    shape.layout = TransferLayout::Vector;
+    shape.channels = passes.sumChannels();
+    shape.rows = all;
+    st.sum = Transfer::zeros(shape);
   }
-  if (stats) *stats = passes.stats(rays, secs, variance, seconds(start), maxThreads());
-  return passes.resultIsSum() ? sum : prev;
+  st.varianceRows = all;
+  st.variance.assign(all.count, 0.0);
+  return st;
+}
+
+void runPass(const BakePasses& passes, PassExecutor& executor, PassState& state,
+             const ProgressFn& progress) {
+  const int k = state.done;
+  PRT_CHECK(k < passes.count(), "every pass is done");
+  const BakePassInfo& p = passes.pass(k);
+  const bool last = k == passes.count() - 1;
+  const PassSource input =
+      passes.prepare(k, p.input == PassInput::Sum ? state.sum : state.previous);
+  PassExecutor::Rows r = executor.run(passes, k, input, passes.passProgress(k, progress));
+  state.rays.push_back(r.rays);
+  state.seconds.push_back(r.seconds);
+  const bool held = !r.values.empty();
+  const RowRange rows = held ? r.values.rows() : RowRange{p.shape.rows.first, 0};
+  // The error estimate: the pass's variances over the rows both cover.
+  if (p.variance && !r.variance.empty()) {
+    const RowRange both = overlap(rows, state.varianceRows);
+    for (std::size_t v = both.first; v < both.end(); ++v)
+      state.variance[v - state.varianceRows.first] += r.variance[v - rows.first];
+  }
+  // The running sum: every pass of a summed bake; the passes before the last of a bake whose
+  // last pass reads it.
+  if (!state.sum.empty() && held && (passes.resultIsSum() || !last))
+    passes.accumulate(k, rows, r.values.values().data(), state.sum.rows(),
+                      state.sum.mutableValues());
+  // From here on the state is of the rows this pass covers here: the sum and the variances
+  // narrow to them (the bake's range after its last pass; a job-array shard's rows; nothing on
+  // an MPI rank that does not hold the last pass).
+  if (!state.sum.empty()) {
+    const RowRange keep = overlap(rows, state.sum.rows());
+    if (keep.count == 0)
+      state.sum = Transfer();
+    else if (!(keep == state.sum.rows()))
+      state.sum = cropRows(state.sum, keep);
+  }
+  const RowRange keep = overlap(rows, state.varianceRows);
+  if (!(keep == state.varianceRows)) {
+    std::vector<double> v(state.variance.begin() + std::ptrdiff_t(keep.first - state.varianceRows.first),
+                          state.variance.begin() + std::ptrdiff_t(keep.end() - state.varianceRows.first));
+    state.variance = std::move(v);
+    state.varianceRows = keep;
+  }
+  state.previous = std::move(r.values);
+  state.done = k + 1;
+}
+
+Transfer finishPasses(const BakePasses& passes, const PassState& state, double secondsTotal,
+                      int threads, BakeStats* stats, std::vector<std::uint8_t>* filled) {
+  PRT_CHECK(state.done == passes.count(), "every pass is done");
+  const Transfer& last = passes.resultIsSum() ? state.sum : state.previous;
+  if (last.empty()) return Transfer();  // an MPI rank other than 0
+  if (stats)
+    *stats = passes.stats(state.rays, state.seconds, state.varianceRows, state.variance,
+                          secondsTotal, threads);
+  return passes.finish(last, filled);
+}
+
+Transfer runBakePasses(const BakePasses& passes, PassExecutor& executor, BakeStats* stats,
+                       const ProgressFn& progress) {
+  const auto start = Clock::now();
+  PassState state = startPasses(passes);
+  while (state.done < passes.count()) runPass(passes, executor, state, progress);
+  return finishPasses(passes, state, seconds(start), executor.threads(), stats);
+}
+
+}  // namespace prt
+
+namespace prt {
+
+Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
+              PassExecutor& executor, BakeStats* stats, const ProgressFn& progress,
+              TexelBakeInfo* texels) {
+  const auto start = Clock::now();
+  std::unique_ptr<BakePasses> made;
+  std::exception_ptr failure;
+  try {
+    made = std::make_unique<BakePasses>(mesh, occluder, settings, executor.passOptions());
+    executor.begin(*made);
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  executor.agree(failure);
+  const BakePasses& passes = *made;
+  PassState state = startPasses(passes);
+  while (state.done < passes.count()) runPass(passes, executor, state, progress);
+  Transfer t = finishPasses(passes, state, seconds(start), executor.threads(), stats,
+                            texels ? &texels->filled : nullptr);
+  if (texels) {
+    texels->samples = passes.texelSamples();
+    texels->inside = passes.texelsInsideGeometry();
+  }
+  return t;
 }
 
 }  // namespace prt

@@ -8,6 +8,9 @@
 //  * a rank that dies mid-bake (the test hook PRT_TEST_EXIT_AT_CHUNK) fails the job quickly with
 //    one line naming it and its chunk and no output file; rerun with the same --checkpoint, the
 //    bake resumes from the finished chunks and ends bit-identical;
+//  * per-texel bakes (shadowed, bounces, a range, glossy matrices) through MPI equal the
+//    single-process file, and per-texel bounces split pass by pass into job-array shards merge
+//    bit-exactly;
 //  * job-array shards (--shard I/N, and --pass K --previous for the bounces) merge bit-exactly.
 //
 // "Equal the single-process file": a bake file records its timings (seconds per pass, rays per
@@ -48,6 +51,8 @@ std::string withoutTimings(const fs::path& path) {
 
 /// The transfers' values and rays only: a merge of job-array pieces combines the error
 /// estimates' means weighted by rows (combineBakeStats), which need not round as one bake does.
+/// Per texel the rays are the work done: each piece's last pass also casts the rays of the
+/// texels its dilation reads beyond its rows (the merged bake counts them, not fewer).
 void expectSameTransfers(const fs::path& a, const fs::path& b) {
   const BakeFile fa = readBake(a.string()), fb = readBake(b.string());
   ASSERT_EQ(fa.transfers.size(), fb.transfers.size());
@@ -59,6 +64,10 @@ void expectSameTransfers(const fs::path& a, const fs::path& b) {
     EXPECT_EQ(0, std::memcmp(x.values().data(), y.values().data(), x.values().size() * 4))
         << fa.transfers[i].describe() << ": values differ";
     EXPECT_TRUE(fa.transfers[i].recipe == fb.transfers[i].recipe);
+    if (x.domain() == TransferDomain::Texels) {
+      EXPECT_GE(fa.transfers[i].stats.rays, fb.transfers[i].stats.rays);
+      continue;
+    }
     EXPECT_EQ(fa.transfers[i].stats.rays, fb.transfers[i].stats.rays);
     EXPECT_EQ(fa.transfers[i].stats.raysBounce, fb.transfers[i].stats.raysBounce);
   }
@@ -207,6 +216,32 @@ TEST_F(Mpi, AKilledRankFailsTheJobCleanlyAndACheckpointResumesBitIdentical) {
 }
 
 // Job arrays need no MPI: these run wherever prt does.
+TEST_F(Mpi, PerTexelBakesEqualTheSingleProcessFile) {
+  // The texel domain through the same pass driver: shadowed and RGB bounces (each bounce pass
+  // all-gathered, then laid out and dilated on every rank), a range whose last pass widens by
+  // the dilation's reach, and glossy-bounce matrices spilled by rank 0.
+  const std::string box = "bake 'builtin:cornell?grid=8' --domain texels --samples 16 ";
+  const std::string cases[] = {
+      box + "--mode shadowed --mode interreflected --bounces 2 --resolution 40 --padding 3",
+      box + "--mode interreflected --bounces 1 --resolution 48 --range 700:1500",
+      "bake builtin:sphere-plane --domain texels --resolution 24 --samples 8 --mode "
+      "interreflected --bounces 2 --transfer matrix --bands 3 --material "
+      "'phong?exponent=8&ks=0.4,0.3,0.3'"};
+  int ranks = 2;
+  for (const std::string& cmd : cases) {
+    ASSERT_EQ(prt(cmd + " -q -o one.glb").rc, 0) << cmd;
+    const bool matrix = cmd.find("matrix") != std::string::npos;
+    const Result r = prt(cmd + " --chunk 97 -o mpi.glb",
+                         std::string(matrix ? "PRT_MPI_SPILL_ABOVE=1 " : "") + mpirun(ranks));
+    ASSERT_EQ(r.rc, 0) << cmd << ": " << r.err;
+    EXPECT_NE(r.err.find(std::to_string(ranks) + " MPI ranks"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("texels sampled"), std::string::npos) << r.err;
+    EXPECT_EQ(withoutTimings(dir() / "mpi.glb"), withoutTimings(dir() / "one.glb"))
+        << cmd << " on " << ranks << " ranks";
+    ++ranks;
+  }
+}
+
 class JobArray : public CliTest {
  protected:
   fs::path dir() const { return dir_; }
@@ -259,6 +294,34 @@ TEST_F(JobArray, BouncesShardPassByPassAndMergeBitExactly) {
     ASSERT_EQ(prt("merge last0.glb last1.glb -q -o merged.glb").rc, 0);
     expectSameTransfers(dir() / "merged.glb", dir() / "one.glb");
   }
+}
+
+TEST_F(JobArray, PerTexelBouncesShardPassByPassAndMergeBitExactly) {
+  // The texel domain through the same pass files: each pass reads the merged one before laid out
+  // as the lightmap; the last pass's shards widen by the dilation's reach and merge exactly.
+  const std::string bake =
+      "bake 'builtin:cornell?grid=8' --domain texels --resolution 40 --padding 2 --mode "
+      "interreflected --bounces 1 --samples 16 -q";
+  ASSERT_EQ(prt(bake + " -o one.glb").rc, 0);
+  for (int i = 0; i < 3; ++i)
+    ASSERT_EQ(prt(bake + " --pass 0 --shard " + std::to_string(i) + "/3 -o p0-" +
+                  std::to_string(i) + ".prtpass")
+                  .rc,
+              0);
+  ASSERT_EQ(prt("merge p0-2.prtpass p0-0.prtpass p0-1.prtpass -q -o p0.prtpass").rc, 0);
+  for (int i = 0; i < 2; ++i) {
+    const Result r = prt(bake + " --pass 1 --previous p0.prtpass --shard " + std::to_string(i) +
+                         "/2 -o last" + std::to_string(i) + ".glb");
+    ASSERT_EQ(r.rc, 0) << r.err;
+  }
+  ASSERT_EQ(prt("merge last1.glb last0.glb -q -o merged.glb").rc, 0);
+  expectSameTransfers(dir() / "merged.glb", dir() / "one.glb");
+  // A pass file of another lightmap is another bake.
+  const Result other = prt(
+      "bake 'builtin:cornell?grid=8' --domain texels --resolution 40 --padding 3 --mode "
+      "interreflected --bounces 1 --samples 16 -q --pass 1 --previous p0.prtpass -o x.glb");
+  EXPECT_NE(other.rc, 0);
+  EXPECT_NE(other.err.find("is a pass of another bake"), std::string::npos) << other.err;
 }
 
 TEST_F(JobArray, ShardingABounceBakeWithoutPassIsRefusedWithTheRecipe) {

@@ -305,7 +305,7 @@ TEST(BakeMatrix, RefusesAFootprintBeyondMemoryWithTheFigure) {
   Scene scene("builtin:sphere?subdiv=1");
   BakeSettings s = matrixSettings(TransferMode::Shadowed, 16, 16);  // 256 KiB per vertex
   const BakeFootprint f = bakeFootprint(scene.mesh, s);
-  EXPECT_EQ(f.bytesPerVertex, std::size_t(16 * 16) * 16 * 16 * 4);
+  EXPECT_EQ(f.bytesPerRow, std::size_t(16 * 16) * 16 * 16 * 4);
   Mesh big = scene.mesh;
   // 1e6 vertices × 256 KiB = 262 GB: refused before anything is allocated, with the figure.
   big.positions.resize(1000000, Vec3f(0.0f));

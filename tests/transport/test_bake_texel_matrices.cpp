@@ -208,8 +208,8 @@ TEST(BakeTexelMatrices, WhatWouldNotFitInMemoryIsRefusedWithTheFigure) {
   const BakeSettings s = matrixSettings(TransferMode::Shadowed, 8, 16);
   // 8 bands: 64² floats = 16.4 KB per texel; 8192² texels = 1.1 TB.
   const TexelBakeFootprint f = texelBakeFootprint(box, s, 8192, 8192);
-  EXPECT_EQ(f.bytesPerTexel, std::size_t(64 * 64 * 4));
-  EXPECT_EQ(f.transferBytes, f.bytesPerTexel * 8192 * 8192);
+  EXPECT_EQ(f.bytesPerRow, std::size_t(64 * 64 * 4));
+  EXPECT_EQ(f.transferBytes, f.bytesPerRow * 8192 * 8192);
   const std::string e =
       testing::errorOf([&] { bakeTexels(box, *occ, s, box.lightmapUvs, 8192, 8192, 2); });
   EXPECT_NE(e.find("matrix transfer of a 8192 x 8192 lightmap at 8 bands needs 16.4 KB per texel"),

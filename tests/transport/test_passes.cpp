@@ -1,6 +1,7 @@
-// The bake as a list of passes (prt/transport/passes.hpp), which every scheduler drives: any
+// The bake as a list of passes (prt/transport/passes.hpp), which every executor drives: any
 // split of any pass into pieces, computed in any order, reassembles into bake()'s transfer and
-// statistics bit for bit — the property MPI ranks and job-array shards rest on.
+// statistics bit for bit, per vertex and per texel — the property MPI ranks and job-array shards
+// rest on.
 
 #include <gtest/gtest.h>
 
@@ -11,57 +12,43 @@
 #include "prt/geometry/builtin.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transport/bake.hpp"
+#include "prt/transport/bake_texels.hpp"
 #include "prt/transport/passes.hpp"
 
 namespace prt {
 namespace {
 
-/// Runs the passes as a scheduler would: each pass in random pieces, computed in random order,
-/// the same bookkeeping as runBakePasses (accumulate, variance, stats).
-Transfer bakeInPieces(const BakePasses& passes, std::mt19937& rng, BakeStats* stats) {
-  const std::size_t n = passes.mesh().vertexCount();
-  const TransferShape& result = passes.resultShape();
-  const bool summing = passes.resultIsSum() || passes.needsFullSum();
-  TransferShape sumShape = result;
-  sumShape.layout = TransferLayout::Vector;
-  sumShape.channels = passes.sumChannels();
-  sumShape.rows = passes.needsFullSum() ? RowRange{0, n} : result.rows;
-  Transfer sum = summing ? Transfer::zeros(sumShape) : Transfer();
-  float* sumData = summing ? sum.mutableValues() : nullptr;
-  std::vector<double> variance(result.rows.count, 0.0);
-  std::vector<std::uint64_t> rays;
-  Transfer prev;
-  for (int k = 0; k < passes.count(); ++k) {
+/// An executor as a scheduler might be: each pass in random pieces, computed in a random order
+/// (the one pass driver, runBakePasses, joins them).
+class PiecesExecutor : public PassExecutor {
+ public:
+  explicit PiecesExecutor(std::mt19937& rng) : rng_(rng) {}
+  Rows run(const BakePasses& passes, int k, const PassSource& input, const ProgressFn&) override {
     const BakePassInfo& p = passes.pass(k);
-    Transfer out = Transfer::zeros(p.shape);
-    float* values = out.mutableValues();
-    std::vector<double> var(p.shape.rows.count, 0.0);
+    Rows r;
+    r.values = Transfer::zeros(p.shape);
+    float* values = r.values.mutableValues();
+    r.variance.assign(p.shape.rows.count, 0.0);
     // Cut points at random, pieces computed in a random order.
     std::vector<std::size_t> cuts = {0, p.shape.rows.count};
-    for (int c = 0; c < 7; ++c) cuts.push_back(rng() % (p.shape.rows.count + 1));
+    for (int c = 0; c < 7; ++c) cuts.push_back(rng_() % (p.shape.rows.count + 1));
     std::sort(cuts.begin(), cuts.end());
     std::vector<std::size_t> order(cuts.size() - 1);
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::shuffle(order.begin(), order.end(), rng);
-    std::uint64_t r = 0;
+    std::shuffle(order.begin(), order.end(), rng_);
     for (std::size_t i : order) {
       const std::size_t lo = cuts[i], hi = cuts[i + 1];
-      r += passes.compute(k, {p.shape.rows.first + lo, hi - lo},
-                          p.input == PassInput::Sum ? sum : prev, values + lo * p.shape.stride(),
-                          var.data() + lo);
+      r.rays += passes.compute(k, {p.shape.rows.first + lo, hi - lo}, input,
+                               values + lo * p.shape.stride(), r.variance.data() + lo);
     }
-    rays.push_back(r);
-    if (p.variance)
-      for (std::size_t v = result.rows.first; v < result.rows.end(); ++v)
-        if (v >= p.shape.rows.first && v < p.shape.rows.end())
-          variance[v - result.rows.first] += var[v - p.shape.rows.first];
-    if (summing && !(k == passes.count() - 1 && !passes.resultIsSum()))
-      passes.accumulate(k, p.shape.rows, out.values().data(), sumShape.rows, sumData);
-    prev = std::move(out);
+    if (!p.variance) r.variance.clear();
+    return r;
   }
-  *stats = passes.stats(rays, std::vector<double>(rays.size(), 0.0), variance, 0.0, 1);
-  return passes.resultIsSum() ? sum : prev;
-}
+  int threads() const override { return 1; }
+
+ private:
+  std::mt19937& rng_;
+};
 
 void expectSame(const Transfer& a, const Transfer& b, const std::string& what) {
   ASSERT_EQ(a.shape(), b.shape()) << what;
@@ -79,6 +66,7 @@ TEST(BakePasses, AnySplitOfEveryPassReassemblesIntoTheBake) {
     int bounces;
     const char* material;
     RowRange rows;
+    int lightmap = 0;  ///< per texel: the lightmap's side (0: per vertex)
   };
   const Case cases[] = {
       {"shadowed vectors", TransferMode::Shadowed, TransferLayout::Vector, 0, "", {}},
@@ -100,6 +88,29 @@ TEST(BakePasses, AnySplitOfEveryPassReassemblesIntoTheBake) {
        2,
        "phong?exponent=8&ks=0.3,0.4,0.5",
        {200, 700}},
+      {"texels: RGB bounces, a range",
+       TransferMode::Interreflected,
+       TransferLayout::Vector,
+       2,
+       "",
+       {700, 500},
+       48},
+      {"texels: shadowed vectors, a range", TransferMode::Shadowed, TransferLayout::Vector, 0, "",
+       {900, 300}, 40},
+      {"texels: diffuse-bounce matrices",
+       TransferMode::Interreflected,
+       TransferLayout::Matrix,
+       1,
+       "",
+       {},
+       24},
+      {"texels: glossy-bounce matrices",
+       TransferMode::Interreflected,
+       TransferLayout::Matrix,
+       2,
+       "phong?exponent=8&ks=0.3,0.4,0.5",
+       {100, 300},
+       24},
   };
   for (const Case& c : cases) {
     BakeSettings s;
@@ -111,12 +122,24 @@ TEST(BakePasses, AnySplitOfEveryPassReassemblesIntoTheBake) {
     s.seed = 11;
     if (*c.material) s.material = parseMaterial(c.material);
     s.rows = c.rows;
+    if (c.lightmap) {
+      s.domain = TransferDomain::Texels;
+      s.lightmap = {c.lightmap, c.lightmap, 2, false};
+    }
     BakeStats expected, got;
     const Transfer whole = bake(mesh, *occluder, s, &expected);
     const BakePasses passes(mesh, *occluder, s);
     EXPECT_EQ(passes.count(), c.bounces + 1) << c.what;
-    const Transfer pieces = bakeInPieces(passes, rng, &got);
-    expectSame(pieces, whole, c.what);
+    PiecesExecutor pieces(rng);
+    const Transfer split = runBakePasses(passes, pieces, &got, {});
+    expectSame(split, whole, c.what);
+    if (c.lightmap) {
+      // The same bake as the per-texel call makes it.
+      BakeSettings t = s;
+      t.domain = TransferDomain::Vertices;
+      expectSame(bakeTexels(mesh, *occluder, t, mesh.lightmapUvs, c.lightmap, c.lightmap, 2).transfer,
+                 whole, c.what);
+    }
     EXPECT_EQ(got.rays, expected.rays) << c.what;
     EXPECT_EQ(got.raysBounce, expected.raysBounce) << c.what;
     EXPECT_EQ(got.stdErrT0Mean, expected.stdErrT0Mean) << c.what;
@@ -139,6 +162,21 @@ TEST(BakePasses, TheIdentityTellsBakesApart) {
   Mesh moved = mesh;
   moved.positions[5].x += 1e-6f;
   EXPECT_NE(bakeIdentity(moved, s), a);
+  // The domain: per texel, the lightmap's size, its padding and the UVs it lies over.
+  const Mesh box = builtinScene("cornell");
+  t = s;
+  const std::string vertices = bakeIdentity(box, t);
+  t.domain = TransferDomain::Texels;
+  t.lightmap = {64, 64, 2, false};
+  const std::string texels = bakeIdentity(box, t);
+  EXPECT_NE(texels, vertices);
+  t.lightmap.padding = 3;
+  EXPECT_NE(bakeIdentity(box, t), texels);
+  t.lightmap.padding = 2;
+  Mesh shifted = box;
+  ASSERT_GT(shifted.lightmapUvs.size(), 3u);
+  shifted.lightmapUvs[3].x += 1e-3f;
+  EXPECT_NE(bakeIdentity(shifted, t), texels);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "prt/render/reference.hpp"
 #include "prt/transfer/bake_settings.hpp"
 #include "prt/transfer/transfer.hpp"
+#include "prt/transport/passes.hpp"
 
 namespace prt::distributed {
 
@@ -47,15 +48,41 @@ struct RunReport {
   bool spilled = false;  ///< rank 0 kept the last pass in a file-backed mapping
 };
 
-/// bake() across the ranks (collective): every rank loads the same mesh and builds its own
-/// occluder; each pass is computed in chunks, all-gathered before the next, the last gathered
-/// to rank 0, which gets the transfer and `stats` (as bake() reports them, `threads` summed
-/// over the ranks); the other ranks get an empty Transfer. Memory per rank: the passes a later
-/// pass reads, whole (as one process); the last pass, only the rank's own chunks — on rank 0 the
-/// whole transfer, in memory or, beyond RunOptions::spillAbove, in a file-backed mapping that
-/// the bake writer streams from. Throws what bake() throws, on every rank alike
-/// (Session::agree), and prt::Error when the checkpoint folder holds another bake's or a rank
-/// lacks the memory (naming it and the figure).
+/// The ranks of an MPI job as a bake's executor (prt/transport/passes.hpp), collective: each
+/// pass is computed in chunks the ranks take in turn (chunks.hpp), all-gathered when a later
+/// pass reads it, the last gathered to rank 0, which gets the transfer and the statistics (as
+/// bake() reports them, `threads` summed over the ranks); the other ranks get an empty Transfer.
+/// Memory per rank: the passes a later pass reads, whole (as one process); the last pass, only
+/// the rank's own chunks — on rank 0 the whole transfer, in memory or, beyond
+/// RunOptions::spillAbove, in a file-backed mapping that the bake writer streams from. With a
+/// checkpoint folder, each mode's finished chunks are kept in a folder of its own there, and a
+/// rerun resumes from them. Throws what bake() throws, on every rank alike (Session::agree), and
+/// prt::Error when the checkpoint folder holds another bake's or a rank lacks the memory (naming
+/// it and the figure).
+class RankExecutor : public PassExecutor {
+ public:
+  RankExecutor(Session& session, const RunOptions& options);
+  BakePassOptions passOptions() const override;
+  void begin(const BakePasses& passes) override;
+  void agree(std::exception_ptr failure) override;
+  Rows run(const BakePasses& passes, int k, const PassSource& input,
+           const ProgressFn& progress) override;
+  int threads() const override;
+  /// Rows per chunk of a pass of `shape`.
+  std::size_t chunkRows(const TransferShape& shape) const;
+  /// What the last bake begun did (on rank 0).
+  const RunReport& report() const { return report_; }
+
+ private:
+  Session& session_;
+  RunOptions options_;
+  int threads_;
+  bool spill_ = false;
+  std::string checkpoint_, claimPending_;
+  RunReport report_;
+};
+
+/// bake() across the ranks (collective) with a RankExecutor.
 Transfer bake(Session& session, const Mesh& mesh, const Occluder& occluder,
               const BakeSettings& settings, const RunOptions& options, BakeStats* stats = nullptr,
               RunReport* report = nullptr, const ProgressFn& progress = {});

@@ -10,6 +10,8 @@
 // sum of passes 0..K over those rows when the bake sums its passes (what the last pass adds to),
 // the per-row estimator variance summed over passes 0..K (the bake's error estimate), and each
 // pass's rays and seconds (pass K: this piece's; earlier passes: the whole pass's).
+// Per texel the header names the domain and the lightmap (width, height, padding); without them
+// a pass file is per vertex.
 //
 // Bytes: "PRTPASS1", a little-endian uint64 n, n bytes of JSON (identity, pass, passes, shape,
 // rows, sumChannels, rays, seconds), zero padding to a multiple of 8, then the rows (floats),

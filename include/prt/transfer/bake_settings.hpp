@@ -82,8 +82,12 @@ struct BakeSettings : BakeRecipe {
   /// prt/transfer/shape.hpp), sampled uniformly over each vertex's hemisphere.
   TransferLayout layout = TransferLayout::Vector;
   int bands = 3;
-  /// The rows to bake: [rows.first, rows.first + rows.count); count 0 means "to the last row".
-  /// The result holds those rows only (its row 0 is rows.first).
+  /// Where the rows lie: the mesh's vertices, or the texels of a lightmap (`lightmap`: its
+  /// width, height and gutter padding) over the mesh's lightmap UVs (transport/passes.hpp).
+  TransferDomain domain = TransferDomain::Vertices;
+  TransferShape::LightmapSize lightmap{};
+  /// The rows to bake: [rows.first, rows.first + rows.count) of the domain; count 0 means "to
+  /// the last row". The result holds those rows only (its row 0 is rows.first).
   RowRange rows;
 };
 

@@ -42,6 +42,8 @@ class Transfer {
   static Transfer cpca(const TransferShape& shape, CpcaRows rows);
 
   const TransferShape& shape() const { return shape_; }
+  /// True for a default-constructed transfer (no bands, no rows).
+  bool empty() const { return shape_.bands == 0; }
   TransferLayout layout() const { return shape_.layout; }
   TransferDomain domain() const { return shape_.domain; }
   int bands() const { return shape_.bands; }

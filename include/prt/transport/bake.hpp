@@ -34,13 +34,14 @@
 namespace prt {
 
 /// What a bake will hold in memory, known before it starts (the transfer dominates: 4·B⁴ bytes
-/// per vertex and channel for matrices).
+/// per row and channel for matrices; per texel, the whole lightmap's passes besides).
 struct BakeFootprint {
-  int channels = 1;                ///< of the transfer the bake will return
-  std::size_t bytesPerVertex = 0;  ///< of the transfer
-  std::size_t transferBytes = 0;   ///< the returned transfer (the range's vertices)
-  std::size_t workingBytes = 0;    ///< full-mesh buffers for inter-reflection
+  int channels = 1;               ///< of the transfer the bake will return
+  std::size_t bytesPerRow = 0;    ///< of the transfer (per vertex, per texel)
+  std::size_t transferBytes = 0;  ///< the returned transfer (the range's rows)
+  std::size_t workingBytes = 0;   ///< whole-domain buffers (bounces; texels: the lightmaps)
 };
+/// Of a bake of settings.domain (per texel: settings.lightmap's texels).
 BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& settings);
 
 /// A mesh file's own glossy surface (Mesh::gloss: MTL Ks/Ns → phong, glTF metallic-roughness →
@@ -49,10 +50,12 @@ BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& settings);
 Material materialFromGloss(const SurfaceGloss& gloss);
 
 /// Bakes the transfer of mesh (whose triangles `occluder` was built from) under `settings`: a
-/// dense Transfer over the vertices settings.rows (count 0: to the last vertex), of
-/// settings.layout and settings.bands. Channels: 1, unless the mode is Interreflected and some
-/// bounce albedo (or, for glossy bounces, ks) is not grey, then 3 (the hit albedos are folded
-/// into the bounces; the albedo at the vertex itself is not).
+/// dense Transfer over the rows settings.rows (count 0: to the last) of settings.domain — the
+/// vertices, or the texels of settings.lightmap over mesh.lightmapUvs (bake_texels.hpp) — of
+/// settings.layout and settings.bands, computed on this process's threads (passes.hpp runs the
+/// same passes on MPI ranks or job-array shards). Channels: 1, unless the mode is
+/// Interreflected and some bounce albedo (or, for glossy bounces, ks) is not grey, then 3 (the
+/// hit albedos are folded into the bounces; the albedo at the row itself is not).
 /// Throws prt::Error on bad settings or mesh, or when the footprint would not fit in this
 /// machine's memory (the message states the figure); prt::Cancelled if `progress` returns false.
 Transfer bake(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,

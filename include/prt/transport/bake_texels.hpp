@@ -27,6 +27,7 @@
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transfer/bake_settings.hpp"
 #include "prt/transfer/transfer.hpp"
+#include "prt/transport/bake.hpp"
 
 namespace prt {
 
@@ -39,16 +40,14 @@ struct TexelBake {
   std::vector<std::uint32_t> invalid;
 };
 
-/// What a per-texel bake holds in memory, known before it starts (the channels rule is
-/// bakeFootprint's: RGB when a bounce's albedo, or a glossy bounce's ks, is coloured).
-struct TexelBakeFootprint {
-  int channels = 1;               ///< of the transfer the bake will return
-  std::size_t bytesPerTexel = 0;  ///< of the transfer
-  std::size_t transferBytes = 0;  ///< the returned transfer (the range's texels)
-  std::size_t workingBytes = 0;   ///< passes at the samples and their dilated lightmaps
-};
+/// What a per-texel bake holds in memory, known before it starts (bakeFootprint of the texel
+/// domain: the channels rule is the same, RGB when a bounce's albedo, or a glossy bounce's ks,
+/// is coloured; bytesPerRow is per texel).
+using TexelBakeFootprint = BakeFootprint;
 TexelBakeFootprint texelBakeFootprint(const Mesh& mesh, const BakeSettings& settings, int width,
                                       int height);
+/// `settings` over the texels of a width × height lightmap dilated `padding` rings.
+BakeSettings texelSettings(const BakeSettings& settings, int width, int height, int padding);
 
 /// Bakes settings.layout transfer at the covered texels of a width × height
 /// lightmap over `uvs` (one per vertex, checked by checkLightmapUvs), dilated `padding` rings

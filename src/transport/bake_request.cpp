@@ -1,0 +1,168 @@
+#include "prt/transport/bake_request.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "prt/core/band_limits.hpp"
+#include "prt/core/error.hpp"
+#include "prt/geometry/texel_sampling.hpp"
+#include "prt/transport/bake.hpp"
+#include "prt/transport/passes.hpp"
+
+namespace prt {
+
+std::string optionName(OptionSpelling spelling, const std::string& name) {
+  if (spelling == OptionSpelling::Cli) return "--" + name;
+  std::string s = name;
+  std::replace(s.begin(), s.end(), '-', '_');
+  return s + "=";
+}
+
+namespace {
+
+/// "--albedo" or "albedo": an option named without its value.
+std::string optionLabel(OptionSpelling spelling, const std::string& name) {
+  std::string s = optionName(spelling, name);
+  if (spelling == OptionSpelling::Python) s.pop_back();
+  return s;
+}
+
+/// "--bands 20" or "bands=20".
+std::string given(OptionSpelling spelling, const std::string& name, long long value) {
+  return optionName(spelling, name) + (spelling == OptionSpelling::Cli ? " " : "") +
+         std::to_string(value);
+}
+
+void checkRange(OptionSpelling spelling, const std::string& name, long long value, long long lo,
+                long long hi) {
+  if (value < lo || value > hi)
+    throw Error(given(spelling, name, value) + ": must be " + std::to_string(lo) + ".." +
+                std::to_string(hi));
+}
+
+}  // namespace
+
+void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
+  if (r.modes.empty()) throw Error("no " + optionName(spelling, "mode") + " given");
+  for (std::size_t i = 0; i < r.modes.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (r.modes[i] == r.modes[j])
+        throw Error(optionName(spelling, "mode") + (spelling == OptionSpelling::Cli ? " " : "") +
+                    toString(r.modes[i]) + " given twice");
+  checkRange(spelling, "bands", r.bands, 1, bands::kMaxBake);
+  checkRange(spelling, "samples", r.samples, 1, kMaxBakeSamples);
+  checkRange(spelling, "bounces", r.bounces, 0, kMaxBounces);
+  if (r.albedo)
+    for (float x : {r.albedo->x, r.albedo->y, r.albedo->z})
+      if (!(x >= 0.0f && x <= 1.0f))
+        throw Error(optionLabel(spelling, "albedo") + ": components must lie in [0, 1]");
+  if (r.material) checkMaterial(*r.material);
+  if (r.domain == TransferDomain::Texels) {
+    checkRange(spelling, "resolution", r.lightmap.resolution, 1, kMaxLightmapSide);
+    checkRange(spelling, "padding", r.lightmap.padding, 0, kMaxLightmapPadding);
+    const std::size_t texels = std::size_t(r.lightmap.resolution) * r.lightmap.resolution;
+    if (r.lightmap.seamFix && (r.rows.first > 0 || (r.rows.count && r.rows.count < texels)))
+      throw Error(optionName(spelling, "seam-fix") +
+                  " needs the whole lightmap (a seam joins texels of other ranges): bake the "
+                  "pieces without it, then fix the seams of the merged bake (prt merge "
+                  "--seam-fix)");
+  } else if (r.lightmap.seamFix) {
+    throw Error(optionName(spelling, "seam-fix") + " fixes the seams of a lightmap: add " +
+                (spelling == OptionSpelling::Cli ? "--domain texels" : "domain='texels'"));
+  }
+}
+
+Material bakeMaterial(const BakeRequest& r, const Mesh& mesh) {
+  Material m;
+  if (r.material)
+    m = *r.material;
+  else if (mesh.gloss)
+    m = materialFromGloss(*mesh.gloss);
+  if (r.albedo) m.diffuse = r.albedo;
+  return m;
+}
+
+BakeMeshPreparation prepareBakeMesh(Mesh& mesh, const BakeRequest& r) {
+  BakeMeshPreparation out;
+  if (!r.material && mesh.gloss)
+    out.notes.push_back("material from " + mesh.source + " ('" + mesh.gloss->material +
+                        "'): " + bakeMaterial(r, mesh).spec());
+  // A given albedo (or kd) replaces the mesh's own in the mesh the bake keeps, so that every
+  // consumer of the result relights with the albedo its bounces were baked with; it replaces
+  // the whole diffuse colour, the base-colour texture with it.
+  if (const std::optional<Rgb> kd = bakeMaterial(r, mesh).diffuse) {
+    mesh.albedo.assign(mesh.vertexCount(), *kd);
+    mesh.baseColour.reset();
+  }
+  if (r.domain != TransferDomain::Texels) return out;
+  const int n = r.lightmap.resolution;
+  LightmapUvChoice c = r.lightmap.uv == UvSetOption::Auto
+                           ? findLightmapUvs(mesh, r.lightmap.uv, n, n)
+                           : chooseLightmapUvs(mesh, r.lightmap.uv, n, n);
+  out.uvSetsRefused = c.refused;
+  if (c.uvs.empty()) {
+    out.lightmapUvsFound = false;
+    return out;
+  }
+  for (const std::string& why : c.refused)
+    out.notes.push_back(mesh.source + ": passed over " + why);
+  out.uvSetName = c.name;
+  out.notes.push_back(mesh.source + ": a " + std::to_string(n) + " x " + std::to_string(n) +
+                      " lightmap over its " + c.name + " (padding " +
+                      std::to_string(r.lightmap.padding) + ")");
+  if (c.uvs.data() != mesh.lightmapUvs.data()) mesh.lightmapUvs.assign(c.uvs.begin(), c.uvs.end());
+  return out;
+}
+
+BakeSettings bakeSettings(const BakeRequest& r, const Mesh& mesh, TransferMode mode) {
+  BakeSettings s;
+  s.mode = mode;
+  s.samples = static_cast<int>(r.samples);
+  s.bounces = effectiveBounces(mode, r.bounces);  // what a bake file records
+  s.seed = r.seed;
+  s.sampling = r.sampling;
+  s.material = bakeMaterial(r, mesh);
+  s.layout = r.layout;
+  s.bands = r.bands;
+  s.domain = r.domain;
+  if (r.domain == TransferDomain::Texels)
+    s.lightmap = {r.lightmap.resolution, r.lightmap.resolution, r.lightmap.padding, false};
+  s.rows = r.rows;
+  return s;
+}
+
+void refuseNonFinite(const Mesh& mesh, TransferMode mode, const Transfer& t) {
+  if (t.empty()) return;
+  const std::size_t stride = t.stride();
+  const FloatArray& values = t.values();
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (!std::isfinite(values[k]))
+      throw Error(mesh.source, std::string(toString(mode)) + " transfer of " +
+                                   rowName(t.domain()) + " " +
+                                   std::to_string(t.rows().first + k / stride) +
+                                   " is not finite (check the material albedos and "
+                                   "coordinates); nothing written");
+}
+
+std::vector<BakeResult> bake(const BakeRequest& request, const Mesh& mesh,
+                             const Occluder& occluder, PassExecutor& executor,
+                             const BakeObserver& observer) {
+  std::vector<BakeResult> results;
+  for (TransferMode mode : request.modes) {
+    BakeResult r;
+    r.settings = bakeSettings(request, mesh, mode);
+    if (observer.starting) observer.starting(r.settings);
+    TexelBakeInfo texels;
+    r.transfer = bake(mesh, occluder, r.settings, executor, &r.stats,
+                      observer.progress ? observer.progress(r.settings) : ProgressFn{},
+                      request.domain == TransferDomain::Texels ? &texels : nullptr);
+    r.texelsSampled = texels.samples.samples.size();
+    r.texelsInside = texels.inside.size();
+    refuseNonFinite(mesh, mode, r.transfer);
+    if (observer.finished) observer.finished(r);
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+}  // namespace prt
