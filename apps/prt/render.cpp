@@ -24,13 +24,11 @@
 #include "prt/io/bake_file.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/relight/relighter.hpp"
-#include "prt/render/base_colour.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/exposure.hpp"
 #include "prt/render/primary.hpp"
+#include "prt/render/relit_view.hpp"
 #include "prt/render/render.hpp"
-#include "prt/render/texel_points.hpp"
 #include "reference_input.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
@@ -122,43 +120,19 @@ void run(const RenderOptions& o) {
                      "send each other (bake again for both)");
   warnLobeOnVectors(material, baked, o.bake,
                     "the material's glossy lobe needs a matrix bake (prt bake --transfer matrix)");
-  // Every frame through one relighter: the transfer cut to --bands once (Transfer::cut, the same
-  // answer for dense and compressed rows), light-only frames of matrices from the view-collapsed
-  // transfer.
-  // Per-texel transfer is relit texel by texel (render::texelRelight: vectors white, the albedo
-  // applied per pixel; matrices at the texels' sample points), then fetched bilinearly where
-  // each pixel's lightmap UV falls.
-  const bool texels = baked.transfer.domain() == TransferDomain::Texels;
-  const TransferShape::LightmapSize lightmap = bake.lightmap();
+  // Every frame through one view (render/relit_view.hpp): the transfer cut to --bands once, per
+  // vertex or per texel, the base-colour texture per pixel.
   const auto occluder = makeEmbreeOccluder(bake.mesh);
-  const render::TexelRelight texelRelight =
-      texels ? render::texelRelight(bake.mesh, *occluder, baked.transfer, material)
-             : render::TexelRelight{};
-  const relight::Surface surface =
-      texels ? texelRelight.surface()
-             : relight::Surface{bake.mesh.positions, bake.mesh.normals, bake.mesh.albedo};
-  // The base-colour texture multiplies the diffuse radiance per pixel (render/base_colour.hpp);
-  // under a glossy matrix material the highlight is relit apart and added untextured.
-  const BaseColourTexture* texture = render::pixelTexture(bake.mesh, material);
-  const render::TextureSplit split = render::splitForTexture(material, texture, baked.transfer);
-  relight::Relighter relighter(baked.transfer, surface);
-  relighter.setMaterial(split.diffuse);
-  std::optional<relight::Relighter> glossyRelighter;
-  if (split.glossy) {
-    glossyRelighter.emplace(baked.transfer, surface);
-    glossyRelighter->setMaterial(*split.glossy);
-  }
+  render::RelitView view(bake.mesh, *occluder, baked.transfer, material);
   if (o.bands > baked.transfer.bands())
     warn(fmt::format("--bands {}: the bake has only {} bands; using {}", o.bands,
                      baked.transfer.bands(), baked.transfer.bands()));
-  if (o.bands > 0) relighter.setBands(std::min(o.bands, baked.transfer.bands()));
-  if (o.bands > 0 && glossyRelighter)
-    glossyRelighter->setBands(std::min(o.bands, baked.transfer.bands()));
-  if (baked.transfer.isMatrix()) warnLobeEnergyLoss(material, relighter.bands(), o.bake);
+  if (o.bands > 0) view.setBands(std::min(o.bands, baked.transfer.bands()));
+  if (baked.transfer.isMatrix()) warnLobeEnergyLoss(material, view.bands(), o.bake);
 
   // The light: an SH light file, or an environment projected to the transfer's bands.
   const io::Lighting lighting =
-      io::loadLighting(o.light, relighter.bands(), progressBar("projecting"));
+      io::loadLighting(o.light, view.bands(), progressBar("projecting"));
   for (const std::string& w : lighting.warnings) warn(w);
   const sh::RgbSh& light = lighting.coefficients;
 
@@ -170,9 +144,9 @@ void run(const RenderOptions& o) {
   // --reference: the brute-force radiance of `prt reference` at every vertex, drawn as PRT's
   // would be (the same camera, background and exposure rule), if it is of this scene.
   std::vector<Rgb> referenceRadiance;
-  if (!o.reference.empty() && texels)
+  if (!o.reference.empty() && !view.perVertex())
     throw Error(o.reference, "--reference draws a per-vertex reference; " + o.bake +
-                                 " holds per-texel transfer");
+                                 " holds per-" + view.rowNoun() + " transfer");
   if (!o.reference.empty()) {
     if (lighting.isShFile())
       throw Error(o.light,
@@ -205,37 +179,23 @@ void run(const RenderOptions& o) {
     const Mat3d rotation = o.turntable > 0
                                ? rotationAxisAngle({0, 1, 0}, 2 * kPi * k / frames) * userRotation
                                : userRotation;
-    // Matrix transfer is view-dependent: each vertex is seen from the camera's eye.
-    relight::RelightInfo relit;
-    const std::span<const Rgb> radiance =
-        referenceRadiance.empty() ? relighter.relight(light, rotation, camera.eye, &relit)
-                                  : std::span<const Rgb>(referenceRadiance);
-    if (!referenceRadiance.empty()) relit.bands = 0;  // no SH: the reference
-    render::checkFiniteRadiance(radiance, o.bake, rowName(baked.transfer.domain()));
-    const auto draw = [&](std::span<const Rgb> values, std::span<const Rgb> pixelAlbedo) {
-      return texels ? render::texelRadianceShader(bake.mesh, values, lightmap.width,
-                                                  lightmap.height, pixelAlbedo)
-                    : render::vertexRadianceShader(bake.mesh, values);
-    };
-    render::ShadeFn shade = draw(radiance, texelRelight.pixelAlbedo);
-    // The reference's radiance holds the texture already, folded in at its vertices as every
+    // Matrix transfer is view-dependent: each row is seen from the camera's eye. The
+    // reference's radiance holds the texture already, folded in at its vertices as every
     // per-vertex stage sees it (geometry/mesh.hpp): drawn as it is.
-    if (texture && referenceRadiance.empty()) {
-      render::ShadeFn glossy;
-      if (glossyRelighter && referenceRadiance.empty()) {
-        const std::span<const Rgb> highlight =
-            glossyRelighter->relight(light, rotation, camera.eye);
-        render::checkFiniteRadiance(highlight, o.bake, rowName(baked.transfer.domain()));
-        glossy = draw(highlight, {});
-      }
-      shade = render::texturedShader(bake.mesh, *texture, std::move(shade), std::move(glossy));
+    relight::RelightInfo relit;
+    render::ShadeFn shade;
+    if (referenceRadiance.empty()) {
+      view.relight(light, rotation, camera.eye, o.bake, &relit);
+      shade = view.shader();
+    } else {
+      shade = view.shader(referenceRadiance);
     }
     // --exposure auto: image/exposure.hpp's rule on the first frame's model pixels, kept for
     // every turntable frame so they compare.
     if (k == 0)
-      write.exposureStops = exposure ? *exposure
-                                     : render::autoExposure(*occluder, shade, camera, frame.width,
-                                                            frame.height, write.toneMap);
+      write.exposureStops =
+          exposure ? *exposure : render::autoExposure(*occluder, shade, camera, frame.width,
+                                                      frame.height, write.toneMap);
     render::BackgroundFn bg;
     switch (kind) {
       case render::Background::Env:

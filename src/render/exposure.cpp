@@ -7,6 +7,7 @@
 #include "prt/core/parallel.hpp"
 #include "prt/image/exposure.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/render/relit_view.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/texel_points.hpp"
 
@@ -53,21 +54,11 @@ float autoExposure(const Occluder& occluder, const ShadeFn& shade, const Camera&
 float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& material,
                     const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera, int width,
                     int height, image::ToneMap op, int bands) {
-  const Transfer shown = bands > 0 && bands < transfer.bands() ? transfer.cut(bands) : transfer;
   const auto occluder = makeEmbreeOccluder(mesh);
-  if (transfer.domain() == TransferDomain::Texels) {
-    // As prt render (texelRelight), fetched bilinearly at each pixel's lightmap UV.
-    const TexelRelight how = texelRelight(mesh, *occluder, shown, material);
-    const std::vector<Rgb> radiance =
-        relight::relight(shown, light, material, how.surface(), camera.eye, rotation);
-    const TransferShape::LightmapSize lm = transfer.shape().lightmap;
-    return autoExposure(*occluder,
-                        texelRadianceShader(mesh, radiance, lm.width, lm.height, how.pixelAlbedo),
-                        camera, width, height, op);
-  }
-  const std::vector<Rgb> radiance = relight::relight(
-      shown, light, material, {mesh.positions, mesh.normals, mesh.albedo}, camera.eye, rotation);
-  return autoExposure(mesh, *occluder, radiance, camera, width, height, op);
+  RelitView view(mesh, *occluder, transfer, material);
+  if (bands > 0 && bands < transfer.bands()) view.setBands(bands);
+  view.relight(light, rotation, camera.eye, mesh.source);
+  return view.autoExposure(camera, width, height, op);
 }
 
 }  // namespace prt::render

@@ -1,0 +1,75 @@
+#pragma once
+// A bake as a picture shows it, on the CPU: its transfer over the mesh with a material, relit
+// under an SH light rotated at will and seen from an eye, and how each pixel is shaded from the
+// rows — the one dispatch point for the domain and the base-colour texture that prt render,
+// auto exposure (relitExposure: the viewers' and the page's first exposure) and the bake
+// fuzzer draw through:
+//
+//   per vertex   rows relit at the vertices, blended with the hit's barycentrics
+//                (vertexRadianceShader);
+//   per texel    rows relit as texelRelight says (vectors white with the albedo per pixel,
+//                matrices at the texels' sample points), fetched bilinearly at the hit's
+//                lightmap UV (texelRadianceShader);
+//   textured     the base-colour texture multiplies the diffuse part per pixel, a glossy
+//                matrix lobe relit apart and added untextured (render/base_colour.hpp).
+
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "prt/geometry/mesh.hpp"
+#include "prt/image/color.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/relight/relighter.hpp"
+#include "prt/render/camera.hpp"
+#include "prt/render/render.hpp"
+#include "prt/render/texel_points.hpp"
+#include "prt/sh/sh.hpp"
+#include "prt/transfer/material.hpp"
+#include "prt/transfer/transfer.hpp"
+
+namespace prt::render {
+
+class RelitView {
+ public:
+  /// `mesh`, `occluder` (built from it) and `transfer` (complete, over the mesh's vertices or
+  /// its lightmap) must outlive the view.
+  RelitView(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+            const Material& material);
+
+  /// Cuts the transfer to `bands` (1..its bands) for the relights that follow.
+  void setBands(int bands);
+  int bands() const { return relighter_.bands(); }
+  const Material& material() const { return material_; }
+  /// "vertex" or "texel": what a row is, for messages.
+  const char* rowNoun() const;
+  /// True when the rows are the mesh's vertices (other radiance can be drawn: shader(rows)).
+  bool perVertex() const { return transfer_.domain() == TransferDomain::Vertices; }
+
+  /// Relights every row under `light` rotated by `rotation`, seen from `eye` (matrices): the
+  /// rows' radiance (the part the texture multiplies, when the mesh is textured). Throws
+  /// prt::Error naming `name` when a row's radiance is not finite.
+  std::span<const Rgb> relight(const sh::RgbSh& light, const Mat3d& rotation, const Vec3f& eye,
+                               const std::string& name, relight::RelightInfo* info = nullptr);
+  /// The pixels of the last relight.
+  ShadeFn shader() const;
+  /// The pixels of other radiance at the rows (a reference's, drawn as PRT's would be; per
+  /// vertex, untextured: it holds the texture already).
+  ShadeFn shader(std::span<const Rgb> rowRadiance) const;
+  /// image::autoExposure of the last relight's pixels of the mesh (render/exposure.hpp), for an
+  /// image of `width` × `height` through `camera` tone-mapped with `op`.
+  float autoExposure(const Camera& camera, int width, int height, image::ToneMap op) const;
+
+ private:
+  const Mesh& mesh_;
+  const Occluder& occluder_;
+  const Transfer& transfer_;
+  Material material_;
+  TexelRelight texels_;  ///< per texel: how the rows are relit and drawn
+  const BaseColourTexture* texture_ = nullptr;
+  relight::Relighter relighter_;
+  std::optional<relight::Relighter> glossy_;  ///< the lobe, relit apart under a texture
+  std::span<const Rgb> highlight_;
+};
+
+}  // namespace prt::render
