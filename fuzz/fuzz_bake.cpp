@@ -1,5 +1,34 @@
-// The bake file (.glb with _PRT attributes and the PRTKIT_radiance_transfer extension) through prt::decodeBake.
+// The bake file (.glb with _PRT attributes and the PRTKIT_radiance_transfer extension) through
+// prt::decodeBake, and then past decoding, as every verb uses what it decoded: each transfer of a
+// small complete bake relit (render::RelitView: per vertex or per texel, whose rows are sampled
+// over the lightmap UVs) and drawn into a tiny image. A reader that decodes what its users then
+// crash on (a lightmap UV of 1e9 once did) is a finding here too.
 #include "fuzz_common.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/render/camera.hpp"
+#include "prt/render/primary.hpp"
+#include "prt/render/relit_view.hpp"
 
-PRT_FUZZ_TARGET(prt::decodeBake(prt::fuzz::bytes(data, size), "fuzz.glb"))
+namespace {
+
+void decodeAndDraw(std::span<const unsigned char> bytes) {
+  const prt::BakeFile f = prt::decodeBake(bytes, "fuzz.glb");
+  // Small complete bakes only: the fuzzer explores the readers, not long relights.
+  if (!f.complete() || f.mesh.vertexCount() > 4096 || f.domainRows() > (1u << 16)) return;
+  const auto occluder = prt::makeEmbreeOccluder(f.mesh);
+  prt::render::FrameSettings frame;
+  frame.width = 16, frame.height = 12, frame.spp = 1;
+  const prt::render::Camera camera = prt::render::frameMesh(f.mesh, frame.width, frame.height);
+  for (const prt::BakedTransfer& t : f.transfers) {
+    prt::render::RelitView view(f.mesh, *occluder, t.transfer, t.recipe.material);
+    prt::sh::RgbSh light(view.bands());
+    light.c[0] = prt::Rgb(3.5449077f);  // a white sky: L00 = √(4π)
+    view.relight(light, prt::Mat3d::identity(), camera.eye, "fuzz.glb");
+    (void)prt::render::tracePrimary(camera, frame, *occluder, view.shader(), {}, {});
+  }
+}
+
+}  // namespace
+
+PRT_FUZZ_TARGET(decodeAndDraw(prt::fuzz::bytes(data, size)))

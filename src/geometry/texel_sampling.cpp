@@ -109,8 +109,11 @@ void forEachCoveredTexel(const Mesh& mesh, std::span<const Vec2f> uvs, std::size
   if (!(std::abs(area2) > 1e-12)) return;
   const double lox = std::min({p[0].x, p[1].x, p[2].x}), hix = std::max({p[0].x, p[1].x, p[2].x});
   const double loy = std::min({p[0].y, p[1].y, p[2].y}), hiy = std::max({p[0].y, p[1].y, p[2].y});
-  const int x0 = std::max(0, int(std::floor(lox))), x1 = std::min(W - 1, int(std::ceil(hix)) - 1);
-  const int y0 = std::max(0, int(std::floor(loy))), y1 = std::min(H - 1, int(std::ceil(hiy)) - 1);
+  // Clamped in double before the conversion: a UV far outside [0, 1]² (a corrupt file) must not
+  // overflow int and sweep a range of texels that does not exist.
+  const auto cell = [](double v, int n) { return int(std::clamp(v, -1.0, double(n))); };
+  const int x0 = std::max(0, cell(std::floor(lox), W)), x1 = std::min(W - 1, cell(std::ceil(hix), W) - 1);
+  const int y0 = std::max(0, cell(std::floor(loy), H)), y1 = std::min(H - 1, cell(std::ceil(hiy), H) - 1);
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) {
       const P2 c{x + 0.5, y + 0.5};
@@ -143,14 +146,7 @@ void checkLightmapUvs(const Mesh& mesh, std::span<const Vec2f> uvs, int width, i
                       const std::string& what) {
   checkSize(width, height, mesh.source);
   checkUvCount(mesh, uvs, what);
-  for (std::size_t v = 0; v < uvs.size(); ++v) {
-    const Vec2f t = uvs[v];
-    if (!std::isfinite(t.x) || !std::isfinite(t.y) || t.x < -1e-6f || t.x > 1 + 1e-6f ||
-        t.y < -1e-6f || t.y > 1 + 1e-6f)
-      throw Error(mesh.source, what + " of vertex " + std::to_string(v) + " is (" +
-                                   std::to_string(t.x) + ", " + std::to_string(t.y) +
-                                   "), outside [0, 1]^2: a lightmap needs every chart inside it");
-  }
+  checkUvsInside(mesh, uvs, what);
   std::vector<std::int32_t> owner(std::size_t(width) * height, -1);
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     forEachCoveredTexel(
@@ -165,6 +161,23 @@ void checkLightmapUvs(const Mesh& mesh, std::span<const Vec2f> uvs, int width, i
                             "); a lightmap needs a UV set without overlaps");
           owner[texel] = static_cast<std::int32_t>(t);
         });
+}
+
+std::optional<std::size_t> firstUvOutside(std::span<const Vec2f> uvs) {
+  for (std::size_t v = 0; v < uvs.size(); ++v) {
+    const Vec2f t = uvs[v];
+    if (!std::isfinite(t.x) || !std::isfinite(t.y) || t.x < -1e-6f || t.x > 1 + 1e-6f ||
+        t.y < -1e-6f || t.y > 1 + 1e-6f)
+      return v;
+  }
+  return std::nullopt;
+}
+
+void checkUvsInside(const Mesh& mesh, std::span<const Vec2f> uvs, const std::string& what) {
+  if (const auto v = firstUvOutside(uvs))
+    throw Error(mesh.source, what + " of vertex " + std::to_string(*v) + " is (" +
+                                 std::to_string(uvs[*v].x) + ", " + std::to_string(uvs[*v].y) +
+                                 "), outside [0, 1]^2: a lightmap needs every chart inside it");
 }
 
 TexelSamples sampleTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height) {

@@ -293,6 +293,15 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     r.fail("a partial bake without transfers");
   if (bake.transfers.empty() && domain == TransferDomain::Texels)
     r.fail("a per-texel bake without transfers");
+  // The UVs a per-texel bake is over: what its bake could have used (finite, inside [0, 1]²),
+  // checked here so that no reader's sampling meets a corrupt one.
+  if (domain == TransferDomain::Texels)
+    if (const auto v = firstUvOutside(bake.mesh.lightmapUvs)) {
+      const Vec2f t = bake.mesh.lightmapUvs[*v];
+      r.fail("the lightmap UV of vertex " + std::to_string(*v) + " is (" + std::to_string(t.x) +
+             ", " + std::to_string(t.y) + "), outside [0, 1]^2 (a per-texel bake's UVs lie "
+             "inside it)");
+    }
   return bake;
 }
 

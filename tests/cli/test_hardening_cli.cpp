@@ -12,8 +12,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -306,6 +308,36 @@ TEST_F(HardeningCli, AlbedoOverrideReachesEveryConsumer) {
   const std::size_t at = json.rfind("\"energyWeightedRelErr\": ");
   ASSERT_NE(at, std::string::npos) << json;
   EXPECT_LT(std::stod(json.substr(at + 24)), 0.05) << json;
+}
+
+TEST_F(HardeningCli, ACorruptLightmapUvIsRefusedByEveryReader) {
+  // One flipped exponent byte in a per-texel bake's lightmap UVs (a UV of ~1e9) once made the
+  // texel rasteriser sweep texels that do not exist: every reader segfaulted. Now the reader
+  // refuses the file in one line naming it, and the sampler clamps what it is given.
+  ASSERT_EQ(prt("-q bake 'builtin:cornell?grid=4' --mode shadowed --domain texels --resolution 16 "
+                "--samples 8 -o box.glb")
+                .rc,
+            0);
+  const BakeFile box = readBake(path("box.glb"));
+  ASSERT_FALSE(box.mesh.lightmapUvs.empty());
+  std::ifstream in(path("box.glb"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  // The first lightmap UVs as the file stores them (little-endian floats, then patched).
+  std::string pattern(16, '\0');
+  std::memcpy(pattern.data(), box.mesh.lightmapUvs.data(), 16);
+  const std::size_t at = bytes.find(pattern);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_EQ(bytes.find(pattern, at + 1), std::string::npos) << "the UVs are found once";
+  bytes[at + 3] = static_cast<char>(0x4e);  // u of vertex 0: exponent byte -> ~1e9
+  std::ofstream(path("bad.glb"), std::ios::binary) << bytes;
+  for (const std::string& verb :
+       {std::string("info bad.glb"), std::string("render bad.glb --light builtin:sky -o out/x.png"),
+        std::string("validate bad.glb --light builtin:sky --reference-samples 8 --vertices 10"),
+        std::string("reference bad.glb --light builtin:sky --samples 8 -o out/r.json"),
+        std::string("export bad.glb --format exr -o out/t"),
+        std::string("compress bad.glb --clusters 2 --pca 1 -o out/c.glb"),
+        std::string("web bad.glb --env builtin:sky -o out/w")})
+    expectCleanFailure(verb, "lightmap UV of vertex 0");
 }
 
 }  // namespace

@@ -103,6 +103,23 @@ TEST(TexelSampling, CoverageIsConservativeAgainstSupersampling) {
   EXPECT_GT(thin, 20) << "the slivers must be sampled off-centre";
 }
 
+TEST(TexelSampling, AUvOfAnySizeSweepsOnlyTheLightmap) {
+  // A corrupt file's UV of ~1e9 (one flipped exponent byte) once overflowed the texel bounds
+  // and swept memory that is not the lightmap. Now it is clipped: the samples are the quad's
+  // own, and the checks name the vertex.
+  for (const float huge : {8e8f, -3e9f, 3.4e38f}) {
+    const Mesh m = uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {huge, 0.5f}},
+                          {{0, 1, 2}, {0, 2, 3}, {1, 4, 2}});
+    const TexelSamples s = sampleTexels(m, m.uvs, 16, 16);
+    EXPECT_EQ(s.samples.size(), 256u) << huge;
+    for (const TexelSample& t : s.samples) EXPECT_LT(t.texel, 256u);
+    EXPECT_EQ(firstUvOutside(m.uvs), std::optional<std::size_t>(4)) << huge;
+    EXPECT_NE(errorOf([&] { checkLightmapUvs(m, m.uvs, 16, 16, "the UVs"); })
+                  .find("the UVs of vertex 4 is"),
+              std::string::npos);
+  }
+}
+
 TEST(TexelSampling, SharedEdgesGoToOneTriangleDeterministically) {
   // Two triangles meeting along the diagonal through texel centres of an 8 × 8 map.
   const Mesh m = uvMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0, 1, 2}, {0, 2, 3}});

@@ -5,6 +5,7 @@
 // bilinear filtering at a chart's edge never reads an empty texel.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,10 +27,18 @@ inline constexpr int kMaxLightmapPadding = 64;
 void checkLightmapUvs(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height,
                       const std::string& what);
 
+/// The first vertex whose UV in `uvs` is not finite or lies outside [0, 1]² (to 1e-6), if any.
+std::optional<std::size_t> firstUvOutside(std::span<const Vec2f> uvs);
+/// Throws prt::Error naming the mesh and the first vertex firstUvOutside finds: what every lightmap needs, and what every reader of a per-texel
+/// bake checks before it samples (a corrupt UV must never reach the rasteriser).
+void checkUvsInside(const Mesh& mesh, std::span<const Vec2f> uvs, const std::string& what);
+
 /// One sample per texel covered by a triangle in UV space (texel_samples.hpp has the rule).
 /// Where several triangles cover one texel (along a shared edge) the one holding its centre
 /// wins, else the nearest, ties to the lower triangle index: deterministic. Triangles with no
-/// UV area are skipped. Throws prt::Error on a size out of 1..kMaxLightmapSide or UVs that do
+/// UV area are skipped; the parts of triangles outside [0, 1]² are clipped away (a UV of any
+/// size sweeps only the lightmap's texels). Throws prt::Error on a size out of
+/// 1..kMaxLightmapSide or UVs that do
 /// not match the mesh.
 TexelSamples sampleTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height);
 
