@@ -30,12 +30,17 @@
 // PRT_LIGHTMAP_CPCA), which relights the four texels of prt render's bilinear fetch per pixel
 // (shaders/prt_lightmap.glsl).
 // Truncating to b < B bands only shortens the shaders' loops: nothing is re-uploaded.
+//
+// Sources: renderer.cpp (programs and uploads), renderer_draw.cpp (the frame),
+// framebuffer_readback.cpp (readLinear), over gl_uploads and shader_programs.
 
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
 
+// OffscreenTarget and readFramebufferEncoded, which the renderer's users read frames back with.
+#include "framebuffer_readback.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/vec.hpp"
 #include "prt/geometry/mesh.hpp"
@@ -71,25 +76,6 @@ struct FrameParams {
   float exposureStops = 0.0f;
   image::ToneMap toneMap = image::ToneMap::Aces;
 };
-
-/// An RGBA8 colour framebuffer object for offscreen display output (headless mode).
-class OffscreenTarget {
- public:
-  OffscreenTarget(int width, int height);
-  ~OffscreenTarget();
-  OffscreenTarget(const OffscreenTarget&) = delete;
-  OffscreenTarget& operator=(const OffscreenTarget&) = delete;
-  unsigned fbo() const { return fbo_; }
-  /// The tone-mapped sRGB pixels as an image of codes / 255 (top row first).
-  image::Image readEncoded() const;
-
- private:
-  int width_, height_;
-  unsigned fbo_ = 0, colour_ = 0;
-};
-
-/// Reads an 8-bit framebuffer (0: the window's back buffer) as codes / 255, top row first.
-image::Image readFramebufferEncoded(unsigned fbo, int width, int height);
 
 class Renderer {
  public:
