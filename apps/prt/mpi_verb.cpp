@@ -3,13 +3,67 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
+
+#if PRT_HAVE_MPI
+#include <signal.h>
+#include <unistd.h>
+#endif
 
 #include "cli.hpp"
 #include "prt/core/error.hpp"
 
 namespace prt::cli {
+
+#if PRT_HAVE_MPI
+namespace {
+
+// A rank that dies ends the job with one line naming it and what it was doing, and no output
+// (docs/distributed.md). The library writes that line; printing it and ending the process are
+// ours. Two paths lead here, and the library lets only the first of them report: rank 0's
+// watch (FatalFn, below) and the SIGTERM the runtime (mpirun, srun) sends when a rank exits.
+
+constexpr int kExitRankDied = 1;
+constexpr int kExitTerminated = 128 + SIGTERM;  // 143, as if SIGTERM had ended us
+
+/// Writes all of [s, s + n) to stderr; async-signal-safe.
+void writeAll(const char* s, std::size_t n) {
+  while (n > 0) {
+    const ssize_t k = ::write(STDERR_FILENO, s, n);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) return;
+    s += k;
+    n -= static_cast<std::size_t>(k);
+  }
+}
+
+// In static storage, not on the stack of whatever thread the signal lands on.
+char g_terminationLine[distributed::kTerminationLineBytes];
+
+/// Rank 0's SIGTERM handler: the line the library writes for the situation (the dead rank if it
+/// ran on this host, else every rank's work), then leave at once. Only async-signal-safe calls:
+/// describeTermination, write(2), _exit(2).
+extern "C" void onTerminate(int) {
+  const distributed::Termination t =
+      distributed::describeTermination(g_terminationLine, sizeof g_terminationLine);
+  writeAll(g_terminationLine, t.length);
+  ::_exit(t.cause == distributed::Termination::Cause::RankDied ? kExitRankDied : kExitTerminated);
+}
+
+void setTerminateHandler(void (*handler)(int)) {
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof sa);
+  sa.sa_handler = handler;
+  sigemptyset(&sa.sa_mask);
+  ::sigaction(SIGTERM, &sa, nullptr);
+}
+
+}  // namespace
+#endif
 
 void refuseUnjoinedCopies(const std::string& verb) {
   const auto count = [](const char* name) {
@@ -37,16 +91,31 @@ MpiVerb::MpiVerb(const std::string& verb, bool refuseCopies) {
   if (refuseCopies) refuseUnjoinedCopies(verb);
 #if PRT_HAVE_MPI
   if (!distributed::launchedByMpi()) return;
+  // The watch calls this from rank 0's coordinator thread while the main thread may be
+  // computing: so _exit, not exit (no static destructors or atexit handlers, MPI's among them,
+  // racing that thread); the runtime then ends the other ranks.
   session_ = std::make_unique<distributed::Session>(verb, [verb](const std::string& line) {
     std::cerr << verb << ": error: " << line << std::endl;
+    std::fflush(stderr);
+    ::_exit(kExitRankDied);
   });
-  if (!session_->root()) globals().quiet = globals().silent = true;
+  if (session_->root())
+    setTerminateHandler(onTerminate);
+  else
+    globals().quiet = globals().silent = true;
 #else
   (void)verb;
 #endif
 }
 
-MpiVerb::~MpiVerb() = default;
+MpiVerb::~MpiVerb() {
+#if PRT_HAVE_MPI
+  // Taken down before MPI_Finalize: the ranks of a job that ends may be stopped, and that is no
+  // failure to report. When the session leaves MPI as it is (this rank failed alone and is
+  // unwinding), the handler stays: the job is failing, and a SIGTERM that ends it still says why.
+  if (session_ && session_->root() && session_->willFinalize()) setTerminateHandler(SIG_DFL);
+#endif
+}
 
 bool MpiVerb::active() const {
 #if PRT_HAVE_MPI
@@ -132,8 +201,9 @@ std::vector<std::string> MpiVerb::bakeExchange(const PassExecutor& executor) con
   if (!ranks || !root()) return lines;
   const distributed::RunReport& rep = ranks->report();
   if (rep.spilled)
-    lines.push_back("rank 0 kept the transfer in a mapped scratch file beside the output, not "
-                    "in memory");
+    lines.push_back(
+        "rank 0 kept the transfer in a mapped scratch file beside the output, not "
+        "in memory");
   for (std::size_t j = 0; j < rep.jobs.size(); ++j) {
     const distributed::JobStats& js = rep.jobs[j];
     // What moved: each rank receives the rows it did not compute, (N − 1) × the pass's bytes

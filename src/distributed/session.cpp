@@ -20,44 +20,85 @@ namespace prt::distributed {
 
 namespace {
 
-// What the SIGTERM handler and the watch read: plain arrays set up once by the session, each
-// rank's activity line double-buffered so that a handler never reads one being written.
-constexpr std::size_t kLine = 400;
+// What describeTermination and the watch read: plain arrays set up once by the session, each
+// rank's activity line double-buffered so that a signal handler never reads one being written.
+constexpr std::size_t kLine = 400;    ///< bytes of a rank's activity line, NUL included
+constexpr std::size_t kPrefix = 160;  ///< bytes of "prt bake: error: ", NUL included
+constexpr int kNamedRanks = 64;       ///< ranks a "stopped" line names, so it stays readable
 struct WatchState {
   int size = 0;
   std::vector<long> pid;
   std::vector<char> local;  ///< on the root's host
   std::vector<char> lines;  ///< size × 2 × kLine
   std::unique_ptr<std::atomic<int>[]> which;
-  char prefix[160] = {};
+  char prefix[kPrefix] = {};
   FatalFn fatal;
 };
 WatchState* g_watch = nullptr;
-std::atomic<bool> g_reported{false};
+// Set by whoever reports the end first (the watch or the SIGTERM handler), so that one line is
+// printed. atomic_flag: the one atomic type sure to be lock-free, hence usable in a handler.
+std::atomic_flag g_reported = ATOMIC_FLAG_INIT;
+static_assert(std::atomic<int>::is_always_lock_free, "the handler reads `which`");
+// The longest "stopped" line: the prefix, the fixed words, and per named rank "; rank NN was "
+// and its activity.
+static_assert(kTerminationLineBytes >= kPrefix + 160 + kNamedRanks * (16 + kLine),
+              "describeTermination's line must fit the room the header promises");
 
 const char* activityOf(int r) {
   const WatchState& w = *g_watch;
   return &w.lines[(static_cast<std::size_t>(r) * 2 + w.which[r].load()) * kLine];
 }
 
-// Async-signal-safe pieces for the handler: write(2) of fixed buffers and integers.
-void put(const char* s) {
-  const ssize_t ignored = ::write(STDERR_FILENO, s, std::strlen(s));
-  (void)ignored;
+/// Builds a line in a caller's buffer with no allocation and no lock, so the SIGTERM handler
+/// can use it; what does not fit is cut, keeping room for the newline and the NUL.
+class LineWriter {
+ public:
+  LineWriter(char* out, std::size_t size) : out_(out), size_(size) {
+    if (size_) out_[0] = 0;
+  }
+  void add(const char* s) {
+    while (*s && n_ + 2 < size_) out_[n_++] = *s++;
+  }
+  void addInt(long v) {
+    char buf[24];
+    int i = 23;
+    buf[i] = 0;
+    const bool neg = v < 0;
+    unsigned long u = neg ? 0UL - static_cast<unsigned long>(v) : static_cast<unsigned long>(v);
+    do {
+      buf[--i] = static_cast<char>('0' + u % 10);
+      u /= 10;
+    } while (u && i > 1);
+    if (neg) buf[--i] = '-';
+    add(buf + i);
+  }
+  /// Ends the line with a newline (when `newline`) and a NUL; returns its length, NUL excluded.
+  std::size_t finish(bool newline) {
+    if (size_ < 2) return 0;
+    if (newline) out_[n_++] = '\n';
+    out_[n_] = 0;
+    return n_;
+  }
+
+ private:
+  char* out_;
+  std::size_t size_;
+  std::size_t n_ = 0;
+};
+
+/// "rank R (pid P) died while ACTIVITY; stopped, no output written": the watch's line and the
+/// handler's, one text.
+void addDeadRank(LineWriter& line, int r) {
+  const WatchState& w = *g_watch;
+  line.add("rank ");
+  line.addInt(r);
+  line.add(" (pid ");
+  line.addInt(w.pid[r]);
+  line.add(") died while ");
+  line.add(activityOf(r));
+  line.add("; stopped, no output written");
 }
-void putInt(long v) {
-  char buf[24];
-  int i = 23;
-  buf[i] = 0;
-  const bool neg = v < 0;
-  unsigned long u = neg ? static_cast<unsigned long>(-v) : static_cast<unsigned long>(v);
-  do {
-    buf[--i] = static_cast<char>('0' + u % 10);
-    u /= 10;
-  } while (u && i > 1);
-  if (neg) buf[--i] = '-';
-  put(buf + i);
-}
+
 /// Whether a local process has exited (gone, or a zombie not yet reaped by its launcher, which
 /// still answers kill(pid, 0)). Async-signal-safe, so the watch and the SIGTERM handler share it.
 bool processGone(long pid) {
@@ -84,35 +125,6 @@ bool processGone(long pid) {
   return paren && paren[1] == ' ' && (paren[2] == 'Z' || paren[2] == 'X');
 }
 
-/// The runtime (mpirun, srun) ends the job with SIGTERM when a rank dies: name the rank that
-/// died if it ran on this host, else every rank's work, in one line; then leave.
-extern "C" void onTerminate(int) {
-  if (!g_watch || g_reported.exchange(true)) ::_exit(143);
-  const WatchState& w = *g_watch;
-  for (int r = 1; r < w.size; ++r)
-    if (w.local[r] && processGone(w.pid[r])) {
-      put(w.prefix);
-      put("rank ");
-      putInt(r);
-      put(" (pid ");
-      putInt(w.pid[r]);
-      put(") died while ");
-      put(activityOf(r));
-      put("; stopped, no output written\n");
-      ::_exit(1);
-    }
-  put(w.prefix);
-  put("the MPI runtime stopped the job (a rank on another host died, or the job was killed):");
-  for (int r = 0; r < w.size && r < 64; ++r) {
-    put(r ? "; rank " : " rank ");
-    putInt(r);
-    put(" was ");
-    put(activityOf(r));
-  }
-  put("; no output written\n");
-  ::_exit(143);
-}
-
 std::uint64_t hostHash() {
   char name[256] = {};
   ::gethostname(name, sizeof name - 1);
@@ -122,6 +134,34 @@ std::uint64_t hostHash() {
 }
 
 }  // namespace
+
+Termination describeTermination(char* buffer, std::size_t size) noexcept {
+  LineWriter line(buffer, size);
+  Termination t;
+  if (!g_watch || g_reported.test_and_set()) return t;
+  const WatchState& w = *g_watch;
+  line.add(w.prefix);
+  // The rank that died, if it ran on this host.
+  for (int r = 1; r < w.size; ++r)
+    if (w.local[r] && processGone(w.pid[r])) {
+      addDeadRank(line, r);
+      t.cause = Termination::Cause::RankDied;
+      t.length = line.finish(true);
+      return t;
+    }
+  // Else every rank's work: one of them, elsewhere, is the one that died.
+  line.add("the MPI runtime stopped the job (a rank on another host died, or the job was killed):");
+  for (int r = 0; r < w.size && r < kNamedRanks; ++r) {
+    line.add(r ? "; rank " : " rank ");
+    line.addInt(r);
+    line.add(" was ");
+    line.add(activityOf(r));
+  }
+  line.add("; no output written");
+  t.cause = Termination::Cause::Stopped;
+  t.length = line.finish(true);
+  return t;
+}
 
 bool launchedByMpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE",
@@ -167,23 +207,16 @@ Session::Session(const std::string& verb, FatalFn fatal)
     }
     std::snprintf(w->prefix, sizeof w->prefix, "%s: error: ", verb.c_str());
     g_watch = w;
-    struct sigaction sa;
-    std::memset(&sa, 0, sizeof sa);
-    sa.sa_handler = onTerminate;
-    sigemptyset(&sa.sa_mask);
-    ::sigaction(SIGTERM, &sa, nullptr);
   }
 }
 
 Session::~Session() {
-  if (std::uncaught_exceptions() > uncaught_ && !agreedFailure_) return;  // see the header
-  if (rank_ == 0) {
-    struct sigaction sa;
-    std::memset(&sa, 0, sizeof sa);
-    sa.sa_handler = SIG_DFL;
-    ::sigaction(SIGTERM, &sa, nullptr);
-  }
+  if (!willFinalize()) return;  // see the header
   MPI_Finalize();
+}
+
+bool Session::willFinalize() const {
+  return std::uncaught_exceptions() <= uncaught_ || agreedFailure_;
 }
 
 void Session::agree(std::exception_ptr failure) {
@@ -235,19 +268,19 @@ void Session::setActivity(int r, const std::string& what) {
 }
 
 void Session::watch() {
-  if (!g_watch) return;
+  if (!g_watch || !g_watch->fatal) return;
   const WatchState& w = *g_watch;
   for (int r = 1; r < w.size; ++r) {
     if (!w.local[r] || !processGone(w.pid[r])) continue;
-    if (g_reported.exchange(true)) ::_exit(1);
-    const std::string line = "rank " + std::to_string(r) + " (pid " + std::to_string(w.pid[r]) +
-                             ") died while " + activityOf(r) + "; stopped, no output written";
-    if (w.fatal)
-      w.fatal(line);
-    else
-      std::fprintf(stderr, "%s%s\n", w.prefix, line.c_str());
-    std::fflush(stderr);
-    ::_exit(1);
+    // Reported already (by the SIGTERM handler, which then ends the process, or by an earlier
+    // call whose FatalFn returned): one line is enough.
+    if (g_reported.test_and_set()) return;
+    char buf[kLine + 128];
+    LineWriter line(buf, sizeof buf);
+    addDeadRank(line, r);
+    const std::size_t n = line.finish(false);
+    w.fatal(std::string(buf, n));
+    return;
   }
 }
 

@@ -3,6 +3,10 @@
 // failures, and the watch over the other ranks that turns a dead rank into one line naming it
 // and the chunk it held. Compiled only when CMake's find_package(MPI) finds MPI (target
 // prt_distributed); nothing else in the library includes it. See docs/distributed.md.
+//
+// The library never prints and never ends the process: it keeps what the ranks are doing and
+// writes the line; the app (apps/prt/mpi_verb.cpp) prints it and exits, from its FatalFn and
+// from the SIGTERM handler it installs on the root (which calls describeTermination).
 
 #include <cstddef>
 #include <cstdint>
@@ -17,10 +21,36 @@ namespace prt::distributed {
 /// Hydra, Slurm's srun with PMI or PMIx): the environment names a rank and a world size.
 bool launchedByMpi();
 
-/// Called (once, from any thread) with one line when the job cannot go on: a rank died. It
-/// should print the line; the session then ends the process (exit status 1), and the MPI
-/// runtime ends the others.
+/// Called (once, from the root's coordinator thread) with one line when the job cannot go on: a
+/// rank on the root's host died ("rank 1 (pid 4242) died while computing chunk 56 of ...;
+/// stopped, no output written"). The session neither prints it nor ends the process: the
+/// caller should do both (prt prints the line and exits with status 1, and the MPI runtime then
+/// ends the other ranks). If it returns, the job waits for the runtime to end it.
 using FatalFn = std::function<void(const std::string& line)>;
+
+/// Room for the longest line describeTermination writes (its newline and NUL included).
+inline constexpr std::size_t kTerminationLineBytes = 32 * 1024;
+
+/// What the root can say when the MPI runtime ends the job with SIGTERM (describeTermination).
+struct Termination {
+  enum class Cause {
+    Silent,    ///< nothing to say: no session's root here, or the end is already being reported
+    RankDied,  ///< a rank on this host has died: the line names it and what it was doing
+    Stopped,   ///< none here died (one on another host did, or the job was killed): the line
+               ///< names what every rank was doing
+  };
+  Cause cause = Cause::Silent;
+  std::size_t length = 0;  ///< bytes of the line written, its newline included (the NUL not)
+};
+
+/// For the root's SIGTERM handler, which the caller installs (the runtime, mpirun or srun,
+/// ends the job with SIGTERM when a rank dies, often before the watch sees it): writes into
+/// `buffer` the one line that names the dead rank if it ran on this host, else every rank's
+/// work ("prt bake: error: ..." and a newline, NUL-terminated, cut to `size`). It claims the
+/// report, so that one line is printed however the watch and the handler race: Silent (and an
+/// empty line) once watch() or an earlier call has claimed it. Async-signal-safe: no
+/// allocation, no lock, only kill(2), open(2) and read(2) of /proc.
+Termination describeTermination(char* buffer, std::size_t size) noexcept;
 
 class Session {
  public:
@@ -33,6 +63,10 @@ class Session {
   /// others did not agree to (a failure on this rank alone) it leaves MPI as it is, so the
   /// process exits non-zero and the runtime ends the job.
   ~Session();
+  /// Whether destroying the session now would call MPI_Finalize (see ~Session), so that the
+  /// caller can take down its SIGTERM handler first: the runtime may stop the other ranks as
+  /// the job ends, and that is no failure to report.
+  bool willFinalize() const;
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
@@ -59,10 +93,12 @@ class Session {
 
   // The watch (root only): what each rank is doing, for the line that names a dead rank.
   /// Sets the line that names rank r's current work ("chunk 5 of 'bounce 1' (vertices
-  /// 1280..1535)"); async-signal-safe to read.
+  /// 1280..1535)"); async-signal-safe to read (describeTermination).
   void setActivity(int r, const std::string& what);
-  /// Checks the ranks on the root's host; when one has died, reports it through `fatal` and
-  /// ends the process. Cheap (a kill(pid, 0) per local rank).
+  /// Checks the ranks on the root's host; when one has died, passes the line naming it to
+  /// `fatal` (once, and not after describeTermination has claimed the report; with no `fatal`,
+  /// to no one). It neither prints nor exits: `fatal` does. Cheap (a kill(pid, 0) per local
+  /// rank).
   void watch();
   const std::string& verb() const { return verb_; }
 
