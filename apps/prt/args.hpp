@@ -63,13 +63,13 @@ inline render::MisHeuristic parseMis(const std::string& s) {
   throw Error("--mis '" + s + "': expected power or balance");
 }
 
-/// --window: none | hanning | lanczos | dering (prt light, prt validate).
+/// --window: none | hanning | lanczos | dering (prt light, prt validate): sh::parseWindow.
 inline sh::Window parseWindow(const std::string& s) {
-  if (s == "none") return sh::Window::None;
-  if (s == "hanning") return sh::Window::Hanning;
-  if (s == "lanczos") return sh::Window::Lanczos;
-  if (s == "dering") return sh::Window::Dering;
-  throw Error("--window must be none, hanning, lanczos or dering, got '" + s + "'");
+  try {
+    return sh::parseWindow(s);
+  } catch (const Error& e) {
+    throw Error(std::string("--") + e.what());
+  }
 }
 
 }  // namespace prt::cli

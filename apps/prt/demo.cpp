@@ -44,6 +44,7 @@
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/options.hpp"
 #include "prt/core/version.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
@@ -137,8 +138,7 @@ image::Image displayed(image::Image img, const image::WriteOptions& wo) {
 
 /// The cheap checks, before anything is loaded; the glossy rows' material, if any.
 std::optional<Material> checkArgs(const DemoArgs& a) {
-  if (a.bands < 1 || a.bands > bands::kMaxBake)
-    throw Error(fmt::format("--bands {}: must be 1..{}", a.bands, bands::kMaxBake));
+  checkOptionRange(OptionSpelling::Cli, "bands", a.bands, 1, bands::kMaxBake);
   if (a.samples < 1 || a.samples > kMaxBakeSamples)
     throw Error(fmt::format("--samples {}: must be 1..{}", a.samples, kMaxBakeSamples));
   if (a.referenceSamples < 1 || a.glossyReferenceSamples < 1)
@@ -393,8 +393,9 @@ void runDemo(const DemoArgs& a) {
     io::writeLightJson(file("lights/" + L.name + ".json"), lf);
     const image::Image preview = envmap::previewPanels(env, light, 512);
     L.preview = "lights/" + L.name + "_preview.png";
-    image::writeImage(file(L.preview), preview,
-                      {image::ToneMap::Aces, envmap::previewExposure(preview)});
+    image::writeImage(
+        file(L.preview), preview,
+        {image::ToneMap::Aces, envmap::previewExposure(preview, image::ToneMap::Aces)});
 
     // The glossy light: this environment projected at the glossy bands (a light with more bands
     // is cut; one with fewer would leave the matrices' upper columns dark).

@@ -17,6 +17,7 @@
 #include "report.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/options.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/version.hpp"
 #include "prt/envmap/builtin.hpp"
@@ -68,8 +69,7 @@ void warnAboutPixels(const envmap::LoadedEnvironment& loaded, bool strict) {
 
 void runLight(const LightOptions& o) {
   // Validate everything first: nothing is written unless all of it works.
-  if (o.bands < 1 || o.bands > bands::kMaxLibrary)
-    throw Error(fmt::format("--bands {}: must be 1..{}", o.bands, bands::kMaxLibrary));
+  checkOptionRange(OptionSpelling::Cli, "bands", o.bands, 1, bands::kMaxLibrary);
   if (o.previewWidth < 8 || o.previewWidth % 2)
     throw Error("--preview-width must be an even number >= 8");
   const bool compat = o.compat == "games202";
@@ -150,22 +150,10 @@ void runLight(const LightOptions& o) {
   for (const std::string& f : loaded.files) read.push_back({"input", f});
   checkOutputs({{"-o", o.output}, {"--preview", o.preview}}, read);
 
-  switch (window) {
-    case sh::Window::None:
-      break;
-    case sh::Window::Hanning:
-      sh::convolveZonal(f, sh::hanningWindow(o.bands));
-      break;
-    case sh::Window::Lanczos:
-      sh::convolveZonal(f, sh::lanczosWindow(o.bands));
-      break;
-    case sh::Window::Dering: {
-      const sh::DeringResult r = sh::dering(f);
-      info("de-ringing: minimum " + std::to_string(r.minBefore) + " -> " +
-           std::to_string(r.minAfter));
-      break;
-    }
-  }
+  const sh::DeringResult windowed = sh::applyWindow(f, window);
+  if (window == sh::Window::Dering)
+    info("de-ringing: minimum " + std::to_string(windowed.minBefore) + " -> " +
+         std::to_string(windowed.minAfter));
   const Mat3d rotation = rotationEulerXYZ(rot[0], rot[1], rot[2]);
   if (rot != std::array<double, 3>{0, 0, 0}) f = sh::Rotation(o.bands, rotation).apply(f);
 
@@ -182,7 +170,7 @@ void runLight(const LightOptions& o) {
   // The preview first (it is the one that can still fail on encoding), then the light.
   if (!o.preview.empty()) {
     const image::Image panels = envmap::previewPanels(loaded.env, f, o.previewWidth, rotation);
-    image::WriteOptions wo{tone, o.exposure ? *o.exposure : envmap::previewExposure(panels)};
+    image::WriteOptions wo{tone, o.exposure ? *o.exposure : envmap::previewExposure(panels, tone)};
     image::writeImage(o.preview, panels, wo);
   }
   if (engine) {

@@ -14,6 +14,7 @@
 #include "context.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/options.hpp"
 #include "prt/image/image.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/render/exposure.hpp"
@@ -44,8 +45,7 @@ void checkOptions(const Options& o) {
     throw Error(fmt::format("--size {}x{}: width and height must be 1..{}", o.width, o.height,
                             image::kMaxImageSide));
   if (o.frames < 0) throw Error("--frames must be positive (0: until the window is closed)");
-  if (o.bands < 0 || o.bands > kMaxViewerBands)
-    throw Error(fmt::format("--bands must be 1..{}", kMaxViewerBands));
+  if (o.bands != 0) checkOptionRange(OptionSpelling::Cli, "bands", o.bands, 1, kMaxViewerBands);
   if (!o.headless && !o.screenshot.empty() && o.frames == 0)
     throw Error("--screenshot in a window needs --frames N (or --headless)");
   if (!o.screenshot.empty()) {

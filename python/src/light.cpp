@@ -8,6 +8,7 @@
 #include "common.hpp"
 #include "objects.hpp"
 #include "prt/core/band_limits.hpp"
+#include "prt/core/options.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/project.hpp"
@@ -90,9 +91,10 @@ py::array directionsOut(const std::vector<prt::Rgb>& v) {
 
 py::array project(py::handle source, int bands, const std::optional<std::string>& layout,
                   const std::optional<std::string>& compat, py::handle progress) {
-  if (bands < 1 || bands > prt::bands::kMaxLibrary)
-    throw py::value_error("bands=" + std::to_string(bands) + ": must be 1.." +
-                          std::to_string(prt::bands::kMaxLibrary));
+  asValueError([&] {
+    prt::checkOptionRange(prt::OptionSpelling::Python, "bands", bands, 1, prt::bands::kMaxLibrary);
+    return 0;
+  });
   if (compat) {
     if (*compat != "games202")
       throw py::value_error("compat accepts only 'games202', got '" + *compat + "'");
@@ -245,18 +247,8 @@ render take one (or anything load_environment takes).)")
         prt::sh::RgbSh l = prtpy::light(light);
         const double w = width.value_or(0.0);
         if (width && !(w > 0)) throw py::value_error("width must be positive");
-        if (window == "none") {
-        } else if (window == "hanning") {
-          prt::sh::convolveZonal(l, prt::sh::hanningWindow(l.bands, w));
-        } else if (window == "lanczos") {
-          prt::sh::convolveZonal(l, prt::sh::lanczosWindow(l.bands, w));
-        } else if (window == "dering") {
-          if (width) throw py::value_error("window='dering' picks its own width");
-          prt::sh::dering(l);
-        } else {
-          throw py::value_error("window must be none, hanning, lanczos or dering, got '" + window +
-                                "'");
-        }
+        asValueError(
+            [&] { return prt::sh::applyWindow(l, prt::sh::parseWindow(window), w).minAfter; });
         return lightArray(l);
       },
       py::arg("light"), py::arg("window") = "hanning", py::arg("width") = py::none(),

@@ -4,6 +4,7 @@
 
 #include "prt/core/parallel.hpp"
 #include "prt/image/color.hpp"
+#include "prt/image/exposure.hpp"
 #include "prt/sh/convolve.hpp"
 
 namespace prt::envmap {
@@ -47,16 +48,11 @@ image::Image previewPanels(const Environment& env, const sh::RgbSh& f, int width
   return image::stackVertically({&a, &b, &c});
 }
 
-float autoExposure(const image::Image& img) {
-  double sum = 0;
-  for (const Rgb& p : img.pixels) sum += std::log(1e-4 + image::luminance(p));
-  const double avg = img.empty() ? 1.0 : std::exp(sum / static_cast<double>(img.size()));
-  return image::clampExposure(static_cast<float>(std::log2(0.18 / avg)));
-}
-
-float previewExposure(const image::Image& panels) {
+float previewExposure(const image::Image& panels, image::ToneMap op) {
   const int h = panels.height / 3;
-  return autoExposure(image::crop(panels, 0, 2 * h, panels.width, panels.height - 2 * h));
+  const image::Image irradiance =
+      image::crop(panels, 0, 2 * h, panels.width, panels.height - 2 * h);
+  return image::autoExposure(irradiance.pixels, op);
 }
 
 }  // namespace prt::envmap

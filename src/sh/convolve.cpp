@@ -82,4 +82,46 @@ Rgb irradianceQuadratic(const RgbSh& radiance3, const Vec3f& n) {
   return out;
 }
 
+const char* toString(Window window) {
+  switch (window) {
+    case Window::Hanning:
+      return "hanning";
+    case Window::Lanczos:
+      return "lanczos";
+    case Window::Dering:
+      return "dering";
+    case Window::None:
+      break;
+  }
+  return "none";
+}
+
+Window parseWindow(const std::string& name) {
+  for (Window w : {Window::None, Window::Hanning, Window::Lanczos, Window::Dering})
+    if (name == toString(w)) return w;
+  throw Error("window must be none, hanning, lanczos or dering, got '" + name + "'");
+}
+
+DeringResult applyWindow(RgbSh& f, Window window, double width) {
+  DeringResult r;
+  switch (window) {
+    case Window::None:
+      r.window.assign(static_cast<std::size_t>(f.bands), 1.0);
+      break;
+    case Window::Hanning:
+      r.window = hanningWindow(f.bands, width);
+      convolveZonal(f, r.window);
+      break;
+    case Window::Lanczos:
+      r.window = lanczosWindow(f.bands, width);
+      convolveZonal(f, r.window);
+      break;
+    case Window::Dering:
+      if (width != 0) throw Error("the dering window picks its own width");
+      r = dering(f);
+      break;
+  }
+  return r;
+}
+
 }  // namespace prt::sh

@@ -47,7 +47,7 @@ const char* toString(Sampling sampling) {
 }
 
 Sampling parseSampling(const std::string& s) {
-  if (s == "sobol" || s == "cosine-sobol") return Sampling::CosineSobol;
+  if (s == "cosine" || s == "sobol" || s == "cosine-sobol") return Sampling::CosineSobol;
   if (s == "uniform" || s == "uniform-random") return Sampling::UniformRandom;
   throw Error("unknown sampling '" + s + "' (expected cosine-sobol or uniform-random)");
 }

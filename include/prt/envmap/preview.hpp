@@ -3,6 +3,7 @@
 // convention as layout.hpp), so the band-limited light can be compared with its source.
 
 #include "prt/envmap/environment.hpp"
+#include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
 #include "prt/sh/sh.hpp"
 
@@ -20,12 +21,11 @@ image::Image renderIrradiance(const sh::RgbSh& sh, int width);
 /// Three panels stacked top to bottom: source, SH radiance, SH irradiance/π.
 image::Image previewPanels(const Environment& env, const sh::RgbSh& sh, int width,
                            const Mat3d& rotation = Mat3d::identity());
-/// Exposure (stops) mapping the log-average luminance of `img` to middle grey 0.18.
-float autoExposure(const image::Image& img);
-/// The exposure for a previewPanels() image: autoExposure of its irradiance panel (the bottom
-/// third: smooth, and what a white object under the light looks like). The source's log-average
-/// would do for the source alone, but it sits far below the arithmetic mean under a sun, while
-/// the SH panels carry the mean (Λ₀/π = 1), so they would be shown blown out.
-float previewExposure(const image::Image& panels);
+/// The exposure for a previewPanels() image shown through `op`: image::autoExposure (the one
+/// rule prt render, view, web and the demo pick a model's exposure by) of its irradiance panel —
+/// the bottom third: smooth, and what a white object under the light looks like. The source
+/// panel would not do: under a sun its median sits far below the SH panels' mean (Λ₀/π = 1),
+/// so they would be shown blown out.
+float previewExposure(const image::Image& panels, image::ToneMap op);
 
 }  // namespace prt::envmap

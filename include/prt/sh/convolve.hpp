@@ -10,6 +10,7 @@
 // SIGGRAPH 2001; "On the relationship between radiance and irradiance", JOSA A 2001).
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "prt/sh/sh.hpp"
@@ -47,5 +48,16 @@ struct DeringResult {
 DeringResult dering(RgbSh& f);
 /// Minimum over channels and over a dense quadrature grid of the reconstruction of f.
 double minimumValue(const RgbSh& f);
+
+/// "none" | "hanning" | "lanczos" | "dering".
+const char* toString(Window window);
+/// Parses a window's name; throws prt::Error("window must be none, hanning, lanczos or dering,
+/// got 'X'") otherwise (a front end prefixes its option's name).
+Window parseWindow(const std::string& name);
+/// Applies `window` to f — the one rule prt light, prt validate and the Python module window a
+/// light by: Hanning and Lanczos of width `width` (0: f's band count), de-ringing picking its own
+/// (`width` must be 0). Returns the per-band factors applied (1 without a window), and for
+/// de-ringing its minimum before and after.
+DeringResult applyWindow(RgbSh& f, Window window, double width = 0);
 
 }  // namespace prt::sh

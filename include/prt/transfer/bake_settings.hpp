@@ -32,7 +32,8 @@ enum class Sampling {
   UniformRandom,
 };
 const char* toString(Sampling sampling);
-/// Parses "sobol" | "cosine-sobol" | "uniform" | "uniform-random"; throws prt::Error otherwise.
+/// Parses "cosine" | "sobol" | "cosine-sobol" | "uniform" | "uniform-random" (the front ends'
+/// spellings, one list); throws prt::Error otherwise.
 Sampling parseSampling(const std::string& s);
 
 /// Limits on the settings (checked by bake(); each violation is a one-line prt::Error).
