@@ -118,8 +118,7 @@ void runBake(const BakeArgs& a) {
                        mesh.source, mesh.vertexCount(), mesh.triangleCount(), mesh.parts.size(),
                        secondsText(loadSeconds), secondsText(bvhSeconds)));
     });
-    if (mpi.active())
-      info(fmt::format("{} MPI ranks x {} threads", mpi.size(), maxThreads()));
+    if (mpi.active()) info(fmt::format("{} MPI ranks x {} threads", mpi.size(), maxThreads()));
     const std::unique_ptr<PassExecutor> executor = mpi.bakeExecutor(rankOptions(a));
     BakeObserver observer;
     observer.starting = [&](const BakeSettings& s) { announce(file.mesh, s, a.output); };
@@ -130,10 +129,11 @@ void runBake(const BakeArgs& a) {
       if (!mpi.root()) return;
       for (const std::string& line : mpi.bakeExchange(*executor))
         info(fmt::format("{}: {}", toString(r.settings.mode), line));
-      if (r.settings.domain == TransferDomain::Texels)
-        info(fmt::format("{}: {} texels sampled ({} of them inside geometry, refilled from "
-                         "their neighbours)",
-                         toString(r.settings.mode), r.texelsSampled, r.texelsInside));
+      if (r.texelsSampled > 0)
+        info(
+            fmt::format("{}: {} texels sampled ({} of them inside geometry, refilled from "
+                        "their neighbours)",
+                        toString(r.settings.mode), r.texelsSampled, r.texelsInside));
       BakedTransfer t;
       t.recipe = r.settings;
       t.transfer = r.transfer;

@@ -137,9 +137,9 @@ void runPassBake(const BakeArgs& a) {
   PassState state;
   if (k > 0) {
     if (a.previous.empty())
-      throw Error(fmt::format(
-          "--pass {} reads pass {}: give --previous PASS{}.prtpass (its merged pieces)", k, k - 1,
-          k - 1));
+      throw Error(
+          fmt::format("--pass {} reads pass {}: give --previous PASS{}.prtpass (its merged pieces)",
+                      k, k - 1, k - 1));
     const PassPiece prev = readPassPiece(a.previous);
     if (prev.identity != identity)
       throw Error(a.previous, "is a pass of another bake (" + prev.identity + ")");

@@ -128,7 +128,7 @@ BakeRequest requestOf(const BakeArgs& a) {
   r.samples = a.samples;
   r.bounces = a.bounces;
   r.seed = a.seed;
-  r.sampling = parseSampling(a.sampling == "cosine" ? "cosine-sobol" : a.sampling);
+  r.sampling = parseSampling(a.sampling);
   if (!a.material.empty()) r.material = parseMaterial(a.material);
   if (!a.albedo.empty()) r.albedo = parseAlbedo(a.albedo);
   r.domain = parseTransferDomain(a.domain);
@@ -179,12 +179,8 @@ void loadBakeScene(const BakeArgs& a, const BakeRequest& request, BakeFile& file
 }
 
 RowRange rangeOf(const BakeArgs& a, const BakeRequest& request, const Mesh& mesh) {
-  const std::size_t rows = request.domain == TransferDomain::Texels
-                               ? std::size_t(request.lightmap.resolution) *
-                                     std::size_t(request.lightmap.resolution)
-                               : mesh.vertexCount();
-  return a.range.empty() ? RowRange{0, rows}
-                         : parseRange(a.range, rows, rowName(request.domain));
+  const std::size_t rows = domainRows(mesh, bakeSettings(request, mesh, request.modes.front()));
+  return a.range.empty() ? RowRange{0, rows} : parseRange(a.range, rows, rowName(request.domain));
 }
 
 std::pair<std::size_t, std::size_t> shardOf(const BakeArgs& a) {
@@ -197,38 +193,35 @@ RowRange shardRows(RowRange rows, std::size_t i, std::size_t n) {
 }
 
 void announce(const Mesh& mesh, const BakeSettings& s, const std::string& output) {
-  const bool texels = s.domain == TransferDomain::Texels;
-  const std::string what = fmt::format("{} {}{}", toString(s.mode), toString(s.layout),
-                                       texels ? " per texel" : "");
+  const char* row = rowName(s.domain);
+  const std::string what = fmt::format("{} {}", toString(s.mode), toString(s.layout));
   const BakeFootprint fp = bakeFootprint(mesh, s);
-  const RowRange rows = s.rows.count ? s.rows : RowRange{0, 0};
-  info(fmt::format("{}: {} per {}, {} in all{}", what, bytesText(fp.bytesPerRow),
-                   rowName(s.domain), bytesText(fp.transferBytes),
+  const RowRange rows{s.rows.first,
+                      s.rows.count ? s.rows.count : domainRows(mesh, s) - s.rows.first};
+  info(fmt::format("{}: {} per {}, {} in all{}", what, bytesText(fp.bytesPerRow), row,
+                   bytesText(fp.transferBytes),
                    fp.workingBytes ? " + " + bytesText(fp.workingBytes) + " working" : ""));
   if (s.glossyBounces(s.layout))
-    info(
-        fmt::format("{}: the bounces follow the material's lobe ({}): {} matrix passes over the "
-                    "whole {}",
-                    what, s.material.spec(), s.bounces + 1, texels ? "lightmap" : "mesh"));
+    info(fmt::format(
+        "{}: the bounces follow the material's lobe ({}): {} matrix passes over every {}", what,
+        s.material.spec(), s.bounces + 1, row));
   else if (s.bounces > 0 && s.material.glossy())
     info(
         fmt::format("{}: its bounces treat every surface as diffuse (kd); --transfer matrix "
                     "bounces the light off the lobe too",
                     what));
-  if (s.effectiveBounces() > 0 && rows.count > 0 && rows.count < s.lightmap.texels() && texels)
-    info(
-        fmt::format("{}: the bounces read the whole lightmap: each range bakes every texel's "
-                    "earlier passes",
-                    what));
+  if (s.effectiveBounces() > 0 && rows.count < domainRows(mesh, s))
+    info(fmt::format("{}: the bounces read every {}: a range bakes the earlier passes whole", what,
+                     row));
   // The mesh and the JSON take a little of the file too: a margin of 64 MiB.
   const std::uint64_t fileRoom = kMaxBakeFileBytes - (std::uint64_t(1) << 26);
   if (fp.transferBytes > fileRoom)
     throw Error(output,
                 fmt::format("{} transfer of {} {} at {} bands is {}, more than a bake file holds "
-                            "({}); use {}fewer bands or split the bake with --range",
-                            what, fp.transferBytes / std::max<std::size_t>(fp.bytesPerRow, 1),
-                            toString(s.domain), s.bands, bytesText(fp.transferBytes),
-                            bytesText(fileRoom), texels ? "a smaller --resolution, " : ""));
+                            "({}); use fewer bands, fewer rows (--resolution per texel) or split "
+                            "the bake with --range",
+                            what, rows.count, toString(s.domain), s.bands,
+                            bytesText(fp.transferBytes), bytesText(fileRoom)));
 }
 
 /// The bake's rays, timings and Monte Carlo error, in two lines.

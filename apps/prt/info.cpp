@@ -77,17 +77,6 @@ void describeLightmap(const Mesh& m, int side, std::ostream& out, Json& j) {
   j["lightmap"] = std::move(l);
 }
 
-std::string storage(const BakedTransfer& t) {
-  const Transfer& x = t.transfer;
-  const TransferMode mode = t.mode();
-  if (x.compressed())
-    return fmt::format("CPCA-compressed, accessors {}*", transferCompressedPrefix(mode));
-  if (x.isMatrix()) return fmt::format("accessor {}", transferMatrixName(mode));
-  if (x.domain() == TransferDomain::Texels)
-    return fmt::format("accessor {}", transferTexelName(mode));
-  return fmt::format("attributes {}0..{}", transferAttributePrefix(mode), (x.stride() + 3) / 4 - 1);
-}
-
 /// A mesh file or builtin scene, before any bake: what `prt bake` would read.
 void describeMesh(const std::string& path, int lightmapSide, std::ostream& out, Json& j) {
   const Mesh m = loadMesh(path);
@@ -115,7 +104,6 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
   j["mesh"] = meshJson(m);
   j["rows"] = {{"first", b.rows().first}, {"end", b.rows().end()}, {"complete", b.complete()}};
   j["domain"] = toString(b.domain());
-  const bool texels = b.domain() == TransferDomain::Texels;
   const char* per = rowName(b.domain());
   j["transfers"] = Json::array();
   for (const auto& t : b.transfers) j["transfers"].push_back(transferJson(t));
@@ -129,7 +117,7 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
   out << '\n';
   out << attributesLine(m);
   const RowRange rows = b.rows();
-  if (texels) {
+  if (b.domain() == TransferDomain::Texels) {
     const TransferShape::LightmapSize lm = b.lightmap();
     // Where the texels were sampled, counted again from the UVs the bake is over.
     const TexelSamples s = sampleTexels(m, m.lightmapUvs, lm.width, lm.height);
@@ -178,12 +166,12 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
       out << fmt::format(
           "  {}: matrix (glossy), {} bands ({}x{} per {}) x {} channel(s), {} per {}, {}\n",
           toString(s.mode), x.bands(), x.coeffs(), x.coeffs(), per, x.channels(), bytesText(dense),
-          per, storage(t));
+          per, transferStorage(t));
     else
       out << fmt::format(
-          "  {}: vector (diffuse){}, {} bands ({} coefficients) x {} channel(s), {} per {}, {}\n",
-          toString(s.mode), texels ? " per texel" : "", x.bands(), x.coeffs(), x.channels(),
-          bytesText(dense), per, storage(t));
+          "  {}: vector (diffuse), {} bands ({} coefficients) x {} channel(s), {} per {}, {}\n",
+          toString(s.mode), x.bands(), x.coeffs(), x.channels(), bytesText(dense), per,
+          transferStorage(t));
     if (x.compressed()) {
       const CpcaRecord& c = t.compression;
       out << fmt::format(

@@ -113,7 +113,7 @@ void runMerge(const MergeArgs& a) {
   writeBake(a.output, merged);
   const RowRange rows = merged.rows();
   info(fmt::format("wrote {} ({} {} {}..{}{}, {} mode(s))", a.output, rows.count,
-                   merged.domain() == TransferDomain::Texels ? "texels" : "vertices", rows.first,
+                   toString(merged.domain()), rows.first,
                    rows.end() - 1, merged.complete() ? ", complete" : ", still partial",
                    merged.transfers.size()));
 }

@@ -77,9 +77,6 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
 
   const BakeFile file = readBake(a.bake);
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
-  // Per-texel transfer: the rows are the texels' sample points (render/texel_points.hpp), and a
-  // subset is drawn among the valid ones (--vertices counts texels then).
-  const bool texels = bt.transfer.domain() == TransferDomain::Texels;
   const char* row = rowName(bt.transfer.domain());
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
@@ -102,12 +99,10 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   rs.seed = a.seed;
   rs.rotation = rotation;
   rs.heuristic = mis;
-  if (texels)
-    rs.points = std::make_shared<const render::RowPoints>(
-        render::texelRowPoints(file.mesh, *occluder, file.lightmap()));
-  rs.vertices = render::rowSubset(rs.points.get(),
-                                  texels ? file.lightmap().texels() : file.mesh.vertexCount(),
-                                  a.vertices, a.seed);
+  // Per-texel transfer: the rows are the texels' sample points (render/texel_points.hpp), and a
+  // subset is drawn among the valid ones (--vertices counts texels then).
+  rs.points = render::transferRowPoints(file.mesh, *occluder, bt.transfer);
+  rs.vertices = render::rowSubset(rs.points.get(), file.domainRows(), a.vertices, a.seed);
   const render::ReferenceResult r =
       mpi.reference(file.mesh, *occluder, env.env, rs, progressBar("reference"));
   if (!mpi.root()) return;
@@ -123,11 +118,7 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   ref.bakeFile = a.bake;
   ref.meshVertices = file.mesh.vertexCount();
   ref.meshFingerprint = meshFingerprint(file.mesh);
-  if (texels) {
-    ref.lightmapWidth = file.lightmap().width;
-    ref.lightmapHeight = file.lightmap().height;
-    ref.lightmapUvFingerprint = io::lightmapUvFingerprint(file.mesh);
-  }
+  ref.setRows(file.mesh, bt.transfer.shape());
   ref.lightSource = a.light;
   ref.environmentFingerprint = io::environmentFingerprint(env.env);
   for (int i = 0; i < 3; ++i)

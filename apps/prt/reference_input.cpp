@@ -23,8 +23,7 @@ ReferenceScene referenceScene(const Mesh& mesh, const envmap::Environment& envir
   s.bounces = baked.recipe.effectiveBounces();
   s.material = render::referenceMaterial(material, baked.transfer.layout());
   if (baked.transfer.isMatrix() && s.material.glossy()) s.eye = eye;
-  if (baked.transfer.domain() == TransferDomain::Texels)
-    s.lightmap = baked.transfer.shape().lightmap;
+  s.shape = baked.transfer.shape();
   return s;
 }
 
@@ -40,19 +39,19 @@ io::ReferenceFile readMatchingReference(const std::string& path, const Reference
   if (ref.meshVertices != s.mesh->vertexCount() ||
       ref.meshFingerprint != meshFingerprint(*s.mesh))
     differ("the bake", ref.bakeFile, "this mesh", s.bakeName);
-  if (s.lightmap && !ref.texels())
-    throw Error(path, "holds per-vertex radiance; " + s.bakeName +
-                          " holds per-texel transfer: run prt reference on it");
-  if (!s.lightmap && ref.texels())
-    throw Error(path, "holds per-texel radiance; " + s.bakeName +
-                          " holds per-vertex transfer: run prt reference on it");
-  if (s.lightmap &&
-      (ref.lightmapWidth != s.lightmap->width || ref.lightmapHeight != s.lightmap->height ||
-       ref.lightmapUvFingerprint != io::lightmapUvFingerprint(*s.mesh)))
+  io::ReferenceFile expected;
+  expected.setRows(*s.mesh, s.shape);
+  if (expected.texels() != ref.texels())
+    throw Error(path, fmt::format("holds per-{} radiance; {} holds per-{} transfer: run prt "
+                                  "reference on it",
+                                  ref.texels() ? "texel" : "vertex", s.bakeName,
+                                  expected.texels() ? "texel" : "vertex"));
+  if (ref.lightmapWidth != expected.lightmapWidth || ref.lightmapHeight != expected.lightmapHeight ||
+      ref.lightmapUvFingerprint != expected.lightmapUvFingerprint)
     throw Error(path, fmt::format("was computed for a {} x {} lightmap over other lightmap UVs "
                                   "or of another size than {}'s {} x {}: run prt reference again",
                                   ref.lightmapWidth, ref.lightmapHeight, s.bakeName,
-                                  s.lightmap->width, s.lightmap->height));
+                                  expected.lightmapWidth, expected.lightmapHeight));
   if (ref.environmentFingerprint != io::environmentFingerprint(*s.environment))
     differ("the environment", ref.lightSource, "this one", s.lightName);
   for (int i = 0; i < 3; ++i)

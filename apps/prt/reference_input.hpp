@@ -28,9 +28,9 @@ struct ReferenceScene {
   int bounces = 0;
   Material material;
   std::optional<Vec3f> eye;  ///< set when the material is glossy
-  /// Per-texel transfer: the lightmap its rows are texels of (the reference's must be the same,
-  /// over the same lightmap UVs).
-  std::optional<TransferShape::LightmapSize> lightmap;
+  /// The transfer's rows (io::ReferenceFile::setRows): per texel the lightmap they are texels
+  /// of (the reference's must be the same, over the same lightmap UVs).
+  TransferShape shape;
 };
 
 /// The scene of a verb that relights `baked` with `material` under `environment` turned by

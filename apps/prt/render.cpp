@@ -20,6 +20,7 @@
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/options.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/lighting.hpp"
@@ -93,8 +94,7 @@ void run(const RenderOptions& o) {
     if (o.turntable == 0) throw Error("--contact-sheet needs --turntable N");
     checkOutput(o.contactSheet, "the contact sheet");
   }
-  if (o.bands < 0 || o.bands > bands::kMaxLibrary)
-    throw Error(fmt::format("--bands {}: must be 1..{}", o.bands, bands::kMaxLibrary));
+  if (o.bands != 0) checkOptionRange(OptionSpelling::Cli, "bands", o.bands, 1, bands::kMaxLibrary);
   // What is written: -o itself, or with --turntable its numbered frames and the contact sheet.
   std::vector<NamedPath> outputs;
   if (o.turntable == 0) outputs.push_back({"-o", o.output});
@@ -131,8 +131,7 @@ void run(const RenderOptions& o) {
   if (baked.transfer.isMatrix()) warnLobeEnergyLoss(material, view.bands(), o.bake);
 
   // The light: an SH light file, or an environment projected to the transfer's bands.
-  const io::Lighting lighting =
-      io::loadLighting(o.light, view.bands(), progressBar("projecting"));
+  const io::Lighting lighting = io::loadLighting(o.light, view.bands(), progressBar("projecting"));
   for (const std::string& w : lighting.warnings) warn(w);
   const sh::RgbSh& light = lighting.coefficients;
 
@@ -145,8 +144,8 @@ void run(const RenderOptions& o) {
   // would be (the same camera, background and exposure rule), if it is of this scene.
   std::vector<Rgb> referenceRadiance;
   if (!o.reference.empty() && !view.perVertex())
-    throw Error(o.reference, "--reference draws a per-vertex reference; " + o.bake +
-                                 " holds per-" + view.rowNoun() + " transfer");
+    throw Error(o.reference, "--reference draws a per-vertex reference; " + o.bake + " holds per-" +
+                                 view.rowNoun() + " transfer");
   if (!o.reference.empty()) {
     if (lighting.isShFile())
       throw Error(o.light,
@@ -193,9 +192,9 @@ void run(const RenderOptions& o) {
     // --exposure auto: image/exposure.hpp's rule on the first frame's model pixels, kept for
     // every turntable frame so they compare.
     if (k == 0)
-      write.exposureStops =
-          exposure ? *exposure : render::autoExposure(*occluder, shade, camera, frame.width,
-                                                      frame.height, write.toneMap);
+      write.exposureStops = exposure ? *exposure
+                                     : render::autoExposure(*occluder, shade, camera, frame.width,
+                                                            frame.height, write.toneMap);
     render::BackgroundFn bg;
     switch (kind) {
       case render::Background::Env:

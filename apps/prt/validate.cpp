@@ -96,12 +96,8 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   auto occluder = makeEmbreeOccluder(file.mesh);
   // Per-texel transfer: the rows are the texels' sample points; a subset of the valid ones is
   // validated (--vertices counts texels then).
-  const bool texels = bt.transfer.domain() == TransferDomain::Texels;
-
   render::ValidateSettings vs;
-  if (texels)
-    vs.reference.points = std::make_shared<const render::RowPoints>(
-        render::texelRowPoints(file.mesh, *occluder, file.lightmap()));
+  vs.reference.points = render::transferRowPoints(file.mesh, *occluder, bt.transfer);
   vs.reference.samples = a.samples;
   vs.reference.seed = a.seed;
   vs.reference.rotation = rotation;
@@ -173,47 +169,19 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
                                                "): the rest rings in the transfer and the "
                                                "lobe, which more bands hold"));
 
-  if (!a.image.empty() && texels) {
-    // Per texel: the lightmap itself, each validated texel's relative error at the largest
-    // band count through the false-colour ramp (scaled to its 99th percentile), black elsewhere.
-    const TransferShape::LightmapSize lm = file.lightmap();
-    std::vector<float> sorted(rep.vertexError.begin(), rep.vertexError.end());
-    std::sort(sorted.begin(), sorted.end());
-    const float scale =
-        sorted.empty() ? 1.0f
-                       : std::max(sorted[std::size_t(0.99 * double(sorted.size() - 1))], 1e-6f);
-    image::Image img(lm.width, lm.height, Rgb(0.0f));
-    for (std::size_t i = 0; i < rep.reference.vertices.size(); ++i) {
-      const std::uint32_t t = rep.reference.vertices[i];
-      img.at(int(t % std::uint32_t(lm.width)), int(t / std::uint32_t(lm.width))) =
-          render::falseColour(std::min(rep.vertexError[i] / scale, 1.0f));
-    }
+  if (!a.image.empty()) {
+    // The relative error at the largest band count through the false-colour ramp, scaled to
+    // its 99th percentile: per vertex on the mesh, per texel the lightmap itself.
+    float scale = 1.0f;
+    const image::Image img = render::errorImage(file.mesh, *occluder, bt.transfer, rep, iw, ih,
+                                                &scale, progressBar("error image"));
     image::WriteOptions wo;
     wo.toneMap = image::ToneMap::Clamp;
     image::writeImage(a.image, img, wo);
     info(
-        fmt::format("error image {}: the {}x{} lightmap, relative error per validated texel at {} "
-                    "bands, black 0% .. white {:.2f}%",
-                    a.image, lm.width, lm.height, rep.rows.back().bands, 100.0 * scale));
-  } else if (!a.image.empty()) {
-    // Per-vertex relative error at the largest band count, through the false-colour ramp,
-    // scaled to its 99th percentile (a Voronoi fill between the vertices of a --vertices subset).
-    float scale = 1.0f;
-    const std::vector<Rgb> colour = render::vertexErrorColours(file.mesh, rep, &scale);
-    render::FrameSettings fs;
-    fs.width = iw;
-    fs.height = ih;
-    const render::Camera cam = render::frameMesh(file.mesh, iw, ih);
-    const image::Image img =
-        render::renderRelit(file.mesh, *occluder, colour, cam, fs,
-                            render::colourBackground(Rgb(0.0f)), progressBar("error image"));
-    image::WriteOptions wo;
-    wo.toneMap = image::ToneMap::Clamp;
-    image::writeImage(a.image, img, wo);
-    std::snprintf(line, sizeof line,
-                  "error image %s: relative error at %d bands, black 0%% .. white %.2f%%",
-                  a.image.c_str(), rep.rows.back().bands, 100.0 * scale);
-    info(line);
+        fmt::format("error image {}: relative error per validated {} at {} bands, black 0% .. "
+                    "white {:.2f}%",
+                    a.image, rowName(bt.transfer.domain()), rep.rows.back().bands, 100.0 * scale));
   }
   if (report.wanted()) {
     report.input(a.bake);

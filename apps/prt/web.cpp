@@ -29,6 +29,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
+#include "prt/core/options.hpp"
 #include "prt/core/version.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
@@ -167,8 +168,7 @@ void checkOptions(const WebOptions& a) {
   if (a.exposure) image::checkExposure(*a.exposure, "--exposure");
   if (a.backgroundWidth < 8 || a.backgroundWidth > 8192 || a.backgroundWidth % 2)
     throw Error("--background-width must be an even number of pixels in 8..8192");
-  if (a.bands < 0 || a.bands > bands::kMaxLibrary)
-    throw Error(fmt::format("--bands {}: must be 1..{}", a.bands, bands::kMaxLibrary));
+  if (a.bands != 0) checkOptionRange(OptionSpelling::Cli, "bands", a.bands, 1, bands::kMaxLibrary);
   if (a.embed != "auto" && a.embed != "always" && a.embed != "never")
     throw Error("--embed '" + a.embed + "': expected auto, always or never");
   if (!a.material.empty()) parseMaterial(a.material);
@@ -218,12 +218,10 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
 /// transfer needs them. Their albedo leaves the base-colour texture out: the page multiplies
 /// it per pixel.
 std::vector<float> texelPointsFor(const BakeFile& bake) {
-  for (const BakedTransfer& t : bake.transfers) {
-    if (!t.transfer.isMatrix() || t.transfer.domain() != TransferDomain::Texels) continue;
-    const auto occluder = makeEmbreeOccluder(bake.mesh);
-    return render::packTexelPoints(
-        render::texelRelight(bake.mesh, *occluder, t.transfer, t.recipe.material).points);
-  }
+  for (const BakedTransfer& t : bake.transfers)
+    if (std::vector<float> points = render::shadingPoints(bake.mesh, t.transfer, t.recipe.material);
+        !points.empty())
+      return points;
   return {};
 }
 

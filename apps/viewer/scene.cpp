@@ -213,12 +213,10 @@ void SceneView::setTransfer(const DrawState& now) {
   renderer_.setTransfer(relight::packShaderRows(t, path_), t.shape(), c ? c->clusters : 0,
                         c ? c->basisCount : 0);
   const Mesh& mesh = now.bake->mesh;
-  if (t.domain() == TransferDomain::Texels && t.isMatrix()) {
-    // Glossy per pixel: each texel shaded at its own sample point (render::texelRelight).
-    const auto occluder = makeEmbreeOccluder(mesh);
-    renderer_.setTexelPoints(
-        render::packTexelPoints(render::texelRelight(mesh, *occluder, t, now.material).points));
-  }
+  // Glossy per pixel: each texel shaded at its own sample point (render::shadingPoints).
+  if (const std::vector<float> points = render::shadingPoints(mesh, t, now.material);
+      !points.empty())
+    renderer_.setTexelPoints(points);
   relighter_ = path_ == relight::ShaderPath::CpuRadiance
                    ? relight::Relighter(t, {mesh.positions, mesh.normals, mesh.albedo})
                    : relight::Relighter();

@@ -149,14 +149,6 @@ prt::render::MisHeuristic heuristicOf(const std::string& s) {
   throw py::value_error("heuristic must be power or balance, got '" + s + "'");
 }
 
-prt::sh::Window windowOf(const std::string& s) {
-  if (s == "none") return prt::sh::Window::None;
-  if (s == "hanning") return prt::sh::Window::Hanning;
-  if (s == "lanczos") return prt::sh::Window::Lanczos;
-  if (s == "dering") return prt::sh::Window::Dering;
-  throw py::value_error("window must be none, hanning, lanczos or dering, got '" + s + "'");
-}
-
 py::array renderFn(py::handle meshObj, py::handle radiance, py::handle cameraObj, py::handle size,
                    int spp, std::uint32_t seed, py::handle background, py::handle environment,
                    py::handle lightObj, py::handle rot, py::handle progress) {
@@ -277,16 +269,10 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
   const prt::Mesh& mm = mesh->mesh();
   const TransferPtr t = toTransfer(transferObj);
   const prt::Transfer& tr = t->transfer;
-  const bool texels = tr.domain() == prt::TransferDomain::Texels;
-  if (texels && mm.lightmapUvs.size() != mm.vertexCount())
-    throw py::value_error("the transfer is per texel: the mesh needs its lightmap UVs");
-  if (texels && (tr.rows().first != 0 || tr.rowCount() != tr.shape().lightmap.texels()))
-    throw py::value_error("validate needs the transfer of every texel (a complete bake)");
-  if (!texels && (tr.rows().first != 0 || tr.rowCount() != mm.vertexCount()))
-    throw py::value_error("validate needs the transfer of every vertex of the mesh (" +
-                          std::to_string(mm.vertexCount()) + "), it holds " +
-                          std::to_string(tr.rowCount()) + " rows from " +
-                          std::to_string(tr.rows().first));
+  asValueError([&] {
+    prt::render::requireWholeDomain(mm, tr, "validate");
+    return 0;
+  });
   if (!t->recipe && modeObj.is_none())
     throw py::value_error("the transfer records no recipe: give mode= (and bounces=, material=)");
   prt::BakeRecipe recipe = t->recipe ? *t->recipe : prt::BakeRecipe{};
@@ -306,12 +292,10 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
   if (!bandsList.is_none()) vs.bandsList = bandsList.cast<std::vector<int>>();
   vs.maxVertices = vertices;
   vs.floorVertices = floorVertices;
-  vs.window = windowOf(window);
+  vs.window = asValueError([&] { return prt::sh::parseWindow(window); });
   vs.bakeName = "transfer";
   // Per texel: the texels' sample points (a subset of the valid ones is validated).
-  if (texels)
-    vs.reference.points = std::make_shared<const prt::render::RowPoints>(
-        prt::render::texelRowPoints(mm, mesh->occluder(), tr.shape().lightmap));
+  vs.reference.points = prt::render::transferRowPoints(mm, mesh->occluder(), tr);
   prt::render::ValidationReport rep =
       runLong("validating", progress, [&](const prt::ProgressFn& fn) {
         const prt::sh::RgbSh light = prt::envmap::projectEnvironment(env->env, tr.bands());

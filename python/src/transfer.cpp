@@ -95,7 +95,7 @@ std::optional<prt::BakeRecipe> recipeOf(py::handle mode, py::handle samples, py:
     if (!mode.is_none()) r.mode = prt::parseTransferMode(mode.cast<std::string>());
     if (!sampling.is_none()) {
       const auto s = sampling.cast<std::string>();
-      r.sampling = prt::parseSampling(s == "cosine" ? "cosine-sobol" : s);
+      r.sampling = prt::parseSampling(s);
     }
     return 0;
   });
@@ -146,7 +146,7 @@ prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int
   asValueError([&] {
     r.modes = {prt::parseTransferMode(mode)};
     r.layout = prt::parseTransferLayout(transfer);
-    r.sampling = prt::parseSampling(sampling == "cosine" ? "cosine-sobol" : sampling);
+    r.sampling = prt::parseSampling(sampling);
     r.domain = prt::parseTransferDomain(domain);
     r.lightmap.uv = prt::parseUvSetOption(lightmap.uv);
     return 0;
@@ -164,10 +164,8 @@ prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int
     prt::checkBakeRequest(r, prt::OptionSpelling::Python);
     return 0;
   });
-  const std::size_t rows = r.domain == prt::TransferDomain::Texels
-                               ? std::size_t(r.lightmap.resolution) * r.lightmap.resolution
-                               : mesh.vertexCount();
-  r.rows = rowRange(range, rows, prt::rowName(r.domain));
+  r.rows = rowRange(range, prt::domainRows(mesh, prt::bakeSettings(r, mesh, r.modes[0])),
+                    prt::rowName(r.domain));
   asValueError([&] {  // the seam fix against the range
     prt::checkBakeRequest(r, prt::OptionSpelling::Python);
     return 0;

@@ -91,98 +91,98 @@ RankExecutor::RankExecutor(Session& session, const RunOptions& options)
     : session_(session), options_(options), threads_(totalThreads()) {}
 
 BakePassOptions RankExecutor::passOptions() const {
-    BakePassOptions o;
-    o.checkMemory = false;  // begin() checks what this rank holds
-    return o;
+  BakePassOptions o;
+  o.checkMemory = false;  // begin() checks what this rank holds
+  return o;
 }
 
 void RankExecutor::begin(const BakePasses& passes) {
-    // Memory per rank: the whole-domain passes every rank holds, and of the last pass rank 0
-    // the whole transfer (twice for summed vectors: the sum and the pass) unless it spills a
-    // matrix transfer to a mapped file, the others their share.
-    const BakeSettings& settings = passes.settings();
-    const BakeFootprint fp = bakeFootprint(passes.mesh(), settings);
-    const std::size_t have = physicalMemory();
-    const std::size_t limit = options_.spillAbove ? options_.spillAbove : have / 2;
-    const std::size_t output = passes.resultIsSum() ? 2 * fp.transferBytes : fp.transferBytes;
-    const bool root = session_.root();
-    spill_ = root && !passes.resultIsSum() && !options_.spillFolder.empty() &&
-             fp.workingBytes + output > limit;
-    const std::size_t need =
-        fp.workingBytes + (root ? (spill_ ? 0 : output)
-                                : fp.transferBytes / static_cast<std::size_t>(session_.size()));
-    if (need > have / 10 * 9)
-      throw Error(std::string(toString(settings.layout)) + " transfer at " +
-                  std::to_string(settings.bands) + " bands needs " + bytesText(need) +
-                  " on rank " + std::to_string(session_.rank()) + ", whose machine has " +
-                  bytesText(have) + " (fewer bands, a range, or a smaller mesh)");
-    report_ = RunReport();
-    report_.ranks = session_.size();
-    report_.threads = threads_;
-    report_.spilled = spill_;
-    // A folder per mode under the checkpoint folder, claimed (collectively) in agree().
-    checkpoint_.clear();
-    claimPending_.clear();
-    if (!options_.checkpoint.empty()) {
-      checkpoint_ = options_.checkpoint + "/" + toString(settings.mode);
-      claimPending_ = "prt bake; " + bakeIdentity(passes.mesh(), settings) + "; rows per chunk";
-      for (int k = 0; k < passes.count(); ++k)
-        claimPending_ += " " + std::to_string(chunkRows(passes.pass(k).shape));
-    }
+  // Memory per rank: the whole-domain passes every rank holds, and of the last pass rank 0
+  // the whole transfer (twice for summed vectors: the sum and the pass) unless it spills a
+  // matrix transfer to a mapped file, the others their share.
+  const BakeSettings& settings = passes.settings();
+  const BakeFootprint fp = bakeFootprint(passes.mesh(), settings);
+  const std::size_t have = physicalMemory();
+  const std::size_t limit = options_.spillAbove ? options_.spillAbove : have / 2;
+  const std::size_t output = passes.resultBytes();
+  const bool root = session_.root();
+  spill_ = root && passes.resultIsLastPass() && !options_.spillFolder.empty() &&
+           fp.workingBytes + output > limit;
+  const std::size_t need =
+      fp.workingBytes +
+      (root ? (spill_ ? 0 : output) : fp.transferBytes / static_cast<std::size_t>(session_.size()));
+  if (need > have / 10 * 9)
+    throw Error(std::string(toString(settings.layout)) + " transfer at " +
+                std::to_string(settings.bands) + " bands needs " + bytesText(need) + " on rank " +
+                std::to_string(session_.rank()) + ", whose machine has " + bytesText(have) +
+                " (fewer bands, a range, or a smaller mesh)");
+  report_ = RunReport();
+  report_.ranks = session_.size();
+  report_.threads = threads_;
+  report_.spilled = spill_;
+  // A folder per mode under the checkpoint folder, claimed (collectively) in agree().
+  checkpoint_.clear();
+  claimPending_.clear();
+  if (!options_.checkpoint.empty()) {
+    checkpoint_ = options_.checkpoint + "/" + toString(settings.mode);
+    claimPending_ = "prt bake; " + bakeIdentity(passes.mesh(), settings) + "; rows per chunk";
+    for (int k = 0; k < passes.count(); ++k)
+      claimPending_ += " " + std::to_string(chunkRows(passes.pass(k).shape));
+  }
 }
 
 void RankExecutor::agree(std::exception_ptr failure) {
-    session_.agree(failure);
-    if (!claimPending_.empty()) {
-      claimCheckpoint(session_, checkpoint_, claimPending_);
-      claimPending_.clear();
-    }
+  session_.agree(failure);
+  if (!claimPending_.empty()) {
+    claimCheckpoint(session_, checkpoint_, claimPending_);
+    claimPending_.clear();
+  }
 }
 
 PassExecutor::Rows RankExecutor::run(const BakePasses& passes, int k, const PassSource& input,
                                      const ProgressFn& progress) {
-    const BakePassInfo& p = passes.pass(k);
-    const bool last = k == passes.count() - 1, root = session_.root();
-    const RowRange pr = p.shape.rows;
-    // The rows: every rank holds a pass the next one reads; the last, rank 0 only.
-    const bool spilled = last && spill_;
-    Rows out;
-    Transfer values = (!last || root) && !spilled ? Transfer::zeros(p.shape) : Transfer();
-    unsigned char* bytes = (!last || root) && !spilled
-                               ? reinterpret_cast<unsigned char*>(values.mutableValues())
-                               : nullptr;
-    std::shared_ptr<void> mapping;
-    if (spilled) mapping = scratchMapping(options_.spillFolder, p.shape.denseBytes(), &bytes);
-    if (root && p.variance) out.variance.assign(pr.count, 0.0);
-    RowJob job;
-    job.name = "pass " + std::to_string(k) + " '" + p.name + "'";
-    job.rows = pr.count;
-    job.firstRow = pr.first;
-    job.rowNoun = toString(p.shape.domain);
-    job.chunkRows = chunkRows(p.shape);
-    job.rowBytes = p.shape.stride() * sizeof(float);
-    job.sideBytes = p.variance ? sizeof(double) : 0;
-    job.allGather = !last;
-    job.compute = [&](std::size_t lo, std::size_t hi, unsigned char* r, unsigned char* side) {
-      return passes.compute(k, RowRange{pr.first + lo, hi - lo}, input, reinterpret_cast<float*>(r),
-                            reinterpret_cast<double*>(side));
-    };
-    if (!checkpoint_.empty()) job.checkpoint = checkpoint_ + "/pass-" + std::to_string(k);
-    const JobStats js = runJob(
-        session_, job, bytes,
-        out.variance.empty() ? nullptr : reinterpret_cast<unsigned char*>(out.variance.data()),
-        root ? progress : ProgressFn());
-    out.rays = js.rays;
-    out.seconds = js.seconds;
-    report_.names.push_back(job.name);
-    report_.jobs.push_back(js);
-    report_.passBytes.push_back(p.shape.denseBytes());
-    report_.bytesReceived = session_.bytesReceived();
-    if (spilled)
-      values = Transfer::dense(p.shape, FloatArray::view(mapping, reinterpret_cast<float*>(bytes),
-                                                         pr.count * p.shape.stride()));
-    out.values = std::move(values);
-    return out;
+  const BakePassInfo& p = passes.pass(k);
+  const bool last = k == passes.count() - 1, root = session_.root();
+  const RowRange pr = p.shape.rows;
+  // The rows: every rank holds a pass the next one reads; the last, rank 0 only.
+  const bool spilled = last && spill_;
+  Rows out;
+  Transfer values = (!last || root) && !spilled ? Transfer::zeros(p.shape) : Transfer();
+  unsigned char* bytes = (!last || root) && !spilled
+                             ? reinterpret_cast<unsigned char*>(values.mutableValues())
+                             : nullptr;
+  std::shared_ptr<void> mapping;
+  if (spilled) mapping = scratchMapping(options_.spillFolder, p.shape.denseBytes(), &bytes);
+  if (root && p.variance) out.variance.assign(pr.count, 0.0);
+  RowJob job;
+  job.name = "pass " + std::to_string(k) + " '" + p.name + "'";
+  job.rows = pr.count;
+  job.firstRow = pr.first;
+  job.rowNoun = toString(p.shape.domain);
+  job.chunkRows = chunkRows(p.shape);
+  job.rowBytes = p.shape.stride() * sizeof(float);
+  job.sideBytes = p.variance ? sizeof(double) : 0;
+  job.allGather = !last;
+  job.compute = [&](std::size_t lo, std::size_t hi, unsigned char* r, unsigned char* side) {
+    return passes.compute(k, RowRange{pr.first + lo, hi - lo}, input, reinterpret_cast<float*>(r),
+                          reinterpret_cast<double*>(side));
+  };
+  if (!checkpoint_.empty()) job.checkpoint = checkpoint_ + "/pass-" + std::to_string(k);
+  const JobStats js =
+      runJob(session_, job, bytes,
+             out.variance.empty() ? nullptr : reinterpret_cast<unsigned char*>(out.variance.data()),
+             root ? progress : ProgressFn());
+  out.rays = js.rays;
+  out.seconds = js.seconds;
+  report_.names.push_back(job.name);
+  report_.jobs.push_back(js);
+  report_.passBytes.push_back(p.shape.denseBytes());
+  report_.bytesReceived = session_.bytesReceived();
+  if (spilled)
+    values = Transfer::dense(p.shape, FloatArray::view(mapping, reinterpret_cast<float*>(bytes),
+                                                       pr.count * p.shape.stride()));
+  out.values = std::move(values);
+  return out;
 }
 
 int RankExecutor::threads() const {

@@ -299,7 +299,8 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     if (const auto v = firstUvOutside(bake.mesh.lightmapUvs)) {
       const Vec2f t = bake.mesh.lightmapUvs[*v];
       r.fail("the lightmap UV of vertex " + std::to_string(*v) + " is (" + std::to_string(t.x) +
-             ", " + std::to_string(t.y) + "), outside [0, 1]^2 (a per-texel bake's UVs lie "
+             ", " + std::to_string(t.y) +
+             "), outside [0, 1]^2 (a per-texel bake's UVs lie "
              "inside it)");
     }
   return bake;
@@ -382,6 +383,16 @@ std::string transferTexelName(TransferMode mode) {
 
 std::string transferCompressedPrefix(TransferMode mode) {
   return "_PRT_" + upper(mode) + "_CPCA_";
+}
+
+std::string transferStorage(const BakedTransfer& t) {
+  const Transfer& x = t.transfer;
+  const TransferMode mode = t.mode();
+  if (x.compressed()) return "CPCA-compressed, accessors " + transferCompressedPrefix(mode) + "*";
+  if (x.isMatrix()) return "accessor " + transferMatrixName(mode);
+  if (x.domain() == TransferDomain::Texels) return "accessor " + transferTexelName(mode);
+  return "attributes " + transferAttributePrefix(mode) + "0.." +
+         std::to_string((x.stride() + 3) / 4 - 1);
 }
 
 std::string encodeBake(const BakeFile& bake) {

@@ -219,4 +219,11 @@ ReferenceFile parseReferenceJson(std::string_view text, const std::string& path)
   return r;
 }
 
+void ReferenceFile::setRows(const Mesh& mesh, const TransferShape& shape) {
+  const bool perTexel = shape.domain == TransferDomain::Texels;
+  lightmapWidth = perTexel ? shape.lightmap.width : 0;
+  lightmapHeight = perTexel ? shape.lightmap.height : 0;
+  lightmapUvFingerprint = perTexel ? io::lightmapUvFingerprint(mesh) : std::string();
+}
+
 }  // namespace prt::io

@@ -96,3 +96,33 @@ TexelRelight texelRelight(const Mesh& mesh, const Occluder& occluder, const Tran
 }
 
 }  // namespace prt::render
+
+namespace prt::render {
+
+void requireWholeDomain(const Mesh& mesh, const Transfer& transfer, const std::string& verb) {
+  const bool perTexel = transfer.domain() == TransferDomain::Texels;
+  if (perTexel && mesh.lightmapUvs.size() != mesh.vertexCount())
+    throw Error("the transfer is per texel: the mesh needs its lightmap UVs");
+  const std::size_t n = transfer.shape().domainRows(mesh.vertexCount());
+  if (transfer.rows().first != 0 || transfer.rowCount() != n)
+    throw Error(verb + " needs the transfer of every " + rowName(transfer.domain()) + " (" +
+                std::to_string(n) + "), it holds " + std::to_string(transfer.rowCount()) +
+                " rows from " + std::to_string(transfer.rows().first));
+}
+
+std::shared_ptr<const RowPoints> transferRowPoints(const Mesh& mesh, const Occluder& occluder,
+                                                   const Transfer& transfer) {
+  if (transfer.domain() != TransferDomain::Texels) return nullptr;
+  return std::make_shared<const RowPoints>(
+      texelRowPoints(mesh, occluder, transfer.shape().lightmap));
+}
+
+std::vector<float> shadingPoints(const Mesh& mesh, const Transfer& transfer,
+                                 const Material& material, const Occluder* occluder) {
+  if (transfer.domain() != TransferDomain::Texels || !transfer.isMatrix()) return {};
+  std::unique_ptr<Occluder> own;
+  if (!occluder) occluder = (own = makeEmbreeOccluder(mesh)).get();
+  return packTexelPoints(texelRelight(mesh, *occluder, transfer, material).points);
+}
+
+}  // namespace prt::render

@@ -12,7 +12,10 @@
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
+#include "prt/render/primary.hpp"
+#include "prt/render/render.hpp"
 #include "prt/sh/convolve.hpp"
 
 namespace prt::render {
@@ -60,36 +63,8 @@ double sumSq(const Rgb& c) {
 /// factors (1 without one).
 sh::RgbSh lightAt(const sh::RgbSh& light, int b, sh::Window window, std::vector<double>& factors) {
   sh::RgbSh lb = light.truncated(b);
-  switch (window) {
-    case sh::Window::None:
-      factors.assign(static_cast<std::size_t>(b), 1.0);
-      break;
-    case sh::Window::Hanning:
-      factors = sh::hanningWindow(b);
-      sh::convolveZonal(lb, factors);
-      break;
-    case sh::Window::Lanczos:
-      factors = sh::lanczosWindow(b);
-      sh::convolveZonal(lb, factors);
-      break;
-    case sh::Window::Dering:
-      factors = sh::dering(lb).window;
-      break;
-  }
+  factors = sh::applyWindow(lb, window).window;
   return lb;
-}
-
-const char* windowName(sh::Window w) {
-  switch (w) {
-    case sh::Window::Hanning:
-      return "hanning";
-    case sh::Window::Lanczos:
-      return "lanczos";
-    case sh::Window::Dering:
-      return "dering";
-    default:
-      return "none";
-  }
 }
 
 /// The band counts to validate: the list asked for (default 1..rep.bands), those beyond what
@@ -347,7 +322,7 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     lights.push_back(lightAt(light, b, settings.window, lim.window));
     bl.limits.push_back(std::move(lim));
   }
-  rep.window = windowName(settings.window);
+  rep.window = sh::toString(settings.window);
 
   // The truncation floor: the error of exact band-limited relighting, e_b − e per floor vertex
   // and band count from the reference's own samples (reference.hpp), in one run for all band
@@ -526,6 +501,36 @@ std::vector<Rgb> vertexErrorColours(const Mesh& mesh, const ValidationReport& re
   for (std::size_t v = 0; v < colour.size(); ++v)
     colour[v] = falseColour(std::min(1.0f, error[v] / scale));
   return colour;
+}
+
+image::Image errorImage(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+                        const ValidationReport& report, int width, int height, float* scale,
+                        const ProgressFn& progress) {
+  if (transfer.domain() == TransferDomain::Texels) {
+    // The lightmap itself: each validated texel's relative error at the largest band count
+    // through the false-colour ramp (scaled to its 99th percentile), black elsewhere.
+    const TransferShape::LightmapSize lm = transfer.shape().lightmap;
+    std::vector<float> sorted(report.vertexError.begin(), report.vertexError.end());
+    std::sort(sorted.begin(), sorted.end());
+    const float s = sorted.empty()
+                        ? 1.0f
+                        : std::max(sorted[std::size_t(0.99 * double(sorted.size() - 1))], 1e-6f);
+    image::Image img(lm.width, lm.height, Rgb(0.0f));
+    for (std::size_t i = 0; i < report.reference.vertices.size(); ++i) {
+      const std::uint32_t t = report.reference.vertices[i];
+      img.at(int(t % std::uint32_t(lm.width)), int(t / std::uint32_t(lm.width))) =
+          falseColour(std::min(report.vertexError[i] / s, 1.0f));
+    }
+    if (scale) *scale = s;
+    return img;
+  }
+  // The mesh, each vertex's error (a Voronoi fill between the vertices of a subset).
+  const std::vector<Rgb> colour = vertexErrorColours(mesh, report, scale);
+  FrameSettings fs;
+  fs.width = width;
+  fs.height = height;
+  return renderRelit(mesh, occluder, colour, frameMesh(mesh, width, height), fs,
+                     colourBackground(Rgb(0.0f)), progress);
 }
 
 }  // namespace prt::render

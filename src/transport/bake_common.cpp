@@ -15,10 +15,6 @@
 
 namespace prt::bakedetail {
 
-std::size_t domainRows(const Mesh& mesh, const BakeSettings& s) {
-  return s.domain == TransferDomain::Texels ? s.lightmap.texels() : mesh.vertexCount();
-}
-
 void validateBake(const Mesh& mesh, const BakeSettings& s) {
   const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
   if (mesh.vertexCount() == 0 || mesh.triangleCount() == 0)
@@ -46,8 +42,8 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
       throw Error(name, "a " + std::to_string(lm.width) + " x " + std::to_string(lm.height) +
                             " lightmap: each side must be 1.." + std::to_string(kMaxLightmapSide));
     if (lm.padding < 0 || lm.padding > kMaxLightmapPadding)
-      throw Error(name, "the dilation padding must be 0.." +
-                            std::to_string(kMaxLightmapPadding) + " texels");
+      throw Error(name, "the dilation padding must be 0.." + std::to_string(kMaxLightmapPadding) +
+                            " texels");
   }
   const std::size_t rows = domainRows(mesh, s);
   if (s.rows.first >= rows || s.rows.count > rows - s.rows.first) {
@@ -165,6 +161,10 @@ void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint
 }  // namespace prt::bakedetail
 
 namespace prt {
+
+std::size_t domainRows(const Mesh& mesh, const BakeSettings& s) {
+  return s.domain == TransferDomain::Texels ? s.lightmap.texels() : mesh.vertexCount();
+}
 
 BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   using namespace bakedetail;

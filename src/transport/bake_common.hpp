@@ -74,8 +74,7 @@ inline StandardErrors standardErrors(const std::vector<double>& variances) {
 
 /// Throws prt::Error naming the first problem with the mesh or the settings.
 void validateBake(const Mesh& mesh, const BakeSettings& s);
-/// The rows of the bake's whole domain: the mesh's vertices or the lightmap's texels.
-std::size_t domainRows(const Mesh& mesh, const BakeSettings& s);
+using prt::domainRows;  // (prt/transport/bake.hpp)
 /// The rows a bake covers: settings.rows with count 0 meaning "to the last row".
 RowRange bakeRows(const Mesh& mesh, const BakeSettings& s);
 /// The bounce albedo: the material's diffuse colour, else the mesh's, else white.

@@ -11,37 +11,6 @@
 
 namespace prt {
 
-std::string optionName(OptionSpelling spelling, const std::string& name) {
-  if (spelling == OptionSpelling::Cli) return "--" + name;
-  std::string s = name;
-  std::replace(s.begin(), s.end(), '-', '_');
-  return s + "=";
-}
-
-namespace {
-
-/// "--albedo" or "albedo": an option named without its value.
-std::string optionLabel(OptionSpelling spelling, const std::string& name) {
-  std::string s = optionName(spelling, name);
-  if (spelling == OptionSpelling::Python) s.pop_back();
-  return s;
-}
-
-/// "--bands 20" or "bands=20".
-std::string given(OptionSpelling spelling, const std::string& name, long long value) {
-  return optionName(spelling, name) + (spelling == OptionSpelling::Cli ? " " : "") +
-         std::to_string(value);
-}
-
-void checkRange(OptionSpelling spelling, const std::string& name, long long value, long long lo,
-                long long hi) {
-  if (value < lo || value > hi)
-    throw Error(given(spelling, name, value) + ": must be " + std::to_string(lo) + ".." +
-                std::to_string(hi));
-}
-
-}  // namespace
-
 void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
   if (r.modes.empty()) throw Error("no " + optionName(spelling, "mode") + " given");
   for (std::size_t i = 0; i < r.modes.size(); ++i)
@@ -49,17 +18,17 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
       if (r.modes[i] == r.modes[j])
         throw Error(optionName(spelling, "mode") + (spelling == OptionSpelling::Cli ? " " : "") +
                     toString(r.modes[i]) + " given twice");
-  checkRange(spelling, "bands", r.bands, 1, bands::kMaxBake);
-  checkRange(spelling, "samples", r.samples, 1, kMaxBakeSamples);
-  checkRange(spelling, "bounces", r.bounces, 0, kMaxBounces);
+  checkOptionRange(spelling, "bands", r.bands, 1, bands::kMaxBake);
+  checkOptionRange(spelling, "samples", r.samples, 1, kMaxBakeSamples);
+  checkOptionRange(spelling, "bounces", r.bounces, 0, kMaxBounces);
   if (r.albedo)
     for (float x : {r.albedo->x, r.albedo->y, r.albedo->z})
       if (!(x >= 0.0f && x <= 1.0f))
         throw Error(optionLabel(spelling, "albedo") + ": components must lie in [0, 1]");
   if (r.material) checkMaterial(*r.material);
   if (r.domain == TransferDomain::Texels) {
-    checkRange(spelling, "resolution", r.lightmap.resolution, 1, kMaxLightmapSide);
-    checkRange(spelling, "padding", r.lightmap.padding, 0, kMaxLightmapPadding);
+    checkOptionRange(spelling, "resolution", r.lightmap.resolution, 1, kMaxLightmapSide);
+    checkOptionRange(spelling, "padding", r.lightmap.padding, 0, kMaxLightmapPadding);
     const std::size_t texels = std::size_t(r.lightmap.resolution) * r.lightmap.resolution;
     if (r.lightmap.seamFix && (r.rows.first > 0 || (r.rows.count && r.rows.count < texels)))
       throw Error(optionName(spelling, "seam-fix") +
@@ -137,16 +106,14 @@ void refuseNonFinite(const Mesh& mesh, TransferMode mode, const Transfer& t) {
   const FloatArray& values = t.values();
   for (std::size_t k = 0; k < values.size(); ++k)
     if (!std::isfinite(values[k]))
-      throw Error(mesh.source, std::string(toString(mode)) + " transfer of " +
-                                   rowName(t.domain()) + " " +
-                                   std::to_string(t.rows().first + k / stride) +
+      throw Error(mesh.source, std::string(toString(mode)) + " transfer of " + rowName(t.domain()) +
+                                   " " + std::to_string(t.rows().first + k / stride) +
                                    " is not finite (check the material albedos and "
                                    "coordinates); nothing written");
 }
 
-std::vector<BakeResult> bake(const BakeRequest& request, const Mesh& mesh,
-                             const Occluder& occluder, PassExecutor& executor,
-                             const BakeObserver& observer) {
+std::vector<BakeResult> bake(const BakeRequest& request, const Mesh& mesh, const Occluder& occluder,
+                             PassExecutor& executor, const BakeObserver& observer) {
   std::vector<BakeResult> results;
   for (TransferMode mode : request.modes) {
     BakeResult r;

@@ -8,11 +8,11 @@
 #include <string>
 
 #include "bake_common.hpp"
-#include "prt/core/hash.hpp"
-#include "texel_domain.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/hash.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/sh/sh.hpp"
+#include "texel_domain.hpp"
 
 namespace prt {
 
@@ -97,8 +97,9 @@ BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSet
   RowRange last = m.rows;
   if (settings.domain == TransferDomain::Texels) {
     const auto& lm = settings.lightmap;
-    const std::span<const Vec2f> uvs =
-        options.lightmapUvs.empty() ? std::span<const Vec2f>(mesh.lightmapUvs) : options.lightmapUvs;
+    const std::span<const Vec2f> uvs = options.lightmapUvs.empty()
+                                           ? std::span<const Vec2f>(mesh.lightmapUvs)
+                                           : options.lightmapUvs;
     TexelDomain probe;
     probe.width = lm.width, probe.height = lm.height, probe.padding = lm.padding;
     last = probe.widen(m.rows);
@@ -155,6 +156,13 @@ bool BakePasses::resultIsSum() const {
 }
 int BakePasses::sumChannels() const {
   return impl_->sumChannels;
+}
+std::size_t BakePasses::resultBytes() const {
+  const std::size_t bytes = bakeFootprint(impl_->mesh, impl_->settings).transferBytes;
+  return impl_->sum ? 2 * bytes : bytes;
+}
+bool BakePasses::resultIsLastPass() const {
+  return !impl_->sum;
 }
 bool BakePasses::sums() const {
   return impl_->sum || impl_->fullSum;
@@ -218,8 +226,7 @@ std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input,
     if (m.vector[k0])
       return computeVectorRows(m.mesh, m.occluder, *m.vector[k0], k, rows, in, p.shape.channels,
                                out, variance, progress);
-    return computeMatrixRows(m.mesh, m.occluder, *m.matrix[k0], rows, in, out, variance,
-                             progress);
+    return computeMatrixRows(m.mesh, m.occluder, *m.matrix[k0], rows, in, out, variance, progress);
   }
   // Per texel: the rows' covered texels, computed as one run of sample points, then placed at
   // their texels; the texels no triangle covers hold zeros.
@@ -229,7 +236,8 @@ std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input,
   const std::size_t stride = p.shape.stride();
   std::vector<float> values(points.size() * stride);
   std::vector<double> var(points.size());
-  const TexelImage image = input.image_ ? texelImage(d, *input.image_, input.stride_) : TexelImage{};
+  const TexelImage image =
+      input.image_ ? texelImage(d, *input.image_, input.stride_) : TexelImage{};
   const TexelImage* source = input.image_ ? &image : nullptr;
   const std::uint64_t rays =
       m.vector[k0] ? computeTexelRows(m.mesh, m.occluder, *m.vector[k0], k, points, source,
@@ -430,8 +438,9 @@ void runPass(const BakePasses& passes, PassExecutor& executor, PassState& state,
   }
   const RowRange keep = overlap(rows, state.varianceRows);
   if (!(keep == state.varianceRows)) {
-    std::vector<double> v(state.variance.begin() + std::ptrdiff_t(keep.first - state.varianceRows.first),
-                          state.variance.begin() + std::ptrdiff_t(keep.end() - state.varianceRows.first));
+    std::vector<double> v(
+        state.variance.begin() + std::ptrdiff_t(keep.first - state.varianceRows.first),
+        state.variance.begin() + std::ptrdiff_t(keep.end() - state.varianceRows.first));
     state.variance = std::move(v);
     state.varianceRows = keep;
   }

@@ -317,9 +317,9 @@ TEST_F(JobArray, PerTexelBouncesShardPassByPassAndMergeBitExactly) {
   ASSERT_EQ(prt("merge last1.glb last0.glb -q -o merged.glb").rc, 0);
   expectSameTransfers(dir() / "merged.glb", dir() / "one.glb");
   // A pass file of another lightmap is another bake.
-  const Result other = prt(
-      "bake 'builtin:cornell?grid=8' --domain texels --resolution 40 --padding 3 --mode "
-      "interreflected --bounces 1 --samples 16 -q --pass 1 --previous p0.prtpass -o x.glb");
+  const Result other =
+      prt("bake 'builtin:cornell?grid=8' --domain texels --resolution 40 --padding 3 --mode "
+          "interreflected --bounces 1 --samples 16 -q --pass 1 --previous p0.prtpass -o x.glb");
   EXPECT_NE(other.rc, 0);
   EXPECT_NE(other.err.find("is a pass of another bake"), std::string::npos) << other.err;
 }

@@ -253,7 +253,9 @@ TEST(BakeTexels, ARangeOfTexelsIsTheWholeBakesRowsExactly) {
         ASSERT_EQ(part.transfer.values()[i], whole.transfer.values()[got.first * stride + i])
             << "value " << i;
       covered += st.vertices;
-      if (mode == TransferMode::Shadowed) EXPECT_LT(st.rays, wholeStats.rays);
+      if (mode == TransferMode::Shadowed) {
+        EXPECT_LT(st.rays, wholeStats.rays);
+      }
     }
     EXPECT_EQ(covered, wholeStats.vertices) << "each covered texel counted in one range";
   }
@@ -386,8 +388,12 @@ TEST(BakeTexels, NoBlackOrInvalidTexelInsideAChartOnTheBuiltinScenesAndTheBunny)
     EXPECT_GT(covered, std::size_t(N * N / 10));
     EXPECT_EQ(black, 0u) << "valid texels without light";
     EXPECT_EQ(buried, 0u) << "texels inside geometry left black";
-    if (name == "builtin:sphere") EXPECT_EQ(b.invalid.size(), 0u);
-    if (name == bunny) EXPECT_LT(b.invalid.size(), covered / 1000 + 1);
+    if (name == "builtin:sphere") {
+      EXPECT_EQ(b.invalid.size(), 0u);
+    }
+    if (name == bunny) {
+      EXPECT_LT(b.invalid.size(), covered / 1000 + 1);
+    }
     std::cout << name << ": " << covered << " covered texels, " << b.invalid.size()
               << " inside geometry (" << refilled << " refilled)\n";
   }

@@ -95,8 +95,13 @@ TEST(BakePasses, AnySplitOfEveryPassReassemblesIntoTheBake) {
        "",
        {700, 500},
        48},
-      {"texels: shadowed vectors, a range", TransferMode::Shadowed, TransferLayout::Vector, 0, "",
-       {900, 300}, 40},
+      {"texels: shadowed vectors, a range",
+       TransferMode::Shadowed,
+       TransferLayout::Vector,
+       0,
+       "",
+       {900, 300},
+       40},
       {"texels: diffuse-bounce matrices",
        TransferMode::Interreflected,
        TransferLayout::Matrix,
@@ -137,8 +142,9 @@ TEST(BakePasses, AnySplitOfEveryPassReassemblesIntoTheBake) {
       // The same bake as the per-texel call makes it.
       BakeSettings t = s;
       t.domain = TransferDomain::Vertices;
-      expectSame(bakeTexels(mesh, *occluder, t, mesh.lightmapUvs, c.lightmap, c.lightmap, 2).transfer,
-                 whole, c.what);
+      expectSame(
+          bakeTexels(mesh, *occluder, t, mesh.lightmapUvs, c.lightmap, c.lightmap, 2).transfer,
+          whole, c.what);
     }
     EXPECT_EQ(got.rays, expected.rays) << c.what;
     EXPECT_EQ(got.raysBounce, expected.raysBounce) << c.what;

@@ -137,5 +137,9 @@ std::string transferTexelName(TransferMode mode);
 /// The accessor name prefix of a mode's compressed transfer: "_PRT_SHADOWED_CPCA_" etc.
 /// (then CLUSTER, WEIGHTS, MEANS, BASIS).
 std::string transferCompressedPrefix(TransferMode mode);
+/// Where a transfer's numbers lie in the file, for prt info: "attributes _PRT_SHADOWED_T0..2",
+/// "accessor _PRT_SHADOWED_M", "accessor _PRT_SHADOWED_TEXELS" or "CPCA-compressed, accessors
+/// _PRT_SHADOWED_CPCA_*" — the one dispatch on its representation, layout and domain.
+std::string transferStorage(const BakedTransfer& transfer);
 
 }  // namespace prt

@@ -30,6 +30,7 @@
 #include "prt/core/vec.hpp"
 #include "prt/envmap/environment.hpp"
 #include "prt/geometry/mesh.hpp"
+#include "prt/transfer/shape.hpp"
 
 namespace prt::io {
 
@@ -58,6 +59,9 @@ struct ReferenceFile {
   int lightmapWidth = 0, lightmapHeight = 0;
   std::string lightmapUvFingerprint;
   bool texels() const { return lightmapWidth > 0; }
+  /// The rows it estimates are those of `shape` over `mesh`: per texel, its lightmap's size and
+  /// a fingerprint of the mesh's lightmap UVs; per vertex, none.
+  void setRows(const Mesh& mesh, const TransferShape& shape);
   /// The rows' bound: meshVertices, or the lightmap's texel count.
   std::size_t rowCount() const {
     return texels() ? std::size_t(lightmapWidth) * std::size_t(lightmapHeight) : meshVertices;

@@ -4,7 +4,10 @@
 // (geometry/texel_sampling.hpp), and which texels may be validated — covered, and not inside
 // geometry (transport/texel_validity.hpp; those hold their neighbours' values, not their own).
 
+#include <memory>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "prt/geometry/mesh.hpp"
 #include "prt/raytrace/occluder.hpp"
@@ -26,6 +29,22 @@ namespace prt::render {
 /// `withTexture` the mesh's albedo alone (an image multiplies the texture per pixel).
 RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
                          const TransferShape::LightmapSize& lightmap, bool withTexture = true);
+
+/// Throws prt::Error naming `verb` ("validate") unless `transfer` holds every row of its domain
+/// on `mesh` (every vertex, or every texel of its lightmap over the mesh's lightmap UVs).
+void requireWholeDomain(const Mesh& mesh, const Transfer& transfer, const std::string& verb);
+
+/// Where the rows of `transfer` lie, for the reference and validation: null per vertex (the
+/// mesh's vertices), texelRowPoints of its lightmap per texel — the one dispatch on the domain
+/// that prt reference, prt validate and the Python module share.
+std::shared_ptr<const RowPoints> transferRowPoints(const Mesh& mesh, const Occluder& occluder,
+                                                   const Transfer& transfer);
+
+/// The texels' shading points a GPU viewer needs beside `transfer` (packTexelPoints of
+/// texelRelight's points: per-texel matrices are shaded at each texel's own point), or empty
+/// when it needs none (vectors, per-vertex rows). `occluder` is built from `mesh` when null.
+std::vector<float> shadingPoints(const Mesh& mesh, const Transfer& transfer,
+                                 const Material& material, const Occluder* occluder = nullptr);
 
 /// How a per-texel transfer is relit for an image, the one rule for prt render, auto exposure
 /// and the Python module:

@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "prt/image/image.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/sh.hpp"
@@ -132,6 +133,14 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
 /// validated vertex facing within 60° of it (a Voronoi fill), so the image reads as a field.
 std::vector<Rgb> vertexErrorColours(const Mesh& mesh, const ValidationReport& report,
                                     float* scale = nullptr);
+
+/// The error image of `report` over `transfer`'s rows, black 0 .. white `*scale` (the 99th
+/// percentile, written to `scale`): per vertex the mesh drawn through `width` × `height` pixels
+/// of prt render's default camera with vertexErrorColours; per texel the lightmap itself, each
+/// validated texel's error, black elsewhere (`width`, `height` unused).
+image::Image errorImage(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+                        const ValidationReport& report, int width, int height, float* scale,
+                        const ProgressFn& progress = {});
 
 /// The table as text: a header and one line per band count.
 std::string formatTable(const ValidationReport& report);

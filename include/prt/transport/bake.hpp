@@ -43,6 +43,8 @@ struct BakeFootprint {
 };
 /// Of a bake of settings.domain (per texel: settings.lightmap's texels).
 BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& settings);
+/// The rows of settings.domain on `mesh`: its vertices, or settings.lightmap's texels.
+std::size_t domainRows(const Mesh& mesh, const BakeSettings& settings);
 
 /// A mesh file's own glossy surface (Mesh::gloss: MTL Ks/Ns → phong, glTF metallic-roughness →
 /// ggx with F0 as ks) as a material, clamped to the ranges a material spec accepts; kd left unset.

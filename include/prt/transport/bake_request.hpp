@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "prt/core/options.hpp"
 #include "prt/core/progress.hpp"
 #include "prt/geometry/lightmap_uvs.hpp"
 #include "prt/geometry/mesh.hpp"
@@ -25,10 +26,10 @@ class PassExecutor;
 
 /// The lightmap of a per-texel bake (TransferDomain::Texels).
 struct LightmapRequest {
-  int resolution = 512;                 ///< the lightmap's side in texels
-  int padding = 2;                      ///< rings of gutter dilated around the charts
-  UvSetOption uv = UvSetOption::Auto;   ///< which UV set it lies over
-  bool seamFix = false;                 ///< the least-squares seam fix after the bake
+  int resolution = 512;                ///< the lightmap's side in texels
+  int padding = 2;                     ///< rings of gutter dilated around the charts
+  UvSetOption uv = UvSetOption::Auto;  ///< which UV set it lies over
+  bool seamFix = false;                ///< the least-squares seam fix after the bake
 };
 
 struct BakeRequest {
@@ -47,12 +48,6 @@ struct BakeRequest {
   LightmapRequest lightmap;  ///< per texel
   RowRange rows;             ///< of the domain; count 0: to the last row
 };
-
-/// How a front end spells its options in messages: "--bands 20" (the command line) or
-/// "bands=20" (Python keywords).
-enum class OptionSpelling { Cli, Python };
-/// `name` ("bands", "seam-fix") as the front end spells it: "--bands" or "bands=" ("seam_fix=").
-std::string optionName(OptionSpelling spelling, const std::string& name);
 
 /// The one check of a request before anything is loaded: modes given and distinct, bands,
 /// samples and bounces in range, the lightmap's resolution and padding, the seam fix only per
@@ -107,8 +102,7 @@ struct BakeObserver {
 /// it) on `executor` (the seam fix, when asked, is the front end's, which reports it). Throws
 /// prt::Error naming the row of a non-finite coefficient. On an executor that does not hold
 /// the result (an MPI rank other than 0) the transfers are empty.
-std::vector<BakeResult> bake(const BakeRequest& request, const Mesh& mesh,
-                             const Occluder& occluder, PassExecutor& executor,
-                             const BakeObserver& observer = {});
+std::vector<BakeResult> bake(const BakeRequest& request, const Mesh& mesh, const Occluder& occluder,
+                             PassExecutor& executor, const BakeObserver& observer = {});
 
 }  // namespace prt

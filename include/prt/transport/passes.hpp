@@ -104,6 +104,12 @@ class BakePasses {
   bool resultIsSum() const;
   /// Channels of the running sum (1, or 3 once an RGB pass is added).
   int sumChannels() const;
+  /// Bytes the process that holds the result keeps for it: the transfer, twice when the result
+  /// is the sum of the passes (the sum beside the last pass).
+  std::size_t resultBytes() const;
+  /// True when the result is the last pass's rows themselves, so that a driver may keep them in
+  /// a file-backed mapping (an MPI rank 0 short of memory) and hand them on as they are.
+  bool resultIsLastPass() const;
   /// True when the bake keeps a running sum of its passes: its result, or what its last pass
   /// reads (PassInput::Sum).
   bool sums() const;
@@ -127,8 +133,8 @@ class BakePasses {
   /// and, when `variance` is given, each row's estimator variance (rows.count doubles; 0 for a
   /// texel no triangle covers). Parallel over the rows; advances `progress` per row (throws
   /// prt::Cancelled). Returns the rays cast.
-  std::uint64_t compute(int k, RowRange rows, const PassSource& input, float* out,
-                        double* variance, Progress* progress = nullptr) const;
+  std::uint64_t compute(int k, RowRange rows, const PassSource& input, float* out, double* variance,
+                        Progress* progress = nullptr) const;
 
   /// sum[r] += pass[r] for the rows both cover, in the one order every driver uses: the first
   /// pass added sets the sum (a scalar pass broadcast to every channel of an RGB sum), later
@@ -146,8 +152,8 @@ class BakePasses {
   /// of `varianceRows` (summed in pass order over the passes that count): the error estimates
   /// over the rows of the bake's range that were sampled.
   BakeStats stats(const std::vector<std::uint64_t>& rays, const std::vector<double>& seconds,
-                  RowRange varianceRows, const std::vector<double>& variance,
-                  double secondsTotal, int threads) const;
+                  RowRange varianceRows, const std::vector<double>& variance, double secondsTotal,
+                  int threads) const;
 
  private:
   struct Impl;
@@ -164,13 +170,13 @@ std::string bakeIdentity(const Mesh& mesh, const BakeSettings& settings);
 /// this process. The rows of a pass an executor computed only part of (a job-array shard; the
 /// last pass on an MPI rank other than 0) narrow `previous`, `sum` and `variance` to them.
 struct PassState {
-  int done = 0;       ///< passes finished
-  Transfer previous;  ///< the last finished pass's rows (empty before pass 0)
-  Transfer sum;       ///< the running sum (a vector transfer), when the bake keeps one
-  RowRange varianceRows;  ///< the rows `variance` covers
-  std::vector<double> variance;      ///< per row, summed over the passes that count
-  std::vector<std::uint64_t> rays;   ///< per finished pass, over all the rows it covers
-  std::vector<double> seconds;       ///< per finished pass
+  int done = 0;                  ///< passes finished
+  Transfer previous;             ///< the last finished pass's rows (empty before pass 0)
+  Transfer sum;                  ///< the running sum (a vector transfer), when the bake keeps one
+  RowRange varianceRows;         ///< the rows `variance` covers
+  std::vector<double> variance;  ///< per row, summed over the passes that count
+  std::vector<std::uint64_t> rays;  ///< per finished pass, over all the rows it covers
+  std::vector<double> seconds;      ///< per finished pass
 };
 
 /// Where a pass's rows are computed: this process's threads, the ranks of an MPI job, or one
