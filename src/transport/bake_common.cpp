@@ -101,6 +101,25 @@ std::vector<BakeSettings> glossyBounceOrders(const BakeSettings& matrixBake) {
   return orders;
 }
 
+BakePlan planBake(const Mesh& mesh, const BakeSettings& s, bool checkMemory) {
+  validateBake(mesh, s);
+  BakePlan plan;
+  plan.footprint = bakeFootprint(mesh, s);
+  if (checkMemory) checkFootprint(mesh, s, plan.footprint);
+  plan.rows = bakeRows(mesh, s);
+  plan.domainRows = domainRows(mesh, s);
+  if (s.layout == TransferLayout::Matrix && s.effectiveBounces() > 0) {
+    if (!s.glossyBounces(TransferLayout::Matrix)) {
+      plan.diffuseSource = diffuseBounceSource(s);
+    } else {
+      plan.glossyOrders = glossyBounceOrders(s);
+      for (const BakeSettings& o : plan.glossyOrders)
+        plan.glossyChannels.push_back(bakeFootprint(mesh, o).channels);
+    }
+  }
+  return plan;
+}
+
 BakeStats matrixStats(MatrixPassKind kind, const std::vector<std::uint64_t>& rays,
                       const std::vector<double>& seconds, const std::vector<double>& variance,
                       double secondsTotal) {

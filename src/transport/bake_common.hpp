@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <memory>
+#include <optional>
 #include <span>
 
 #include "prt/core/progress.hpp"
@@ -83,6 +84,25 @@ BounceAlbedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s);
 std::size_t physicalMemoryBytes();
 /// Throws prt::Error stating the figure when the bake would not fit in this machine's memory.
 void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint& f);
+
+/// What a bake is, decided once before its passes are made (planBake, the one call the pass list
+/// makes here): the settings checked, its rows, its footprint, and the recipes of the passes that
+/// feed a matrix bake's bounces.
+struct BakePlan {
+  RowRange rows;               ///< the bake's range (count resolved)
+  std::size_t domainRows = 0;  ///< rows of the whole domain
+  BakeFootprint footprint;
+  /// Matrix, K bounces, diffuse bounce surfaces: the vector transfer of K − 1 bounces the
+  /// matrices gather (diffuseBounceSource).
+  std::optional<BakeSettings> diffuseSource;
+  /// Matrix, K bounces, glossy bounce surfaces: the orders 0..K (glossyBounceOrders) and each
+  /// order's channels.
+  std::vector<BakeSettings> glossyOrders;
+  std::vector<int> glossyChannels;
+};
+/// Checks the mesh and the settings (validateBake) and, when `checkMemory`, the footprint
+/// against this machine's memory (checkFootprint), then plans the bake.
+BakePlan planBake(const Mesh& mesh, const BakeSettings& s, bool checkMemory);
 
 // The passes' kernels (passes.cpp builds the pass list on them).
 

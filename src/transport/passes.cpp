@@ -85,12 +85,11 @@ struct BakePasses::Impl {
 BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSettings& settings,
                        const BakePassOptions& options)
     : impl_(std::make_unique<Impl>(mesh, occluder, settings)) {
-  validateBake(mesh, settings);
-  const BakeFootprint footprint = bakeFootprint(mesh, settings);
-  if (options.checkMemory) checkFootprint(mesh, settings, footprint);
+  const BakePlan plan = planBake(mesh, settings, options.checkMemory);
+  const int channels = plan.footprint.channels;
   Impl& m = *impl_;
-  m.rows = bakeRows(mesh, settings);
-  const RowRange all{0, bakedetail::domainRows(mesh, settings)};
+  m.rows = plan.rows;
+  const RowRange all{0, plan.domainRows};
   const int bounces = settings.effectiveBounces();
   // The last pass's rows: the range, per texel widened by the dilation's reach; the samples
   // kept are those the passes compute (all of them when an earlier pass is read whole).
@@ -111,23 +110,22 @@ BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSet
     m.sum = bounces > 0;
     m.statsKind = StatsKind::Vector;
   } else if (bounces == 0) {
-    m.add("matrices", TransferLayout::Matrix, footprint.channels, last, PassInput::None, true,
-          nullptr, makeMatrixSetup(mesh, settings, false, false, footprint.channels));
+    m.add("matrices", TransferLayout::Matrix, channels, last, PassInput::None, true, nullptr,
+          makeMatrixSetup(mesh, settings, false, false, channels));
     m.statsKind = StatsKind::Matrix;
-  } else if (!settings.glossyBounces(TransferLayout::Matrix)) {
+  } else if (plan.diffuseSource) {
     // Diffuse bounce surfaces: the vector transfer with K − 1 bounces over the whole domain
     // (the sum of its passes), then the matrices that gather it.
-    m.addVectorPasses(diffuseBounceSource(settings), all, all, false);
-    m.add("matrices", TransferLayout::Matrix, footprint.channels, last, PassInput::Sum, true,
-          nullptr, makeMatrixSetup(mesh, settings, true, false, footprint.channels));
+    m.addVectorPasses(*plan.diffuseSource, all, all, false);
+    m.add("matrices", TransferLayout::Matrix, channels, last, PassInput::Sum, true, nullptr,
+          makeMatrixSetup(mesh, settings, true, false, channels));
     m.fullSum = true;
     m.statsKind = StatsKind::MatrixDiffuse;
   } else {
     // Glossy bounce surfaces: the matrices of orders 0..K, each from the one before.
-    const std::vector<BakeSettings> orders = glossyBounceOrders(settings);
     for (int j = 0; j <= bounces; ++j) {
-      const BakeSettings& o = orders[static_cast<std::size_t>(j)];
-      const int c = bakeFootprint(mesh, o).channels;
+      const BakeSettings& o = plan.glossyOrders[static_cast<std::size_t>(j)];
+      const int c = plan.glossyChannels[static_cast<std::size_t>(j)];
       m.add(j == bounces ? "matrices" : "matrices of order " + std::to_string(j),
             TransferLayout::Matrix, c, j == bounces ? last : all,
             j == 0 ? PassInput::None : PassInput::Previous, j == bounces, nullptr,
