@@ -41,11 +41,10 @@ io::ReferenceFile readMatchingReference(const std::string& path, const Reference
     differ("the bake", ref.bakeFile, "this mesh", s.bakeName);
   io::ReferenceFile expected;
   expected.setRows(*s.mesh, s.shape);
-  if (expected.texels() != ref.texels())
+  if (expected.domain() != ref.domain())
     throw Error(path, fmt::format("holds per-{} radiance; {} holds per-{} transfer: run prt "
                                   "reference on it",
-                                  ref.texels() ? "texel" : "vertex", s.bakeName,
-                                  expected.texels() ? "texel" : "vertex"));
+                                  rowName(ref.domain()), s.bakeName, rowName(expected.domain())));
   if (ref.lightmapWidth != expected.lightmapWidth || ref.lightmapHeight != expected.lightmapHeight ||
       ref.lightmapUvFingerprint != expected.lightmapUvFingerprint)
     throw Error(path, fmt::format("was computed for a {} x {} lightmap over other lightmap UVs "

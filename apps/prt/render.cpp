@@ -163,10 +163,6 @@ void run(const RenderOptions& o) {
                      o.reference, ref.samples));
   }
 
-  render::Background kind = bgKind;
-  if (kind == render::Background::Env && lighting.isShFile())
-    kind = render::Background::Sh;  // a light file has no image
-
   const int frames = o.turntable > 0 ? o.turntable : 1;
   std::vector<image::Image> sheet;
   // All or nothing: the frames and the contact sheet wait in temporaries until the last is made.
@@ -195,20 +191,8 @@ void run(const RenderOptions& o) {
       write.exposureStops = exposure ? *exposure
                                      : render::autoExposure(*occluder, shade, camera, frame.width,
                                                             frame.height, write.toneMap);
-    render::BackgroundFn bg;
-    switch (kind) {
-      case render::Background::Env:
-        bg = render::environmentBackground(*lighting.image, rotation);
-        break;
-      case render::Background::Sh:
-        bg = render::shBackground(light, rotation);
-        break;
-      case render::Background::Colour:
-        bg = render::colourBackground(bgColour);
-        break;
-      case render::Background::None:
-        break;
-    }
+    const render::BackgroundFn bg = render::background(
+        bgKind, bgColour, lighting.image ? &*lighting.image : nullptr, &light, rotation);
     const std::string label = frames > 1 ? fmt::format("frame {}/{}", k + 1, frames) : "rendering";
     const auto frameStart = std::chrono::steady_clock::now();
     image::Image img =

@@ -52,7 +52,7 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
   std::printf("frame time (draw + glFinish): median %.3f ms, min %.3f ms\n",
               median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
   const bool table = path == ShaderPath::CpcaVector || path == ShaderPath::CpcaMatrix;
-  const bool perPixel = t.domain() == TransferDomain::Texels;
+  const bool perPixel = relight::drawnPerPixel(t);
   std::printf("CPU per frame (light rotation + packing%s): median %.4f ms\n",
               table                             ? " + cluster projections"
               : path == ShaderPath::CpuRadiance ? " + CPU relighting"

@@ -8,6 +8,7 @@
 
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/units.hpp"
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
@@ -70,13 +71,11 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
   for (const BakedTransfer& t : bake.transfers) {
-    // Per-texel transfer is relit per pixel (vectors only): refused here, naming the file.
-    if (t.transfer.domain() == TransferDomain::Texels) {
-      try {
-        relight::shaderPath(t.transfer, true);
-      } catch (const Error& e) {
-        throw Error(path, std::string(e.what()) + " (" + t.describe() + ")");
-      }
+    // Some path draws it (per-texel matrices only compressed), else refused naming the file.
+    try {
+      relight::shaderPath(t.transfer, false);
+    } catch (const Error& e) {
+      throw Error(path, std::string(e.what()) + " (" + t.describe() + ")");
     }
     if (t.transfer.bands() > kMaxViewerBands)
       throw Error(path, bands::bandLimitMessage("the " + t.describe() + " transfer",
@@ -217,14 +216,9 @@ void SceneView::setTransfer(const DrawState& now) {
   if (const std::vector<float> points = render::shadingPoints(mesh, t, now.material);
       !points.empty())
     renderer_.setTexelPoints(points);
-  relighter_ = path_ == relight::ShaderPath::CpuRadiance
-                   ? relight::Relighter(t, {mesh.positions, mesh.normals, mesh.albedo})
-                   : relight::Relighter();
-  // Under a base-colour texture a glossy material's lobe is relit apart (splitForTexture): the
-  // texture multiplies the diffuse part only. (The transfer's rows are shared, not copied.)
-  lobeRelighter_ = path_ == relight::ShaderPath::CpuRadiance && mesh.baseColour
-                       ? relight::Relighter(t, {mesh.positions, mesh.normals, mesh.albedo})
-                       : relight::Relighter();
+  // (The transfer's rows are shared, not copied.)
+  cpuView_.reset();
+  if (path_ == relight::ShaderPath::CpuRadiance) cpuView_.emplace(mesh, t, now.material);
 }
 
 FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
@@ -240,15 +234,9 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
                                                                                 : Transfer();
   // The base-colour texture multiplies per pixel unless the material's kd replaces it.
   const BaseColourTexture* texture = render::pixelTexture(now.bake->mesh, now.material);
-  const render::TextureSplit split = render::splitForTexture(now.material, texture, t);
-  const bool cpuLobe = path_ == ShaderPath::CpuRadiance && split.glossy.has_value();
-  if (path_ == ShaderPath::CpuRadiance) {
-    relighter_.setBands(now.bands);
-    relighter_.setMaterial(split.diffuse);
-  }
-  if (cpuLobe) {
-    lobeRelighter_.setBands(now.bands);
-    lobeRelighter_.setMaterial(*split.glossy);
+  if (cpuView_) {
+    cpuView_->setBands(now.bands);
+    cpuView_->setMaterial(now.material);
   }
   const bool glossyKernels = path_ == ShaderPath::DenseMatrix || path_ == ShaderPath::CpcaMatrix;
   if (glossyKernels && (newTransfer || !(now.material == drawn_.material))) {
@@ -285,12 +273,8 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
     f.clusterTable = clusterTable_;
   } else if (path_ == ShaderPath::CpuRadiance) {
     const auto tr = std::chrono::steady_clock::now();
-    const int before = relighter_.frames() + lobeRelighter_.frames();
-    relighter_.relightRotated(packer_.rotated(), now.bands, f.camera.eye);
-    if (cpuLobe) lobeRelighter_.relightRotated(packer_.rotated(), now.bands, f.camera.eye);
-    if (relighter_.frames() + lobeRelighter_.frames() != before) {
-      renderer_.setRadiance(relighter_.radiance(),
-                            cpuLobe ? lobeRelighter_.radiance() : std::span<const Rgb>());
+    if (cpuView_->relightRotated(packer_.rotated(), now.bands, f.camera.eye)) {
+      renderer_.setRadiance(cpuView_->radiance(), cpuView_->highlight());
       relightSeconds_ =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
     }
@@ -310,7 +294,7 @@ std::size_t SceneView::lightUploadBytes() const {
     case relight::ShaderPath::CpcaMatrix:
       return renderer_.clusterTableBytes();
     case relight::ShaderPath::CpuRadiance:
-      return sizeof(Rgb) * relighter_.radiance().size();
+      return sizeof(Rgb) * cpuView_->radiance().size();
     default:
       return packer_.bytes();
   }
@@ -318,50 +302,36 @@ std::size_t SceneView::lightUploadBytes() const {
 
 std::string SceneView::uploadSummary(const Scene& scene) const {
   const Transfer& t = scene.transfer().transfer;
-  // The dense rows' cost on the path a dense transfer of this shape would take.
-  const relight::ShaderPath densePath = !t.isMatrix() ? relight::ShaderPath::DenseVector
-                                        : glossyOnGpu ? relight::ShaderPath::DenseMatrix
-                                                      : relight::ShaderPath::CpuRadiance;
+  const char* row = rowName(t.domain());
+  const std::string where =
+      relight::drawnPerPixel(t)
+          ? fmt::format(" per pixel from a {} x {} lightmap", t.shape().lightmap.width,
+                        t.shape().lightmap.height)
+          : std::string(" per vertex");
+  // A dense row's bytes: a vector's on the dense path, a matrix's B⁴ floats a channel.
   const std::size_t dense =
-      densePath == relight::ShaderPath::CpuRadiance
-          ? sizeof(Rgb)
-          : 16 * std::size_t(relight::shaderTexelsPerRow(t, densePath));  // from the shape
-  if (t.domain() == TransferDomain::Texels) {
-    const TransferShape::LightmapSize lm = t.shape().lightmap;
-    // A dense per-texel matrix is B⁴ floats per channel (no GPU path draws it).
-    const std::size_t denseTexel =
-        t.isMatrix() ? sizeof(float) * std::size_t(t.coeffs()) * t.coeffs() * t.channels() : dense;
-    const std::size_t texels = lm.texels();
-    if (t.compressed())
-      return fmt::format(
-          "relit compressed {}(CPCA {} x {}) per pixel from a {} x {} lightmap: {} bytes per "
-          "texel uploaded once ({:.1f} MB; dense: {}), {} bytes of cluster table per frame",
-          t.isMatrix() ? "glossy matrices " : "", t.cpca().clusters, t.cpca().basisCount, lm.width,
-          lm.height, renderer_.bytesPerVertex(), double(texels * renderer_.bytesPerVertex()) / 1e6,
-          denseTexel, renderer_.clusterTableBytes());
-    return fmt::format(
-        "dense transfer relit per pixel from a {} x {} lightmap: {} bytes per texel uploaded "
-        "({:.1f} MB)",
-        lm.width, lm.height, denseTexel, double(texels * denseTexel) / 1e6);
-  }
+      t.isMatrix()
+          ? sizeof(float) * std::size_t(t.coeffs()) * std::size_t(t.coeffs()) * t.channels()
+          : 16 * std::size_t(relight::shaderTexelsPerRow(t, relight::ShaderPath::DenseVector));
+  const std::string upload = bytesText(t.rowCount() * renderer_.bytesPerVertex());
   switch (path_) {
     case relight::ShaderPath::CpuRadiance:
       return fmt::format(
-          "{} relit on the CPU (relight::Relighter): {} bytes of radiance per vertex per relit "
-          "frame",
+          "{} relit on the CPU (relight::Relighter): {} bytes of radiance per {} per relit frame",
           t.compressed() ? fmt::format("compressed (CPCA {} x {}) matrices", t.cpca().clusters,
                                        t.cpca().basisCount)
                          : std::string("dense matrices"),
-          sizeof(Rgb));
+          sizeof(Rgb), row);
     case relight::ShaderPath::CpcaVector:
     case relight::ShaderPath::CpcaMatrix:
       return fmt::format(
-          "relit compressed (CPCA {} x {}): {} bytes per vertex uploaded once (dense: {}), {} "
+          "relit compressed {}(CPCA {} x {}){}: {} bytes per {} uploaded once ({}; dense: {}), {} "
           "bytes of cluster table per frame",
-          t.cpca().clusters, t.cpca().basisCount, renderer_.bytesPerVertex(), dense,
-          renderer_.clusterTableBytes());
+          t.isMatrix() ? "glossy matrices " : "", t.cpca().clusters, t.cpca().basisCount, where,
+          renderer_.bytesPerVertex(), row, upload, dense, renderer_.clusterTableBytes());
     default:
-      return fmt::format("dense transfer: {} bytes per vertex uploaded", dense);
+      return fmt::format("dense transfer relit{}: {} bytes per {} uploaded ({})", where,
+                         renderer_.bytesPerVertex(), row, upload);
   }
 }
 

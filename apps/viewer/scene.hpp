@@ -11,7 +11,7 @@
 //
 // How a transfer is drawn is the library's one dispatch (relight::shaderPath, shader_transfer.hpp):
 // dense and compressed vectors and compressed matrices in the vertex shader from per-vertex
-// texels uploaded once; dense matrices on the CPU (relight::Relighter, the code prt render
+// texels uploaded once; dense matrices on the CPU (render::RelitView, the code prt render
 // runs, with the orbit camera's eye) into a radiance buffer the shader only displays, or with
 // --glossy-on gpu in the vertex shader. Why the CPU by default: docs/viewer.md, "Glossy
 // transfer". Per-texel (lightmap) vectors, dense or compressed, are relit per pixel in the
@@ -34,7 +34,7 @@
 #include "prt/image/image.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/lighting.hpp"
-#include "prt/relight/relighter.hpp"
+#include "prt/render/relit_view.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/transfer/material.hpp"
@@ -200,11 +200,13 @@ class SceneView {
   /// prepare did not relight on the CPU.
   double lastRelightSeconds() const { return relightSeconds_; }
   /// CPU relightings so far (frames where something view- or light-dependent changed).
-  int cpuRelights() const { return relighter_.frames(); }
+  int cpuRelights() const { return cpuView_ ? cpuView_->frames() : 0; }
   /// Of those, the ones served from the view-collapsed transfer (only the light had changed).
-  int cpuLightOnlyRelights() const { return relighter_.lightOnlyFrames(); }
+  int cpuLightOnlyRelights() const { return cpuView_ ? cpuView_->lightOnlyFrames() : 0; }
   /// The last CPU relighting's per-vertex exit radiance (what the shader shows).
-  std::span<const Rgb> cpuRadiance() const { return relighter_.radiance(); }
+  std::span<const Rgb> cpuRadiance() const {
+    return cpuView_ ? cpuView_->radiance() : std::span<const Rgb>();
+  }
   /// One line on what the shown transfer costs the GPU, after a prepare: what is uploaded once
   /// per vertex (against the dense rows) and per frame.
   std::string uploadSummary(const Scene& scene) const;
@@ -224,8 +226,9 @@ class SceneView {
   bool shImageValid_ = false;
   relight::ShaderPath path_ = relight::ShaderPath::DenseVector;
   Transfer shown_;  ///< the transfer cut to the shown bands (compressed projections)
-  relight::Relighter relighter_;
-  relight::Relighter lobeRelighter_;  ///< CpuRadiance under a texture: the lobe, relit apart
+  /// CpuRadiance: the rows relit on the CPU as prt render relights them (under a texture the
+  /// glossy lobe apart, render/base_colour.hpp).
+  std::optional<render::RelitView> cpuView_;
   std::vector<float> clusterTable_;
   double lightSeconds_ = 0, relightSeconds_ = 0;
 };

@@ -232,6 +232,10 @@ def render(mesh: MeshLike, radiance: npt.ArrayLike, camera: Union[None, Camera, 
            rotation: Rotation = None, progress: Progress = None) -> npt.NDArray[np.float32]:
     """An (H, W, 3) linear image of the mesh shaded with per-vertex radiance, as `prt render`."""
 
+def auto_exposure(mesh: MeshLike, radiance: npt.ArrayLike, camera: Union[None, Camera, str] = None,
+                  size: Tuple[int, int] = (640, 480), tonemap: str = "aces") -> float:
+    """The exposure in stops prt render picks (--exposure auto) for this radiance and camera."""
+
 def reference(mesh: MeshLike, environment: EnvironmentLike, *, mode: Mode = "shadowed",
               samples: int = 1024, bounces: int = 1, material: Optional[str] = None,
               eye: Optional[npt.ArrayLike] = None, seed: int = 0, rotation: Rotation = None,
@@ -265,7 +269,7 @@ def write_games202_transport(path: PathLike, transfer: TransferLike, mesh: MeshL
                              layout: str = "faces", channel: Optional[str] = None) -> None: ...
 def read_image(path: PathLike, decode: str = "srgb") -> npt.NDArray[np.float32]: ...
 def write_image(path: PathLike, image: npt.ArrayLike, tonemap: str = "aces",
-                exposure: float = 0.0) -> None: ...
+                exposure: Union[float, str] = "auto") -> None: ...
 
 # --- threads --------------------------------------------------------------------------------------
 

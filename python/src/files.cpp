@@ -2,11 +2,13 @@
 // course's light.txt and transport.txt, and images — the library's readers and writers, so a
 // file written here is one `prt` reads and the other way round.
 
+#include <cmath>
 #include <cstring>
 
 #include "common.hpp"
 #include "objects.hpp"
 #include "prt/core/version.hpp"
+#include "prt/image/exposure.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/core/file.hpp"
@@ -338,7 +340,7 @@ read_bake_file) is stored with it.)");
       "from sRGB, or (v/255)^2.2 with decode='gamma2.2').");
   m.def(
       "write_image",
-      [](py::handle pathObj, py::handle image, const std::string& tonemap, float exposure) {
+      [](py::handle pathObj, py::handle image, const std::string& tonemap, py::handle exposure) {
         const std::string path = pathString(pathObj);
         const auto a = floats(image, "image", {kAny, kAny, 3});
         prt::image::Image img(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)));
@@ -346,13 +348,28 @@ read_bake_file) is stored with it.)");
                     img.pixels.size() * sizeof(prt::Rgb));
         prt::image::WriteOptions o;
         o.toneMap = asValueError([&] { return prt::image::parseToneMap(tonemap); });
-        o.exposureStops = exposure;
+        if (py::isinstance<py::str>(exposure)) {
+          if (exposure.cast<std::string>() != "auto")
+            throw py::value_error("exposure must be a number of stops or 'auto'");
+          // prt render's rule (image::autoExposure) over the pixels that are not black: of a
+          // render(background='none'), exactly the mesh's.
+          std::vector<prt::Rgb> shown;
+          for (const prt::Rgb& p : img.pixels)
+            if (prt::isFinite(p) && (p.x > 0 || p.y > 0 || p.z > 0)) shown.push_back(p);
+          o.exposureStops = prt::image::autoExposure(shown, o.toneMap);
+        } else {
+          o.exposureStops = exposure.cast<float>();
+          if (!std::isfinite(o.exposureStops))
+            throw py::value_error("exposure must be finite");
+        }
         py::gil_scoped_release nogil;
         prt::image::writeImage(path, img, o);
       },
-      py::arg("path"), py::arg("image"), py::arg("tonemap") = "aces", py::arg("exposure") = 0.0f,
+      py::arg("path"), py::arg("image"), py::arg("tonemap") = "aces", py::arg("exposure") = "auto",
       "Writes an (H, W, 3) linear image: .exr / .hdr linear, .png tone-mapped (aces, reinhard, "
-      "clamp) and sRGB-encoded, as prt render writes them.");
+      "clamp) and sRGB-encoded, as prt render writes them. exposure: stops, or 'auto' (default): "
+      "prt render's auto exposure over the image's non-black pixels (of a render with "
+      "background='none', the mesh's; with a background, pass auto_exposure(mesh, radiance, ...)).");
 }
 
 }  // namespace prtpy

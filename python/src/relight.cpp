@@ -8,7 +8,9 @@
 #include "prt/envmap/project.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/image/image_io.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/render/exposure.hpp"
 #include "prt/render/primary.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/render/render.hpp"
@@ -149,6 +151,41 @@ prt::render::MisHeuristic heuristicOf(const std::string& s) {
   throw py::value_error("heuristic must be power or balance, got '" + s + "'");
 }
 
+// Radiance given to render / auto_exposure: (V, 3) per vertex, or (H, W, 3) a lightmap of
+// per-texel radiance over the mesh's lightmap UVs; checked finite.
+struct RowRadiance {
+  std::vector<prt::Rgb> values;
+  int width = 0, height = 0;  ///< a lightmap's; 0 per vertex
+  prt::render::ShadeFn shader(const prt::Mesh& mesh) const {
+    if (width > 0) return prt::render::texelRadianceShader(mesh, values, width, height, mesh.albedo);
+    return prt::render::vertexRadianceShader(mesh, values);
+  }
+};
+
+RowRadiance rowRadiance(const prt::Mesh& mm, py::handle radiance) {
+  // (V, 3): per vertex; (H, W, 3): a lightmap of per-texel radiance over the lightmap UVs.
+  const py::array given = py::array::ensure(radiance);
+  const bool lightmap = given && given.ndim() == 3;
+  if (lightmap && mm.lightmapUvs.size() != mm.vertexCount())
+    throw py::value_error(
+        "radiance of shape (H, W, 3) is a lightmap: the mesh has no lightmap UVs");
+  const py::ssize_t H = lightmap ? given.shape(0) : 0, W = lightmap ? given.shape(1) : 0;
+  const auto rad =
+      lightmap ? floats(radiance, "radiance", {H, W, 3})
+               : floats(radiance, "radiance", {static_cast<py::ssize_t>(mm.vertexCount()), 3});
+  RowRadiance out;
+  out.values.resize(lightmap ? std::size_t(H * W) : mm.vertexCount());
+  std::memcpy(static_cast<void*>(out.values.data()), rad.data(),
+              out.values.size() * sizeof(prt::Rgb));
+  out.width = int(W);
+  out.height = int(H);
+  asValueError([&] {
+    prt::render::checkFiniteRadiance(out.values, "radiance", lightmap ? "texel" : "vertex");
+    return 0;
+  });
+  return out;
+}
+
 py::array renderFn(py::handle meshObj, py::handle radiance, py::handle cameraObj, py::handle size,
                    int spp, std::uint32_t seed, py::handle background, py::handle environment,
                    py::handle lightObj, py::handle rot, py::handle progress) {
@@ -165,18 +202,7 @@ py::array renderFn(py::handle meshObj, py::handle radiance, py::handle cameraObj
     prt::render::checkFrameSettings(frame);
     return 0;
   });
-  // (V, 3): per vertex; (H, W, 3): a lightmap of per-texel radiance over the lightmap UVs.
-  const py::array given = py::array::ensure(radiance);
-  const bool lightmap = given && given.ndim() == 3;
-  if (lightmap && mm.lightmapUvs.size() != mm.vertexCount())
-    throw py::value_error(
-        "radiance of shape (H, W, 3) is a lightmap: the mesh has no lightmap UVs");
-  const py::ssize_t H = lightmap ? given.shape(0) : 0, W = lightmap ? given.shape(1) : 0;
-  const auto rad =
-      lightmap ? floats(radiance, "radiance", {H, W, 3})
-               : floats(radiance, "radiance", {static_cast<py::ssize_t>(mm.vertexCount()), 3});
-  std::vector<prt::Rgb> values(lightmap ? std::size_t(H * W) : mm.vertexCount());
-  std::memcpy(static_cast<void*>(values.data()), rad.data(), values.size() * sizeof(prt::Rgb));
+  const RowRadiance rows = rowRadiance(mm, radiance);
   const prt::render::Camera camera = cameraOf(cameraObj, mm, frame.width, frame.height);
   const prt::Mat3d r = rotation(rot);
 
@@ -195,32 +221,31 @@ py::array renderFn(py::handle meshObj, py::handle radiance, py::handle cameraObj
     if (kind.empty()) kind = background.cast<std::string>();
     bg = asValueError([&] { return prt::render::parseBackground(kind, &colour); });
   }
-  prt::render::BackgroundFn bgFn;
-  switch (bg) {
-    case prt::render::Background::Env:
-      if (!env) throw py::value_error("background='env' needs environment=");
-      bgFn = prt::render::environmentBackground(env->env, r);
-      break;
-    case prt::render::Background::Sh:
-      if (lightObj.is_none()) throw py::value_error("background='sh' needs light=");
-      bgFn = prt::render::shBackground(light, r);
-      break;
-    case prt::render::Background::Colour:
-      bgFn = prt::render::colourBackground(colour);
-      break;
-    case prt::render::Background::None:
-      break;
-  }
+  if (bg == prt::render::Background::Env && !env)
+    throw py::value_error("background='env' needs environment=");
+  if (bg == prt::render::Background::Sh && lightObj.is_none())
+    throw py::value_error("background='sh' needs light=");
+  const prt::render::BackgroundFn bgFn = prt::render::background(
+      bg, colour, env ? &env->env : nullptr, lightObj.is_none() ? nullptr : &light, r);
   prt::image::Image img = runLong("rendering", progress, [&](const prt::ProgressFn& fn) {
-    prt::render::checkFiniteRadiance(values, "radiance", lightmap ? "texel" : "vertex");
-    if (lightmap)
-      return prt::render::tracePrimary(
-          camera, frame, mesh->occluder(),
-          prt::render::texelRadianceShader(mm, values, int(W), int(H), mm.albedo), bgFn, fn);
-    return prt::render::renderRelit(mm, mesh->occluder(), values, camera, frame, bgFn, fn);
+    return prt::render::tracePrimary(camera, frame, mesh->occluder(), rows.shader(mm), bgFn, fn);
   });
   const auto h = static_cast<py::ssize_t>(img.height), w = static_cast<py::ssize_t>(img.width);
   return adoptVector(std::move(img.pixels), {h, w, 3});
+}
+
+float autoExposureFn(py::handle meshObj, py::handle radiance, py::handle cameraObj, py::handle size,
+                     const std::string& tonemap) {
+  const MeshPtr mesh = toMesh(meshObj);
+  const prt::Mesh& mm = mesh->mesh();
+  const auto wh = size.cast<std::vector<int>>();
+  if (wh.size() != 2 || wh[0] < 1 || wh[1] < 1)
+    throw py::value_error("size must be (width, height), both positive");
+  const RowRadiance rows = rowRadiance(mm, radiance);
+  const prt::render::Camera camera = cameraOf(cameraObj, mm, wh[0], wh[1]);
+  const prt::image::ToneMap op = asValueError([&] { return prt::image::parseToneMap(tonemap); });
+  py::gil_scoped_release nogil;
+  return prt::render::autoExposure(mesh->occluder(), rows.shader(mm), camera, wh[0], wh[1], op);
 }
 
 py::dict referenceFn(py::handle meshObj, py::handle environment, const std::string& mode,
@@ -398,6 +423,13 @@ size: (width, height). spp: samples per pixel; seed of the sub-pixel jitter.
 background: 'env' (environment=, rotated by rotation=), 'sh' (the SH reconstruction of
     light=, rotated), 'none' (black), or a linear colour (r, g, b) / 'r,g,b' / '#rrggbb';
     default env when environment= is given, else sh when light= is, else none.)");
+
+  m.def("auto_exposure", &autoExposureFn, py::arg("mesh"), py::arg("radiance"),
+        py::arg("camera") = py::none(), py::arg("size") = py::make_tuple(640, 480),
+        py::arg("tonemap") = "aces",
+        R"(The exposure in stops prt render picks (--exposure auto) for this radiance seen through
+camera at size: the one auto exposure rule (image/exposure.hpp) over the pixels that show the
+mesh. Pass it to write_image(..., exposure=) for a render with a background.)");
 
   m.def("reference", &referenceFn, py::arg("mesh"), py::arg("environment"), py::kw_only(),
         py::arg("mode") = "shadowed", py::arg("samples") = 1024, py::arg("bounces") = 1,

@@ -58,6 +58,8 @@ void checkPath(const Transfer& t, ShaderPath path) {
 
 }  // namespace
 
+bool drawnPerPixel(const Transfer& t) { return t.domain() == TransferDomain::Texels; }
+
 ShaderPath shaderPath(const Transfer& t, bool matricesOnGpu) {
   ShaderPath path;
   if (!t.isMatrix())
@@ -94,7 +96,7 @@ ShaderRows packShaderRows(const Transfer& t, ShaderPath path) {
   out.path = path;
   out.texelsPerRow = shaderTexelsPerRow(t, path);
   out.channels = t.channels();
-  out.perPixel = t.domain() == TransferDomain::Texels;
+  out.perPixel = drawnPerPixel(t);
   if (out.perPixel) out.lightmap = t.shape().lightmap;
   const std::size_t rows = t.rowCount(), slots = 4 * static_cast<std::size_t>(out.texelsPerRow);
   out.rgba.assign(rows * slots, 0.0f);

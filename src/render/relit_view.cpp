@@ -16,19 +16,40 @@ bool perTexel(const Transfer& t) {
 
 RelitView::RelitView(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
                      const Material& material)
-    : mesh_(mesh), occluder_(occluder), transfer_(transfer), material_(material) {
+    : mesh_(mesh), occluder_(&occluder), transfer_(transfer), material_(material) {
   if (perTexel(transfer)) texels_ = texelRelight(mesh, occluder, transfer, material);
-  const relight::Surface surface =
-      perTexel(transfer) ? texels_.surface()
-                         : relight::Surface{mesh.positions, mesh.normals, mesh.albedo};
-  texture_ = pixelTexture(mesh, material);
-  const TextureSplit split = splitForTexture(material, texture_, transfer);
-  relighter_ = relight::Relighter(transfer, surface);
+  relighter_ = relight::Relighter(transfer, surface());
+  setMaterial(material);
+}
+
+RelitView::RelitView(const Mesh& mesh, const Transfer& transfer, const Material& material)
+    : mesh_(mesh), occluder_(nullptr), transfer_(transfer), material_(material) {
+  if (perTexel(transfer))
+    throw Error(mesh.source, "per-texel transfer is relit at its texels' sample points, which "
+                             "need the mesh's occluder");
+  relighter_ = relight::Relighter(transfer, surface());
+  setMaterial(material);
+}
+
+relight::Surface RelitView::surface() const {
+  return perTexel(transfer_) ? texels_.surface()
+                             : relight::Surface{mesh_.positions, mesh_.normals, mesh_.albedo};
+}
+
+void RelitView::setMaterial(const Material& material) {
+  material_ = material;
+  texture_ = pixelTexture(mesh_, material);
+  const TextureSplit split = splitForTexture(material, texture_, transfer_);
   relighter_.setMaterial(split.diffuse);
-  if (split.glossy) {
-    glossy_.emplace(transfer, surface);
-    glossy_->setMaterial(*split.glossy);
+  if (!split.glossy) {
+    glossy_.reset();
+    return;
   }
+  if (!glossy_) {
+    glossy_.emplace(transfer_, surface());
+    glossy_->setBands(relighter_.bands());
+  }
+  glossy_->setMaterial(*split.glossy);
 }
 
 void RelitView::setBands(int bands) {
@@ -52,7 +73,16 @@ std::span<const Rgb> RelitView::relight(const sh::RgbSh& light, const Mat3d& rot
   return radiance;
 }
 
+bool RelitView::relightRotated(std::span<const Rgb> rotatedLight, int lightBands,
+                               const Vec3f& eye) {
+  const int before = relighter_.frames() + (glossy_ ? glossy_->frames() : 0);
+  relighter_.relightRotated(rotatedLight, lightBands, eye);
+  if (glossy_) highlight_ = glossy_->relightRotated(rotatedLight, lightBands, eye);
+  return relighter_.frames() + (glossy_ ? glossy_->frames() : 0) != before;
+}
+
 ShadeFn RelitView::shader() const {
+  PRT_CHECK(occluder_, "RelitView::shader of a view without an occluder");
   const auto rows = [&](std::span<const Rgb> values, std::span<const Rgb> pixelAlbedo) {
     if (!perTexel(transfer_)) return vertexRadianceShader(mesh_, values);
     const TransferShape::LightmapSize lm = transfer_.shape().lightmap;
@@ -71,7 +101,8 @@ ShadeFn RelitView::shader(std::span<const Rgb> rowRadiance) const {
 
 float RelitView::autoExposure(const Camera& camera, int width, int height,
                               image::ToneMap op) const {
-  return render::autoExposure(occluder_, shader(), camera, width, height, op);
+  PRT_CHECK(occluder_, "RelitView::autoExposure of a view without an occluder");
+  return render::autoExposure(*occluder_, shader(), camera, width, height, op);
 }
 
 }  // namespace prt::render

@@ -53,6 +53,24 @@ BackgroundFn colourBackground(const Rgb& colour) {
   return [colour](const Vec3f&) { return colour; };
 }
 
+BackgroundFn background(Background kind, const Rgb& colour, const envmap::Environment* env,
+                        const sh::RgbSh* light, const Mat3d& rotation) {
+  switch (kind) {
+    case Background::Env:
+      if (env) return environmentBackground(*env, rotation);
+      if (!light) throw Error("the env background needs an environment (or an SH light)");
+      return shBackground(*light, rotation);  // a light file has no image
+    case Background::Sh:
+      if (!light) throw Error("the sh background needs an SH light");
+      return shBackground(*light, rotation);
+    case Background::Colour:
+      return colourBackground(colour);
+    case Background::None:
+      break;
+  }
+  return {};
+}
+
 void checkFiniteRadiance(std::span<const Rgb> radiance, const std::string& label,
                          const std::string& row) {
   for (std::size_t v = 0; v < radiance.size(); ++v)

@@ -54,6 +54,34 @@ def test_relit_rotated_light_renders_as_prt_render(tmp_path, prt_cli, kind):
     assert np.array_equal(np.maximum(ours, 0), theirs)
 
 
+def test_auto_exposure_is_prt_renders(tmp_path, prt_cli):
+    """auto_exposure picks prt render's --exposure auto for the same radiance and camera, and
+    write_image's default ('auto') writes the picture prt render writes (not exposure 0: a sky
+    of radiance ~3 burns out)."""
+    glb = tmp_path / "e.glb"
+    prt_cli("bake", SCENE, *BAKES["vector"], "-o", glb)
+    report, png = tmp_path / "r.json", tmp_path / "cli.png"
+    prt_cli("render", glb, "--light", "builtin:sky", "--size", f"{SIZE[0]}x{SIZE[1]}", "--spp", 2,
+            "--background", "none", "--json", report, "-o", png)
+    stops = json.loads(report.read_text())["exposureStops"]
+    f = prtkit.read_bake_file(glb)
+    L = prtkit.project_environment("builtin:sky", f.pick().bands)
+    camera = prtkit.frame_mesh(f.mesh, *SIZE)
+    radiance = prtkit.relight(f.pick(), L, mesh=f.mesh)
+    assert prtkit.auto_exposure(f.mesh, radiance, camera=camera, size=SIZE) == pytest.approx(
+        stops, abs=1e-6)
+    assert abs(stops) > 0.5  # the default of old (0 stops) would be visibly wrong
+    image = prtkit.render(f.mesh, radiance, camera=camera, size=SIZE, spp=2, background="none")
+    ours, zero = tmp_path / "py.png", tmp_path / "zero.png"
+    prtkit.write_image(ours, image)
+    prtkit.write_image(zero, image, exposure=0)
+    cli = prtkit.read_image(png)
+    assert np.abs(prtkit.read_image(ours) - cli).mean() < 0.01
+    assert np.abs(prtkit.read_image(zero) - cli).mean() > 0.03
+    with pytest.raises(ValueError, match="'auto'"):
+        prtkit.write_image(ours, image, exposure="bright")
+
+
 def test_compressed_relighting_renders_as_prt_render(tmp_path, prt_cli):
     glb, cglb = tmp_path / "d.glb", tmp_path / "c.glb"
     prt_cli("bake", SCENE, "--mode", "shadowed", "--samples", "64", "-o", glb)

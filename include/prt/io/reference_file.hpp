@@ -59,6 +59,7 @@ struct ReferenceFile {
   int lightmapWidth = 0, lightmapHeight = 0;
   std::string lightmapUvFingerprint;
   bool texels() const { return lightmapWidth > 0; }
+  TransferDomain domain() const { return texels() ? TransferDomain::Texels : TransferDomain::Vertices; }
   /// The rows it estimates are those of `shape` over `mesh`: per texel, its lightmap's size and
   /// a fingerprint of the mesh's lightmap UVs; per vertex, none.
   void setRows(const Mesh& mesh, const TransferShape& shape);

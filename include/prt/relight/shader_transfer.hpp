@@ -87,6 +87,10 @@ const char* toString(ShaderPath path);
 /// the shaders' limits, RGB matrices in the vertex shader, matrices per texel).
 ShaderPath shaderPath(const Transfer& t, bool matricesOnGpu);
 
+/// Whether the transfer's rows are drawn per pixel (lightmap texels fetched at the mesh's
+/// lightmap UVs) rather than per vertex: the one place the viewers ask the domain.
+bool drawnPerPixel(const Transfer& t);
+
 /// Why a dense per-texel matrix transfer is not drawn (shaderPath's refusal).
 inline constexpr const char* kPerTexelMatricesRefusal =
     "per-texel glossy matrices are drawn CPCA-compressed (prt compress), relit per pixel; dense "

@@ -36,11 +36,18 @@ class RelitView {
   /// its lightmap) must outlive the view.
   RelitView(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
             const Material& material);
+  /// A view with no occluder, for a rasteriser that only needs the rows relit (the desktop
+  /// viewer's CPU path): per-vertex transfer only (throws prt::Error for per-texel), and no
+  /// shader() or autoExposure().
+  RelitView(const Mesh& mesh, const Transfer& transfer, const Material& material);
 
   /// Cuts the transfer to `bands` (1..its bands) for the relights that follow.
   void setBands(int bands);
   int bands() const { return relighter_.bands(); }
   const Material& material() const { return material_; }
+  /// Relights with another material from the next relight on (per vertex: per texel the rows'
+  /// sample points were placed for the first).
+  void setMaterial(const Material& material);
   /// "vertex" or "texel": what a row is, for messages.
   const char* rowNoun() const;
   /// True when the rows are the mesh's vertices (other radiance can be drawn: shader(rows)).
@@ -51,6 +58,21 @@ class RelitView {
   /// prt::Error naming `name` when a row's radiance is not finite.
   std::span<const Rgb> relight(const sh::RgbSh& light, const Mat3d& rotation, const Vec3f& eye,
                                const std::string& name, relight::RelightInfo* info = nullptr);
+  /// The same for a light already rotated (a viewer's packed light: (r, g, b) per coefficient,
+  /// lightBands² of them). Returns false when nothing changed since the last relight (the same
+  /// light, eye, bands and material): radiance() and highlight() then still hold it.
+  bool relightRotated(std::span<const Rgb> rotatedLight, int lightBands, const Vec3f& eye);
+  /// The rows' radiance of the last relight (the part the texture multiplies, when textured).
+  std::span<const Rgb> radiance() const { return relighter_.radiance(); }
+  /// The glossy lobe's radiance of the last relight, added untextured per pixel (empty unless
+  /// the mesh is textured and the material glossy over matrices: render/base_colour.hpp).
+  std::span<const Rgb> highlight() const { return glossy_ ? highlight_ : std::span<const Rgb>(); }
+
+  /// Relights so far (not served from the last radiance), and of those the ones served from the
+  /// view-collapsed transfer (only the light had changed): relight::Relighter's counts.
+  int frames() const { return relighter_.frames(); }
+  int lightOnlyFrames() const { return relighter_.lightOnlyFrames(); }
+
   /// The pixels of the last relight.
   ShadeFn shader() const;
   /// The pixels of other radiance at the rows (a reference's, drawn as PRT's would be; per
@@ -62,7 +84,7 @@ class RelitView {
 
  private:
   const Mesh& mesh_;
-  const Occluder& occluder_;
+  const Occluder* occluder_;  ///< null: rows only
   const Transfer& transfer_;
   Material material_;
   TexelRelight texels_;  ///< per texel: how the rows are relit and drawn
@@ -70,6 +92,8 @@ class RelitView {
   relight::Relighter relighter_;
   std::optional<relight::Relighter> glossy_;  ///< the lobe, relit apart under a texture
   std::span<const Rgb> highlight_;
+
+  relight::Surface surface() const;  ///< the rows' points: the vertices, or the texels' samples
 };
 
 }  // namespace prt::render

@@ -26,6 +26,12 @@ BackgroundFn environmentBackground(const envmap::Environment& env, const Mat3d& 
 /// The SH reconstruction of `light` rotated by R, clamped at zero (ringing can go negative).
 BackgroundFn shBackground(const sh::RgbSh& light, const Mat3d& rotation);
 BackgroundFn colourBackground(const Rgb& colour);
+/// The background of `kind` under `rotation`: the environment image (`env`; with none, a light
+/// file's, `light`'s SH reconstruction instead), the SH reconstruction of `light`, the colour,
+/// or none (an empty function). Throws prt::Error when what the kind draws is not given
+/// (`light` missing for Sh). One rule for prt render and Python's render.
+BackgroundFn background(Background kind, const Rgb& colour, const envmap::Environment* env,
+                        const sh::RgbSh* light, const Mat3d& rotation);
 
 /// Throws Error(label, "the relit radiance at vertex N is not finite ...") for the first value
 /// that is not: finite transfer times a finite light can still overflow float (CPCA weights of
