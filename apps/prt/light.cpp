@@ -95,8 +95,11 @@ void runLight(const LightOptions& o) {
   }
   const std::string wantExt =
       engine ? io::engineLightExtension(*engine) : format == "games202" ? "txt" : "json";
-  if (!isStandardOutput(o.output) && ext != wantExt)
-    throw Error(o.output, "--format " + format + " writes a ." + wantExt + " file");
+  // gltf-ibl writes a whole glTF asset: .gltf as well as .json.
+  const bool gltfToo = engine == io::EngineLight::GltfIbl && ext == "gltf";
+  if (!isStandardOutput(o.output) && ext != wantExt && !gltfToo)
+    throw Error(o.output, "--format " + format + " writes a ." + wantExt +
+                              (engine == io::EngineLight::GltfIbl ? " or .gltf" : "") + " file");
   const std::array<double, 3> rot = parseEulerDegrees(o.rotate);
   const sh::Window window = parseWindow(o.window);
   const image::ToneMap tone = image::parseToneMap(o.toneMap);
@@ -227,9 +230,12 @@ void addLightCommand(CLI::App& root) {
   cmd->add_option("--compat", opts->compat, "games202: reproduce the course framework's numbers");
   cmd->add_option("--format", opts->format,
                   std::string(kLightFormats) +
-                      ": ours, the GAMES202 course's light.txt, a three.js LightProbe, glTF "
-                      "EXT_lights_image_based irradiance, Filament cmgen's sh.txt, Unity "
-                      "SphericalHarmonicsL2 (docs/formats-light.md; default: by extension)");
+                      ": ours, the GAMES202 course's light.txt, a three.js LightProbe, a glTF "
+                      "asset with an EXT_lights_image_based light (irradiance and a specular cube "
+                      "prefiltered from the SH light; .gltf or .json), Filament cmgen's sh.txt as "
+                      "`cmgen -w no` writes it (windowing off; cmgen's default -w auto windows "
+                      "bands 1 and up, band 2 by 1.2-4x as the image goes), Unity SphericalHarmonicsL2 "
+                      "(docs/formats-light.md; default: by extension)");
   cmd->add_option("--preview", opts->preview,
                   "Preview image: source, SH radiance, SH irradiance/pi");
   cmd->add_option("--preview-width", opts->previewWidth, "Preview width in pixels")

@@ -30,7 +30,7 @@ void appendToString(png_structp png, png_bytep data, png_size_t length) {
 /// libpng reports errors by longjmp: this frame holds nothing with a destructor, so a jump
 /// back to its setjmp leaks nothing. False on any libpng error.
 bool writePng(std::string& out, int width, int height, int channels, const png_byte* rows,
-              std::size_t rowBytes) {
+              std::size_t rowBytes, int bitDepth = 16) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
@@ -41,7 +41,7 @@ bool writePng(std::string& out, int width, int height, int channels, const png_b
   static constexpr int kTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
                                    PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
   png_set_write_fn(png, &out, appendToString, nullptr);
-  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 16, kTypes[channels - 1],
+  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), bitDepth, kTypes[channels - 1],
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int y = 0; y < height; ++y) png_write_row(png, rows + std::size_t(y) * rowBytes);
@@ -113,6 +113,18 @@ std::string encodePng16(int width, int height, int channels, std::span<const std
   }
   std::string out;
   if (!writePng(out, width, height, channels, bytes.data(), rowValues * 2))
+    throw Error(name, "cannot encode PNG");
+  return out;
+}
+
+std::string encodePng8(int width, int height, int channels, std::span<const std::uint8_t> values,
+                       const std::string& name) {
+  checkSize(width, height, channels, name);
+  const std::size_t rowValues = std::size_t(width) * std::size_t(channels);
+  if (values.size() != rowValues * std::size_t(height))
+    throw Error(name, "8-bit PNG: the values do not match the size");
+  std::string out;
+  if (!writePng(out, width, height, channels, values.data(), rowValues, 8))
     throw Error(name, "cannot encode PNG");
   return out;
 }

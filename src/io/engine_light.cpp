@@ -1,16 +1,20 @@
 #include "prt/io/engine_light.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <numbers>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "prt/core/error.hpp"
 #include "prt/core/hash.hpp"
 #include "prt/core/version.hpp"
+#include "prt/envmap/layout.hpp"
+#include "prt/image/data_texture.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/rotate.hpp"
 
@@ -66,6 +70,112 @@ std::string stableUuid(const std::string& text) {
   const std::string h = hex;
   return h.substr(0, 8) + "-" + h.substr(8, 4) + "-5" + h.substr(13, 3) + "-" +
          "89ab"[static_cast<unsigned char>(h[16]) % 4] + h.substr(17, 3) + "-" + h.substr(20, 12);
+}
+
+/// EXT_lights_image_based's prefiltered specular cube: 64² at mip 0, halved per mip down to the
+/// 16² the extension suggests for roughness 1: three mips, roughness 0, ½, 1.
+constexpr int kSpecularSize = 64;
+constexpr int kSpecularMips = 3;
+
+/// Per band l, the factor by which the GGX prefilter (Karis's split sum with n = v = r: each
+/// direction l weighted by D(h) (n·l), h halfway between the mirror direction and l, normalised)
+/// of roughness r (α = r²) scales the light's band l: by Funk–Hecke, the lobe's Legendre moment
+/// ∫ w P_l / ∫ w over the hemisphere about the mirror direction. Roughness 0 keeps every band.
+std::vector<double> ggxBandFactors(int bands, double roughness) {
+  std::vector<double> g(static_cast<std::size_t>(bands), 1.0);
+  if (roughness <= 0) return g;
+  const double a2 = std::pow(roughness, 4);
+  constexpr int n = 20000;
+  std::vector<double> sum(g.size(), 0.0);
+  double total = 0;
+  for (int i = 0; i < n; ++i) {
+    const double theta = (i + 0.5) * (std::numbers::pi / 2) / n, t = std::cos(theta);
+    const double q = (1 + t) / 2 * (a2 - 1) + 1;  // (n·h)² (α² − 1) + 1, (n·h)² = (1 + n·l)/2
+    const double w = a2 / (q * q) * t * std::sin(theta);
+    total += w;
+    double p0 = 1, p1 = t;
+    sum[0] += w;
+    if (bands > 1) sum[1] += w * t;
+    for (int l = 2; l < bands; ++l) {
+      const double p2 = ((2 * l - 1) * t * p1 - (l - 1) * p0) / l;
+      sum[static_cast<std::size_t>(l)] += w * p2;
+      p0 = p1;
+      p1 = p2;
+    }
+  }
+  for (std::size_t l = 0; l < g.size(); ++l) g[l] = sum[l] / total;
+  return g;
+}
+
+/// Babylon.js's RGBD packing (its toRGBD, which EXT_lights_image_based's 4-channel PNGs hold):
+/// D = ⌊max(255 / max(r, g, b), 1)⌋ ∈ 1..255 in alpha, (rgb · D / 255)^(1/2.2) in colour; a
+/// reader takes rgb^2.2 / alpha. Negative radiance (SH ringing) is written as 0; above 255 it is
+/// clamped.
+std::array<std::uint8_t, 4> rgbd(const Rgb& c) {
+  const double v[3] = {std::max(0.0, double(c.x)), std::max(0.0, double(c.y)),
+                       std::max(0.0, double(c.z))};
+  const double peak = std::max({v[0], v[1], v[2], 1e-6});
+  const double d = std::clamp(std::floor(std::max(255.0 / peak, 1.0)), 1.0, 255.0);
+  std::array<std::uint8_t, 4> out{};
+  for (int ch = 0; ch < 3; ++ch)
+    out[static_cast<std::size_t>(ch)] = static_cast<std::uint8_t>(
+        std::lround(std::pow(std::min(v[ch] * d / 255.0, 1.0), 1 / 2.2) * 255.0));
+  out[3] = static_cast<std::uint8_t>(d);
+  return out;
+}
+
+std::string base64(const std::string& bytes) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  unsigned v = 0;
+  int n = 0;
+  for (unsigned char c : bytes) {
+    v = (v << 8) | c;
+    n += 8;
+    while (n >= 6) out += k[(v >> (n -= 6)) & 63];
+  }
+  if (n > 0) out += k[(v << (6 - n)) & 63];
+  while (out.size() % 4) out += '=';
+  return out;
+}
+
+/// The specular cube of the light itself (the radiance its coefficients hold, every band),
+/// prefiltered per mip: `images` gets one data-URI PNG (RGBD) per face and mip, the result is
+/// the extension's specularImages (mip by mip, faces +X −X +Y −Y +Z −Z, in the standard cube-map
+/// orientation prtkit reads face folders in: row 0 at the top).
+Json specularImages(const sh::RgbSh& radiance, Json& images) {
+  Json mips = Json::array();
+  for (int k = 0; k < kSpecularMips; ++k) {
+    const int size = kSpecularSize >> k;
+    const std::vector<double> g = ggxBandFactors(radiance.bands, k / double(kSpecularMips - 1));
+    sh::RgbSh f = radiance;
+    for (int l = 0; l < f.bands; ++l)
+      for (int m = -l; m <= l; ++m) {
+        Rgb& c = f.c[static_cast<std::size_t>(sh::index(l, m))];
+        c = c * static_cast<float>(g[static_cast<std::size_t>(l)]);
+      }
+    Json faces = Json::array();
+    for (int face = 0; face < 6; ++face) {
+      std::vector<std::uint8_t> px(static_cast<std::size_t>(size * size * 4));
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+          const Vec3d d = envmap::cubeFaceDirection(face, 2 * (x + 0.5) / size - 1,
+                                                    2 * (y + 0.5) / size - 1);
+          const double len = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+          const Vec3f dir(static_cast<float>(d.x / len), static_cast<float>(d.y / len),
+                          static_cast<float>(d.z / len));
+          const auto p = rgbd(sh::reconstruct(f, dir));
+          std::copy(p.begin(), p.end(), px.begin() + 4 * (std::ptrdiff_t(y) * size + x));
+        }
+      faces.push_back(images.size());
+      images.push_back({{"name", std::string(envmap::kFaceNames[static_cast<std::size_t>(face)]) +
+                                     "-mip" + std::to_string(k)},
+                        {"uri", "data:image/png;base64," +
+                                    base64(image::encodePng8(size, size, 4, px, "specular cube"))}});
+    }
+    mips.push_back(faces);
+  }
+  return mips;
 }
 
 }  // namespace
@@ -137,14 +247,23 @@ std::string formatEngineLight(EngineLight format, const sh::RgbSh& radiance,
       return j.dump(2) + "\n";
     }
     case EngineLight::GltfIbl: {
+      // A complete glTF 2.0 asset: the light, one scene that uses it, the specular cube's images.
+      Json images = Json::array();
       Json light;
       light["name"] = source;
       light["intensity"] = 1.0;
       light["rotation"] = {0, 0, 0, 1};
       light["irradianceCoefficients"] = rgbRows(f);
+      light["specularImageSize"] = kSpecularSize;
+      light["specularImages"] = specularImages(radiance, images);
       Json j;
-      j["asset"] = {{"generator", generator}};
+      j["asset"] = {{"version", "2.0"}, {"generator", generator}};
+      j["extensionsUsed"] = {"EXT_lights_image_based"};
       j["extensions"]["EXT_lights_image_based"]["lights"] = Json::array({light});
+      j["scene"] = 0;
+      j["scenes"] = Json::array(
+          {{{"name", source}, {"extensions", {{"EXT_lights_image_based", {{"light", 0}}}}}}});
+      j["images"] = images;
       return j.dump(2) + "\n";
     }
     case EngineLight::Cmgen: {

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <iostream>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -101,6 +103,69 @@ TEST_F(EngineLightWeb, ThreeJsMatchesLightProbeGeneratorOnTheSameFaces) {
   for (std::size_t k = 0; k < 27; ++k)
     EXPECT_NEAR(mine[k].get<double>(), theirs[k].get<double>(), 2e-3 * dc)
         << "coefficient " << k / 3 << " channel " << "rgb"[k % 3];
+}
+
+/// The rows "( r, g, b); // Llm" of a cmgen sh.txt, as flat r, g, b.
+std::vector<double> cmgenRows(const std::string& text) {
+  std::vector<double> v;
+  for (std::size_t at = text.find('('); at != std::string::npos; at = text.find('(', at + 1)) {
+    double r, g, b;
+    if (std::sscanf(text.c_str() + at, "(%lf, %lf, %lf)", &r, &g, &b) == 3) v.insert(v.end(), {r, g, b});
+  }
+  return v;
+}
+
+TEST_F(EngineLightWeb, CmgenFormatSaysWhichWindowingItMatches) {
+  // `--format cmgen` is cmgen's sh.txt with its windowing off (`-w no`); cmgen's default
+  // (`-w auto`) windows the bands above 0 and band 2 by several times. The option's help and
+  // docs/formats-light.md must say so, and (with cmgen here) both halves must hold.
+  const Result help = prt("light --help");
+  ASSERT_EQ(help.rc, 0) << help.err;
+  const std::string h = help.out + help.err;
+  EXPECT_NE(h.find("cmgen -w no"), std::string::npos) << h;
+  EXPECT_NE(h.find("-w auto"), std::string::npos) << h;
+  const std::string doc = slurp(fs::path(PRT_SOURCE_DIR) / "docs" / "formats-light.md");
+  EXPECT_NE(doc.find("cmgen --sh=B --sh-output=sh.txt -w no"), std::string::npos);
+  EXPECT_NE(doc.find("`-w auto`"), std::string::npos);
+  if (!have("cmgen")) GTEST_SKIP() << "no cmgen here (apt-get install libfilament-tools)";
+  image::Image img(512, 256);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const double th = M_PI * (y + 0.5) / img.height, ph = 2 * M_PI * (x + 0.5) / img.width;
+      // Three bright coloured blobs on a dim floor (contrast for cmgen's window to act on).
+      const Vec3d d(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
+      const auto blob = [&](double x0, double y0, double z0) {
+        return static_cast<float>(0.05 + 4 * std::exp(4 * (d.x * x0 + d.y * y0 + d.z * z0 - 1)));
+      };
+      img.at(x, y) = Rgb(blob(1, 0, 0), blob(0, 1, 0), blob(0, 0, 1));
+    }
+  image::writeImage((dir_ / "env.hdr").string(), img);
+  ASSERT_EQ(prt("-q light env.hdr --format cmgen -o prt.txt").rc, 0);
+  ASSERT_EQ(std::system(("cd '" + dir_.string() +
+                         "' && cmgen --sh=3 --sh-output=no.txt -w no -q env.hdr > cmgen.log 2>&1 && "
+                         "cmgen --sh=3 --sh-output=auto.txt -q env.hdr >> cmgen.log 2>&1")
+                            .c_str()),
+            0)
+      << slurp(dir_ / "cmgen.log");
+  const std::vector<double> ours = cmgenRows(slurp(dir_ / "prt.txt")),
+                            no = cmgenRows(slurp(dir_ / "no.txt")),
+                            autoWindow = cmgenRows(slurp(dir_ / "auto.txt"));
+  ASSERT_EQ(ours.size(), 27u);
+  ASSERT_EQ(no.size(), 27u);
+  ASSERT_EQ(autoWindow.size(), 27u);
+  // Band energies (sum of squares over m and the channels).
+  const auto energy = [](const std::vector<double>& v, int l) {
+    double e = 0;
+    for (int i = 3 * l * l; i < 3 * (l + 1) * (l + 1); ++i) e += v[std::size_t(i)] * v[std::size_t(i)];
+    return std::sqrt(e);
+  };
+  for (int l = 0; l < 3; ++l)
+    EXPECT_NEAR(energy(ours, l), energy(no, l), 0.04 * energy(no, 0)) << "band " << l << " against -w no";
+  const double ratio2 = energy(no, 2) / energy(autoWindow, 2);
+  std::cout << "cmgen -w auto shrinks band 2 by " << ratio2 << "x, band 1 by "
+            << energy(no, 1) / energy(autoWindow, 1) << "x\n";
+  EXPECT_GT(ratio2, 1.5) << "cmgen's default windowing is not ours";
+  EXPECT_GT(std::abs(energy(ours, 2) - energy(autoWindow, 2)), 0.04 * energy(no, 0));
 }
 
 }  // namespace

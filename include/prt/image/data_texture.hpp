@@ -32,4 +32,9 @@ std::string encodeExrData(const DataTexture& texture, const std::string& name);
 std::string encodePng16(int width, int height, int channels, std::span<const std::uint16_t> values,
                         const std::string& name);
 
+/// Interleaved 8-bit values (width · height · channels, row by row) as an 8-bit PNG (1 to 4
+/// channels: grey, grey + alpha, RGB, RGBA).
+std::string encodePng8(int width, int height, int channels, std::span<const std::uint8_t> values,
+                       const std::string& name);
+
 }  // namespace prt::image

@@ -16,11 +16,15 @@
 //  gltf-ibl  The irradiance of EXT_lights_image_based (`irradianceCoefficients`, 9 × [r, g, b]):
 //            E_lm = Â_l L_lm (Ramamoorthi & Hanrahan 2001: Â = π, 2π/3, π/4), basis and axes as
 //            ours (Babylon.js, the extension's reference runtime, uses the Condon–Shortley signs
-//            and turns the coefficients into radiance by 1/π). Written as the light object of the
-//            extension, without the prefiltered specular cube map it also requires. 3 bands.
+//            and turns the coefficients into radiance by 1/π). Written as a complete glTF 2.0
+//            asset (asset.version, extensionsUsed, a scene using the light) whose light also has
+//            the prefiltered specular cube map the extension requires: the SH light's own
+//            radiance (every band given) prefiltered with GGX per mip (64², 32², 16²: roughness
+//            0, ½, 1), six RGBD PNGs a mip embedded as data URIs. 3 bands of irradiance.
 //  cmgen     Filament cmgen's `--sh=B --sh-output sh.txt` text ("( r, g, b); // L1-1"): the
 //            radiance coefficients cmgen computes from the same image with its windowing off
-//            (-w no) and its default mirroring. Basis as ours; cmgen maps a lat-long image onto
+//            (-w no; its default -w auto scales bands ≥ 1 down by an image-dependent window)
+//            and its default mirroring. Basis as ours; cmgen maps a lat-long image onto
 //            its cube turned −90° about +Y against ours (the image centre looks along +Z there,
 //            along +X here), so the light is rotated by that first. Any band count.
 //  unity     Unity's SphericalHarmonicsL2 as its shaders evaluate it (ShadeSH9: sh[c,0] −

@@ -43,6 +43,14 @@ const sh3 = lightToSphericalHarmonics3(sky);
 check(maxDiff(sh3.toArray(), three) < 1e-5 * Math.max(...three.map(Math.abs)),
       `lightToSphericalHarmonics3 is prt light --format threejs (max diff ${maxDiff(sh3.toArray(), three)})`);
 check(maxDiff(lightFromSphericalHarmonics3(sh3).coeffs, sky.coeffs) < 1e-6, 'lightFromSphericalHarmonics3 inverts it');
+// parseLight takes the file prt light --format threejs writes (text and parsed), as our light.
+const fromThree = parseLight(fs.readFileSync('sky-three.json', 'utf8'), 'sky-three.json');
+check(fromThree.bands === 3 && maxDiff(fromThree.coeffs, sky.coeffs) < 1e-6 * Math.max(...sky.coeffs.map(Math.abs)),
+      `parseLight reads prt light --format threejs as the same light (max diff ${maxDiff(fromThree.coeffs, sky.coeffs)})`);
+const probeJson = JSON.parse(fs.readFileSync('sky-three.json', 'utf8'));
+probeJson.object.intensity = 2;
+check(maxDiff(parseLight(probeJson, 'p').coeffs, sky.coeffs.map((v) => 2 * v)) < 2e-6 * Math.max(...sky.coeffs.map(Math.abs)),
+      'parseLight applies the LightProbe\'s intensity');
 // Euler(X, Y, Z, 'ZYX') in radians is prt's --rotate X,Y,Z.
 const d = Math.PI / 180;
 const turned = rotateLight(sky, new THREE.Euler(30 * d, -50 * d, 20 * d, 'ZYX'));
@@ -95,6 +103,8 @@ throws(() => { prt.bands = 0; }, /bands must be a positive integer/, 'bands 0');
 throws(() => { prt.exposure = NaN; }, /exposure must be a finite number/, 'exposure NaN');
 throws(() => prt.setLight({ bands: 2, coeffs: new Float32Array(3) }), /a light is/, 'a short light');
 throws(() => parseLight('{"bands": 2, "coefficients": [[1,1,1]]}', 'bad.json'), /^bad\.json: has 1 coefficients/, 'a bad light file');
+throws(() => parseLight('{"metadata": {}, "object": {"type": "Mesh"}}', 'mesh.json'), /^mesh\.json: is a three\.js "Mesh", not a LightProbe/, 'a three.js object that is no LightProbe');
+throws(() => parseLight('{"object": {"type": "LightProbe", "sh": [1, 2]}}', 'short.json'), /^short\.json: the LightProbe's "sh" is not 27/, 'a short LightProbe');
 // The extension's object renamed (a byte in the JSON chunk): a glTF that only says it uses it.
 const foreign = new Uint8Array(bytes('cornell.glb'));
 const at = Buffer.from(foreign).indexOf('"PRTKIT_radiance_transfer":{');

@@ -10,12 +10,37 @@ const kCondonShortley = [1, -1, 1, -1, 1, -1, 1, -1, 1];
 
 /**
  * A light { bands, coeffs: Float32Array(B² × 3) } from prt light's JSON (text or the parsed
- * object) or the GAMES202 course's light.txt (text). Throws one line naming `name`.
+ * object), the three.js LightProbe that `prt light --format threejs` writes (three.js object
+ * JSON, ObjectLoader's: 3 bands, signs turned back to our basis, times its intensity) or the
+ * GAMES202 course's light.txt (text). Throws one line naming `name`.
  */
 export function parseLight(input, name = 'light') {
-  if (typeof input === 'object' && input !== null) return parseLightJson(JSON.stringify(input), name);
-  const text = String(input);
-  return text.trimStart().startsWith('{') ? parseLightJson(text, name) : parseLightTxt(text, name);
+  let j = typeof input === 'object' && input !== null ? input : null;
+  const text = j ? '' : String(input);
+  if (!j && text.trimStart().startsWith('{')) {
+    try {
+      j = JSON.parse(text);
+    } catch (e) {
+      throw new Error(`${name}: is not JSON (${e.message})`);
+    }
+  }
+  if (!j) return parseLightTxt(text, name);
+  if (!('coefficients' in j) && j.object && typeof j.object === 'object') return fromLightProbeJson(j.object, name);
+  return parseLightJson(JSON.stringify(j), name);
+}
+
+/** Our light from a three.js LightProbe's object JSON (ObjectLoader's `object`). */
+function fromLightProbeJson(o, name) {
+  if (o.type !== 'LightProbe')
+    throw new Error(`${name}: is a three.js ${JSON.stringify(o.type)}, not a LightProbe (write one with prt light --format threejs)`);
+  const sh = o.sh, k = o.intensity === undefined ? 1 : o.intensity;
+  if (!Array.isArray(sh) || sh.length !== 27 || !sh.every((v) => typeof v === 'number' && Number.isFinite(v)))
+    throw new Error(`${name}: the LightProbe's "sh" is not 27 finite numbers (9 × r, g, b)`);
+  if (typeof k !== 'number' || !Number.isFinite(k))
+    throw new Error(`${name}: the LightProbe's "intensity" is ${JSON.stringify(k)}, not a finite number`);
+  const coeffs = new Float32Array(27);
+  for (let i = 0; i < 27; ++i) coeffs[i] = sh[i] * kCondonShortley[Math.floor(i / 3)] * k;
+  return { bands: 3, coeffs };
 }
 
 /** Our 3-band light from three.js's SphericalHarmonics3 (e.g. LightProbeGenerator's). */
