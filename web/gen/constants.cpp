@@ -21,6 +21,7 @@
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/core/version.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/image/color.hpp"
@@ -29,6 +30,7 @@
 #include "prt/io/light_file.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/relight/shader_transfer.hpp"
+#include "prt/transfer/bake_settings.hpp"
 #include "prt/transfer/material.hpp"
 
 namespace {
@@ -83,6 +85,24 @@ std::string lightBandsTemplate() {
   return t;
 }
 
+/// The extreme lightmap UV coordinate geometry::firstUvOutside accepts on the side of `outside`
+/// (a value it refuses) from `inside` (one it accepts), as a float: found by bisection, so the
+/// page's reader holds UVs to the library's own rule rather than a retyped tolerance.
+float acceptedUvBound(double inside, double outside) {
+  const auto accepted = [](double u) {
+    const prt::Vec2f uv{static_cast<float>(u), 0.5f};
+    return !prt::firstUvOutside(std::span<const prt::Vec2f>(&uv, 1)).has_value();
+  };
+  if (!accepted(inside) || accepted(outside))
+    throw prt::Error("firstUvOutside does not accept " + std::to_string(inside) +
+                     " and refuse " + std::to_string(outside));
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (inside + outside);
+    (accepted(mid) ? inside : outside) = mid;
+  }
+  return static_cast<float>(inside);
+}
+
 json constants() {
   using namespace prt;
   json c;
@@ -113,6 +133,7 @@ json constants() {
                      {"compressedPrefix", transferCompressedPrefix(m)}});
   c["modes"] = modes;
   c["layouts"] = {toString(TransferLayout::Vector), toString(TransferLayout::Matrix)};
+  c["domains"] = {toString(TransferDomain::Vertices), toString(TransferDomain::Texels)};
 
   // The pick order: transferPreference on a bake with one transfer of every (mode, layout).
   BakeFile all;
@@ -142,6 +163,20 @@ json constants() {
   c["maxShaderClusters"] = relight::kMaxShaderClusters;
   c["perTexelMatricesRefusal"] = relight::kPageTexelMatricesRefusal;
   c["maxLightmapSide"] = kMaxLightmapSide;
+  // What decodeBake holds a file to beyond the names above (docs/formats-bake.md, "Limits the
+  // reader applies"), for the page's reader (web/src/bake.js, checkBakeDocument): the default
+  // limits (PRT_MAX_* unset), the recipe's ranges, the lightmap's padding and UV rule.
+  const Limits defaults;
+  c["bakeFile"] = {{"maxFileBytes", kMaxBakeFileBytes},
+                   {"maxVertices", defaults.maxVertices},
+                   {"maxTriangles", defaults.maxTriangles},
+                   {"maxNesting", defaults.maxNesting},
+                   {"maxCoordinate", defaults.maxCoordinate},
+                   {"maxBakeSamples", kMaxBakeSamples},
+                   {"maxBounces", kMaxBounces},
+                   {"maxLightmapPadding", kMaxLightmapPadding},
+                   {"lightmapUvMin", acceptedUvBound(0.0, -1.0)},
+                   {"lightmapUvMax", acceptedUvBound(1.0, 2.0)}};
   // The tone maps by name, valued as shaders/prt_display.glsl's op (the enum's order).
   // The default is the PNG writer's (what prt render writes without --tonemap).
   json tone = json::object();

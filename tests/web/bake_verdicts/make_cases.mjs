@@ -1,0 +1,153 @@
+// node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb: writes the malformed
+// (and a few valid) bakes of the verdict corpus into OUTDIR, each a mutation of a bake prt wrote
+// (run.sh), named accept_* or reject_* after what the library is meant to answer (verdicts.mjs
+// checks that prt does, so a mutation that stops breaking the file fails the test). The GLB is
+// rewritten with its JSON and BIN chunks re-laid, so only the mutation differs.
+import fs from 'node:fs';
+import path from 'node:path';
+
+const [out, vertexFile, texelFile, cpcaFile, texelCpcaFile] = process.argv.slice(2);
+if (!texelCpcaFile) {
+  console.error('usage: node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb');
+  process.exit(2);
+}
+const EXT = 'PRTKIT_radiance_transfer';
+
+function readGlb(file) {
+  const b = fs.readFileSync(file);
+  const jsonLength = b.readUInt32LE(12);
+  const json = JSON.parse(b.subarray(20, 20 + jsonLength).toString('utf8'));
+  const binAt = 20 + jsonLength, binLength = b.readUInt32LE(binAt);
+  return { json, bin: Buffer.from(b.subarray(binAt + 8, binAt + 8 + binLength)) };
+}
+function writeGlb({ json, bin }, text = JSON.stringify(json)) {
+  let j = Buffer.from(text, 'utf8');
+  if (j.length % 4) j = Buffer.concat([j, Buffer.alloc(4 - (j.length % 4), 0x20)]);
+  const head = Buffer.alloc(20), binHead = Buffer.alloc(8);
+  head.writeUInt32LE(0x46546c67, 0), head.writeUInt32LE(2, 4);
+  head.writeUInt32LE(20 + j.length + 8 + bin.length, 8);
+  head.writeUInt32LE(j.length, 12), head.writeUInt32LE(0x4e4f534a, 16);
+  binHead.writeUInt32LE(bin.length, 0), binHead.writeUInt32LE(0x004e4942, 4);
+  return Buffer.concat([head, j, binHead, bin]);
+}
+const bases = { v: readGlb(vertexFile), t: readGlb(texelFile), c: readGlb(cpcaFile), tc: readGlb(texelCpcaFile) };
+const copy = (g) => ({ json: structuredClone(g.json), bin: Buffer.from(g.bin) });
+
+// Helpers on a copy: the bake object, accessors by index or name, element addresses.
+const prt = (g) => g.json.extensions[EXT];
+const prim = (g, m = 0) => g.json.meshes[m].primitives[0];
+const accIndex = (g, name) => g.json.accessors.findIndex((a) => a.name && a.name.startsWith(name));
+const cpca = (g) => prt(g).transfers.find((t) => t.compressed);
+const transferAcc = (g, t = 0, k = 0) => prt(g).transfers[t].accessors[k];
+function at(g, index, i, c = 0) {
+  const a = g.json.accessors[index], v = g.json.bufferViews[a.bufferView];
+  const size = { 5121: 1, 5123: 2, 5125: 4, 5126: 4 }[a.componentType];
+  const comps = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4 }[a.type];
+  const stride = v.byteStride || size * comps;
+  return (v.byteOffset || 0) + (a.byteOffset || 0) + i * stride + c * size;
+}
+const setFloat = (g, index, i, c, x) => g.bin.writeFloatLE(x, at(g, index, i, c));
+
+const cases = {
+  // Valid files, and edges the library accepts.
+  accept_vertex: ['v', () => {}],
+  accept_texel: ['t', () => {}],
+  accept_cpca: ['c', () => {}],
+  accept_texel_cpca: ['tc', () => {}],
+  accept_lightmap_uv_at_one: ['t', (g) => setFloat(g, prim(g).attributes.TEXCOORD_0, 0, 0, 1.0000005)],
+  // The mesh.
+  reject_position_nan: ['v', (g) => setFloat(g, prim(g).attributes.POSITION, 1, 1, NaN)],
+  reject_position_nan_texel: ['t', (g) => setFloat(g, prim(g, 2).attributes.POSITION, 0, 0, NaN)],
+  reject_position_infinite: ['v', (g) => setFloat(g, prim(g, 1).attributes.POSITION, 0, 2, -Infinity)],
+  reject_normal_nan: ['v', (g) => setFloat(g, prim(g).attributes.NORMAL, 0, 0, NaN)],
+  reject_colour_nan: ['v', (g) => setFloat(g, prim(g).attributes.COLOR_0, 2, 1, NaN)],
+  reject_coordinate_1e12: ['v', (g) => setFloat(g, prim(g).attributes.POSITION, 0, 0, 1e12)],
+  reject_index_out_of_range: ['v', (g) => {
+    const p = prim(g), n = g.json.accessors[p.attributes.POSITION].count;
+    g.bin.writeUInt32LE(n, at(g, p.indices, 1));
+  }],
+  reject_index_huge: ['v', (g) => g.bin.writeUInt32LE(0xffffffff, at(g, prim(g, 1).indices, 0))],
+  reject_indices_uint16: ['v', (g) => { g.json.accessors[prim(g).indices].componentType = 5123; }],
+  reject_index_count_not_triangles: ['v', (g) => { g.json.accessors[prim(g).indices].count -= 1; }],
+  reject_position_count_short: ['v', (g) => { g.json.accessors[prim(g).attributes.POSITION].count -= 1; }],
+  reject_two_primitives: ['v', (g) => { g.json.meshes[0].primitives.push(structuredClone(prim(g))); }],
+  reject_lines_primitive: ['v', (g) => { prim(g).mode = 1; }],
+  reject_triangle_count_wrong: ['v', (g) => { prt(g).triangleCount += 1; }],
+  reject_vertex_count_wrong: ['v', (g) => { prt(g).vertexCount += 1; }],
+  // Accessors and buffer views.
+  reject_accessor_offset_past_view: ['v', (g) => { g.json.accessors[prim(g).attributes.POSITION].byteOffset = 1 << 20; }],
+  reject_bufferview_past_buffer: ['v', (g) => {
+    g.json.bufferViews[g.json.accessors[prim(g).attributes.NORMAL].bufferView].byteLength += 1 << 20;
+  }],
+  reject_bufferview_missing: ['v', (g) => { g.json.accessors[prim(g).attributes.POSITION].bufferView = 999; }],
+  reject_accessor_missing: ['v', (g) => { prim(g).attributes.NORMAL = 999; }],
+  reject_stride_smaller_than_element: ['v', (g) => {
+    g.json.bufferViews[g.json.accessors[prim(g).attributes.POSITION].bufferView].byteStride = 4;
+  }],
+  reject_sparse_accessor: ['v', (g) => {
+    g.json.accessors[prim(g).attributes.POSITION].sparse = { count: 1, indices: { bufferView: 0, componentType: 5125 }, values: { bufferView: 0 } };
+  }],
+  reject_external_buffer: ['v', (g) => { g.json.buffers[0].uri = 'data.bin'; }],
+  // Transfer rows.
+  reject_transfer_bytes: ['v', (g) => { g.json.accessors[transferAcc(g)].componentType = 5121; g.json.accessors[transferAcc(g)].normalized = true; }],
+  reject_transfer_vec3: ['v', (g) => { g.json.accessors[transferAcc(g)].type = 'VEC3'; }],
+  reject_transfer_nan: ['v', (g) => setFloat(g, transferAcc(g), 3, 2, NaN)],
+  reject_transfer_accessor_list_short: ['v', (g) => { prt(g).transfers[1].accessors.pop(); }],
+  reject_two_transfers_of_one_kind: ['v', (g) => { prt(g).transfers[1].settings.mode = prt(g).transfers[0].settings.mode; }],
+  reject_channels_2: ['v', (g) => { prt(g).transfers[0].settings.channels = 2; }],
+  reject_samples_0: ['v', (g) => { prt(g).transfers[0].settings.samples = 0; }],
+  reject_bounces_99: ['v', (g) => { prt(g).transfers[0].settings.bounces = 99; }],
+  reject_partial_vertex_range: ['v', (g) => { prt(g).vertexRange = { first: 0, count: prt(g).vertexCount - 1 }; }],
+  // Versions.
+  reject_version_newer: ['v', (g) => { prt(g).formatVersion = 99; }],
+  reject_version_4_in_extension: ['v', (g) => { prt(g).formatVersion = 4; }],
+  reject_version_6_in_extras: ['v', (g) => { g.json.extras = { prtkit: prt(g) }; delete g.json.extensions; delete g.json.extensionsUsed; }],
+  reject_version_5_with_texels: ['t', (g) => { prt(g).formatVersion = 5; }],
+  reject_compressed_in_version_2: ['c', (g) => {
+    const o = prt(g);
+    o.formatVersion = 2;
+    g.json.extras = { prtkit: o };
+    delete g.json.extensions, delete g.json.extensionsUsed;
+  }],
+  // Per-texel transfer.
+  reject_texel_rows_bytes: ['t', (g) => { g.json.accessors[transferAcc(g)].componentType = 5121; }],
+  reject_texel_rows_short: ['t', (g) => { g.json.accessors[transferAcc(g)].count -= 1; }],
+  reject_texel_rows_nan: ['t', (g) => setFloat(g, transferAcc(g), 10, 0, NaN)],
+  reject_lightmap_uv_1e9: ['t', (g) => setFloat(g, prim(g, 1).attributes.TEXCOORD_0, 2, 0, 1e9)],
+  reject_lightmap_uv_negative: ['t', (g) => setFloat(g, prim(g).attributes.TEXCOORD_0, 0, 1, -0.01)],
+  reject_lightmap_uv_nan: ['t', (g) => setFloat(g, prim(g).attributes.TEXCOORD_0, 0, 0, NaN)],
+  reject_lightmap_uv_just_past_one: ['t', (g) => setFloat(g, prim(g).attributes.TEXCOORD_0, 0, 0, 1.00001)],
+  reject_lightmap_texcoord_2: ['t', (g) => { prt(g).lightmapTexCoord = 2; }],
+  reject_lightmap_padding_100: ['t', (g) => { prt(g).lightmap.padding = 100; }],
+  reject_lightmap_and_vertex_range: ['t', (g) => { prt(g).vertexRange = { first: 0, count: prt(g).vertexCount }; }],
+  reject_texel_transfer_over_vertices: ['t', (g) => { prt(g).transfers[0].settings.domain = 'vertices'; }],
+  // CPCA.
+  reject_cluster_id_out_of_range: ['c', (g) => g.bin.writeUInt16LE(60000, at(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'CLUSTER'), 3))],
+  reject_cluster_ids_float: ['c', (g) => { g.json.accessors[accIndex(g, cpca(g).compressed.accessorPrefix + 'CLUSTER')].componentType = 5126; }],
+  reject_cpca_means_nan: ['c', (g) => setFloat(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'MEANS'), 1, 0, NaN)],
+  reject_cpca_basis_count_too_large: ['c', (g) => { cpca(g).compressed.basisCount = 1000; }],
+  reject_texel_cpca_cluster_out_of_range: ['tc', (g) => g.bin.writeUInt16LE(9999, at(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'CLUSTER'), 0))],
+};
+
+fs.mkdirSync(out, { recursive: true });
+for (const [name, [base, mutate]] of Object.entries(cases)) {
+  const g = copy(bases[base]);
+  mutate(g);
+  fs.writeFileSync(path.join(out, `${name}.glb`), writeGlb(g));
+}
+// The container and the JSON text.
+const v = writeGlb(copy(bases.v));
+const file = (name, bytes) => fs.writeFileSync(path.join(out, `${name}.glb`), bytes);
+file('reject_truncated', v.subarray(0, v.length - 577));
+file('reject_truncated_header_says_more', (() => { const b = Buffer.from(v); b.writeUInt32LE(v.length + 64, 8); return b; })());
+file('reject_bin_chunk_past_end', (() => {
+  const b = Buffer.from(v), binAt = 20 + b.readUInt32LE(12);
+  b.writeUInt32LE(b.readUInt32LE(binAt) + 64, binAt);
+  return b;
+})());
+file('reject_container_version_1', (() => { const b = Buffer.from(v); b.writeUInt32LE(1, 4); return b; })());
+file('reject_json_broken', writeGlb(copy(bases.v), JSON.stringify(bases.v.json).slice(0, -40)));
+file('reject_json_too_deep', writeGlb(copy(bases.v), JSON.stringify({ ...bases.v.json, extras: { deep: JSON.parse('['.repeat(300) + ']'.repeat(300)) } })));
+file('reject_not_a_bake', writeGlb({ json: { asset: { version: '2.0' } }, bin: Buffer.alloc(0) }));
+file('accept_trailing_bytes', Buffer.concat([v, Buffer.alloc(16)]));
+console.log(`${Object.keys(cases).length + 8} cases written to ${out}`);
