@@ -200,6 +200,40 @@ class FdBuf : public std::streambuf {
   int error_ = 0;
 };
 
+/// Opens a FIFO, a character device or a file named through /proc for writing. A FIFO's open()
+/// blocks until a reader opens it, forever if none comes: it is opened non-blocking instead
+/// (ENXIO while no reader has it open), retried for kFifoReaderWaitSeconds, then refused by name;
+/// once open, writes block again (the reader drains the pipe at its own pace).
+int openForWriting(const std::string& path, const std::string& target) {
+  constexpr int flags = O_WRONLY | O_APPEND | O_NOCTTY | O_CLOEXEC;
+  struct stat st;
+  if (::stat(target.c_str(), &st) != 0 || !S_ISFIFO(st.st_mode)) {
+    const int fd = ::open(target.c_str(), flags);
+    if (fd < 0) throw Error(path, "cannot open for writing (" + why(errno) + ")");
+    return fd;
+  }
+  constexpr int kPollMs = 50;
+  for (int waited = 0;; waited += kPollMs) {
+    const int fd = ::open(target.c_str(), flags | O_NONBLOCK);
+    if (fd >= 0) {
+      const int fl = ::fcntl(fd, F_GETFL);
+      if (fl < 0 || ::fcntl(fd, F_SETFL, fl & ~O_NONBLOCK) != 0) {
+        const int err = errno;
+        ::close(fd);
+        throw Error(path, "cannot open for writing (" + why(err) + ")");
+      }
+      return fd;
+    }
+    if (errno != ENXIO && errno != EINTR)
+      throw Error(path, "cannot open for writing (" + why(errno) + ")");
+    if (waited >= kFifoReaderWaitSeconds * 1000)
+      throw Error(path, "is a FIFO that no process reads (waited " +
+                            std::to_string(kFifoReaderWaitSeconds) +
+                            " s); start its reader first, or write a file");
+    ::usleep(kPollMs * 1000);
+  }
+}
+
 /// Writes a whole output to standard output or to a FIFO / character device.
 void writeDirect(const std::string& path, const ResolvedOutput& out, std::string_view bytes) {
   if (out.kind == OutputKind::Stdout) {
@@ -209,8 +243,7 @@ void writeDirect(const std::string& path, const ResolvedOutput& out, std::string
       throw Error("standard output", "write failed (" + why(errno) + ")");
     return;
   }
-  const int fd = ::open(out.target.c_str(), O_WRONLY | O_APPEND | O_NOCTTY | O_CLOEXEC);
-  if (fd < 0) throw Error(path, "cannot open for writing (" + why(errno) + ")");
+  const int fd = openForWriting(path, out.target);
   struct stat st;
   // What was opened must still be what was resolved: never write into a file without the
   // rename, unless it is an open file named through /proc.

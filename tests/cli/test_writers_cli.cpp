@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstring>
@@ -20,6 +21,7 @@
 
 #include "cli_harness.hpp"
 #include "common/fifo_reader.hpp"
+#include "prt/core/file.hpp"
 #include "prt/io/bake_file.hpp"
 
 namespace prt {
@@ -132,6 +134,39 @@ TEST_F(WritersCli, FifosAndCharacterDevicesAreWrittenAndStayWhatTheyAre) {
   EXPECT_EQ(s.rc, 0) << s.err;
   EXPECT_EQ(s.out, plain_);
   EXPECT_EQ(typeOf(dir_ / "stdout.txt"), S_IFREG);
+}
+
+TEST_F(WritersCli, AFifoNoProcessReadsIsRefusedNotWaitedOnForever) {
+  // The issue: every verb blocked forever in open() on a FIFO with no reader. Now each waits
+  // kFifoReaderWaitSeconds for one, then exits 1 naming the FIFO; the FIFO stays a FIFO.
+  const fs::path fifo = dir_ / "nobody.glb";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+  const auto t0 = std::chrono::steady_clock::now();
+  const Result r = prt("-q export b.glb -o nobody.glb");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_NE(r.err.find("nobody.glb: is a FIFO that no process reads"), std::string::npos)
+      << r.err;
+  EXPECT_LT(seconds, prt::kFifoReaderWaitSeconds + 20);
+  EXPECT_EQ(typeOf(fifo), S_IFIFO);
+  // A reader that comes while the writer waits gets the whole file.
+  std::atomic<bool> written{false};
+  std::string got;
+  bool opened = false;
+  std::thread late([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));
+    FifoReader reader(fifo.string());
+    opened = reader.opened();
+    while (!written) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    got = reader.finish();
+  });
+  const Result ok = prt("-q export b.glb -o nobody.glb");
+  written = true;
+  late.join();
+  EXPECT_TRUE(opened);
+  EXPECT_EQ(ok.rc, 0) << ok.err;
+  EXPECT_EQ(got, plain_);
 }
 
 TEST_F(WritersCli, DashWritesStandardOutputByteForByte) {

@@ -8,7 +8,8 @@
 //   a symbolic link (a chain)    followed to its final target, which is written as above (the
 //                                temporary beside the target), so the link stays a link
 //   a FIFO, a character device   opened and written directly once the whole output is made:
-//                                never replaced, never removed (/dev/null stays /dev/null)
+//                                never replaced, never removed (/dev/null stays /dev/null); a
+//                                FIFO no process reads is refused after kFifoReaderWaitSeconds
 //   a link into /proc            the open file it names, written directly, appended to
 //   (/dev/stdout, /dev/fd/N)     (a shell's "> file" left it empty, ">> file" keeps it)
 //   a folder, a block device,    refused with an Error naming the path
@@ -28,6 +29,10 @@
 #include <vector>
 
 namespace prt {
+
+/// How long a FIFO output waits for a reader to open it before it is refused (a FIFO no process
+/// reads would block its writer forever).
+inline constexpr int kFifoReaderWaitSeconds = 5;
 
 /// What an output path names, and so how it is written.
 enum class OutputKind {
