@@ -26,6 +26,7 @@
 #include "cli.hpp"
 #include "guard.hpp"
 #include "mpi_verb.hpp"
+#include "prt/transport/bake.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/parallel.hpp"
@@ -69,6 +70,7 @@ void runBake(const BakeArgs& a) {
     BakeRequest request;
     BakeFile file;
     RowRange rows;
+    bool emptyShard = false;
     std::unique_ptr<Occluder> occluder;
     mpi.collective([&] {
       if (mpi.active() && !a.shard.empty())
@@ -97,6 +99,11 @@ void runBake(const BakeArgs& a) {
       loadBakeScene(a, request, file);
       const auto [shard, shards] = shardOf(a);
       rows = shardRows(rangeOf(a, request, file.mesh), shard, shards);
+      // (--shard runs without MPI: this process alone.)
+      emptyShard = skipEmptyShard(
+          a, rows, shard, shards, request.domain,
+          domainRows(file.mesh, bakeSettings(request, file.mesh, request.modes.front())));
+      if (emptyShard) return;
       request.rows = rows;
       checkBakeRequest(request, OptionSpelling::Cli);
       const bool bounces =
@@ -118,6 +125,7 @@ void runBake(const BakeArgs& a) {
                        mesh.source, mesh.vertexCount(), mesh.triangleCount(), mesh.parts.size(),
                        secondsText(loadSeconds), secondsText(bvhSeconds)));
     });
+    if (emptyShard) return;
     if (mpi.active()) info(fmt::format("{} MPI ranks x {} threads", mpi.size(), maxThreads()));
     const std::unique_ptr<PassExecutor> executor = mpi.bakeExecutor(rankOptions(a));
     BakeObserver observer;

@@ -12,6 +12,7 @@
 #include "cli.hpp"
 #include "guard.hpp"
 #include "mpi_verb.hpp"
+#include "prt/transport/bake.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/io/bake_file.hpp"
@@ -154,6 +155,9 @@ void runPassBake(const BakeArgs& a) {
     if (!a.previous.empty()) throw Error("--previous: pass 0 reads no earlier pass");
     state = startPasses(*passes);
   }
+  if (skipEmptyShard(a, shardRows(last ? s.rows : p.shape.rows, shard, shards), shard, shards,
+                     s.domain, domainRows(mesh, s), k))
+    return;
   // The last pass of a shard is the bake of the shard of the range (per texel its rows widen
   // by the dilation's reach).
   if (last && shards > 1) {

@@ -192,6 +192,24 @@ RowRange shardRows(RowRange rows, std::size_t i, std::size_t n) {
   return {rows.first + lo, hi - lo};
 }
 
+bool skipEmptyShard(const BakeArgs& a, RowRange rows, std::size_t shard, std::size_t shards,
+                    TransferDomain domain, std::size_t domainRows, int pass) {
+  if (rows.count > 0) return false;
+  const std::string what = pass >= 0 ? fmt::format("pass {} of shard", pass) : "shard";
+  info(fmt::format("{} {} of {} holds none of the {} {} (more shards than {}): nothing to bake, "
+                   "{} not written; prt merge joins the other shards' pieces",
+                   what, shard, shards, domainRows, toString(domain), toString(domain), a.output));
+  Report r("bake", a.json);
+  if (r.wanted()) {
+    for (const std::string& in : a.inputs) r.input(in);
+    r["rows"] = {{"first", rows.first}, {"end", rows.first}, {"complete", false}};
+    r["shard"] = {{"index", shard}, {"count", shards}, {"empty", true}};
+    if (pass >= 0) r["pass"] = {{"index", pass}};
+    r.write();
+  }
+  return true;
+}
+
 void announce(const Mesh& mesh, const BakeSettings& s, const std::string& output) {
   const char* row = rowName(s.domain);
   const std::string what = fmt::format("{} {}", toString(s.mode), toString(s.layout));

@@ -58,6 +58,11 @@ RowRange rangeOf(const BakeArgs& a, const BakeRequest& request, const Mesh& mesh
 std::pair<std::size_t, std::size_t> shardOf(const BakeArgs& a);
 /// Shard i of n of rows: [first + ⌊i·count/n⌋, first + ⌊(i+1)·count/n⌋).
 RowRange shardRows(RowRange rows, std::size_t i, std::size_t n);
+/// A shard with no rows (more shards than rows: N > count): says so, writes the --json report
+/// (rows first..first, no output) and returns true; the caller then writes nothing and exits 0,
+/// and prt merge joins the other shards' pieces. False for a shard that holds rows.
+bool skipEmptyShard(const BakeArgs& a, RowRange rows, std::size_t shard, std::size_t shards,
+                    TransferDomain domain, std::size_t domainRows, int pass = -1);
 
 /// States the memory of one mode's bake before the work, and refuses, naming `output`, what a
 /// bake file cannot hold.

@@ -16,6 +16,7 @@
 #include "mpi_util.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/hash.hpp"
 
 namespace prt::distributed {
 
@@ -46,10 +47,14 @@ struct ExitHook {
   }
 };
 
-// A checkpointed chunk: "PRTCHNK1", then lo, hi, rowBytes, sideBytes, rays (uint64 each,
-// little-endian as the machines are), then the rows and the side bytes.
-constexpr char kMagic[8] = {'P', 'R', 'T', 'C', 'H', 'N', 'K', '1'};
-constexpr std::size_t kHeader = 8 + 5 * 8;
+// A checkpointed chunk: "PRTCHNK2", then lo, hi, rowBytes, sideBytes, rays, the job's identity
+// (RowJob::identity: the bake's settings, mesh and pass) and the FNV-1a checksum of the payload
+// (uint64 each, little-endian as the machines are), then the rows and the side bytes. A chunk of
+// another run (another seed, copied in) or one whose bytes changed is refused by name, never
+// used ("PRTCHNK1" chunks, without either, too).
+constexpr char kMagic[8] = {'P', 'R', 'T', 'C', 'H', 'N', 'K', '2'};
+constexpr std::size_t kFields = 7;
+constexpr std::size_t kHeader = 8 + kFields * 8;
 
 std::string chunkPath(const std::string& folder, std::size_t c) {
   char name[32];
@@ -57,14 +62,23 @@ std::string chunkPath(const std::string& folder, std::size_t c) {
   return folder + "/" + name;
 }
 
+std::uint64_t payloadChecksum(const unsigned char* payload, std::size_t bytes) {
+  Fnv1a h;
+  h.add(payload, bytes);
+  return h.value();
+}
+
 void writeChunk(const std::string& path, std::size_t lo, std::size_t hi, const RowJob& job,
                 const unsigned char* rows, const unsigned char* side, std::uint64_t rays) {
   std::string bytes(kHeader, '\0');
   std::memcpy(bytes.data(), kMagic, 8);
-  const std::uint64_t h[5] = {lo, hi, job.rowBytes, job.sideBytes, rays};
-  std::memcpy(bytes.data() + 8, h, sizeof h);
   bytes.append(reinterpret_cast<const char*>(rows), (hi - lo) * job.rowBytes);
   if (job.sideBytes) bytes.append(reinterpret_cast<const char*>(side), (hi - lo) * job.sideBytes);
+  const std::uint64_t h[kFields] = {
+      lo, hi, job.rowBytes, job.sideBytes, rays, job.identity,
+      payloadChecksum(reinterpret_cast<const unsigned char*>(bytes.data()) + kHeader,
+                      bytes.size() - kHeader)};
+  std::memcpy(bytes.data() + 8, h, sizeof h);
   writeFileAtomically(path, bytes);
 }
 
@@ -72,13 +86,19 @@ void writeChunk(const std::string& path, std::size_t lo, std::size_t hi, const R
 std::uint64_t readChunk(const std::string& path, std::size_t lo, std::size_t hi, const RowJob& job,
                         unsigned char* rows, unsigned char* side) {
   const std::vector<unsigned char> b = readFileBytes(path);
-  std::uint64_t h[5] = {};
+  std::uint64_t h[kFields] = {};
   const std::size_t need = kHeader + (hi - lo) * (job.rowBytes + job.sideBytes);
   if (b.size() >= kHeader) std::memcpy(h, b.data() + 8, sizeof h);
   if (b.size() != need || std::memcmp(b.data(), kMagic, 8) != 0 || h[0] != lo || h[1] != hi ||
       h[2] != job.rowBytes || h[3] != job.sideBytes)
     throw Error(path, "is not a chunk of this job (rows " + std::to_string(lo) + ".." +
                           std::to_string(hi) + "): remove the checkpoint folder or use another");
+  if (h[5] != job.identity)
+    throw Error(path, "is a chunk of another run (its settings, seed or mesh differ from this "
+                      "bake's): remove the checkpoint folder or use another");
+  if (h[6] != payloadChecksum(b.data() + kHeader, b.size() - kHeader))
+    throw Error(path, "is damaged (its checksum does not match its rows): remove it and run "
+                      "again to bake its rows anew");
   if (rows) std::memcpy(rows, b.data() + kHeader, (hi - lo) * job.rowBytes);
   if (side && job.sideBytes)
     std::memcpy(side, b.data() + kHeader + (hi - lo) * job.rowBytes, (hi - lo) * job.sideBytes);

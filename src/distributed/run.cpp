@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "prt/core/error.hpp"
+#include "prt/core/hash.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/units.hpp"
@@ -128,6 +129,7 @@ void RankExecutor::begin(const BakePasses& passes) {
     claimPending_ = "prt bake; " + bakeIdentity(passes.mesh(), settings) + "; rows per chunk";
     for (int k = 0; k < passes.count(); ++k)
       claimPending_ += " " + std::to_string(chunkRows(passes.pass(k).shape));
+    checkpointIdentity_ = claimPending_;
   }
 }
 
@@ -167,7 +169,13 @@ PassExecutor::Rows RankExecutor::run(const BakePasses& passes, int k, const Pass
     return passes.compute(k, RowRange{pr.first + lo, hi - lo}, input, reinterpret_cast<float*>(r),
                           reinterpret_cast<double*>(side));
   };
-  if (!checkpoint_.empty()) job.checkpoint = checkpoint_ + "/pass-" + std::to_string(k);
+  if (!checkpoint_.empty()) {
+    job.checkpoint = checkpoint_ + "/pass-" + std::to_string(k);
+    Fnv1a id;
+    const std::string what = checkpointIdentity_ + "; " + job.name;
+    id.add(what.data(), what.size());
+    job.identity = id.value();
+  }
   const JobStats js =
       runJob(session_, job, bytes,
              out.variance.empty() ? nullptr : reinterpret_cast<unsigned char*>(out.variance.data()),

@@ -5,6 +5,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/hash.hpp"
 #include "prt/core/json.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 
@@ -12,7 +13,18 @@ namespace prt {
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'R', 'T', 'P', 'A', 'S', 'S', '1'};
+constexpr char kMagic[8] = {'P', 'R', 'T', 'P', 'A', 'S', 'S', '2'};
+/// Pass files before the checksum (refused: a flipped byte in them went unnoticed).
+constexpr char kMagicWithoutChecksum[8] = {'P', 'R', 'T', 'P', 'A', 'S', 'S', '1'};
+/// Magic, header length, checksum.
+constexpr std::size_t kPrefix = 24;
+
+/// FNV-1a of everything after the prefix: the header (identity, pass, shape, rays) and the rows.
+std::uint64_t checksumOf(const unsigned char* bytes, std::size_t size) {
+  Fnv1a h;
+  h.add(bytes, size);
+  return h.value();
+}
 
 std::size_t sumSize(const PassPiece& p) {
   return p.sumChannels ? p.shape.rows.count * static_cast<std::size_t>(p.shape.coeffs()) *
@@ -58,22 +70,30 @@ std::string encodePassPiece(const PassPiece& p) {
   std::string out(kMagic, 8);
   const std::uint64_t n = header.size();
   out.append(reinterpret_cast<const char*>(&n), 8);
+  out.append(8, '\0');  // the checksum, below
   out += header;
   out.append(reinterpret_cast<const char*>(p.values.data()), p.values.size() * sizeof(float));
   out.append(reinterpret_cast<const char*>(p.sum.data()), p.sum.size() * sizeof(float));
   out.append(reinterpret_cast<const char*>(p.variance.data()), p.variance.size() * sizeof(double));
+  const std::uint64_t sum =
+      checksumOf(reinterpret_cast<const unsigned char*>(out.data()) + kPrefix, out.size() - kPrefix);
+  std::memcpy(out.data() + 16, &sum, 8);
   return out;
 }
 
 PassPiece decodePassPiece(std::span<const unsigned char> b, const std::string& name) {
-  if (b.size() < 16 || std::memcmp(b.data(), kMagic, 8) != 0)
+  if (b.size() >= 8 && std::memcmp(b.data(), kMagicWithoutChecksum, 8) == 0)
+    throw Error(name, "is a pass file of an older prt, without a checksum: bake the pass again");
+  if (b.size() < kPrefix || std::memcmp(b.data(), kMagic, 8) != 0)
     throw Error(name, "is not a pass file (prt bake --pass K writes them)");
-  std::uint64_t n;
+  std::uint64_t n, checksum;
   std::memcpy(&n, b.data() + 8, 8);
-  if (n > b.size() - 16) throw Error(name, "is truncated (its header runs past the end)");
+  std::memcpy(&checksum, b.data() + 16, 8);
+  if (n > b.size() - kPrefix) throw Error(name, "is truncated (its header runs past the end)");
   PassPiece p;
   try {
-    const Json j = Json::parse(b.begin() + 16, b.begin() + 16 + static_cast<std::ptrdiff_t>(n));
+    const Json j =
+        Json::parse(b.begin() + kPrefix, b.begin() + kPrefix + static_cast<std::ptrdiff_t>(n));
     p.identity = j.at("identity").get<std::string>();
     p.pass = j.at("pass").get<int>();
     p.passes = j.at("passes").get<int>();
@@ -103,8 +123,10 @@ PassPiece decodePassPiece(std::span<const unsigned char> b, const std::string& n
     p.sumChannels = j.at("sumChannels").get<int>();
     p.rays = j.at("rays").get<std::vector<std::uint64_t>>();
     p.seconds = j.at("seconds").get<std::vector<double>>();
-  } catch (const Error&) {
-    throw;
+  } catch (const Error& e) {
+    // Ours name the file; a parser's ("unknown transfer layout ...") is of its header.
+    if (std::string(e.what()).rfind(name + ": ", 0) == 0) throw;
+    throw Error(name, std::string("bad pass file header (") + e.what() + ")");
   } catch (const std::exception& e) {
     throw Error(name, std::string("bad pass file header (") + e.what() + ")");
   }
@@ -117,9 +139,13 @@ PassPiece decodePassPiece(std::span<const unsigned char> b, const std::string& n
   if (rows > b.size() / sizeof(double))
     throw Error(name, "declares " + std::to_string(rows) + " rows, more than its bytes hold");
   const std::size_t nv = rows * p.shape.stride(), ns = sumSize(p);
-  const std::size_t at = 16 + n;
+  const std::size_t at = kPrefix + n;
   if (b.size() - at != (nv + ns) * sizeof(float) + rows * sizeof(double))
     throw Error(name, "is truncated or too long for its " + std::to_string(rows) + " rows");
+  // Every byte after the prefix, the header's and the rows', as written (checked once the
+  // header says how long the file is, so a cut file is called truncated, not damaged).
+  if (checksum != checksumOf(b.data() + kPrefix, b.size() - kPrefix))
+    throw Error(name, "is damaged: its checksum does not match its bytes (bake the pass again)");
   std::vector<float> values(nv), sum(ns);
   std::memcpy(values.data(), b.data() + at, nv * sizeof(float));
   std::memcpy(sum.data(), b.data() + at + nv * sizeof(float), ns * sizeof(float));

@@ -32,6 +32,10 @@ inline std::string slurp(const fs::path& p) {
   s << in.rdbuf();
   return s.str();
 }
+/// Replaces a file's bytes with `bytes` (tests that damage files).
+inline void spit(const fs::path& p, const std::string& bytes) {
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << bytes;
+}
 
 /// Runs `PREFIX prt ARGS` in `dir`, capturing stdout and stderr there.
 inline Result runPrt(const fs::path& dir, const std::string& args, const std::string& prefix = "") {

@@ -215,6 +215,42 @@ TEST_F(Mpi, AKilledRankFailsTheJobCleanlyAndACheckpointResumesBitIdentical) {
   EXPECT_FALSE(fs::exists(dir() / "out/c.glb"));
 }
 
+TEST_F(Mpi, ADamagedOrForeignCheckpointChunkIsRefusedByName) {
+  // The issue: a flipped byte in a chunk, or a chunk copied in from a run with another seed,
+  // was loaded silently (the transfer off by 0.017, exit 0). Each chunk now carries the run's
+  // identity and a checksum of its rows.
+  const auto bake = [&](const std::string& seed, const std::string& ck) {
+    return prt("bake builtin:sphere-plane --mode shadowed --bands 3 --samples 16 -j 1 -q --seed " +
+                   seed + " --checkpoint " + ck + " -o out/" + ck + ".glb",
+               mpirun(2));
+  };
+  ASSERT_EQ(bake("1", "ck").rc, 0);
+  ASSERT_EQ(bake("2", "other").rc, 0);
+  const fs::path chunk = dir() / "ck/shadowed/pass-0/chunk-000001.bin";
+  ASSERT_TRUE(fs::exists(chunk));
+  const std::string good = slurp(chunk);
+  // A rerun loads its own chunks.
+  ASSERT_EQ(bake("1", "ck").rc, 0);
+
+  std::string flipped = good;
+  flipped[flipped.size() - 7] ^= 0x10;
+  spit(chunk, flipped);
+  const Result damaged = bake("1", "ck");
+  EXPECT_NE(damaged.rc, 0);
+  EXPECT_NE(damaged.err.find("chunk-000001.bin: is damaged (its checksum does not match its rows)"),
+            std::string::npos)
+      << damaged.err;
+
+  spit(chunk, slurp(dir() / "other/shadowed/pass-0/chunk-000001.bin"));
+  const Result foreign = bake("1", "ck");
+  EXPECT_NE(foreign.rc, 0);
+  EXPECT_NE(foreign.err.find("chunk-000001.bin: is a chunk of another run"), std::string::npos)
+      << foreign.err;
+
+  spit(chunk, good);
+  EXPECT_EQ(bake("1", "ck").rc, 0);
+}
+
 // Job arrays need no MPI: these run wherever prt does.
 TEST_F(Mpi, PerTexelBakesEqualTheSingleProcessFile) {
   // The texel domain through the same pass driver: shadowed and RGB bounces (each bounce pass
@@ -246,6 +282,45 @@ class JobArray : public CliTest {
  protected:
   fs::path dir() const { return dir_; }
 };
+
+TEST_F(JobArray, MoreShardsThanRowsLeaveTheEmptyOnesOutAndStillMerge) {
+  // The issue: --shard I/N with N larger than the row count baked everything ("0 vertices
+  // 0..18446744073709551615"). Four vertices in six shards: shards 0 and 3 hold none; they say
+  // so, write nothing and exit 0, and the other four pieces merge into the whole bake.
+  write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+  const std::string bake = "bake quad.obj --mode shadowed --bands 3 --samples 16";
+  ASSERT_EQ(prt(bake + " -q -o one.glb").rc, 0);
+  std::string pieces;
+  for (int i = 0; i < 6; ++i) {
+    const std::string out = "s" + std::to_string(i) + ".glb";
+    const Result r = prt(bake + " --shard " + std::to_string(i) + "/6 --json s" +
+                         std::to_string(i) + ".json -o " + out);
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const bool empty = i == 0 || i == 3;
+    EXPECT_EQ(fs::exists(dir() / out), !empty) << i;
+    EXPECT_EQ(r.err.find("18446744073709551615"), std::string::npos) << r.err;
+    if (empty) {
+      EXPECT_NE(r.err.find("shard " + std::to_string(i) +
+                           " of 6 holds none of the 4 vertices (more shards than vertices): "
+                           "nothing to bake, " + out + " not written"),
+                std::string::npos)
+          << r.err;
+      EXPECT_NE(slurp(dir() / ("s" + std::to_string(i) + ".json")).find("\"empty\": true"),
+                std::string::npos);
+    } else {
+      pieces += " " + out;
+    }
+  }
+  ASSERT_EQ(prt("merge" + pieces + " -q -o merged.glb").rc, 0);
+  expectSameTransfers(dir() / "merged.glb", dir() / "one.glb");
+
+  // Pass shards alike: pass 0 of an interreflected bake in six shards.
+  const std::string ir = "bake quad.obj --mode interreflected --bounces 1 --bands 3 --samples 16 "
+                         "--pass 0 -q";
+  const Result empty = prt(ir + " --shard 3/6 -o p3.prtpass");
+  EXPECT_EQ(empty.rc, 0) << empty.err;
+  EXPECT_FALSE(fs::exists(dir() / "p3.prtpass"));
+}
 
 TEST_F(JobArray, ShardsMergeBitExactly) {
   const std::string bake = "bake builtin:cornell --mode shadowed --samples 32 -q";

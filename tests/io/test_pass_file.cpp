@@ -56,6 +56,33 @@ TEST(PassFile, RoundTripKeepsEveryBit) {
             std::string::npos);
 }
 
+TEST(PassFile, EveryFlippedByteIsRefusedNeverUsed) {
+  // The issue: a flipped byte in a .prtpass changed the bake (0.017) and exit 0. Now the
+  // checksum covers the header and the rows: a flip of any bit of any byte is refused.
+  const std::string bytes = encodePassPiece(piece(10, 5, 3.0f));
+  const auto decode = [](const std::string& b) {
+    decodePassPiece({reinterpret_cast<const unsigned char*>(b.data()), b.size()}, "p.prtpass");
+  };
+  int refused = 0, named = 0;
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    for (int bit : {0, 5}) {
+      std::string b = bytes;
+      b[i] = static_cast<char>(b[i] ^ (1 << bit));
+      const std::string e = errorOf([&] { decode(b); });
+      refused += !e.empty();
+      named += e.rfind("p.prtpass: ", 0) == 0;
+    }
+  EXPECT_EQ(refused, static_cast<int>(2 * bytes.size()));
+  EXPECT_EQ(named, refused);
+  std::string flipped = bytes;
+  flipped[bytes.size() - 20] ^= 1;  // a row's float
+  EXPECT_NE(errorOf([&] { decode(flipped); }).find("p.prtpass: is damaged: its checksum"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { decode("PRTPASS1" + bytes.substr(8)); })
+                .find("is a pass file of an older prt, without a checksum"),
+            std::string::npos);
+}
+
 TEST(PassFile, MergeJoinsPiecesOfOnePassAndRefusesTheRest) {
   const PassPiece a = piece(0, 4, 1.0f), b = piece(4, 6, 2.0f);
   const PassPiece m = mergePassPieces({b, a});

@@ -40,6 +40,9 @@ struct RowJob {
                               unsigned char* side)>
       compute;
   std::string checkpoint;  ///< folder for this job's finished chunks ("" for none)
+  /// What the job computes (a hash of the bake's identity and the pass): written into each
+  /// checkpointed chunk, and a chunk whose identity differs is refused.
+  std::uint64_t identity = 0;
 };
 
 struct JobStats {

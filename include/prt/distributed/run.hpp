@@ -79,6 +79,7 @@ class RankExecutor : public PassExecutor {
   int threads_;
   bool spill_ = false;
   std::string checkpoint_, claimPending_;
+  std::string checkpointIdentity_;  ///< what each checkpointed chunk of this bake is hashed with
   RunReport report_;
 };
 

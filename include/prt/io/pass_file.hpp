@@ -13,9 +13,11 @@
 // Per texel the header names the domain and the lightmap (width, height, padding); without them
 // a pass file is per vertex.
 //
-// Bytes: "PRTPASS1", a little-endian uint64 n, n bytes of JSON (identity, pass, passes, shape,
-// rows, sumChannels, rays, seconds), zero padding to a multiple of 8, then the rows (floats),
-// the sum (floats) and the variances (doubles).
+// Bytes: "PRTPASS2", a little-endian uint64 n, a uint64 checksum (FNV-1a of every byte after
+// it), n bytes of JSON (identity, pass, passes, shape, rows, sumChannels, rays, seconds) padded
+// with spaces to a multiple of 8, then the rows (floats), the sum (floats) and the variances
+// (doubles). A file whose checksum does not match is refused by name, as are "PRTPASS1" files
+// (no checksum); pieces of another bake (identity: settings, seed, mesh) are refused at merge.
 
 #include <cstdint>
 #include <span>
