@@ -87,5 +87,28 @@ TEST_F(CompressCli, BadOptionsAreRefusedWithOneLine) {
   EXPECT_NE(twice.err.find("already compressed"), std::string::npos) << twice.err;
 }
 
+TEST_F(CompressCli, APieceOfASplitBakeIsRefusedUntilMerged) {
+  // The issue: a ranged bake compressed alone gave a file prt merge could not join (each piece
+  // its own clusters). Refused by name, nothing written; the merged bake compresses.
+  ASSERT_EQ(prt("-q bake builtin:sphere --mode unshadowed --bands 3 --samples 16 --range 0:5000 "
+                "-o a.glb").rc,
+            0);
+  ASSERT_EQ(prt("-q bake builtin:sphere --mode unshadowed --bands 3 --samples 16 --range 5000:10242 "
+                "-o b.glb").rc,
+            0);
+  const Result r = prt("compress a.glb --clusters 4 --pca 2 -o c.glb");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("a.glb: is a partial bake: it holds transfer for vertices 0..4999 of 10242 "
+                       "only (merge the pieces with prt merge first)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_FALSE(fs::exists(fs::path(path("c.glb"))));
+  ASSERT_EQ(prt("-q merge a.glb b.glb -o m.glb").rc, 0);
+  const Result m = prt("-q compress m.glb --clusters 4 --pca 2 -o c.glb");
+  EXPECT_EQ(m.rc, 0) << m.err;
+  EXPECT_TRUE(readBake(path("c.glb")).transfers.at(0).transfer.compressed());
+}
+
 }  // namespace
 }  // namespace prt
