@@ -22,6 +22,7 @@
 #include "prt/core/file.hpp"
 #include "prt/io/bake_merge.hpp"
 #include "prt/io/pass_file.hpp"
+#include "report.hpp"
 
 namespace prt::cli {
 
@@ -31,7 +32,17 @@ struct MergeArgs {
   std::vector<std::string> inputs;
   std::string output;
   bool seamFix = false;  ///< --seam-fix: of the merged per-texel bake
+  std::string json;
 };
+
+/// --json's report of a merge (nothing when not wanted), checked before any work.
+Report mergeReport(const MergeArgs& a, const std::vector<NamedPath>& inputs) {
+  Report r("merge", a.json);
+  r.check({{"-o", a.output}}, inputs);
+  for (const std::string& in : a.inputs) r.input(in);
+  r.output(a.output);
+  return r;
+}
 
 /// Merges pieces (each with the file it came from) in the order of their first row, one at a time,
 /// so that an error names the file that does not fit ("part1.glb: overlaps the previous range").
@@ -67,15 +78,21 @@ void runMergePasses(const MergeArgs& a) {
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});
   checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
+  Report report = mergeReport(a, inputs);
   std::vector<std::pair<PassPiece, std::string>> pieces;
   for (const std::string& in : a.inputs) pieces.emplace_back(readPassPiece(in), in);
   const PassPiece merged = mergeInRowOrder(
       std::move(pieces), [](const PassPiece& p) { return p.shape.rows.first; },
       [](std::vector<PassPiece> two) { return mergePassPieces(std::move(two)); });
   writePassPiece(a.output, merged);
-  info(fmt::format("wrote {} (pass {} of {} '{}', vertices {}..{})", a.output, merged.pass,
-                   merged.passes, merged.name, merged.shape.rows.first,
-                   merged.shape.rows.end() - 1));
+  const RowRange rows = merged.shape.rows;
+  info(fmt::format("wrote {} (pass {} of {} '{}', {} {}..{})", a.output, merged.pass,
+                   merged.passes, merged.name, toString(merged.shape.domain), rows.first,
+                   rows.end() - 1));
+  report["pass"] = {{"index", merged.pass},  {"count", merged.passes}, {"name", merged.name},
+                    {"first", rows.first},   {"end", rows.end()},      {"rays", merged.rays},
+                    {"seconds", merged.seconds}};
+  report.write();
 }
 
 void runMerge(const MergeArgs& a) {
@@ -95,6 +112,7 @@ void runMerge(const MergeArgs& a) {
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});
   checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
+  Report report = mergeReport(a, inputs);
   // Read every piece, then merge them in vertex order (mergeInRowOrder).
   std::vector<std::pair<BakeFile, std::string>> pieces;
   pieces.reserve(a.inputs.size());
@@ -116,6 +134,11 @@ void runMerge(const MergeArgs& a) {
                    toString(merged.domain()), rows.first,
                    rows.end() - 1, merged.complete() ? ", complete" : ", still partial",
                    merged.transfers.size()));
+  report["mesh"] = meshJson(merged.mesh);
+  report["rows"] = {{"first", rows.first}, {"end", rows.end()}, {"complete", merged.complete()}};
+  report["transfers"] = Json::array();
+  for (const BakedTransfer& t : merged.transfers) report["transfers"].push_back(transferJson(t));
+  report.write();
 }
 
 }  // namespace
@@ -132,6 +155,7 @@ void addMergeCommand(CLI::App& root) {
   cmd->add_flag("--seam-fix", args->seamFix,
                 "Per-texel bakes: the least-squares seam fix of the merged lightmap (Sylvan "
                 "2015; as prt bake --seam-fix)");
+  addJsonOption(cmd, args->json);
   cmd->callback([args] { runMerge(*args); });
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // A verb's machine-readable report: `--json PATH` (`-` for standard output) on every verb that
-// reports something — info, bake, light, compress, validate, reference, render. One schema style
-// for all of them (docs/formats-report.md): one JSON object per run whose first members are
+// reports something — info, bake, light, compress, validate, reference, render, unwrap, merge.
+// One schema style for all of them (docs/formats-report.md): one JSON object per run whose first
+// members are
 //
 //   "verb": "bake", "prtkitVersion": "0.1.0", "inputs": ["bunny.obj"], "outputs": ["b.glb"]
 //

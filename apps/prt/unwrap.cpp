@@ -18,6 +18,7 @@
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/io/mesh_file.hpp"
 #include "prt/unwrap/unwrap.hpp"
+#include "report.hpp"
 
 namespace prt::cli {
 
@@ -27,6 +28,7 @@ struct UnwrapArgs {
   std::string input;
   std::string output;
   UnwrapSettings settings;
+  std::string json;
 };
 
 void runUnwrap(const UnwrapArgs& a) {
@@ -34,6 +36,8 @@ void runUnwrap(const UnwrapArgs& a) {
     throw Error(a.output + ": the unwrapped mesh is a glTF binary and must end in .glb");
   checkOutputs({{"-o", a.output}}, {{"input", a.input}});
   checkWritable(a.output);
+  Report json("unwrap", a.json);
+  json.check({{"-o", a.output}}, {{"input", a.input}});
   LoadReport report;
   const Mesh mesh = loadMesh(a.input, &report);
   for (const std::string& w : report.warnings) warn(w);
@@ -58,6 +62,30 @@ void runUnwrap(const UnwrapArgs& a) {
       "stretch {:.3f} (worst triangle {:.2f})",
       s.densityP05, s.densityP95, s.densityMin, s.densityMax, s.stretchL2, s.stretchL2Max));
   info("wrote " + a.output);
+  json.input(a.input);
+  json.output(a.output);
+  json["mesh"] = meshJson(r.mesh);
+  json["atlas"] = {{"resolution", a.settings.resolution},
+                   {"padding", a.settings.padding},
+                   {"maxConeDegrees", a.settings.maxConeDegrees},
+                   {"charts", s.charts},
+                   {"grownCharts", r.grownCharts},
+                   {"splitCharts", r.splitCharts},
+                   {"packedBy", r.packedByShape ? "shape" : "boundingRectangle"},
+                   {"verticesBefore", mesh.vertexCount()},
+                   {"verticesAfter", r.mesh.vertexCount()},
+                   {"chartArea", s.chartArea},
+                   {"wastedArea", s.wastedArea},
+                   {"texelsCovered", s.texelsCovered},
+                   {"wastedTexels", s.wastedTexels},
+                   {"densityP05", s.densityP05},
+                   {"densityP95", s.densityP95},
+                   {"densityMin", s.densityMin},
+                   {"densityMax", s.densityMax},
+                   {"stretchL2", s.stretchL2},
+                   {"stretchL2Max", s.stretchL2Max},
+                   {"seconds", s.seconds}};
+  json.write();
 }
 
 }  // namespace
@@ -81,6 +109,7 @@ void addUnwrapCommand(CLI::App& root) {
                   "Largest angle in degrees between a triangle's normal and its chart's mean "
                   "(default 60; smaller: more charts, less stretch)")
       ->check(finite(1, 89));
+  addJsonOption(cmd, args->json);
   cmd->callback([args] { runUnwrap(*args); });
 }
 

@@ -126,6 +126,42 @@ TEST_F(ReportCli, ReferenceRenderAndCompressReport) {
   EXPECT_LT(c["transfer"]["bytes"].get<double>(), c["transfer"]["denseBytes"].get<double>());
 }
 
+TEST_F(ReportCli, UnwrapAndMergeReport) {
+  // The issue: unwrap printed its atlas's figures and refused --json; merge had none either.
+  Result r = prt("-q unwrap " + std::string(kSphere) + " --resolution 64 -o u.glb --json u.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json u = load("u.json");
+  expectEnvelope(u, "unwrap");
+  EXPECT_EQ(u["outputs"], Json::array({"u.glb"}));
+  EXPECT_EQ(u["atlas"]["resolution"], 64);
+  EXPECT_GE(u["atlas"]["charts"].get<int>(), 1);
+  EXPECT_GT(u["atlas"]["texelsCovered"].get<double>(), 0.0);
+  EXPECT_LE(u["atlas"]["texelsCovered"].get<double>(), 1.0);
+  EXPECT_EQ(u["mesh"]["vertices"], u["atlas"]["verticesAfter"]);
+  // What info says of the written mesh.
+  r = prt("info u.glb --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(Json::parse(r.out)["files"][0]["mesh"]["vertices"], u["mesh"]["vertices"]);
+
+  for (const char* range : {"0:20", "20:"})
+    ASSERT_EQ(prt(std::string("-q bake ") + kSphere + " --mode shadowed --samples 16 --range " +
+                  range + " -o p" + range[0] + ".glb")
+                  .rc,
+              0);
+  r = prt("-q merge p2.glb p0.glb -o m.glb --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json m = Json::parse(r.out);
+  expectEnvelope(m, "merge");
+  EXPECT_EQ(m["inputs"], Json::array({"p2.glb", "p0.glb"}));
+  EXPECT_EQ(m["rows"]["first"], 0);
+  EXPECT_EQ(m["rows"]["complete"], true);
+  EXPECT_EQ(m["rows"]["end"], m["mesh"]["vertices"]);
+  ASSERT_EQ(m["transfers"].size(), 1u);
+  r = prt("info m.glb --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(Json::parse(r.out)["files"][0]["transfers"][0], m["transfers"][0]);
+}
+
 TEST_F(ReportCli, BadReportPathsAreRefusedBeforeAnyWork) {
   bake();
   expectCleanFailure("light builtin:sky -o out/l.json --json out/l.json", "name the same file");
