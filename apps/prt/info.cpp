@@ -136,20 +136,32 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     for (std::size_t i : transferPreference(b)) {
       const Transfer& x = b.transfers[i].transfer;
       if (x.isMatrix() || !b.complete()) continue;
-      const render::SeamStats seams = render::measureSeams(m, x);
+      // Under a white sky (the transfer's mean) and under the builtin sky's sun (the shadow
+      // edges, where seams show most).
+      Json under = Json::array();
+      std::vector<render::SeamStats> each;
+      for (const render::SeamLight& l : render::seamLights(x.bands())) {
+        each.push_back(render::measureSeams(m, x, l.light));
+        under.push_back({{"light", l.name},
+                         {"mismatch", each.back().mismatch},
+                         {"maxMismatch", each.back().maxMismatch}});
+      }
+      const render::SeamStats& seams = each.front();
       j["lightmap"]["seams"] = {{"transfer", b.transfers[i].describe()},
                                 {"edges", seams.edges},
                                 {"length", seams.length},
                                 {"mismatch", seams.mismatch},
-                                {"maxMismatch", seams.maxMismatch}};
+                                {"maxMismatch", seams.maxMismatch},
+                                {"under", std::move(under)}};
       if (seams.edges == 0)
         out << "seams       none (no smooth edge is cut between charts)\n";
       else
         out << fmt::format(
             "seams       {} edges ({:.4g} long): bilinear mismatch across them {:.2f}% of the "
-            "white-sky radiance there (max {:.2f}%), {}{}\n",
+            "white-sky radiance there (max {:.2f}%), {:.2f}% under the builtin sky's sun (max "
+            "{:.2f}%), {}{}\n",
             seams.edges, seams.length, 100 * seams.mismatch, 100 * seams.maxMismatch,
-            b.transfers[i].describe(),
+            100 * each[1].mismatch, 100 * each[1].maxMismatch, b.transfers[i].describe(),
             lm.seamsFixed ? ", after the seam fix" : " (prt bake --seam-fix closes them)");
       break;
     }

@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "prt/core/error.hpp"
+#include "prt/envmap/analytic.hpp"
+#include "prt/envmap/sky.hpp"
 #include "prt/geometry/texel_samples.hpp"
 #include "prt/geometry/uv_seams.hpp"
 
@@ -16,22 +18,34 @@ constexpr int kPointsPerEdge = 16;
 
 }  // namespace
 
-SeamStats measureSeams(const Mesh& mesh, const Transfer& transfer) {
+std::vector<SeamLight> seamLights(int bands) {
+  const envmap::PreethamSky sky{envmap::SkyParams{}};
+  return {{"white sky", envmap::constantSh(bands, Rgb(1.0f))},
+          {"sun", envmap::directionalSh(bands, sky.sunDirection(), Rgb(1.0f))}};
+}
+
+SeamStats measureSeams(const Mesh& mesh, const Transfer& transfer, const sh::RgbSh& light) {
   const TransferShape& shape = transfer.shape();
   if (shape.domain != TransferDomain::Texels || transfer.rows().first != 0 ||
       transfer.rowCount() != shape.lightmap.texels())
     throw Error(mesh.source, "the seam metric is of a complete per-texel transfer");
   if (mesh.lightmapUvs.size() != mesh.vertexCount())
     throw Error(mesh.source, "the seam metric needs the mesh's lightmap UVs");
+  if (transfer.isMatrix())
+    throw Error(mesh.source, "the seam metric is of vector transfer (matrices shade by normal)");
   const int W = shape.lightmap.width, H = shape.lightmap.height, C = shape.channels;
-  // Exit radiance under a white sky per texel: √(4π) T₀, the mean over channels.
+  const int n = std::min(shape.coeffs(), static_cast<int>(light.c.size()));
+  // Exit radiance per texel: Σᵢ Lᵢ Tᵢ per colour, the mean of the three (a scalar transfer
+  // serves each colour; an RGB one pairs channel c with colour c).
   const Transfer dense = transfer.toDense();
   std::vector<float> white(shape.lightmap.texels());
-  const float k = float(std::sqrt(4.0 * 3.14159265358979323846)) / float(C);
   for (std::size_t t = 0; t < white.size(); ++t) {
-    float s = 0;
-    for (int c = 0; c < C; ++c) s += dense.row(t)[c];
-    white[t] = k * s;
+    const float* row = dense.row(t);
+    double s = 0;
+    for (int i = 0; i < n; ++i)
+      for (int colour = 0; colour < 3; ++colour)
+        s += double(light.c[i][colour]) * row[i * C + (C == 3 ? colour : 0)];
+    white[t] = float(s / 3.0);
   }
   const auto fetch = [&](Vec2f uv) {
     const TexelTaps taps = bilinearTaps(uv, W, H);
@@ -69,6 +83,10 @@ SeamStats measureSeams(const Mesh& mesh, const Transfer& transfer) {
   }
   st.mismatch = wsum > 0 ? weighted / wsum / meanR : 0.0;
   return st;
+}
+
+SeamStats measureSeams(const Mesh& mesh, const Transfer& transfer) {
+  return measureSeams(mesh, transfer, seamLights(transfer.bands()).front().light);
 }
 
 }  // namespace prt::render

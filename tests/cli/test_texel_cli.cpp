@@ -398,6 +398,18 @@ TEST_F(TexelCli, SeamFixClosesTheSeamsInBakeAndMerge) {
   EXPECT_LT(fixed["seams"]["mismatch"].get<double>(),
             plain["seams"]["mismatch"].get<double>() / 4);
   EXPECT_NE(prt("info fixed.glb").out.find("after the seam fix"), std::string::npos);
+  // Reported under the builtin sky's sun too (the shadow edges, where seams show most).
+  const nlohmann::json& under = plain["seams"]["under"];
+  ASSERT_EQ(under.size(), 2u);
+  EXPECT_EQ(under[0]["light"], "white sky");
+  EXPECT_EQ(under[0]["mismatch"], plain["seams"]["mismatch"]);
+  EXPECT_EQ(under[1]["light"], "sun");
+  EXPECT_GT(under[1]["mismatch"].get<double>(), 0.0);
+  EXPECT_NE(under[1]["mismatch"], under[0]["mismatch"]);
+  EXPECT_LT(fixed["seams"]["under"][1]["mismatch"].get<double>(),
+            under[1]["mismatch"].get<double>());
+  EXPECT_NE(prt("info plain.glb").out.find("% under the builtin sky's sun (max "),
+            std::string::npos);
 
   // Pieces baked without it, merged with it: the same file as the whole bake with it.
   ASSERT_EQ(prt("-q " + bake + " --range 0:100 -o a.glb").rc, 0);

@@ -38,6 +38,23 @@ TEST(LightmapSeams, TheSeamOfASmoothSurfaceAgreesAndAMisplacedChartDoesNot) {
   EXPECT_LT(good.mismatch, 0.05);
   EXPECT_GT(bad.mismatch, 4 * good.mismatch);
   EXPECT_GT(bad.mismatch, 0.05);
+
+  // Under the sun (seamLights' second light): the white sky is the default's light; the metric
+  // is relative (a brighter light, the same figure); the misplaced chart still shows.
+  const std::vector<render::SeamLight> lights = render::seamLights(2);
+  ASSERT_EQ(lights.size(), 2u);
+  EXPECT_STREQ(lights[1].name, "sun");
+  EXPECT_DOUBLE_EQ(render::measureSeams(m, b.transfer, lights[0].light).mismatch, bad.mismatch);
+  const render::SeamStats sun = render::measureSeams(m, b.transfer, lights[1].light);
+  sh::RgbSh brighter = lights[1].light;
+  for (Rgb& c : brighter.c) c = c * 8.0f;
+  EXPECT_NEAR(render::measureSeams(m, b.transfer, brighter).mismatch, sun.mismatch,
+              1e-6 * sun.mismatch);
+  EXPECT_NE(sun.mismatch, bad.mismatch) << "the sun weighs the shadow, not the mean";
+  for (std::uint32_t v = 4; v < 8; ++v) m.lightmapUvs[v].y = 1.0f - m.lightmapUvs[v].y;
+  const render::SeamStats sunGood = render::measureSeams(m, b.transfer, lights[1].light);
+  std::printf("under the sun: %.4f, mirrored chart %.4f\n", sunGood.mismatch, sun.mismatch);
+  EXPECT_GT(sun.mismatch, 4 * sunGood.mismatch);
 }
 
 TEST(LightmapSeams, CreasesAreNotSeamsAndVerticesAreRefused) {
