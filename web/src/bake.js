@@ -463,6 +463,22 @@ export function bakeObject(json) {
 }
 
 /**
+ * Checks a document GLTFLoader has parsed (its `parser`; prtkit-three's plugin, in beforeRoot,
+ * before GLTFLoader builds the scene from it) as parseBake checks one before parsing: the JSON
+ * text's nesting, then checkBakeDocument. Throws an Error of one line starting with `name`.
+ */
+export function checkParsedBake(parser, name) {
+  try {
+    const text = parser.extensions && parser.extensions.KHR_binary_glTF && parser.extensions.KHR_binary_glTF.content;
+    if (typeof text === 'string' && nestingDepth(text, bakeFile.maxNesting) > bakeFile.maxNesting)
+      fail(name, `JSON nested deeper than ${bakeFile.maxNesting} levels (PRT_MAX_NESTING)`);
+    checkBakeDocument(parser.json, binaryBody(parser), name);
+  } catch (e) {
+    throw named(e, name);
+  }
+}
+
+/**
  * Reads the bake in GLTFLoader's result `gltf` (the page's parse, or the three.js module's
  * loader plugin) into { name, parts: [{ mesh (GLTFLoader's), geometry, name, first, vertices,
  * hasAlbedo, baseColour (a THREE.Texture or null), texels: { transfer key → { data, width, height } } }], transfers (in the library's
@@ -478,14 +494,7 @@ export function bakeObject(json) {
  */
 export async function readBake(gltf, name, limits, extras = {}) {
   try {
-    if (!extras[kChecked]) {
-      // A document GLTFLoader parsed (prtkit-three's plugin): its JSON text's nesting, then the
-      // document, as parseBake checks them before parsing.
-      const text = gltf.parser.extensions && gltf.parser.extensions.KHR_binary_glTF && gltf.parser.extensions.KHR_binary_glTF.content;
-      if (typeof text === 'string' && nestingDepth(text, bakeFile.maxNesting) > bakeFile.maxNesting)
-        fail(name, `JSON nested deeper than ${bakeFile.maxNesting} levels (PRT_MAX_NESTING)`);
-      checkBakeDocument(gltf.parser.json, binaryBody(gltf.parser), name);
-    }
+    if (!extras[kChecked]) checkParsedBake(gltf.parser, name);
     return await readCheckedBake(gltf, name, limits, extras);
   } catch (e) {
     throw named(e, name);

@@ -8,7 +8,7 @@
 // An asset that is not a bake loads untouched (userData.prtkit stays undefined) unless
 // options.required; a bake that cannot be shown rejects the load with one line naming the file.
 import { bakeFormat, bands as kBands } from 'prt:constants';
-import { bakeObject, readBake } from '../../src/bake.js';
+import { bakeObject, checkParsedBake, readBake } from '../../src/bake.js';
 import { glossyFromFile } from '../../src/glossy.js';
 import { PRTBake } from './prt_bake.js';
 
@@ -23,6 +23,15 @@ export class PRTKitRadianceTransfer {
     this.parser = parser;
     this.name = bakeFormat.extension;
     this.options = options;
+  }
+
+  // Before GLTFLoader builds the scene: the document checked as prt checks it (bake.js,
+  // checkParsedBake), so a malformed accessor or index is refused naming the file rather than
+  // failing inside GLTFLoader with a bare JavaScript error.
+  beforeRoot() {
+    const o = this.options;
+    if (bakeObject(this.parser.json)) checkParsedBake(this.parser, o.name || 'glTF asset');
+    return null;
   }
 
   async afterRoot(result) {
