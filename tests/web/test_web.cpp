@@ -443,7 +443,7 @@ TEST(Web, BadDroppedFilesLeaveTheSceneAndSayWhy) {
       {"garbage.glb", "garbage.glb: is not a glTF binary (.glb) file"},
       {"truncated.glb", "truncated.glb: is truncated"},
       {"plain.glb", "plain.glb: is a glTF file but not a prtkit bake"},
-      {"newer.glb", "newer.glb: bake format version 99 is not supported by this page"},
+      {"newer.glb", "newer.glb: bake format version 99 is newer than this page reads"},
       {"broken.json", "broken.json: is not JSON"},
       {"rows.json", "rows.json: has 3 coefficients but 2 bands need 4"},
       {"picture.png", "picture.png: not a bake (.glb) or an SH light (.json, or the course's"},
