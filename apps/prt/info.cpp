@@ -18,6 +18,7 @@
 #include "cli.hpp"
 #include "guard.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/units.hpp"
 #include "prt/envmap/builtin.hpp"
@@ -393,7 +394,9 @@ void describe(const std::string& path, int lightmapSide, std::ostream& out, Json
       describeEnvironment(path, out, j);
       return;
     }
-    const auto bytes = readFileBytes(path);
+    // Sniffed from its head alone: each kind's reader then reads the file under its own limit
+    // (a bake up to the GLB's 4 GiB, not the 2 GiB of PRT_MAX_FILE_BYTES).
+    std::vector<unsigned char> bytes = readFileHead(path, 20);
     if (bytes.size() >= 4 && std::string(bytes.begin(), bytes.begin() + 4) == "glTF") {
       // A glTF binary without prtkit's extension is a mesh (prt unwrap writes those): its JSON
       // chunk (GLB §4.4: length at byte 12, text from byte 20) names no prtkit object.
@@ -402,6 +405,8 @@ void describe(const std::string& path, int lightmapSide, std::ostream& out, Json
       if (bytes.size() >= 20) {
         const std::size_t length = std::uint32_t(bytes[12]) | std::uint32_t(bytes[13]) << 8 |
                                    std::uint32_t(bytes[14]) << 16 | std::uint32_t(bytes[15]) << 24;
+        // (A JSON chunk past the JSON limit is the bake reader's to refuse.)
+        if (length <= limits().maxFileBytes) bytes = readFileHead(path, 20 + length);
         if (length <= bytes.size() - 20)
           json = std::string_view(reinterpret_cast<const char*>(bytes.data()) + 20, length);
       }

@@ -620,17 +620,40 @@ std::vector<unsigned char> readFileBytes(const std::string& path) {
   return readFileBytes(path, limits().maxFileBytes, "PRT_MAX_FILE_BYTES");
 }
 
-std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t maxBytes,
-                                         const char* capName) {
+namespace {
+
+/// A regular file opened for reading (never a pipe, device or socket: a FIFO with no writer
+/// would block in open() forever, and a pipe or device has no size to check against a cap).
+std::ifstream openRegularFile(const std::string& path) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (fs::is_directory(st)) throw Error(path, "is a directory, expected a file");
-  // A FIFO with no writer would block in open() forever, and a pipe or device has no size to
-  // check against the cap: only regular files are read.
   if (fs::exists(st) && !fs::is_regular_file(st))
     throw Error(path, "is not a regular file (a pipe, device or socket); give a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open (does it exist and is it readable?)");
+  return in;
+}
+
+}  // namespace
+
+std::vector<unsigned char> readFileHead(const std::string& path, std::size_t bytes) {
+  std::ifstream in = openRegularFile(path);
+  // Never more than the file holds (a header may claim any length).
+  in.seekg(0, std::ios::end);
+  const auto size = in.tellg();
+  if (size < 0) throw Error(path, "cannot read");
+  in.seekg(0, std::ios::beg);
+  std::vector<unsigned char> data(std::min<std::uint64_t>(bytes, static_cast<std::uint64_t>(size)));
+  in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size()));
+  if (in.bad()) throw Error(path, "read failed");
+  data.resize(static_cast<std::size_t>(in.gcount()));
+  return data;
+}
+
+std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t maxBytes,
+                                         const char* capName) {
+  std::ifstream in = openRegularFile(path);
   in.seekg(0, std::ios::end);
   const auto size = in.tellg();
   if (size < 0) throw Error(path, "cannot read");

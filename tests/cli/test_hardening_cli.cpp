@@ -107,6 +107,23 @@ TEST_F(HardeningCli, OutputsNeverOverwriteInputs) {
 
 // --- option order --------------------------------------------------------------------------
 
+TEST_F(HardeningCli, InfoReadsABakeUpToTheGlbLimitNotTheGenericOne) {
+  // The issue: prt info refused any bake over 2 GiB (it read the whole file under
+  // PRT_MAX_FILE_BYTES to tell its kind) while the docs promise the GLB's 4 GiB, as readBake
+  // reads. Here the generic cap is lowered below the file's size: info still reads the bake
+  // (its kind told from the head), and a JSON light file is still held to the cap.
+  ASSERT_EQ(prt("-q bake builtin:sphere --mode unshadowed --bands 3 --samples 8 -o b.glb").rc, 0);
+  ASSERT_EQ(prt("-q light builtin:sky --bands 3 -o l.json").rc, 0);
+  const std::string cap = "PRT_MAX_FILE_BYTES=" + std::to_string(fs::file_size(dir_ / "l.json") - 1) + " ";
+  ASSERT_GT(fs::file_size(dir_ / "b.glb"), fs::file_size(dir_ / "l.json"));
+  const Result bake = prt("info b.glb", cap);
+  EXPECT_EQ(bake.rc, 0) << bake.err;
+  EXPECT_NE(bake.out.find("unshadowed"), std::string::npos) << bake.out;
+  const Result light = prt("info l.json", cap);
+  EXPECT_EQ(light.rc, 1);
+  EXPECT_NE(light.err.find("PRT_MAX_FILE_BYTES"), std::string::npos) << light.err;
+}
+
 TEST_F(HardeningCli, OptionsBeforeAndAfterPositionals) {
   // Repeatable options take one value each, so they never swallow the positional.
   Result r = prt(std::string("-q bake --mode shadowed --mode unshadowed --samples 8 ") + kSphere +

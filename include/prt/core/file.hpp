@@ -75,6 +75,9 @@ std::vector<unsigned char> readFileBytes(const std::string& path);
 /// The same with a cap of the caller's (a format's own limit), named `capName` in the refusal.
 std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t maxBytes,
                                          const char* capName);
+/// The first `bytes` bytes of a regular file (fewer when it is shorter), whatever its size: what
+/// a reader sniffs a file's kind from before it reads the whole under that kind's own limit.
+std::vector<unsigned char> readFileHead(const std::string& path, std::size_t bytes);
 /// Throws Error naming `path` if it cannot be written by the policy above: its directory (the
 /// link target's, for a symbolic link) does not exist or is not writable, or it is refused.
 void checkWritable(const std::string& path);
