@@ -25,7 +25,9 @@ namespace {
 // A rank that dies ends the job with one line naming it and what it was doing, and no output
 // (docs/distributed.md). The library writes that line; printing it and ending the process are
 // ours. Two paths lead here, and the library lets only the first of them report: rank 0's
-// watch (FatalFn, below) and the SIGTERM the runtime (mpirun, srun) sends when a rank exits.
+// watch (FatalFn, below), which sees a rank on its host die the moment it does, and the SIGTERM
+// the runtime (mpirun, srun) sends when a rank exits. The other ranks' SIGTERM handler tells
+// the watch they were stopped, so that the one named is the rank that died first.
 
 constexpr int kExitRankDied = 1;
 constexpr int kExitTerminated = 128 + SIGTERM;  // 143, as if SIGTERM had ended us
@@ -52,6 +54,18 @@ extern "C" void onTerminate(int) {
       distributed::describeTermination(g_terminationLine, sizeof g_terminationLine);
   writeAll(g_terminationLine, t.length);
   ::_exit(t.cause == distributed::Termination::Cause::RankDied ? kExitRankDied : kExitTerminated);
+}
+
+/// The other ranks' SIGTERM handler: tell the root's watch that this rank is being stopped (so
+/// that it is never named as the rank that died), then end as SIGTERM does.
+extern "C" void onStopped(int) {
+  distributed::noteStopped();
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof sa);
+  sa.sa_handler = SIG_DFL;
+  sigemptyset(&sa.sa_mask);
+  ::sigaction(SIGTERM, &sa, nullptr);
+  ::raise(SIGTERM);  // delivered as the handler returns
 }
 
 void setTerminateHandler(void (*handler)(int)) {
@@ -91,18 +105,20 @@ MpiVerb::MpiVerb(const std::string& verb, bool refuseCopies) {
   if (refuseCopies) refuseUnjoinedCopies(verb);
 #if PRT_HAVE_MPI
   if (!distributed::launchedByMpi()) return;
-  // The watch calls this from rank 0's coordinator thread while the main thread may be
-  // computing: so _exit, not exit (no static destructors or atexit handlers, MPI's among them,
-  // racing that thread); the runtime then ends the other ranks.
+  // The watch calls this from rank 0's watch (or coordinator) thread while the main thread may
+  // be computing: so _exit, not exit (no static destructors or atexit handlers, MPI's among
+  // them, racing that thread); the runtime then ends the other ranks.
   session_ = std::make_unique<distributed::Session>(verb, [verb](const std::string& line) {
     std::cerr << verb << ": error: " << line << std::endl;
     std::fflush(stderr);
     ::_exit(kExitRankDied);
   });
-  if (session_->root())
+  if (session_->root()) {
     setTerminateHandler(onTerminate);
-  else
+  } else {
+    setTerminateHandler(onStopped);
     globals().quiet = globals().silent = true;
+  }
 #else
   (void)verb;
 #endif
@@ -113,7 +129,7 @@ MpiVerb::~MpiVerb() {
   // Taken down before MPI_Finalize: the ranks of a job that ends may be stopped, and that is no
   // failure to report. When the session leaves MPI as it is (this rank failed alone and is
   // unwinding), the handler stays: the job is failing, and a SIGTERM that ends it still says why.
-  if (session_ && session_->root() && session_->willFinalize()) setTerminateHandler(SIG_DFL);
+  if (session_ && session_->willFinalize()) setTerminateHandler(SIG_DFL);
 #endif
 }
 
@@ -146,14 +162,21 @@ void MpiVerb::run(const std::function<void()>& body) {
     try {
       body();
     } catch (const distributed::AgreedFailure&) {
-      throw QuietFailure();
+      // Every rank agreed on the failure, and rank 0 reports it. This rank leaves in order and
+      // with status 0: one that exits non-zero makes the runtime (mpirun, srun) stop the others
+      // at once, rank 0 among them, maybe before it has printed the failure — the job then
+      // said nothing but the runtime's banner. Rank 0 exits 1, which is the job's status.
+      return;
     } catch (const Cancelled&) {
       throw;
     } catch (const Error& e) {
       if (session_->root()) throw;
       // Before the ranks first agreed, a failure is most likely every rank's (the same inputs):
       // rank 0 reports it. After, it is this rank's own.
-      if (!session_->agreedOnce()) throw QuietFailure();
+      if (!session_->agreedOnce()) {
+        session_->leaveQuietly();
+        throw QuietFailure();
+      }
       throw Error("rank " + std::to_string(session_->rank()) + ": " + e.what());
     }
     return;

@@ -48,7 +48,10 @@ class MpiVerb {
   int size() const;
 
   /// Runs `body`; under MPI a failure on any rank is reported once (by rank 0) for all, a
-  /// failure on one rank alone names it ("rank 2: ...").
+  /// failure on one rank alone names it ("rank 2: ..."). A failure every rank agreed on
+  /// (collective) returns normally on the ranks other than rank 0, which leave with status 0
+  /// so that the runtime does not stop rank 0 before it prints the failure: run must be the
+  /// last thing a verb does on those ranks.
   void run(const std::function<void()>& body);
   /// Runs `fn` on every rank, then agrees: when any rank failed, every rank stops (collective).
   void collective(const std::function<void()>& fn);
