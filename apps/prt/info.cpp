@@ -206,8 +206,12 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
       out << fmt::format(", albedo {},{},{}", s.material.diffuse->x, s.material.diffuse->y,
                          s.material.diffuse->z);
     out << '\n';
-    out << fmt::format("    rays {}, {:.3g} Mrays/s, {:.3f} s total ({:.3f} s direct", st.rays,
-                       st.raysPerSecond / 1e6, st.secondsTotal, st.secondsDirect);
+    // Each rate over the time it divides by, as prt bake prints them (issue 37).
+    out << fmt::format(
+        "    rays {}, {:.3g} Mrays/s over the {:.3f} s total ({:.3g} Mrays/s while casting; "
+        "{:.3f} s direct",
+        st.rays, raysPerSecondOf(st.rays, st.secondsTotal) / 1e6, st.secondsTotal,
+        st.raysPerSecond / 1e6, st.secondsDirect);
     for (std::size_t k = 0; k < st.secondsBounce.size(); ++k)
       out << fmt::format(", bounce {} {:.3f} s", k + 1, st.secondsBounce[k]);
     out << fmt::format("), {} threads\n", st.threads);

@@ -36,19 +36,28 @@ std::vector<std::uint8_t> insideGeometry(const Mesh& mesh, const Occluder& occlu
       Vec3f t, bt;
       orthonormalBasis(n, t, bt);
       const Vec3f origin = positions[i] + n * occluder.rayOffset(positions[i]);
-      int back = 0;
+      // The rule (more than half the rays hit a back face) is settled as soon as either side
+      // holds a majority: an outside point stops after half its rays missed or hit a front,
+      // an inside one after a majority hit backs — the same verdict as all rays, at half the
+      // cost or less (issue 37: the probe was most of a quick per-texel bake).
+      constexpr int kMajority = kValidityProbeRays / 2 + 1;
+      int back = 0, notBack = 0;
       for (const Vec3f& l : local) {
+        if (back >= kMajority || notBack > kValidityProbeRays - kMajority) break;
         Ray ray;
         ray.origin = origin;
         ray.dir = t * l.x + bt * l.y + n * l.z;
         const Hit h = occluder.intersect(ray);
-        if (!h.hit) continue;
-        const auto& tri = mesh.triangles[h.triangle];
-        const Vec3f p0 = mesh.positions[tri[0]];
-        const Vec3f g = cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
-        back += dot(g, ray.dir) > 0.0f;
+        bool fromBehind = false;
+        if (h.hit) {
+          const auto& tri = mesh.triangles[h.triangle];
+          const Vec3f p0 = mesh.positions[tri[0]];
+          const Vec3f g = cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
+          fromBehind = dot(g, ray.dir) > 0.0f;
+        }
+        (fromBehind ? back : notBack) += 1;
       }
-      inside[i] = back * 2 > kValidityProbeRays;
+      inside[i] = back >= kMajority;
     }
   });
   return inside;
