@@ -32,6 +32,57 @@ int bandsFromCount(const std::string& path, std::size_t count) {
   return b;
 }
 
+/// [x, y, z] of finite numbers, or a one-line error naming `what`.
+Vec3d finiteTriple(const nlohmann::json& v, const std::string& path, const std::string& what) {
+  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
+      !v[2].is_number())
+    throw Error(path, what + " is not [x, y, z]");
+  const Vec3d out(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+  if (!std::isfinite(out.x) || !std::isfinite(out.y) || !std::isfinite(out.z))
+    throw Error(path, what + " is not finite");
+  return out;
+}
+
+/// The "irradiance" member (light_file.hpp), every field checked.
+EncodedIrradianceRecord parseIrradiance(const nlohmann::json& ir, const std::string& path) {
+  if (!ir.is_object()) throw Error(path, "\"irradiance\" must be an object");
+  if (!ir.contains("encoding") || !ir["encoding"].is_string())
+    throw Error(path, "\"irradiance\" has no \"encoding\" name");
+  EncodedIrradianceRecord r;
+  sh::EncodedIrradiance& e = r.encoded;
+  try {
+    e.encoding = sh::parseIrradianceEncoding(ir["encoding"].get<std::string>());
+  } catch (const Error& x) {
+    throw Error(path, std::string("\"irradiance\": ") + x.what());
+  }
+  const std::size_t rows = sh::storedNumbers(e.encoding) == 27 ? 9 : 4;
+  if (!ir.contains("coefficients") || !ir["coefficients"].is_array() ||
+      ir["coefficients"].size() != rows)
+    throw Error(path, std::string("\"irradiance\": ") + sh::toString(e.encoding) + " holds " +
+                          std::to_string(rows) + " coefficient rows [r, g, b]");
+  for (std::size_t i = 0; i < rows; ++i)
+    e.sh.push_back(finiteTriple(ir["coefficients"][i], path,
+                                "irradiance coefficient " + std::to_string(i)));
+  if (sh::isZonal(e.encoding)) {
+    if (!ir.contains("axis") || !ir.contains("zonal"))
+      throw Error(path, "\"irradiance\": zh3 needs \"axis\" and \"zonal\"");
+    e.axis = finiteTriple(ir["axis"], path, "irradiance axis");
+    if (std::fabs(length(e.axis) - 1) > 1e-4)
+      throw Error(path, "irradiance axis is not a unit vector");
+    e.zonal = finiteTriple(ir["zonal"], path, "irradiance zonal coefficients");
+  }
+  if (ir.contains("error") && ir["error"].is_object()) {
+    const auto& er = ir["error"];
+    if (er.contains("referenceBands") && er["referenceBands"].is_number_integer())
+      r.referenceBands = er["referenceBands"].get<int>();
+    if (er.contains("relativeRms") && er["relativeRms"].is_number())
+      r.relativeRms = er["relativeRms"].get<double>();
+    if (er.contains("negativeShare") && er["negativeShare"].is_number())
+      r.negativeShare = er["negativeShare"].get<double>();
+  }
+  return r;
+}
+
 }  // namespace
 
 void writeLightJson(const std::string& path, const LightFile& light) {
@@ -47,6 +98,23 @@ void writeLightJson(const std::string& path, const LightFile& light) {
   j["window"] = light.window;
   j["rotation"] = Json::array({light.rotationDeg[0], light.rotationDeg[1], light.rotationDeg[2]});
   j["prtkit_version"] = light.prtkitVersion;
+  if (light.irradiance) {
+    const sh::EncodedIrradiance& e = light.irradiance->encoded;
+    Json ir;
+    ir["encoding"] = sh::toString(e.encoding);
+    ir["numbers"] = sh::storedNumbers(e.encoding);
+    Json sh = Json::array();
+    for (const Rgbd& x : e.sh) sh.push_back({x.x, x.y, x.z});
+    ir["coefficients"] = std::move(sh);
+    if (sh::isZonal(e.encoding)) {
+      ir["axis"] = {e.axis.x, e.axis.y, e.axis.z};
+      ir["zonal"] = {e.zonal.x, e.zonal.y, e.zonal.z};
+    }
+    ir["error"] = {{"referenceBands", light.irradiance->referenceBands},
+                   {"relativeRms", light.irradiance->relativeRms},
+                   {"negativeShare", light.irradiance->negativeShare}};
+    j["irradiance"] = std::move(ir);
+  }
   writeFileAtomically(path, formatJson(j));
 }
 
@@ -93,6 +161,7 @@ LightFile parseLightJson(std::string_view text, const std::string& path) {
       throw Error(path, "\"rotation\" must be [x, y, z] in degrees");
     for (int k = 0; k < 3; ++k) out.rotationDeg[k] = r[k].get<double>();
   }
+  if (j.contains("irradiance")) out.irradiance = parseIrradiance(j["irradiance"], path);
   return out;
 }
 

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <string>
 
+#include "prt/core/luminance.hpp"
 #include "prt/core/vec.hpp"
 
 namespace prt::image {
@@ -34,7 +35,7 @@ float srgb8ToLinear(std::uint8_t v);
 float gamma22ToLinear(std::uint8_t v);
 /// Rec. 709 / sRGB relative luminance: 0.2126 R + 0.7152 G + 0.0722 B.
 inline float luminance(const Rgb& c) {
-  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+  return luminanceOf(c);
 }
 
 /// The exposure range of every tool (prt render, view, web, light, demo; the viewers' panels and

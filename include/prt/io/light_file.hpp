@@ -4,17 +4,33 @@
 // JSON (ours):
 //   {"bands": B, "coefficients": [[r, g, b], … B² rows, index l(l+1)+m],
 //    "source": "studio.exr", "layout": "latlong", "window": "none",
-//    "rotation": [x, y, z] (Euler degrees, R = Rz Ry Rx), "prtkit_version": "0.1.0"}
+//    "rotation": [x, y, z] (Euler degrees, R = Rz Ry Rx), "prtkit_version": "0.1.0",
+//    "irradiance": {...}}  (optional: `prt light --encoding`, below)
+// "irradiance" holds the light's irradiance in an engine's form (sh/irradiance_encoding.hpp):
+//   {"encoding": "zh3", "numbers": 15, "coefficients": [[r, g, b], … 4 or 9 irradiance SH rows],
+//    "axis": [x, y, z], "zonal": [r, g, b] (zh3 and zh3-hallucinated),
+//    "error": {"referenceBands": 12, "relativeRms": 0.05, "negativeShare": 0}}
 // GAMES202 light.txt (the course's homework 2): B² lines "r g b", nothing else; B = sqrt(lines).
 // Readers validate everything and throw prt::Error("FILE: line N: what is wrong") on one line.
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 
+#include "prt/sh/irradiance_encoding.hpp"
 #include "prt/sh/sh.hpp"
 
 namespace prt::io {
+
+/// The light's irradiance as an engine stores it, and what that loses against the irradiance of
+/// a `referenceBands`-band projection of the same environment.
+struct EncodedIrradianceRecord {
+  sh::EncodedIrradiance encoded;
+  int referenceBands = 0;
+  double relativeRms = 0;
+  double negativeShare = 0;
+};
 
 struct LightFile {
   sh::RgbSh coefficients;
@@ -23,6 +39,7 @@ struct LightFile {
   std::string window = "none";
   std::array<double, 3> rotationDeg = {0, 0, 0};
   std::string prtkitVersion;
+  std::optional<EncodedIrradianceRecord> irradiance;
 };
 
 void writeLightJson(const std::string& path, const LightFile& light);
