@@ -2,6 +2,7 @@
 //
 //   prt demo -o demo-out
 //   prt demo --mesh bunny.obj --env studio.exr --env builtin:sky -o out
+//   prt demo -o out --json demo.json          (index.html's figures as numbers)
 //
 // The scene is the Stanford bunny on a ground plane when Debian's glmark2-data is installed,
 // else the builtin Cornell box. It is baked once with all three transfer modes (unshadowed,
@@ -23,6 +24,9 @@
 //
 // Per-texel row (demo_texels.hpp): the builtin Cornell box as a coarse mesh, per vertex, per
 // texel and per vertex at the lightmap's bytes, against its Monte Carlo reference.
+//
+// --json reports the figures index.html shows (the bakes' statistics, every validation table,
+// the per-texel row) as numbers, with every file the folder holds.
 //
 // Everything the demo writes comes from the library calls the verbs use (bake, relight,
 // renderRelit, validate), so the pictures are exactly what `prt bake/render/validate` give.
@@ -64,6 +68,7 @@
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transport/bake.hpp"
+#include "report.hpp"
 #include "web.hpp"
 
 namespace prt::cli {
@@ -84,6 +89,7 @@ DemoScene makeScene(const std::string& spec) {
   DemoScene s;
   std::string path = spec;
   if (spec == "auto") path = fs::exists(kBunny) ? kBunny : "builtin:cornell";
+  s.path = path;
   LoadReport report;
   Mesh object = loadMesh(path, &report);
   for (const auto& w : report.warnings) warn(w);
@@ -309,10 +315,11 @@ void renderTurntable(const LightScene& ls, const BakedTransfer& bt, const sh::Rg
 }
 
 /// The live viewer: prt web's folder for the same bake and environments, in web/. Returns why
-/// there is none ("" when written).
+/// there is none ("" when written); `report` gets what prt web --json reports of it.
 std::string writeLiveViewer(const std::vector<std::string>& envSpecs, const DemoFolder& file,
-                            const std::string& output, float exposure) {
+                            const std::string& output, float exposure, Json& report) {
   std::string why;
+  report = nullptr;
   if (!webAssetsAvailable(&why)) {
     warn("demo: no live viewer on the page: " + why);
     return why;
@@ -326,8 +333,41 @@ std::string writeLiveViewer(const std::vector<std::string>& envSpecs, const Demo
   // The stills' framing is the page's own (render::meshFraming: the object, not the ground
   // plane); the page opens at the stills' exposure of the first environment.
   w.exposure = exposure;
-  writeWebViewer(w);
+  report = writeWebViewer(w);
+  report["bake"]["path"] = (fs::path(output) / "scene.glb").string();  // not the partial folder
   return "";
+}
+
+/// One mode under one environment, as the page shows it: its pictures, and its validation
+/// table as prt validate --json reports it (render::reportJson).
+Json modeJson(const ModeResult& m) {
+  return {{"mode", toString(m.mode)},
+          {"glossy", m.glossy},
+          {"seconds", m.seconds},
+          {"errorScale", m.errorScale},
+          {"images", {{"prt", m.prtImage}, {"reference", m.refImage}, {"error", m.errImage}}},
+          {"validation", Json::parse(render::reportJson(m.report))}};
+}
+
+Json texelEntryJson(const TexelRowEntry& e) {
+  return {{"label", e.label}, {"image", e.image},     {"rows", e.rows},
+          {"bytes", e.bytes}, {"relRmse", e.relRmse}, {"relRmseFull", e.relRmseFull}};
+}
+
+/// The per-texel row as the page's paragraph gives it.
+Json texelRowJson(const TexelRow& t) {
+  return {{"environment", t.environment},
+          {"resolution", t.resolution},
+          {"bands", t.bands},
+          {"referenceImage", t.referenceImage},
+          {"fullReferenceImage", t.fullReferenceImage},
+          {"referenceVertices", t.referenceVertices},
+          {"referenceSamples", t.referenceSamples},
+          {"referenceNoise", t.referenceNoise},
+          {"coarse", texelEntryJson(t.coarse)},
+          {"texels", texelEntryJson(t.texels)},
+          {"dense", texelEntryJson(t.dense)},
+          {"seconds", t.seconds}};
 }
 
 void runDemo(const DemoArgs& a) {
@@ -343,6 +383,13 @@ void runDemo(const DemoArgs& a) {
     checkOutputFolder({"-o", a.output}, inputs);
   }
   checkFolderReplaceable(a.output, "prt demo");
+  Report report("demo", a.json);
+  {
+    std::vector<NamedPath> inputs = {{"--mesh", a.mesh == "auto" ? "" : a.mesh}};
+    for (const std::string& e : envSpecs) inputs.push_back({"--env", e});
+    report.checkOutsideFolder({"-o", a.output});
+    report.check({{"-o", a.output}}, inputs);
+  }
 
   // Inputs first: a bad mesh or environment fails before anything is written.
   const DemoScene scene = makeScene(a.mesh);
@@ -375,6 +422,7 @@ void runDemo(const DemoArgs& a) {
 
   const render::Camera camera = render::frameMesh(scene.mesh, frame.width, frame.height);
   std::vector<LightResult> lights;
+  Json envReports = Json::array();  // --json: per environment, what the page shows
   for (std::size_t li = 0; li < envs.size(); ++li) {
     const auto tl = Clock::now();
     const envmap::Environment& env = envs[li].env;
@@ -413,19 +461,61 @@ void runDemo(const DemoArgs& a) {
       renderTurntable(ls, *bake.find(TransferMode::Interreflected), light, scene, a, L);
     L.seconds = since(tl);
     info(fmt::format("demo: {} done in {:.1f} s", L.name, L.seconds));
+    Json modes = Json::array();
+    for (const ModeResult& m : L.modes) modes.push_back(modeJson(m));
+    envReports.push_back({{"source", L.spec},
+                          {"name", L.name},
+                          {"light", shLightJson(light)},
+                          {"lightFile", "lights/" + L.name + ".json"},
+                          {"preview", L.preview},
+                          {"exposureStops", L.exposure},
+                          {"modes", std::move(modes)},
+                          {"comparison", L.comparison},
+                          {"turntable", L.turntable.empty() ? Json(nullptr) : Json(L.turntable)},
+                          {"frames", L.frames},
+                          {"seconds", L.seconds}});
     lights.push_back(std::move(L));
   }
 
   // The per-texel row, under the first environment.
   const TexelRow texels =
       demoTexelRow(envs.front().env, envSpecs.front(), a, frame, file.root.string());
-  const std::string webWhy = writeLiveViewer(envSpecs, file, a.output, lights.front().exposure);
-  writeDemoPage(file("index.html"), scene, bake, lights, a, bakeSeconds, since(t0), webWhy,
+  Json web;
+  const std::string webWhy =
+      writeLiveViewer(envSpecs, file, a.output, lights.front().exposure, web);
+  const double totalSeconds = since(t0);
+  writeDemoPage(file("index.html"), scene, bake, lights, a, bakeSeconds, totalSeconds, webWhy,
                 glossy ? &*glossy : nullptr, &texels);
   // Into place: replace an earlier demo folder only now that the new one is complete.
   folder.commit();
   info(
       fmt::format("demo: finished in {:.0f} s; open {}", since(t0), (out / "index.html").string()));
+
+  report.input(scene.path);
+  for (const std::string& e : envSpecs) report.input(e);
+  const Json written = folderJson(a.output);
+  report.outputFolder(written);
+  report["folder"] = written;
+  report["scene"] = {{"description", scene.description}, {"mesh", meshJson(scene.mesh)}};
+  Json transfers = Json::array();
+  for (const BakedTransfer& t : bake.transfers) transfers.push_back(transferJson(t));
+  report["bake"] = {{"file", "scene.glb"},
+                    {"bytes", fs::file_size(out / "scene.glb")},
+                    {"seconds", bakeSeconds},
+                    {"transfers", std::move(transfers)}};
+  report["glossy"] = nullptr;
+  if (glossy)
+    report["glossy"] = {{"file", "glossy.glb"},
+                        {"bytes", glossy->bytes},
+                        {"seconds", glossy->seconds},
+                        {"material", glossy->material.spec()},
+                        {"transfer", transferJson(glossy->file.transfers.front())}};
+  report["environments"] = std::move(envReports);
+  report["texels"] = texelRowJson(texels);
+  report["web"] = std::move(web);
+  report["webMissing"] = webWhy.empty() ? Json(nullptr) : Json(webWhy);
+  report["totalSeconds"] = totalSeconds;
+  report.write();
 }
 
 }  // namespace
@@ -463,6 +553,7 @@ void addDemoCommand(CLI::App& root) {
   cmd->add_option("--glossy-reference-samples", a->glossyReferenceSamples,
                   "Reference Monte Carlo samples per vertex, glossy rows")
       ->capture_default_str();
+  addJsonOption(cmd, a->json);
   cmd->callback([a] { runDemo(*a); });
 }
 

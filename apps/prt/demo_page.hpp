@@ -28,11 +28,13 @@ struct DemoArgs {
   /// Each glossy reference sample is a diffuse and a glossy one (two rays and more): half the
   /// diffuse modes' count costs about what one of them does.
   int glossyReferenceSamples = 256;
+  std::string json;  ///< --json: the run's figures (docs/formats-report.md)
 };
 
 /// The demo scene: what was asked, or the bunny on a plane, or the Cornell box; and the sphere
 /// the camera frames (the object, not the whole ground plane).
 struct DemoScene {
+  std::string path;  ///< the mesh read: --mesh, or what auto chose
   Mesh mesh;
   std::string description;
   Vec3f centre{0.0f};

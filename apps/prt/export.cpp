@@ -5,6 +5,7 @@
 //                                                                 coefficient textures + JSON)
 //   prt export box.glb --format png -o box-textures              (16-bit, scale and offset in
 //                                                                 the JSON)
+//   prt export bunny.glb -o transport.txt --json export.json      (what it wrote, as JSON)
 
 #include <fmt/format.h>
 
@@ -16,6 +17,7 @@
 #include "prt/io/games202_transport.hpp"
 #include "prt/io/lightmap_textures.hpp"
 #include "prt/relight/view_transfer.hpp"
+#include "report.hpp"
 
 namespace prt::cli {
 
@@ -28,7 +30,20 @@ struct ExportArgs {
   std::string layout = "faces";
   std::string channel;
   std::string output;
+  std::string json;
 };
+
+/// --json's report of an export (nothing when not wanted), checked before any work: the
+/// format, the transfer exported (as the bake file holds it, transferJson), what was written.
+/// `folder`: -o is a folder written as a whole (coefficient textures).
+Report exportReport(const ExportArgs& a, bool folder) {
+  Report r("export", a.json);
+  if (folder) r.checkOutsideFolder({"-o", a.output});
+  r.check({{"-o", a.output}}, {{"input", a.input}});
+  r.input(a.input);
+  r["format"] = a.format;
+  return r;
+}
 
 /// The one transfer to export: --mode's (a vector before a matrix), else the only one.
 const BakedTransfer& exportedTransfer(const BakeFile& bake, const ExportArgs& a) {
@@ -57,6 +72,7 @@ void runExportTextures(const ExportArgs& a) {
   if (isStandardOutput(a.output))
     throw Error("-o: coefficient textures are a folder, not a stream");
   checkOutputs({{"-o", a.output}}, {{"input", a.input}});
+  Report report = exportReport(a, true);
   const BakeFile bake = readBake(a.input);
   bake.requireComplete(a.input);
   const BakedTransfer& t = exportedTransfer(bake, a);
@@ -65,6 +81,16 @@ void runExportTextures(const ExportArgs& a) {
   FolderOutput folder(a.output, "prt export");
   for (const auto& [name, bytes] : tex.files) folder.write(name, bytes);
   folder.commit();
+  const Json written = folderJson(a.output);
+  report.outputFolder(written);
+  report["folder"] = written;
+  report["transfer"] = transferJson(t);
+  // The encoding as transfer.json states it: per texture, which value each channel holds
+  // (and, 16-bit, the offset and scale that decode it).
+  report["encoding"] = tex.manifest.at("encoding").get<std::string>();
+  report["maxQuantisationError"] = tex.maxQuantisationError;
+  report["lightmap"] = Json(tex.manifest.at("lightmap"));
+  report["textures"] = Json(tex.manifest.at("textures"));
   const TransferShape::LightmapSize lm = t.transfer.shape().lightmap;
   info(fmt::format(
       "wrote {} ({} {} textures of {}x{} for the {} transfer, {} bands x {} "
@@ -74,6 +100,7 @@ void runExportTextures(const ExportArgs& a) {
       encoding == io::TextureEncoding::Unorm16Png
           ? fmt::format("; 16-bit quantisation error at most {:.3g}", tex.maxQuantisationError)
           : std::string()));
+  report.write();
 }
 
 void runExport(const ExportArgs& a) {
@@ -94,6 +121,7 @@ void runExport(const ExportArgs& a) {
   if (!a.channel.empty()) channel = parseChannelSelect(a.channel);
   checkOutputs({{"-o", a.output}}, {{"input", a.input}});
   checkWritable(a.output);
+  Report report = exportReport(a, false);
 
   const BakeFile bake = readBake(a.input);
   bake.requireComplete(a.input);
@@ -105,13 +133,15 @@ void runExport(const ExportArgs& a) {
   // transport.txt holds diffuse vectors: a compressed transfer exports its reconstruction, a
   // matrix its diffuse part t = Mᵀd(n) (what a diffuse surface relights with; never a row of M).
   Transfer field = t->transfer.toDense();
-  if (field.isMatrix()) {
+  const bool diffusePart = field.isMatrix();
+  if (diffusePart) {
     field = relight::diffuseTransfer(field, bake.mesh.normals);
     info(
         fmt::format("{}: the {} transfer holds matrices; exporting their diffuse part "
                     "(transfer = Mᵀ d(n), the clamped cosine about each normal)",
                     a.input, toString(t->mode())));
   }
+  Json channelTaken = nullptr;  // the channel of an RGB transfer exported (--channel)
   if (field.channels() == 3) {
     if (!channel)
       throw Error(a.input,
@@ -119,15 +149,29 @@ void runExport(const ExportArgs& a) {
                       " transfer is RGB (coloured inter-reflection) and transport.txt holds one "
                       "value per coefficient: pick --channel luminance, r, g or b");
     field = selectChannel(field, *channel);
+    channelTaken = a.channel;
   }
   if (field.bands() != 3)
     warn(fmt::format("{} bands: the course's shaders expect 3 bands (9 coefficients per line)",
                      field.bands()));
   writeGames202Transport(a.output, field, bake.mesh, layout);
-  info(fmt::format(
-      "wrote {} ({} transfer, {} bands, header {} vertices, {} lines)", a.output,
-      toString(t->mode()), field.bands(), bake.mesh.vertexCount(),
-      layout == Games202Layout::Faces ? 3 * bake.mesh.triangleCount() : bake.mesh.vertexCount()));
+  const std::size_t lines =
+      layout == Games202Layout::Faces ? 3 * bake.mesh.triangleCount() : bake.mesh.vertexCount();
+  info(fmt::format("wrote {} ({} transfer, {} bands, header {} vertices, {} lines)", a.output,
+                   toString(t->mode()), field.bands(), bake.mesh.vertexCount(), lines));
+  report.output(a.output);
+  report["files"] = Json::array({fileJson(a.output)});
+  report["transfer"] = transferJson(*t);
+  // What was done to it on the way: a compressed transfer's reconstruction, a matrix's diffuse
+  // part, an RGB transfer's one channel.
+  report["games202"] = {{"layout", a.layout},
+                        {"bands", field.bands()},
+                        {"headerVertices", bake.mesh.vertexCount()},
+                        {"lines", lines},
+                        {"reconstructed", t->transfer.compressed()},
+                        {"diffusePart", diffusePart},
+                        {"channel", channelTaken}};
+  report.write();
 }
 
 }  // namespace
@@ -152,6 +196,7 @@ void addExportCommand(CLI::App& root) {
   cmd->add_option("-o,--output", args->output,
                   "Output file (games202), or folder (exr, png: t0.., transfer.json)")
       ->required();
+  addJsonOption(cmd, args->json);
   cmd->callback([args] { runExport(*args); });
 }
 

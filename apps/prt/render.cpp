@@ -230,10 +230,7 @@ void run(const RenderOptions& o) {
     report["exposureStops"] = write.exposureStops;
     report["exposureAuto"] = !exposure.has_value();
     report["toneMap"] = o.tonemap;
-    report["camera"] = {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
-                        {"target", {camera.target.x, camera.target.y, camera.target.z}},
-                        {"up", {camera.up.x, camera.up.y, camera.up.z}},
-                        {"fovYDegrees", camera.fovY}};
+    report["camera"] = cameraJson(camera);
     report["frames"] = std::move(frameReports);
     report["seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

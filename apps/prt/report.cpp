@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "cli.hpp"
 #include "prt/core/error.hpp"
@@ -9,6 +10,7 @@
 #include "prt/core/units.hpp"
 #include "prt/core/version.hpp"
 #include "prt/image/color.hpp"
+#include "prt/sh/encode_irradiance.hpp"
 
 namespace prt::cli {
 
@@ -40,6 +42,18 @@ void Report::check(const std::vector<NamedPath>& outputs,
   checkWritable(path_);
 }
 
+void Report::checkOutsideFolder(const NamedPath& folder) const {
+  if (wanted() && !toStandardOutput() && detail::inside(path_, folder.path))
+    throw Error(path_, "--json is inside the " + folder.option +
+                           " folder, which is replaced as a whole; name a file outside it");
+}
+
+void Report::outputFolder(const Json& folder) {
+  const std::filesystem::path root = folder.at("path").get<std::string>();
+  for (const Json& f : folder.at("files"))
+    output((root / f.at("path").get<std::string>()).string());
+}
+
 void Report::write() const {
   if (wanted()) writeFileAtomically(path_, formatJson(root_));
 }
@@ -48,6 +62,32 @@ void addJsonOption(CLI::App* cmd, std::string& path) {
   cmd->add_option("--json", path,
                   "Also write what this run reports as JSON (- for standard output; "
                   "docs/formats-report.md)");
+}
+
+Json fileJson(const std::string& path) {
+  // Standard output, a FIFO or a device (written directly, guard.hpp) has no size to report.
+  std::error_code ec;
+  if (isStandardOutput(path) || !std::filesystem::is_regular_file(path, ec))
+    return {{"path", path}, {"bytes", nullptr}};
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  return {{"path", path}, {"bytes", ec ? Json(nullptr) : Json(bytes)}};
+}
+
+Json folderJson(const std::string& folder, const std::string& shown) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::string, std::uintmax_t>> found;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(folder)) {
+    if (!e.is_regular_file() || e.path().filename() == FolderOutput::kMarkName) continue;
+    found.emplace_back(e.path().lexically_relative(folder).generic_string(), e.file_size());
+  }
+  std::sort(found.begin(), found.end());
+  Json files = Json::array();
+  std::uintmax_t total = 0;
+  for (const auto& [name, bytes] : found) {
+    files.push_back({{"path", name}, {"bytes", bytes}});
+    total += bytes;
+  }
+  return {{"path", shown.empty() ? folder : shown}, {"files", std::move(files)}, {"bytes", total}};
 }
 
 std::vector<std::string> meshAttributes(const Mesh& m) {
@@ -135,6 +175,13 @@ Json transferJson(const BakedTransfer& t) {
   return j;
 }
 
+Json cameraJson(const render::Camera& c) {
+  return {{"eye", {c.eye.x, c.eye.y, c.eye.z}},
+          {"target", {c.target.x, c.target.y, c.target.z}},
+          {"up", {c.up.x, c.up.y, c.up.z}},
+          {"fovYDegrees", c.fovY}};
+}
+
 ShSummary summarizeSh(const sh::RgbSh& c) {
   ShSummary s;
   const double k = 1.0 / std::sqrt(4 * kPi);
@@ -171,6 +218,34 @@ Json shLightJson(const sh::RgbSh& c) {
           {"dominantDirection", s.hasDirection ? Json{s.dominantDirection.x, s.dominantDirection.y,
                                                       s.dominantDirection.z}
                                                : Json(nullptr)}};
+}
+
+Json encodedIrradianceJson(const io::EncodedIrradianceRecord& r) {
+  const sh::EncodedIrradiance& e = r.encoded;
+  Json j = {{"encoding", sh::toString(e.encoding)}, {"numbers", sh::storedNumbers(e.encoding)}};
+  Json rows = Json::array();
+  for (const Rgbd& x : e.sh) rows.push_back({x.x, x.y, x.z});
+  j["coefficients"] = std::move(rows);
+  if (sh::isZonal(e.encoding)) {
+    j["axis"] = {e.axis.x, e.axis.y, e.axis.z};
+    j["zonal"] = {e.zonal.x, e.zonal.y, e.zonal.z};
+  }
+  j["error"] = {{"referenceBands", r.referenceBands},
+                {"relativeRms", r.relativeRms},
+                {"negativeShare", r.negativeShare}};
+  return j;
+}
+
+Json irradianceEncodingsJson(const sh::RgbSh& radiance, const sh::RgbSh& reference) {
+  Json out = Json::array();
+  for (sh::IrradianceEncoding e : sh::kIrradianceEncodings) {
+    const sh::EncodingError err = sh::encodingError(reference, sh::encodeIrradiance(radiance, e));
+    out.push_back({{"encoding", sh::toString(e)},
+                   {"numbers", sh::storedNumbers(e)},
+                   {"relativeRms", err.relativeRms},
+                   {"negativeShare", err.negativeShare}});
+  }
+  return out;
 }
 
 }  // namespace prt::cli

@@ -2,6 +2,7 @@
 //
 //   prt view bunny.glb --env studio.exr --env builtin:sky
 //   prt view bunny.glb --headless --size 160x120 --rotate 0,90,0 --screenshot frame.png
+//   prt view bunny.glb --headless --frames 30 --json -       (what it drew and its timings)
 //
 // Built only when GLFW, libepoxy, EGL and Dear ImGui were found at configure time
 // (PRT_HAVE_VIEWER); otherwise the verb exists and says so.
@@ -11,6 +12,8 @@
 #include "guard.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
+#include "prt/envmap/builtin.hpp"
+#include "report.hpp"
 #include "transfer_options.hpp"
 
 #ifdef PRT_HAVE_VIEWER
@@ -32,6 +35,7 @@ struct ViewArgs {
   std::string exposure = "auto";
   bool autoRotate = false, headless = false, stats = false;
   double spin = 30.0;
+  std::string json;
 };
 
 #ifdef PRT_HAVE_VIEWER
@@ -39,6 +43,12 @@ void runView(const ViewArgs& a) {
   std::vector<NamedPath> inputs = {{"input", a.bake}};
   for (const std::string& e : a.envs) inputs.push_back({"--env", e});
   checkOutputs({{"--screenshot", a.screenshot}}, inputs);
+  Report report("view", a.json);
+  if (report.wanted() && !a.headless)
+    throw Error(
+        "--json reports a headless run: add --headless (a window's session has no "
+        "results to report)");
+  report.check({{"--screenshot", a.screenshot}}, inputs);
   viewer::Options o;
   o.bake = a.bake;
   o.environments = a.envs;
@@ -58,8 +68,43 @@ void runView(const ViewArgs& a) {
   o.frames = a.frames;
   o.screenshot = a.screenshot;
   o.stats = a.stats;
-  viewer::Output out{[](const std::string& s) { info(s); }, [](const std::string& s) { warn(s); }};
+  o.statsOnStderr = report.toStandardOutput();
+  viewer::Output out{
+      [](const std::string& s) { info(s); }, [](const std::string& s) { warn(s); }, {}};
+  if (report.wanted())
+    out.headless = [&](const viewer::HeadlessReport& r) {
+      report["renderer"] = r.renderer;
+      report["width"] = o.width;
+      report["height"] = o.height;
+      report["transfer"] = transferJson(*r.transfer);
+      report["material"] = r.material;
+      report["shaderPath"] = r.shaderPath;
+      report["bands"] = r.bands;
+      report["environment"] = r.environment;
+      report["light"] = shLightJson(r.light);
+      report["camera"] = cameraJson(r.camera);
+      report["exposureStops"] = r.exposureStops;
+      report["exposureAuto"] = !o.exposure.has_value();
+      report["toneMap"] = o.toneMap;
+      report["screenshot"] = a.screenshot.empty() ? Json(nullptr) : fileJson(a.screenshot);
+      report["frames"] = r.frames;
+      report["firstFrameSeconds"] = r.firstFrameSeconds;
+      report["medianFrameSeconds"] = r.medianFrameSeconds;
+      report["minFrameSeconds"] = r.minFrameSeconds;
+      report["medianCpuSeconds"] = r.medianCpuSeconds;
+      report["lightUploadBytes"] = r.lightUploadBytes;
+      report["medianLightUploadSeconds"] = r.medianLightUploadSeconds;
+      report["medianRelightSeconds"] =
+          r.medianRelightSeconds ? Json(*r.medianRelightSeconds) : Json(nullptr);
+      report["relitFrames"] = r.relitFrames;
+    };
   viewer::run(o, out);
+  report.input(a.bake);
+  for (const std::string& e :
+       a.envs.empty() ? std::vector<std::string>{envmap::kDefaultEnvironment} : a.envs)
+    report.input(e);
+  if (!a.screenshot.empty()) report.output(a.screenshot);
+  report.write();
 }
 #else
 void runView(const ViewArgs&) {
@@ -114,7 +159,9 @@ void addViewCommand(CLI::App& root) {
   cmd->add_option("--screenshot", a->screenshot,
                   "After the last frame write it: .png as shown (the window's with its panel), "
                   ".exr/.hdr linear radiance");
-  cmd->add_flag("--stats", a->stats, "Print frame, CPU and upload timings on stdout at exit");
+  cmd->add_flag("--stats", a->stats,
+                "Print frame, CPU and upload timings on stdout at exit (stderr with --json -)");
+  addJsonOption(cmd, a->json);
   cmd->callback([a] { runView(*a); });
 }
 

@@ -2,6 +2,7 @@
 // opened straight from disk (file://, no server) and from any static web server.
 //
 //   prt web bunny.glb --env studio.exr --env builtin:sky -o bunny-web/
+//   prt web bunny.glb -o bunny-web/ --json web.json       (what it wrote and what the page draws)
 //
 // The folder: index.html and prt-web.js (the page and its bundled JavaScript: three.js, lil-gui,
 // the shared GLSL; built from web/ by CMake with esbuild, see web/build.mjs), and prt-data.js,
@@ -44,6 +45,7 @@
 #include "prt/render/exposure.hpp"
 #include "prt/render/texel_points.hpp"
 #include "prt/transfer/prepared_material.hpp"
+#include "report.hpp"
 #include "transfer_options.hpp"
 #include "web.hpp"
 
@@ -97,6 +99,7 @@ std::string base64(const void* data, std::size_t n) {
 }
 
 struct WebEnvironment {
+  std::string spec;  ///< as given (--env)
   std::string name;
   sh::RgbSh light;
   image::Image background;  // lat-long, linear RGB
@@ -106,6 +109,7 @@ WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
   io::Lighting l = io::loadLighting(spec, bands, progressBar("projecting"));
   for (const std::string& w : l.warnings) warn(w);
   WebEnvironment e;
+  e.spec = spec;
   // What the page's menu shows: a file's name, not the folders it was found in (a build
   // machine's absolute path means nothing to whoever opens the page); builtin:NAME as it is.
   e.name = envmap::isBuiltin(spec) ? spec : fs::path(spec).filename().string();
@@ -313,9 +317,34 @@ Json environmentJson(const WebEnvironment& e) {
             {"rgbe", base64(rgbe.data(), rgbe.size())}}}};
 }
 
+/// What the page opens on (report, not page data): the transfer it picks, the first
+/// environment, the bands, rotation, exposure, tone map and camera (null: framed for its canvas).
+Json initialViewJson(const WebOptions& a, const BakeFile& bake, const WebEnvironment& env,
+                     int bands, float exposure) {
+  std::optional<TransferMode> mode;
+  if (!a.mode.empty()) mode = parseTransferMode(a.mode);
+  const BakedTransfer& t = prt::pickTransfer(bake, mode, {}, a.bake);
+  const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
+  Json camera = nullptr;
+  if (!a.camera.empty())
+    camera = cameraJson(render::parseCamera(
+        a.camera, render::frameCamera(render::meshFraming(bake.mesh), 640, 480)));
+  return {{"transfer",
+           {{"mode", toString(t.mode())},
+            {"layout", toString(t.transfer.layout())},
+            {"representation", t.transfer.compressed() ? "cpca" : "dense"}}},
+          {"environment", env.name},
+          {"bands", a.bands > 0 ? a.bands : bands},
+          {"rotationDegrees", {euler[0], euler[1], euler[2]}},
+          {"exposureStops", exposure},
+          {"exposureAuto", !a.exposure.has_value()},
+          {"toneMap", a.toneMap},
+          {"camera", std::move(camera)}};
+}
+
 }  // namespace
 
-void writeWebViewer(const WebOptions& a) {
+Json writeWebViewer(const WebOptions& a) {
   checkOptions(a);
   const fs::path assets = findAssets();
   // The folder is written as a whole (FolderOutput) and replaces only an empty folder or one
@@ -356,9 +385,10 @@ void writeWebViewer(const WebOptions& a) {
       p["file"] = kTexelPointsFileName;
     bakeEntry["texelPoints"] = std::move(p);
   }
+  const float exposure = initialExposure(a, bake, envs.front().light);
   Json data;
   data["generator"] = kGenerator;
-  data["view"] = viewJson(a, bake.mesh, initialExposure(a, bake, envs.front().light));
+  data["view"] = viewJson(a, bake.mesh, exposure);
   data["bake"] = std::move(bakeEntry);
   data["glossy"] = glossyJson(a, bake);
   data["environments"] = Json::array();
@@ -393,7 +423,52 @@ void writeWebViewer(const WebOptions& a) {
                          : fmt::format("; the bake, {:.0f} MB, is beside it as {}: serve the "
                                        "folder over http, e.g. python3 -m http.server -d {}",
                                        double(glb.size()) / 1e6, kBakeFileName, shown)));
+
+  Json report;
+  report["folder"] = folderJson(a.output, shown);
+  report["bake"] = {{"path", a.bake},
+                    {"bytes", glb.size()},
+                    {"embedded", embed},
+                    {"file", embed ? Json(nullptr) : Json(kBakeFileName)},
+                    {"texelPointsBytes", pointBytes}};
+  report["mesh"] = meshJson(bake.mesh);
+  report["transfers"] = Json::array();
+  for (const BakedTransfer& t : bake.transfers) {
+    Json tj = transferJson(t);
+    // Glossy matrices: the material the page shades them with (--material or the bake's).
+    if (data["glossy"].contains(toString(t.mode())))
+      tj["pageMaterial"] = data["glossy"][toString(t.mode())]["material"];
+    report["transfers"].push_back(std::move(tj));
+  }
+  report["bands"] = bands;
+  report["environments"] = Json::array();
+  for (const WebEnvironment& e : envs)
+    report["environments"].push_back(
+        {{"source", e.spec},
+         {"name", e.name},
+         {"light", shLightJson(e.light)},
+         {"background", {{"width", e.background.width}, {"height", e.background.height}}}});
+  report["view"] = initialViewJson(a, bake, envs.front(), bands, exposure);
+  return report;
 }
+
+namespace {
+
+void runWeb(const WebOptions& a) {
+  std::vector<NamedPath> inputs = {{"input", a.bake}};
+  for (const std::string& e : a.envs) inputs.push_back({"--env", e});
+  Report report("web", a.json);
+  report.checkOutsideFolder({"-o", a.output});
+  report.check({{"-o", a.output}}, inputs);
+  const Json web = writeWebViewer(a);
+  report.input(a.bake);
+  for (const Json& e : web["environments"]) report.input(e["source"].get<std::string>());
+  report.outputFolder(web["folder"]);
+  for (const auto& [key, value] : web.items()) report[key.c_str()] = value;
+  report.write();
+}
+
+}  // namespace
 
 void addWebCommand(CLI::App& root) {
   auto args = std::make_shared<WebOptions>();
@@ -427,7 +502,8 @@ void addWebCommand(CLI::App& root) {
   cmd->add_option("--background-width", args->backgroundWidth,
                   "Width of each environment's lat-long background image")
       ->capture_default_str();
-  cmd->callback([args] { writeWebViewer(*args); });
+  addJsonOption(cmd, args->json);
+  cmd->callback([args] { runWeb(*args); });
 }
 
 }  // namespace prt::cli

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "prt/core/json.hpp"
+
 namespace prt::cli {
 
 /// The largest bake prt-data.js carries inside itself (base64, 4/3 of the bytes): the page then
@@ -35,11 +37,15 @@ struct WebOptions {
   int backgroundWidth = 512;
   std::string embed = "auto";  ///< auto | always | never: the bake inside prt-data.js or beside
   std::string reportAs;        ///< the folder's name in the closing line ("" = output)
+  std::string json;            ///< prt web --json (the verb's; writeWebViewer ignores it)
 };
 
 /// True when the page's built assets (index.html, prt-web.js) can be found.
 bool webAssetsAvailable(std::string* why = nullptr);
-/// Writes the browser viewer folder (docs/web.md). Throws prt::Error with one line.
-void writeWebViewer(const WebOptions& options);
+/// Writes the browser viewer folder (docs/web.md). Throws prt::Error with one line. Returns
+/// what prt web --json reports after the envelope (docs/formats-report.md): `folder`
+/// (folderJson, named as reportAs), `bake`, `mesh`, `transfers`, `bands`, `environments`,
+/// `view`.
+Json writeWebViewer(const WebOptions& options);
 
 }  // namespace prt::cli

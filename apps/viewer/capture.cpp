@@ -36,48 +36,65 @@ std::vector<double> steady(const std::vector<double>& v) {
 }
 }  // namespace
 
+FrameSummary FrameStats::summary() const {
+  FrameSummary s;
+  s.frames = frameMs.size();
+  if (frameMs.empty()) return s;
+  s.firstMs = frameMs.front();
+  s.medianMs = median(steady(frameMs));
+  s.minMs = *std::min_element(frameMs.begin(), frameMs.end());
+  s.cpuMedianMs = median(steady(cpuMs));
+  s.uploadMedianUs = median(steady(uploadUs));
+  // Only the frames that relit (light, eye, bands or material changed).
+  std::vector<double> relit;
+  for (double g : steady(relightMs))
+    if (g > 0) relit.push_back(g);
+  s.relightMedianMs = median(relit);
+  s.relitFrames = relit.size();
+  return s;
+}
+
 void FrameStats::print(const std::string& renderer, const Scene& scene, int width, int height,
-                       std::size_t lightBytes, const std::string& upload) const {
+                       std::size_t lightBytes, const std::string& upload, std::FILE* to) const {
   if (frameMs.empty()) return;
   using relight::ShaderPath;
-  std::printf("renderer: %s\n", renderer.c_str());
+  const FrameSummary s = summary();
+  std::fprintf(to, "renderer: %s\n", renderer.c_str());
   const Transfer& t = scene.transfer().transfer;
-  std::printf("scene: %zu triangles, %zu vertices, %d of %d bands, %s transfer (%s), %s\n",
-              scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(), scene.bands(),
-              scene.bakeBands(), scene.transfer().describe().c_str(),
-              t.channels() == 3 ? "RGB" : "scalar", scene.material().spec().c_str());
-  std::printf("transfer upload: %s\n", upload.c_str());
-  std::printf("frames: %zu at %dx%d; first frame %.2f ms (uploads)\n", frameMs.size(), width,
-              height, frameMs.front());
-  std::printf("frame time (draw + glFinish): median %.3f ms, min %.3f ms\n",
-              median(steady(frameMs)), *std::min_element(frameMs.begin(), frameMs.end()));
+  std::fprintf(to, "scene: %zu triangles, %zu vertices, %d of %d bands, %s transfer (%s), %s\n",
+               scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(), scene.bands(),
+               scene.bakeBands(), scene.transfer().describe().c_str(),
+               t.channels() == 3 ? "RGB" : "scalar", scene.material().spec().c_str());
+  std::fprintf(to, "transfer upload: %s\n", upload.c_str());
+  std::fprintf(to, "frames: %zu at %dx%d; first frame %.2f ms (uploads)\n", s.frames, width, height,
+               s.firstMs);
+  std::fprintf(to, "frame time (draw + glFinish): median %.3f ms, min %.3f ms\n", s.medianMs,
+               s.minMs);
   const bool table = path == ShaderPath::CpcaVector || path == ShaderPath::CpcaMatrix;
   const bool perPixel = relight::drawnPerPixel(t);
-  std::printf("CPU per frame (light rotation + packing%s): median %.4f ms\n",
-              table                             ? " + cluster projections"
-              : path == ShaderPath::CpuRadiance ? " + CPU relighting"
-                                                : "",
-              median(steady(cpuMs)));
+  std::fprintf(to, "CPU per frame (light rotation + packing%s): median %.4f ms\n",
+               table                             ? " + cluster projections"
+               : path == ShaderPath::CpuRadiance ? " + CPU relighting"
+                                                 : "",
+               s.cpuMedianMs);
   if (path == ShaderPath::CpcaMatrix && perPixel) {
-    std::printf(
+    std::fprintf(
+        to,
         "glossy relighting: per pixel in the fragment shader (four texels a pixel), inside the "
         "frame time\n");
   } else if (path == ShaderPath::DenseMatrix || path == ShaderPath::CpcaMatrix) {
-    std::printf(
-        "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
+    std::fprintf(
+        to, "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
   } else if (path == ShaderPath::CpuRadiance) {
-    // Only the frames that relit (light, eye, bands or material changed).
-    std::vector<double> relit;
-    for (double g : steady(relightMs))
-      if (g > 0) relit.push_back(g);
-    std::printf(
+    std::fprintf(
+        to,
         "glossy relighting (CPU relight::Relighter + radiance upload): median %.3f ms over "
         "%zu relit frames\n",
-        median(relit), relit.size());
+        s.relightMedianMs, s.relitFrames);
   }
-  std::printf("light upload (%s, %zu bytes): median %.2f us\n",
-              table ? "cluster table, glBufferData" : "glBufferSubData", lightBytes,
-              median(steady(uploadUs)));
+  std::fprintf(to, "light upload (%s, %zu bytes): median %.2f us\n",
+               table ? "cluster table, glBufferData" : "glBufferSubData", lightBytes,
+               s.uploadMedianUs);
 }
 
 }  // namespace prt::viewer

@@ -130,10 +130,36 @@ void runHeadless(Scene& scene, const Options& o, const Output& out) {
                          o.height, scene.bands(), scene.transfer().describe(),
                          scene.material().spec()));
   }
-  if (o.stats) {
-    stats.path = view.path();
+  stats.path = view.path();
+  if (o.stats)
     stats.print(context.description(), scene, o.width, o.height, view.lightUploadBytes(),
-                view.uploadSummary(scene));
+                view.uploadSummary(scene), o.statsOnStderr ? stderr : stdout);
+  if (out.headless) {
+    const FrameSummary s = stats.summary();
+    HeadlessReport r;
+    r.renderer = context.description();
+    r.transfer = &scene.transfer();
+    r.material = scene.material().spec();
+    r.shaderPath = relight::toString(stats.path);
+    r.bands = scene.bands();
+    r.bakeBands = scene.bakeBands();
+    const EnvironmentEntry& env = scene.environment(std::size_t(scene.environmentIndex()));
+    r.environment = env.name;
+    r.light = env.lighting.coefficients;
+    r.camera = scene.orbit.camera();
+    r.exposureStops = scene.exposureStops;
+    r.frames = s.frames;
+    r.firstFrameSeconds = s.firstMs * 1e-3;
+    r.medianFrameSeconds = s.medianMs * 1e-3;
+    r.minFrameSeconds = s.minMs * 1e-3;
+    r.medianCpuSeconds = s.cpuMedianMs * 1e-3;
+    r.medianLightUploadSeconds = s.uploadMedianUs * 1e-6;
+    r.lightUploadBytes = view.lightUploadBytes();
+    if (stats.path == relight::ShaderPath::CpuRadiance) {
+      r.medianRelightSeconds = s.relightMedianMs * 1e-3;
+      r.relitFrames = s.relitFrames;
+    }
+    out.headless(r);
   }
 }
 

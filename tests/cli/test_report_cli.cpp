@@ -5,8 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-
+#include <filesystem>
 #include <string>
 
 #include "cli_harness.hpp"
@@ -160,6 +161,182 @@ TEST_F(ReportCli, UnwrapAndMergeReport) {
   r = prt("info m.glb --json -");
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_EQ(Json::parse(r.out)["files"][0]["transfers"][0], m["transfers"][0]);
+}
+
+/// Every file a folder report lists is on disk with that size, is an output, and the folder
+/// holds no other (its mark aside).
+void expectFolderAsWritten(const std::filesystem::path& dir, const Json& report,
+                           const std::string& folderName) {
+  const Json& folder = report["folder"];
+  EXPECT_EQ(folder["path"], folderName);
+  std::size_t files = 0, total = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir / folderName))
+    if (e.is_regular_file() && e.path().filename() != ".prt-output") ++files;
+  ASSERT_EQ(folder["files"].size(), files);
+  for (const Json& f : folder["files"]) {
+    const std::string rel = f["path"];
+    const std::string out = folderName + "/" + rel;
+    EXPECT_EQ(f["bytes"].get<std::size_t>(), std::filesystem::file_size(dir / out)) << out;
+    EXPECT_NE(std::find(report["outputs"].begin(), report["outputs"].end(), Json(out)),
+              report["outputs"].end())
+        << out;
+    total += f["bytes"].get<std::size_t>();
+  }
+  EXPECT_EQ(folder["bytes"].get<std::size_t>(), total);
+  EXPECT_EQ(report["outputs"].size(), files);
+}
+
+// Issue 31: export, web and demo wrote files and printed figures, but took no --json.
+TEST_F(ReportCli, ExportReportsWhatItWrote) {
+  bake();
+  Result r = prt("-q export b.glb -o t.txt --json e.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json e = load("e.json");
+  expectEnvelope(e, "export");
+  EXPECT_EQ(e["inputs"], Json::array({"b.glb"}));
+  EXPECT_EQ(e["outputs"], Json::array({"t.txt"}));
+  EXPECT_EQ(e["format"], "games202");
+  ASSERT_EQ(e["files"].size(), 1u);
+  EXPECT_EQ(e["files"][0]["bytes"].get<std::size_t>(), std::filesystem::file_size(dir_ / "t.txt"));
+  EXPECT_EQ(e["games202"]["layout"], "faces");
+  EXPECT_EQ(e["games202"]["channel"], nullptr);
+  EXPECT_EQ(e["games202"]["diffusePart"], false);
+  // transport.txt: a vertex count, then the lines.
+  const std::string text = slurp(dir_ / "t.txt");
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), e["games202"]["lines"].get<long>() + 1);
+  r = prt("info b.glb --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(Json::parse(r.out)["files"][0]["transfers"][0], e["transfer"]);
+  EXPECT_EQ(e["games202"]["headerVertices"], e["transfer"]["rows"]["end"]);
+
+  // Coefficient textures: a folder, its files one by one; the encoding as transfer.json has it.
+  ASSERT_EQ(prt("-q bake 'builtin:cornell?grid=4' --domain texels --resolution 32 --mode "
+                "unshadowed --samples 16 -o c.glb")
+                .rc,
+            0);
+  r = prt("-q export c.glb --format png -o tex --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json x = Json::parse(r.out);  // nothing else on standard output
+  expectEnvelope(x, "export");
+  EXPECT_EQ(x["format"], "png");
+  EXPECT_EQ(x["encoding"], "unorm16");
+  expectFolderAsWritten(dir_, x, "tex");
+  const Json manifest = load("tex/transfer.json");
+  EXPECT_EQ(x["textures"], manifest["textures"]);
+  EXPECT_EQ(x["lightmap"]["width"], 32);
+  EXPECT_GT(x["maxQuantisationError"].get<double>(), 0.0);
+  EXPECT_EQ(x["transfer"]["domain"], "texels");
+
+  // A failure leaves no report; a report inside the folder written as a whole is refused.
+  expectCleanFailure("export b.glb --mode interreflected -o out/t.txt --json out/e.json",
+                     "holds no interreflected transfer");
+  expectCleanFailure("export c.glb --format exr -o out/tex --json out/tex/r.json",
+                     "inside the -o folder");
+}
+
+TEST_F(ReportCli, WebReportsTheFolderAndWhatThePageDraws) {
+  bake();
+  Result r = prt("-q web b.glb -o w --json w.json");
+  if (r.rc != 0 && r.err.find("not built") != std::string::npos)
+    GTEST_SKIP() << "the browser viewer's assets are not built: " << r.err;
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json w = load("w.json");
+  expectEnvelope(w, "web");
+  EXPECT_EQ(w["inputs"], Json::array({"b.glb", "builtin:sky"}));
+  expectFolderAsWritten(dir_, w, "w");
+  EXPECT_EQ(w["bake"]["bytes"].get<std::size_t>(), std::filesystem::file_size(dir_ / "b.glb"));
+  EXPECT_EQ(w["bake"]["embedded"], true);
+  ASSERT_EQ(w["environments"].size(), 1u);
+  EXPECT_EQ(w["environments"][0]["source"], "builtin:sky");
+  EXPECT_EQ(w["environments"][0]["light"]["bands"], 3);
+  EXPECT_EQ(w["view"]["transfer"]["mode"], "shadowed");
+  EXPECT_EQ(w["view"]["exposureAuto"], true);
+  EXPECT_EQ(w["view"]["camera"], nullptr);
+  r = prt("info b.glb --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json i = Json::parse(r.out)["files"][0];
+  EXPECT_EQ(i["transfers"][0], w["transfers"][0]);
+  EXPECT_EQ(i["mesh"], w["mesh"]);
+  // The page's light is what prt light writes of the same environment at the bake's bands.
+  ASSERT_EQ(prt("-q light builtin:sky --bands 3 -o l.json").rc, 0);
+  EXPECT_EQ(w["environments"][0]["light"]["coefficients"], load("l.json")["coefficients"]);
+
+  r = prt("-q web b.glb -o w2 --exposure 1 --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(Json::parse(r.out)["view"]["exposureStops"], 1.0);
+  expectCleanFailure("web b.glb --env out/missing.exr -o out/w --json out/w.json", "missing.exr");
+}
+
+TEST_F(ReportCli, DemoReportHoldsThePagesFigures) {
+  const std::string demo =
+      "demo --mesh 'builtin:sphere?subdiv=1' --env builtin:sky --bands 2 --samples 16 "
+      "--reference-samples 4 --frames 0 --glossy none --size 32x24 ";
+  Result r = prt("-q " + demo + "-o d --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Json d = Json::parse(r.out);  // nothing else on standard output
+  expectEnvelope(d, "demo");
+  EXPECT_EQ(d["inputs"], Json::array({"builtin:sphere?subdiv=1", "builtin:sky"}));
+  expectFolderAsWritten(dir_, d, "d");
+  EXPECT_EQ(d["bake"]["bytes"].get<std::size_t>(),
+            std::filesystem::file_size(dir_ / "d/scene.glb"));
+  EXPECT_EQ(d["glossy"], nullptr);
+  // The bake table: the transfers as info reads them from scene.glb.
+  r = prt("info d/scene.glb --json -");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(Json::parse(r.out)["files"][0]["transfers"], d["bake"]["transfers"]);
+  // The validation tables: what validation/*.json holds, as numbers.
+  ASSERT_EQ(d["environments"].size(), 1u);
+  const Json& sky = d["environments"][0];
+  EXPECT_EQ(sky["name"], "sky");
+  EXPECT_EQ(sky["light"]["coefficients"],
+            load("d/" + sky["lightFile"].get<std::string>())["coefficients"]);
+  ASSERT_EQ(sky["modes"].size(), 3u);
+  for (const Json& m : sky["modes"]) {
+    const std::string mode = m["mode"];
+    EXPECT_EQ(m["validation"], load("d/validation/sky_" + mode + ".json")) << mode;
+    EXPECT_EQ(m["validation"]["rows"].size(), 2u);
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "d" / m["images"]["prt"].get<std::string>()));
+  }
+  // The per-texel row's figures.
+  const Json& t = d["texels"];
+  EXPECT_EQ(t["bands"], 2);
+  for (const char* k : {"coarse", "texels", "dense"}) {
+    EXPECT_GT(t[k]["bytes"].get<double>(), 0) << k;
+    EXPECT_GT(t[k]["relRmse"].get<double>(), 0) << k;
+  }
+  EXPECT_EQ(t["texels"]["rows"], t["resolution"].get<int>() * t["resolution"].get<int>());
+  // The live viewer, when its assets are built, as prt web reports it.
+  EXPECT_EQ(d["web"].is_null(), !d["webMissing"].is_null());
+  if (!d["web"].is_null()) {
+    EXPECT_EQ(d["web"]["folder"]["path"], "d/web");
+    EXPECT_EQ(d["web"]["bake"]["path"], "d/scene.glb");
+    EXPECT_EQ(d["web"]["transfers"], d["bake"]["transfers"]);
+  }
+  expectCleanFailure(demo + "-o out/d --env out/missing.exr --json out/d.json", "missing.exr");
+}
+
+TEST_F(ReportCli, HeadlessViewReportsItsFrameAndTimings) {
+  bake();
+  const Result r =
+      prt("-q view b.glb --headless --size 32x24 --frames 2 --stats --screenshot "
+          "s.png --json -");
+  if (r.rc != 0 &&
+      (r.err.find("no viewer") != std::string::npos || r.err.find("EGL") != std::string::npos))
+    GTEST_SKIP() << "no headless OpenGL here: " << r.err;
+  ASSERT_EQ(r.rc, 0) << r.err;
+  expectCleanFailure("view b.glb --json out/v.json", "add --headless");
+  const Json v = Json::parse(r.out);  // --stats' lines go to stderr
+  expectEnvelope(v, "view");
+  EXPECT_NE(r.err.find("frame time"), std::string::npos) << r.err;
+  EXPECT_EQ(v["outputs"], Json::array({"s.png"}));
+  EXPECT_EQ(v["screenshot"]["bytes"].get<std::size_t>(),
+            std::filesystem::file_size(dir_ / "s.png"));
+  EXPECT_EQ(v["frames"], 2);
+  EXPECT_EQ(v["width"], 32);
+  EXPECT_EQ(v["transfer"]["mode"], "shadowed");
+  EXPECT_EQ(v["environment"], "builtin:sky");
+  EXPECT_GT(v["firstFrameSeconds"].get<double>(), 0.0);
+  EXPECT_LE(v["minFrameSeconds"].get<double>(), v["firstFrameSeconds"].get<double>());
 }
 
 TEST_F(ReportCli, BadReportPathsAreRefusedBeforeAnyWork) {
