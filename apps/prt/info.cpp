@@ -34,6 +34,7 @@
 #include "prt/io/games202_transport.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/render/lightmap_seams.hpp"
+#include "prt/sh/encode_irradiance.hpp"
 #include "prt/transfer/material.hpp"
 #include "report.hpp"
 
@@ -258,6 +259,21 @@ void describeSh(const sh::RgbSh& c, std::ostream& out) {
   }
 }
 
+/// What each irradiance encoding of `radiance` loses against the irradiance of `reference`
+/// (issue 34), as a table; `against` says what the reference is.
+void describeEncodings(const sh::RgbSh& radiance, const sh::RgbSh& reference,
+                       const std::string& against, std::ostream& out, Json& j) {
+  j["irradianceEncodings"] = irradianceEncodingsJson(radiance, reference);
+  j["irradianceEncodingsReferenceBands"] = reference.bands;
+  out << "irradiance as engines store it (error against " << against << "):\n";
+  for (const Json& e : j["irradianceEncodings"])
+    out << fmt::format("  {:<17} {:>2} numbers  {:6.2f}% rel. RMS  negative for {:.1f}% of "
+                       "normals\n",
+                       e["encoding"].get<std::string>(), e["numbers"].get<int>(),
+                       100 * e["relativeRms"].get<double>(),
+                       100 * e["negativeShare"].get<double>());
+}
+
 void describeLightJson(const std::string& path, std::ostream& out, Json& j) {
   const io::LightFile lf = io::readLightJson(path);
   j["kind"] = "light";
@@ -270,6 +286,19 @@ void describeLightJson(const std::string& path, std::ostream& out, Json& j) {
   out << fmt::format("source      {} ({}), window {}, rotation {},{},{} degrees\n", lf.source,
                      lf.layout, lf.window, lf.rotationDeg[0], lf.rotationDeg[1], lf.rotationDeg[2]);
   describeSh(lf.coefficients, out);
+  if (lf.irradiance) {
+    j["irradiance"] = encodedIrradianceJson(*lf.irradiance);
+    out << fmt::format("irradiance  stored as {} ({} numbers): {:.2f}% rel. RMS against {} bands, "
+                       "negative for {:.1f}% of normals\n",
+                       sh::toString(lf.irradiance->encoded.encoding),
+                       sh::storedNumbers(lf.irradiance->encoded.encoding),
+                       100 * lf.irradiance->relativeRms, lf.irradiance->referenceBands,
+                       100 * lf.irradiance->negativeShare);
+  }
+  if (lf.coefficients.bands > 3)
+    describeEncodings(lf.coefficients, lf.coefficients,
+                      "the light's own " + std::to_string(lf.coefficients.bands) + " bands", out,
+                      j);
 }
 
 void describeLightTxt(const std::string& path, std::ostream& out, Json& j) {
@@ -309,8 +338,12 @@ void describeEnvironment(const std::string& spec, std::ostream& out, Json& j) {
       out << fmt::format("repaired    {}: {} non-finite and {} negative pixels set to 0\n",
                          e.files[k], e.stats[k].nonFinitePixels, e.stats[k].negativePixels);
   out << "as 3-band SH:\n";
-  const sh::RgbSh sh3 = envmap::projectEnvironment(e.env, 3);
+  // One projection: its first 3 bands are the 3-band light (bands are independent).
+  const sh::RgbSh sh12 = envmap::projectEnvironment(e.env, 12);
+  sh::RgbSh sh3(3);
+  std::copy(sh12.c.begin(), sh12.c.begin() + 9, sh3.c.begin());
   describeSh(sh3, out);
+  describeEncodings(sh3, sh12, "its 12-band projection", out, j);
   j["kind"] = "environment";
   j["layout"] = e.layout;
   j["images"] = imgs.size();

@@ -28,6 +28,7 @@
 #include "prt/io/engine_light.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/sh/convolve.hpp"
+#include "prt/sh/encode_irradiance.hpp"
 #include "prt/sh/rotate.hpp"
 
 namespace prt::cli {
@@ -50,8 +51,13 @@ struct LightOptions {
   std::optional<float> exposure;
   std::string toneMap = "aces";
   bool strict = false;
+  std::string encoding;
   std::string json;
 };
+
+/// The bands of the reference an encoding's error is measured against: past band 11 the clamped
+/// cosine keeps < 0.1 % of a band's radiance (Λ₁₀/π = 0.0012), so irradiance has converged.
+constexpr int kEncodingReferenceBands = 12;
 
 /// The repairs that changed the light are warned (envmap::repairWarnings); --strict refuses any.
 void warnAboutPixels(const envmap::LoadedEnvironment& loaded, bool strict) {
@@ -103,6 +109,20 @@ void runLight(const LightOptions& o) {
   const std::array<double, 3> rot = parseEulerDegrees(o.rotate);
   const sh::Window window = parseWindow(o.window);
   const image::ToneMap tone = image::parseToneMap(o.toneMap);
+  std::optional<sh::IrradianceEncoding> encoding;
+  if (!o.encoding.empty()) {
+    try {
+      encoding = sh::parseIrradianceEncoding(o.encoding);
+    } catch (const Error& e) {
+      throw Error(std::string("--") + e.what());
+    }
+    if (format != "json")
+      throw Error("--encoding writes the irradiance into prtkit's JSON light file; --format " +
+                  format + " has no place for it");
+    if (o.bands < 3 && sh::storedNumbers(*encoding) != 12)
+      throw Error(std::string("--encoding ") + sh::toString(*encoding) +
+                  " keeps band 2 of the light: use --bands 3 or more");
+  }
   Report report("light", o.json);
   report.check({{"-o", o.output}, {"--preview", o.preview}}, {{"input", o.input}});
   checkWritable(o.output);
@@ -120,6 +140,7 @@ void runLight(const LightOptions& o) {
 
   envmap::LoadedEnvironment loaded;
   sh::RgbSh f;
+  sh::RgbSh reference;  // --encoding: the unwindowed light at kEncodingReferenceBands
   if (compat) {
     std::error_code ec;
     if (!std::filesystem::is_directory(o.input, ec))
@@ -135,6 +156,8 @@ void runLight(const LightOptions& o) {
          std::to_string(faces[0].height) +
          ", GAMES202 compatibility (gamma 2.2 decode, course face frames)");
     f = envmap::projectGames202Faces(faces, o.bands, progress);
+    if (encoding)
+      reference = envmap::projectGames202Faces(faces, kEncodingReferenceBands, ProgressFn{});
     if (!o.preview.empty()) {
       // Preview in the standard convention: course order → OpenGL order +X −X +Y −Y +Z −Z.
       loaded.env =
@@ -146,6 +169,8 @@ void runLight(const LightOptions& o) {
     info(o.input + ": " + loaded.layout + ", " + std::to_string(loaded.env.texelCount()) +
          " texels, " + std::to_string(o.bands) + " bands");
     f = envmap::projectEnvironment(loaded.env, o.bands, progress);
+    if (encoding)
+      reference = envmap::projectEnvironment(loaded.env, kEncodingReferenceBands, ProgressFn{});
   }
 
   // The files actually read (a face folder's six images) are inputs too.
@@ -158,7 +183,26 @@ void runLight(const LightOptions& o) {
     info("de-ringing: minimum " + std::to_string(windowed.minBefore) + " -> " +
          std::to_string(windowed.minAfter));
   const Mat3d rotation = rotationEulerXYZ(rot[0], rot[1], rot[2]);
-  if (rot != std::array<double, 3>{0, 0, 0}) f = sh::Rotation(o.bands, rotation).apply(f);
+  if (rot != std::array<double, 3>{0, 0, 0}) {
+    f = sh::Rotation(o.bands, rotation).apply(f);
+    if (encoding) reference = sh::Rotation(reference.bands, rotation).apply(reference);
+  }
+  // The irradiance an engine stores, from the light as written (window and rotation included),
+  // and what it loses against the environment's converged irradiance.
+  std::optional<io::EncodedIrradianceRecord> irradiance;
+  if (encoding) {
+    io::EncodedIrradianceRecord r;
+    r.encoded = sh::encodeIrradiance(f, *encoding);
+    const sh::EncodingError err = sh::encodingError(reference, r.encoded);
+    r.referenceBands = reference.bands;
+    r.relativeRms = err.relativeRms;
+    r.negativeShare = err.negativeShare;
+    info(fmt::format("irradiance as {} ({} numbers): {:.2f}% relative RMS error against {} bands, "
+                     "negative for {:.2f}% of normals",
+                     sh::toString(*encoding), sh::storedNumbers(*encoding), 100 * r.relativeRms,
+                     r.referenceBands, 100 * r.negativeShare));
+    irradiance = r;
+  }
 
   // Coefficients beyond float range (an extremely bright image) would be written as "inf",
   // which no reader accepts: refuse with the figure instead.
@@ -188,6 +232,7 @@ void runLight(const LightOptions& o) {
     lf.window = o.window;
     lf.rotationDeg = rot;
     lf.prtkitVersion = kVersion;
+    lf.irradiance = irradiance;
     io::writeLightJson(o.output, lf);
   }
   info("wrote " + o.output + (o.preview.empty() ? "" : " and " + o.preview));
@@ -203,6 +248,7 @@ void runLight(const LightOptions& o) {
     report["window"] = o.window;
     report["rotationDegrees"] = rot;
     report["light"] = shLightJson(f);
+    if (irradiance) report["irradiance"] = encodedIrradianceJson(*irradiance);
     report.write();
   }
 }
@@ -246,6 +292,10 @@ void addLightCommand(CLI::App& root) {
   cmd->add_option("--tonemap", opts->toneMap, "Preview tone mapper: clamp|reinhard|aces")
       ->capture_default_str();
   cmd->add_flag("--strict", opts->strict, "Fail on NaN/Inf or negative pixels instead of warning");
+  cmd->add_option("--encoding", opts->encoding,
+                  "Also store the irradiance as an engine does, with its error against 12 bands "
+                  "(JSON light files): l1|l1-windowed|l1-geomerics|zh3|zh3-hallucinated|l2|"
+                  "l2-deringed (docs/formats-light.md)");
   addJsonOption(cmd, opts->json);
   cmd->callback([opts] { runLight(*opts); });
 }

@@ -19,6 +19,7 @@
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/sh/encode_irradiance.hpp"
 #include "prt/sh/sh.hpp"
 
 namespace fs = std::filesystem;
@@ -197,4 +198,61 @@ TEST_F(LightCli, FaceFoldersAndRotation) {
       normalize(Vec3d(-rl.coefficients.c[3].x, -rl.coefficients.c[1].x, rl.coefficients.c[2].x));
   EXPECT_LT(lobe.z, -0.9) << lobe.x << " " << lobe.y << " " << lobe.z;
   EXPECT_EQ(rl.rotationDeg[1], 90.0);
+}
+
+// --encoding (issue 34): the light file carries the irradiance as the engine stores it and its
+// error against 12 bands; that error is what prt info measures of the same environment, and the
+// stored numbers evaluate like the library's encoding of the light as written.
+TEST_F(LightCli, EncodingStoresTheIrradianceAndItsErrorAsInfoMeasuresIt) {
+  const Result r = run("builtin:sky --encoding zh3 -o '" + p("zh3.json") + "'");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("irradiance as zh3 (15 numbers): "), std::string::npos) << r.err;
+  const io::LightFile lf = io::readLightJson(p("zh3.json"));
+  ASSERT_TRUE(lf.irradiance.has_value());
+  const sh::EncodedIrradiance& e = lf.irradiance->encoded;
+  EXPECT_EQ(e.encoding, sh::IrradianceEncoding::ZH3);
+  ASSERT_EQ(e.sh.size(), 4u);
+  EXPECT_NEAR(length(e.axis), 1.0, 1e-9);
+  EXPECT_EQ(lf.irradiance->referenceBands, 12);
+  const sh::EncodedIrradiance again = sh::encodeIrradiance(lf.coefficients, sh::IrradianceEncoding::ZH3);
+  for (const Vec3d& n : {Vec3d(0, 1, 0), normalize(Vec3d(1, -1, 2))})
+    for (int ch = 0; ch < 3; ++ch)
+      EXPECT_NEAR(sh::evaluate(e, n)[ch], sh::evaluate(again, n)[ch], 1e-5) << ch;
+  // prt info of the environment measures every encoding against the same 12 bands.
+  const Result i = prt("info --json - builtin:sky");
+  ASSERT_EQ(i.rc, 0) << i.err;
+  const std::string key = "\"encoding\": \"zh3\"";
+  const std::size_t at = i.out.find(key);
+  ASSERT_NE(at, std::string::npos) << i.out.substr(0, 2000);
+  const std::size_t rms = i.out.find("\"relativeRms\": ", at);
+  ASSERT_NE(rms, std::string::npos);
+  EXPECT_NEAR(std::stod(i.out.substr(rms + 15)), lf.irradiance->relativeRms, 1e-9);
+  EXPECT_GT(lf.irradiance->relativeRms, 0.01);  // the sky's sun: ZH3 loses something
+  EXPECT_LT(lf.irradiance->relativeRms, 0.2);
+  // prt info of the light file says what it stores.
+  const Result li = prt("info '" + p("zh3.json") + "'");
+  ASSERT_EQ(li.rc, 0) << li.err;
+  EXPECT_NE(li.out.find("irradiance  stored as zh3 (15 numbers)"), std::string::npos) << li.out;
+  // l1 from 2 bands is fine; what needs band 2 is refused with fewer; other formats have no room.
+  EXPECT_EQ(run("builtin:sky -b 2 --encoding l1-geomerics -o '" + p("g.json") + "'").rc, 0);
+  expectFailure("builtin:sky -b 2 --encoding zh3", {"--encoding zh3 keeps band 2 of the light"});
+  expectFailure("builtin:sky --encoding zh4", {"--encoding must be l2, l2-deringed, l1"});
+  const Result t = run("builtin:sky --format threejs --encoding l1 -o '" + p("t.json") + "'");
+  EXPECT_EQ(t.rc, 1);
+  EXPECT_NE(t.err.find("--format threejs has no place for it"), std::string::npos) << t.err;
+  // A damaged record is refused by name.
+  std::string text;
+  {
+    std::ifstream in(p("zh3.json"));
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::size_t ax = text.find("\"axis\"");
+  ASSERT_NE(ax, std::string::npos);
+  const std::size_t open = text.find('[', ax);
+  text.replace(open, text.find(']', open) - open + 1, "[2, 0, 0]");
+  std::ofstream(p("bad.json")) << text;
+  const Result b = prt("info '" + p("bad.json") + "'");
+  EXPECT_EQ(b.rc, 1);
+  EXPECT_NE(b.err.find("bad.json: irradiance axis is not a unit vector"), std::string::npos)
+      << b.err;
 }
