@@ -187,10 +187,15 @@ void run(const RenderOptions& o) {
     }
     // --exposure auto: image/exposure.hpp's rule on the first frame's model pixels, kept for
     // every turntable frame so they compare.
-    if (k == 0)
-      write.exposureStops = exposure ? *exposure
-                                     : render::autoExposure(*occluder, shade, camera, frame.width,
-                                                            frame.height, write.toneMap);
+    // The first frame's probe pixels also say whether SH ringing blacks out the model.
+    if (k == 0) {
+      const render::FrameSurvey survey = render::surveyFrame(*occluder, shade, camera, frame.width,
+                                                             frame.height, write.toneMap);
+      write.exposureStops = exposure ? *exposure : survey.exposureStops;
+      const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
+      if (!ringing.empty()) warn(ringing);
+      report["negativeShare"] = survey.negativeShare;
+    }
     const render::BackgroundFn bg = render::background(
         bgKind, bgColour, lighting.image ? &*lighting.image : nullptr, &light, rotation);
     const std::string label = frames > 1 ? fmt::format("frame {}/{}", k + 1, frames) : "rendering";

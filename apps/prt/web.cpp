@@ -250,8 +250,12 @@ float initialExposure(const WebOptions& a, const BakeFile& bake, const sh::RgbSh
   const render::Framing f = render::meshFraming(bake.mesh);
   render::Camera c = render::frameCamera(f, 640, 480);
   if (!a.camera.empty()) c = render::parseCamera(a.camera, c);
-  return render::relitExposure(bake.mesh, t.transfer, material, light, parseRotation(a.rotate), c,
-                               640, 480, image::parseToneMap(a.toneMap), a.bands);
+  const render::FrameSurvey survey =
+      render::relitSurvey(bake.mesh, t.transfer, material, light, parseRotation(a.rotate), c, 640,
+                          480, image::parseToneMap(a.toneMap), a.bands);
+  const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
+  if (!ringing.empty()) warn(ringing + " (the page's first view)");
+  return survey.exposureStops;
 }
 
 Json viewJson(const WebOptions& a, const Mesh& mesh, float exposure) {

@@ -95,11 +95,14 @@ Scene loadScene(const Options& o, const Output& out) {
   } else {
     // prt render's rule on a CPU relight of the first view (the same bake, light and camera).
     const Mesh& mesh = scene.bake().mesh;
-    scene.exposureStops = render::relitExposure(
+    const render::FrameSurvey survey = render::relitSurvey(
         mesh, scene.transfer().transfer, scene.material(),
         scene.environment(std::size_t(scene.environmentIndex())).lighting.coefficients,
         scene.lightRotation(), scene.orbit.camera(), o.width, o.height, scene.toneMap,
         scene.bands());
+    scene.exposureStops = survey.exposureStops;
+    const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
+    if (!ringing.empty()) out.warn(ringing + " (the first view)");
   }
   scene.autoRotate = o.autoRotate;
   scene.spinDegreesPerSecond = o.spinDegreesPerSecond;

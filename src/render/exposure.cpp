@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
@@ -45,20 +46,42 @@ float autoExposure(const Mesh& mesh, const Occluder& occluder, std::span<const R
 
 float autoExposure(const Occluder& occluder, const ShadeFn& shade, const Camera& camera, int width,
                    int height, image::ToneMap op) {
+  return surveyFrame(occluder, shade, camera, width, height, op).exposureStops;
+}
+
+FrameSurvey surveyFrame(const Occluder& occluder, const ShadeFn& shade, const Camera& camera,
+                        int width, int height, image::ToneMap op) {
   PRT_CHECK(width > 0 && height > 0, "image size must be positive");
   const int w = std::min(width, kExposureProbeWidth);
   const int h = std::max(1, int(std::lround(double(height) * w / width)));
-  return image::autoExposure(modelPixels(occluder, shade, camera, w, h), op);
+  const std::vector<Rgb> pixels = modelPixels(occluder, shade, camera, w, h);
+  FrameSurvey s;
+  s.exposureStops = image::autoExposure(pixels, op);
+  std::size_t negative = 0;
+  for (const Rgb& p : pixels) negative += p.x < 0 || p.y < 0 || p.z < 0;
+  s.negativeShare = pixels.empty() ? 0 : double(negative) / double(pixels.size());
+  return s;
 }
 
-float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& material,
-                    const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera, int width,
-                    int height, image::ToneMap op, int bands) {
+std::string negativeRadianceWarning(double share) {
+  if (!(share > kNegativeShareWarned)) return "";
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "the relit radiance is negative on %.1f%% of the model's pixels, drawn black: SH "
+                "ringing of a bright, small source; window the light (prt light --window hanning, "
+                "or dering) or relight with fewer bands (--bands)",
+                100 * share);
+  return buf;
+}
+
+FrameSurvey relitSurvey(const Mesh& mesh, const Transfer& transfer, const Material& material,
+                        const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera,
+                        int width, int height, image::ToneMap op, int bands) {
   const auto occluder = makeEmbreeOccluder(mesh);
   RelitView view(mesh, *occluder, transfer, material);
   if (bands > 0 && bands < transfer.bands()) view.setBands(bands);
   view.relight(light, rotation, camera.eye, mesh.source);
-  return view.autoExposure(camera, width, height, op);
+  return surveyFrame(*occluder, view.shader(), camera, width, height, op);
 }
 
 }  // namespace prt::render

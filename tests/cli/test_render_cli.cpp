@@ -15,6 +15,9 @@
 #include "cli_harness.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/light_file.hpp"
+#include "prt/render/exposure.hpp"
+#include "prt/sh/sh.hpp"
 
 namespace prt {
 namespace {
@@ -237,6 +240,45 @@ TEST_F(RenderCli, DemoMakesItsFolderOrNothing) {
   EXPECT_NE(r.err.find("not a prt demo folder"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(dir_ / "out/mine/keep.txt"), "precious");
   EXPECT_EQ(onlyEntry(dir_ / "out"), "mine");
+}
+
+}  // namespace
+}  // namespace prt
+
+namespace prt {
+namespace {
+
+// Issue 35: SH ringing that blacks out the model is said, with its share. A delta light from
+// straight above cut to 5 bands has irradiance E(θ = π) = 1/4 − 1/2 + 5/16 − 3/32 = −1/32 < 0:
+// the underside of a sphere relit by it (unshadowed) is negative; under a constant light the
+// same bake is nowhere negative, and no warning is printed.
+TEST_F(RenderCli, SaysWhenRingingBlacksOutTheModel) {
+  ASSERT_EQ(prt("-q bake 'builtin:sphere?subdiv=3' --mode unshadowed --bands 5 --samples 64 "
+                "-o s5.glb")
+                .rc,
+            0);
+  io::LightFile delta;
+  delta.coefficients = sh::RgbSh(5);
+  double y[25];
+  sh::eval(5, Vec3d(0, 1, 0), y);
+  for (int i = 0; i < 25; ++i) delta.coefficients.c[i] = Rgb(float(y[i]));
+  io::writeLightJson(path("delta.json"), delta);
+  // Seen from below (the camera under the sphere) most of what is visible rings.
+  const std::string below = " --camera 'eye=0,-3,0.5;target=0,0,0;fov=45' --size 160x120 ";
+  Result r = prt("render s5.glb --light delta.json" + below + "-o d.png --json d.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the relit radiance is negative on "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("of the model's pixels, drawn black"), std::string::npos) << r.err;
+  const std::string report = slurp(path("d.json"));
+  const std::size_t at = report.find("\"negativeShare\": ");
+  ASSERT_NE(at, std::string::npos) << report;
+  const double share = std::stod(report.substr(at + 17));
+  EXPECT_GT(share, render::kNegativeShareWarned);
+  r = prt("render s5.glb --light builtin:constant" + below + "-o c.png --json c.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.err.find("negative"), std::string::npos) << r.err;
+  const std::string constant = slurp(path("c.json"));
+  EXPECT_NE(constant.find("\"negativeShare\": 0"), std::string::npos) << constant;
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 // camera.
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "prt/core/vec.hpp"
@@ -31,6 +32,22 @@ std::vector<Rgb> modelPixels(const Mesh& mesh, const Occluder& occluder,
 /// The same for any shading of the mesh (render.hpp's shaders: per-vertex or per-texel radiance).
 std::vector<Rgb> modelPixels(const Occluder& occluder, const ShadeFn& shade, const Camera& camera,
                              int width, int height);
+/// What the exposure probe sees of a frame: the auto exposure, and the share of the model's
+/// pixels where some channel of the radiance is negative — SH ringing (a light or transfer cut
+/// to few bands dipping below zero around a bright, small source), which the tone mappers draw
+/// black.
+struct FrameSurvey {
+  float exposureStops = 0;
+  double negativeShare = 0;
+};
+
+/// The share of the model's pixels above which prt render, view and web warn (issue 35): a few
+/// dark pixels at a terminator are the method; more is an artefact the user can remove.
+inline constexpr double kNegativeShareWarned = 0.02;
+/// The warning for `share` of the model's pixels negative ("" at or below kNegativeShareWarned),
+/// naming the remedies (a window on the light, fewer bands).
+std::string negativeRadianceWarning(double share);
+
 /// image::autoExposure of modelPixels at kExposureProbeWidth × (its aspect's height), for an
 /// image of `width` × `height` seen through `camera` and tone-mapped with `op`.
 float autoExposure(const Mesh& mesh, const Occluder& occluder, std::span<const Rgb> radiance,
@@ -38,14 +55,17 @@ float autoExposure(const Mesh& mesh, const Occluder& occluder, std::span<const R
 /// The same for any shading of the mesh.
 float autoExposure(const Occluder& occluder, const ShadeFn& shade, const Camera& camera, int width,
                    int height, image::ToneMap op);
+/// The auto exposure and the negative share of the same probe pixels.
+FrameSurvey surveyFrame(const Occluder& occluder, const ShadeFn& shade, const Camera& camera,
+                        int width, int height, image::ToneMap op);
 
-/// autoExposure of `transfer` relit on the CPU (relight::relight) under `light` rotated by
+/// surveyFrame of `transfer` relit on the CPU (relight::relight) under `light` rotated by
 /// `rotation` with `material`, seen through `camera`: what prt view and prt web open at, from
 /// the bake and light they show (an Embree occluder of the mesh is built for the probe rays).
 /// `bands` > 0 cuts the transfer first, as the viewers' band control does. Per-texel transfer is
 /// drawn as prt render draws it (texelRadianceShader).
-float relitExposure(const Mesh& mesh, const Transfer& transfer, const Material& material,
-                    const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera, int width,
-                    int height, image::ToneMap op, int bands = 0);
+FrameSurvey relitSurvey(const Mesh& mesh, const Transfer& transfer, const Material& material,
+                        const sh::RgbSh& light, const Mat3d& rotation, const Camera& camera,
+                        int width, int height, image::ToneMap op, int bands = 0);
 
 }  // namespace prt::render
