@@ -14,6 +14,7 @@
 #include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/units.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/io/mesh_file.hpp"
@@ -42,7 +43,16 @@ void runUnwrap(const UnwrapArgs& a) {
   const Mesh mesh = loadMesh(a.input, &report);
   for (const std::string& w : report.warnings) warn(w);
   if (!mesh.lightmapUvs.empty()) info(mesh.source + ": its lightmap UV set is replaced");
-  const UnwrapResult r = unwrap(mesh, a.settings, progressBar("unwrap"));
+  // The footprint before the heavy work (issue 31), as the bake states its own; unwrap refuses
+  // one above the machine's memory by the same policy.
+  const auto statement = [&](const UnwrapFootprint& f) {
+    info(fmt::format(
+        "unwrap: {} triangles in {} charts (the largest {} triangles): about {} of memory at "
+        "peak ({} of meshes and tables + {} for the conformal maps of the largest charts)",
+        f.triangles, f.charts, f.largestChart, bytesText(f.bytes()), bytesText(f.baseBytes),
+        bytesText(f.solveBytes)));
+  };
+  const UnwrapResult r = unwrap(mesh, a.settings, progressBar("unwrap"), statement);
   writeMeshGlb(a.output, r.mesh);
   const AtlasStats& s = r.stats;
   info(fmt::format(

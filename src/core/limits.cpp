@@ -1,11 +1,14 @@
 #include "prt/core/limits.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <mutex>
 #include <optional>
 
@@ -78,6 +81,16 @@ void setLimits(const Limits& l) {
     throw Error("Limits::maxCoordinate", coordinateCapMessage(l.maxCoordinate));
   std::lock_guard<std::mutex> lock(gMutex);
   gLimits = l;
+}
+
+std::size_t physicalMemoryBytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return std::numeric_limits<std::size_t>::max();
+  return static_cast<std::size_t>(pages) * static_cast<std::size_t>(page);
+}
+
+bool fitsInMemory(std::uint64_t bytes) {
+  return bytes <= physicalMemoryBytes() / 10 * 9;
 }
 
 void checkLimit(const std::string& label, const std::string& what, std::uint64_t count,

@@ -2,8 +2,6 @@
 
 #include <string>
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <limits>
 
@@ -149,19 +147,13 @@ BakeStats matrixStats(MatrixPassKind kind, const std::vector<std::uint64_t>& ray
   return st;
 }
 
-std::size_t physicalMemoryBytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return std::numeric_limits<std::size_t>::max();
-  return static_cast<std::size_t>(pages) * static_cast<std::size_t>(page);
-}
-
 void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint& f) {
   const std::size_t need =
       f.transferBytes > std::numeric_limits<std::size_t>::max() - f.workingBytes
           ? std::numeric_limits<std::size_t>::max()
           : f.transferBytes + f.workingBytes;
+  if (fitsInMemory(need)) return;
   const std::size_t have = physicalMemoryBytes();
-  if (need <= have / 10 * 9) return;
   const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
   if (s.domain == TransferDomain::Texels)
     throw Error(name, std::string(toString(s.layout)) + " transfer of a " +

@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 
+#include "prt/core/limits.hpp"
 #include "prt/core/progress.hpp"
 #include "prt/geometry/texel_samples.hpp"
 #include "prt/transport/bake.hpp"
@@ -81,7 +82,7 @@ RowRange bakeRows(const Mesh& mesh, const BakeSettings& s);
 /// The bounce albedo: the material's diffuse colour, else the mesh's, else white.
 BounceAlbedo resolveAlbedo(const Mesh& mesh, const BakeSettings& s);
 
-std::size_t physicalMemoryBytes();
+using prt::physicalMemoryBytes;  // (prt/core/limits.hpp, with the 90% policy)
 /// Throws prt::Error stating the figure when the bake would not fit in this machine's memory.
 void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint& f);
 

@@ -6,6 +6,8 @@
 #include <tuple>
 #include <vector>
 
+#include "prt/core/error.hpp"
+
 namespace prt {
 
 namespace {
@@ -301,7 +303,7 @@ Uv2 AtlasPacking::texelPosition(const std::vector<ChartShape>& shapes, std::size
 }
 
 bool packChartShapes(const std::vector<ChartShape>& charts, int side, int padding,
-                     double minTexelsPerUnit, AtlasPacking& out) {
+                     double minTexelsPerUnit, AtlasPacking& out, const ProgressFn& progress) {
   // Largest area first (ties by index): a fixed order.
   std::vector<double> area(charts.size(), 0.0);
   double totalArea = 0;
@@ -325,11 +327,22 @@ bool packChartShapes(const std::vector<ChartShape>& charts, int side, int paddin
   double lo = minTexelsPerUnit / best.cell;
   double hi = std::max(maxTexelsPerUnit / best.cell, lo);
   std::uint64_t steps = 0;
+  // The bisection's passes: the first, then one per halving of log(hi / lo) down to 0.2%.
+  const double passes =
+      2 + std::ceil(std::log2(std::max(std::log(hi / std::max(lo, 1e-300)) / std::log(1.002), 1.0)));
+  int pass = 0;
+  const auto report = [&] {
+    ++pass;
+    const double f = std::max(pass / passes, double(steps) / double(kMaxSteps));
+    if (progress && !progress(std::min(f, 1.0))) throw Cancelled();
+  };
   if (!(lo > 0) || packAt(charts, order, cells, pad, lo, steps, kMaxSteps, best) != Packed::Yes)
     return false;
+  report();
   while (hi > lo * 1.002) {
     const double mid = std::sqrt(lo * hi);
     const Packed p = packAt(charts, order, cells, pad, mid, steps, kMaxSteps, trial);
+    report();
     if (p == Packed::OutOfSteps) break;  // the best so far stands
     if (p == Packed::Yes) {
       lo = mid;

@@ -8,6 +8,8 @@
 #include <utility>
 
 #include "prt/core/error.hpp"
+#include "prt/core/limits.hpp"
+#include "prt/core/units.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/geometry/chart_packing.hpp"
 #include "prt/geometry/texel_sampling.hpp"
@@ -154,6 +156,70 @@ class Flattener {
   double maxStretch_;
 };
 
+/// The unwrap's progress over all its phases, as one fraction that never goes back (issue 31).
+/// Each phase is given its estimated share of the time (costs in about nanoseconds on one core,
+/// measured on planes, icospheres and the Stanford dragon: docs/performance.md), so that the
+/// fraction moves with the clock and an ETA drawn from it holds.
+class PhasedProgress {
+ public:
+  explicit PhasedProgress(const ProgressFn& fn) : fn_(fn) {}
+  /// The costs of the phases still to come, in order: they share what remains of the fraction.
+  void plan(std::vector<double> costs) {
+    costs_ = std::move(costs);
+    next_ = 0;
+    origin_ = last_;
+    double total = 0;
+    for (double c : costs_) total += c;
+    total_ = total > 0 ? total : 1;
+    spent_ = 0;
+  }
+  /// A ProgressFn for the next planned phase (mapping its 0..1 into its share).
+  ProgressFn phase() {
+    const double lo = origin_ + (1 - origin_) * spent_ / total_;
+    const double c = next_ < costs_.size() ? costs_[next_] : 0;
+    spent_ += c;
+    ++next_;
+    const double hi = origin_ + (1 - origin_) * std::min(spent_ / total_, 1.0);
+    return [this, lo, hi](double f) { return forward(lo + (hi - lo) * std::clamp(f, 0.0, 1.0)); };
+  }
+  /// Reports `f` of the whole run directly (a phase before the plan); throws Cancelled on a
+  /// request to stop.
+  void report(double f) {
+    if (!forward(f)) throw Cancelled();
+  }
+  /// The end of a phase that reported through phase(): its whole share is done.
+  void finish(const ProgressFn& p) {
+    if (p && !p(1.0)) throw Cancelled();
+  }
+
+ private:
+  bool forward(double f) {
+    if (cancelRequested()) return false;
+    if (!(f > last_)) return true;  // never back, never the same twice
+    last_ = f;
+    return fn_ ? fn_(f) : true;
+  }
+  ProgressFn fn_;
+  std::vector<double> costs_;
+  std::size_t next_ = 0;
+  double origin_ = 0, last_ = 0, total_ = 1, spent_ = 0;
+};
+
+/// The estimated time, in about nanoseconds on one core, of flattening a chart of t triangles:
+/// assembly and checks grow as t, the sparse LDLᵀ factorisation (AMD ordering) as about t^1.75
+/// (measured on one chart of a plane: 125k triangles 2.4 s, 500k triangles 28 s).
+double flattenCost(std::size_t t) {
+  const double x = double(t);
+  return 2e3 * x + 3.0 * std::pow(x, 1.75);
+}
+
+/// The estimated time of the packing, in about nanoseconds: the rectangles' packing, then the
+/// search by shape, which stops at its cap of steps (unwrap/atlas_packing.cpp, about 2.5 s);
+/// measured 0.18 s for 7 charts, 0.6 s for the dragon's 3,686 (6,338 once cut).
+double packingCost(std::size_t charts) {
+  return std::min(1.5e8 + 1.2e5 * double(charts), 2.5e9);
+}
+
 void checkSettings(const Mesh& mesh, const UnwrapSettings& s) {
   if (mesh.triangleCount() == 0) throw Error(mesh.source, "has no triangles to unwrap");
   if (s.resolution < 1 || s.resolution > kMaxLightmapSide)
@@ -172,30 +238,122 @@ void checkSettings(const Mesh& mesh, const UnwrapSettings& s) {
 
 }  // namespace
 
-UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const ProgressFn& progress) {
+UnwrapFootprint unwrapFootprint(const Mesh& mesh, std::span<const std::size_t> chartTriangles,
+                                int threads) {
+  UnwrapFootprint f;
+  const std::uint64_t T = mesh.triangleCount(), V = mesh.vertexCount();
+  f.triangles = T;
+  f.vertices = V;
+  f.charts = chartTriangles.size();
+  // Bytes per vertex of the input and of the output (whose split vertices are bounded here by
+  // 1.5 V: 1.44 V on the Stanford dragon's 6,338 charts, 1.01-1.05 V on smooth meshes).
+  const std::uint64_t attributes = (mesh.normals.empty() ? 0 : 12) + (mesh.hasAlbedo() ? 12 : 0) +
+                                   (mesh.uvs.empty() ? 0 : 8);
+  const std::uint64_t Vout = V + V / 2;
+  const std::uint64_t input = V * (12 + attributes + (mesh.lightmapUvs.empty() ? 0 : 8)) + 12 * T;
+  const std::uint64_t output = Vout * (12 + attributes + 8 + 4) + (12 + 4) * T;
+  // Live through the run: the adjacency (welded vertex; face normal, area, neighbours), the
+  // charts and their pieces (triangles, corners, UVs) and the packing's copy of their shapes,
+  // the corner UVs, the (vertex, chart) uses, and measureAtlas's per-triangle records; then the
+  // output mesh and the GLB's buffer of it.
+  const std::uint64_t adjacency = 4 * V + 44 * T;
+  const std::uint64_t charts = 8 * T + 2 * (16 * T + 16 * Vout);
+  const std::uint64_t assembly = 24 * T + 8 * (3 * T + V) + V + 48 * T;
+  f.baseBytes = input + adjacency + charts + assembly + 2 * output;
+  // The conformal maps in flight: the `threads` largest charts. Per chart of t triangles and
+  // v ≈ t/2 vertices: the piece (36 t + 40 v), the normal equations AᵀA (2v unknowns, 2×2
+  // blocks over each vertex and its ~6 neighbours: 28 v entries of 12 bytes) with their
+  // permuted upper half (15 v entries), and the LDLᵀ factor, kFill·log₂ v entries per vertex
+  // under Eigen's AMD ordering (a 2D mesh's fill grows as v log v; kFill fitted to measured
+  // peaks of one-chart planes of 125k, 500k and 2M triangles: 1.49, 1.45 and 1.75 kB per
+  // triangle).
+  constexpr double kFill = 12;
+  std::vector<std::size_t> sizes(chartTriangles.begin(), chartTriangles.end());
+  const std::size_t inFlight = std::min<std::size_t>(sizes.size(), std::size_t(std::max(threads, 1)));
+  std::partial_sort(sizes.begin(), sizes.begin() + std::ptrdiff_t(inFlight), sizes.end(),
+                    std::greater<>());
+  f.largestChart = sizes.empty() ? 0 : sizes.front();
+  for (std::size_t i = 0; i < inFlight; ++i) {
+    const double t = double(sizes[i]), v = t / 2 + 3;
+    const double entries = 28 * v + 15 * v + kFill * v * std::log2(v);
+    f.solveBytes += std::uint64_t(36 * t + 40 * v + 12 * entries + 64 * v);
+  }
+  return f;
+}
+
+UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const ProgressFn& progress,
+                    const UnwrapFootprintFn& onFootprint) {
   checkSettings(mesh, settings);
   const auto start = std::chrono::steady_clock::now();
   const std::size_t T = mesh.triangleCount();
+  // Progress: the adjacency and the charts (about 1.2 µs a triangle) come before the plan of the
+  // rest is known, and are reported, once done, as their share of the whole; the vertex split
+  // and the measures take about 0.5 µs a triangle each.
+  PhasedProgress phases(progress);
+  const double kGrowCost = 1.2e3, kSplitCost = 0.5e3, kMeasureCost = 0.45e3;
   const TriangleAdjacency adj = buildAdjacency(mesh);
   const ChartSegmentation seg =
       growCharts(adj, settings.maxConeDegrees * M_PI / 180.0, settings.minChartTriangles);
   std::vector<std::vector<std::uint32_t>> grown(seg.count);
   for (std::uint32_t t = 0; t < T; ++t) grown[seg.chartOfTriangle[t]].push_back(t);
 
+  // The footprint, now that the charts are known and before the heavy work: the caller's
+  // statement, then the bake's policy (prt/core/limits.hpp).
+  std::vector<std::size_t> chartSizes(seg.count);
+  for (std::size_t c = 0; c < seg.count; ++c) chartSizes[c] = grown[c].size();
+  const UnwrapFootprint footprint = unwrapFootprint(mesh, chartSizes, maxThreads());
+  if (onFootprint) onFootprint(footprint);
+  if (!fitsInMemory(footprint.bytes()))
+    throw Error(mesh.source,
+                "unwrap: needs about " + bytesText(footprint.bytes()) + " (" +
+                    std::to_string(T) + " triangles, the largest chart " +
+                    std::to_string(footprint.largestChart) + "); this machine has " +
+                    bytesText(physicalMemoryBytes()) +
+                    " (fewer threads with -j, a smaller --max-cone, or a simplified mesh)");
+
+  // The plan of the rest, each phase's estimated cost: flattening (per chart, superlinear in its
+  // size, the charts spread over the threads), packing, the vertex split, measuring.
+  double flattenTotal = 0;
+  for (std::size_t t : chartSizes) flattenTotal += flattenCost(t);
+  const double threads = std::min<double>(maxThreads(), double(seg.count));
+  const double largest = flattenCost(footprint.largestChart);
+  const double flattenWall = std::max(flattenTotal / std::max(threads, 1.0), largest);
+  const double packCost = packingCost(seg.count);
+  const double grownCost = kGrowCost * double(T);
+  phases.report(grownCost / (grownCost + flattenWall + packCost + (kSplitCost + kMeasureCost) * T));
+  phases.plan({flattenWall, packCost, kSplitCost * double(T), kMeasureCost * double(T)});
+
   // Flatten the charts in parallel; each chart's pieces are kept in their own slot, so the
-  // order of the result does not depend on the threads.
+  // order of the result does not depend on the threads. Progress counts each chart's cost.
   const Flattener flattener(mesh, adj, settings.maxStretch);
   std::vector<std::vector<Piece>> pieces(seg.count);
   std::vector<std::size_t> cuts(seg.count, 0);
-  Progress prog(progress, seg.count);
-  parallelFor(seg.count, 1, [&](std::size_t b, std::size_t e) {
-    for (std::size_t c = b; c < e; ++c) {
-      prog.check();
-      cuts[c] = flattener.flatten(grown[c], pieces[c]);
-      prog.advance(1);
-    }
-  });
-  prog.check();
+  {
+    const ProgressFn flattenPhase = phases.phase();
+    // Units of 1/4096 of the total cost (Progress counts integers).
+    const double unit = std::max(flattenTotal / 4096.0, 1.0);
+    std::size_t totalUnits = 0;
+    std::vector<std::size_t> units(seg.count);
+    for (std::size_t c = 0; c < seg.count; ++c)
+      totalUnits += units[c] = std::size_t(std::ceil(flattenCost(chartSizes[c]) / unit));
+    Progress prog(flattenPhase, totalUnits);
+    // The largest charts first, so that the threads finish together; the result does not
+    // depend on the order.
+    std::vector<std::size_t> order(seg.count);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return chartSizes[a] > chartSizes[b]; });
+    parallelFor(seg.count, 1, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        const std::size_t c = order[i];
+        prog.check();
+        cuts[c] = flattener.flatten(grown[c], pieces[c]);
+        prog.advance(units[c]);
+      }
+    });
+    prog.check();
+    phases.finish(flattenPhase);
+  }
 
   // One texel density: scale each piece to its surface area, then its bounding rectangle.
   std::vector<Piece> charts;
@@ -224,6 +382,7 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   // chart touches between any two (a chart's last touched texel and the next one's first are
   // floor(gutter) apart), and as many from the border.
   const double gutter = (settings.padding + 1 + 1e-3) / double(settings.resolution);
+  const ProgressFn packPhase = phases.phase();
   ChartPacking packing;
   try {
     packing = packCharts(sizes, float(gutter));
@@ -240,7 +399,9 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   const double side = settings.resolution;
   AtlasPacking shaped;
   const bool byShape = packChartShapes(shapes, settings.resolution, settings.padding,
-                                       double(packing.scale) * side, shaped);
+                                       double(packing.scale) * side, shaped, packPhase);
+  phases.finish(packPhase);
+  const ProgressFn splitPhase = phases.phase();
   const auto atlasUv = [&](std::size_t c, const Uv2& q) {
     if (byShape) {
       const Uv2 t = shaped.texelPosition(shapes, c, q);
@@ -319,9 +480,12 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
     q.vertexCount = indexOf(p.firstVertex + p.vertexCount, 0) - q.firstVertex;
     out.parts.push_back(q);
   }
+  phases.finish(splitPhase);
+  const ProgressFn measurePhase = phases.phase();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.stats = measureAtlas(out, out.lightmapUvs, settings.resolution);
+  phases.finish(measurePhase);
   r.stats.seconds = seconds;
   return r;
 }

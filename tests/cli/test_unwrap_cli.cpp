@@ -5,12 +5,19 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "cli_harness.hpp"
+#include "prt/core/limits.hpp"
+#include "prt/core/units.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/unwrap/charts.hpp"
 #include "prt/unwrap/unwrap.hpp"
 
 namespace prt {
@@ -91,6 +98,51 @@ TEST_F(UnwrapCli, RefusesInOneLineAndWritesNothing) {
   const std::string before = slurp(dir_ / "plane.glb");
   expectCleanFailure("unwrap plane.glb -o ./plane.glb", "would overwrite the input");
   EXPECT_EQ(slurp(dir_ / "plane.glb"), before);
+}
+
+// Issue 31: one line stating the peak memory before the heavy work, then progress lines with an
+// ETA over the whole run, their percentages only ever rising; neither with -q.
+TEST_F(UnwrapCli, StatesItsMemoryFirstThenProgressUnlessQuiet) {
+  const std::string args = "-j 1 unwrap builtin:sphere?subdiv=4 -o s.glb";
+  Result r = prt(args, "PRT_PROGRESS_INTERVAL=0 ");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  // The figure is the library's estimate for this mesh, its charts and one thread.
+  const Mesh mesh = loadMesh("builtin:sphere?subdiv=4");
+  const TriangleAdjacency adj = buildAdjacency(mesh);
+  const UnwrapSettings s;
+  const ChartSegmentation seg =
+      growCharts(adj, s.maxConeDegrees * M_PI / 180.0, s.minChartTriangles);
+  std::vector<std::size_t> sizes(seg.count, 0);
+  for (std::uint32_t c : seg.chartOfTriangle) ++sizes[c];
+  const UnwrapFootprint f = unwrapFootprint(mesh, sizes, 1);
+  const std::string memory = "about " + bytesText(f.bytes()) + " of memory at peak";
+  const std::size_t at = r.err.find(memory);
+  ASSERT_NE(at, std::string::npos) << memory << " missing in: " << r.err;
+  // Progress lines "unwrap: 35% (0 s, ETA 1 s)", all after the memory line, rising.
+  std::vector<int> pct;
+  std::size_t first = std::string::npos;
+  for (std::size_t p = r.err.find("unwrap: "); p != std::string::npos;
+       p = r.err.find("unwrap: ", p + 1)) {
+    const char* c = r.err.c_str() + p + 8;
+    if (!std::isdigit(static_cast<unsigned char>(*c))) continue;
+    char* end = nullptr;
+    const long v = std::strtol(c, &end, 10);
+    if (*end != '%') continue;
+    if (first == std::string::npos) first = p;
+    pct.push_back(int(v));
+  }
+  ASSERT_GE(pct.size(), 3u) << "progress over the phases, not one jump: " << r.err;
+  EXPECT_LT(at, first) << "the memory line comes before the work: " << r.err;
+  for (std::size_t i = 1; i < pct.size(); ++i) EXPECT_LT(pct[i - 1], pct[i]) << r.err;
+  EXPECT_GE(pct.back(), 90) << "the progress covers the whole run: " << r.err;
+  EXPECT_NE(r.err.find(", ETA "), std::string::npos) << r.err;
+  // -q: neither the memory line nor progress, nothing at all.
+  r = prt("-q " + args, "PRT_PROGRESS_INTERVAL=0 ");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  // The policy the estimate is held to (the bake's): refused above 90% of the machine.
+  EXPECT_TRUE(fitsInMemory(f.bytes()));
+  EXPECT_FALSE(fitsInMemory(physicalMemoryBytes()));
 }
 
 }  // namespace

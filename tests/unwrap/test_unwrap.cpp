@@ -511,5 +511,39 @@ TEST(Unwrap, TheBunnyUnwrapsInSeconds) {
       r.stats.densityP05, r.stats.densityP95);
 }
 
+// Issue 31: the progress runs once from near 0 to 1 over every phase, never back, with the
+// footprint stated before the first report; cancelling from it stops the unwrap.
+TEST(Unwrap, ProgressRisesOverEveryPhaseAfterTheFootprint) {
+  const Mesh mesh = loadMesh("builtin:sphere?subdiv=4");
+  std::vector<double> seen;
+  int footprints = 0;
+  std::size_t reportsBeforeFootprint = 0;
+  UnwrapFootprint f;
+  const UnwrapResult r = unwrap(
+      mesh, {},
+      [&](double x) {
+        seen.push_back(x);
+        return true;
+      },
+      [&](const UnwrapFootprint& fp) {
+        ++footprints;
+        reportsBeforeFootprint = seen.size();
+        f = fp;
+      });
+  EXPECT_EQ(footprints, 1);
+  EXPECT_EQ(reportsBeforeFootprint, 0u);
+  EXPECT_EQ(f.triangles, mesh.triangleCount());
+  EXPECT_GT(f.baseBytes, 0u);
+  EXPECT_GT(f.solveBytes, 0u);
+  ASSERT_GE(seen.size(), 4u);
+  EXPECT_LT(seen.front(), 0.5);
+  for (std::size_t i = 1; i < seen.size(); ++i) EXPECT_LT(seen[i - 1], seen[i]) << i;
+  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+  // The same atlas with or without the observers.
+  EXPECT_EQ(r.mesh.lightmapUvs, unwrap(mesh).mesh.lightmapUvs);
+  std::size_t calls = 0;
+  EXPECT_THROW(unwrap(mesh, {}, [&](double) { return ++calls < 3; }), Cancelled);
+}
+
 }  // namespace
 }  // namespace prt

@@ -21,6 +21,7 @@
 // A variable that is not a positive number makes limits() throw prt::Error naming it, and so
 // does a PRT_MAX_COORDINATE beyond kMaxTraceableCoordinate (what Embree can trace at all).
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -55,6 +56,11 @@ void setLimits(const Limits& l);
 /// variable that is not a positive number.
 Limits limitsFromEnvironment();
 
+/// This machine's physical memory in bytes (SIZE_MAX where the system does not say).
+std::size_t physicalMemoryBytes();
+/// The memory policy of the verbs that estimate their footprint before the heavy work (the
+/// bake, the unwrap): work needing more than 90% of the physical memory is refused up front.
+bool fitsInMemory(std::uint64_t bytes);
 /// Throws Error(label, "WHAT COUNT exceeds the limit of CAP (PRT_MAX_NAME)") if count > cap.
 void checkLimit(const std::string& label, const std::string& what, std::uint64_t count,
                 std::uint64_t cap, const char* envName);

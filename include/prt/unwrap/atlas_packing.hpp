@@ -21,6 +21,8 @@
 #include <span>
 #include <vector>
 
+#include "prt/core/progress.hpp"
+
 #include "prt/unwrap/lscm.hpp"
 
 namespace prt {
@@ -55,8 +57,9 @@ struct AtlasPacking {
 /// border, at the largest texels-per-unit (to 0.2%) at which the greedy placement fits, from
 /// minTexelsPerUnit up to the one at which the charts' area would fill the square.
 /// Deterministic. Returns false (leaving `out` untouched) when it does not fit even at
-/// minTexelsPerUnit.
+/// minTexelsPerUnit. `progress` hears after each scale tried: the larger of the passes made
+/// over the bisection's count and the steps spent over the search's cap.
 bool packChartShapes(const std::vector<ChartShape>& charts, int side, int padding,
-                     double minTexelsPerUnit, AtlasPacking& out);
+                     double minTexelsPerUnit, AtlasPacking& out, const ProgressFn& progress = {});
 
 }  // namespace prt

@@ -18,6 +18,8 @@
 // chart using them, in the input's vertex order, the triangles in theirs.
 
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <vector>
 
 #include "prt/core/progress.hpp"
@@ -49,11 +51,37 @@ struct UnwrapResult {
   AtlasStats stats;  ///< measured at settings.resolution; `seconds` is the unwrap's
 };
 
+/// The memory an unwrap holds at its peak (issue 31), estimated from the structures it allocates
+/// per triangle and per vertex once the charts are grown, before any is flattened: the input and
+/// output meshes and the per-triangle tables that live through the run (`baseBytes`), plus the
+/// least squares conformal maps of the largest charts flattened at once, one per thread
+/// (`solveBytes`: the sparse normal equations and their LDLᵀ factor, whose fill grows as
+/// t·log₂ t for a chart of t triangles). docs/performance.md compares it with measured peaks.
+struct UnwrapFootprint {
+  std::size_t triangles = 0, vertices = 0;
+  std::size_t charts = 0;        ///< grown charts
+  std::size_t largestChart = 0;  ///< triangles of the largest
+  std::uint64_t baseBytes = 0, solveBytes = 0;
+  std::uint64_t bytes() const { return baseBytes + solveBytes; }
+};
+
+/// The footprint of unwrapping `mesh` into charts of `chartTriangles` triangles each, `threads`
+/// of them flattened at once.
+UnwrapFootprint unwrapFootprint(const Mesh& mesh, std::span<const std::size_t> chartTriangles,
+                                int threads);
+
+/// Called once with the footprint, before the charts are flattened (prt unwrap prints it).
+using UnwrapFootprintFn = std::function<void(const UnwrapFootprint&)>;
+
 /// Unwraps `mesh` (see the header comment). Deterministic, independent of the thread count.
 /// Throws prt::Error naming mesh.source for a mesh without triangles, settings out of range
-/// (resolution 1..kMaxLightmapSide, padding 0..kMaxLightmapPadding, cone in (0°, 90°)), or
-/// charts that cannot fit the square with that gutter; Cancelled through `progress`.
+/// (resolution 1..kMaxLightmapSide, padding 0..kMaxLightmapPadding, cone in (0°, 90°)), charts
+/// that cannot fit the square with that gutter, or a footprint above what this machine's memory
+/// allows (fitsInMemory, the bake's policy); Cancelled through `progress`. `progress` runs once
+/// from 0 to 1 over every phase (adjacency and charts, flattening, packing, the vertex split,
+/// measuring), each phase's share of the fraction its estimated share of the time, so that an
+/// ETA drawn from it holds.
 UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings = {},
-                    const ProgressFn& progress = {});
+                    const ProgressFn& progress = {}, const UnwrapFootprintFn& footprint = {});
 
 }  // namespace prt
