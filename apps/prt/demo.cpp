@@ -43,6 +43,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "demo_page.hpp"
+#include "demo_report.hpp"
 #include "demo_texels.hpp"
 #include "guard.hpp"
 #include "prt/core/band_limits.hpp"
@@ -338,38 +339,6 @@ std::string writeLiveViewer(const std::vector<std::string>& envSpecs, const Demo
   return "";
 }
 
-/// One mode under one environment, as the page shows it: its pictures, and its validation
-/// table as prt validate --json reports it (render::reportJson).
-Json modeJson(const ModeResult& m) {
-  return {{"mode", toString(m.mode)},
-          {"glossy", m.glossy},
-          {"seconds", m.seconds},
-          {"errorScale", m.errorScale},
-          {"images", {{"prt", m.prtImage}, {"reference", m.refImage}, {"error", m.errImage}}},
-          {"validation", Json::parse(render::reportJson(m.report))}};
-}
-
-Json texelEntryJson(const TexelRowEntry& e) {
-  return {{"label", e.label}, {"image", e.image},     {"rows", e.rows},
-          {"bytes", e.bytes}, {"relRmse", e.relRmse}, {"relRmseFull", e.relRmseFull}};
-}
-
-/// The per-texel row as the page's paragraph gives it.
-Json texelRowJson(const TexelRow& t) {
-  return {{"environment", t.environment},
-          {"resolution", t.resolution},
-          {"bands", t.bands},
-          {"referenceImage", t.referenceImage},
-          {"fullReferenceImage", t.fullReferenceImage},
-          {"referenceVertices", t.referenceVertices},
-          {"referenceSamples", t.referenceSamples},
-          {"referenceNoise", t.referenceNoise},
-          {"coarse", texelEntryJson(t.coarse)},
-          {"texels", texelEntryJson(t.texels)},
-          {"dense", texelEntryJson(t.dense)},
-          {"seconds", t.seconds}};
-}
-
 void runDemo(const DemoArgs& a) {
   const auto t0 = Clock::now();
   const std::optional<Material> glossyMaterial = checkArgs(a);
@@ -461,19 +430,7 @@ void runDemo(const DemoArgs& a) {
       renderTurntable(ls, *bake.find(TransferMode::Interreflected), light, scene, a, L);
     L.seconds = since(tl);
     info(fmt::format("demo: {} done in {:.1f} s", L.name, L.seconds));
-    Json modes = Json::array();
-    for (const ModeResult& m : L.modes) modes.push_back(modeJson(m));
-    envReports.push_back({{"source", L.spec},
-                          {"name", L.name},
-                          {"light", shLightJson(light)},
-                          {"lightFile", "lights/" + L.name + ".json"},
-                          {"preview", L.preview},
-                          {"exposureStops", L.exposure},
-                          {"modes", std::move(modes)},
-                          {"comparison", L.comparison},
-                          {"turntable", L.turntable.empty() ? Json(nullptr) : Json(L.turntable)},
-                          {"frames", L.frames},
-                          {"seconds", L.seconds}});
+    envReports.push_back(environmentJson(L, light));
     lights.push_back(std::move(L));
   }
 
@@ -491,31 +448,9 @@ void runDemo(const DemoArgs& a) {
   info(
       fmt::format("demo: finished in {:.0f} s; open {}", since(t0), (out / "index.html").string()));
 
-  report.input(scene.path);
-  for (const std::string& e : envSpecs) report.input(e);
-  const Json written = folderJson(a.output);
-  report.outputFolder(written);
-  report["folder"] = written;
-  report["scene"] = {{"description", scene.description}, {"mesh", meshJson(scene.mesh)}};
-  Json transfers = Json::array();
-  for (const BakedTransfer& t : bake.transfers) transfers.push_back(transferJson(t));
-  report["bake"] = {{"file", "scene.glb"},
-                    {"bytes", fs::file_size(out / "scene.glb")},
-                    {"seconds", bakeSeconds},
-                    {"transfers", std::move(transfers)}};
-  report["glossy"] = nullptr;
-  if (glossy)
-    report["glossy"] = {{"file", "glossy.glb"},
-                        {"bytes", glossy->bytes},
-                        {"seconds", glossy->seconds},
-                        {"material", glossy->material.spec()},
-                        {"transfer", transferJson(glossy->file.transfers.front())}};
-  report["environments"] = std::move(envReports);
-  report["texels"] = texelRowJson(texels);
-  report["web"] = std::move(web);
-  report["webMissing"] = webWhy.empty() ? Json(nullptr) : Json(webWhy);
-  report["totalSeconds"] = totalSeconds;
-  report.write();
+  writeDemoReport(report, {scene, bake, glossy ? &*glossy : nullptr, std::move(envReports),
+                           texels, std::move(web), webWhy, bakeSeconds, totalSeconds},
+                  a.output, envSpecs);
 }
 
 }  // namespace

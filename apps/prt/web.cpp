@@ -48,6 +48,7 @@
 #include "report.hpp"
 #include "transfer_options.hpp"
 #include "web.hpp"
+#include "web_report.hpp"
 
 namespace prt::cli {
 
@@ -98,12 +99,6 @@ std::string base64(const void* data, std::size_t n) {
   return out;
 }
 
-struct WebEnvironment {
-  std::string spec;  ///< as given (--env)
-  std::string name;
-  sh::RgbSh light;
-  image::Image background;  // lat-long, linear RGB
-};
 
 WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
   io::Lighting l = io::loadLighting(spec, bands, progressBar("projecting"));
@@ -321,30 +316,6 @@ Json environmentJson(const WebEnvironment& e) {
             {"rgbe", base64(rgbe.data(), rgbe.size())}}}};
 }
 
-/// What the page opens on (report, not page data): the transfer it picks, the first
-/// environment, the bands, rotation, exposure, tone map and camera (null: framed for its canvas).
-Json initialViewJson(const WebOptions& a, const BakeFile& bake, const WebEnvironment& env,
-                     int bands, float exposure) {
-  std::optional<TransferMode> mode;
-  if (!a.mode.empty()) mode = parseTransferMode(a.mode);
-  const BakedTransfer& t = prt::pickTransfer(bake, mode, {}, a.bake);
-  const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
-  Json camera = nullptr;
-  if (!a.camera.empty())
-    camera = cameraJson(render::parseCamera(
-        a.camera, render::frameCamera(render::meshFraming(bake.mesh), 640, 480)));
-  return {{"transfer",
-           {{"mode", toString(t.mode())},
-            {"layout", toString(t.transfer.layout())},
-            {"representation", t.transfer.compressed() ? "cpca" : "dense"}}},
-          {"environment", env.name},
-          {"bands", a.bands > 0 ? a.bands : bands},
-          {"rotationDegrees", {euler[0], euler[1], euler[2]}},
-          {"exposureStops", exposure},
-          {"exposureAuto", !a.exposure.has_value()},
-          {"toneMap", a.toneMap},
-          {"camera", std::move(camera)}};
-}
 
 }  // namespace
 
@@ -428,32 +399,8 @@ Json writeWebViewer(const WebOptions& a) {
                                        "folder over http, e.g. python3 -m http.server -d {}",
                                        double(glb.size()) / 1e6, kBakeFileName, shown)));
 
-  Json report;
-  report["folder"] = folderJson(a.output, shown);
-  report["bake"] = {{"path", a.bake},
-                    {"bytes", glb.size()},
-                    {"embedded", embed},
-                    {"file", embed ? Json(nullptr) : Json(kBakeFileName)},
-                    {"texelPointsBytes", pointBytes}};
-  report["mesh"] = meshJson(bake.mesh);
-  report["transfers"] = Json::array();
-  for (const BakedTransfer& t : bake.transfers) {
-    Json tj = transferJson(t);
-    // Glossy matrices: the material the page shades them with (--material or the bake's).
-    if (data["glossy"].contains(toString(t.mode())))
-      tj["pageMaterial"] = data["glossy"][toString(t.mode())]["material"];
-    report["transfers"].push_back(std::move(tj));
-  }
-  report["bands"] = bands;
-  report["environments"] = Json::array();
-  for (const WebEnvironment& e : envs)
-    report["environments"].push_back(
-        {{"source", e.spec},
-         {"name", e.name},
-         {"light", shLightJson(e.light)},
-         {"background", {{"width", e.background.width}, {"height", e.background.height}}}});
-  report["view"] = initialViewJson(a, bake, envs.front(), bands, exposure);
-  return report;
+  return webReport(a, bake, envs,
+                   {shown, glb.size(), embed, pointBytes, bands, exposure, data["glossy"]});
 }
 
 namespace {
