@@ -78,6 +78,7 @@ void runUnwrap(const UnwrapArgs& a) {
   json["atlas"] = {{"resolution", a.settings.resolution},
                    {"padding", a.settings.padding},
                    {"maxConeDegrees", a.settings.maxConeDegrees},
+                   {"maxChartTriangles", a.settings.maxChartTriangles},
                    {"charts", s.charts},
                    {"grownCharts", r.grownCharts},
                    {"splitCharts", r.splitCharts},
@@ -119,6 +120,11 @@ void addUnwrapCommand(CLI::App& root) {
                   "Largest angle in degrees between a triangle's normal and its chart's mean "
                   "(default 60; smaller: more charts, less stretch)")
       ->check(finite(1, 89));
+  cmd->add_option("--max-chart-triangles", args->settings.maxChartTriangles,
+                  "Cut charts larger than this many triangles into compact parts before they "
+                  "are flattened (default 100000; 0: unbounded, one solve per chart however "
+                  "large)")
+      ->check(intRange(0, 1000000000));
   addJsonOption(cmd, args->json);
   cmd->callback([args] { runUnwrap(*args); });
 }

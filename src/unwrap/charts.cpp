@@ -182,6 +182,70 @@ ChartSegmentation growCharts(const TriangleAdjacency& adj, double maxConeRadians
   return seg;
 }
 
+ChartSegmentation boundCharts(const Mesh& mesh, const TriangleAdjacency& adj,
+                              ChartSegmentation seg, std::uint32_t maxTriangles) {
+  const std::size_t T = seg.chartOfTriangle.size();
+  if (maxTriangles == 0) return seg;
+  std::vector<std::vector<std::uint32_t>> members(seg.count);
+  for (std::uint32_t t = 0; t < T; ++t) members[seg.chartOfTriangle[t]].push_back(t);
+  if (std::none_of(members.begin(), members.end(),
+                   [&](const auto& m) { return m.size() > maxTriangles; }))
+    return seg;
+  const auto centroid = [&](std::uint32_t t) {
+    const auto& tri = mesh.triangles[t];
+    return (Vec3d(mesh.positions[tri[0]]) + Vec3d(mesh.positions[tri[1]]) +
+            Vec3d(mesh.positions[tri[2]])) /
+           3.0;
+  };
+  // Cut the oversized charts, each part relabelled past the existing charts; a stack keeps the
+  // work depth-first without recursion.
+  std::vector<std::vector<std::uint32_t>> stack;
+  for (auto& m : members)
+    if (m.size() > maxTriangles) stack.push_back(std::move(m));
+  std::uint32_t next = seg.count;
+  std::vector<std::pair<double, std::uint32_t>> key;
+  while (!stack.empty()) {
+    std::vector<std::uint32_t> tris = std::move(stack.back());
+    stack.pop_back();
+    if (tris.size() <= maxTriangles) {
+      for (std::uint32_t t : tris) seg.chartOfTriangle[t] = next;
+      ++next;
+      continue;
+    }
+    Vec3d lo(HUGE_VAL), hi(-HUGE_VAL);
+    for (std::uint32_t t : tris) {
+      const Vec3d c = centroid(t);
+      lo = min(lo, c);
+      hi = max(hi, c);
+    }
+    const Vec3d ext = hi - lo;
+    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+    key.resize(tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i) key[i] = {centroid(tris[i])[axis], tris[i]};
+    std::sort(key.begin(), key.end());
+    const std::size_t k = (tris.size() + maxTriangles - 1) / maxTriangles;  // ≥ 2
+    const std::size_t split = std::size_t(double(tris.size()) * double(k / 2) / double(k));
+    for (int side = 1; side >= 0; --side) {  // the lower side on top of the stack
+      std::vector<std::uint32_t> part;
+      part.reserve(side == 0 ? split : tris.size() - split);
+      for (std::size_t i = side == 0 ? 0 : split; i < (side == 0 ? split : key.size()); ++i)
+        part.push_back(key[i].second);
+      auto parts = connectedComponents(adj, part);
+      for (auto it = parts.rbegin(); it != parts.rend(); ++it) stack.push_back(std::move(*it));
+    }
+  }
+  // Renumber in order of each chart's first triangle.
+  std::vector<std::uint32_t> renumber(next, kNone);
+  std::uint32_t count = 0;
+  for (std::uint32_t t = 0; t < T; ++t) {
+    std::uint32_t& r = renumber[seg.chartOfTriangle[t]];
+    if (r == kNone) r = count++;
+    seg.chartOfTriangle[t] = r;
+  }
+  seg.count = count;
+  return seg;
+}
+
 std::vector<std::vector<std::uint32_t>> connectedComponents(
     const TriangleAdjacency& adj, std::span<const std::uint32_t> triangles) {
   std::vector<std::uint32_t> sorted(triangles.begin(), triangles.end());

@@ -292,8 +292,10 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   PhasedProgress phases(progress);
   const double kGrowCost = 1.2e3, kSplitCost = 0.5e3, kMeasureCost = 0.45e3;
   const TriangleAdjacency adj = buildAdjacency(mesh);
-  const ChartSegmentation seg =
-      growCharts(adj, settings.maxConeDegrees * M_PI / 180.0, settings.minChartTriangles);
+  const ChartSegmentation seg = boundCharts(
+      mesh, adj,
+      growCharts(adj, settings.maxConeDegrees * M_PI / 180.0, settings.minChartTriangles),
+      settings.maxChartTriangles);
   std::vector<std::vector<std::uint32_t>> grown(seg.count);
   for (std::uint32_t t = 0; t < T; ++t) grown[seg.chartOfTriangle[t]].push_back(t);
 
@@ -309,7 +311,8 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
                     std::to_string(T) + " triangles, the largest chart " +
                     std::to_string(footprint.largestChart) + "); this machine has " +
                     bytesText(physicalMemoryBytes()) +
-                    " (fewer threads with -j, a smaller --max-cone, or a simplified mesh)");
+                    " (fewer threads with -j, a smaller --max-chart-triangles or --max-cone, or a "
+                    "simplified mesh)");
 
   // The plan of the rest, each phase's estimated cost: flattening (per chart, superlinear in its
   // size, the charts spread over the threads), packing, the vertex split, measuring.

@@ -91,6 +91,8 @@ TEST_F(UnwrapCli, RefusesInOneLineAndWritesNothing) {
   expectCleanFailure("unwrap builtin:sphere --resolution many -o out/x.glb", "--resolution");
   expectCleanFailure("unwrap builtin:sphere --padding 65 -o out/x.glb", "--padding");
   expectCleanFailure("unwrap builtin:sphere --max-cone 90 -o out/x.glb", "--max-cone");
+  expectCleanFailure("unwrap builtin:sphere --max-chart-triangles -1 -o out/x.glb",
+                     "--max-chart-triangles");
   expectCleanFailure("unwrap builtin:sphere -o out/x.png", "must end in .glb");
   expectCleanFailure("unwrap builtin:sphere --resolution 8 -o out/x.glb", "raise the resolution");
   // Over its own input: refused, the input untouched.
@@ -110,8 +112,9 @@ TEST_F(UnwrapCli, StatesItsMemoryFirstThenProgressUnlessQuiet) {
   const Mesh mesh = loadMesh("builtin:sphere?subdiv=4");
   const TriangleAdjacency adj = buildAdjacency(mesh);
   const UnwrapSettings s;
-  const ChartSegmentation seg =
-      growCharts(adj, s.maxConeDegrees * M_PI / 180.0, s.minChartTriangles);
+  const ChartSegmentation seg = boundCharts(
+      mesh, adj, growCharts(adj, s.maxConeDegrees * M_PI / 180.0, s.minChartTriangles),
+      s.maxChartTriangles);
   std::vector<std::size_t> sizes(seg.count, 0);
   for (std::uint32_t c : seg.chartOfTriangle) ++sizes[c];
   const UnwrapFootprint f = unwrapFootprint(mesh, sizes, 1);

@@ -440,6 +440,65 @@ TEST(Unwrap, BuiltinScenesMakeValidAtlasesWithTheirParts) {
   }
 }
 
+// Issue 31: a chart larger than the bound is cut into compact parts within it; under the bound
+// nothing changes.
+TEST(Unwrap, BoundsTheChartSizeWithCompactCharts) {
+  // A jittered flat 50 × 50 grid, 5,000 triangles: the cone grows it as one chart.
+  const Mesh m = gridMesh(
+      50, [](double u, double v) { return Vec3d(u, v, 0); }, 0.2);
+  ASSERT_EQ(m.triangleCount(), 5000u);
+  UnwrapSettings s;
+  s.maxChartTriangles = 500;
+  UnwrapFootprint f;
+  const UnwrapResult r = unwrap(m, s, {}, [&](const UnwrapFootprint& fp) { f = fp; });
+  expectValidAtlas(m, r, s);  // every triangle in a chart, no two charts' texels close
+  EXPECT_GE(r.grownCharts, 10u);
+  EXPECT_EQ(f.charts, r.grownCharts);
+  EXPECT_LE(f.largestChart, 500u) << "the footprint follows the bounded charts";
+  std::vector<std::size_t> size(r.stats.charts, 0);
+  std::vector<Vec3d> lo(r.stats.charts, Vec3d(HUGE_VAL)), hi(r.stats.charts, Vec3d(-HUGE_VAL));
+  for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+    const std::uint32_t c = r.chartOfTriangle[t];
+    ASSERT_LT(c, r.stats.charts);
+    ++size[c];
+    for (std::uint32_t v : m.triangles[t]) {
+      lo[c] = min(lo[c], Vec3d(m.positions[v]));
+      hi[c] = max(hi[c], Vec3d(m.positions[v]));
+    }
+  }
+  // Each chart within the bound, and a blob rather than a strip: growing by the cone until the
+  // bound would take the plane's rows in triangle order (every cost ties), strips of 5 × 50
+  // cells; cut across its longest extent, no part is more than 3 times longer than wide.
+  const TriangleAdjacency adj = buildAdjacency(m);
+  for (std::size_t c = 0; c < size.size(); ++c) {
+    EXPECT_LE(size[c], 500u) << "chart " << c;
+    const double w = hi[c].x - lo[c].x, h = hi[c].y - lo[c].y;
+    if (size[c] > 100) {
+      EXPECT_LE(std::max(w, h), 3 * std::min(w, h)) << "chart " << c;
+    }
+  }
+  const ChartSegmentation grown = growCharts(adj, 60 * M_PI / 180);
+  ASSERT_EQ(grown.count, 1u);
+  const ChartSegmentation bounded = boundCharts(m, adj, grown, 500);
+  std::vector<std::vector<std::uint32_t>> members(bounded.count);
+  for (std::uint32_t t = 0; t < m.triangleCount(); ++t)
+    members[bounded.chartOfTriangle[t]].push_back(t);
+  for (const auto& c : members) {
+    EXPECT_LE(c.size(), 500u);
+    EXPECT_EQ(connectedComponents(adj, c).size(), 1u);
+  }
+  // Under the bound (or unbounded) the atlas is the one unbounded growth makes.
+  UnwrapSettings unbounded;
+  unbounded.maxChartTriangles = 0;
+  const UnwrapResult a = unwrap(m, unbounded);
+  s.maxChartTriangles = 5000;
+  const UnwrapResult b = unwrap(m, s);
+  EXPECT_EQ(a.grownCharts, 1u);
+  EXPECT_EQ(a.mesh.lightmapUvs, b.mesh.lightmapUvs);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  EXPECT_EQ(a.mesh.lightmapUvs, unwrap(m).mesh.lightmapUvs) << "the default bound is above 5,000";
+}
+
 TEST(Unwrap, IsDeterministicAndIndependentOfThreads) {
   const Mesh m = bumpySphere();
   const UnwrapResult a = unwrap(m);

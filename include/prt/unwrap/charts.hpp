@@ -48,6 +48,16 @@ struct ChartSegmentation {
 ChartSegmentation growCharts(const TriangleAdjacency& adjacency, double maxConeRadians,
                              std::uint32_t minTriangles = 8);
 
+/// Bounds the charts' size (issue 31): each chart of more than `maxTriangles` triangles is cut,
+/// as the flattening cuts a chart that folds (unwrap.cpp), across the longest extent of its
+/// triangles' centroids, into k = ⌈t / maxTriangles⌉ shares (⌊k/2⌋ : ⌈k/2⌉ of them on either
+/// side, ties by triangle index), each edge-connected part of a side cut again while above the
+/// bound: compact parts of at most `maxTriangles` triangles, so that no direct solve is larger
+/// (its time grows as t^1.75). 0 bounds nothing; a segmentation within the bound is returned
+/// unchanged, else renumbered in order of each chart's first triangle. Deterministic.
+ChartSegmentation boundCharts(const Mesh& mesh, const TriangleAdjacency& adjacency,
+                              ChartSegmentation segmentation, std::uint32_t maxTriangles);
+
 /// The edge-connected components of `triangles` (adjacency restricted to the set), each in
 /// increasing triangle order, the components ordered by their first triangle.
 std::vector<std::vector<std::uint32_t>> connectedComponents(

@@ -2,7 +2,8 @@
 // prtkit's own lightmap atlas (issue 18, `prt unwrap`): no unwrapper library is packaged in
 // Debian, so the mesh is unwrapped here, in three steps, each in its own file:
 //
-//   1. charts grown by normal cone over edge-adjacent triangles (unwrap/charts.hpp);
+//   1. charts grown by normal cone over edge-adjacent triangles, those above a size cut into
+//      compact parts (unwrap/charts.hpp);
 //   2. each chart flattened by least squares conformal maps (Lévy et al. 2002,
 //      unwrap/lscm.hpp) and checked (unwrap/chart_layout.hpp): a chart whose map flips a
 //      triangle, overlaps itself or stretches more than a limit (Sander et al. 2001's L2) is
@@ -36,13 +37,19 @@ struct UnwrapSettings {
   /// A chart whose conformal map stretches more than this (Sander's L2, normalised per chart:
   /// atlas_stats.hpp) is cut like one that folds.
   double maxStretch = 1.1;
+  /// Charts the normal cone grows larger than this are cut into compact parts of at most this
+  /// many triangles before they are flattened (unwrap/charts.hpp boundCharts), as lightmappers
+  /// bound their charts: one chart's direct solve grows as t^1.75 (docs/performance.md). The
+  /// default is above the largest chart of every mesh the tests and docs unwrap but the big
+  /// planes (the dragon's 56k, a subdivided sphere's 82k). 0: unbounded.
+  std::uint32_t maxChartTriangles = 100000;
 };
 
 struct UnwrapResult {
   Mesh mesh;                                ///< the input with split vertices and lightmapUvs
   std::vector<std::uint32_t> sourceVertex;  ///< per vertex of `mesh`: the input vertex it copies
   std::vector<std::uint32_t> chartOfTriangle;
-  std::size_t grownCharts = 0;  ///< charts the normal cone grew
+  std::size_t grownCharts = 0;  ///< charts the normal cone grew, once bounded in size
   std::size_t splitCharts = 0;  ///< cuts made where a conformal map folded or stretched
   /// Packed by the charts' shapes (unwrap/atlas_packing.hpp); false: by their bounding
   /// rectangles, where the shapes' search would take too long (thousands of charts) or found
