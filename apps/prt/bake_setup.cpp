@@ -158,7 +158,8 @@ void loadBakeScene(const BakeArgs& a, const BakeRequest& request, BakeFile& file
     UnwrapSettings us;
     us.resolution = request.lightmap.resolution;
     us.padding = request.lightmap.padding;
-    UnwrapResult u = unwrap(mesh, us, progressBar("unwrap"));
+    UnwrapResult u = unwrap(mesh, us, progressBar("unwrap"),
+                            [](const UnwrapFootprint& f) { info(describe(f)); });
     std::string why;
     for (const std::string& r : prep.uvSetsRefused) why += (why.empty() ? "" : "; ") + r;
     info(

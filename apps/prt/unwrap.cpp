@@ -45,13 +45,7 @@ void runUnwrap(const UnwrapArgs& a) {
   if (!mesh.lightmapUvs.empty()) info(mesh.source + ": its lightmap UV set is replaced");
   // The footprint before the heavy work (issue 31), as the bake states its own; unwrap refuses
   // one above the machine's memory by the same policy.
-  const auto statement = [&](const UnwrapFootprint& f) {
-    info(fmt::format(
-        "unwrap: {} triangles in {} charts (the largest {} triangles): about {} of memory at "
-        "peak ({} of meshes and tables + {} for the conformal maps of the largest charts)",
-        f.triangles, f.charts, f.largestChart, bytesText(f.bytes()), bytesText(f.baseBytes),
-        bytesText(f.solveBytes)));
-  };
+  const auto statement = [](const UnwrapFootprint& f) { info(describe(f)); };
   const UnwrapResult r = unwrap(mesh, a.settings, progressBar("unwrap"), statement);
   writeMeshGlb(a.output, r.mesh);
   const AtlasStats& s = r.stats;

@@ -493,4 +493,12 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   return r;
 }
 
+std::string describe(const UnwrapFootprint& f) {
+  return "unwrap: " + std::to_string(f.triangles) + " triangles in " + std::to_string(f.charts) +
+         " charts (the largest " + std::to_string(f.largestChart) +
+         " triangles): about " + bytesText(f.bytes()) + " of memory at peak (" +
+         bytesText(f.baseBytes) + " of meshes and tables + " + bytesText(f.solveBytes) +
+         " for the conformal maps of the largest charts)";
+}
+
 }  // namespace prt
