@@ -13,6 +13,18 @@ namespace {
 
 constexpr std::uint32_t kNone = TriangleAdjacency::kNone;
 
+/// Relabels the charts (labels below `labels`) in order of each chart's first triangle.
+void renumberByFirstTriangle(ChartSegmentation& seg, std::uint32_t labels) {
+  std::vector<std::uint32_t> renumber(labels, kNone);
+  std::uint32_t next = 0;
+  for (std::uint32_t& chart : seg.chartOfTriangle) {
+    std::uint32_t& r = renumber[chart];
+    if (r == kNone) r = next++;
+    chart = r;
+  }
+  seg.count = next;
+}
+
 /// Part index of every vertex (one part for a mesh without parts).
 std::vector<std::uint32_t> partOfVertex(const Mesh& mesh) {
   std::vector<std::uint32_t> part(mesh.vertexCount(), 0);
@@ -170,20 +182,34 @@ ChartSegmentation growCharts(const TriangleAdjacency& adj, double maxConeRadians
       break;
     }
   }
-  // Renumber in order of each chart's first triangle.
-  std::vector<std::uint32_t> renumber(seg.count, kNone);
-  std::uint32_t next = 0;
-  for (std::uint32_t t = 0; t < T; ++t) {
-    std::uint32_t& r = renumber[seg.chartOfTriangle[t]];
-    if (r == kNone) r = next++;
-    seg.chartOfTriangle[t] = r;
-  }
-  seg.count = next;
+  renumberByFirstTriangle(seg, seg.count);
   return seg;
 }
 
-ChartSegmentation boundCharts(const Mesh& mesh, const TriangleAdjacency& adj,
-                              ChartSegmentation seg, std::uint32_t maxTriangles) {
+std::vector<std::uint32_t> orderAcrossLongestExtent(const Mesh& mesh,
+                                                    std::span<const std::uint32_t> triangles) {
+  std::vector<Vec3d> centroid(triangles.size());
+  Vec3d lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto& tri = mesh.triangles[triangles[i]];
+    centroid[i] = (Vec3d(mesh.positions[tri[0]]) + Vec3d(mesh.positions[tri[1]]) +
+                   Vec3d(mesh.positions[tri[2]])) /
+                  3.0;
+    lo = min(lo, centroid[i]);
+    hi = max(hi, centroid[i]);
+  }
+  const Vec3d ext = hi - lo;
+  const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+  std::vector<std::pair<double, std::uint32_t>> key(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i) key[i] = {centroid[i][axis], triangles[i]};
+  std::sort(key.begin(), key.end());
+  std::vector<std::uint32_t> order(key.size());
+  for (std::size_t i = 0; i < key.size(); ++i) order[i] = key[i].second;
+  return order;
+}
+
+ChartSegmentation boundCharts(const Mesh& mesh, const TriangleAdjacency& adj, ChartSegmentation seg,
+                              std::uint32_t maxTriangles) {
   const std::size_t T = seg.chartOfTriangle.size();
   if (maxTriangles == 0) return seg;
   std::vector<std::vector<std::uint32_t>> members(seg.count);
@@ -191,19 +217,12 @@ ChartSegmentation boundCharts(const Mesh& mesh, const TriangleAdjacency& adj,
   if (std::none_of(members.begin(), members.end(),
                    [&](const auto& m) { return m.size() > maxTriangles; }))
     return seg;
-  const auto centroid = [&](std::uint32_t t) {
-    const auto& tri = mesh.triangles[t];
-    return (Vec3d(mesh.positions[tri[0]]) + Vec3d(mesh.positions[tri[1]]) +
-            Vec3d(mesh.positions[tri[2]])) /
-           3.0;
-  };
   // Cut the oversized charts, each part relabelled past the existing charts; a stack keeps the
   // work depth-first without recursion.
   std::vector<std::vector<std::uint32_t>> stack;
   for (auto& m : members)
     if (m.size() > maxTriangles) stack.push_back(std::move(m));
   std::uint32_t next = seg.count;
-  std::vector<std::pair<double, std::uint32_t>> key;
   while (!stack.empty()) {
     std::vector<std::uint32_t> tris = std::move(stack.back());
     stack.pop_back();
@@ -212,37 +231,19 @@ ChartSegmentation boundCharts(const Mesh& mesh, const TriangleAdjacency& adj,
       ++next;
       continue;
     }
-    Vec3d lo(HUGE_VAL), hi(-HUGE_VAL);
-    for (std::uint32_t t : tris) {
-      const Vec3d c = centroid(t);
-      lo = min(lo, c);
-      hi = max(hi, c);
-    }
-    const Vec3d ext = hi - lo;
-    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
-    key.resize(tris.size());
-    for (std::size_t i = 0; i < tris.size(); ++i) key[i] = {centroid(tris[i])[axis], tris[i]};
-    std::sort(key.begin(), key.end());
+    const std::vector<std::uint32_t> order = orderAcrossLongestExtent(mesh, tris);
     const std::size_t k = (tris.size() + maxTriangles - 1) / maxTriangles;  // ≥ 2
     const std::size_t split = std::size_t(double(tris.size()) * double(k / 2) / double(k));
     for (int side = 1; side >= 0; --side) {  // the lower side on top of the stack
-      std::vector<std::uint32_t> part;
-      part.reserve(side == 0 ? split : tris.size() - split);
-      for (std::size_t i = side == 0 ? 0 : split; i < (side == 0 ? split : key.size()); ++i)
-        part.push_back(key[i].second);
+      const auto cut = order.begin() + std::ptrdiff_t(split);
+      const std::vector<std::uint32_t> part = side == 0
+                                                  ? std::vector<std::uint32_t>(order.begin(), cut)
+                                                  : std::vector<std::uint32_t>(cut, order.end());
       auto parts = connectedComponents(adj, part);
       for (auto it = parts.rbegin(); it != parts.rend(); ++it) stack.push_back(std::move(*it));
     }
   }
-  // Renumber in order of each chart's first triangle.
-  std::vector<std::uint32_t> renumber(next, kNone);
-  std::uint32_t count = 0;
-  for (std::uint32_t t = 0; t < T; ++t) {
-    std::uint32_t& r = renumber[seg.chartOfTriangle[t]];
-    if (r == kNone) r = count++;
-    seg.chartOfTriangle[t] = r;
-  }
-  seg.count = count;
+  renumberByFirstTriangle(seg, next);
   return seg;
 }
 

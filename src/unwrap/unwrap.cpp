@@ -9,8 +9,8 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/limits.hpp"
-#include "prt/core/units.hpp"
 #include "prt/core/parallel.hpp"
+#include "prt/core/units.hpp"
 #include "prt/geometry/chart_packing.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/unwrap/atlas_packing.hpp"
@@ -83,27 +83,14 @@ class Flattener {
     }
     // Cut across the longest extent of the triangles' centroids, at the median (ties by index),
     // and flatten each edge-connected part of either half.
-    std::vector<Vec3d> centroid(triangles.size());
-    Vec3d lo(HUGE_VAL), hi(-HUGE_VAL);
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-      const auto& tri = mesh_.triangles[triangles[i]];
-      centroid[i] = (Vec3d(mesh_.positions[tri[0]]) + Vec3d(mesh_.positions[tri[1]]) +
-                     Vec3d(mesh_.positions[tri[2]])) /
-                    3.0;
-      lo = min(lo, centroid[i]);
-      hi = max(hi, centroid[i]);
-    }
-    const Vec3d ext = hi - lo;
-    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
-    std::vector<std::pair<double, std::uint32_t>> key(triangles.size());
-    for (std::size_t i = 0; i < triangles.size(); ++i) key[i] = {centroid[i][axis], triangles[i]};
-    std::sort(key.begin(), key.end());
-    const std::size_t half = key.size() / 2;
+    const std::vector<std::uint32_t> order = orderAcrossLongestExtent(mesh_, triangles);
+    const std::size_t half = order.size() / 2;
     std::size_t cuts = 1;
     for (int side = 0; side < 2; ++side) {
-      std::vector<std::uint32_t> part;
-      for (std::size_t i = side == 0 ? 0 : half; i < (side == 0 ? half : key.size()); ++i)
-        part.push_back(key[i].second);
+      const auto cut = order.begin() + std::ptrdiff_t(half);
+      const std::vector<std::uint32_t> part = side == 0
+                                                  ? std::vector<std::uint32_t>(order.begin(), cut)
+                                                  : std::vector<std::uint32_t>(cut, order.end());
       for (std::vector<std::uint32_t>& c : connectedComponents(adj_, part))
         cuts += flatten(std::move(c), out);
     }
@@ -247,8 +234,8 @@ UnwrapFootprint unwrapFootprint(const Mesh& mesh, std::span<const std::size_t> c
   f.charts = chartTriangles.size();
   // Bytes per vertex of the input and of the output (whose split vertices are bounded here by
   // 1.5 V: 1.44 V on the Stanford dragon's 6,338 charts, 1.01-1.05 V on smooth meshes).
-  const std::uint64_t attributes = (mesh.normals.empty() ? 0 : 12) + (mesh.hasAlbedo() ? 12 : 0) +
-                                   (mesh.uvs.empty() ? 0 : 8);
+  const std::uint64_t attributes =
+      (mesh.normals.empty() ? 0 : 12) + (mesh.hasAlbedo() ? 12 : 0) + (mesh.uvs.empty() ? 0 : 8);
   const std::uint64_t Vout = V + V / 2;
   const std::uint64_t input = V * (12 + attributes + (mesh.lightmapUvs.empty() ? 0 : 8)) + 12 * T;
   const std::uint64_t output = Vout * (12 + attributes + 8 + 4) + (12 + 4) * T;
@@ -269,7 +256,8 @@ UnwrapFootprint unwrapFootprint(const Mesh& mesh, std::span<const std::size_t> c
   // triangle).
   constexpr double kFill = 12;
   std::vector<std::size_t> sizes(chartTriangles.begin(), chartTriangles.end());
-  const std::size_t inFlight = std::min<std::size_t>(sizes.size(), std::size_t(std::max(threads, 1)));
+  const std::size_t inFlight =
+      std::min<std::size_t>(sizes.size(), std::size_t(std::max(threads, 1)));
   std::partial_sort(sizes.begin(), sizes.begin() + std::ptrdiff_t(inFlight), sizes.end(),
                     std::greater<>());
   f.largestChart = sizes.empty() ? 0 : sizes.front();
@@ -307,10 +295,9 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
   if (onFootprint) onFootprint(footprint);
   if (!fitsInMemory(footprint.bytes()))
     throw Error(mesh.source,
-                "unwrap: needs about " + bytesText(footprint.bytes()) + " (" +
-                    std::to_string(T) + " triangles, the largest chart " +
-                    std::to_string(footprint.largestChart) + "); this machine has " +
-                    bytesText(physicalMemoryBytes()) +
+                "unwrap: needs about " + bytesText(footprint.bytes()) + " (" + std::to_string(T) +
+                    " triangles, the largest chart " + std::to_string(footprint.largestChart) +
+                    "); this machine has " + bytesText(physicalMemoryBytes()) +
                     " (fewer threads with -j, a smaller --max-chart-triangles or --max-cone, or a "
                     "simplified mesh)");
 
@@ -495,9 +482,9 @@ UnwrapResult unwrap(const Mesh& mesh, const UnwrapSettings& settings, const Prog
 
 std::string describe(const UnwrapFootprint& f) {
   return "unwrap: " + std::to_string(f.triangles) + " triangles in " + std::to_string(f.charts) +
-         " charts (the largest " + std::to_string(f.largestChart) +
-         " triangles): about " + bytesText(f.bytes()) + " of memory at peak (" +
-         bytesText(f.baseBytes) + " of meshes and tables + " + bytesText(f.solveBytes) +
+         " charts (the largest " + std::to_string(f.largestChart) + " triangles): about " +
+         bytesText(f.bytes()) + " of memory at peak (" + bytesText(f.baseBytes) +
+         " of meshes and tables + " + bytesText(f.solveBytes) +
          " for the conformal maps of the largest charts)";
 }
 

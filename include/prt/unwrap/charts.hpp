@@ -58,6 +58,13 @@ ChartSegmentation growCharts(const TriangleAdjacency& adjacency, double maxConeR
 ChartSegmentation boundCharts(const Mesh& mesh, const TriangleAdjacency& adjacency,
                               ChartSegmentation segmentation, std::uint32_t maxTriangles);
 
+/// `triangles` ordered across the longest extent of their centroids (the axis of the bounding
+/// box's longest side; ties by triangle index): the first `lower` are one side of a cut there,
+/// the rest the other. The one cut of the unwrap, where a flattened chart folds or stretches (at
+/// the median) and where boundCharts cuts an oversized one.
+std::vector<std::uint32_t> orderAcrossLongestExtent(const Mesh& mesh,
+                                                    std::span<const std::uint32_t> triangles);
+
 /// The edge-connected components of `triangles` (adjacency restricted to the set), each in
 /// increasing triangle order, the components ordered by their first triangle.
 std::vector<std::vector<std::uint32_t>> connectedComponents(
