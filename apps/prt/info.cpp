@@ -18,8 +18,8 @@
 #include "cli.hpp"
 #include "guard.hpp"
 #include "prt/core/error.hpp"
-#include "prt/core/limits.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/limits.hpp"
 #include "prt/core/units.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
@@ -126,10 +126,13 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     std::size_t partial = 0;
     for (const TexelSample& t : s.samples) partial += !t.centreInside;
     const double share = double(s.samples.size()) / double(s.texelCount());
-    j["lightmap"] = {{"width", lm.width},        {"height", lm.height},
-                     {"padding", lm.padding},    {"seamsFixed", lm.seamsFixed},
+    j["lightmap"] = {{"width", lm.width},
+                     {"height", lm.height},
+                     {"padding", lm.padding},
+                     {"seamsFixed", lm.seamsFixed},
                      {"coveredTexels", s.samples.size()},
-                     {"partialTexels", partial}, {"coverage", share}};
+                     {"partialTexels", partial},
+                     {"coverage", share}};
     out << fmt::format(
         "lightmap    {}x{} over the lightmap UVs, padding {}: {:.1f}% of the texels covered ({}; "
         "{} partly)\n",
@@ -267,11 +270,11 @@ void describeEncodings(const sh::RgbSh& radiance, const sh::RgbSh& reference,
   j["irradianceEncodingsReferenceBands"] = reference.bands;
   out << "irradiance as engines store it (error against " << against << "):\n";
   for (const Json& e : j["irradianceEncodings"])
-    out << fmt::format("  {:<17} {:>2} numbers  {:6.2f}% rel. RMS  negative for {:.1f}% of "
-                       "normals\n",
-                       e["encoding"].get<std::string>(), e["numbers"].get<int>(),
-                       100 * e["relativeRms"].get<double>(),
-                       100 * e["negativeShare"].get<double>());
+    out << fmt::format(
+        "  {:<17} {:>2} numbers  {:6.2f}% rel. RMS  negative for {:.1f}% of "
+        "normals\n",
+        e["encoding"].get<std::string>(), e["numbers"].get<int>(),
+        100 * e["relativeRms"].get<double>(), 100 * e["negativeShare"].get<double>());
 }
 
 void describeLightJson(const std::string& path, std::ostream& out, Json& j) {
@@ -287,13 +290,13 @@ void describeLightJson(const std::string& path, std::ostream& out, Json& j) {
                      lf.layout, lf.window, lf.rotationDeg[0], lf.rotationDeg[1], lf.rotationDeg[2]);
   describeSh(lf.coefficients, out);
   if (lf.irradiance) {
-    j["irradiance"] = encodedIrradianceJson(*lf.irradiance);
-    out << fmt::format("irradiance  stored as {} ({} numbers): {:.2f}% rel. RMS against {} bands, "
-                       "negative for {:.1f}% of normals\n",
-                       sh::toString(lf.irradiance->encoded.encoding),
-                       sh::storedNumbers(lf.irradiance->encoded.encoding),
-                       100 * lf.irradiance->relativeRms, lf.irradiance->referenceBands,
-                       100 * lf.irradiance->negativeShare);
+    j["irradiance"] = io::irradianceJson(*lf.irradiance);
+    out << fmt::format(
+        "irradiance  stored as {} ({} numbers): {:.2f}% rel. RMS against {} bands, "
+        "negative for {:.1f}% of normals\n",
+        sh::toString(lf.irradiance->encoded.encoding),
+        sh::storedNumbers(lf.irradiance->encoded.encoding), 100 * lf.irradiance->relativeRms,
+        lf.irradiance->referenceBands, 100 * lf.irradiance->negativeShare);
   }
   if (lf.coefficients.bands > 3)
     describeEncodings(lf.coefficients, lf.coefficients,
@@ -339,11 +342,11 @@ void describeEnvironment(const std::string& spec, std::ostream& out, Json& j) {
                          e.files[k], e.stats[k].nonFinitePixels, e.stats[k].negativePixels);
   out << "as 3-band SH:\n";
   // One projection: its first 3 bands are the 3-band light (bands are independent).
-  const sh::RgbSh sh12 = envmap::projectEnvironment(e.env, 12);
-  sh::RgbSh sh3(3);
-  std::copy(sh12.c.begin(), sh12.c.begin() + 9, sh3.c.begin());
+  const sh::RgbSh reference = envmap::projectEnvironment(e.env, sh::kIrradianceReferenceBands);
+  const sh::RgbSh sh3 = reference.truncated(3);
   describeSh(sh3, out);
-  describeEncodings(sh3, sh12, "its 12-band projection", out, j);
+  describeEncodings(sh3, reference,
+                    fmt::format("its {}-band projection", sh::kIrradianceReferenceBands), out, j);
   j["kind"] = "environment";
   j["layout"] = e.layout;
   j["images"] = imgs.size();

@@ -14,11 +14,10 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
-#include "report.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
-#include "prt/core/options.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/options.hpp"
 #include "prt/core/version.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/load.hpp"
@@ -30,6 +29,7 @@
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/encode_irradiance.hpp"
 #include "prt/sh/rotate.hpp"
+#include "report.hpp"
 
 namespace prt::cli {
 
@@ -54,10 +54,6 @@ struct LightOptions {
   std::string encoding;
   std::string json;
 };
-
-/// The bands of the reference an encoding's error is measured against: past band 11 the clamped
-/// cosine keeps < 0.1 % of a band's radiance (Λ₁₀/π = 0.0012), so irradiance has converged.
-constexpr int kEncodingReferenceBands = 12;
 
 /// The repairs that changed the light are warned (envmap::repairWarnings); --strict refuses any.
 void warnAboutPixels(const envmap::LoadedEnvironment& loaded, bool strict) {
@@ -99,8 +95,9 @@ void runLight(const LightOptions& o) {
                   "'");
     }
   }
-  const std::string wantExt =
-      engine ? io::engineLightExtension(*engine) : format == "games202" ? "txt" : "json";
+  const std::string wantExt = engine                 ? io::engineLightExtension(*engine)
+                              : format == "games202" ? "txt"
+                                                     : "json";
   // gltf-ibl writes a whole glTF asset: .gltf as well as .json.
   const bool gltfToo = engine == io::EngineLight::GltfIbl && ext == "gltf";
   if (!isStandardOutput(o.output) && ext != wantExt && !gltfToo)
@@ -139,8 +136,10 @@ void runLight(const LightOptions& o) {
   const ProgressFn progress = progressBar("prt light");
 
   envmap::LoadedEnvironment loaded;
-  sh::RgbSh f;
-  sh::RgbSh reference;  // --encoding: the unwindowed light at kEncodingReferenceBands
+  // One projection: with --encoding at sh::kIrradianceReferenceBands at least, the unwindowed
+  // reference, whose first bands are the light (the bands are independent).
+  const int projectedBands = encoding ? std::max(o.bands, sh::kIrradianceReferenceBands) : o.bands;
+  sh::RgbSh reference;
   if (compat) {
     std::error_code ec;
     if (!std::filesystem::is_directory(o.input, ec))
@@ -155,9 +154,7 @@ void runLight(const LightOptions& o) {
     info(o.input + ": 6 faces " + std::to_string(faces[0].width) + "x" +
          std::to_string(faces[0].height) +
          ", GAMES202 compatibility (gamma 2.2 decode, course face frames)");
-    f = envmap::projectGames202Faces(faces, o.bands, progress);
-    if (encoding)
-      reference = envmap::projectGames202Faces(faces, kEncodingReferenceBands, ProgressFn{});
+    reference = envmap::projectGames202Faces(faces, projectedBands, progress);
     if (!o.preview.empty()) {
       // Preview in the standard convention: course order → OpenGL order +X −X +Y −Y +Z −Z.
       loaded.env =
@@ -168,10 +165,9 @@ void runLight(const LightOptions& o) {
     warnAboutPixels(loaded, o.strict);
     info(o.input + ": " + loaded.layout + ", " + std::to_string(loaded.env.texelCount()) +
          " texels, " + std::to_string(o.bands) + " bands");
-    f = envmap::projectEnvironment(loaded.env, o.bands, progress);
-    if (encoding)
-      reference = envmap::projectEnvironment(loaded.env, kEncodingReferenceBands, ProgressFn{});
+    reference = envmap::projectEnvironment(loaded.env, projectedBands, progress);
   }
+  sh::RgbSh f = reference.truncated(o.bands);
 
   // The files actually read (a face folder's six images) are inputs too.
   std::vector<NamedPath> read;
@@ -197,10 +193,11 @@ void runLight(const LightOptions& o) {
     r.referenceBands = reference.bands;
     r.relativeRms = err.relativeRms;
     r.negativeShare = err.negativeShare;
-    info(fmt::format("irradiance as {} ({} numbers): {:.2f}% relative RMS error against {} bands, "
-                     "negative for {:.2f}% of normals",
-                     sh::toString(*encoding), sh::storedNumbers(*encoding), 100 * r.relativeRms,
-                     r.referenceBands, 100 * r.negativeShare));
+    info(
+        fmt::format("irradiance as {} ({} numbers): {:.2f}% relative RMS error against {} bands, "
+                    "negative for {:.2f}% of normals",
+                    sh::toString(*encoding), sh::storedNumbers(*encoding), 100 * r.relativeRms,
+                    r.referenceBands, 100 * r.negativeShare));
     irradiance = r;
   }
 
@@ -248,7 +245,7 @@ void runLight(const LightOptions& o) {
     report["window"] = o.window;
     report["rotationDegrees"] = rot;
     report["light"] = shLightJson(f);
-    if (irradiance) report["irradiance"] = encodedIrradianceJson(*irradiance);
+    if (irradiance) report["irradiance"] = io::irradianceJson(*irradiance);
     report.write();
   }
 }
@@ -274,14 +271,15 @@ void addLightCommand(CLI::App& root) {
   cmd->add_option("--window", opts->window, "none|hanning|lanczos|dering")->capture_default_str();
   cmd->add_option("--rotate", opts->rotate, "Rotate the light: X,Y,Z Euler degrees (R = Rz Ry Rx)");
   cmd->add_option("--compat", opts->compat, "games202: reproduce the course framework's numbers");
-  cmd->add_option("--format", opts->format,
-                  std::string(kLightFormats) +
-                      ": ours, the GAMES202 course's light.txt, a three.js LightProbe, a glTF "
-                      "asset with an EXT_lights_image_based light (irradiance and a specular cube "
-                      "prefiltered from the SH light; .gltf or .json), Filament cmgen's sh.txt as "
-                      "`cmgen -w no` writes it (windowing off; cmgen's default -w auto windows "
-                      "bands 1 and up, band 2 by 1.2-4x as the image goes), Unity SphericalHarmonicsL2 "
-                      "(docs/formats-light.md; default: by extension)");
+  cmd->add_option(
+      "--format", opts->format,
+      std::string(kLightFormats) +
+          ": ours, the GAMES202 course's light.txt, a three.js LightProbe, a glTF "
+          "asset with an EXT_lights_image_based light (irradiance and a specular cube "
+          "prefiltered from the SH light; .gltf or .json), Filament cmgen's sh.txt as "
+          "`cmgen -w no` writes it (windowing off; cmgen's default -w auto windows "
+          "bands 1 and up, band 2 by 1.2-4x as the image goes), Unity SphericalHarmonicsL2 "
+          "(docs/formats-light.md; default: by extension)");
   cmd->add_option("--preview", opts->preview,
                   "Preview image: source, SH radiance, SH irradiance/pi");
   cmd->add_option("--preview-width", opts->previewWidth, "Preview width in pixels")

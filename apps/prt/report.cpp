@@ -220,22 +220,6 @@ Json shLightJson(const sh::RgbSh& c) {
                                                : Json(nullptr)}};
 }
 
-Json encodedIrradianceJson(const io::EncodedIrradianceRecord& r) {
-  const sh::EncodedIrradiance& e = r.encoded;
-  Json j = {{"encoding", sh::toString(e.encoding)}, {"numbers", sh::storedNumbers(e.encoding)}};
-  Json rows = Json::array();
-  for (const Rgbd& x : e.sh) rows.push_back({x.x, x.y, x.z});
-  j["coefficients"] = std::move(rows);
-  if (sh::isZonal(e.encoding)) {
-    j["axis"] = {e.axis.x, e.axis.y, e.axis.z};
-    j["zonal"] = {e.zonal.x, e.zonal.y, e.zonal.z};
-  }
-  j["error"] = {{"referenceBands", r.referenceBands},
-                {"relativeRms", r.relativeRms},
-                {"negativeShare", r.negativeShare}};
-  return j;
-}
-
 Json irradianceEncodingsJson(const sh::RgbSh& radiance, const sh::RgbSh& reference) {
   Json out = Json::array();
   for (sh::IrradianceEncoding e : sh::kIrradianceEncodings) {

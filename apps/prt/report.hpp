@@ -23,7 +23,6 @@
 #include "prt/core/json.hpp"
 #include "prt/core/vec.hpp"
 #include "prt/io/bake_file.hpp"
-#include "prt/io/light_file.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/sh/sh.hpp"
 
@@ -84,8 +83,6 @@ Json cameraJson(const render::Camera& c);
 /// SH lighting: {"bands", "coefficients": [[r, g, b], …], "meanRadiance", "bandEnergy",
 /// "dominantDirection" (null below 2 bands or for a zero band 1)}.
 Json shLightJson(const sh::RgbSh& c);
-/// An encoded irradiance as a light file holds it (io/light_file.hpp's "irradiance").
-Json encodedIrradianceJson(const io::EncodedIrradianceRecord& r);
 /// Every irradiance encoding of `radiance` (sh/irradiance_encoding.hpp) and what it loses
 /// against the irradiance of `reference`: [{"encoding", "numbers", "relativeRms",
 /// "negativeShare"}], in kIrradianceEncodings' order.

@@ -30,7 +30,7 @@ struct WebOptions {
   std::string mode;               ///< initial transfer mode ("" = the richest)
   std::string material;           ///< glossy matrices' material ("" = the bake's)
   std::string toneMap = "aces";
-  /// Initial exposure in stops; nullopt: auto (render::relitExposure of the initial transfer and
+  /// Initial exposure in stops; nullopt: auto (render::relitSurvey of the initial transfer and
   /// environment, relit on the CPU through the initial camera).
   std::optional<float> exposure;
   int bands = 0;  ///< initial band count (0 = the bake's)

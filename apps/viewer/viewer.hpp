@@ -28,7 +28,7 @@ struct Options {
   int bands = 0;                   ///< 0 = all the bake has
   std::string background = "env";  ///< env | sh | none
   std::optional<float>
-      exposure;  ///< stops; nullopt: auto (render::relitExposure of the first view)
+      exposure;  ///< stops; nullopt: auto (render::relitSurvey of the first view)
   std::string toneMap = "aces";
   bool autoRotate = false;
   double spinDegreesPerSecond = 30.0;

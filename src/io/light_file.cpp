@@ -34,8 +34,7 @@ int bandsFromCount(const std::string& path, std::size_t count) {
 
 /// [x, y, z] of finite numbers, or a one-line error naming `what`.
 Vec3d finiteTriple(const nlohmann::json& v, const std::string& path, const std::string& what) {
-  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
-      !v[2].is_number())
+  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
     throw Error(path, what + " is not [x, y, z]");
   const Vec3d out(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
   if (!std::isfinite(out.x) || !std::isfinite(out.y) || !std::isfinite(out.z))
@@ -55,14 +54,14 @@ EncodedIrradianceRecord parseIrradiance(const nlohmann::json& ir, const std::str
   } catch (const Error& x) {
     throw Error(path, std::string("\"irradiance\": ") + x.what());
   }
-  const std::size_t rows = sh::storedNumbers(e.encoding) == 27 ? 9 : 4;
+  const std::size_t rows = sh::shRows(e.encoding);
   if (!ir.contains("coefficients") || !ir["coefficients"].is_array() ||
       ir["coefficients"].size() != rows)
     throw Error(path, std::string("\"irradiance\": ") + sh::toString(e.encoding) + " holds " +
                           std::to_string(rows) + " coefficient rows [r, g, b]");
   for (std::size_t i = 0; i < rows; ++i)
-    e.sh.push_back(finiteTriple(ir["coefficients"][i], path,
-                                "irradiance coefficient " + std::to_string(i)));
+    e.sh.push_back(
+        finiteTriple(ir["coefficients"][i], path, "irradiance coefficient " + std::to_string(i)));
   if (sh::isZonal(e.encoding)) {
     if (!ir.contains("axis") || !ir.contains("zonal"))
       throw Error(path, "\"irradiance\": zh3 needs \"axis\" and \"zonal\"");
@@ -85,6 +84,22 @@ EncodedIrradianceRecord parseIrradiance(const nlohmann::json& ir, const std::str
 
 }  // namespace
 
+Json irradianceJson(const EncodedIrradianceRecord& r) {
+  const sh::EncodedIrradiance& e = r.encoded;
+  Json ir = {{"encoding", sh::toString(e.encoding)}, {"numbers", sh::storedNumbers(e.encoding)}};
+  Json rows = Json::array();
+  for (const Rgbd& x : e.sh) rows.push_back({x.x, x.y, x.z});
+  ir["coefficients"] = std::move(rows);
+  if (sh::isZonal(e.encoding)) {
+    ir["axis"] = {e.axis.x, e.axis.y, e.axis.z};
+    ir["zonal"] = {e.zonal.x, e.zonal.y, e.zonal.z};
+  }
+  ir["error"] = {{"referenceBands", r.referenceBands},
+                 {"relativeRms", r.relativeRms},
+                 {"negativeShare", r.negativeShare}};
+  return ir;
+}
+
 void writeLightJson(const std::string& path, const LightFile& light) {
   const sh::RgbSh& c = light.coefficients;
   PRT_CHECK(c.c.size() == static_cast<std::size_t>(c.bands) * c.bands, "coefficient count");
@@ -98,23 +113,7 @@ void writeLightJson(const std::string& path, const LightFile& light) {
   j["window"] = light.window;
   j["rotation"] = Json::array({light.rotationDeg[0], light.rotationDeg[1], light.rotationDeg[2]});
   j["prtkit_version"] = light.prtkitVersion;
-  if (light.irradiance) {
-    const sh::EncodedIrradiance& e = light.irradiance->encoded;
-    Json ir;
-    ir["encoding"] = sh::toString(e.encoding);
-    ir["numbers"] = sh::storedNumbers(e.encoding);
-    Json sh = Json::array();
-    for (const Rgbd& x : e.sh) sh.push_back({x.x, x.y, x.z});
-    ir["coefficients"] = std::move(sh);
-    if (sh::isZonal(e.encoding)) {
-      ir["axis"] = {e.axis.x, e.axis.y, e.axis.z};
-      ir["zonal"] = {e.zonal.x, e.zonal.y, e.zonal.z};
-    }
-    ir["error"] = {{"referenceBands", light.irradiance->referenceBands},
-                   {"relativeRms", light.irradiance->relativeRms},
-                   {"negativeShare", light.irradiance->negativeShare}};
-    j["irradiance"] = std::move(ir);
-  }
+  if (light.irradiance) j["irradiance"] = irradianceJson(*light.irradiance);
   writeFileAtomically(path, formatJson(j));
 }
 

@@ -2,7 +2,6 @@
 
 #include "prt/core/error.hpp"
 #include "prt/render/base_colour.hpp"
-#include "prt/render/exposure.hpp"
 
 namespace prt::render {
 
@@ -25,8 +24,9 @@ RelitView::RelitView(const Mesh& mesh, const Occluder& occluder, const Transfer&
 RelitView::RelitView(const Mesh& mesh, const Transfer& transfer, const Material& material)
     : mesh_(mesh), occluder_(nullptr), transfer_(transfer), material_(material) {
   if (perTexel(transfer))
-    throw Error(mesh.source, "per-texel transfer is relit at its texels' sample points, which "
-                             "need the mesh's occluder");
+    throw Error(mesh.source,
+                "per-texel transfer is relit at its texels' sample points, which "
+                "need the mesh's occluder");
   relighter_ = relight::Relighter(transfer, surface());
   setMaterial(material);
 }
@@ -97,12 +97,6 @@ ShadeFn RelitView::shader() const {
 ShadeFn RelitView::shader(std::span<const Rgb> rowRadiance) const {
   PRT_CHECK(!perTexel(transfer_), "other radiance is drawn per vertex");
   return vertexRadianceShader(mesh_, rowRadiance);
-}
-
-float RelitView::autoExposure(const Camera& camera, int width, int height,
-                              image::ToneMap op) const {
-  PRT_CHECK(occluder_, "RelitView::autoExposure of a view without an occluder");
-  return render::autoExposure(*occluder_, shader(), camera, width, height, op);
 }
 
 }  // namespace prt::render

@@ -15,7 +15,7 @@ namespace prt::sh {
 
 namespace {
 
-constexpr double kY1 = 0.48860251190291992;  // √(3/4π): |Y₁ₘ| along its axis
+constexpr double kY1 = 0.48860251190291992;   // √(3/4π): |Y₁ₘ| along its axis
 constexpr double kY00 = 0.28209479177387814;  // 1/√(4π)
 
 /// Y₂₀ about an axis at cos θ = t: √(5/16π) (3t² − 1).
@@ -47,13 +47,20 @@ Vec3d luminanceAxis(const std::vector<Rgbd>& c) {
   return len > 0 ? v / len : Vec3d(0, 0, 1);
 }
 
-/// Σ_c z_c(a)², z_c(a) = Σ_m L₂ₘ,c Y₂ₘ(a): what the zonal harmonic about `a` holds of band 2
-/// (up to the constant 4π/5), summed over the channels.
-double zonalEnergy(const std::vector<Rgbd>& l, const Vec3d& a) {
+/// z(a) = Σ_m L₂ₘ Y₂ₘ(a) per channel: band 2 of `l` projected on the zonal harmonic about `a`,
+/// up to the constant √(4π/5) (the addition theorem: Y₂₀(a·ω) = √(4π/5) Σ_m Y₂ₘ(a) Y₂ₘ(ω)).
+Rgbd zonalProjection(const std::vector<Rgbd>& l, const Vec3d& a) {
   double y[9];
   eval(3, a, y);
   Rgbd z(0.0);
   for (int m = 4; m < 9; ++m) z += l[m] * y[m];
+  return z;
+}
+
+/// Σ_c z_c(a)²: what the zonal harmonic about `a` holds of band 2 (up to the constant 4π/5),
+/// summed over the channels.
+double zonalEnergy(const std::vector<Rgbd>& l, const Vec3d& a) {
+  const Rgbd z = zonalProjection(l, a);
   return dot(z, z);
 }
 
@@ -137,16 +144,18 @@ Vec3d bandOneVector(double cm1, double c0, double cp1) {
 
 EncodedIrradiance encodeIrradiance(const RgbSh& radiance, IrradianceEncoding encoding) {
   checkBands(radiance.bands);
-  // The irradiance SH of bands 0..2 (what the light lacks is zero).
+  // The radiance's bands 0..2 (what the light lacks is zero), and their irradiance SH.
+  std::vector<Rgbd> l(9, Rgbd(0.0));
   RgbSh e(3);
-  for (int i = 0; i < std::min(9, radiance.bands * radiance.bands); ++i) e.c[i] = radiance.c[i];
+  for (int i = 0; i < std::min(9, radiance.bands * radiance.bands); ++i) {
+    l[i] = Rgbd(radiance.c[i]);
+    e.c[i] = radiance.c[i];
+  }
   convolveZonal(e, clampedCosineKernel(3));
   EncodedIrradiance out;
   out.encoding = encoding;
-  const bool keepsBandTwo =
-      encoding == IrradianceEncoding::L2 || encoding == IrradianceEncoding::L2Deringed;
   if (encoding == IrradianceEncoding::L2Deringed) dering(e);
-  out.sh.resize(keepsBandTwo ? 9 : 4);
+  out.sh.resize(shRows(encoding));
   for (std::size_t i = 0; i < out.sh.size(); ++i) out.sh[i] = Rgbd(e.c[i]);
   if (encoding == IrradianceEncoding::L1Windowed) {
     // E(n) = E₀ + d·n has its minimum E₀ − |d| at n = −d̂: scaling band 1 by min(1, E₀/|d|)
@@ -158,21 +167,13 @@ EncodedIrradiance encodeIrradiance(const RgbSh& radiance, IrradianceEncoding enc
     }
   }
   if (isZonal(encoding)) {
-    // The radiance's bands 0..2 (the zonal coefficient is made from them, then convolved).
-    std::vector<Rgbd> l(9, Rgbd(0.0));
-    for (int i = 0; i < std::min(9, radiance.bands * radiance.bands); ++i)
-      l[i] = Rgbd(radiance.c[i]);
+    // The zonal coefficient is made from the radiance's bands, then convolved.
     out.axis = encoding == IrradianceEncoding::ZH3Optimal ? bestZonalAxis(l) : luminanceAxis(l);
     const double lambda2 = clampedCosineKernel(3)[2];
     if (encoding != IrradianceEncoding::ZH3Hallucinated) {
-      // The projection of band 2 on the zonal harmonic about the axis, Y₂₀(a·ω) =
-      // √(4π/5) Σ_m Y₂ₘ(a) Y₂ₘ(ω) (the addition theorem): z = √(4π/5) Σ_m L₂ₘ Y₂ₘ(a), the
-      // best one number along a fixed axis can hold of band 2 (least squares).
-      double y[9];
-      eval(3, out.axis, y);
-      Rgbd z(0.0);
-      for (int m = 4; m < 9; ++m) z += l[m] * y[m];
-      out.zonal = z * (std::sqrt(4 * kPi / 5) * lambda2);
+      // The projection of band 2 on the zonal harmonic about the axis, z = √(4π/5) Σ_m L₂ₘ
+      // Y₂ₘ(a): the best one number along a fixed axis can hold of band 2 (least squares).
+      out.zonal = zonalProjection(l, out.axis) * (std::sqrt(4 * kPi / 5) * lambda2);
     } else {
       // Roughton et al. 2024's fit from band 1 alone: r = |L₁·a| / L₀ per channel,
       // z = L₀ (0.08 r + 0.6 r²) (their SHHallucinateZH3Irradiance, RGB form).
@@ -194,7 +195,7 @@ Rgbd evaluate(const EncodedIrradiance& e, const Vec3d& n) {
       out[ch] = geomerics(e.sh[0][ch] * kY00, kY1 * channelBandOne(e.sh, ch), n);
     return out;
   }
-  const int bands = e.sh.size() == 9 ? 3 : 2;
+  const int bands = shRows(e.encoding) == 9 ? 3 : 2;
   double y[9];
   eval(bands, n, y);
   Rgbd out(0.0);

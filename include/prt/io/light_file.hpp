@@ -18,6 +18,7 @@
 #include <string>
 #include <string_view>
 
+#include "prt/core/json.hpp"
 #include "prt/sh/irradiance_encoding.hpp"
 #include "prt/sh/sh.hpp"
 
@@ -43,6 +44,8 @@ struct LightFile {
 };
 
 void writeLightJson(const std::string& path, const LightFile& light);
+/// The "irradiance" member as a light file holds it (and prt light and prt info report it).
+Json irradianceJson(const EncodedIrradianceRecord& record);
 LightFile readLightJson(const std::string& path);
 /// The same from text in memory; `name` is used in messages.
 LightFile parseLightJson(std::string_view text, const std::string& name);

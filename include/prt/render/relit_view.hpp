@@ -2,7 +2,7 @@
 // A bake as a picture shows it, on the CPU: its transfer over the mesh with a material, relit
 // under an SH light rotated at will and seen from an eye, and how each pixel is shaded from the
 // rows — the one dispatch point for the domain and the base-colour texture that prt render,
-// auto exposure (relitExposure: the viewers' and the page's first exposure) and the bake
+// auto exposure (relitSurvey: the viewers' and the page's first exposure) and the bake
 // fuzzer draw through:
 //
 //   per vertex   rows relit at the vertices, blended with the hit's barycentrics
@@ -38,7 +38,7 @@ class RelitView {
             const Material& material);
   /// A view with no occluder, for a rasteriser that only needs the rows relit (the desktop
   /// viewer's CPU path): per-vertex transfer only (throws prt::Error for per-texel), and no
-  /// shader() or autoExposure().
+  /// shader().
   RelitView(const Mesh& mesh, const Transfer& transfer, const Material& material);
 
   /// Cuts the transfer to `bands` (1..its bands) for the relights that follow.
@@ -78,9 +78,6 @@ class RelitView {
   /// The pixels of other radiance at the rows (a reference's, drawn as PRT's would be; per
   /// vertex, untextured: it holds the texture already).
   ShadeFn shader(std::span<const Rgb> rowRadiance) const;
-  /// image::autoExposure of the last relight's pixels of the mesh (render/exposure.hpp), for an
-  /// image of `width` × `height` through `camera` tone-mapped with `op`.
-  float autoExposure(const Camera& camera, int width, int height, image::ToneMap op) const;
 
  private:
   const Mesh& mesh_;

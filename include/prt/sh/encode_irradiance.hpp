@@ -10,6 +10,11 @@
 
 namespace prt::sh {
 
+/// The bands of the reference an encoding's error is measured against (prt light --encoding,
+/// prt info): past band 11 the clamped cosine keeps < 0.1 % of a band's radiance
+/// (Λ₁₀/π = 0.0012), so irradiance has converged.
+inline constexpr int kIrradianceReferenceBands = 12;
+
 /// Encodes the irradiance of `radiance` (any band count ≥ 1; bands it lacks count as zero).
 EncodedIrradiance encodeIrradiance(const RgbSh& radiance, IrradianceEncoding encoding);
 

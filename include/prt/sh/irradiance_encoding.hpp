@@ -66,15 +66,19 @@ constexpr bool isZonal(IrradianceEncoding e) {
 const char* toString(IrradianceEncoding e);
 /// Parses a name above; throws prt::Error("encoding must be l1, l1-windowed, ..., got 'X'").
 IrradianceEncoding parseIrradianceEncoding(const std::string& name);
+/// Rows of irradiance SH kept ([r, g, b] each): 9 for l2 and l2-deringed, 4 for the others.
+constexpr int shRows(IrradianceEncoding e) {
+  return e == IrradianceEncoding::L2 || e == IrradianceEncoding::L2Deringed ? 9 : 4;
+}
 /// Numbers stored for RGB: 27, 17, 15 or 12.
 int storedNumbers(IrradianceEncoding e);
 
 /// An encoded irradiance. `sh` holds irradiance SH (E_lm = Λ_l L_lm, the project's basis and
-/// order): 9 coefficients for l2 and l2-deringed, 4 for the others (windowed ones already windowed).
-/// For the zh3 forms, `axis` is the zonal axis (the luminance's band-1 direction, +Z when that is
-/// zero; for zh3-optimal the best axis) and `zonal` each channel's coefficient of the zonal harmonic Y₂₀(axis·n)
-/// in the irradiance (Λ₂ times the radiance's; stored for zh3, derived from band 1 for
-/// zh3-hallucinated, where an engine derives it the same way).
+/// order): 9 coefficients for l2 and l2-deringed, 4 for the others (windowed ones already
+/// windowed). For the zh3 forms, `axis` is the zonal axis (the luminance's band-1 direction, +Z
+/// when that is zero; for zh3-optimal the best axis) and `zonal` each channel's coefficient of the
+/// zonal harmonic Y₂₀(axis·n) in the irradiance (Λ₂ times the radiance's; stored for zh3, derived
+/// from band 1 for zh3-hallucinated, where an engine derives it the same way).
 struct EncodedIrradiance {
   IrradianceEncoding encoding = IrradianceEncoding::L2;
   std::vector<Rgbd> sh;
