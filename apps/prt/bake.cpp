@@ -59,6 +59,8 @@ RankOptions rankOptions(const BakeArgs& a) {
   return o;
 }
 
+}  // namespace
+
 void runBake(const BakeArgs& a) {
   if (a.pass >= 0) {
     runPassBake(a);
@@ -159,8 +161,6 @@ void runBake(const BakeArgs& a) {
   });
 }
 
-}  // namespace
-
 void addBakeCommand(CLI::App& root) {
   auto args = std::make_shared<BakeArgs>();
   auto* cmd = root.add_subcommand(
@@ -202,7 +202,7 @@ void addBakeCommand(CLI::App& root) {
                   "Bake only vertices (texels) FIRST:END (split bakes; merge later)");
   cmd->add_option("--domain", args->domain,
                   "vertices (transfer per vertex) | texels (per texel of a lightmap over the "
-                  "mesh's lightmap UVs)")
+                  "mesh's lightmap UVs) | probes (a grid in space: prt probes)")
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution,
                   "--domain texels: the lightmap's side in texels (default 512)")
@@ -217,6 +217,11 @@ void addBakeCommand(CLI::App& root) {
   cmd->add_flag("--seam-fix", args->seamFix,
                 "--domain texels: the least-squares seam fix (Sylvan 2015): texels on the two "
                 "sides of a UV seam agree under bilinear filtering");
+  cmd->add_option("--grid", args->grid,
+                  "--domain probes: auto | NXxNYxNZ probes per axis (prt probes --help)");
+  cmd->add_option("--bounds", args->bounds,
+                  "--domain probes: x0,y0,z0:x1,y1,z1, the box the grid fills (default: the "
+                  "scene's bounds)");
   cmd->add_option("-o,--output", args->output,
                   "Output bake file (.glb); with --pass K before the last, a pass file "
                   "(.prtpass)")

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -95,6 +96,34 @@ RowRange parseRange(const std::string& s, std::size_t rows, const char* what = "
   return {first, end - first};
 }
 
+/// --grid: "auto", or NXxNYxNZ probes per axis (1..kMaxProbeSide each).
+std::array<int, 3> parseGrid(const std::string& s) {
+  if (s.empty() || s == "auto") return {0, 0, 0};
+  std::array<int, 3> n{};
+  char x1, x2, tail;
+  if (std::sscanf(s.c_str(), "%d%c%d%c%d%c", &n[0], &x1, &n[1], &x2, &n[2], &tail) != 5 ||
+      (x1 != 'x' && x1 != 'X') || (x2 != 'x' && x2 != 'X'))
+    throw Error("--grid '" + s + "': expected auto or NXxNYxNZ probes per axis, e.g. 16x8x16");
+  for (int v : n)
+    if (v < 1 || v > kMaxProbeSide)
+      throw Error(fmt::format("--grid {}: each count must lie in 1..{}", s, kMaxProbeSide));
+  return n;
+}
+
+/// --bounds: "x0,y0,z0:x1,y1,z1", the low and high corners of the box the probes fill.
+std::pair<Vec3f, Vec3f> parseBounds(const std::string& s) {
+  Vec3f lo, hi;
+  char colon, tail;
+  if (std::sscanf(s.c_str(), "%f,%f,%f%c%f,%f,%f%c", &lo.x, &lo.y, &lo.z, &colon, &hi.x, &hi.y,
+                  &hi.z, &tail) != 7 ||
+      colon != ':')
+    throw Error("--bounds '" + s + "': expected x0,y0,z0:x1,y1,z1 (the box's low and high corners)");
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || lo[a] > hi[a])
+      throw Error("--bounds " + s + ": the corners must be finite, low <= high on every axis");
+  return {lo, hi};
+}
+
 /// A mesh argument that is a mode's name ("--mode shadowed unshadowed bunny.obj" took
 /// "unshadowed" as a mesh): say how several modes are given.
 void refuseModesAsInputs(const BakeArgs& a) {
@@ -141,6 +170,12 @@ BakeRequest requestOf(const BakeArgs& a) {
         "--resolution, --uv, --padding and --seam-fix shape a lightmap: add --domain texels");
   }
   r.lightmap.seamFix = a.seamFix;
+  if (r.domain == TransferDomain::Probes) {
+    r.probes.count = parseGrid(a.grid);
+    if (!a.bounds.empty()) r.probes.bounds = parseBounds(a.bounds);
+  } else if (!a.grid.empty() || !a.bounds.empty()) {
+    throw Error("--grid and --bounds place probes: use prt probes (or --domain probes)");
+  }
   checkBakeRequest(r, OptionSpelling::Cli);  // again with the rows, once they are known
   refuseModesAsInputs(a);
   return r;

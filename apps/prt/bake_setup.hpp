@@ -34,6 +34,9 @@ struct BakeArgs {
   std::string uv;        ///< "": not given (auto)
   int padding = -1;      ///< −1: not given (the request's default)
   bool seamFix = false;  ///< --seam-fix
+  // Probes (prt probes, --domain probes): the grid and the box it fills.
+  std::string grid;    ///< "auto" or NXxNYxNZ; "": not given (auto)
+  std::string bounds;  ///< "x0,y0,z0:x1,y1,z1"; "": the scene's bounds
   // Distributed and split bakes (docs/distributed.md).
   std::string checkpoint;  ///< MPI: folder of finished chunks
   std::size_t chunk = 0;   ///< MPI: rows per chunk (0: the default)
@@ -42,6 +45,9 @@ struct BakeArgs {
   std::string previous;    ///< the merged pass file of pass K − 1
   std::string json;        ///< --json: the report
 };
+
+/// Runs prt bake with these options (bake.cpp): prt probes is prt bake over a probe grid.
+void runBake(const BakeArgs& a);
 
 /// The options as a request (its rows still the whole domain), checked before anything is
 /// loaded: one line naming the option on the first problem.

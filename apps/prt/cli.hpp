@@ -38,6 +38,7 @@ void warn(const std::string& line);
 // The verbs.
 void addLightCommand(CLI::App& root);
 void addBakeCommand(CLI::App& root);
+void addProbesCommand(CLI::App& root);
 void addExportCommand(CLI::App& root);
 void addInfoCommand(CLI::App& root);
 void addRenderCommand(CLI::App& root);

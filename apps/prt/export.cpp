@@ -75,6 +75,7 @@ void runExportTextures(const ExportArgs& a) {
   Report report = exportReport(a, true);
   const BakeFile bake = readBake(a.input);
   bake.requireComplete(a.input);
+  bake.requireSurface(a.input, "coefficient textures lay out a surface's transfer");
   const BakedTransfer& t = exportedTransfer(bake, a);
   const io::CoefficientTextures tex =
       io::encodeCoefficientTextures(t, bake.mesh, encoding, a.input);

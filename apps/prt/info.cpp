@@ -17,6 +17,7 @@
 
 #include "cli.hpp"
 #include "guard.hpp"
+#include "info_domain.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
@@ -119,60 +120,9 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
   out << '\n';
   out << attributesLine(m);
   const RowRange rows = b.rows();
-  if (b.domain() == TransferDomain::Texels) {
-    const TransferShape::LightmapSize lm = b.lightmap();
-    // Where the texels were sampled, counted again from the UVs the bake is over.
-    const TexelSamples s = sampleTexels(m, m.lightmapUvs, lm.width, lm.height);
-    std::size_t partial = 0;
-    for (const TexelSample& t : s.samples) partial += !t.centreInside;
-    const double share = double(s.samples.size()) / double(s.texelCount());
-    j["lightmap"] = {{"width", lm.width},
-                     {"height", lm.height},
-                     {"padding", lm.padding},
-                     {"seamsFixed", lm.seamsFixed},
-                     {"coveredTexels", s.samples.size()},
-                     {"partialTexels", partial},
-                     {"coverage", share}};
-    out << fmt::format(
-        "lightmap    {}x{} over the lightmap UVs, padding {}: {:.1f}% of the texels covered ({}; "
-        "{} partly)\n",
-        lm.width, lm.height, lm.padding, 100.0 * share, s.samples.size(), partial);
-    // The seams of the richest vector transfer (render/lightmap_seams.hpp).
-    for (std::size_t i : transferPreference(b)) {
-      const Transfer& x = b.transfers[i].transfer;
-      if (x.isMatrix() || !b.complete()) continue;
-      // Under a white sky (the transfer's mean) and under the builtin sky's sun (the shadow
-      // edges, where seams show most).
-      Json under = Json::array();
-      std::vector<render::SeamStats> each;
-      for (const render::SeamLight& l : render::seamLights(x.bands())) {
-        each.push_back(render::measureSeams(m, x, l.light));
-        under.push_back({{"light", l.name},
-                         {"mismatch", each.back().mismatch},
-                         {"maxMismatch", each.back().maxMismatch}});
-      }
-      const render::SeamStats& seams = each.front();
-      j["lightmap"]["seams"] = {{"transfer", b.transfers[i].describe()},
-                                {"edges", seams.edges},
-                                {"length", seams.length},
-                                {"mismatch", seams.mismatch},
-                                {"maxMismatch", seams.maxMismatch},
-                                {"under", std::move(under)}};
-      if (seams.edges == 0)
-        out << "seams       none (no smooth edge is cut between charts)\n";
-      else
-        out << fmt::format(
-            "seams       {} edges ({:.4g} long): bilinear mismatch across them {:.2f}% of the "
-            "white-sky radiance there (max {:.2f}%), {:.2f}% under the builtin sky's sun (max "
-            "{:.2f}%), {}{}\n",
-            seams.edges, seams.length, 100 * seams.mismatch, 100 * seams.maxMismatch,
-            100 * each[1].mismatch, 100 * each[1].maxMismatch, b.transfers[i].describe(),
-            lm.seamsFixed ? ", after the seam fix" : " (prt bake --seam-fix closes them)");
-      break;
-    }
-  }
-  out << fmt::format("range       {}s {}..{} ({})\n", per, rows.first, rows.end() - 1,
-                     b.complete() ? "complete" : "partial: merge before use");
+  describeBakeDomain(b, out, j);
+  out << fmt::format("range       {} {}..{} ({})\n", toString(b.domain()), rows.first,
+                     rows.end() - 1, b.complete() ? "complete" : "partial: merge before use");
   out << fmt::format("transfers   {}\n", b.transfers.size());
   for (const auto& t : b.transfers) {
     const BakeRecipe& s = t.recipe;
@@ -181,9 +131,12 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     const std::size_t dense = x.stride() * sizeof(float);
     if (x.isMatrix())
       out << fmt::format(
-          "  {}: matrix (glossy), {} bands ({}x{} per {}) x {} channel(s), {} per {}, {}\n",
-          toString(s.mode), x.bands(), x.coeffs(), x.coeffs(), per, x.channels(), bytesText(dense),
-          per, transferStorage(t));
+          "  {}: matrix ({}), {} bands ({}x{} per {}) x {} channel(s), {} per {}, {}\n",
+          toString(s.mode),
+          x.domain() == TransferDomain::Probes ? "the light arriving from every direction"
+                                               : "glossy",
+          x.bands(), x.coeffs(), x.coeffs(), per, x.channels(), bytesText(dense), per,
+          transferStorage(t));
     else
       out << fmt::format(
           "  {}: vector (diffuse), {} bands ({} coefficients) x {} channel(s), {} per {}, {}\n",
@@ -201,9 +154,13 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
           c.stats.relativeRms, c.stats.snrDb, c.stats.squaredError, c.stats.maxRowError,
           c.stats.iterations, c.stats.seconds);
     }
-    out << fmt::format("    material {}{}\n", s.material.spec(),
-                       s.glossyBounces(x.layout()) ? " (the bounces follow its lobe)" : "");
-    out << fmt::format("      ({})\n", describe(s.material.lobe));
+    if (x.domain() == TransferDomain::Probes) {
+      out << "    surfaces bounce diffusely (their albedo)\n";
+    } else {
+      out << fmt::format("    material {}{}\n", s.material.spec(),
+                         s.glossyBounces(x.layout()) ? " (the bounces follow its lobe)" : "");
+      out << fmt::format("      ({})\n", describe(s.material.lobe));
+    }
     out << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples, s.bounces,
                        s.seed, toString(s.sampling));
     if (s.material.diffuse)

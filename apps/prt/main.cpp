@@ -160,6 +160,7 @@ int main(int argc, char** argv) {
 
   addLightCommand(app);
   addBakeCommand(app);
+  addProbesCommand(app);
   addExportCommand(app);
   addInfoCommand(app);
   addRenderCommand(app);

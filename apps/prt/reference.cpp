@@ -76,6 +76,7 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   }
 
   const BakeFile file = readBake(a.bake);
+  file.requireSurface(a.bake, "prt reference integrates the light a surface sends");
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   const char* row = rowName(bt.transfer.domain());
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);

@@ -31,6 +31,7 @@
 #include "prt/render/relit_view.hpp"
 #include "prt/render/render.hpp"
 #include "reference_input.hpp"
+#include "render_probes.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
 
@@ -57,6 +58,9 @@ struct RenderOptions {
   std::string output;
   std::string json;
   std::string reference;  ///< --reference FILE: draw prt reference's radiance instead of PRT's
+  // A probe bake (render_probes.hpp): the object placed in its grid.
+  std::string object, at;
+  float objectSize = 0;
 };
 
 void checkOutput(const std::string& path, const char* what) {
@@ -112,6 +116,24 @@ void run(const RenderOptions& o) {
 
   const BakeFile bake = readBake(o.bake);
   bake.requireComplete(o.bake);
+  if (bake.domain() == TransferDomain::Probes) {
+    // The scene and an object lit through the probes (render_probes.cpp): one light, one frame.
+    if (o.turntable > 0 || !o.reference.empty() || !o.material.empty())
+      throw Error(o.bake, "holds a probe grid: --turntable, --reference and --material draw a "
+                          "surface's transfer (render the probes with --object, --at)");
+    ProbeRenderArgs p{o.bake, o.light, o.camera, o.output, o.object, o.at, o.objectSize, o.bands,
+                      frame, userRotation, bgKind, bgColour, write, exposure};
+    renderProbeBake(bake, p, report);
+    if (report.wanted()) {
+      report.input(o.bake);
+      report.input(o.light);
+      report.write();
+    }
+    return;
+  }
+  if (!o.object.empty() || !o.at.empty())
+    throw Error(o.bake, "--object and --at place an object in a probe grid (prt probes); this "
+                        "bake holds a surface's transfer");
   const BakedTransfer& baked = pickTransfer(bake, o.transfer, o.bake);
   // The material: --material, else the one the bake stored.
   const Material material =
@@ -292,6 +314,14 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--reference", opts->reference,
                   "Draw the brute-force radiance of prt reference's .json (every vertex, this "
                   "bake, light and --rotate) instead of PRT's, to set the two side by side");
+  cmd->add_option("--object", opts->object,
+                  "A probe bake (prt probes): a mesh file or builtin:NAME placed in the grid, lit "
+                  "through the probes with the scene");
+  cmd->add_option("--at", opts->at,
+                  "With --object: where its centre goes, x,y,z (default: the grid's centre)");
+  cmd->add_option("--object-size", opts->objectSize,
+                  "With --object: its largest side (default: a fifth of the grid's)")
+      ->check(CLI::PositiveNumber);
   addJsonOption(cmd, opts->json);
   cmd->callback([opts] { run(*opts); });
 }

@@ -90,6 +90,7 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
                     "validating its diffuse part (the reference drops the lobe, and its bounces "
                     "are diffuse too)");
   file.requireComplete(a.bake);
+  file.requireSurface(a.bake, "prt validate checks a surface's transfer");
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.transfer.bands());

@@ -190,6 +190,7 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
                                     double(size) / 1e6, double(kMaxPageBakeBytes) / 1e6));
   std::vector<unsigned char> glb = readFileBytes(a.bake, kMaxPageBakeBytes, "the page's limit");
   bake = decodeBake(glb, a.bake);
+  bake.requireSurface(a.bake, "prt web draws a surface's transfer");
   for (const BakedTransfer& t : bake.transfers) {
     if (t.transfer.isMatrix() && !t.transfer.compressed())
       throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices; the browser "

@@ -70,6 +70,7 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
+  bake.requireSurface(path, "prt view draws a surface's transfer");
   for (const BakedTransfer& t : bake.transfers) {
     // Some path draws it (per-texel matrices only compressed), else refused naming the file.
     try {

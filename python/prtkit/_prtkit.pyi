@@ -77,6 +77,8 @@ class Transfer:
     @property
     def lightmap(self) -> Optional[Dict[str, int]]: ...
     @property
+    def probe_grid(self) -> Optional[Dict[str, Tuple[float, float, float]]]: ...
+    @property
     def bands(self) -> int: ...
     @property
     def channels(self) -> int: ...
@@ -223,6 +225,23 @@ def relight(transfer: TransferLike, light: Union[npt.ArrayLike, PathLike],
             mesh: Optional[MeshLike] = None, eye: Optional[npt.ArrayLike] = None,
             material: Optional[str] = None) -> npt.NDArray[np.float32]:
     """Exit radiance (N, 3) per row: vectors, matrices seen from `eye`, CPCA."""
+
+def bake_probes(mesh: MeshLike, grid: Union[str, Tuple[int, int, int]] = "auto",
+                bounds: Optional[npt.ArrayLike] = None, mode: str = "interreflected",
+                bands: int = 3, samples: int = 1024, seed: int = 0, bounces: int = 1,
+                albedo: Optional[npt.ArrayLike] = None,
+                range: Union[None, Tuple[int, int], range] = None,
+                progress: Progress = None) -> Transfer:
+    """Relightable probes (prt probes): a B² x B² matrix per probe of a grid in the scene."""
+
+def relight_probes(transfer: TransferLike, light: npt.ArrayLike,
+                   rotation: Rotation = None) -> npt.NDArray[np.float32]:
+    """The SH of the light arriving at every probe: (nz, ny, nx, B², 3)."""
+
+def shade_probes(transfer: TransferLike, light: npt.ArrayLike, points: npt.ArrayLike,
+                 normals: npt.ArrayLike,
+                 albedo: Optional[npt.ArrayLike] = None) -> npt.NDArray[np.float32]:
+    """Diffuse exit radiance (N, 3) of points with normals lit through the probe grid."""
 
 def frame_mesh(mesh: MeshLike, width: int = 640, height: int = 480) -> Camera: ...
 def render(mesh: MeshLike, radiance: npt.ArrayLike, camera: Union[None, Camera, str] = None,

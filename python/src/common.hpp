@@ -159,5 +159,6 @@ void bindTransfer(py::module_& m);  // transfer.cpp: Transfer, bake, compress
 void bindLight(py::module_& m);     // light.cpp: Environment, projection, SH operations
 void bindRelight(py::module_& m);   // relight.cpp: relight, render, reference, validate
 void bindFiles(py::module_& m);     // files.cpp: bake files, light files, course formats, images
+void bindProbes(py::module_& m);    // probes.cpp: bake_probes, relight_probes, shade_probes
 
 }  // namespace prtpy

@@ -27,6 +27,7 @@ PYBIND11_MODULE(_prtkit, m) {
   prtpy::bindLight(m);
   prtpy::bindRelight(m);
   prtpy::bindFiles(m);
+  prtpy::bindProbes(m);
 
   m.def(
       "set_threads",

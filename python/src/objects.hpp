@@ -50,6 +50,10 @@ struct PyTransfer {
 };
 using TransferPtr = std::shared_ptr<PyTransfer>;
 
+/// `range` ((first, end) or range(first, end); None: all) as rows of a domain of `rows` rows
+/// named `what` ("vertex", "texel", "probe"); ValueError outside it.
+prt::RowRange rowRange(py::handle range, std::size_t rows, const char* what = "vertex");
+
 /// A prtkit.Transfer, or a numpy array of dense rows read in place (float32, C-contiguous,
 /// shape (N, B²), (N, B², 3), (N, B², B²) or (N, B², B², 3); finite). `what` names it.
 TransferPtr toTransfer(py::handle obj, const char* what = "transfer");

@@ -51,6 +51,10 @@ py::array relightFn(py::handle transferObj, py::handle lightObj, py::handle albe
   const TransferPtr t = toTransfer(transferObj);
   const prt::Transfer& tr = t->transfer;
   const MeshPtr mesh = meshObj.is_none() ? nullptr : toMesh(meshObj);
+  if (tr.domain() == prt::TransferDomain::Probes)
+    throw py::value_error(
+        "the transfer is a probe grid (the light arriving at points in space): relight it with "
+        "relight_probes, or shade an object in it with shade_probes");
   prt::sh::RgbSh light;
   if (isPath(lightObj)) {
     // An environment projected to the transfer's bands, or a light file: prt render's rules.
@@ -319,8 +323,8 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
   vs.floorVertices = floorVertices;
   vs.window = asValueError([&] { return prt::sh::parseWindow(window); });
   vs.bakeName = "transfer";
-  // Per texel: the texels' sample points (a subset of the valid ones is validated).
-  vs.reference.points = prt::render::transferRowPoints(mm, mesh->occluder(), tr);
+  // Per texel: a subset of the valid texels is validated, at their sample points (placed by
+  // validate itself, as for prt validate).
   prt::render::ValidationReport rep =
       runLong("validating", progress, [&](const prt::ProgressFn& fn) {
         const prt::sh::RgbSh light = prt::envmap::projectEnvironment(env->env, tr.bands());

@@ -107,7 +107,9 @@ std::optional<prt::BakeRecipe> recipeOf(py::handle mode, py::handle samples, py:
   return r;
 }
 
-prt::RowRange rowRange(py::handle range, std::size_t vertices, const char* what = "vertex") {
+}  // namespace
+
+prt::RowRange rowRange(py::handle range, std::size_t vertices, const char* what) {
   if (range.is_none()) return {0, vertices};
   long long first = 0, end = 0;
   if (py::isinstance(range, py::module_::import("builtins").attr("range"))) {
@@ -126,6 +128,8 @@ prt::RowRange rowRange(py::handle range, std::size_t vertices, const char* what 
                           " (the " + what + " count)");
   return {static_cast<std::size_t>(first), static_cast<std::size_t>(end - first)};
 }
+
+namespace {
 
 /// The request `prt bake` would make of the same options (bake_setup.cpp), checked before any
 /// work by the library's one check, with Python's spelling: ValueError on a bad argument.
@@ -366,6 +370,19 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
           "domain 'texels': {'width', 'height', 'padding', 'seams_fixed'} of the lightmap (rows "
           "y*width + x); "
           "None per vertex.")
+      .def_property_readonly(
+          "probe_grid",
+          [](const PyTransfer& t) -> py::object {
+            if (t.transfer.domain() != prt::TransferDomain::Probes) return py::none();
+            const prt::ProbeGrid& g = t.transfer.shape().probes;
+            py::dict d;
+            d["count"] = py::make_tuple(g.count[0], g.count[1], g.count[2]);
+            d["origin"] = py::make_tuple(g.origin.x, g.origin.y, g.origin.z);
+            d["spacing"] = py::make_tuple(g.spacing.x, g.spacing.y, g.spacing.z);
+            return py::object(std::move(d));
+          },
+          "domain 'probes': {'count': (nx, ny, nz), 'origin', 'spacing'} of the grid (probe "
+          "(x, y, z) at origin + (x, y, z) * spacing, row x + nx*(y + ny*z)); None otherwise.")
       .def_property_readonly("bands", [](const PyTransfer& t) { return t.transfer.bands(); })
       .def_property_readonly(
           "channels", [](const PyTransfer& t) { return t.transfer.channels(); },

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <memory>
 #include <sstream>
 
@@ -26,6 +27,23 @@ namespace prt {
 namespace {
 
 using nlohmann::json;
+
+/// "lightmap (N texels)", "grid (N probes)", "mesh (N vertices)": where a range must lie.
+std::string domainExtent(TransferDomain domain, std::size_t rows) {
+  switch (domain) {
+    case TransferDomain::Texels:
+      return "lightmap (" + std::to_string(rows) + " texels)";
+    case TransferDomain::Probes:
+      return "grid (" + std::to_string(rows) + " probes)";
+    case TransferDomain::Vertices:
+      break;
+  }
+  return "mesh (" + std::to_string(rows) + " vertices)";
+}
+
+json vec3Json(const Vec3f& v) {
+  return json::array({v.x, v.y, v.z});
+}
 
 std::string upper(TransferMode mode) {
   std::string m = toString(mode);
@@ -49,11 +67,10 @@ void checkTransfersForWriting(const BakeFile& bake) {
     if (bake.mesh.lightmapUvs.size() != bake.mesh.vertexCount())
       throw Error("bake file: per-texel transfer needs the mesh's lightmap UVs (it has none)");
   }
+  if (domain == TransferDomain::Probes) checkProbeGrid(bake.probeGrid(), "bake file");
   if (rows.count == 0 || rows.end() > n)
     throw Error("bake file: " + std::string(row) + " range " + std::to_string(rows.first) + "+" +
-                std::to_string(rows.count) + " is outside the " +
-                (domain == TransferDomain::Texels ? "lightmap (" : "mesh (") + std::to_string(n) +
-                (domain == TransferDomain::Texels ? " texels)" : " vertices)"));
+                std::to_string(rows.count) + " is outside the " + domainExtent(domain, n));
   for (std::size_t i = 0; i < bake.transfers.size(); ++i) {
     const BakedTransfer& t = bake.transfers[i];
     for (std::size_t j = 0; j < i; ++j)
@@ -62,10 +79,11 @@ void checkTransfersForWriting(const BakeFile& bake) {
         throw Error(std::string("bake file: two ") + toString(t.transfer.layout()) +
                     " transfers of mode " + toString(t.mode()));
     if (t.transfer.domain() != domain ||
-        (domain == TransferDomain::Texels && !(t.transfer.shape().lightmap == bake.lightmap())))
+        (domain == TransferDomain::Texels && !(t.transfer.shape().lightmap == bake.lightmap())) ||
+        (domain == TransferDomain::Probes && !(t.transfer.shape().probes == bake.probeGrid())))
       throw Error(
           "bake file: the transfers are over different domains (one bake file holds "
-          "per-vertex or per-texel transfer of one lightmap)");
+          "per-vertex transfer, per-texel transfer of one lightmap or one probe grid's)");
     if (t.transfer.rows() != rows)
       throw Error(std::string("bake file: the transfers cover different ") + row + " ranges");
     t.transfer.shape().check("bake file");
@@ -131,6 +149,12 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
     prt["lightmap"] = {{"width", lm.width}, {"height", lm.height}, {"padding", lm.padding}};
     if (lm.seamsFixed) prt["lightmap"]["seamsFixed"] = true;
     prt["texelRange"] = {{"first", rows.first}, {"count", rows.count}};
+  } else if (bake.domain() == TransferDomain::Probes) {
+    const ProbeGrid g = bake.probeGrid();
+    prt["probeGrid"] = {{"origin", vec3Json(g.origin)},
+                        {"spacing", vec3Json(g.spacing)},
+                        {"count", json::array({g.count[0], g.count[1], g.count[2]})}};
+    prt["probeRange"] = {{"first", rows.first}, {"count", rows.count}};
   } else {
     prt["vertexRange"] = {{"first", rows.first}, {"count", rows.count}};
   }
@@ -249,6 +273,45 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     domainRows = lightmapSize.texels();
     rangeKey = "texelRange";
   }
+  // Or the probes of a grid in space (format 7 on).
+  ProbeGrid probeGrid;
+  if (r.has(prt, "probeRange") || r.has(prt, "probeGrid")) {
+    if (version < static_cast<std::uint64_t>(kFirstProbeVersion))
+      r.fail(where + " holds a probe grid in a version " + std::to_string(version) +
+             " file (probes need version " + std::to_string(kFirstProbeVersion) + ")");
+    if (domain == TransferDomain::Texels || r.has(prt, "vertexRange"))
+      r.fail(where + " has a probeRange beside a " +
+             (domain == TransferDomain::Texels ? "texelRange" : "vertexRange"));
+    const std::string gw = where + ".probeGrid";
+    const json& g = r.member(prt, "probeGrid", where);
+    const auto triple = [&](const char* key) {
+      const json& a = r.member(g, key, gw);
+      if (!a.is_array() || a.size() != 3) r.fail(gw + "." + key + " is not an array of 3 numbers");
+      return a;
+    };
+    const json& origin = triple("origin");
+    const json& spacing = triple("spacing");
+    const json& count = triple("count");
+    for (int a = 0; a < 3; ++a) {
+      const std::string at = "[" + std::to_string(a) + "]";
+      const auto finite = [&](const json& v, const std::string& what) {
+        if (!v.is_number() || !std::isfinite(v.get<double>()) || std::abs(v.get<double>()) > 1e30)
+          r.fail(gw + "." + what + at + " is not a finite number");
+        return v.get<float>();
+      };
+      probeGrid.origin[a] = finite(origin[a], "origin");
+      probeGrid.spacing[a] = finite(spacing[a], "spacing");
+      if (!(probeGrid.spacing[a] > 0)) r.fail(gw + ".spacing" + at + " is not positive");
+      if (!count[a].is_number_integer() || count[a].get<long long>() < 1 ||
+          count[a].get<long long>() > kMaxProbeSide)
+        r.fail(gw + ".count" + at + " is not an integer in 1.." + std::to_string(kMaxProbeSide));
+      probeGrid.count[a] = count[a].get<int>();
+    }
+    r.within(where, [&] { checkProbeGrid(probeGrid, gw); });
+    domain = TransferDomain::Probes;
+    domainRows = probeGrid.probes();
+    rangeKey = "probeRange";
+  }
   const std::string rw = where + "." + rangeKey;
   const json& range = r.member(prt, rangeKey, where);
   RowRange rows;
@@ -256,10 +319,7 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
   rows.count = r.integer(range, "count", rw, 1, 4294967295.0);
   if (rows.end() > domainRows)
     r.fail(std::string(rowName(domain)) + " range " + std::to_string(rows.first) + "+" +
-           std::to_string(rows.count) + " is outside the " +
-           (domain == TransferDomain::Texels ? "lightmap (" : "mesh (") +
-           std::to_string(domainRows) +
-           (domain == TransferDomain::Texels ? " texels)" : " vertices)"));
+           std::to_string(rows.count) + " is outside the " + domainExtent(domain, domainRows));
 
   if (prt.contains("transfers")) {
     const json& ts = prt["transfers"];
@@ -277,6 +337,10 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
                toString(domain));
       shape.rows = rows;
       shape.lightmap = lightmapSize;
+      shape.probes = domain == TransferDomain::Probes ? probeGrid : ProbeGrid{};
+      if (domain == TransferDomain::Probes && shape.layout != TransferLayout::Matrix)
+        r.fail(tw + " is a " + toString(shape.layout) +
+               " transfer over probes (a probe holds a matrix)");
       if (bake.find(bt.mode(), shape.layout))
         r.fail(std::string("two ") + toString(shape.layout) + " transfers of mode " +
                toString(bt.mode()));
@@ -293,6 +357,8 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     r.fail("a partial bake without transfers");
   if (bake.transfers.empty() && domain == TransferDomain::Texels)
     r.fail("a per-texel bake without transfers");
+  if (bake.transfers.empty() && domain == TransferDomain::Probes)
+    r.fail("a probe bake without transfers");
   // The UVs a per-texel bake is over: what its bake could have used (finite, inside [0, 1]²),
   // checked here so that no reader's sampling meets a corrupt one.
   if (domain == TransferDomain::Texels)
@@ -331,6 +397,11 @@ TransferShape::LightmapSize BakeFile::lightmap() const {
                                             : TransferShape::LightmapSize{};
 }
 
+ProbeGrid BakeFile::probeGrid() const {
+  return domain() == TransferDomain::Probes ? transfers.front().transfer.shape().probes
+                                            : ProbeGrid{};
+}
+
 std::size_t BakeFile::domainRows() const {
   return transfers.empty() ? mesh.vertexCount()
                            : transfers.front().transfer.shape().domainRows(mesh.vertexCount());
@@ -350,14 +421,22 @@ void BakeFile::requireComplete(const std::string& file) const {
   if (complete()) return;
   const RowRange r = rows();
   throw Error(file, "is a partial bake: it holds transfer for " +
-                        std::string(domain() == TransferDomain::Texels ? "texels " : "vertices ") +
+                        std::string(toString(domain())) + " " +
                         std::to_string(r.first) + ".." + std::to_string(r.end() - 1) + " of " +
                         std::to_string(domainRows()) +
                         " only (merge the pieces with prt merge first)");
 }
 
+void BakeFile::requireSurface(const std::string& file, const std::string& use) const {
+  if (domain() != TransferDomain::Probes) return;
+  throw Error(file, "holds a probe grid (" + probeGrid().describe() +
+                        "), the light arriving at points in space, not a surface's transfer; " +
+                        use);
+}
+
 void BakeFile::requireVertices(const std::string& file, const std::string& use) const {
   if (domain() == TransferDomain::Vertices) return;
+  requireSurface(file, use);
   const TransferShape::LightmapSize lm = lightmap();
   throw Error(file, "holds per-texel transfer (a " + std::to_string(lm.width) + " x " +
                         std::to_string(lm.height) + " lightmap); " + use);

@@ -10,8 +10,7 @@ namespace prt {
 BakeFile mergeBakes(std::vector<BakeFile> pieces) {
   if (pieces.empty()) throw Error("merge: no bake files");
   const auto rowName = [](const BakeFile& b, bool plural = false) {
-    return std::string(b.domain() == TransferDomain::Texels ? (plural ? "texels" : "texel")
-                                                            : (plural ? "vertices" : "vertex"));
+    return std::string(plural ? toString(b.domain()) : prt::rowName(b.domain()));
   };
   std::sort(pieces.begin(), pieces.end(),
             [](const BakeFile& a, const BakeFile& b) { return a.rows().first < b.rows().first; });
@@ -38,9 +37,10 @@ BakeFile mergeBakes(std::vector<BakeFile> pieces) {
         m.albedo != m0.albedo || m.lightmapUvs != m0.lightmapUvs || m.uvs != m0.uvs ||
         m.baseColour != m0.baseColour)
       throw Error(who + " was baked from a different mesh");
-    if (p.domain() != out.domain() || !(p.lightmap() == out.lightmap()))
+    if (p.domain() != out.domain() || !(p.lightmap() == out.lightmap()) ||
+        !(p.probeGrid() == out.probeGrid()))
       throw Error(who + " is over another domain (" + toString(p.domain()) + ", not " +
-                  toString(out.domain()) + ", or another lightmap)");
+                  toString(out.domain()) + ", or another lightmap or probe grid)");
     if (p.rows().first < rows.end())
       throw Error(who + " overlaps the previous range (which ends at " +
                   std::to_string(rows.end()) + ")");

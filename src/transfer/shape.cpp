@@ -29,18 +29,29 @@ const char* toString(TransferDomain domain) {
       return "vertices";
     case TransferDomain::Texels:
       return "texels";
+    case TransferDomain::Probes:
+      return "probes";
   }
   return "?";
 }
 
 const char* rowName(TransferDomain domain) {
-  return domain == TransferDomain::Texels ? "texel" : "vertex";
+  switch (domain) {
+    case TransferDomain::Vertices:
+      return "vertex";
+    case TransferDomain::Texels:
+      return "texel";
+    case TransferDomain::Probes:
+      return "probe";
+  }
+  return "?";
 }
 
 TransferDomain parseTransferDomain(const std::string& s) {
   if (s == "vertices") return TransferDomain::Vertices;
   if (s == "texels") return TransferDomain::Texels;
-  throw Error("unknown transfer domain '" + s + "' (expected vertices or texels)");
+  if (s == "probes") return TransferDomain::Probes;
+  throw Error("unknown transfer domain '" + s + "' (expected vertices, texels or probes)");
 }
 
 std::size_t TransferShape::rowSize() const {
@@ -67,6 +78,11 @@ void TransferShape::check(const std::string& what) const {
   if (channels != 1 && channels != 3)
     throw Error(what,
                 "the transfer has " + std::to_string(channels) + " channels (expected 1 or 3)");
+  if (domain == TransferDomain::Probes) {
+    if (layout != TransferLayout::Matrix)
+      throw Error(what, "a probe's transfer is a matrix (the light arriving from every direction)");
+    checkProbeGrid(probes, what);
+  }
 }
 
 std::string TransferShape::describe() const {

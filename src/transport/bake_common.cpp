@@ -43,6 +43,12 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
       throw Error(name, "the dilation padding must be 0.." + std::to_string(kMaxLightmapPadding) +
                             " texels");
   }
+  if (s.domain == TransferDomain::Probes) {
+    if (s.layout != TransferLayout::Matrix)
+      throw Error(name, "a probe bake holds matrices (the light arriving from every direction): "
+                        "bake it with the matrix layout");
+    checkProbeGrid(s.probes, name);
+  }
   const std::size_t rows = domainRows(mesh, s);
   if (s.rows.first >= rows || s.rows.count > rows - s.rows.first) {
     if (s.domain == TransferDomain::Texels)
@@ -50,6 +56,10 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
                             std::to_string(s.rows.end()) + ") is outside the " +
                             std::to_string(s.lightmap.width) + " x " +
                             std::to_string(s.lightmap.height) + " lightmap");
+    if (s.domain == TransferDomain::Probes)
+      throw Error(name, "probe range [" + std::to_string(s.rows.first) + ", " +
+                            std::to_string(s.rows.end()) + ") is outside the grid (" +
+                            std::to_string(s.probes.probes()) + " probes)");
     throw Error(name, "vertex range [" + std::to_string(s.rows.first) + ", " +
                           std::to_string(s.rows.first + s.rows.count) + ") is outside the mesh (" +
                           std::to_string(mesh.vertexCount()) + " vertices)");
@@ -83,6 +93,9 @@ BakeSettings diffuseBounceSource(const BakeSettings& matrixBake) {
   vs.rows = {};
   vs.bounces = matrixBake.effectiveBounces() - 1;
   vs.mode = vs.bounces > 0 ? TransferMode::Interreflected : TransferMode::Shadowed;
+  // A probe gathers the light of the surfaces, which is the mesh's: its vertices' transfer,
+  // interpolated across the hit triangle.
+  if (vs.domain == TransferDomain::Probes) vs.domain = TransferDomain::Vertices;
   return vs;
 }
 
@@ -107,7 +120,9 @@ BakePlan planBake(const Mesh& mesh, const BakeSettings& s, bool checkMemory) {
   plan.rows = bakeRows(mesh, s);
   plan.domainRows = domainRows(mesh, s);
   if (s.layout == TransferLayout::Matrix && s.effectiveBounces() > 0) {
-    if (!s.glossyBounces(TransferLayout::Matrix)) {
+    // Probes gather the diffuse light of the surfaces (their lobe would need the direction a
+    // probe's light leaves toward an object that is not there yet).
+    if (!s.glossyBounces(TransferLayout::Matrix) || s.domain == TransferDomain::Probes) {
       plan.diffuseSource = diffuseBounceSource(s);
     } else {
       plan.glossyOrders = glossyBounceOrders(s);
@@ -155,6 +170,11 @@ void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint
   if (fitsInMemory(need)) return;
   const std::size_t have = physicalMemoryBytes();
   const std::string name = mesh.source.empty() ? "mesh" : mesh.source;
+  if (s.domain == TransferDomain::Probes)
+    throw Error(name, "the transfer of " + s.probes.describe() + " at " + std::to_string(s.bands) +
+                          " bands needs " + bytesText(f.bytesPerRow) + " per probe, " +
+                          bytesText(need) + " in all; this machine has " + bytesText(have) +
+                          " (fewer bands or fewer probes)");
   if (s.domain == TransferDomain::Texels)
     throw Error(name, std::string(toString(s.layout)) + " transfer of a " +
                           std::to_string(s.lightmap.width) + " x " +
@@ -174,7 +194,9 @@ void checkFootprint(const Mesh& mesh, const BakeSettings& s, const BakeFootprint
 namespace prt {
 
 std::size_t domainRows(const Mesh& mesh, const BakeSettings& s) {
-  return s.domain == TransferDomain::Texels ? s.lightmap.texels() : mesh.vertexCount();
+  return s.domain == TransferDomain::Texels   ? s.lightmap.texels()
+         : s.domain == TransferDomain::Probes ? s.probes.probes()
+                                              : mesh.vertexCount();
 }
 
 BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
@@ -184,7 +206,7 @@ BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   const std::size_t count = bakeRows(mesh, s).count;
   const bool inter = s.effectiveBounces() > 0;
   const BounceAlbedo a = resolveAlbedo(mesh, s);
-  const bool glossy = s.glossyBounces(s.layout);
+  const bool glossy = s.glossyBounces(s.layout) && s.domain != TransferDomain::Probes;
   const Rgb ks = s.material.specular;
   const bool colouredLobe = glossy && !(ks.x == ks.y && ks.y == ks.z);
   f.channels = inter && (!a.grey || colouredLobe) ? 3 : 1;
@@ -196,6 +218,13 @@ BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   };
   f.bytesPerRow = bytes(s.layout, 1);
   f.transferBytes = bytes(s.layout, count);
+  if (s.domain == TransferDomain::Probes) {
+    // The diffuse transfer of one bounce less over the whole mesh, as a matrix bake's (the sum
+    // and the pass being baked), and each probe's position and inside flag.
+    if (inter) f.workingBytes = 3 * bytes(TransferLayout::Vector, mesh.vertexCount());
+    f.workingBytes += n * 16;
+    return f;
+  }
   if (s.domain == TransferDomain::Texels) {
     // Per texel of the whole lightmap: the pass being baked and the pass (or sum, or order) it
     // reads, that one laid out once more as a dilated lightmap, and the sample points (~40 B).

@@ -185,6 +185,13 @@ std::uint64_t computeMatrixTexelRows(const Mesh& mesh, const Occluder& occluder,
                                      const MatrixSetup& setup, std::span<const RowPoint> points,
                                      const TexelImage* bounced, float* out, double* variance,
                                      Progress* progress);
+/// The same at probes (points with no surface: over the whole sphere), rows
+/// 0..points.size()−1, a bounce reading `bounced`, the mesh's diffuse vector transfer of one
+/// bounce less (its vertices' rows), interpolated over each hit triangle.
+std::uint64_t computeMatrixProbeRows(const Mesh& mesh, const Occluder& occluder,
+                                     const MatrixSetup& setup, std::span<const RowPoint> points,
+                                     const Transfer* bounced, float* out, double* variance,
+                                     Progress* progress);
 /// The seed of the glossy bounce order `order` baked under a bake of seed `seed`.
 std::uint64_t matrixBounceOrderSeed(std::uint64_t seed, int order);
 

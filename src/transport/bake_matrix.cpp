@@ -32,6 +32,16 @@
 // through its four bilinear taps instead, Σ_k w_k M_kᵀ r (bake_texels.cpp). Each order draws its
 // own directions (the seed is derived per order), so the orders' errors are independent.
 //
+// Probes (the probe domain, prt/transfer/probe_grid.hpp) integrate over the whole sphere: no
+// surface, no normal. Directions are uniform over S² (pdf 1/(4π)), the unshadowed part is
+// ∫_{S²} Y Yᵀ dω = I (orthonormality), so
+//
+//   M_ij ≈ δ_ij − (4π/N) Σ_{s blocked} Y_i(ω_s) Y_j(ω_s)  (+ (4π/N) Σ_{s front hit} Y_i z_j),
+//
+// with the bounce columns z of the surfaces' diffuse transfer as above, and a probe in open
+// space comes out exactly the identity. Rays leave the probe itself (no offset: it lies on no
+// surface).
+//
 // Speed. Samples are batched 64 at a time; the blocked ones form the columns of Y (B² × k) and
 // enter as one symmetric rank-k update P += Y Yᵀ (Eigen's selfadjointView::rankUpdate, the
 // lower triangle only), the bounce term as one GEMM G += Y Zᵀ with Z the hit points' bounced
@@ -112,12 +122,13 @@ void hemisphereProduct(const MatD& hz, int bands, const Vec3d& n, MatD& out, Mat
   for (int j = 0; j < nc; ++j) rot.apply(tmpT.col(j).data(), out.col(j).data());  // D H_z Dᵀ
 }
 
-/// Uniform directions over the hemisphere about n from scrambled Sobol' points.
+/// Uniform directions over the hemisphere about n (or, `sphere`, over the whole sphere) from
+/// scrambled Sobol' points.
 class HemisphereSampler {
  public:
   HemisphereSampler(const BakeSettings& s, const OwenSobol2D& sobol, std::size_t vertex,
-                    const Vec3f& n)
-      : sobol_(sobol), n_(n) {
+                    const Vec3f& n, bool sphere = false)
+      : sobol_(sobol), n_(sphere ? Vec3f(0.0f, 0.0f, 1.0f) : n), sphere_(sphere) {
     const std::uint64_t key =
         deriveSeed(deriveSeed(s.seed, kMatrixPass), static_cast<std::uint64_t>(vertex));
     seed0_ = static_cast<std::uint32_t>(key);
@@ -126,7 +137,8 @@ class HemisphereSampler {
   }
   Vec3f next() {
     const Point2 u = sobol_.point(index_++, seed0_, seed1_);
-    const float z = u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float z = sphere_ ? 1.0f - 2.0f * u.x : u.x;
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
     const float phi = 2.0f * kPif * u.y;
     return t_ * (r * std::cos(phi)) + b_ * (r * std::sin(phi)) + n_ * z;
   }
@@ -134,6 +146,7 @@ class HemisphereSampler {
  private:
   const OwenSobol2D& sobol_;
   Vec3f n_, t_, b_;
+  bool sphere_ = false;
   std::uint32_t seed0_ = 0, seed1_ = 0, index_ = 0;
 };
 
@@ -186,6 +199,7 @@ struct MatrixContext {
   BouncedSource bounced;
   bool glossy = false;
   const PreparedMaterial& kernels;  ///< the material's d and g kernels (glossy bounces)
+  bool sphere = false;              ///< probes: the whole sphere about a point (see the top)
   std::atomic<std::uint64_t> rays{0};
 };
 
@@ -280,7 +294,10 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
   const Mesh& mesh = ctx.mesh;
   const int nc = ctx.nc, channels = ctx.channels;
   const Vec3f p = point.position, nrm = point.normal;
-  hemisphereProduct(ctx.hz, ctx.bands, Vec3d(nrm), ws.h, ws.tmp, ws.tmpT);
+  if (ctx.sphere)
+    ws.h.setIdentity(nc, nc);  // ∫_{S²} Y Yᵀ dω
+  else
+    hemisphereProduct(ctx.hz, ctx.bands, Vec3d(nrm), ws.h, ws.tmp, ws.tmpT);
   auto write = [&](const MatD& m, int c) {
     for (int i = 0; i < nc; ++i)
       for (int j = 0; j < nc; ++j)
@@ -292,8 +309,10 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
   }
   const bool inter = ctx.bounced.present();
   const int n = ctx.settings.samples;
-  const Vec3f origin = p + nrm * ctx.occluder.rayOffset(p);
-  HemisphereSampler sampler(ctx.settings, *ctx.sobol, point.id, nrm);
+  const Vec3f origin = ctx.sphere ? p : p + nrm * ctx.occluder.rayOffset(p);
+  HemisphereSampler sampler(ctx.settings, *ctx.sobol, point.id, nrm, ctx.sphere);
+  // The solid angle the directions are spread over: 2π (hemisphere) or 4π (sphere).
+  const double omega = ctx.sphere ? 4.0 * kPi : 2.0 * kPi;
   ws.total.setZero();
   ws.part.setZero();
   for (int c = 0; c < channels; ++c) {
@@ -316,7 +335,7 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
       ctx.occluder.occluded(std::span<const Ray>(rays.data(), count),
                             std::span<std::uint8_t>(blocked.data(), count));
       for (int j = 0; j < count; ++j) {
-        m.add(blocked[j] ? 2.0 * kPi * y00sq : 0.0);
+        m.add(blocked[j] ? omega * y00sq : 0.0);
         if (!blocked[j]) continue;
         sh::eval(ctx.bands, rays[j].dir, ws.y.col(k++).data());
       }
@@ -340,16 +359,16 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
           front[nf++] = j;  // its sample of M_00 once its bounce column is known (below)
         } else {
           back[nb++] = j;
-          m.add(2.0 * kPi * y00sq);
+          m.add(omega * y00sq);
         }
       }
       for (int q = 0; q < nf; ++q) {
         const int j = front[q];
         sh::eval(ctx.bands, rays[j].dir, ws.y.col(k++).data());
         const Hit& h = hits[j];
-        // Its sample of M_00's estimator: blocked (2π Y00²) less the bounce (2π Y00 z_0).
+        // Its sample of M_00's estimator: blocked (Ω Y00²) less the bounce (Ω Y00 z_0).
         const auto addSample = [&](int col) {
-          m.add(2.0 * kPi * (y00sq - std::sqrt(y00sq) * ws.z[0](0, col)));
+          m.add(omega * (y00sq - std::sqrt(y00sq) * ws.z[0](0, col)));
         };
         if (ctx.glossy) {
           glossyBounceColumn(ctx, h, rays[j].dir, ws, kz);
@@ -375,7 +394,7 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
     }
   }
   ctx.rays.fetch_add(cast, std::memory_order_relaxed);
-  const double scale = 2.0 * kPi / n;
+  const double scale = omega / n;
   ws.total.triangularView<Eigen::StrictlyUpper>() = ws.total.transpose();
   for (int c = 0; c < channels; ++c) {
     ws.tmp = ws.h - scale * ws.total;
@@ -396,6 +415,7 @@ struct MatrixSetup {
   int channels = 1;
   bool bounce = false;  ///< reads a bounced transfer (diffuse vectors or glossy matrices)
   bool glossy = false;  ///< ... and it is matrices seen through the material's lobe
+  bool sphere = false;  ///< probes: over the whole sphere about a point
   MatD hz;
   std::unique_ptr<OwenSobol2D> sobol;
   BounceAlbedo albedo;
@@ -409,7 +429,8 @@ std::shared_ptr<const MatrixSetup> makeMatrixSetup(const Mesh& mesh, const BakeS
   setup->channels = channels;
   setup->bounce = bounce;
   setup->glossy = glossy;
-  setup->hz = hemisphereProductZ(s.bands);
+  setup->sphere = s.domain == TransferDomain::Probes;
+  if (!setup->sphere) setup->hz = hemisphereProductZ(s.bands);
   if (s.mode != TransferMode::Unshadowed)
     setup->sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(s.samples));
   setup->albedo = resolveAlbedo(mesh, setup->settings);
@@ -437,6 +458,7 @@ std::uint64_t matrixRows(const Mesh& mesh, const Occluder& occluder, const Matri
                     setup.bounce ? bounced : BouncedSource{},
                     setup.glossy,
                     setup.kernels,
+                    setup.sphere,
                     {}};
   const std::size_t stride =
       static_cast<std::size_t>(ctx.nc) * static_cast<std::size_t>(ctx.nc) * setup.channels;
@@ -476,6 +498,17 @@ std::uint64_t computeMatrixTexelRows(const Mesh& mesh, const Occluder& occluder,
     const std::size_t perChannel = setup.glossy ? nc * nc : nc;
     src = {nullptr, bounced, int(bounced->stride / perChannel)};
   }
+  return matrixRows(
+      mesh, occluder, setup, points.size(), [&](std::size_t r) { return points[r]; }, src, out,
+      variance, progress);
+}
+
+std::uint64_t computeMatrixProbeRows(const Mesh& mesh, const Occluder& occluder,
+                                     const MatrixSetup& setup, std::span<const RowPoint> points,
+                                     const Transfer* bounced, float* out, double* variance,
+                                     Progress* progress) {
+  BouncedSource src;
+  if (setup.bounce) src = {bounced, nullptr, bounced->channels()};
   return matrixRows(
       mesh, occluder, setup, points.size(), [&](std::size_t r) { return points[r]; }, src, out,
       variance, progress);

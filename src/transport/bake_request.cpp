@@ -35,6 +35,15 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
                   " needs the whole lightmap (a seam joins texels of other ranges): bake the "
                   "pieces without it, then fix the seams of the merged bake (prt merge "
                   "--seam-fix)");
+  } else if (r.domain == TransferDomain::Probes) {
+    if (r.layout != TransferLayout::Matrix)
+      throw Error("a probe holds the matrix of the light arriving from every direction: " +
+                  std::string(spelling == OptionSpelling::Cli ? "--transfer matrix"
+                                                              : "layout='matrix'") +
+                  " (prt probes sets it)");
+    for (int n : r.probes.count) checkOptionRange(spelling, "grid", n, 0, kMaxProbeSide);
+    if (r.lightmap.seamFix)
+      throw Error(optionName(spelling, "seam-fix") + " fixes the seams of a lightmap, not probes");
   } else if (r.lightmap.seamFix) {
     throw Error(optionName(spelling, "seam-fix") + " fixes the seams of a lightmap: add " +
                 (spelling == OptionSpelling::Cli ? "--domain texels" : "domain='texels'"));
@@ -96,8 +105,17 @@ BakeSettings bakeSettings(const BakeRequest& r, const Mesh& mesh, TransferMode m
   s.domain = r.domain;
   if (r.domain == TransferDomain::Texels)
     s.lightmap = {r.lightmap.resolution, r.lightmap.resolution, r.lightmap.padding, false};
+  if (r.domain == TransferDomain::Probes) s.probes = probeGridOf(r, mesh);
   s.rows = r.rows;
   return s;
+}
+
+ProbeGrid probeGridOf(const BakeRequest& r, const Mesh& mesh) {
+  if (r.probes.bounds)
+    return makeProbeGrid(r.probes.bounds->first, r.probes.bounds->second, r.probes.count,
+                         mesh.source.empty() ? "probes" : mesh.source);
+  const Bounds b = computeBounds(mesh);
+  return makeProbeGrid(b.lo, b.hi, r.probes.count, mesh.source.empty() ? "probes" : mesh.source);
 }
 
 void refuseNonFinite(const Mesh& mesh, TransferMode mode, const Transfer& t) {

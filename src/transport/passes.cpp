@@ -12,6 +12,7 @@
 #include "prt/core/hash.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/sh/sh.hpp"
+#include "probe_domain.hpp"
 #include "texel_domain.hpp"
 
 namespace prt {
@@ -45,6 +46,8 @@ struct BakePasses::Impl {
   StatsKind statsKind = StatsKind::Vector;
   /// Per texel: the lightmap's samples (empty domain per vertex).
   std::unique_ptr<TexelDomain> texels;
+  /// Per probe: the grid's points and which lie inside geometry.
+  std::unique_ptr<ProbeDomain> probes;
   TexelSamples noSamples;
   std::vector<std::uint32_t> noTexels;
 
@@ -53,13 +56,28 @@ struct BakePasses::Impl {
 
   bool perTexel() const { return texels != nullptr; }
 
+  /// The domain of a pass of `layout`: the bake's, except the vector passes of a probe bake,
+  /// which are the diffuse transfer of the mesh's surfaces its probes gather (over vertices).
+  TransferDomain passDomain(TransferLayout layout) const {
+    return settings.domain == TransferDomain::Probes && layout == TransferLayout::Vector
+               ? TransferDomain::Vertices
+               : settings.domain;
+  }
+
+  /// Rows of the whole of `domain`.
+  std::size_t wholeRows(TransferDomain domain) const {
+    return domain == TransferDomain::Vertices ? mesh.vertexCount()
+                                              : bakedetail::domainRows(mesh, settings);
+  }
+
   void add(std::string name, TransferLayout layout, int channels, RowRange r, PassInput input,
            bool variance, std::shared_ptr<const VectorSetup> v,
            std::shared_ptr<const MatrixSetup> mx) {
     BakePassInfo p;
     p.name = std::move(name);
-    p.shape = TransferShape{settings.domain, layout, settings.bands, channels, r};
+    p.shape = TransferShape{passDomain(layout), layout, settings.bands, channels, r};
     if (perTexel()) p.shape.lightmap = {texels->width, texels->height, texels->padding, false};
+    if (p.shape.domain == TransferDomain::Probes) p.shape.probes = settings.probes;
     p.input = input;
     p.variance = variance;
     info.push_back(std::move(p));
@@ -91,6 +109,29 @@ BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSet
   m.rows = plan.rows;
   const RowRange all{0, plan.domainRows};
   const int bounces = settings.effectiveBounces();
+  if (settings.domain == TransferDomain::Probes) {
+    // The probes' matrices over the range widened by the refill's reach; with bounces, first
+    // the surfaces' diffuse transfer of one bounce less over every vertex, which they gather.
+    ProbeDomain grid;
+    grid.grid = settings.probes;
+    const RowRange last = grid.widen(m.rows);
+    m.probes = std::make_unique<ProbeDomain>(makeProbeDomain(mesh, occluder, settings.probes, last));
+    if (bounces == 0) {
+      m.add("probes", TransferLayout::Matrix, channels, last, PassInput::None, true, nullptr,
+            makeMatrixSetup(mesh, settings, false, false, channels));
+      m.statsKind = StatsKind::Matrix;
+    } else {
+      const RowRange vertices{0, mesh.vertexCount()};
+      m.addVectorPasses(*plan.diffuseSource, vertices, vertices, false);
+      m.add("probes", TransferLayout::Matrix, channels, last, PassInput::Sum, true, nullptr,
+            makeMatrixSetup(mesh, settings, true, false, channels));
+      m.fullSum = true;
+      m.statsKind = StatsKind::MatrixDiffuse;
+    }
+    m.result = m.info.back().shape;
+    m.result.rows = m.rows;
+    return;
+  }
   // The last pass's rows: the range, per texel widened by the dilation's reach; the samples
   // kept are those the passes compute (all of them when an earlier pass is read whole).
   RowRange last = m.rows;
@@ -196,7 +237,7 @@ const std::vector<std::uint32_t>& BakePasses::texelsInsideGeometry() const {
 PassSource BakePasses::prepare(int k, const Transfer& input) const {
   PassSource src;
   if (pass(k).input == PassInput::None) return src;
-  PRT_CHECK(input.rows().first == 0 && input.rowCount() == domainRows(),
+  PRT_CHECK(input.rows().first == 0 && input.rowCount() == impl_->wholeRows(input.domain()),
             "a pass input covers the whole domain");
   src.stride_ = input.stride();
   if (!impl_->perTexel()) {
@@ -219,6 +260,13 @@ std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input,
   const Impl& m = *impl_;
   if (rows.count == 0) return 0;
   const auto k0 = static_cast<std::size_t>(k);
+  if (p.shape.domain == TransferDomain::Probes) {
+    const ProbeDomain& d = *m.probes;
+    const std::span<const RowPoint> points(d.points.data() + (rows.first - d.kept.first),
+                                           rows.count);
+    return computeMatrixProbeRows(m.mesh, m.occluder, *m.matrix[k0], points, input.transfer_, out,
+                                  variance, progress);
+  }
   if (!m.perTexel()) {
     const Transfer* in = input.transfer_;
     if (m.vector[k0])
@@ -279,6 +327,18 @@ void BakePasses::accumulate(int k, RowRange passRows, const float* values, RowRa
 
 Transfer BakePasses::finish(const Transfer& last, std::vector<std::uint8_t>* filled) const {
   const Impl& m = *impl_;
+  if (m.probes) {
+    // Probes inside geometry refilled from their neighbours, then cut to the bake's range.
+    const std::size_t stride = last.stride();
+    std::vector<float> values(last.values().begin(), last.values().end());
+    m.probes->refill(values.data(), last.rows(), stride);
+    const auto from = std::ptrdiff_t((m.rows.first - last.rows().first) * stride);
+    std::vector<float> cut(values.begin() + from,
+                           values.begin() + from + std::ptrdiff_t(m.rows.count * stride));
+    TransferShape shape = last.shape();
+    shape.rows = m.rows;
+    return Transfer::dense(shape, FloatArray(std::move(cut)));
+  }
   if (!m.perTexel()) {
     PRT_CHECK(last.rows() == m.rows, "the result covers the bake's range");
     return last;
@@ -334,7 +394,12 @@ std::string bakeIdentity(const Mesh& mesh, const BakeSettings& s) {
   const std::string hex = meshFingerprint(mesh);
   const RowRange rows = bakeRows(mesh, s);
   std::string domain = "vertices";
-  if (s.domain == TransferDomain::Texels) {
+  if (s.domain == TransferDomain::Probes) {
+    char origin[96];
+    std::snprintf(origin, sizeof origin, " from %.9g,%.9g,%.9g", double(s.probes.origin.x),
+                  double(s.probes.origin.y), double(s.probes.origin.z));
+    domain = s.probes.describe() + origin;
+  } else if (s.domain == TransferDomain::Texels) {
     Fnv1a uv;
     uv.addAll(mesh.lightmapUvs);
     domain = "texels of a " + std::to_string(s.lightmap.width) + "x" +
@@ -389,10 +454,12 @@ PassState startPasses(const BakePasses& passes) {
   PassState st;
   const RowRange all{0, passes.domainRows()};
   if (passes.sums()) {
-    TransferShape shape = passes.resultShape();
+    // Over the domain of the passes it sums (pass 0's: the mesh's vertices for a probe bake).
+    TransferShape shape = passes.pass(0).shape;
     shape.layout = TransferLayout::Vector;
     shape.channels = passes.sumChannels();
-    shape.rows = all;
+    shape.rows = {0, shape.domain == TransferDomain::Vertices ? passes.mesh().vertexCount()
+                                                               : all.count};
     st.sum = Transfer::zeros(shape);
   }
   st.varianceRows = all;
@@ -427,7 +494,7 @@ void runPass(const BakePasses& passes, PassExecutor& executor, PassState& state,
   // From here on the state is of the rows this pass covers here: the sum and the variances
   // narrow to them (the bake's range after its last pass; a job-array shard's rows; nothing on
   // an MPI rank that does not hold the last pass).
-  if (!state.sum.empty()) {
+  if (!state.sum.empty() && state.sum.domain() == p.shape.domain) {
     const RowRange keep = overlap(rows, state.sum.rows());
     if (keep.count == 0)
       state.sum = Transfer();

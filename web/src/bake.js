@@ -379,6 +379,10 @@ export function checkBakeDocument(gltf, bin, name) {
     if (lightmap < 0) r.fail(`${where} holds per-texel transfer but names no lightmapTexCoord (the UVs it is over)`);
     domain = domains[1], domainRows = W * H, rangeKey = 'texelRange';
   }
+  // A probe grid (format 7 on) holds the light arriving at points in space, not a surface's
+  // transfer: prt probes makes it, the library and prtkit.relight_probes relight it.
+  if (has(prt, 'probeRange') || has(prt, 'probeGrid'))
+    r.fail(`${where} holds a probe grid (prt probes), the light arriving at points in space, not a surface's transfer; this page draws surfaces`);
   checkMesh(gltf, ar, V, T, lightmap, domain === domains[1], r);
   checkBaseColour(gltf, ar, r);
   const rw = `${where}.${rangeKey}`, range = r.member(prt, rangeKey, where);

@@ -50,7 +50,9 @@
 namespace prt {
 
 /// The bake-file format version this prtkit writes and the newest it reads.
-inline constexpr int kBakeFormatVersion = 6;
+inline constexpr int kBakeFormatVersion = 7;
+/// The first version that holds probe grids (issue 32).
+inline constexpr int kFirstProbeVersion = 7;
 /// The glTF extension that holds a bake's object from version 5 (earlier: extras.prtkit).
 inline constexpr const char* kBakeExtension = "PRTKIT_radiance_transfer";
 /// The first version written as the extension.
@@ -87,7 +89,9 @@ struct BakeFile {
   TransferDomain domain() const;
   /// Texels: the lightmap the transfers cover (zero size for vertices).
   TransferShape::LightmapSize lightmap() const;
-  /// Rows of the whole domain: the mesh's vertices or the lightmap's texels.
+  /// Probes: the grid the transfers cover (an empty grid otherwise).
+  ProbeGrid probeGrid() const;
+  /// Rows of the whole domain: the mesh's vertices, the lightmap's texels or the grid's probes.
   std::size_t domainRows() const;
   /// The row range the transfers cover (the whole mesh when there are none).
   RowRange rows() const;
@@ -100,6 +104,10 @@ struct BakeFile {
   /// transfers are per vertex: the one check of every consumer that reads rows as vertices.
   /// `use` says what does not take texels, e.g. "prt view relights per-vertex transfer only".
   void requireVertices(const std::string& file, const std::string& use) const;
+  /// Throws prt::Error("FILE: holds a probe grid (N x N x N probes ...), not a surface's
+  /// transfer; USE") for a probe bake: the one check of every consumer that draws or reads the
+  /// transfer as the mesh's surface (vertices or texels).
+  void requireSurface(const std::string& file, const std::string& use) const;
   /// The transfer of `mode` and `layout` (any layout if not given), or nullptr.
   const BakedTransfer* find(TransferMode mode, std::optional<TransferLayout> layout = {}) const;
 };

@@ -87,6 +87,9 @@ struct BakeSettings : BakeRecipe {
   /// width, height and gutter padding) over the mesh's lightmap UVs (transport/passes.hpp).
   TransferDomain domain = TransferDomain::Vertices;
   TransferShape::LightmapSize lightmap{};
+  /// Or the probes of a grid in space (probe_grid.hpp): matrix transfer over the whole sphere,
+  /// its bounces off the scene's surfaces diffuse.
+  ProbeGrid probes{};
   /// The rows to bake: [rows.first, rows.first + rows.count) of the domain; count 0 means "to
   /// the last row". The result holds those rows only (its row 0 is rows.first).
   RowRange rows;

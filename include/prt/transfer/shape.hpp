@@ -5,8 +5,8 @@
 // SIGGRAPH 2002, §5 diffuse vectors, §6 glossy matrices).
 //
 // A transfer is a table of one *row* per element of its domain: mesh vertices, or the texels
-// of a lightmap over the mesh's lightmap UVs (probes are the domain to come). What a row holds
-// depends on the layout:
+// of a lightmap over the mesh's lightmap UVs, or the probes of a grid in space (probe_grid.hpp:
+// matrices over the whole sphere). What a row holds depends on the layout:
 //
 //   Vector  (diffuse transfer)  B² coefficients:  T_i(p) = (1/π) ∫ Y_i(ω) V(p,ω) max(n·ω,0) dω
 //                                                 (+ inter-reflected light);
@@ -30,6 +30,8 @@
 #include <cstddef>
 #include <string>
 
+#include "prt/transfer/probe_grid.hpp"
+
 namespace prt {
 
 /// What one row holds.
@@ -47,11 +49,14 @@ enum class TransferDomain {
   /// One row per texel of a lightmap (TransferShape::lightmap), texel (x, y) row y·W + x, over
   /// the mesh's lightmap UVs (Mesh::lightmapUvs; transport/bake_texels.hpp), fetched bilinearly.
   Texels,
+  /// One row per probe of a grid in space (TransferShape::probes; probe_grid.hpp): the matrix
+  /// of the light arriving there from every direction, interpolated trilinearly.
+  Probes,
 };
-const char* toString(TransferDomain domain);  ///< "vertices", "texels" (the rows, plural)
-/// One row of a domain in messages: "vertex", "texel".
+const char* toString(TransferDomain domain);  ///< "vertices", "texels", "probes" (plural)
+/// One row of a domain in messages: "vertex", "texel", "probe".
 const char* rowName(TransferDomain domain);
-/// Parses "vertices" | "texels"; throws prt::Error otherwise.
+/// Parses "vertices" | "texels" | "probes"; throws prt::Error otherwise.
 TransferDomain parseTransferDomain(const std::string& s);
 
 /// Rows [first, first + count) of a domain.
@@ -80,10 +85,14 @@ struct TransferShape {
     bool operator==(const LightmapSize&) const = default;
   };
   LightmapSize lightmap{};
-  /// Rows of the whole domain: the lightmap's texels, or `vertices` (the mesh's, which the
-  /// shape does not hold).
+  /// Probes: the grid the rows are the probes of.
+  ProbeGrid probes{};
+  /// Rows of the whole domain: the lightmap's texels, the grid's probes, or `vertices` (the
+  /// mesh's, which the shape does not hold).
   std::size_t domainRows(std::size_t vertices) const {
-    return domain == TransferDomain::Texels ? lightmap.texels() : vertices;
+    return domain == TransferDomain::Texels   ? lightmap.texels()
+           : domain == TransferDomain::Probes ? probes.probes()
+                                              : vertices;
   }
 
   int coeffs() const { return bands * bands; }

@@ -5,6 +5,7 @@
 // lightmap), the recipe (samples, bounces, seed, sampling, material) and the rows. The domain is
 // one field of it, never a branch in a front end.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -32,6 +33,13 @@ struct LightmapRequest {
   bool seamFix = false;                ///< the least-squares seam fix after the bake
 };
 
+/// The grid of a probe bake (TransferDomain::Probes): probes at the centres of count[a] cells
+/// along each axis of the bounds (makeProbeGrid).
+struct ProbeGridRequest {
+  std::array<int, 3> count{0, 0, 0};  ///< all 0: automatic (kAutoProbeCells on the longest side)
+  std::optional<std::pair<Vec3f, Vec3f>> bounds;  ///< low and high corners; none: the scene's
+};
+
 struct BakeRequest {
   std::vector<TransferMode> modes;  ///< one transfer per mode, in this order
   TransferLayout layout = TransferLayout::Vector;
@@ -46,6 +54,7 @@ struct BakeRequest {
   std::optional<Rgb> albedo;
   TransferDomain domain = TransferDomain::Vertices;
   LightmapRequest lightmap;  ///< per texel
+  ProbeGridRequest probes;   ///< per probe
   RowRange rows;             ///< of the domain; count 0: to the last row
 };
 
@@ -74,8 +83,10 @@ struct BakeMeshPreparation {
 BakeMeshPreparation prepareBakeMesh(Mesh& mesh, const BakeRequest& request);
 
 /// The settings of one mode's transfer of the request on `mesh` (its material, domain, lightmap
-/// and rows; bounces 0 unless inter-reflected, as the file records).
+/// or probe grid, and rows; bounces 0 unless inter-reflected, as the file records).
 BakeSettings bakeSettings(const BakeRequest& request, const Mesh& mesh, TransferMode mode);
+/// The probe grid a request asks for on `mesh` (its bounds when the request names none).
+ProbeGrid probeGridOf(const BakeRequest& request, const Mesh& mesh);
 
 /// One mode's transfer as bake(request, …) returns it.
 struct BakeResult {

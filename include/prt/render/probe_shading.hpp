@@ -1,0 +1,18 @@
+#pragma once
+// Meshes lit through relit probes (issue 32): each vertex's diffuse exit radiance from the
+// trilinear blend of the eight probes around it and its normal (relight/relight_probes.hpp) —
+// what a dynamic object gets from a probe grid, and what prt render draws for a probe bake
+// (the scene and an object placed in it).
+
+#include <vector>
+
+#include "prt/geometry/mesh.hpp"
+#include "prt/relight/probe_lighting.hpp"
+
+namespace prt::render {
+
+/// Per vertex of `mesh`: ρ E(n)/π through the probes at the vertex (albedo ρ: the mesh's, white
+/// where it has none). Parallel over the vertices.
+std::vector<Rgb> shadeThroughProbes(const relight::ProbeLighting& lighting, const Mesh& mesh);
+
+}  // namespace prt::render

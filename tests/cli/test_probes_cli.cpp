@@ -1,0 +1,87 @@
+// Probe grids through the CLI (issue 32): prt probes writes a bake over the probe domain that
+// reads back with its grid (format 7); it is prt bake --domain probes, bit for bit; ranges and
+// job-array shards merge bit for bit into the whole grid; prt info describes it; and every verb
+// that draws a surface's transfer refuses it in one line naming the file.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_harness.hpp"
+#include "prt/io/bake_file.hpp"
+
+namespace prt {
+namespace {
+
+using namespace prt::testing;
+using ProbesCli = CliTest;
+
+const std::string kBox = "'builtin:cornell?grid=6'";
+
+TEST_F(ProbesCli, ProbesWriteAGridThatReadsBackAndMergesBitExactly) {
+  const std::string probes = "-q probes " + kBox + " --grid 4x3x5 --samples 64";
+  ASSERT_EQ(prt(probes + " -o whole.glb").rc, 0);
+  const BakeFile whole = readBake(path("whole.glb"));
+  ASSERT_EQ(whole.domain(), TransferDomain::Probes);
+  EXPECT_EQ(whole.formatVersion, 7);
+  EXPECT_EQ(whole.probeGrid().count, (std::array<int, 3>{4, 3, 5}));
+  ASSERT_EQ(whole.transfers.size(), 1u);
+  const BakedTransfer& t = whole.transfers[0];
+  EXPECT_EQ(t.mode(), TransferMode::Interreflected);
+  EXPECT_EQ(t.transfer.layout(), TransferLayout::Matrix);
+  EXPECT_EQ(t.transfer.rowCount(), 60u);
+  EXPECT_EQ(t.transfer.channels(), 3);  // the box's red and green walls
+  // The same bake spelled as prt bake, and in pieces.
+  ASSERT_EQ(prt("-q bake " + kBox +
+                " --domain probes --transfer matrix --mode interreflected --grid 4x3x5 "
+                "--samples 64 -o same.glb")
+                .rc,
+            0);
+  const BakeFile same = readBake(path("same.glb"));
+  ASSERT_EQ(same.transfers.size(), 1u);
+  EXPECT_EQ(same.probeGrid(), whole.probeGrid());
+  {
+    const FloatArray& a = same.transfers[0].transfer.values();
+    ASSERT_EQ(a.size(), t.transfer.values().size());
+    for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], t.transfer.values()[k]) << k;
+  }
+  ASSERT_EQ(prt(probes + " --range 0:25 -o a.glb").rc, 0);
+  ASSERT_EQ(prt(probes + " --range 25: -o b.glb").rc, 0);
+  ASSERT_EQ(prt("-q merge b.glb a.glb -o merged.glb").rc, 0);
+  const BakeFile merged = readBake(path("merged.glb"));
+  ASSERT_TRUE(merged.complete());
+  const FloatArray& x = merged.transfers[0].transfer.values();
+  const FloatArray& y = t.transfer.values();
+  ASSERT_EQ(x.size(), y.size());
+  for (std::size_t k = 0; k < x.size(); ++k) ASSERT_EQ(x[k], y[k]) << k;
+}
+
+TEST_F(ProbesCli, InfoDescribesTheGridAndTheVerbsThatDrawSurfacesRefuseIt) {
+  ASSERT_EQ(prt("-q probes " + kBox + " --mode shadowed --grid 3x3x3 --samples 32 -o out/p.glb").rc,
+            0);
+  std::filesystem::rename(path("out/p.glb"), path("p.glb"));
+  const Result info = prt("info p.glb --json -");
+  ASSERT_EQ(info.rc, 0) << info.err;
+  const nlohmann::json j = nlohmann::json::parse(info.out)["files"][0];
+  EXPECT_EQ(j["domain"], "probes");
+  EXPECT_EQ(j["probeGrid"]["probes"], 27);
+  const Result text = prt("info p.glb");
+  EXPECT_NE(text.out.find("3 x 3 x 3 probes"), std::string::npos) << text.out;
+  for (const std::string& verb :
+       {std::string("render p.glb --light builtin:sky -o out/x.png"),
+        std::string("validate p.glb --light builtin:sky --vertices 4"),
+        std::string("export p.glb --format games202 -o out/x"),
+        std::string("web p.glb -o out/page"),
+        std::string("reference p.glb --light builtin:sky -o out/r.json")})
+    expectCleanFailure(verb, "p.glb: holds a probe grid (3 x 3 x 3 probes");
+  expectCleanFailure("probes " + kBox + " --grid 4x0x4 -o out/q.glb", "--grid");
+  expectCleanFailure("probes " + kBox + " --bounds 1,1,1:0,2,2 -o out/q.glb", "--bounds");
+  expectCleanFailure("bake " + kBox + " --mode shadowed --domain probes -o out/q.glb",
+                     "--transfer matrix");
+  expectCleanFailure("bake " + kBox + " --mode shadowed --grid 2x2x2 -o out/q.glb", "prt probes");
+}
+
+}  // namespace
+}  // namespace prt
