@@ -38,7 +38,6 @@
 #include "prt/io/reference_file.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/reference.hpp"
-#include "prt/render/texel_points.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/transfer/material.hpp"
 #include "report.hpp"
@@ -75,7 +74,8 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
     eye = Vec3f(Vec3d(e[0], e[1], e[2]));
   }
 
-  const BakeFile file = readBake(a.bake);
+  // Mapped: the reference reads the mesh and the transfer's shape, never its rows.
+  const BakeFile file = mapBake(a.bake);
   file.requireSurface(a.bake, "prt reference integrates the light a surface sends");
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   const char* row = rowName(bt.transfer.domain());
@@ -101,9 +101,12 @@ void referenceBody(const ReferenceArgs& a, MpiVerb& mpi) {
   rs.rotation = rotation;
   rs.heuristic = mis;
   // Per-texel transfer: the rows are the texels' sample points (render/texel_points.hpp), and a
-  // subset is drawn among the valid ones (--vertices counts texels then).
-  rs.points = render::transferRowPoints(file.mesh, *occluder, bt.transfer);
-  rs.vertices = render::rowSubset(rs.points.get(), file.domainRows(), a.vertices, a.seed);
+  // subset is drawn among the valid ones (--vertices counts texels then), as prt validate draws
+  // it: render::chooseRows, which places the points of those texels alone.
+  render::RowChoice rows =
+      render::chooseRows(file.mesh, *occluder, bt.transfer, a.vertices, a.seed);
+  rs.vertices = std::move(rows.rows);
+  rs.points = std::move(rows.points);
   const render::ReferenceResult r =
       mpi.reference(file.mesh, *occluder, env.env, rs, progressBar("reference"));
   if (!mpi.root()) return;

@@ -27,7 +27,6 @@
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/render/render.hpp"
-#include "prt/render/texel_points.hpp"
 #include "prt/render/validate.hpp"
 #include "reference_input.hpp"
 #include "report.hpp"
@@ -78,7 +77,9 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   checkOutputs({{"--image", a.image}}, inputs);
   report.check({{"--image", a.image}}, inputs);
 
-  const BakeFile file = readBake(a.bake);
+  // Mapped: validation reads the mesh and its validated rows alone (render::validate), so
+  // nothing of the size of the transfer is read, checked or held.
+  const BakeFile file = mapBake(a.bake);
   const BakedTransfer& bt = pickTransfer(file, a.transfer, a.bake);
   // The material: the bake's, or --material (keeping the bake's kd unless it names one).
   BakeRecipe recipe = bt.recipe;
@@ -96,9 +97,8 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.transfer.bands());
   auto occluder = makeEmbreeOccluder(file.mesh);
   // Per-texel transfer: the rows are the texels' sample points; a subset of the valid ones is
-  // validated (--vertices counts texels then).
+  // validated (--vertices counts texels then), their points placed by render::validate.
   render::ValidateSettings vs;
-  vs.reference.points = render::transferRowPoints(file.mesh, *occluder, bt.transfer);
   vs.reference.samples = a.samples;
   vs.reference.seed = a.seed;
   vs.reference.rotation = rotation;

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -624,12 +625,16 @@ namespace {
 
 /// A regular file opened for reading (never a pipe, device or socket: a FIFO with no writer
 /// would block in open() forever, and a pipe or device has no size to check against a cap).
-std::ifstream openRegularFile(const std::string& path) {
+void refuseIrregularFile(const std::string& path) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (fs::is_directory(st)) throw Error(path, "is a directory, expected a file");
   if (fs::exists(st) && !fs::is_regular_file(st))
     throw Error(path, "is not a regular file (a pipe, device or socket); give a file");
+}
+
+std::ifstream openRegularFile(const std::string& path) {
+  refuseIrregularFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open (does it exist and is it readable?)");
   return in;
@@ -663,6 +668,40 @@ std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t 
   if (size > 0 && !in.read(reinterpret_cast<char*>(data.data()), size))
     throw Error(path, "read failed");
   return data;
+}
+
+MappedFile::~MappedFile() {
+  if (size_ > 0) ::munmap(const_cast<unsigned char*>(data_), size_);
+}
+
+void MappedFile::adviseRandomAccess() const {
+  if (size_ > 0) ::madvise(const_cast<unsigned char*>(data_), size_, MADV_RANDOM);
+}
+
+std::shared_ptr<const MappedFile> mapFile(const std::string& path, std::uint64_t maxBytes,
+                                          const char* capName) {
+  refuseIrregularFile(path);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(path, "cannot open (does it exist and is it readable?)");
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw Error(path, "cannot read");
+  }
+  const std::uint64_t size = static_cast<std::uint64_t>(st.st_size);
+  try {
+    checkLimit(path, "file size", size, maxBytes, capName);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  // An empty file maps nothing (mmap refuses a length of 0): its reader finds it truncated.
+  void* p = size == 0 ? nullptr : ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+  const int err = errno;
+  ::close(fd);  // the mapping keeps the file
+  if (p == MAP_FAILED) throw Error(path, "cannot map (" + why(err) + ")");
+  return std::shared_ptr<const MappedFile>(
+      new MappedFile(static_cast<const unsigned char*>(p), static_cast<std::size_t>(size)));
 }
 
 std::string fileExtension(const std::string& path) {

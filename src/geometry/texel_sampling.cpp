@@ -96,49 +96,112 @@ P2 nearestOnPolygon(const std::vector<P2>& poly, P2 c) {
   return best;
 }
 
-/// Calls f(texel, λ, centreInside, strictlyInside, distance) for every texel triangle t covers
-/// in a W × H lightmap (λ: barycentric weights of the sample point: the centre, or the nearest
-/// point of the triangle to it). Triangles without UV area call nothing.
-template <typename F>
-void forEachCoveredTexel(const Mesh& mesh, std::span<const Vec2f> uvs, std::size_t t, int W, int H,
-                         F&& f) {
-  const auto& tri = mesh.triangles[t];
+/// Triangle t in texel units (its UVs times W, H) and the texels its bounding box spans; `area2`
+/// is twice its signed area, 0 for a triangle without UV area (which covers nothing).
+struct UvTriangle {
   P2 p[3];
-  for (int k = 0; k < 3; ++k) p[k] = {double(uvs[tri[k]].x) * W, double(uvs[tri[k]].y) * H};
+  double area2 = 0;
+  int x0 = 0, x1 = -1, y0 = 0, y1 = -1;
+};
+
+UvTriangle uvTriangle(const Mesh& mesh, std::span<const Vec2f> uvs, std::size_t t, int W, int H) {
+  UvTriangle u;
+  const auto& tri = mesh.triangles[t];
+  for (int k = 0; k < 3; ++k) u.p[k] = {double(uvs[tri[k]].x) * W, double(uvs[tri[k]].y) * H};
+  const P2* p = u.p;
   const double area2 = cross(p[1] - p[0], p[2] - p[0]);
-  if (!(std::abs(area2) > 1e-12)) return;
+  if (!(std::abs(area2) > 1e-12)) return u;
+  u.area2 = area2;
   const double lox = std::min({p[0].x, p[1].x, p[2].x}), hix = std::max({p[0].x, p[1].x, p[2].x});
   const double loy = std::min({p[0].y, p[1].y, p[2].y}), hiy = std::max({p[0].y, p[1].y, p[2].y});
   // Clamped in double before the conversion: a UV far outside [0, 1]² (a corrupt file) must not
   // overflow int and sweep a range of texels that does not exist.
   const auto cell = [](double v, int n) { return int(std::clamp(v, -1.0, double(n))); };
-  const int x0 = std::max(0, cell(std::floor(lox), W)), x1 = std::min(W - 1, cell(std::ceil(hix), W) - 1);
-  const int y0 = std::max(0, cell(std::floor(loy), H)), y1 = std::min(H - 1, cell(std::ceil(hiy), H) - 1);
-  for (int y = y0; y <= y1; ++y)
-    for (int x = x0; x <= x1; ++x) {
-      const P2 c{x + 0.5, y + 0.5};
-      // Edge functions: λ_k is the signed area opposite vertex k over the whole.
-      const double l0 = cross(p[2] - p[1], c - p[1]) / area2;
-      const double l1 = cross(p[0] - p[2], c - p[2]) / area2;
-      const double l2 = 1 - l0 - l1;
-      const std::size_t texel = std::size_t(y) * W + x;
-      if (l0 >= -1e-9 && l1 >= -1e-9 && l2 >= -1e-9) {
-        const double s = std::max(l0, 0.0) + std::max(l1, 0.0) + std::max(l2, 0.0);
-        f(texel,
-          Vec3f(float(std::max(l0, 0.0) / s), float(std::max(l1, 0.0) / s),
-                float(std::max(l2, 0.0) / s)),
-          true, l0 > 1e-6 && l1 > 1e-6 && l2 > 1e-6, 0.0);
-      } else if (const std::vector<P2> part = clipToTexel(x, y, p); !part.empty()) {
-        // Partly covered: the point of the triangle inside the texel nearest to its centre.
-        const P2 q = nearestOnPolygon(part, c);
-        const double m0 = std::max(cross(p[2] - p[1], q - p[1]) / area2, 0.0);
-        const double m1 = std::max(cross(p[0] - p[2], q - p[2]) / area2, 0.0);
-        const double m2 = std::max(1 - m0 - m1, 0.0), s = m0 + m1 + m2;
-        f(texel, Vec3f(float(m0 / s), float(m1 / s), float(m2 / s)), false, false,
-          std::sqrt(dot(q - c, q - c)));
-      }
-    }
+  u.x0 = std::max(0, cell(std::floor(lox), W)), u.x1 = std::min(W - 1, cell(std::ceil(hix), W) - 1);
+  u.y0 = std::max(0, cell(std::floor(loy), H)), u.y1 = std::min(H - 1, cell(std::ceil(hiy), H) - 1);
+  return u;
 }
+
+/// Calls f(texel, λ, centreInside, strictlyInside, distance) if triangle `u` covers texel (x, y)
+/// of a lightmap W texels wide (λ: barycentric weights of the sample point: the centre, or the
+/// nearest point of the triangle to it). The one test of a texel against a triangle, whichever
+/// texels are asked (all of a triangle's, or a few: sampleTexelsAt), so their answers agree.
+template <typename F>
+void coverTexel(const UvTriangle& u, int x, int y, int W, F&& f) {
+  const P2* p = u.p;
+  const double area2 = u.area2;
+  const P2 c{x + 0.5, y + 0.5};
+  // Edge functions: λ_k is the signed area opposite vertex k over the whole.
+  const double l0 = cross(p[2] - p[1], c - p[1]) / area2;
+  const double l1 = cross(p[0] - p[2], c - p[2]) / area2;
+  const double l2 = 1 - l0 - l1;
+  const std::size_t texel = std::size_t(y) * W + x;
+  if (l0 >= -1e-9 && l1 >= -1e-9 && l2 >= -1e-9) {
+    const double s = std::max(l0, 0.0) + std::max(l1, 0.0) + std::max(l2, 0.0);
+    f(texel,
+      Vec3f(float(std::max(l0, 0.0) / s), float(std::max(l1, 0.0) / s),
+            float(std::max(l2, 0.0) / s)),
+      true, l0 > 1e-6 && l1 > 1e-6 && l2 > 1e-6, 0.0);
+  } else if (const std::vector<P2> part = clipToTexel(x, y, p); !part.empty()) {
+    // Partly covered: the point of the triangle inside the texel nearest to its centre.
+    const P2 q = nearestOnPolygon(part, c);
+    const double m0 = std::max(cross(p[2] - p[1], q - p[1]) / area2, 0.0);
+    const double m1 = std::max(cross(p[0] - p[2], q - p[2]) / area2, 0.0);
+    const double m2 = std::max(1 - m0 - m1, 0.0), s = m0 + m1 + m2;
+    f(texel, Vec3f(float(m0 / s), float(m1 / s), float(m2 / s)), false, false,
+      std::sqrt(dot(q - c, q - c)));
+  }
+}
+
+/// True when one of triangle `u`'s edges has the four corners of texel (x, y) beyond it by more
+/// than 10⁻⁶ texel: they cannot meet, and coverTexel would clip the texel to nothing. The
+/// margin is a million times the rounding of the clipping (UVs inside [0, 1]², as a lightmap's
+/// are: coordinates below 2¹³ texels, in double), so no texel that coverTexel covers is ever
+/// rejected; those it rejects cost three edge tests here instead of a polygon clipping.
+bool separated(const UvTriangle& u, int x, int y) {
+  const P2* p = u.p;
+  const double orientation = u.area2 > 0 ? 1.0 : -1.0;
+  for (int k = 0; k < 3; ++k) {
+    const P2 a = p[k], b = p[(k + 1) % 3], ab = b - a;
+    const double margin = 1e-6 * std::sqrt(dot(ab, ab));  // distance times |ab|
+    bool allOutside = true;
+    for (int corner = 0; corner < 4 && allOutside; ++corner) {
+      const P2 q{double(x + (corner & 1)), double(y + (corner >> 1))};
+      allOutside = orientation * cross(ab, q - a) < -margin;
+    }
+    if (allOutside) return true;
+  }
+  return false;
+}
+
+/// Calls coverTexel's f for every texel triangle t covers in a W × H lightmap. Triangles without
+/// UV area call nothing.
+template <typename F>
+void forEachCoveredTexel(const Mesh& mesh, std::span<const Vec2f> uvs, std::size_t t, int W, int H,
+                         F&& f) {
+  const UvTriangle u = uvTriangle(mesh, uvs, t, W, H);
+  if (u.area2 == 0) return;
+  for (int y = u.y0; y <= u.y1; ++y)
+    for (int x = u.x0; x <= u.x1; ++x) coverTexel(u, x, y, W, f);
+}
+
+/// The sample a texel keeps among the triangles that cover it, offered in index order: strictly
+/// nearer wins, so a tie keeps the lower index (a centre inside is at distance 0) — sampleTexels'
+/// rule, for the few texels sampleTexelsAt holds.
+struct BestSample {
+  double distance = std::numeric_limits<double>::infinity();
+  std::int32_t triangle = -1;
+  Vec3f weights{0.0f};
+  bool centre = false;
+  void offer(std::size_t t, Vec3f w, bool inside, double d) {
+    if (d < distance) {
+      distance = d;
+      triangle = static_cast<std::int32_t>(t);
+      weights = w;
+      centre = inside;
+    }
+  }
+};
 
 }  // namespace
 
@@ -184,6 +247,8 @@ TexelSamples sampleTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int widt
   checkSize(width, height, mesh.source);
   checkUvCount(mesh, uvs, "the UV set");
   const std::size_t n = std::size_t(width) * height;
+  // BestSample's rule in four arrays (25 bytes a texel rather than its padded 32: the whole
+  // lightmap's worth is held here).
   std::vector<std::int32_t> best(n, -1);
   std::vector<double> bestDistance(n, std::numeric_limits<double>::infinity());
   std::vector<Vec3f> bestWeights(n);
@@ -211,6 +276,70 @@ TexelSamples sampleTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int widt
                            static_cast<std::uint32_t>(best[texel]), bestWeights[texel],
                            inside[texel] != 0});
   }
+  return out;
+}
+
+TexelCoverage coverTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height) {
+  checkSize(width, height, mesh.source);
+  checkUvCount(mesh, uvs, "the UV set");
+  TexelCoverage out(width, height);
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+    const UvTriangle u = uvTriangle(mesh, uvs, t, width, height);
+    if (u.area2 == 0) continue;
+    for (int y = u.y0; y <= u.y1; ++y)
+      for (int x = u.x0; x <= u.x1; ++x) {
+        const std::size_t texel = std::size_t(y) * width + x;
+        // Covered once is covered: the clipping of a texel another triangle covered is skipped,
+        // and so is a texel the triangle's edges keep clear of.
+        if (!out.covered(texel) && !separated(u, x, y))
+          coverTexel(u, x, y, width,
+                     [&](std::size_t, Vec3f, bool, bool, double) { out.cover(texel); });
+      }
+  }
+  out.index();
+  return out;
+}
+
+std::vector<TexelSample> sampleTexelsAt(const Mesh& mesh, std::span<const Vec2f> uvs, int width,
+                                        int height, std::span<const std::uint32_t> texels) {
+  checkSize(width, height, mesh.source);
+  checkUvCount(mesh, uvs, "the UV set");
+  const std::size_t n = std::size_t(width) * height;
+  for (std::size_t i = 0; i < texels.size(); ++i)
+    PRT_CHECK(texels[i] < n && (i == 0 || texels[i - 1] < texels[i]),
+              "sampleTexelsAt: the texels are distinct, ascending and inside the lightmap");
+  std::vector<BestSample> best(texels.size());
+  const auto offer = [&](std::size_t t, const UvTriangle& u, std::size_t i) {
+    const int x = int(texels[i] % std::uint32_t(width)), y = int(texels[i] / std::uint32_t(width));
+    if (x < u.x0 || x > u.x1 || y < u.y0 || y > u.y1) return;
+    coverTexel(u, x, y, width, [&](std::size_t, Vec3f w, bool centre, bool, double distance) {
+      best[i].offer(t, w, centre, distance);
+    });
+  };
+  // Triangles in index order, as sampleTexels offers them, so each texel keeps the same one.
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+    const UvTriangle u = uvTriangle(mesh, uvs, t, width, height);
+    if (u.area2 == 0 || u.x1 < u.x0 || u.y1 < u.y0) continue;
+    const std::size_t rows = std::size_t(u.y1 - u.y0 + 1);
+    if (rows >= texels.size()) {
+      // A triangle spanning more rows than there are texels asked: test each of them.
+      for (std::size_t i = 0; i < texels.size(); ++i) offer(t, u, i);
+      continue;
+    }
+    // Else the texels asked in each row the triangle spans, found by bisection (ascending).
+    for (int y = u.y0; y <= u.y1; ++y) {
+      const std::uint32_t lo = std::uint32_t(std::size_t(y) * width + u.x0);
+      const std::uint32_t hi = std::uint32_t(std::size_t(y) * width + u.x1);
+      for (auto it = std::lower_bound(texels.begin(), texels.end(), lo);
+           it != texels.end() && *it <= hi; ++it)
+        offer(t, u, std::size_t(it - texels.begin()));
+    }
+  }
+  std::vector<TexelSample> out;
+  for (std::size_t i = 0; i < texels.size(); ++i)
+    if (best[i].triangle >= 0)
+      out.push_back({texels[i], static_cast<std::uint32_t>(best[i].triangle), best[i].weights,
+                     best[i].centre});
   return out;
 }
 

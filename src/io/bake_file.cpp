@@ -500,6 +500,15 @@ BakeFile readBake(const std::string& path) {
   return decode(*bytes, path, io::ByteKeeper{bytes});
 }
 
+BakeFile mapBake(const std::string& path) {
+  const std::shared_ptr<const MappedFile> file =
+      mapFile(path, kMaxBakeFileBytes, "the GLB format's 4 GiB");
+  BakeFile bake = decode(file->bytes(), path, io::ByteKeeper{file, /*checkRows=*/false});
+  // The mesh is read (and copied) in order; what is left to read is rows, picked anywhere.
+  file->adviseRandomAccess();
+  return bake;
+}
+
 std::vector<std::size_t> transferPreference(const BakeFile& bake) {
   std::vector<std::size_t> order;
   for (TransferMode m : kModesRichestFirst)

@@ -38,9 +38,11 @@ void requireFinite(const float* x, std::size_t n, const std::string& what,
 }
 
 /// Exactly `count` floats of accessor `index`: a view of the file's bytes when they are tightly
-/// packed and aligned and a keeper holds them, else a copy. Every value checked finite.
+/// packed and aligned and a keeper holds them, else a copy. Every value checked finite, unless
+/// they are `rows` of a file read without (ByteKeeper::checkRows).
 FloatArray floats(const gltf::AccessorReader& a, int index, std::size_t count,
-                  const std::string& what, const schema::Reader& r, const ByteKeeper& bytes) {
+                  const std::string& what, const schema::Reader& r, const ByteKeeper& bytes,
+                  bool rows) {
   const gltf::AccessorSpan s = a.spanExact(index, 1, kFloat, count, what, sizeof(float));
   FloatArray out;
   if (bytes.keeper && s.stride == sizeof(float) &&
@@ -51,7 +53,7 @@ FloatArray floats(const gltf::AccessorReader& a, int index, std::size_t count,
     for (std::size_t i = 0; i < count; ++i) std::memcpy(&copy[i], s.element(i), sizeof(float));
     out = FloatArray(std::move(copy));
   }
-  requireFinite(out.data(), out.size(), what, r);
+  if (!rows || bytes.checkRows) requireFinite(out.data(), out.size(), what, r);
   return out;
 }
 
@@ -135,7 +137,7 @@ class DenseRowsCodec final : public TransferCodec {
     const std::vector<int> acc = accessorList(entry, 1, std::string("the") + what, where, r);
     // The reader checks the declared count against the bytes present before anything is read.
     return Transfer::dense(shape, floats(a, acc[0], shape.rows.count * shape.stride(),
-                                         std::string(toString(mode)) + what, r, bytes));
+                                         std::string(toString(mode)) + what, r, bytes, true));
   }
 };
 
@@ -208,11 +210,16 @@ class CpcaCodec final : public TransferCodec {
       c.cluster = a.exact<std::uint32_t>(acc[0], 1, kUint, n, what + " cluster ids");
     }
     std::size_t next = 1;
-    if (N > 0) c.weights = floats(a, acc[next++], n * N, what + " weights", r, bytes);
-    c.means = floats(a, acc[next++], K * S, what + " means", r, bytes);
-    if (N > 0) c.basis = floats(a, acc[next++], K * N * S, what + " basis", r, bytes);
+    if (N > 0) c.weights = floats(a, acc[next++], n * N, what + " weights", r, bytes, true);
+    c.means = floats(a, acc[next++], K * S, what + " means", r, bytes, false);
+    if (N > 0) c.basis = floats(a, acc[next++], K * N * S, what + " basis", r, bytes, false);
+    if (!bytes.checkRows)  // the ids alone (check() would read every weight too)
+      for (std::size_t i = 0; i < n; ++i)
+        if (c.cluster[i] >= K)
+          r.fail(zw + ": row " + std::to_string(i) + " names cluster " +
+                 std::to_string(c.cluster[i]) + " of " + std::to_string(K));
     Transfer t = Transfer::cpca(shape, std::move(c));
-    t.check(r.name() + ": " + zw);  // ids below K
+    if (bytes.checkRows) t.check(r.name() + ": " + zw);  // ids below K
     return t;
   }
 };

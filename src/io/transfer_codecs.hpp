@@ -31,9 +31,13 @@
 namespace prt::io {
 
 /// Where a decoded transfer's rows may point instead of being copied: the bytes of the file,
-/// kept alive by `keeper` (null: copy everything).
+/// kept alive by `keeper` (null: copy everything). `checkRows` false — a mapped file whose reader
+/// reads a few rows (mapBake) — leaves the rows' own values (dense rows, CPCA weights) unchecked
+/// for finiteness, since checking would read them all; the reader checks those it reads. Cluster
+/// ids, means and basis vectors are checked either way.
 struct ByteKeeper {
   std::shared_ptr<const void> keeper;
+  bool checkRows = true;
 };
 
 class TransferCodec {

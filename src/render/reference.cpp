@@ -607,26 +607,36 @@ ReferenceRows::ReferenceRows(const Mesh& mesh, const Occluder& occluder, const E
     throw Error("reference bounces must be in 0..16 (got " + std::to_string(settings.bounces) +
                 ")");
   const RowPoints* points = settings.points.get();
-  const std::size_t nv = points ? points->positions.size() : mesh.vertexCount();
+  const std::size_t entries = points ? points->positions.size() : mesh.vertexCount();
   if (mesh.normals.size() != mesh.vertexCount())
     throw Error(mesh.source, "has no per-vertex normals");
   if (mesh.hasAlbedo() && mesh.albedo.size() != mesh.vertexCount())
     throw Error(mesh.source, "albedo count differs from vertex count");
-  if (points &&
-      (points->normals.size() != nv || (!points->albedo.empty() && points->albedo.size() != nv)))
+  if (points && (points->normals.size() != entries ||
+                 (!points->albedo.empty() && points->albedo.size() != entries) ||
+                 (!points->rows.empty() && points->rows.size() != entries)))
     throw Error(mesh.source, "the reference's row points lack normals or albedo");
   if (settings.material.glossy() && !settings.eye)
     throw Error("a glossy reference (" + settings.material.spec() +
                 ") needs the eye position for its view directions");
-  if (settings.vertices.empty()) {
-    vertices_.resize(nv);
-    for (std::size_t v = 0; v < nv; ++v) vertices_[v] = static_cast<std::uint32_t>(v);
-  } else {
+  if (!settings.vertices.empty()) {
     vertices_ = settings.vertices;
-    for (std::uint32_t v : vertices_)
-      if (v >= nv)
-        throw Error("reference vertex " + std::to_string(v) + " out of range (mesh has " +
-                    std::to_string(nv) + ")");
+  } else if (points && !points->rows.empty()) {
+    vertices_ = points->rows;  // the rows held
+  } else {
+    vertices_.resize(entries);
+    for (std::size_t v = 0; v < entries; ++v) vertices_[v] = static_cast<std::uint32_t>(v);
+  }
+  // Where each row's point is: its entry in the points (looked up once), or the vertex itself.
+  entries_.reserve(vertices_.size());
+  for (std::uint32_t v : vertices_) {
+    const std::size_t e = points ? points->entry(v) : (v < entries ? v : RowPoints::kAbsent);
+    if (e == RowPoints::kAbsent)
+      throw Error(points && !points->rows.empty()
+                      ? "reference row " + std::to_string(v) + " is not among the rows' points"
+                      : "reference vertex " + std::to_string(v) + " out of range (mesh has " +
+                            std::to_string(entries) + ")");
+    entries_.push_back(e);
   }
   lanes_ = settings.bandLimit ? settings.bandLimit->limits.size() : 0;
   sampler_ = std::make_unique<EnvironmentSampler>(env);
@@ -645,11 +655,12 @@ void ReferenceRows::compute(std::size_t first, std::size_t count, Rgb* radiance,
     for (std::size_t i = b; i < e; ++i) {
       if (progress) progress->check();
       const std::uint32_t v = vertices_[first + i];
+      const std::size_t at = entries_[first + i];
       const RowPoints* points = settings.points.get();
-      const Vec3f& p = points ? points->positions[v] : mesh.positions[v];
-      const Vec3f& n = points ? points->normals[v] : mesh.normals[v];
+      const Vec3f& p = points ? points->positions[at] : mesh.positions[v];
+      const Vec3f& n = points ? points->normals[at] : mesh.normals[v];
       const Rgb kd = settings.material.diffuse           ? *settings.material.diffuse
-                     : points && !points->albedo.empty() ? points->albedo[v]
+                     : points && !points->albedo.empty() ? points->albedo[at]
                      : !points && !albedo_.empty()       ? albedo_[v]
                                                          : Rgb(1.0f);
       // v = normalize(eye − p); an eye on the vertex (or none) looks along the normal.
@@ -687,6 +698,12 @@ ReferenceResult renderReference(const Mesh& mesh, const Occluder& occluder, cons
   for (std::uint64_t r : rays) out.rays += r;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+std::size_t RowPoints::entry(std::size_t r) const {
+  if (rows.empty()) return r < positions.size() ? r : kAbsent;
+  const auto it = std::lower_bound(rows.begin(), rows.end(), r);
+  return it != rows.end() && *it == r ? static_cast<std::size_t>(it - rows.begin()) : kAbsent;
 }
 
 Material referenceMaterial(const Material& material, TransferLayout layout) {

@@ -9,21 +9,40 @@
 
 namespace prt::render {
 
-RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
-                         const TransferShape::LightmapSize& lightmap, bool withTexture) {
+namespace {
+
+/// The diffuse colour at the vertices that the samples' albedo blends (the texture folded in, as
+/// the bake's bounces and the reference see it; without `withTexture` the mesh's albedo alone),
+/// or empty when the mesh has none: white.
+std::vector<Rgb> vertexAlbedoOf(const Mesh& mesh, bool withTexture) {
+  const bool coloured = mesh.hasAlbedo() || (withTexture && mesh.baseColour.has_value());
+  return !coloured ? std::vector<Rgb>() : withTexture ? albedoAtVertices(mesh) : mesh.albedo;
+}
+
+/// That colour interpolated at a sample point.
+Rgb sampleAlbedo(const Mesh& mesh, const std::vector<Rgb>& vertexAlbedo, const TexelSample& t) {
+  const auto& tri = mesh.triangles[t.triangle];
+  const Vec3f& w = t.barycentric;
+  return vertexAlbedo[tri[0]] * w.x + vertexAlbedo[tri[1]] * w.y + vertexAlbedo[tri[2]] * w.z;
+}
+
+void requireLightmapUvs(const Mesh& mesh) {
   if (mesh.lightmapUvs.size() != mesh.vertexCount())
     throw Error(mesh.source, "per-texel transfer needs the mesh's lightmap UVs");
+}
+
+}  // namespace
+
+RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
+                         const TransferShape::LightmapSize& lightmap, bool withTexture) {
+  requireLightmapUvs(mesh);
   const TexelSamples s = sampleTexels(mesh, mesh.lightmapUvs, lightmap.width, lightmap.height);
   RowPoints out;
   const std::size_t rows = s.texelCount();
   out.positions.assign(rows, Vec3f(0.0f));
   out.normals.assign(rows, Vec3f(0, 0, 1));
-  // The diffuse colour at the vertices (the texture folded in, as the bake's bounces and the
-  // reference see it), interpolated at each sample point.
-  const bool coloured = mesh.hasAlbedo() || (withTexture && mesh.baseColour.has_value());
-  const std::vector<Rgb> vertexAlbedo = !coloured     ? std::vector<Rgb>()
-                                        : withTexture ? albedoAtVertices(mesh)
-                                                      : mesh.albedo;
+  const std::vector<Rgb> vertexAlbedo = vertexAlbedoOf(mesh, withTexture);
+  const bool coloured = !vertexAlbedo.empty();
   if (coloured) out.albedo.assign(rows, Rgb(1.0f));
   std::vector<Vec3f> p, n;
   for (const TexelSample& t : s.samples) {
@@ -31,12 +50,7 @@ RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
     n.push_back(sampleNormal(mesh, t));
     out.positions[t.texel] = p.back();
     out.normals[t.texel] = n.back();
-    if (coloured) {
-      const auto& tri = mesh.triangles[t.triangle];
-      const Vec3f& w = t.barycentric;
-      out.albedo[t.texel] =
-          vertexAlbedo[tri[0]] * w.x + vertexAlbedo[tri[1]] * w.y + vertexAlbedo[tri[2]] * w.z;
-    }
+    if (coloured) out.albedo[t.texel] = sampleAlbedo(mesh, vertexAlbedo, t);
   }
   const std::vector<std::uint8_t> inside = insideGeometry(mesh, occluder, p, n);
   for (std::size_t i = 0; i < s.samples.size(); ++i)
@@ -65,6 +79,54 @@ RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
     const float len = length(m);
     out.normals[t] = len > 0 ? m / len : Vec3f(0, 0, 1);
     if (coloured) out.albedo[t] = {r[6], r[7], r[8]};
+  }
+  return out;
+}
+
+RowPoints texelSamplePoints(const Mesh& mesh, const Occluder& occluder,
+                            const TransferShape::LightmapSize& lightmap,
+                            std::span<const std::uint32_t> texels) {
+  requireLightmapUvs(mesh);
+  const std::vector<TexelSample> samples =
+      sampleTexelsAt(mesh, mesh.lightmapUvs, lightmap.width, lightmap.height, texels);
+  RowPoints out;
+  out.rows.assign(texels.begin(), texels.end());
+  out.positions.assign(texels.size(), Vec3f(0.0f));
+  out.normals.assign(texels.size(), Vec3f(0, 0, 1));
+  const std::vector<Rgb> vertexAlbedo = vertexAlbedoOf(mesh, true);
+  if (!vertexAlbedo.empty()) out.albedo.assign(texels.size(), Rgb(1.0f));
+  // The samples are the covered texels among `texels`, in the same order: walk both.
+  std::vector<Vec3f> p, n;
+  std::vector<std::size_t> entryOf;
+  std::size_t e = 0;
+  for (const TexelSample& t : samples) {
+    while (texels[e] != t.texel) ++e;
+    entryOf.push_back(e);
+    p.push_back(out.positions[e] = samplePosition(mesh, t));
+    n.push_back(out.normals[e] = sampleNormal(mesh, t));
+    if (!vertexAlbedo.empty()) out.albedo[e] = sampleAlbedo(mesh, vertexAlbedo, t);
+  }
+  const std::vector<std::uint8_t> inside = insideGeometry(mesh, occluder, p, n);
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (!inside[i]) out.valid.push_back(samples[i].texel);
+  return out;
+}
+
+RowPoints texelRowPointsAt(const Mesh& mesh, const Occluder& occluder,
+                           const TransferShape::LightmapSize& lightmap,
+                           std::span<const std::uint32_t> texels) {
+  RowPoints own = texelSamplePoints(mesh, occluder, lightmap, texels);
+  if (own.valid.size() == texels.size()) return own;  // every point its own sample's
+  // Some are the gutter or inside geometry: their points are dilated from their valid
+  // neighbours', which takes the whole lightmap's.
+  const RowPoints all = texelRowPoints(mesh, occluder, lightmap);
+  RowPoints out;
+  out.rows = std::move(own.rows);
+  out.valid = std::move(own.valid);
+  for (std::uint32_t t : out.rows) {
+    out.positions.push_back(all.positions[t]);
+    out.normals.push_back(all.normals[t]);
+    if (!all.albedo.empty()) out.albedo.push_back(all.albedo[t]);
   }
   return out;
 }
@@ -108,13 +170,6 @@ void requireWholeDomain(const Mesh& mesh, const Transfer& transfer, const std::s
     throw Error(verb + " needs the transfer of every " + rowName(transfer.domain()) + " (" +
                 std::to_string(n) + "), it holds " + std::to_string(transfer.rowCount()) +
                 " rows from " + std::to_string(transfer.rows().first));
-}
-
-std::shared_ptr<const RowPoints> transferRowPoints(const Mesh& mesh, const Occluder& occluder,
-                                                   const Transfer& transfer) {
-  if (transfer.domain() != TransferDomain::Texels) return nullptr;
-  return std::make_shared<const RowPoints>(
-      texelRowPoints(mesh, occluder, transfer.shape().lightmap));
 }
 
 std::vector<float> shadingPoints(const Mesh& mesh, const Transfer& transfer,

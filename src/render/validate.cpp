@@ -1,6 +1,7 @@
 #include "prt/render/validate.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -11,41 +12,163 @@
 #include "prt/core/json.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/render/primary.hpp"
 #include "prt/render/render.hpp"
+#include "prt/render/texel_points.hpp"
 #include "prt/sh/convolve.hpp"
 
 namespace prt::render {
 
-std::vector<std::uint32_t> vertexSubset(std::size_t n, std::size_t count, std::uint64_t seed) {
-  std::vector<std::uint32_t> all(n);
-  std::iota(all.begin(), all.end(), 0u);
-  if (count == 0 || count >= n) return all;
-  // Partial Fisher–Yates shuffle with a PCG32 stream of `seed`: the first `count` entries are a
-  // uniformly random subset.
-  Pcg32 rng(deriveSeed(seed, 0x5eb5e7ull));
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t j = i + static_cast<std::size_t>(rng.next() % (n - i));
-    std::swap(all[i], all[j]);
-  }
-  all.resize(count);
-  std::sort(all.begin(), all.end());
-  return all;
+RandomOrder subsetOrder(std::size_t n, std::uint64_t seed) {
+  return RandomOrder(n, deriveSeed(seed, 0x5eb5e7ull));
 }
 
-std::vector<std::uint32_t> rowSubset(const RowPoints* points, std::size_t n, std::size_t count,
-                                     std::uint64_t seed) {
-  if (!points || points->valid.empty()) return vertexSubset(n, count, seed);
-  const std::vector<std::uint32_t>& valid = points->valid;
-  std::vector<std::uint32_t> rows;
-  for (std::uint32_t k : vertexSubset(valid.size(), count, seed)) rows.push_back(valid[k]);
-  return rows;
+std::vector<std::uint32_t> vertexSubset(std::size_t n, std::size_t count, std::uint64_t seed) {
+  std::vector<std::uint32_t> subset;
+  if (count == 0 || count >= n) {
+    subset.resize(n);
+    std::iota(subset.begin(), subset.end(), 0u);
+    return subset;
+  }
+  // The first `count` of a uniformly random order: a uniformly random subset.
+  RandomOrder order = subsetOrder(n, seed);
+  for (std::size_t i = 0; i < count; ++i) subset.push_back(order.next());
+  std::sort(subset.begin(), subset.end());
+  return subset;
 }
 
 namespace {
+
+/// `count` valid texels of `lightmap` (0: every one) by chooseRows' rule, with their points:
+/// candidates drawn in batches from the covered texels' order, each batch sampled and probed
+/// at once (texelSamplePoints), its valid texels kept in the order drawn.
+RowPoints drawTexels(const Mesh& mesh, const Occluder& occluder,
+                     const TransferShape::LightmapSize& lightmap, std::size_t count,
+                     std::uint64_t seed) {
+  if (mesh.lightmapUvs.size() != mesh.vertexCount())
+    throw Error(mesh.source, "per-texel transfer needs the mesh's lightmap UVs");
+  const TexelCoverage covered =
+      coverTexels(mesh, mesh.lightmapUvs, lightmap.width, lightmap.height);
+  const std::size_t n = covered.count();
+  // Every valid texel: the covered ones in texel order (the order does not matter then).
+  const bool all = count == 0 || count >= n;
+  RandomOrder order = subsetOrder(all ? 0 : n, seed);
+  std::size_t next = 0;  // of the covered texels in texel order, when `all`
+  struct Kept {
+    std::uint32_t texel;
+    Vec3f position, normal;
+    Rgb albedo;
+  };
+  std::vector<Kept> kept;
+  bool coloured = false;
+  const std::size_t want = all ? n : count;
+  while (kept.size() < want && (all ? next < n : !order.done())) {
+    // Some more than are missing, since a few may lie inside geometry; extras are dropped, so
+    // the texels kept do not depend on the batches.
+    const std::size_t missing = want - kept.size();
+    const std::size_t batch = all ? n : std::min(n - order.drawn(), missing + missing / 8 + 16);
+    std::vector<std::uint32_t> drawn(batch);
+    for (std::uint32_t& t : drawn) t = covered.select(all ? next++ : order.next());
+    std::vector<std::uint32_t> sorted = drawn;
+    std::sort(sorted.begin(), sorted.end());
+    const RowPoints p = texelSamplePoints(mesh, occluder, lightmap, sorted);
+    coloured = !p.albedo.empty();
+    for (std::uint32_t t : drawn) {
+      if (kept.size() == want) break;
+      if (!std::binary_search(p.valid.begin(), p.valid.end(), t)) continue;  // inside geometry
+      const std::size_t e = p.entry(t);
+      kept.push_back({t, p.positions[e], p.normals[e], coloured ? p.albedo[e] : Rgb(1.0f)});
+    }
+  }
+  std::sort(kept.begin(), kept.end(),
+            [](const Kept& a, const Kept& b) { return a.texel < b.texel; });
+  RowPoints out;
+  for (const Kept& k : kept) {
+    out.rows.push_back(k.texel);
+    out.positions.push_back(k.position);
+    out.normals.push_back(k.normal);
+    if (coloured) out.albedo.push_back(k.albedo);
+  }
+  out.valid = out.rows;
+  return out;
+}
+
+}  // namespace
+
+RowChoice chooseRows(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+                     std::size_t count, std::uint64_t seed) {
+  RowChoice c;
+  if (transfer.domain() != TransferDomain::Texels) {
+    c.rows = vertexSubset(transfer.shape().domainRows(mesh.vertexCount()), count, seed);
+    return c;
+  }
+  auto points = std::make_shared<RowPoints>(
+      drawTexels(mesh, occluder, transfer.shape().lightmap, count, seed));
+  c.rows = points->rows;
+  c.points = std::move(points);
+  return c;
+}
+
+namespace {
+
+/// The relighting kernels take rows in blocks of up to 8 (relight/*_kernels.cpp), and the last
+/// few rows of each range a thread is given (parallelFor halves ranges) through a scalar form
+/// that rounds differently in the last bit. The gathered rows are padded to a power of two
+/// (at most twice as many), so that every range is whole blocks and each row is relit bit for
+/// bit as in a whole transfer of 2^k rows (a lightmap of power-of-two sides).
+constexpr std::size_t kRelightBlock = 8;
+
+std::size_t paddedRows(std::size_t n) {
+  return std::bit_ceil(std::max(n, kRelightBlock));
+}
+
+/// Rows `rows` of `t` (any order) as a transfer of their own — a dense copy of those rows, or
+/// their cluster ids and weights beside the shared means and basis — padded with zero rows to
+/// paddedRows, each checked finite, as a mapped bake's rows have not been (io/bake_file.hpp:
+/// mapBake): what validation reads of a transfer of any size.
+Transfer gatherRows(const Transfer& t, std::span<const std::uint32_t> rows,
+                    const std::string& bakeName) {
+  const std::size_t n = paddedRows(rows.size());
+  TransferShape shape = t.shape();
+  shape.rows = {0, n};
+  const std::size_t S = t.stride();
+  Transfer out;
+  if (!t.compressed()) {
+    std::vector<float> values(n * S, 0.0f);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      std::copy_n(t.row(rows[i]), S, values.data() + i * S);
+    out = Transfer::dense(shape, FloatArray(std::move(values)));
+  } else {
+    const CpcaRows& c = t.cpca();
+    const std::size_t N = static_cast<std::size_t>(c.basisCount);
+    CpcaRows g;
+    g.clusters = c.clusters;
+    g.basisCount = c.basisCount;
+    g.means = c.means;  // shared, not copied
+    g.basis = c.basis;
+    g.cluster.assign(n, 0);
+    std::vector<float> weights(n * N, 0.0f);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      g.cluster[i] = c.cluster[rows[i]];
+      std::copy_n(c.weights.data() + std::size_t(rows[i]) * N, N, weights.data() + i * N);
+    }
+    g.weights = FloatArray(std::move(weights));
+    out = Transfer::cpca(shape, std::move(g));
+  }
+  // Each row as relighting reads it: its values, or its reconstruction from the cluster's.
+  std::vector<float> row(S);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    out.reconstructRow(i, row.data());
+    if (!std::all_of(row.begin(), row.end(), [](float x) { return std::isfinite(x); }))
+      throw Error(bakeName, std::string("the transfer of ") + rowName(t.domain()) + " " +
+                                std::to_string(rows[i]) + " is not finite (a corrupt bake?)");
+  }
+  return out;
+}
 
 /// Per-vertex values as a one-row image, so render::metrics applies unchanged.
 image::Image row(const std::vector<Rgb>& v) {
@@ -91,9 +214,11 @@ std::vector<int> bandsToValidate(const ValidateSettings& settings, ValidationRep
 }
 
 /// The reference with the bake's transport. Diffuse (vector) transfer holds the diffuse part
-/// only, with diffuse bounces: the reference renders the same, the lobe dropped (kd kept).
+/// only, with diffuse bounces: the reference renders the same, the lobe dropped (kd kept). Its
+/// rows: chooseRows', or the precomputed reference's; per texel with their points alone.
 ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecipe& bake,
-                               const Transfer& transfer, std::size_t nv) {
+                               const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+                               std::size_t nv) {
   ReferenceSettings rs = settings.reference;
   rs.mode = bake.mode;
   rs.bounces = bake.effectiveBounces();
@@ -105,8 +230,17 @@ ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecip
       if (v >= nv)
         throw Error("the reference has vertex " + std::to_string(v) + " of a mesh with " +
                     std::to_string(nv));
+    if (transfer.domain() == TransferDomain::Texels) {
+      std::vector<std::uint32_t> texels = rs.vertices;  // as a file lists them: any order
+      std::sort(texels.begin(), texels.end());
+      texels.erase(std::unique(texels.begin(), texels.end()), texels.end());
+      rs.points = std::make_shared<const RowPoints>(
+          texelRowPointsAt(mesh, occluder, transfer.shape().lightmap, texels));
+    }
   } else {
-    rs.vertices = rowSubset(rs.points.get(), nv, settings.maxVertices, rs.seed);
+    RowChoice c = chooseRows(mesh, occluder, transfer, settings.maxVertices, rs.seed);
+    rs.vertices = std::move(c.rows);
+    rs.points = std::move(c.points);
   }
   // Glossy (matrix) transfer is seen from an eye.
   if (transfer.isMatrix() && !rs.eye)
@@ -254,14 +388,12 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
                           const BakeRecipe& bake, const envmap::Environment& env,
                           const sh::RgbSh& light, const ValidateSettings& settings,
                           const ProgressFn& progress) {
-  const RowPoints* points = settings.reference.points.get();
+  PRT_CHECK(!settings.reference.points, "validate() places the rows' points itself");
   const bool texels = transfer.domain() == TransferDomain::Texels;
-  if (texels && !points)
-    throw Error(mesh.source, "validating per-texel transfer needs its texels' sample points");
-  const std::size_t nv = points ? points->positions.size() : mesh.vertexCount();
+  const std::size_t nv = transfer.shape().domainRows(mesh.vertexCount());
   if (transfer.rowCount() != nv || transfer.rows().first != 0)
     throw Error(mesh.source, "transfer has " + std::to_string(transfer.rowCount()) + " rows, " +
-                                 (points ? "the points " : "the mesh ") + std::to_string(nv) +
+                                 (texels ? "the lightmap " : "the mesh ") + std::to_string(nv) +
                                  " (validation needs a complete bake)");
   if (light.bands < 1 || transfer.bands() < 1) throw Error("light or transfer has no bands");
 
@@ -276,7 +408,8 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
                            std::to_string(transfer.bands()) + ": validating up to " +
                            std::to_string(rep.bands) + " bands");
   const std::vector<int> kept = bandsToValidate(settings, rep);
-  const ReferenceSettings rs = referenceFor(settings, bake, transfer, nv);
+  const ReferenceSettings rs = referenceFor(settings, bake, mesh, occluder, transfer, nv);
+  const RowPoints* points = rs.points.get();
   const bool glossy = transfer.isMatrix();
   const std::vector<std::size_t> floorIdx =
       floorEntries(rs.vertices.size(), settings.floorVertices);
@@ -337,38 +470,45 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   rep.floorRays = floorRun.rays;
   rep.floorSeconds = floorRun.seconds;
 
+  // The validated rows alone, gathered: where they are (the mesh's vertices, or the points of
+  // the texels drawn), their albedo and their transfer, so that nothing here is of the size of
+  // the domain (relighting is per row: relighting these is relighting the whole at them).
+  const std::size_t padded = paddedRows(n);
+  std::vector<Vec3f> positions(padded, Vec3f(0.0f)), normals(padded, Vec3f(0, 0, 1));
+  std::vector<Rgb> albedo;
+  const std::vector<Rgb> vertexAlbedo =
+      !points && (mesh.hasAlbedo() || mesh.baseColour)
+          ? albedoAtVertices(mesh)  // the texture folded in at the vertices, as the reference
+          : std::vector<Rgb>();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t at = points ? points->entry(verts[i]) : verts[i];
+    positions[i] = points ? points->positions[at] : mesh.positions[at];
+    normals[i] = points ? points->normals[at] : mesh.normals[at];
+    if (points && !points->albedo.empty()) albedo.push_back(points->albedo[at]);
+    if (!vertexAlbedo.empty()) albedo.push_back(vertexAlbedo[at]);
+  }
+  if (!albedo.empty()) albedo.resize(padded, Rgb(1.0f));
+  const Transfer validated = gatherRows(transfer, verts, settings.bakeName);
+
   // Vertices whose negative radiance counts: for glossy transfer those facing the eye.
-  // Where the rows are: the mesh's vertices, or the points given (per-texel sample points).
-  const std::span<const Vec3f> positions =
-      points ? std::span<const Vec3f>(points->positions) : std::span<const Vec3f>(mesh.positions);
-  const std::span<const Vec3f> normals =
-      points ? std::span<const Vec3f>(points->normals) : std::span<const Vec3f>(mesh.normals);
   std::vector<char> counted(n, 1);
   if (glossy)
-    for (std::size_t i = 0; i < n; ++i)
-      counted[i] = dot(normals[verts[i]], *rs.eye - positions[verts[i]]) > 0;
+    for (std::size_t i = 0; i < n; ++i) counted[i] = dot(normals[i], *rs.eye - positions[i]) > 0;
   rep.negativeVertices = static_cast<std::size_t>(std::count(counted.begin(), counted.end(), 1));
 
-  std::vector<Rgb> albedo;
-  if (points)
-    albedo = points->albedo;
-  else if (mesh.hasAlbedo() || mesh.baseColour)
-    albedo = albedoAtVertices(mesh);  // the texture folded in at the vertices, as the reference
-  std::vector<Rgb> prt(n);
+  std::vector<Rgb> padPrt(padded);
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const int b = kept[k];
     // PRT radiance at b bands (relight rotates the light itself).
-    std::vector<Rgb> all(nv);
-    relight::relight(transfer.cut(b), lights[k], rs.material, {positions, normals, albedo},
-                     rs.eye ? *rs.eye : Vec3f(0.0f), all, rs.rotation);
-    for (std::size_t i = 0; i < n; ++i) {
-      prt[i] = all[verts[i]];
+    relight::relight(validated.cut(b), lights[k], rs.material, {positions, normals, albedo},
+                     rs.eye ? *rs.eye : Vec3f(0.0f), padPrt, rs.rotation);
+    const std::vector<Rgb> prt(padPrt.begin(), padPrt.begin() + std::ptrdiff_t(n));
+    for (std::size_t i = 0; i < n; ++i)
       if (!isFinite(prt[i]))
         throw Error(settings.bakeName,
                     "the PRT radiance at vertex " + std::to_string(verts[i]) +
                         " is not finite at " + std::to_string(b) +
                         " bands (the transfer times the light overflows 32-bit floats)");
-    }
     BandRow r;
     r.bands = b;
     r.refStdErr = refStd;

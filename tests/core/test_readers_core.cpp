@@ -71,6 +71,26 @@ TEST(ReadersCore, FifoIsRefusedNotWaitedFor) {
             std::string::npos);
 }
 
+// mapFile refuses what readFileBytes refuses, by the same words, and maps what it reads.
+TEST(ReadersCore, MappingAFileRefusesWhatReadingRefuses) {
+  prt::testing::ScratchDir dir;
+  const std::string fifo = dir / "bake.glb";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto map = [](const std::string& path, std::uint64_t cap = 1 << 20) {
+    return mapFile(path, cap, "the test's cap");
+  };
+  EXPECT_EQ(test::finishesWithin(10, "mapFile on a FIFO", [&] { map(fifo); }),
+            fifo + ": is not a regular file (a pipe, device or socket); give a file");
+  EXPECT_NE(errorOf([&] { map("/dev/null"); }).find("not a regular file"), std::string::npos);
+  EXPECT_NE(errorOf([&] { map(dir.path().string()); }).find("is a directory"), std::string::npos);
+  EXPECT_NE(errorOf([&] { map(dir / "missing.bin"); }).find("cannot open"), std::string::npos);
+  const std::string five = dir.write("five.bin", "12345");
+  EXPECT_NE(errorOf([&] { map(five, 4); }).find("the test's cap"), std::string::npos);
+  const auto mapped = map(five);
+  EXPECT_EQ(std::string(mapped->bytes().begin(), mapped->bytes().end()), "12345");
+  EXPECT_TRUE(map(dir.write("empty.bin", ""))->bytes().empty());
+}
+
 TEST(ReadersCore, InternalErrorsNameSourcesRelativeToTheTree) {
   const std::string e = errorOf([] { PRT_CHECK(1 + 1 == 3, "arithmetic"); });
   EXPECT_NE(e.find("internal error: arithmetic"), std::string::npos) << e;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -132,6 +133,76 @@ TEST(TexelSampling, SharedEdgesGoToOneTriangleDeterministically) {
     EXPECT_EQ(s.samples[i].triangle, again.samples[i].triangle);
     EXPECT_EQ(s.samples[i].barycentric, again.samples[i].barycentric);
   }
+}
+
+// coverTexels and sampleTexelsAt answer for a few texels what sampleTexels answers for all: the
+// same covered set (its count and k-th texel), and for any texels asked the same triangle,
+// weights and centre flag bit for bit — on random triangles, slivers, triangles with corners on
+// texel corners (edges along texel sides: touching is not covering), shared edges and partly
+// covered texels of a mesh whose triangles overlap in UV space (the nearest wins, ties to the
+// lower index).
+TEST(TexelSampling, CoverageAndSamplesOfAFewTexelsAreTheWholeLightmaps) {
+  constexpr int W = 37, H = 23;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f), D(-0.2f, 0.2f);
+  std::uniform_int_distribution<int> X(0, W), Y(0, H), S(-6, 6);
+  std::vector<Vec2f> uv;
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  const auto clamp01 = [](Vec2f v) {
+    return Vec2f{std::clamp(v.x, 0.0f, 1.0f), std::clamp(v.y, 0.0f, 1.0f)};
+  };
+  for (std::uint32_t t = 0; t < 90; ++t) {
+    Vec2f a{U(rng), U(rng)};
+    Vec2f b = clamp01({a.x + D(rng), a.y + D(rng)}), c = clamp01({a.x + D(rng), a.y + D(rng)});
+    if (t % 3 == 1) {  // a sliver
+      c = clamp01({0.5f * (a.x + b.x) + 0.002f, 0.5f * (a.y + b.y) - 0.003f});
+    } else if (t % 3 == 2) {  // corners on texel corners
+      const int x = X(rng), y = Y(rng);
+      const auto corner = [&](int dx, int dy) {
+        return Vec2f{float(std::clamp(x + dx, 0, W)) / W, float(std::clamp(y + dy, 0, H)) / H};
+      };
+      a = corner(0, 0), b = corner(S(rng), S(rng)), c = corner(S(rng), S(rng));
+    }
+    uv.insert(uv.end(), {a, b, c});
+    tris.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  const Mesh m = uvMesh(uv, tris);
+  const TexelSamples all = sampleTexels(m, m.uvs, W, H);
+  const TexelCoverage covered = coverTexels(m, m.uvs, W, H);
+  ASSERT_EQ(covered.count(), all.samples.size());
+  for (std::size_t k = 0; k < all.samples.size(); ++k)
+    ASSERT_EQ(covered.select(k), all.samples[k].texel) << k;
+  for (std::size_t t = 0; t < std::size_t(W * H); ++t)
+    ASSERT_EQ(covered.covered(t), all.covered(t)) << t;
+
+  // Every texel, then random subsets (covered and not), asked alone.
+  std::vector<std::uint32_t> every(W * H);
+  for (std::uint32_t t = 0; t < every.size(); ++t) every[t] = t;
+  std::vector<std::vector<std::uint32_t>> asks = {every, {0}, {std::uint32_t(W * H - 1)}};
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<std::uint32_t> some;
+    for (std::uint32_t t = 0; t < every.size(); ++t)
+      if (rng() % 16 == 0) some.push_back(t);
+    asks.push_back(some);
+  }
+  int partly = 0;
+  for (const auto& ask : asks) {
+    const std::vector<TexelSample> few = sampleTexelsAt(m, m.uvs, W, H, ask);
+    std::size_t j = 0;
+    for (std::uint32_t t : ask) {
+      if (!all.covered(t)) continue;
+      ASSERT_LT(j, few.size());
+      const TexelSample& a = all.samples[all.sampleOfTexel[t]];
+      const TexelSample& b = few[j++];
+      ASSERT_EQ(b.texel, t);
+      EXPECT_EQ(b.triangle, a.triangle) << t;
+      EXPECT_EQ(b.barycentric, a.barycentric) << t;
+      EXPECT_EQ(b.centreInside, a.centreInside) << t;
+      partly += !a.centreInside;
+    }
+    EXPECT_EQ(j, few.size()) << "a sample for a texel no triangle covers";
+  }
+  EXPECT_GT(partly, 50) << "the partly covered texels must be exercised";
 }
 
 TEST(TexelSampling, BadUvSetsAreRefusedByName) {

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <random>
 #include <tuple>
 
@@ -889,6 +890,47 @@ BakeFile texelBake(int W, int H, std::size_t first, std::size_t n) {
     b.transfers.push_back(std::move(t));
   }
   return b;
+}
+
+// mapBake reads what readBake reads, the rows viewing the mapped file (dense and compressed),
+// and leaves the rows' values unread: a non-finite value that readBake refuses is read back as
+// it is (its reader checks the rows it reads: render::validate), while a cluster id beyond K is
+// still refused.
+TEST(BakeFile, MappingLeavesTheRowsUnreadUntilTouched) {
+  const prt::testing::ScratchDir scratch;
+  const int W = 16, H = 8;
+  BakeFile b = texelBake(W, H, 0, W * H);
+  CpcaOptions cs;
+  cs.clusters = 3;
+  cs.basisCount = 2;
+  b.transfers[1].transfer = compressCpca(b.transfers[1].transfer, cs);
+  const std::string clean = (scratch.path() / "clean.glb").string();
+  writeBake(clean, b);
+  const BakeFile mapped = mapBake(clean);
+  expectSameBake(b, mapped);
+  EXPECT_TRUE(mapped.transfers[0].transfer.values().isView());
+  EXPECT_TRUE(mapped.transfers[1].transfer.cpca().weights.isView());
+
+  // One non-finite value in each transfer's rows: a dense row's (the writer takes it), a
+  // compressed row's weight (patched into the file: the writer refuses it).
+  BakeFile corrupt = b;
+  const std::size_t row = 77;
+  corrupt.transfers[0].transfer.mutableValues()[row * corrupt.transfers[0].transfer.stride()] =
+      std::numeric_limits<float>::infinity();
+  std::string bytes = encodeBake(corrupt);
+  const float weight = b.transfers[1].transfer.cpca().weights[row * 2 + 1];
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::size_t at = bytes.find(std::string(reinterpret_cast<const char*>(&weight), 4));
+  ASSERT_NE(at, std::string::npos);
+  ASSERT_EQ(bytes.find(std::string(reinterpret_cast<const char*>(&weight), 4), at + 1),
+            std::string::npos);
+  std::memcpy(&bytes[at], &nan, 4);
+  const std::string bad = scratch.write("bad.glb", bytes);
+  EXPECT_NE(testing::errorOf([&] { readBake(bad); }).find("non-finite"), std::string::npos);
+  const BakeFile read = mapBake(bad);
+  EXPECT_TRUE(std::isinf(read.transfers[0].transfer.row(row)[0]));
+  EXPECT_TRUE(std::isnan(read.transfers[1].transfer.cpca().weights[row * 2 + 1]));
+  EXPECT_EQ(read.transfers[0].transfer.row(row + 1)[0], b.transfers[0].transfer.row(row + 1)[0]);
 }
 
 // Per-texel transfer in the file (format 6): each transfer's rows as one float accessor, the

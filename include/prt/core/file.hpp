@@ -24,6 +24,7 @@
 #include <functional>
 #include <iosfwd>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -75,6 +76,32 @@ std::vector<unsigned char> readFileBytes(const std::string& path);
 /// The same with a cap of the caller's (a format's own limit), named `capName` in the refusal.
 std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t maxBytes,
                                          const char* capName);
+/// A regular file mapped read-only into memory: its bytes are read from disk as they are first
+/// touched, so a reader of a few of them (prt validate's rows of a large bake) reads those pages
+/// alone, and nothing is zero-filled or copied. Unmapped when the last owner lets go. A file
+/// truncated by another process while mapped faults (SIGBUS) where its lost bytes are touched:
+/// map inputs only, never files this process writes.
+class MappedFile {
+ public:
+  ~MappedFile();
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+  std::span<const unsigned char> bytes() const { return {data_, size_}; }
+  /// From here on, reads ahead of nothing (MADV_RANDOM): a page is read from disk when touched
+  /// and not its neighbours, for a reader that picks scattered rows (the kernel otherwise reads
+  /// megabytes around each). A hint: where the system ignores it, nothing changes but the I/O.
+  void adviseRandomAccess() const;
+
+ private:
+  MappedFile(const unsigned char* data, std::size_t size) : data_(data), size_(size) {}
+  const unsigned char* data_;
+  std::size_t size_;
+  friend std::shared_ptr<const MappedFile> mapFile(const std::string&, std::uint64_t, const char*);
+};
+/// Maps a whole regular file as readFileBytes reads one (the same refusals: not a pipe, device
+/// or socket, nothing above `maxBytes`, named `capName`).
+std::shared_ptr<const MappedFile> mapFile(const std::string& path, std::uint64_t maxBytes,
+                                          const char* capName);
 /// The first `bytes` bytes of a regular file (fewer when it is shorter), whatever its size: what
 /// a reader sniffs a file's kind from before it reads the whole under that kind's own limit.
 std::vector<unsigned char> readFileHead(const std::string& path, std::size_t bytes);

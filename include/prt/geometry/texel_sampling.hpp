@@ -1,8 +1,9 @@
 #pragma once
 // The lightmap domain's geometry (issue 18): checking a UV set can hold a lightmap, placing one
-// sample per covered texel (the TexelSamples type: geometry/texel_samples.hpp), the sample's
-// point and normal on the mesh, and dilating per-texel values into the gutter around charts so
-// bilinear filtering at a chart's edge never reads an empty texel.
+// sample per covered texel (the TexelSamples type: geometry/texel_samples.hpp) — or, without the
+// whole lightmap's arrays, which texels are covered and the samples of a few of them — the
+// sample's point and normal on the mesh, and dilating per-texel values into the gutter around
+// charts so bilinear filtering at a chart's edge never reads an empty texel.
 
 #include <cstdint>
 #include <optional>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "prt/geometry/mesh.hpp"
+#include "prt/geometry/texel_coverage.hpp"
 #include "prt/geometry/texel_samples.hpp"
 
 namespace prt {
@@ -41,6 +43,18 @@ void checkUvsInside(const Mesh& mesh, std::span<const Vec2f> uvs, const std::str
 /// 1..kMaxLightmapSide or UVs that do
 /// not match the mesh.
 TexelSamples sampleTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height);
+
+/// Which texels sampleTexels would sample (those a triangle covers), one bit each, without
+/// placing the samples: W·H/8 bytes where sampleTexels holds some 30 per texel. Throws as
+/// sampleTexels does.
+TexelCoverage coverTexels(const Mesh& mesh, std::span<const Vec2f> uvs, int width, int height);
+
+/// sampleTexels' samples of `texels` alone (distinct, ascending): the same triangle, weights and
+/// centre flag for each that a triangle covers, none for the others, in texel order. One pass
+/// over the triangles, each tested against the texels asked for within its bounds only, and
+/// memory for those texels alone: what a few rows of a large lightmap cost (prt validate).
+std::vector<TexelSample> sampleTexelsAt(const Mesh& mesh, std::span<const Vec2f> uvs, int width,
+                                        int height, std::span<const std::uint32_t> texels);
 
 /// The sample's point on the mesh (its barycentric blend of the triangle's positions).
 Vec3f samplePosition(const Mesh& mesh, const TexelSample& s);

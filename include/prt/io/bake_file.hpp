@@ -126,6 +126,13 @@ BakeFile decodeBake(std::span<const unsigned char> bytes, const std::string& nam
 /// Reads and validates a bake file. The file is held in memory once; dense matrix and
 /// compressed rows view it instead of being copied.
 BakeFile readBake(const std::string& path);
+/// Reads a bake file as readBake does, but maps it (core/file.hpp: mapFile) and leaves the
+/// transfer's rows in the mapping unread: a row is read from disk when first touched, so a
+/// consumer of a few rows (prt validate --vertices N) reads those and the mesh alone, whatever
+/// the file's size. The rows' values (dense rows, CPCA weights) are not checked finite, which
+/// would read them all: the consumer checks those it reads. Dense per-vertex vectors, stored as
+/// columns, are copied and checked as readBake copies them.
+BakeFile mapBake(const std::string& path);
 
 /// The transfer to relight with — the one policy every verb and the viewers share: of `mode`
 /// if given, else the richest the bake holds (kModesRichestFirst); of `layout` if given, else a

@@ -137,13 +137,22 @@ struct BandLimitSettings {
 Material referenceMaterial(const Material& material, TransferLayout layout);
 
 /// Where the rows are when they are not the mesh's vertices — per-texel transfer: each texel's
-/// sample point (transport/bake_texels.hpp) — one position, unit normal and albedo per row
-/// (rows no triangle covers hold anything: they are never estimated).
+/// sample point (transport/bake_texels.hpp) — one position, unit normal and albedo per entry:
+/// an entry per row of the domain, or per row of a subset (`rows`), all that a reference or a
+/// validation of that subset reads (render/texel_points.hpp). Rows no triangle covers hold
+/// anything: they are never estimated.
 struct RowPoints {
-  std::vector<Vec3f> positions, normals;
-  std::vector<Rgb> albedo;           ///< per row, or empty: white (or the material's kd)
-  std::vector<std::uint32_t> valid;  ///< the rows that may be estimated (covered, not inside
-                                     ///< geometry), ascending; validation draws its subset here
+  std::vector<Vec3f> positions, normals;  ///< per entry
+  std::vector<Rgb> albedo;                ///< per entry, or empty: white (or the material's kd)
+  /// The rows that may be estimated (covered, not inside geometry) among those held, ascending.
+  std::vector<std::uint32_t> valid;
+  /// The rows the entries are of, ascending, when they are some rows only; empty: entry r is
+  /// row r, of every row.
+  std::vector<std::uint32_t> rows;
+
+  /// The entry of row r, or kAbsent when the points do not hold it.
+  std::size_t entry(std::size_t r) const;
+  static constexpr std::size_t kAbsent = static_cast<std::size_t>(-1);
 };
 
 struct ReferenceSettings {
@@ -159,10 +168,11 @@ struct ReferenceSettings {
   std::uint64_t seed = 0;
   Mat3d rotation = Mat3d::identity();  ///< environment rotation (a feature at d moves to R d)
   MisHeuristic heuristic = MisHeuristic::Power;
-  /// The vertices to estimate (global indices); empty: every vertex.
+  /// The vertices to estimate (global indices); empty: every vertex (every row `points` hold).
   std::vector<std::uint32_t> vertices;
-  /// When set, the rows are these points instead of the mesh's vertices (`vertices` then index
-  /// them, each seeded by its index as a vertex is); the mesh and occluder are still the scene.
+  /// When set, the rows are these points instead of the mesh's vertices (`vertices` then name
+  /// rows they hold, each seeded by its index as a vertex is); the mesh and occluder are still
+  /// the scene.
   std::shared_ptr<const RowPoints> points;
   /// When set, also e_b − e per band limit (ReferenceResult::bandLimited); the radiance is the
   /// same, bit for bit (the band-limited lanes draw no random numbers of the main streams).
@@ -272,6 +282,7 @@ class ReferenceRows {
   std::vector<Rgb> albedo_;  ///< the diffuse colour at each vertex (geometry: albedoAtVertices)
   ReferenceSettings settings_;
   std::vector<std::uint32_t> vertices_;
+  std::vector<std::size_t> entries_;  ///< per vertex: its entry in settings.points (or itself)
   std::size_t lanes_ = 0;
   std::unique_ptr<EnvironmentSampler> sampler_;
   std::unique_ptr<ReferenceIntegrator> integrator_;

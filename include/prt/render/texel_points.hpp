@@ -30,15 +30,28 @@ namespace prt::render {
 RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
                          const TransferShape::LightmapSize& lightmap, bool withTexture = true);
 
+/// The points of some texels alone (`texels`: distinct, ascending), each exactly as
+/// texelRowPoints gives it, and which of them are valid — at the cost of those texels (their
+/// samples, their inside-geometry probe) and one pass over the triangles, not of the lightmap:
+/// what the reference and validation of a subset read (RowPoints::rows = `texels`). Where one
+/// of them is not valid (the gutter, inside geometry), whose point is its valid neighbours',
+/// the whole lightmap's points are made and those of `texels` kept.
+RowPoints texelRowPointsAt(const Mesh& mesh, const Occluder& occluder,
+                           const TransferShape::LightmapSize& lightmap,
+                           std::span<const std::uint32_t> texels);
+
+/// The texels' own sample points (before any dilation), for `texels` alone (distinct,
+/// ascending): an entry for each (RowPoints::rows = `texels`), its point, normal and albedo where
+/// a triangle covers it (else (0, 0, 0) with normal +Z), and `valid` those covered and not inside
+/// geometry. The cost of texelRowPointsAt without its fallback: what a draw of valid texels
+/// probes its candidates with.
+RowPoints texelSamplePoints(const Mesh& mesh, const Occluder& occluder,
+                            const TransferShape::LightmapSize& lightmap,
+                            std::span<const std::uint32_t> texels);
+
 /// Throws prt::Error naming `verb` ("validate") unless `transfer` holds every row of its domain
 /// on `mesh` (every vertex, or every texel of its lightmap over the mesh's lightmap UVs).
 void requireWholeDomain(const Mesh& mesh, const Transfer& transfer, const std::string& verb);
-
-/// Where the rows of `transfer` lie, for the reference and validation: null per vertex (the
-/// mesh's vertices), texelRowPoints of its lightmap per texel — the one dispatch on the domain
-/// that prt reference, prt validate and the Python module share.
-std::shared_ptr<const RowPoints> transferRowPoints(const Mesh& mesh, const Occluder& occluder,
-                                                   const Transfer& transfer);
 
 /// The texels' shading points a GPU viewer needs beside `transfer` (packTexelPoints of
 /// texelRelight's points: per-texel matrices are shaded at each texel's own point), or empty

@@ -32,9 +32,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "prt/core/random_order.hpp"
 #include "prt/image/image.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/sh/convolve.hpp"
@@ -44,7 +46,9 @@
 namespace prt::render {
 
 struct ValidateSettings {
-  ReferenceSettings reference;  ///< samples, seed, rotation, heuristic (mode/bounces: the bake's)
+  /// Samples, seed, rotation, heuristic (mode and bounces: the bake's; the rows and, per texel,
+  /// their points: validate()'s own, chooseRows — `reference.points` is left empty).
+  ReferenceSettings reference;
   std::vector<int> bandsList;   ///< band counts to tabulate; empty: 1..B
   std::size_t maxVertices = 0;  ///< 0: every vertex; else a deterministic random subset
   /// Vertices over which the truncation floor is taken (an even stride of the validated ones);
@@ -111,17 +115,34 @@ struct ValidationReport {
   bool referenceIsZero = false;
 };
 
-/// A deterministic random subset of `count` of [0, n) (all when count is 0 or ≥ n), sorted.
+/// The seeded random order of [0, n) that subsets are drawn in (core/random_order.hpp).
+RandomOrder subsetOrder(std::size_t n, std::uint64_t seed);
+/// A deterministic random subset of `count` of [0, n) (all when count is 0 or ≥ n), sorted: the
+/// first `count` elements of subsetOrder(n, seed), in O(count) memory.
 std::vector<std::uint32_t> vertexSubset(std::size_t n, std::size_t count, std::uint64_t seed);
-/// The rows a reference estimates, the one rule for prt reference and validation: of `n`
-/// vertices, vertexSubset; of per-texel rows (`points`), the same draw among their valid texels
-/// only (never the gutter, never a texel inside geometry), ascending.
-std::vector<std::uint32_t> rowSubset(const RowPoints* points, std::size_t n, std::size_t count,
-                                     std::uint64_t seed);
+
+/// The rows a reference estimates and where they lie.
+struct RowChoice {
+  std::vector<std::uint32_t> rows;          ///< ascending
+  std::shared_ptr<const RowPoints> points;  ///< per texel: the rows' points alone; per vertex null
+};
+/// The rows a reference estimates, the one rule for prt reference and validation. Of a
+/// per-vertex transfer, vertexSubset of the mesh's vertices. Of a per-texel one, `count` of its
+/// valid texels (never the gutter, never a texel inside geometry; 0 or more than there are:
+/// every one): the covered texels are taken in subsetOrder of them and the valid ones kept until
+/// `count` are. Each valid texel is as likely as any other — a uniformly random subset of the
+/// valid ones — yet only the texels drawn are sampled and probed for being inside geometry, so
+/// the cost is that of `count` texels (and one bit per texel to find the covered ones), not of
+/// the lightmap; where no texel lies inside geometry it is vertexSubset of the covered texels.
+RowChoice chooseRows(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
+                     std::size_t count, std::uint64_t seed);
 
 /// Validates `transfer` (every vertex of `mesh`, baked with `bake` settings) lit by `light` (the
 /// projection of `env`) against the reference. Band counts beyond min(transfer, light) are
-/// dropped with a warning. Throws prt::Error on mismatched sizes or bad settings.
+/// dropped with a warning. Reads the transfer's validated rows alone (a mapped bake file,
+/// io/bake_file.hpp: mapBake, is read there only), and throws prt::Error naming
+/// settings.bakeName if one of them is not finite. Throws prt::Error on mismatched sizes or bad
+/// settings.
 ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
                           const BakeRecipe& bake, const envmap::Environment& env,
                           const sh::RgbSh& light, const ValidateSettings& settings,
