@@ -1,7 +1,8 @@
 // Probe grids through the CLI (issue 32): prt probes writes a bake over the probe domain that
 // reads back with its grid (format 7); it is prt bake --domain probes, bit for bit; ranges and
 // job-array shards merge bit for bit into the whole grid; prt info describes it; and every verb
-// that draws a surface's transfer refuses it in one line naming the file.
+// that draws a surface's transfer refuses it in one line naming the file; prt render draws the
+// scene with an object lit through the grid.
 
 #include <gtest/gtest.h>
 
@@ -69,9 +70,15 @@ TEST_F(ProbesCli, InfoDescribesTheGridAndTheVerbsThatDrawSurfacesRefuseIt) {
   EXPECT_EQ(j["probeGrid"]["probes"], 27);
   const Result text = prt("info p.glb");
   EXPECT_NE(text.out.find("3 x 3 x 3 probes"), std::string::npos) << text.out;
+  // prt render draws the scene with an object lit through the grid; what draws a surface's
+  // transfer refuses the grid by name.
+  const Result drawn = prt("-q render p.glb --light builtin:sky --object builtin:sphere -o x.png");
+  ASSERT_EQ(drawn.rc, 0) << drawn.err;
+  EXPECT_TRUE(std::filesystem::exists(path("x.png")));
+  expectCleanFailure("render p.glb --light builtin:sky --turntable 4 -o out/x.png",
+                     "p.glb: holds a probe grid");
   for (const std::string& verb :
-       {std::string("render p.glb --light builtin:sky -o out/x.png"),
-        std::string("validate p.glb --light builtin:sky --vertices 4"),
+       {std::string("validate p.glb --light builtin:sky --vertices 4"),
         std::string("export p.glb --format games202 -o out/x"),
         std::string("web p.glb -o out/page"),
         std::string("reference p.glb --light builtin:sky -o out/r.json")})

@@ -89,7 +89,10 @@ def test_domains_and_what_texels_need(scene):
     # The sphere-plane has no UV set a lightmap could lie in: said, with why each set failed.
     with pytest.raises(ValueError, match="no UV set can hold a 512 x 512 lightmap"):
         prtkit.bake(scene, samples=8, domain="texels")
-    with pytest.raises(ValueError, match="unknown transfer domain 'probes'"):
+    with pytest.raises(ValueError, match="unknown transfer domain 'voxels'"):
+        prtkit.bake(scene, samples=8, domain="voxels")
+    # A probe holds a matrix (prtkit.bake_probes): a vector bake over probes is refused by name.
+    with pytest.raises(ValueError, match="layout='matrix'"):
         prtkit.bake(scene, samples=8, domain="probes")
     box = prtkit.load_mesh("builtin:cornell?grid=4")
     assert prtkit.bake(box, samples=8, domain="texels", transfer="matrix", bands=2,
