@@ -6,17 +6,35 @@
 //   prt export box.glb --format png -o box-textures              (16-bit, scale and offset in
 //                                                                 the JSON)
 //   prt export bunny.glb -o transport.txt --json export.json      (what it wrote, as JSON)
+//   prt export box.glb --format lightmap --light builtin:sky -o lm    (per-texel bake relit:
+//                                                                 E/π per texel, RGB EXR)
+//   prt export boxm.glb --format lightmap-sh --encoding l1 -o lm      (a per-texel matrix bake
+//                                                                 relit: irradiance SH in
+//                                                                 Godot's and Bakery's layouts)
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "args.hpp"
 #include "cli.hpp"
 #include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/engine_lightmaps.hpp"
 #include "prt/io/games202_transport.hpp"
+#include "prt/io/lighting.hpp"
 #include "prt/io/lightmap_textures.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/relight/incident_light.hpp"
+#include "prt/relight/relight.hpp"
 #include "prt/relight/view_transfer.hpp"
+#include "prt/render/texel_points.hpp"
+#include "prt/sh/irradiance_encoding.hpp"
 #include "report.hpp"
 
 namespace prt::cli {
@@ -31,7 +49,17 @@ struct ExportArgs {
   std::string channel;
   std::string output;
   std::string json;
+  // --format lightmap | lightmap-sh: the light the bake is relit under, and how it is written.
+  std::string light;     ///< "" = builtin:sky
+  std::string rotate;    ///< X,Y,Z degrees
+  std::string exposure;  ///< stops ("" = 0)
+  std::string encoding;  ///< lightmap-sh: "" = l1
+  std::string engine;    ///< lightmap-sh: "" = godot,bakery
 };
+
+bool isLightmapFormat(const std::string& f) {
+  return f == "lightmap" || f == "lightmap-sh";
+}
 
 /// --json's report of an export (nothing when not wanted), checked before any work: the
 /// format, the transfer exported (as the bake file holds it, transferJson), what was written.
@@ -104,13 +132,168 @@ void runExportTextures(const ExportArgs& a) {
   report.write();
 }
 
+/// --format lightmap-sh reads the light arriving at each texel: a matrix transfer (--mode's, or
+/// the only one).
+const BakedTransfer& matrixTransfer(const BakeFile& bake, const ExportArgs& a) {
+  const char* why =
+      "--format lightmap-sh needs the light arriving at each texel, which a matrix bake holds "
+      "(prt bake --transfer matrix); vector (diffuse) transfer has already integrated it "
+      "against the normal";
+  if (!a.mode.empty()) {
+    const BakedTransfer* t = bake.find(parseTransferMode(a.mode), TransferLayout::Matrix);
+    if (!t) throw Error(a.input, "holds no " + a.mode + " matrix transfer: " + why);
+    return *t;
+  }
+  const BakedTransfer* found = nullptr;
+  std::string list;
+  for (const auto& x : bake.transfers)
+    if (x.transfer.isMatrix()) {
+      list += std::string(list.empty() ? "" : ", ") + x.describe();
+      if (found)
+        throw Error(a.input,
+                    "holds several matrix transfers (" + list + "...): choose one with --mode");
+      found = &x;
+    }
+  if (!found) throw Error(a.input, std::string("holds no matrix transfer: ") + why);
+  return *found;
+}
+
+/// --format lightmap | lightmap-sh: a per-texel bake relit under --light (rotated by --rotate,
+/// scaled by 2^--exposure), written as the textures engines' lightmap shaders sample
+/// (io/engine_lightmaps.hpp; docs/lightmaps.md), in a folder written as a whole.
+void runExportLightmap(const ExportArgs& a) {
+  const bool sh = a.format == "lightmap-sh";
+  // Everything cheap first, so a mistake costs nothing and writes nothing.
+  if (a.layout != "faces" || !a.channel.empty())
+    throw Error("--layout and --channel shape transport.txt (--format games202), not a lightmap");
+  if (!sh && !a.encoding.empty())
+    throw Error(
+        "--encoding picks the SH form of --format lightmap-sh; --format lightmap writes "
+        "plain RGB");
+  if (!sh && !a.engine.empty())
+    throw Error(
+        "--engine picks the layouts of --format lightmap-sh; --format lightmap writes "
+        "one RGB lightmap every engine reads");
+  const sh::IrradianceEncoding encoding =
+      sh::parseIrradianceEncoding(a.encoding.empty() ? "l1" : a.encoding);
+  const std::vector<io::LightmapEngine> engines =
+      io::parseLightmapEngines(a.engine.empty() ? "godot,bakery" : a.engine);
+  const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
+  const Mat3d rotation = parseRotation(a.rotate);
+  const double stops = a.exposure.empty() ? 0.0 : std::stod(a.exposure);
+  const std::string lightSpec = a.light.empty() ? "builtin:sky" : a.light;
+  if (isStandardOutput(a.output)) throw Error("-o: an engine lightmap is a folder, not a stream");
+  const std::vector<NamedPath> inputs = {{"input", a.input}, {"--light", lightSpec}};
+  checkOutputs({{"-o", a.output}}, inputs);
+  Report report = exportReport(a, true);
+  report.check({{"-o", a.output}}, inputs);
+
+  const BakeFile bake = readBake(a.input);
+  bake.requireComplete(a.input);
+  bake.requireSurface(a.input, "engine lightmaps lay out a surface's light");
+  if (bake.domain() != TransferDomain::Texels)
+    throw Error(a.input,
+                "holds per-vertex transfer: engine lightmaps are per texel (prt bake "
+                "--domain texels)");
+  const BakedTransfer& t = sh ? matrixTransfer(bake, a) : exportedTransfer(bake, a);
+  const TransferShape::LightmapSize lm = t.transfer.shape().lightmap;
+
+  const io::Lighting lighting =
+      io::loadLighting(lightSpec, t.transfer.bands(), progressBar("projecting"));
+  for (const std::string& w : lighting.warnings) warn(w);
+  relight::RelightInfo relit;
+  io::LightmapDescription d;
+  d.source = a.input;
+  d.lightmap = lm;
+  d.exposureStops = stops;
+  io::EngineLightmaps out;
+  if (sh) {
+    const int bands = std::min(3, t.transfer.bands());
+    const std::vector<Rgb> incident =
+        relight::incidentLight(t.transfer, lighting.coefficients, bands, rotation, &relit);
+    d.light = {{"spec", lightSpec}, {"bands", relit.bands}, {"rotateDegrees", euler}};
+    d.transfer = {{"mode", toString(t.mode())},
+                  {"layout", toString(t.transfer.layout())},
+                  {"bands", t.transfer.bands()},
+                  {"relit", "L'_p = M_p L: the SH of the light arriving at each texel"}};
+    out = io::encodeIrradianceLightmaps(incident, bands, encoding, engines, bake.mesh, d);
+  } else {
+    // f = E(n_p)/π: a vector's Σ T_i L_i (relit white), or a matrix's diffuse part d(n_p)·L'_p
+    // at each texel's normal (as the bake placed its samples: render/texel_points.hpp).
+    Transfer field = t.transfer.toDense();
+    if (field.isMatrix()) {
+      const auto occluder = makeEmbreeOccluder(bake.mesh);
+      const render::RowPoints points = render::texelRowPoints(bake.mesh, *occluder, lm, false);
+      field = relight::diffuseTransfer(field, points.normals);
+    }
+    const std::vector<Rgb> radiance =
+        relight::relight(field, lighting.coefficients, Material{}, relight::Surface{}, Vec3f(0.0f),
+                         rotation, &relit);
+    d.light = {{"spec", lightSpec}, {"bands", relit.bands}, {"rotateDegrees", euler}};
+    d.transfer = {{"mode", toString(t.mode())},
+                  {"layout", toString(t.transfer.layout())},
+                  {"bands", t.transfer.bands()},
+                  {"relit", t.transfer.isMatrix()
+                                ? "the diffuse part d(n_p).(M_p L) at each texel's normal"
+                                : "sum_i T_i L_i, white (the albedo at the texel left out)"}};
+    out = io::encodeRadianceLightmap(radiance, bake.mesh, d);
+  }
+  if (!relit.warning().empty()) warn(a.input + ": " + relit.warning());
+  if (out.clampedTexels > 0)
+    warn(
+        fmt::format("{}: {} of {} texels hold more band-1 light than an engine's packed L1 "
+                    "can (|L1| > 2 L0 for bakery, 4 L0 for godot, or L0 <= 0: a light that "
+                    "rings below zero at {} bands, or Monte Carlo noise); their L1 is scaled "
+                    "down to fit, its direction kept (lightmap.json: clampedTexels)",
+                    a.input, out.clampedTexels, lm.texels(), relit.bands));
+  FolderOutput folder(a.output, "prt export");
+  for (const auto& [name, bytes] : out.files) folder.write(name, bytes);
+  folder.commit();
+  const Json written = folderJson(a.output);
+  report.input(lightSpec);
+  report.outputFolder(written);
+  report["folder"] = written;
+  report["transfer"] = transferJson(t);
+  report["light"] = Json(d.light);
+  report["exposureStops"] = stops;
+  report["lightmap"] = Json(out.manifest.at("lightmap"));
+  report["manifest"] = Json(out.manifest.at("files"));
+  if (sh) {
+    report["encoding"] = sh::toString(encoding);
+    Json names = Json::array();
+    for (const io::LightmapEngine e : engines) names.push_back(io::toString(e));
+    report["engines"] = std::move(names);
+    report["clampedTexels"] = Json(out.manifest.at("clampedTexels"));
+  }
+  std::string list;
+  for (const auto& f : out.files) list += std::string(list.empty() ? "" : ", ") + f.first;
+  info(fmt::format(
+      "wrote {} ({}x{} texels: {} of the {} transfer under {}{}: {})", a.output, lm.width,
+      lm.height,
+      sh ? std::string(sh::toString(encoding)) + " irradiance SH" : std::string("E/pi (RGB)"),
+      t.describe(), lightSpec,
+      stops != 0 ? fmt::format(", exposure {:+g} stops", stops) : std::string(), list));
+  report.write();
+}
+
 void runExport(const ExportArgs& a) {
+  if (!isLightmapFormat(a.format) &&
+      (!a.light.empty() || !a.rotate.empty() || !a.exposure.empty() || !a.encoding.empty() ||
+       !a.engine.empty()))
+    throw Error(
+        "--light, --rotate, --exposure, --encoding and --engine relight a lightmap "
+        "(--format lightmap or lightmap-sh)");
+  if (isLightmapFormat(a.format)) {
+    runExportLightmap(a);
+    return;
+  }
   if (a.format == "exr" || a.format == "png") {
     runExportTextures(a);
     return;
   }
   if (a.format != "games202")
-    throw Error("--format " + a.format + ": unknown (expected games202, exr or png)");
+    throw Error("--format " + a.format +
+                ": unknown (expected games202, exr, png, lightmap or lightmap-sh)");
   Games202Layout layout;
   if (a.layout == "faces")
     layout = Games202Layout::Faces;
@@ -182,11 +365,14 @@ void addExportCommand(CLI::App& root) {
   auto* cmd = root.add_subcommand(
       "export",
       "Export a bake file to another format (GAMES202 transport.txt; coefficient textures of "
-      "per-texel transfer)");
+      "per-texel transfer; relit lightmaps for engines)");
   cmd->add_option("input", args->input, "Bake file (.glb)")->required();
   cmd->add_option("--format", args->format,
                   "games202 (transport.txt) | exr (per-texel: float coefficient textures) | png "
-                  "(per-texel: 16-bit, scale and offset in transfer.json)")
+                  "(per-texel: 16-bit, scale and offset in transfer.json) | lightmap (per-texel, "
+                  "relit under --light: E/pi per texel, float EXR + PNG preview) | lightmap-sh "
+                  "(per-texel matrix bake relit under --light: irradiance SH per texel in "
+                  "engines' layouts, --encoding, --engine; docs/lightmaps.md)")
       ->capture_default_str();
   cmd->add_option("--mode", args->mode, "Which transfer, if the file holds several");
   cmd->add_option(
@@ -195,8 +381,25 @@ void addExportCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--channel", args->channel, "For RGB transfer: luminance | r | g | b");
   cmd->add_option("-o,--output", args->output,
-                  "Output file (games202), or folder (exr, png: t0.., transfer.json)")
+                  "Output file (games202), or folder (exr, png: t0.., transfer.json; lightmap, "
+                  "lightmap-sh: textures and lightmap.json)")
       ->required();
+  cmd->add_option("--light", args->light,
+                  "lightmap, lightmap-sh: environment image, face folder, builtin:NAME, or SH "
+                  "light (.json/.txt) to relight under (default builtin:sky)");
+  cmd->add_option("--rotate", args->rotate,
+                  "lightmap, lightmap-sh: rotate the environment: X,Y,Z degrees (X, then Y, then "
+                  "Z)");
+  cmd->add_option("--exposure", args->exposure,
+                  "lightmap, lightmap-sh: scale every value by 2^STOPS (default 0: the light's "
+                  "own units)")
+      ->check(exposureStops());
+  cmd->add_option("--encoding", args->encoding,
+                  "lightmap-sh: l1 | l1-windowed | l1-geomerics | zh3 | zh3-optimal | "
+                  "zh3-hallucinated | l2 | l2-deringed (default l1; docs/formats-light.md)");
+  cmd->add_option("--engine", args->engine,
+                  "lightmap-sh: the L1 layouts to write, comma-separated: godot (4.4+), "
+                  "godot-4.3 (4.0-4.3), bakery (Unity) (default godot,bakery)");
   addJsonOption(cmd, args->json);
   cmd->callback([args] { runExport(*args); });
 }
