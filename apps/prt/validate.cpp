@@ -26,6 +26,7 @@
 #include "prt/io/light_file.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
+#include "prt/render/probe_points.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "reference_input.hpp"
@@ -86,12 +87,22 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   recipe.material = materialOption(a.material, bt, a.bake,
                                    "the reference's bounces follow --material, so the two "
                                    "differ by more than error");
-  if (bt.transfer.isMatrix()) warnLobeEnergyLoss(recipe.material, bt.transfer.bands(), a.bake);
-  warnLobeOnVectors(recipe.material, bt, a.bake,
-                    "validating its diffuse part (the reference drops the lobe, and its bounces "
-                    "are diffuse too)");
+  // A probe grid: each probe seen by six axis normals, white diffuse surfaces placed there
+  // (render/probe_points.hpp); no lobe, no eye, no image of a surface.
+  const bool probes = bt.transfer.domain() == TransferDomain::Probes;
+  if (probes && !a.image.empty())
+    throw Error(a.bake, "--image draws a surface's error; this file holds a probe grid (" +
+                            bt.transfer.shape().probes.describe() + ")");
+  if (probes && !a.reference.empty())
+    throw Error(a.reference, "a probe grid is validated against a reference computed here (prt "
+                             "reference integrates a surface's light)");
+  if (bt.transfer.isMatrix() && !probes)
+    warnLobeEnergyLoss(recipe.material, bt.transfer.bands(), a.bake);
+  if (!probes)
+    warnLobeOnVectors(recipe.material, bt, a.bake,
+                      "validating its diffuse part (the reference drops the lobe, and its "
+                      "bounces are diffuse too)");
   file.requireComplete(a.bake);
-  file.requireSurface(a.bake, "prt validate checks a surface's transfer");
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.transfer.bands());
@@ -110,7 +121,11 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   vs.window = parseWindow(a.window);
   vs.bakeName = a.bake;
   info("validating " + bt.describe() + " transfer (" + std::to_string(bt.transfer.bands()) +
-       " bands) of " + a.bake + " under " + a.light);
+       " bands) of " + a.bake + " under " + a.light +
+       (probes ? fmt::format(": at each probe, a white diffuse surface facing each of the {} "
+                             "axes",
+                             render::kProbeNormals)
+               : std::string()));
   // A compressed transfer is validated as relit, in the compressed space (the compression's own
   // error against the uncompressed rows is reported from the file beside the truncation error).
   if (bt.transfer.compressed())
@@ -143,16 +158,21 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   if (!mpi.root()) return;
   for (const std::string& w : rep.warnings) warn(w);
   char line[200];
-  info(fmt::format("reference: {} {} x {} samples, {} rays{}; mode {}, {} bounce(s)",
-                   rep.reference.vertices.size(), toString(bt.transfer.domain()),
+  info(fmt::format("reference: {} x {} samples, {} rays{}; mode {}, {} bounce(s)",
+                   probes ? fmt::format("{} probes x {} normals",
+                                        rep.reference.vertices.size() / render::kProbeNormals,
+                                        render::kProbeNormals)
+                          : fmt::format("{} {}", rep.reference.vertices.size(),
+                                        toString(bt.transfer.domain())),
                    vs.reference.samples, rep.reference.rays,
                    a.reference.empty() ? fmt::format(", {:.2f} s", rep.reference.seconds)
                                        : " (from " + a.reference + ")",
                    toString(rep.mode), rep.bounces));
   std::snprintf(line, sizeof line,
-                "truncation floor: %s from the reference's samples, %zu vertices x %d samples, "
+                "truncation floor: %s from the reference's samples, %zu %s x %d samples, "
                 "%llu rays, %.2f s",
-                rep.floorMethod.c_str(), rep.floorVertices, vs.reference.samples,
+                rep.floorMethod.c_str(), rep.floorVertices,
+                probes ? "probe normals" : "vertices", vs.reference.samples,
                 static_cast<unsigned long long>(rep.floorRays), rep.floorSeconds);
   info(line);
   // The table on standard output, unless the report is (--json -): then on stderr.
@@ -160,10 +180,13 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   for (const render::BandRow& r : rep.rows)
     if (r.negativeShare > render::kNegativeShareWarning)
       warn(
-          fmt::format("{} bands: {:.1f}% of {} validated vertices{} relight to negative radiance "
+          fmt::format("{} bands: {:.1f}% of {} validated {} relight to negative radiance "
                       "(SH ringing); {}",
                       r.bands, 100 * r.negativeShare, rep.negativeVertices,
-                      bt.transfer.layout() == TransferLayout::Matrix ? " facing the eye" : "",
+                      probes ? "probe normals"
+                      : bt.transfer.layout() == TransferLayout::Matrix
+                          ? "vertices facing the eye"
+                          : "vertices",
                       a.window == "none" ? "window the light: --window hanning|lanczos|dering "
                                            "(prt light --window for light files)"
                                          : "the light is windowed (" + a.window +
@@ -226,7 +249,8 @@ void addValidateCommand(CLI::App& root) {
   cmd->add_option("--rotate", a->rotate, "Rotate the environment: Euler X,Y,Z degrees");
   cmd->add_option("--vertices", a->vertices,
                   "Validate a deterministic random subset of N vertices (0: all); of a per-texel "
-                  "bake, N of its valid texels")
+                  "bake, N of its valid texels; of a probe grid, N probes outside geometry "
+                  "(six normals each)")
       ->check(unsignedInt(UINT32_MAX));
   cmd->add_option("--seed", a->seed, "Reference seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();

@@ -22,10 +22,8 @@ ProbeLighting relightProbes(const Transfer& transfer, const sh::RgbSh& light) {
   ProbeLighting out;
   out.grid = grid;
   out.bands = std::min(light.bands, transfer.bands());
-  const std::size_t b2 = out.coeffs();
-  const std::size_t n = std::size_t(transfer.bands()) * std::size_t(transfer.bands());
   const int channels = transfer.channels();
-  out.coefficients.assign(grid.probes() * b2, Rgb(0.0f));
+  out.coefficients.assign(grid.probes() * out.coeffs(), Rgb(0.0f));
   parallelFor(grid.probes(), 64, [&](std::size_t begin, std::size_t end) {
     std::vector<float> row(transfer.stride());
     for (std::size_t p = begin; p < end; ++p) {
@@ -34,20 +32,27 @@ ProbeLighting relightProbes(const Transfer& transfer, const sh::RgbSh& light) {
         transfer.reconstructRow(p, row.data());
       else
         m = transfer.row(p);
-      Rgb* o = out.coefficients.data() + p * b2;
-      // M row-major (row i arriving, column j source), channels innermost.
-      for (std::size_t i = 0; i < b2; ++i) {
-        Rgb acc(0.0f);
-        for (std::size_t j = 0; j < b2; ++j) {
-          const float* e = m + (i * n + j) * std::size_t(channels);
-          const Rgb& l = light.c[j];
-          acc += channels == 1 ? l * e[0] : Rgb(e[0] * l.x, e[1] * l.y, e[2] * l.z);
-        }
-        o[i] = acc;
-      }
+      relightProbe(m, transfer.bands(), channels, light, out.bands,
+                   out.coefficients.data() + p * out.coeffs());
     }
   });
   return out;
+}
+
+void relightProbe(const float* matrix, int transferBands, int channels, const sh::RgbSh& light,
+                  int bands, Rgb* out) {
+  PRT_CHECK(bands <= transferBands && bands <= light.bands, "relightProbe: bands beyond the data");
+  const std::size_t b2 = std::size_t(bands) * std::size_t(bands);
+  const std::size_t n = std::size_t(transferBands) * std::size_t(transferBands);
+  for (std::size_t i = 0; i < b2; ++i) {
+    Rgb acc(0.0f);
+    for (std::size_t j = 0; j < b2; ++j) {
+      const float* e = matrix + (i * n + j) * std::size_t(channels);
+      const Rgb& l = light.c[j];
+      acc += channels == 1 ? l * e[0] : Rgb(e[0] * l.x, e[1] * l.y, e[2] * l.z);
+    }
+    out[i] = acc;
+  }
 }
 
 void sampleProbes(const ProbeLighting& lighting, const Vec3f& point, Rgb* out) {

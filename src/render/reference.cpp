@@ -67,6 +67,7 @@ struct ReferenceIntegrator::BandLimitData {
   std::vector<double> factor;  ///< [k·lightBands + l]
   std::vector<int> laneBands;  ///< b_k
   bool truncateKernel = false;
+  bool wholeSphere = false;      ///< K − K_b over the whole sphere (a probe's), not n's side
   std::vector<double> cosCoef;   ///< (A_l/π)(2l+1)/(4π): K_b's cosine part is Σ_l c_l P_l(n·ω)
   std::vector<double> lobeCoef;  ///< Λ_l (2l+1)/(4π): its lobe part Σ_l g_l P_l(r·ω)
 };
@@ -106,6 +107,7 @@ ReferenceIntegrator::ReferenceIntegrator(const Mesh& mesh, const Occluder& occlu
       d->factor[std::size_t(k) * nb + l] =
           std::size_t(l) < bl.limits[k].window.size() ? bl.limits[k].window[l] : 1.0;
   d->truncateKernel = bl.truncateKernel;
+  d->wholeSphere = bl.wholeSphere;
   if (d->truncateKernel) {
     const std::vector<double> a = sh::clampedCosineKernel(nb);
     const std::vector<double> lambda = settings_.material.lobe.zonal(nb);
@@ -409,7 +411,9 @@ R ReferenceIntegrator::glossy(const Vec3f& p, const Vec3f& n, const Vec3f& r, in
 // whole hemisphere, also where G = 0 (Phong behind r): so MIS of a uniform hemisphere direction
 // (density 1/2π, covering everything), the lobe about r (its peak) and, when r is below the
 // horizon, the horizon lobe — every strategy directional, so one weight over the three for
-// escapes and hits alike. L_in[L_b] is the band-limited lanes of the traced path.
+// escapes and hits alike. L_in[L_b] is the band-limited lanes of the traced path. With
+// wholeSphere (a probe's, where no surface hides the lower hemisphere and K_b rings there too,
+// K = 0) the integral is over the whole sphere, the uniform direction's density 1/4π.
 void ReferenceIntegrator::kernelResidual(const Vec3f& p, const Vec3f& n, const Vec3f& r,
                                          const Rgb& kd, int bounces, Pcg32& rng,
                                          std::uint64_t& rays, Rgb* out) const {
@@ -423,7 +427,7 @@ void ReferenceIntegrator::kernelResidual(const Vec3f& p, const Vec3f& n, const V
   const double nr = dot(Vec3d(n), Vec3d(r));
   const bool horizon = gloss && nr < 0;
   const Vec3f rh = horizon ? horizonAxis(n, r, nr) : r;
-  const double pu = 1.0 / (2.0 * kPi);
+  const double pu = bd.wholeSphere ? 1.0 / (4.0 * kPi) : 1.0 / (2.0 * kPi);
   const auto lobePdf = [&](const Vec3f& w) {
     return gloss ? lobe.value(dot(Vec3d(r), Vec3d(w))) : 0.0;
   };
@@ -432,7 +436,7 @@ void ReferenceIntegrator::kernelResidual(const Vec3f& p, const Vec3f& n, const V
   };
   const auto add = [&](const Vec3f& w, double pa, double pb, double pc) {
     const double cn = dot(Vec3d(n), Vec3d(w));
-    if (cn <= 0 || pa <= 0) return;
+    if ((cn <= 0 && !bd.wholeSphere) || pa <= 0) return;
     Hit h;
     if (shadowed) {
       ++rays;
@@ -454,7 +458,7 @@ void ReferenceIntegrator::kernelResidual(const Vec3f& p, const Vec3f& n, const V
     legendrePolynomials(nb, cn, pn.data());
     const double cr = dot(Vec3d(r), Vec3d(w));
     if (gloss) legendrePolynomials(nb, cr, pr.data());
-    const double c = cn / kPi, g = gloss ? lobe.value(cr) : 0.0;
+    const double c = std::max(cn, 0.0) / kPi, g = gloss ? lobe.value(cr) : 0.0;
     // Partial sums over bands: lane k takes those up to its b_k (lanes in any order).
     std::array<double, sh::kMaxBands + 1> cb{}, gb{};
     for (int l = 0; l < nb; ++l) {
@@ -468,11 +472,12 @@ void ReferenceIntegrator::kernelResidual(const Vec3f& p, const Vec3f& n, const V
     }
   };
 
-  // (u) Uniform on the hemisphere: a uniform sphere direction, mirrored to n's side.
+  // (u) Uniform on the hemisphere: a uniform sphere direction, mirrored to n's side (over the
+  // whole sphere: as drawn).
   {
     const float u1 = rng.uniform(), u2 = rng.uniform();
     Vec3f w = uniformSphere(u1, u2);
-    if (dot(n, w) < 0) w = -w;
+    if (dot(n, w) < 0 && !bd.wholeSphere) w = -w;
     add(w, pu, lobePdf(w), horizonPdf(w));
   }
   // (g) The lobe about r.

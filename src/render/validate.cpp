@@ -14,12 +14,15 @@
 #include "prt/core/sampling.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/relight/relight_probes.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/render/primary.hpp"
+#include "prt/render/probe_points.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/texel_points.hpp"
 #include "prt/sh/convolve.hpp"
+#include "prt/sh/rotate.hpp"
 
 namespace prt::render {
 
@@ -102,12 +105,14 @@ RowPoints drawTexels(const Mesh& mesh, const Occluder& occluder,
 RowChoice chooseRows(const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
                      std::size_t count, std::uint64_t seed) {
   RowChoice c;
-  if (transfer.domain() != TransferDomain::Texels) {
+  if (transfer.domain() == TransferDomain::Vertices) {
     c.rows = vertexSubset(transfer.shape().domainRows(mesh.vertexCount()), count, seed);
     return c;
   }
   auto points = std::make_shared<RowPoints>(
-      drawTexels(mesh, occluder, transfer.shape().lightmap, count, seed));
+      transfer.domain() == TransferDomain::Probes
+          ? drawProbePoints(mesh, occluder, transfer.shape().probes, count, seed)
+          : drawTexels(mesh, occluder, transfer.shape().lightmap, count, seed));
   c.rows = points->rows;
   c.points = std::move(points);
   return c;
@@ -170,6 +175,31 @@ Transfer gatherRows(const Transfer& t, std::span<const std::uint32_t> rows,
   return out;
 }
 
+/// PRT's exit radiance at the validated rows `verts` of a probe grid (probeNormalRow, ascending):
+/// `probes` holds their probes' rows, each once, in order (gatherRows); each probe's incident SH
+/// under `light` rotated by `rotation` (relight_probes.hpp: relightProbe, at the light's bands),
+/// shaded at the row's normal with albedo kd (shadeDiffuse) — what prt render gives an object
+/// there.
+void relightProbeRows(const Transfer& probes, const sh::RgbSh& light, const Mat3d& rotation,
+                      const Rgb& kd, std::span<const std::uint32_t> verts, std::vector<Rgb>& out) {
+  const sh::RgbSh rotated = sh::Rotation(light.bands, rotation).apply(light);
+  const int b = light.bands;
+  std::vector<float> row(probes.stride());
+  std::vector<Rgb> incident(std::size_t(b) * std::size_t(b));
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < verts.size(); ++i) {
+    const std::size_t probe = verts[i] / kProbeNormals;
+    if (i == 0 || probe != verts[i - 1] / kProbeNormals) {
+      if (i > 0) ++at;
+      probes.reconstructRow(at, row.data());
+      relight::relightProbe(row.data(), probes.bands(), probes.channels(), rotated, b,
+                            incident.data());
+    }
+    out[i] = relight::shadeDiffuse(incident.data(), b, probeNormal(int(verts[i] % kProbeNormals)),
+                                   kd);
+  }
+}
+
 /// Per-vertex values as a one-row image, so render::metrics applies unchanged.
 image::Image row(const std::vector<Rgb>& v) {
   image::Image img(static_cast<int>(v.size()), 1);
@@ -219,11 +249,19 @@ std::vector<int> bandsToValidate(const ValidateSettings& settings, ValidationRep
 ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecipe& bake,
                                const Mesh& mesh, const Occluder& occluder, const Transfer& transfer,
                                std::size_t nv) {
+  const bool probes = transfer.domain() == TransferDomain::Probes;
   ReferenceSettings rs = settings.reference;
   rs.mode = bake.mode;
   rs.bounces = bake.effectiveBounces();
-  rs.material = referenceMaterial(bake.material, transfer.layout());
+  // A probe's matrix holds no lobe (its surfaces bounce diffusely, and the object it lights is
+  // not there yet): its reference is diffuse, as a vector's.
+  rs.material =
+      referenceMaterial(bake.material, probes ? TransferLayout::Vector : transfer.layout());
   rs.bandLimit.reset();
+  if (settings.precomputed && probes)
+    throw Error(settings.bakeName,
+                "a probe grid is validated against a reference computed here, not read from a "
+                "reference file");
   if (settings.precomputed) {
     rs.vertices = settings.precomputed->vertices;
     for (std::uint32_t v : rs.vertices)
@@ -242,8 +280,8 @@ ReferenceSettings referenceFor(const ValidateSettings& settings, const BakeRecip
     rs.vertices = std::move(c.rows);
     rs.points = std::move(c.points);
   }
-  // Glossy (matrix) transfer is seen from an eye.
-  if (transfer.isMatrix() && !rs.eye)
+  // Glossy (matrix) transfer over a surface is seen from an eye.
+  if (transfer.isMatrix() && !probes && !rs.eye)
     throw Error("validating glossy (matrix) transfer needs the eye the reference and PRT share");
   return rs;
 }
@@ -410,7 +448,9 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   const std::vector<int> kept = bandsToValidate(settings, rep);
   const ReferenceSettings rs = referenceFor(settings, bake, mesh, occluder, transfer, nv);
   const RowPoints* points = rs.points.get();
-  const bool glossy = transfer.isMatrix();
+  const bool probes = transfer.domain() == TransferDomain::Probes;
+  // Glossy: a surface's matrix transfer, seen from the eye (a probe's matrix has no eye).
+  const bool glossy = transfer.isMatrix() && !probes;
   const std::vector<std::size_t> floorIdx =
       floorEntries(rs.vertices.size(), settings.floorVertices);
   const std::size_t nf = floorIdx.size();
@@ -448,7 +488,9 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   std::vector<sh::RgbSh> lights;
   BandLimitSettings bl;
   bl.light = light;
-  bl.truncateKernel = glossy;
+  // A probe's relit SH is shaded with the b-band cosine kernel over the whole sphere.
+  bl.truncateKernel = glossy || probes;
+  bl.wholeSphere = probes;
   for (int b : kept) {
     BandLimit lim;
     lim.bands = b;
@@ -488,7 +530,13 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     if (!vertexAlbedo.empty()) albedo.push_back(vertexAlbedo[at]);
   }
   if (!albedo.empty()) albedo.resize(padded, Rgb(1.0f));
-  const Transfer validated = gatherRows(transfer, verts, settings.bakeName);
+  // Of a probe grid, the probes of the validated rows, each once.
+  std::vector<std::uint32_t> gathered = verts;
+  if (probes) {
+    for (std::uint32_t& r : gathered) r /= kProbeNormals;
+    gathered.erase(std::unique(gathered.begin(), gathered.end()), gathered.end());
+  }
+  const Transfer validated = gatherRows(transfer, gathered, settings.bakeName);
 
   // Vertices whose negative radiance counts: for glossy transfer those facing the eye.
   std::vector<char> counted(n, 1);
@@ -500,13 +548,18 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const int b = kept[k];
     // PRT radiance at b bands (relight rotates the light itself).
-    relight::relight(validated.cut(b), lights[k], rs.material, {positions, normals, albedo},
-                     rs.eye ? *rs.eye : Vec3f(0.0f), padPrt, rs.rotation);
+    if (probes)
+      relightProbeRows(validated, lights[k], rs.rotation,
+                       rs.material.diffuse ? *rs.material.diffuse : Rgb(1.0f), verts, padPrt);
+    else
+      relight::relight(validated.cut(b), lights[k], rs.material, {positions, normals, albedo},
+                       rs.eye ? *rs.eye : Vec3f(0.0f), padPrt, rs.rotation);
     const std::vector<Rgb> prt(padPrt.begin(), padPrt.begin() + std::ptrdiff_t(n));
     for (std::size_t i = 0; i < n; ++i)
       if (!isFinite(prt[i]))
         throw Error(settings.bakeName,
-                    "the PRT radiance at vertex " + std::to_string(verts[i]) +
+                    std::string("the PRT radiance at ") + rowName(transfer.domain()) + " " +
+                        std::to_string(probes ? verts[i] / kProbeNormals : verts[i]) +
                         " is not finite at " + std::to_string(b) +
                         " bands (the transfer times the light overflows 32-bit floats)");
     BandRow r;

@@ -71,13 +71,8 @@ ProbeDomain makeProbeDomain(const Mesh& mesh, const Occluder& occluder, const Pr
     positions[i] = grid.position(r);
     d.points[i] = RowPoint{positions[i], Vec3f(0.0f), r};
   }
-  const std::vector<Vec3f> up(keep.count, Vec3f(0.0f, 0.0f, 1.0f));
-  const std::vector<Vec3f> down(keep.count, Vec3f(0.0f, 0.0f, -1.0f));
-  const std::vector<std::uint8_t> above = insideGeometry(mesh, occluder, positions, up);
-  const std::vector<std::uint8_t> below = insideGeometry(mesh, occluder, positions, down);
-  d.inside.resize(keep.count);
+  d.inside = insideGeometryAllAround(mesh, occluder, positions);
   for (std::size_t i = 0; i < keep.count; ++i) {
-    d.inside[i] = above[i] && below[i];
     if (d.inside[i]) d.invalid.push_back(static_cast<std::uint32_t>(keep.first + i));
   }
   return d;

@@ -63,4 +63,14 @@ std::vector<std::uint8_t> insideGeometry(const Mesh& mesh, const Occluder& occlu
   return inside;
 }
 
+std::vector<std::uint8_t> insideGeometryAllAround(const Mesh& mesh, const Occluder& occluder,
+                                                  std::span<const Vec3f> positions) {
+  const std::vector<Vec3f> up(positions.size(), Vec3f(0.0f, 0.0f, 1.0f));
+  const std::vector<Vec3f> down(positions.size(), Vec3f(0.0f, 0.0f, -1.0f));
+  std::vector<std::uint8_t> inside = insideGeometry(mesh, occluder, positions, up);
+  const std::vector<std::uint8_t> below = insideGeometry(mesh, occluder, positions, down);
+  for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = inside[i] && below[i];
+  return inside;
+}
+
 }  // namespace prt

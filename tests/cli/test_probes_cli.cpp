@@ -2,10 +2,11 @@
 // reads back with its grid (format 7); it is prt bake --domain probes, bit for bit; ranges and
 // job-array shards merge bit for bit into the whole grid; prt info describes it; and every verb
 // that draws a surface's transfer refuses it in one line naming the file; prt render draws the
-// scene with an object lit through the grid.
+// scene with an object lit through the grid; prt validate compares it with the reference.
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -78,8 +79,7 @@ TEST_F(ProbesCli, InfoDescribesTheGridAndTheVerbsThatDrawSurfacesRefuseIt) {
   expectCleanFailure("render p.glb --light builtin:sky --turntable 4 -o out/x.png",
                      "p.glb: holds a probe grid");
   for (const std::string& verb :
-       {std::string("validate p.glb --light builtin:sky --vertices 4"),
-        std::string("export p.glb --format games202 -o out/x"),
+       {std::string("export p.glb --format games202 -o out/x"),
         std::string("web p.glb -o out/page"),
         std::string("reference p.glb --light builtin:sky -o out/r.json")})
     expectCleanFailure(verb, "p.glb: holds a probe grid (3 x 3 x 3 probes");
@@ -88,6 +88,26 @@ TEST_F(ProbesCli, InfoDescribesTheGridAndTheVerbsThatDrawSurfacesRefuseIt) {
   expectCleanFailure("bake " + kBox + " --mode shadowed --domain probes -o out/q.glb",
                      "--transfer matrix");
   expectCleanFailure("bake " + kBox + " --mode shadowed --grid 2x2x2 -o out/q.glb", "prt probes");
+}
+
+TEST_F(ProbesCli, ValidateComparesTheGridWithTheReferenceAtSixNormalsPerProbe) {
+  ASSERT_EQ(prt("-q probes " + kBox + " --grid 3x3x3 --samples 64 -o p.glb").rc, 0);
+  const Result r = prt("validate p.glb --light builtin:sky --vertices 5 --reference-samples 32 "
+                       "--bands-list 1,3 --json v.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("5 probes x 6 normals x 32 samples"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("truncation floor"), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(path("v.json")));
+  EXPECT_EQ(j["vertices"], 30);
+  ASSERT_EQ(j["rows"].size(), 2u);
+  EXPECT_EQ(j["rows"][1]["bands"], 3);
+  EXPECT_GT(j["rows"][1]["relRmse"].get<double>(), 0.0);
+  // What belongs to a surface is refused by name.
+  expectCleanFailure("validate p.glb --light builtin:sky --image out/e.png",
+                     "p.glb: --image draws a surface's error");
+  std::ofstream(path("ref.json")) << "{}";
+  expectCleanFailure("validate p.glb --light builtin:sky --reference ref.json",
+                     "ref.json: a probe grid is validated against a reference computed here");
 }
 
 }  // namespace

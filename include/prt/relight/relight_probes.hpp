@@ -20,6 +20,13 @@ namespace prt::relight {
 /// or does not cover the whole grid. Parallel over the probes; independent of the thread count.
 ProbeLighting relightProbes(const Transfer& transfer, const sh::RgbSh& light);
 
+/// The light arriving at one probe: its row `matrix` as stored (B² × B² for `transferBands` B,
+/// row i arriving, column j source, `channels` (1 or 3) innermost) times the first `bands`²
+/// coefficients of `light`, its leading bands² × bands² block alone (bands ≤ both; what
+/// Transfer::cut(bands) relights), into out (bands² coefficients).
+void relightProbe(const float* matrix, int transferBands, int channels, const sh::RgbSh& light,
+                  int bands, Rgb* out);
+
 /// The trilinear blend of the eight probes around `point` (clamped to the grid: outside it, the
 /// nearest face's probes) into out (B² coefficients).
 void sampleProbes(const ProbeLighting& lighting, const Vec3f& point, Rgb* out);

@@ -128,6 +128,11 @@ struct BandLimitSettings {
   /// Matrix (glossy) transfer: the cosine and lobe kernels at the vertex and the transferred
   /// light are cut to b bands too. False for vector transfer (exact cosine kernel).
   bool truncateKernel = false;
+  /// With truncateKernel: the b-band kernel is integrated over the whole sphere, not the
+  /// hemisphere above n — a probe's relit SH (probe_points.hpp) covers every direction, and its
+  /// cosine kernel K_b rings below the horizon too, where K = 0:
+  ///   e_b = ∫_{S²} K_b L_in[L_b] dω,  e_b − e = (e[L_b] − e) − ∫_{S²} (K − K_b) L_in[L_b] dω.
+  bool wholeSphere = false;
 };
 
 /// The material the reference of a transfer integrates: the material itself for matrix

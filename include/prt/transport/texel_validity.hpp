@@ -30,4 +30,10 @@ std::vector<std::uint8_t> insideGeometry(const Mesh& mesh, const Occluder& occlu
                                          std::span<const Vec3f> positions,
                                          std::span<const Vec3f> normals);
 
+/// Per point in space with no surface of its own (a probe, probe_grid.hpp): 1 if it is inside
+/// geometry over both hemispheres about +Z — it sees back faces all around. The one rule for a
+/// probe bake's refill and for which probes a validation may compare.
+std::vector<std::uint8_t> insideGeometryAllAround(const Mesh& mesh, const Occluder& occluder,
+                                                  std::span<const Vec3f> positions);
+
 }  // namespace prt
