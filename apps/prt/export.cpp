@@ -21,6 +21,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
+#include "export_probes.hpp"
 #include "guard.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
@@ -277,12 +278,20 @@ void runExportLightmap(const ExportArgs& a) {
 }
 
 void runExport(const ExportArgs& a) {
+  if (a.format == "probe-grid") {
+    if (a.layout != "faces" || !a.channel.empty() || !a.encoding.empty())
+      throw Error(
+          "--layout, --channel and --encoding shape a surface's export; --format probe-grid "
+          "writes each probe's SH in --engine's convention");
+    exportProbeGrid({a.input, a.output, a.json, a.mode, a.light, a.rotate, a.exposure, a.engine});
+    return;
+  }
   if (!isLightmapFormat(a.format) &&
       (!a.light.empty() || !a.rotate.empty() || !a.exposure.empty() || !a.encoding.empty() ||
        !a.engine.empty()))
     throw Error(
         "--light, --rotate, --exposure, --encoding and --engine relight a lightmap "
-        "(--format lightmap or lightmap-sh)");
+        "(--format lightmap or lightmap-sh) or a probe grid (--format probe-grid)");
   if (isLightmapFormat(a.format)) {
     runExportLightmap(a);
     return;
@@ -293,7 +302,7 @@ void runExport(const ExportArgs& a) {
   }
   if (a.format != "games202")
     throw Error("--format " + a.format +
-                ": unknown (expected games202, exr, png, lightmap or lightmap-sh)");
+                ": unknown (expected games202, exr, png, lightmap, lightmap-sh or probe-grid)");
   Games202Layout layout;
   if (a.layout == "faces")
     layout = Games202Layout::Faces;
@@ -372,7 +381,9 @@ void addExportCommand(CLI::App& root) {
                   "(per-texel: 16-bit, scale and offset in transfer.json) | lightmap (per-texel, "
                   "relit under --light: E/pi per texel, float EXR + PNG preview) | lightmap-sh "
                   "(per-texel matrix bake relit under --light: irradiance SH per texel in "
-                  "engines' layouts, --encoding, --engine; docs/lightmaps.md)")
+                  "engines' layouts, --encoding, --engine; docs/lightmaps.md) | probe-grid "
+                  "(a probe bake relit under --light: each probe's SH as --engine reads it, "
+                  "JSON; docs/probes.md)")
       ->capture_default_str();
   cmd->add_option("--mode", args->mode, "Which transfer, if the file holds several");
   cmd->add_option(
@@ -385,13 +396,13 @@ void addExportCommand(CLI::App& root) {
                   "lightmap-sh: textures and lightmap.json)")
       ->required();
   cmd->add_option("--light", args->light,
-                  "lightmap, lightmap-sh: environment image, face folder, builtin:NAME, or SH "
+                  "lightmap, lightmap-sh, probe-grid: environment image, face folder, builtin:NAME, or SH "
                   "light (.json/.txt) to relight under (default builtin:sky)");
   cmd->add_option("--rotate", args->rotate,
-                  "lightmap, lightmap-sh: rotate the environment: X,Y,Z degrees (X, then Y, then "
+                  "lightmap, lightmap-sh, probe-grid: rotate the environment: X,Y,Z degrees (X, then Y, then "
                   "Z)");
   cmd->add_option("--exposure", args->exposure,
-                  "lightmap, lightmap-sh: scale every value by 2^STOPS (default 0: the light's "
+                  "lightmap, lightmap-sh, probe-grid: scale every value by 2^STOPS (default 0: the light's "
                   "own units)")
       ->check(exposureStops());
   cmd->add_option("--encoding", args->encoding,
@@ -399,7 +410,8 @@ void addExportCommand(CLI::App& root) {
                   "zh3-hallucinated | l2 | l2-deringed (default l1; docs/formats-light.md)");
   cmd->add_option("--engine", args->engine,
                   "lightmap-sh: the L1 layouts to write, comma-separated: godot (4.4+), "
-                  "godot-4.3 (4.0-4.3), bakery (Unity) (default godot,bakery)");
+                  "godot-4.3 (4.0-4.3), bakery (Unity) (default godot,bakery); probe-grid: "
+                  "threejs | unity | gltf-ibl | prtkit (default threejs)");
   addJsonOption(cmd, args->json);
   cmd->callback([args] { runExport(*args); });
 }

@@ -65,11 +65,19 @@ std::vector<std::uint8_t> insideGeometry(const Mesh& mesh, const Occluder& occlu
 
 std::vector<std::uint8_t> insideGeometryAllAround(const Mesh& mesh, const Occluder& occluder,
                                                   std::span<const Vec3f> positions) {
+  // Inside over the hemisphere about +Z first; only the points inside there are tested about −Z
+  // (most points are outside: half the rays of testing both everywhere).
   const std::vector<Vec3f> up(positions.size(), Vec3f(0.0f, 0.0f, 1.0f));
-  const std::vector<Vec3f> down(positions.size(), Vec3f(0.0f, 0.0f, -1.0f));
   std::vector<std::uint8_t> inside = insideGeometry(mesh, occluder, positions, up);
-  const std::vector<std::uint8_t> below = insideGeometry(mesh, occluder, positions, down);
-  for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = inside[i] && below[i];
+  std::vector<Vec3f> suspects;
+  for (std::size_t i = 0; i < inside.size(); ++i)
+    if (inside[i]) suspects.push_back(positions[i]);
+  if (suspects.empty()) return inside;
+  const std::vector<Vec3f> down(suspects.size(), Vec3f(0.0f, 0.0f, -1.0f));
+  const std::vector<std::uint8_t> below = insideGeometry(mesh, occluder, suspects, down);
+  std::size_t k = 0;
+  for (std::uint8_t& in : inside)
+    if (in) in = below[k++];
   return inside;
 }
 

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -13,6 +14,8 @@
 
 #include "cli_harness.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/sh/convolve.hpp"
+#include "prt/sh/sh.hpp"
 
 namespace prt {
 namespace {
@@ -80,9 +83,17 @@ TEST_F(ProbesCli, InfoDescribesTheGridAndTheVerbsThatDrawSurfacesRefuseIt) {
                      "p.glb: holds a probe grid");
   for (const std::string& verb :
        {std::string("export p.glb --format games202 -o out/x"),
-        std::string("web p.glb -o out/page"),
         std::string("reference p.glb --light builtin:sky -o out/r.json")})
     expectCleanFailure(verb, "p.glb: holds a probe grid (3 x 3 x 3 probes");
+  // prt web draws the scene and a ball lit through the grid (tests/web/test_probes_web.cpp),
+  // shaded diffusely: a material is refused by name.
+  const Result page = prt("-q web p.glb -o page");
+  if (page.err.find("assets") == std::string::npos) {  // (the page is built where node is)
+    EXPECT_EQ(page.rc, 0) << page.err;
+    EXPECT_TRUE(std::filesystem::exists(path("page/prt-data.js")));
+    expectCleanFailure("web p.glb --material phong -o out/page",
+                       "p.glb: holds a probe grid, which lights what moves through it diffusely");
+  }
   expectCleanFailure("probes " + kBox + " --grid 4x0x4 -o out/q.glb", "--grid");
   expectCleanFailure("probes " + kBox + " --bounds 1,1,1:0,2,2 -o out/q.glb", "--bounds");
   expectCleanFailure("bake " + kBox + " --mode shadowed --domain probes -o out/q.glb",
@@ -108,6 +119,85 @@ TEST_F(ProbesCli, ValidateComparesTheGridWithTheReferenceAtSixNormalsPerProbe) {
   std::ofstream(path("ref.json")) << "{}";
   expectCleanFailure("validate p.glb --light builtin:sky --reference ref.json",
                      "ref.json: a probe grid is validated against a reference computed here");
+}
+
+/// Probe p's SH from a probe-grid export: coefficient k, channel c at probes[(p K + k) 3 + c].
+sh::RgbSh probeSh(const nlohmann::json& j, std::size_t p) {
+  const std::size_t K = j["coefficients"]["count"];
+  sh::RgbSh f(int(std::lround(std::sqrt(double(K)))));
+  for (std::size_t k = 0; k < K; ++k)
+    for (int c = 0; c < 3; ++c) f.c[k][c] = j["probes"][(p * K + k) * 3 + c].get<float>();
+  return f;
+}
+
+TEST_F(ProbesCli, ProbeGridExportsAreTheRelitGridInEachEnginesConvention) {
+  ASSERT_EQ(prt("-q probes " + kBox + " --grid 4x3x2 --samples 64 -o p.glb").rc, 0);
+  ASSERT_EQ(prt("-q export p.glb --format probe-grid --engine prtkit --rotate 0,40,0 -o ours.json")
+                .rc,
+            0);
+  ASSERT_EQ(prt("-q export p.glb --format probe-grid --rotate 0,40,0 -o three.json").rc, 0);
+  ASSERT_EQ(prt("-q export p.glb --format probe-grid --engine unity --rotate 0,40,0 -o unity.json")
+                .rc,
+            0);
+  ASSERT_EQ(prt("-q export p.glb --format probe-grid --engine prtkit --rotate 0,40,0 --exposure 1 "
+                "-o bright.json")
+                .rc,
+            0);
+  const auto read = [&](const char* name) { return nlohmann::json::parse(slurp(path(name))); };
+  const nlohmann::json ours = read("ours.json"), three = read("three.json"),
+                       unity = read("unity.json"), bright = read("bright.json");
+  const BakeFile bake = readBake(path("p.glb"));
+  const ProbeGrid& g = bake.transfers[0].transfer.shape().probes;
+  ASSERT_EQ(ours["probes"].size(), g.probes() * 9 * 3);
+  ASSERT_EQ(three["probes"].size(), g.probes() * 9 * 3);
+  // three.js's LightProbeGrid over the same points: position − size/2 + i size/(res − 1).
+  const nlohmann::json& lpg = three["lightProbeGrid"];
+  for (std::size_t p = 0; p < g.probes(); ++p) {
+    const auto cell = g.cell(p);
+    for (int a = 0; a < 3; ++a) {
+      const double size = lpg[a == 0 ? "width" : a == 1 ? "height" : "depth"];
+      const double at = lpg["position"][a].get<double>() - size / 2 +
+                        cell[a] * size / (lpg["resolution"][a].get<int>() - 1);
+      EXPECT_NEAR(at, g.position(p)[a], 1e-6) << p << " axis " << a;
+    }
+  }
+  const Vec3f dirs[] = {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {0.6f, 0.0f, -0.8f},
+                        {-0.36f, 0.48f, 0.8f}, {0, -1, 0}};
+  for (std::size_t p = 0; p < g.probes(); p += 5) {
+    const sh::RgbSh L = probeSh(ours, p), T = probeSh(three, p), U = probeSh(unity, p);
+    const sh::RgbSh twice = probeSh(bright, p);
+    for (std::size_t k = 0; k < L.c.size(); ++k)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(twice.c[k][c], 2 * L.c[k][c], 1e-5);
+    for (const Vec3f& d : dirs) {
+      // three.js's SphericalHarmonics3.getAt (no Condon–Shortley phase) is our radiance.
+      const float x = d.x, y = d.y, z = d.z;
+      const float basis[9] = {0.282095f,           0.488603f * y,       0.488603f * z,
+                              0.488603f * x,       1.092548f * x * y,   1.092548f * y * z,
+                              0.315392f * (3 * z * z - 1), 1.092548f * x * z,
+                              0.546274f * (x * x - y * y)};
+      const Rgb want = sh::reconstruct(L, d);
+      Rgb got(0.0f);
+      for (int k = 0; k < 9; ++k) got += T.c[k] * basis[k];
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-4 * (1 + std::abs(want[c])));
+      // Unity's ShadeSH9 on a Unity-space normal (x negated) is E(n)/π of our radiance.
+      const double ux = -d.x, uy = d.y, uz = d.z;
+      const Rgb shade = sh::irradianceQuadratic(L, d) * float(1 / M_PI);
+      for (int c = 0; c < 3; ++c) {
+        const auto u = [&](int k) { return double(U.c[k][c]); };
+        const double shade9 = u(0) - u(6) + u(3) * ux + u(1) * uy + u(2) * uz + u(4) * ux * uy +
+                              u(5) * uy * uz + 3 * u(6) * uz * uz + u(7) * ux * uz +
+                              u(8) * (ux * ux - uy * uy);
+        EXPECT_NEAR(shade9, shade[c], 1e-4 * (1 + std::abs(shade[c])));
+      }
+    }
+  }
+  // What does not fit is refused by name, and nothing is written.
+  ASSERT_EQ(prt("-q bake " + kBox + " --mode shadowed --samples 16 -o s.glb").rc, 0);
+  expectCleanFailure("export s.glb --format probe-grid -o out/g.json",
+                     "s.glb: holds vertices transfer: --format probe-grid relights a probe bake");
+  expectCleanFailure("export p.glb --format probe-grid --engine cmgen -o out/g.json",
+                     "--engine cmgen: cmgen's text holds one light, not a grid");
+  expectCleanFailure("export p.glb --format probe-grid --encoding l1 -o out/g.json", "--encoding");
 }
 
 }  // namespace

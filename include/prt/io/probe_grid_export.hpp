@@ -1,0 +1,61 @@
+#pragma once
+// A relit probe grid as engines load it (issue 32; docs/probes.md, "Exports"):
+// `prt export PROBES.glb --format probe-grid --engine E --light ENV -o grid.json`. A probe bake
+// relit under one light (relight/relight_probes.hpp: L'_p = M_p L) is the SH of the radiance
+// arriving at each probe — what an engine's irradiance probes hold — written once, for engines
+// that do not run PRT. One JSON file:
+//
+//   asset        {generator, format "prtkit probe grid", version 1}
+//   source, light, rotateDegrees, exposureStops     where the values came from
+//   engine       the convention of `probes` (io/engine_light.hpp states each):
+//                  prtkit    our radiance SH, every band the bake holds (Condon–Shortley basis,
+//                            glTF's frame)
+//                  threejs   three.js SphericalHarmonics3 radiance (no Condon–Shortley phase),
+//                            9 × RGB: a LightProbe's `sh` per probe
+//                  unity     Unity's SphericalHarmonicsL2 as ShadeSH9 reads it (E/π, basis
+//                            constants folded in), 9 × RGB, in Unity's world (x negated)
+//                  gltf-ibl  EXT_lights_image_based's irradianceCoefficients, 9 × RGB
+//   grid         {origin, spacing, count [nx, ny, nz], order "x + nx (y + ny z)"}: probe (x, y, z)
+//                at origin + (x sx, y sy, z sz), in the engine's world
+//   lightProbeGrid  three.js's LightProbeGrid (r183+) over the same probes: `position` its
+//                centre, `width`/`height`/`depth` = (n − 1)·s, `resolution` = count (its probes
+//                sit at the corners of its box, ours at the lattice points: the same points)
+//   coefficients {count: per probe, layout "probe-major, coefficient, then r g b"}
+//   probes       probes × coefficients × 3 numbers, flat
+//
+// A reader needs nothing else: `probes[(p·K + k)·3 + c]` is coefficient k, channel c of probe p.
+
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "prt/core/vec.hpp"
+#include "prt/io/engine_light.hpp"
+#include "prt/transfer/probe_grid.hpp"
+
+namespace prt::io {
+
+/// The conventions a probe grid is written in: an engine's (engine_light.hpp, cmgen excepted: it
+/// is a tool's text, not a probe's), or ours (no value).
+struct ProbeGridConvention {
+  std::optional<EngineLight> engine;  ///< none: prtkit's own radiance SH
+};
+/// "prtkit", "threejs", "unity", "gltf-ibl"; anything else throws naming the choices.
+ProbeGridConvention parseProbeGridConvention(std::string_view name);
+const char* probeGridConventionName(const ProbeGridConvention& c);
+
+struct ProbeGridExport {
+  ProbeGrid grid;
+  int bands = 0;
+  std::span<const Rgb> radiance;  ///< probes × bands², our radiance SH (relight::ProbeLighting)
+  std::string source, light;
+  std::array<double, 3> rotateDegrees{0, 0, 0};
+  double exposureStops = 0;
+};
+
+/// The JSON text (see the top). Throws prt::Error when the radiance does not match the grid.
+std::string formatProbeGrid(const ProbeGridExport& grid, const ProbeGridConvention& convention);
+
+}  // namespace prt::io
