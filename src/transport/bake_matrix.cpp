@@ -139,8 +139,9 @@ class HemisphereSampler {
     const Point2 u = sobol_.point(index_++, seed0_, seed1_);
     const float z = sphere_ ? 1.0f - 2.0f * u.x : u.x;
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    const float phi = 2.0f * kPif * u.y;
-    return t_ * (r * std::cos(phi)) + b_ * (r * std::sin(phi)) + n_ * z;
+    float sinPhi, cosPhi;
+    sinCos2Pi(u.y, sinPhi, cosPhi);  // φ = 2π u.y, without libm (core/sampling.hpp)
+    return t_ * (r * cosPhi) + b_ * (r * sinPhi) + n_ * z;
   }
 
  private:

@@ -1,7 +1,7 @@
 // Every kind of bake file, and prt unwrap's plain mesh, passes the Khronos glTF validator with
 // 0 errors and 0 warnings: dense
 // vectors of several modes, matrices, CPCA-compressed transfer, a vertex range of a split bake,
-// per-texel transfer dense and compressed.
+// per-texel transfer dense and compressed, a probe grid whole and a range of it.
 // The only information it gives is the vendor extension it does not know
 // (PRTKIT_radiance_transfer, docs/extensions/) and transfer accessors no primitive uses (they
 // are read through the extension). The validator runs under node from web/node_modules; the
@@ -59,13 +59,17 @@ TEST_F(GltfValidatorWeb, EveryBakeIsValidGltf) {
         "bake " + scene + " --mode shadowed --samples 8 --range 0:100 -o range.glb",
         std::string("bake builtin:cornell --mode interreflected --domain texels --resolution 32 "
                     "--samples 8 -o texels.glb"),
-        std::string("compress texels.glb --clusters 4 --pca 2 -o texels-cpca.glb")}) {
+        std::string("compress texels.glb --clusters 4 --pca 2 -o texels-cpca.glb"),
+        std::string("probes 'builtin:cornell?grid=6' --grid 3x2x2 --samples 8 -o probes.glb"),
+        std::string("probes 'builtin:cornell?grid=6' --grid 3x2x2 --samples 8 --range 0:5 "
+                    "-o probes-range.glb")}) {
     const Result r = prt("-q " + cmd);
     ASSERT_EQ(r.rc, 0) << cmd << ": " << r.err;
   }
-  const Json report =
-      validate("vectors.glb rgb.glb matrix.glb cpca.glb range.glb texels.glb texels-cpca.glb");
-  ASSERT_EQ(report.size(), 7u);
+  const Json report = validate(
+      "vectors.glb rgb.glb matrix.glb cpca.glb range.glb texels.glb texels-cpca.glb probes.glb "
+      "probes-range.glb");
+  ASSERT_EQ(report.size(), 9u);
   for (const auto& [file, r] : report.items()) {
     SCOPED_TRACE(file);
     EXPECT_EQ(r["errors"], 0) << r["messages"].dump();
