@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "prt/core/base64.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/hash.hpp"
 #include "prt/core/version.hpp"
@@ -121,21 +122,6 @@ std::array<std::uint8_t, 4> rgbd(const Rgb& c) {
     out[static_cast<std::size_t>(ch)] = static_cast<std::uint8_t>(
         std::lround(std::pow(std::min(v[ch] * d / 255.0, 1.0), 1 / 2.2) * 255.0));
   out[3] = static_cast<std::uint8_t>(d);
-  return out;
-}
-
-std::string base64(const std::string& bytes) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  unsigned v = 0;
-  int n = 0;
-  for (unsigned char c : bytes) {
-    v = (v << 8) | c;
-    n += 8;
-    while (n >= 6) out += k[(v >> (n -= 6)) & 63];
-  }
-  if (n > 0) out += k[(v << (6 - n)) & 63];
-  while (out.size() % 4) out += '=';
   return out;
 }
 

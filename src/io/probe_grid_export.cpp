@@ -1,8 +1,12 @@
 #include "prt/io/probe_grid_export.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <charconv>
+#include <cstdint>
 #include <cstdlib>
 
+#include "prt/core/base64.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/json.hpp"
 #include "prt/core/version.hpp"
@@ -31,6 +35,33 @@ double shortest(float f) {
 Json triple(const Vec3f& v) { return Json::array({shortest(v.x), shortest(v.y), shortest(v.z)}); }
 
 }  // namespace
+
+std::vector<float> lightProbeGridAtlas(const ProbeGrid& grid, std::span<const Rgb> threeJs) {
+  const int nx = grid.count[0], ny = grid.count[1], nz = grid.count[2];
+  const int block = nz + 2 * kLightProbeGridPadding;
+  PRT_CHECK(threeJs.size() == grid.probes() * 9, "nine coefficients per probe");
+  std::vector<float> atlas(std::size_t(nx) * ny * 7 * block * 4, 0.0f);
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) {
+        // The 27 floats c0.r c0.g c0.b c1.r ... c8.b, then a 0: seven texels of four.
+        float flat[28] = {};
+        const Rgb* c = threeJs.data() + grid.row(x, y, z) * 9;
+        for (int k = 0; k < 9; ++k)
+          for (int ch = 0; ch < 3; ++ch) flat[3 * k + ch] = c[k][ch];
+        for (int t = 0; t < 7; ++t) {
+          // Layer z's slice, and the padding slice beside it at either end.
+          const int base = t * block;
+          for (int slice : {base + kLightProbeGridPadding + z, z == 0 ? base : -1,
+                            z == nz - 1 ? base + kLightProbeGridPadding + nz : -1}) {
+            if (slice < 0) continue;
+            float* texel = atlas.data() + ((std::size_t(slice) * ny + y) * nx + x) * 4;
+            std::copy_n(flat + 4 * t, 4, texel);
+          }
+        }
+      }
+  return atlas;
+}
 
 ProbeGridConvention parseProbeGridConvention(std::string_view name) {
   if (name == "prtkit") return {};
@@ -66,12 +97,14 @@ std::string formatProbeGrid(const ProbeGridExport& g, const ProbeGridConvention&
 
   Json flat = Json::array();
   std::size_t perProbe = 0;
+  std::vector<Rgb> converted;  // every probe's, in the convention
   sh::RgbSh probe(g.bands);
   for (std::size_t p = 0; p < g.grid.probes(); ++p) {
     std::copy_n(g.radiance.begin() + std::ptrdiff_t(p * b2), b2, probe.c.begin());
     const sh::RgbSh out =
         convention.engine ? toEngineConvention(*convention.engine, probe) : probe;
     perProbe = out.c.size();
+    converted.insert(converted.end(), out.c.begin(), out.c.end());
     for (const Rgb& c : out.c)
       for (int ch = 0; ch < 3; ++ch) flat.push_back(shortest(c[ch]));
   }
@@ -94,6 +127,19 @@ std::string formatProbeGrid(const ProbeGridExport& g, const ProbeGridConvention&
                            {"height", shortest(extent.y)},
                            {"depth", shortest(extent.z)},
                            {"resolution", g.grid.count}};
+  if (convention.engine == EngineLight::ThreeJs) {
+    const std::vector<float> atlas = lightProbeGridAtlas(g.grid, converted);
+    std::string bytes(atlas.size() * sizeof(float), '\0');
+    for (std::size_t i = 0; i < atlas.size(); ++i) {
+      const std::uint32_t u = std::bit_cast<std::uint32_t>(atlas[i]);
+      for (int b = 0; b < 4; ++b) bytes[4 * i + b] = char((u >> (8 * b)) & 0xff);
+    }
+    j["lightProbeGrid"]["atlas"] = {
+        {"size", {g.grid.count[0], g.grid.count[1], 7 * (g.grid.count[2] + 2 * kLightProbeGridPadding)}},
+        {"padding", kLightProbeGridPadding},
+        {"format", "RGBA, float32 little-endian, texel (x, y, slice) at ((slice ny + y) nx + x) 4"},
+        {"data", base64(bytes)}};
+  }
   j["coefficients"] = {{"count", perProbe},
                        {"bands", perProbe == 9 ? 3 : g.bands},
                        {"layout", "probe-major, then coefficient, then r g b"}};

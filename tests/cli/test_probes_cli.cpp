@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -130,6 +131,22 @@ sh::RgbSh probeSh(const nlohmann::json& j, std::size_t p) {
   return f;
 }
 
+/// Little-endian float32s from base64 (RFC 4648), decoded here independently of the writer.
+std::vector<float> floatsFromBase64(const std::string& text) {
+  std::string bytes;
+  unsigned v = 0;
+  int n = 0;
+  for (char ch : text) {
+    if (ch == '=') break;
+    const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    v = (v << 6) | unsigned(std::strchr(k, ch) - k);
+    if ((n += 6) >= 8) bytes += char((v >> (n -= 8)) & 0xff);
+  }
+  std::vector<float> out(bytes.size() / 4);
+  std::memcpy(out.data(), bytes.data(), out.size() * 4);
+  return out;
+}
+
 TEST_F(ProbesCli, ProbeGridExportsAreTheRelitGridInEachEnginesConvention) {
   ASSERT_EQ(prt("-q probes " + kBox + " --grid 4x3x2 --samples 64 -o p.glb").rc, 0);
   ASSERT_EQ(prt("-q export p.glb --format probe-grid --engine prtkit --rotate 0,40,0 -o ours.json")
@@ -160,6 +177,28 @@ TEST_F(ProbesCli, ProbeGridExportsAreTheRelitGridInEachEnginesConvention) {
                         cell[a] * size / (lpg["resolution"][a].get<int>() - 1);
       EXPECT_NEAR(at, g.position(p)[a], 1e-6) << p << " axis " << a;
     }
+  }
+  // The atlas LightProbeGridNode samples: seven RGBA sub-volumes of nz + 2 slices along z,
+  // probe layer z at slice t (nz + 2) + 1 + z, the edge layers repeated in the padding; the 27
+  // floats of a probe then a 0, four to a texel.
+  const nlohmann::json& atlas = lpg["atlas"];
+  const int nx = g.count[0], ny = g.count[1], nz = g.count[2], block = nz + 2;
+  ASSERT_EQ(atlas["size"], nlohmann::json({nx, ny, 7 * block}));
+  const std::vector<float> tex = floatsFromBase64(atlas["data"]);
+  ASSERT_EQ(tex.size(), std::size_t(nx) * ny * 7 * block * 4);
+  const auto texel = [&](int x, int y, int slice, int c) {
+    return tex[((std::size_t(slice) * ny + y) * nx + x) * 4 + c];
+  };
+  for (std::size_t p = 0; p < g.probes(); ++p) {
+    const auto [x, y, z] = g.cell(p);
+    for (int t = 0; t < 7; ++t)
+      for (int c = 0; c < 4; ++c) {
+        const int i = 4 * t + c;  // of the 27 floats and a trailing 0
+        const float want = i < 27 ? three["probes"][p * 27 + i].get<float>() : 0.0f;
+        EXPECT_FLOAT_EQ(texel(x, y, t * block + 1 + z, c), want) << p << " t " << t;
+        if (z == 0) EXPECT_FLOAT_EQ(texel(x, y, t * block, c), want);
+        if (z == nz - 1) EXPECT_FLOAT_EQ(texel(x, y, t * block + nz + 1, c), want);
+      }
   }
   const Vec3f dirs[] = {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {0.6f, 0.0f, -0.8f},
                         {-0.36f, 0.48f, 0.8f}, {0, -1, 0}};

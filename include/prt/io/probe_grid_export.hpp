@@ -19,7 +19,9 @@
 //                at origin + (x sx, y sy, z sz), in the engine's world
 //   lightProbeGrid  three.js's LightProbeGrid (r183+) over the same probes: `position` its
 //                centre, `width`/`height`/`depth` = (n − 1)·s, `resolution` = count (its probes
-//                sit at the corners of its box, ours at the lattice points: the same points)
+//                sit at the corners of its box, ours at the lattice points: the same points);
+//                with --engine threejs also `atlas`, the grid's texture as LightProbeGridNode
+//                samples it (lightProbeGridAtlas below), base64 of little-endian float32 RGBA
 //   coefficients {count: per probe, layout "probe-major, coefficient, then r g b"}
 //   probes       probes × coefficients × 3 numbers, flat
 //
@@ -30,6 +32,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "prt/core/vec.hpp"
 #include "prt/io/engine_light.hpp"
@@ -54,6 +57,20 @@ struct ProbeGridExport {
   std::array<double, 3> rotateDegrees{0, 0, 0};
   double exposureStops = 0;
 };
+
+/// Padding slices at each end of every sub-volume of three.js's LightProbeGrid atlas.
+inline constexpr int kLightProbeGridPadding = 1;
+
+/// three.js LightProbeGrid's texture (examples/jsm/lighting/LightProbeGrid.js and
+/// tsl/lighting/LightProbeGridNode.js, r183+): one RGBA 3D texture of nx × ny × 7 (nz + 2)
+/// texels, seven sub-volumes stacked along z, sub-volume t at slices t (nz + 2) .. with probe
+/// layer z at slice t (nz + 2) + 1 + z and the first and last layers repeated in the padding
+/// slices around them (so that its linear filter never blends two sub-volumes). The nine RGB
+/// coefficients c0..c8 of a probe (three.js's SphericalHarmonics3: `threeJs`, probes × 9) are
+/// packed as t0 = (c0.rgb, c1.r), t1 = (c1.gb, c2.rg), t2 = (c2.b, c3.rgb), t3 = (c4.rgb, c5.r),
+/// t4 = (c5.gb, c6.rg), t5 = (c6.b, c7.rgb), t6 = (c8.rgb, 0). Returned as a Data3DTexture's
+/// floats: texel (x, y, slice) at ((slice · ny + y) · nx + x) · 4.
+std::vector<float> lightProbeGridAtlas(const ProbeGrid& grid, std::span<const Rgb> threeJs);
 
 /// The JSON text (see the top). Throws prt::Error when the radiance does not match the grid.
 std::string formatProbeGrid(const ProbeGridExport& grid, const ProbeGridConvention& convention);
