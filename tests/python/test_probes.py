@@ -73,3 +73,17 @@ def test_probes_refuse_what_is_not_theirs(scene):
     surface = prtkit.bake_transfer(scene, mode="shadowed", samples=16)
     with pytest.raises(ValueError, match="not probes"):
         prtkit.relight_probes(surface, np.zeros((9, 3), np.float32))
+
+
+def test_validate_compares_a_probe_grid_with_the_reference_at_six_normals(scene):
+    # As prt validate: each validated probe seen by white diffuse surfaces facing +x, -x, +y,
+    # -y, +z, -z (rows 6 p + a), the SH-free reference against the relit SH shaded there.
+    t = prtkit.bake_probes(scene, grid=(3, 2, 3), mode="shadowed", samples=256)
+    rep = prtkit.validate(scene, t, "builtin:sky", samples=64, vertices=4)
+    rows = np.asarray(rep["vertices"])
+    assert rows.shape == (24,)
+    probes = rows // 6
+    assert len(set(probes.tolist())) == 4 and (probes < 18).all()
+    assert (rows % 6 == np.tile(np.arange(6), 4)).all()
+    assert [r["bands"] for r in rep["rows"]] == [1, 2, 3]
+    assert all(0 < r["explained"] <= 1.5 for r in rep["rows"])
