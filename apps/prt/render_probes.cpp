@@ -25,25 +25,11 @@
 #include "prt/relight/relight_probes.hpp"
 #include "prt/render/exposure.hpp"
 #include "prt/render/primary.hpp"
+#include "prt/render/probe_object.hpp"
 #include "prt/render/probe_shading.hpp"
 #include "prt/sh/rotate.hpp"
 
 namespace prt::cli {
-
-namespace {
-
-/// The object, scaled to `size` along its largest side and centred at `at`.
-Mesh placedObject(const std::string& spec, const Vec3f& at, float size) {
-  Mesh m = loadScene({spec});
-  const Bounds b = computeBounds(m);
-  const Vec3f extent = b.hi - b.lo;
-  const float largest = std::max({extent.x, extent.y, extent.z});
-  const float scale = largest > 0 ? size / largest : 1.0f;
-  for (Vec3f& p : m.positions) p = (p - b.centre()) * scale + at;
-  return m;
-}
-
-}  // namespace
 
 void renderProbeBake(const BakeFile& bake, const ProbeRenderArgs& a, Report& report) {
   const BakedTransfer& baked = pickTransfer(bake, {}, {}, a.bake);
@@ -61,17 +47,14 @@ void renderProbeBake(const BakeFile& bake, const ProbeRenderArgs& a, Report& rep
   Mesh scene = bake.mesh;
   foldBaseColour(scene);
   if (!a.object.empty()) {
-    const Vec3f far = grid.position(grid.probes() - 1);
-    Vec3f at = (grid.origin + far) * 0.5f;
+    Vec3f at = render::defaultObjectPosition(grid);
     if (!a.at.empty()) {
       const std::vector<double> v = parseNumberList(a.at, "--at");
       if (v.size() != 3) throw Error("--at '" + a.at + "' is not a point x,y,z");
       at = Vec3f(Vec3d(v[0], v[1], v[2]));
     }
-    const Vec3f extent = far - grid.origin + grid.spacing;
-    const float size =
-        a.objectSize > 0 ? a.objectSize : 0.2f * std::max({extent.x, extent.y, extent.z});
-    Mesh object = placedObject(a.object, at, size);
+    const float size = a.objectSize > 0 ? a.objectSize : render::defaultObjectSize(grid);
+    Mesh object = render::placeObject(loadScene({a.object}), at, size);
     foldBaseColour(object);
     appendMesh(scene, object);
   }

@@ -36,6 +36,10 @@ struct ViewArgs {
   bool autoRotate = false, headless = false, stats = false;
   double spin = 30.0;
   std::string json;
+  // A probe bake's moving object.
+  std::string object, at;
+  float objectSize = 0;
+  bool showProbes = false;
 };
 
 #ifdef PRT_HAVE_VIEWER
@@ -69,6 +73,14 @@ void runView(const ViewArgs& a) {
   o.screenshot = a.screenshot;
   o.stats = a.stats;
   o.statsOnStderr = report.toStandardOutput();
+  o.object = a.object;
+  if (!a.at.empty()) {
+    const std::vector<double> v = parseNumberList(a.at, "--at");
+    if (v.size() != 3) throw Error("--at '" + a.at + "' is not a point x,y,z");
+    o.at = Vec3f(Vec3d(v[0], v[1], v[2]));
+  }
+  o.objectSize = a.objectSize;
+  o.showProbes = a.showProbes;
   viewer::Output out{
       [](const std::string& s) { info(s); }, [](const std::string& s) { warn(s); }, {}};
   if (report.wanted())
@@ -161,6 +173,16 @@ void addViewCommand(CLI::App& root) {
                   ".exr/.hdr linear radiance");
   cmd->add_flag("--stats", a->stats,
                 "Print frame, CPU and upload timings on stdout at exit (stderr with --json -)");
+  cmd->add_option("--object", a->object,
+                  "A probe bake (prt probes): the object moved through the grid, a mesh file or "
+                  "builtin:NAME (default a sphere; Alt+drag or the panel moves it)");
+  cmd->add_option("--at", a->at, "A probe bake: where the object starts, x,y,z (default the "
+                                 "grid's centre)");
+  cmd->add_option("--object-size", a->objectSize,
+                  "A probe bake: the object's largest side (default a fifth of the grid's)")
+      ->check(finite(1e-6, 1e6));
+  cmd->add_flag("--show-probes", a->showProbes,
+                "A probe bake: draw every probe as a small octahedron lit as the object is");
   addJsonOption(cmd, a->json);
   cmd->callback([a] { runView(*a); });
 }

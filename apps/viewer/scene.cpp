@@ -17,6 +17,8 @@
 #include "prt/relight/relight.hpp"
 #include "prt/render/base_colour.hpp"
 #include "prt/render/texel_points.hpp"
+#include "prt/geometry/load.hpp"
+#include "probe_view.hpp"
 
 namespace prt::viewer {
 
@@ -70,11 +72,11 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
-  bake.requireSurface(path, "prt view draws a surface's transfer");
   for (const BakedTransfer& t : bake.transfers) {
-    // Some path draws it (per-texel matrices only compressed), else refused naming the file.
+    // Some path draws it (per-texel matrices only compressed; probes on the CPU, probe_view),
+    // else refused naming the file.
     try {
-      relight::shaderPath(t.transfer, false);
+      if (t.transfer.domain() != TransferDomain::Probes) relight::shaderPath(t.transfer, false);
     } catch (const Error& e) {
       throw Error(path, std::string(e.what()) + " (" + t.describe() + ")");
     }
@@ -124,6 +126,20 @@ void Scene::setBake(BakeFile bake, const std::string& name, int width, int heigh
   transfer_ = 0;
   material_ = materialOverride_ ? *materialOverride_ : transfer().recipe.material;
   orbit = OrbitCamera(render::frameMesh(bake_->mesh, width, height));
+  object.reset();
+  if (probeBake()) {
+    if (!objectMesh_) {
+      objectName_ = "builtin:sphere?subdiv=3";
+      objectMesh_ = std::make_shared<const Mesh>(prt::loadScene({objectName_}));
+    }
+    object.emplace(*objectMesh_, objectName_, bake_->probeGrid());
+  }
+}
+
+void Scene::setObject(Mesh mesh, const std::string& name) {
+  objectMesh_ = std::make_shared<const Mesh>(std::move(mesh));
+  objectName_ = name;
+  if (probeBake()) object.emplace(*objectMesh_, objectName_, bake_->probeGrid());
 }
 
 void Scene::addEnvironment(EnvironmentEntry entry) {
@@ -201,6 +217,12 @@ DrawState Scene::drawState() const {
   d.material = material_;
   d.environment = envs_.empty() ? nullptr : envs_[env_];
   d.background = background;
+  if (object) {
+    d.object = object->mesh();
+    d.objectAt = object->position();
+    d.objectSize = object->size();
+    d.showProbes = showProbes;
+  }
   return d;
 }
 
@@ -222,8 +244,64 @@ void SceneView::setTransfer(const DrawState& now) {
   if (path_ == relight::ShaderPath::CpuRadiance) cpuView_.emplace(mesh, t, now.material);
 }
 
+FrameParams SceneView::prepareProbes(const Scene& scene, const DrawState& now, int width,
+                                     int height) {
+  const bool newMesh = now.bake != drawn_.bake || now.object != drawn_.object ||
+                       !(now.objectAt == drawn_.objectAt) || now.objectSize != drawn_.objectSize ||
+                       now.showProbes != drawn_.showProbes || path_ != relight::ShaderPath::CpuRadiance;
+  if (newMesh) {
+    probeMesh_ = probeSceneMesh(*now.bake, scene.object ? &*scene.object : nullptr,
+                                now.showProbes);
+    renderer_.setMesh(probeMesh_);
+    relight::ShaderRows rows;
+    rows.path = relight::ShaderPath::CpuRadiance;
+    TransferShape shape;
+    shape.rows = {0, probeMesh_.vertexCount()};
+    renderer_.setTransfer(rows, shape);
+    path_ = rows.path;
+    cpuView_.reset();
+    probeLight_.clear();
+  }
+  if (now.environment != drawn_.environment && now.environment) {
+    renderer_.setEnvironmentImage(now.environment->latLong);
+    packer_.setLight(now.environment->light);
+  }
+  if (now.environment != drawn_.environment || now.bands != drawn_.bands) shImageValid_ = false;
+  if (now.background == BackgroundMode::Sh && !shImageValid_) {
+    renderer_.setShImage(scene.shBackground());
+    shImageValid_ = true;
+  }
+  const bool newTransfer = now.transfer != drawn_.transfer;
+  drawn_ = now;
+
+  FrameParams f;
+  f.width = width, f.height = height;
+  f.camera = scene.orbit.camera();
+  f.bands = now.bands;
+  const auto t0 = std::chrono::steady_clock::now();
+  f.lightRotation = scene.lightRotation();
+  packer_.pack(f.lightRotation, now.bands);
+  relightSeconds_ = 0;
+  const std::span<const Rgb> light = packer_.rotated();
+  if (newMesh || newTransfer || !std::equal(light.begin(), light.end(), probeLight_.begin(),
+                                            probeLight_.end())) {
+    probeLight_.assign(light.begin(), light.end());
+    probeRadiance_ = shadeProbeScene(now.transfer->transfer, now.bands, light, probeMesh_);
+    renderer_.setRadiance(probeRadiance_);
+    ++probeRelights_;
+    relightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  f.light = &packer_;
+  f.background = now.background;
+  f.exposureStops = scene.exposureStops;
+  f.toneMap = scene.toneMap;
+  return f;
+}
+
 FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   const DrawState now = scene.drawState();
+  if (now.bake->domain() == TransferDomain::Probes) return prepareProbes(scene, now, width, height);
   using relight::ShaderPath;
   const bool newMesh = now.bake != drawn_.bake;
   const bool newTransfer = newMesh || now.transfer != drawn_.transfer;
@@ -295,7 +373,7 @@ std::size_t SceneView::lightUploadBytes() const {
     case relight::ShaderPath::CpcaMatrix:
       return renderer_.clusterTableBytes();
     case relight::ShaderPath::CpuRadiance:
-      return sizeof(Rgb) * cpuView_->radiance().size();
+      return sizeof(Rgb) * (cpuView_ ? cpuView_->radiance().size() : probeRadiance_.size());
     default:
       return packer_.bytes();
   }
@@ -315,6 +393,11 @@ std::string SceneView::uploadSummary(const Scene& scene) const {
           ? sizeof(float) * std::size_t(t.coeffs()) * std::size_t(t.coeffs()) * t.channels()
           : 16 * std::size_t(relight::shaderTexelsPerRow(t, relight::ShaderPath::DenseVector));
   const std::string upload = bytesText(t.rowCount() * renderer_.bytesPerVertex());
+  if (t.domain() == TransferDomain::Probes)
+    return fmt::format(
+        "{} relit on the CPU, then the scene, the object and the markers shaded through them: "
+        "{} bytes of radiance per vertex per relit frame ({} vertices)",
+        t.shape().probes.describe(), sizeof(Rgb), probeMesh_.vertexCount());
   switch (path_) {
     case relight::ShaderPath::CpuRadiance:
       return fmt::format(

@@ -38,6 +38,7 @@
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/transfer/material.hpp"
+#include "moving_object.hpp"
 #include "renderer.hpp"
 
 namespace prt::viewer {
@@ -63,6 +64,11 @@ struct DrawState {
   Material material;
   std::shared_ptr<const EnvironmentEntry> environment;
   BackgroundMode background = BackgroundMode::Env;
+  /// A probe bake's moving object (its mesh, where it is and how large) and probe markers.
+  std::shared_ptr<const Mesh> object;
+  Vec3f objectAt{0.0f};
+  float objectSize = 0;
+  bool showProbes = false;
   bool operator==(const DrawState&) const = default;
 };
 
@@ -156,6 +162,17 @@ class Scene {
   /// What is drawn now.
   DrawState drawState() const;
 
+  /// A probe bake (prt probes) is drawn with an object the user moves through its grid
+  /// (probe_view.hpp); probeBake() says whether the bake is one.
+  bool probeBake() const { return bake_->domain() == TransferDomain::Probes; }
+  /// The moving object of a probe bake: set by setBake (a sphere, unless setObject gave another
+  /// mesh), placed anew in the grid of every probe bake set.
+  std::optional<MovingObject> object;
+  /// The object's mesh for this and later probe bakes (prt view --object).
+  void setObject(Mesh mesh, const std::string& name);
+  /// Probe markers: an octahedron at every probe, lit as the object is.
+  bool showProbes = false;
+
   OrbitCamera orbit;
   BackgroundMode background = BackgroundMode::Env;
   float exposureStops = 0.0f;
@@ -176,6 +193,8 @@ class Scene {
   double spinRad_ = 0;
   Material material_;
   std::optional<Material> materialOverride_;
+  std::shared_ptr<const Mesh> objectMesh_;  ///< setObject's (none: a sphere)
+  std::string objectName_;
 };
 
 /// Keeps a Renderer in step with a Scene: uploads what differs between the scene's DrawState and
@@ -200,12 +219,12 @@ class SceneView {
   /// prepare did not relight on the CPU.
   double lastRelightSeconds() const { return relightSeconds_; }
   /// CPU relightings so far (frames where something view- or light-dependent changed).
-  int cpuRelights() const { return cpuView_ ? cpuView_->frames() : 0; }
+  int cpuRelights() const { return cpuView_ ? cpuView_->frames() : probeRelights_; }
   /// Of those, the ones served from the view-collapsed transfer (only the light had changed).
   int cpuLightOnlyRelights() const { return cpuView_ ? cpuView_->lightOnlyFrames() : 0; }
   /// The last CPU relighting's per-vertex exit radiance (what the shader shows).
   std::span<const Rgb> cpuRadiance() const {
-    return cpuView_ ? cpuView_->radiance() : std::span<const Rgb>();
+    return cpuView_ ? cpuView_->radiance() : std::span<const Rgb>(probeRadiance_);
   }
   /// One line on what the shown transfer costs the GPU, after a prepare: what is uploaded once
   /// per vertex (against the dense rows) and per frame.
@@ -219,6 +238,9 @@ class SceneView {
  private:
   /// The transfer-dependent part of an upload: the path, the per-vertex texels, the relighter.
   void setTransfer(const DrawState& now);
+  /// prepare for a probe bake (probe_view.hpp): the scene, the object and the markers as one
+  /// mesh, shaded on the CPU when the light, the bands or the mesh change.
+  FrameParams prepareProbes(const Scene& scene, const DrawState& now, int width, int height);
 
   Renderer renderer_;
   LightPacker packer_;
@@ -231,6 +253,10 @@ class SceneView {
   std::optional<render::RelitView> cpuView_;
   std::vector<float> clusterTable_;
   double lightSeconds_ = 0, relightSeconds_ = 0;
+  Mesh probeMesh_;                 ///< a probe bake's drawn mesh (probeSceneMesh)
+  std::vector<Rgb> probeLight_;    ///< the rotated light its radiance was shaded under
+  std::vector<Rgb> probeRadiance_;
+  int probeRelights_ = 0;
 };
 
 }  // namespace prt::viewer

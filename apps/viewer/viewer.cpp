@@ -18,7 +18,10 @@
 #include "prt/image/image.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/render/exposure.hpp"
+#include "prt/geometry/load.hpp"
+#include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
+#include "probe_view.hpp"
 #include "scene.hpp"
 #include "window.hpp"
 
@@ -59,6 +62,15 @@ void checkOptions(const Options& o) {
       if (!std::isfinite(a)) throw Error("--rotate: angles must be finite");
 }
 
+/// A probe bake's object: --object's mesh (the scene's sphere without it), at --at, of
+/// --object-size, markers with --show-probes.
+void placeObject(Scene& scene, const Options& o) {
+  if (!o.object.empty()) scene.setObject(prt::loadScene({o.object}), o.object);
+  if (o.at) scene.object->moveTo(*o.at);
+  if (o.objectSize > 0) scene.object->setSize(o.objectSize);
+  scene.showProbes = o.showProbes;
+}
+
 /// Loads everything named on the command line into a scene (errors name the file).
 Scene loadScene(const Options& o, const Output& out) {
   Scene scene;
@@ -75,6 +87,12 @@ Scene loadScene(const Options& o, const Output& out) {
     out.warn(fmt::format("--bands {} asked for, but the bake has only {} bands: showing {}",
                          o.bands, scene.bakeBands(), scene.bakeBands()));
   if (o.bands > 0) scene.setBands(o.bands);
+  if (!scene.probeBake() && (!o.object.empty() || o.at || o.objectSize > 0 ||
+                             o.showProbes))
+    throw Error(o.bake, "--object, --at, --object-size and --show-probes place an object in a "
+                        "probe grid (prt probes); this bake holds " +
+                            std::string(toString(scene.bake().domain())));
+  if (scene.probeBake()) placeObject(scene, o);
 
   const std::vector<std::string> envs =
       o.environments.empty() ? std::vector<std::string>{"builtin:sky"} : o.environments;
@@ -92,6 +110,19 @@ Scene loadScene(const Options& o, const Output& out) {
   if (o.exposure) {
     image::checkExposure(*o.exposure, "--exposure");
     scene.exposureStops = *o.exposure;
+  } else if (scene.probeBake()) {
+    // prt render's rule on the first view: the scene and the object shaded through the probes.
+    const Mesh drawn = probeSceneMesh(scene.bake(), &*scene.object, scene.showProbes);
+    const Mat3d r = scene.lightRotation();
+    const sh::RgbSh light = sh::Rotation(scene.bands(), r).apply(
+        scene.environment(std::size_t(scene.environmentIndex())).light.truncated(scene.bands()));
+    const std::vector<Rgb> radiance =
+        shadeProbeScene(scene.transfer().transfer, scene.bands(), light.c, drawn);
+    const render::FrameSurvey survey = probeSceneSurvey(drawn, radiance, scene.orbit.camera(),
+                                                        o.width, o.height, scene.toneMap);
+    scene.exposureStops = survey.exposureStops;
+    const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
+    if (!ringing.empty()) out.warn(ringing + " (the first view)");
   } else {
     // prt render's rule on a CPU relight of the first view (the same bake, light and camera).
     const Mesh& mesh = scene.bake().mesh;

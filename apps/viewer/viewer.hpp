@@ -37,6 +37,11 @@ struct Options {
   std::string screenshot;      ///< after the last frame: .png as shown, .exr/.hdr linear
   bool stats = false;          ///< print timings to stdout at exit
   bool statsOnStderr = false;  ///< print them to stderr instead (prt view --json -)
+  // A probe bake's moving object (as prt render's --object, --at, --object-size) and markers.
+  std::string object;     ///< mesh file or builtin:NAME; "": a sphere
+  std::optional<Vec3f> at;  ///< none: the grid's centre
+  float objectSize = 0;   ///< its largest side; 0: a fifth of the grid's
+  bool showProbes = false;
 };
 
 /// What a headless run drew and measured (prt view --json, docs/formats-report.md). Times in

@@ -111,6 +111,25 @@ struct Ui {
     }
   }
 
+  /// A probe bake's moving object: where it is (within the probes' box), its size, the probe
+  /// markers (probe_view.hpp).
+  static void objectPanel(Scene& scene) {
+    MovingObject& o = *scene.object;
+    ImGui::TextDisabled("%s", o.name().c_str());
+    const ProbeGrid grid = scene.bake().probeGrid();
+    const Vec3f lo = grid.origin, hi = grid.position(grid.probes() - 1);
+    const char* axes[3] = {"x", "y", "z"};
+    Vec3f at = o.position();
+    for (int a = 0; a < 3; ++a)
+      if (hi[a] > lo[a] && ImGui::SliderFloat(axes[a], &at[a], lo[a], hi[a], "%.3f"))
+        o.moveTo(at);
+    float size = o.size();
+    if (ImGui::SliderFloat("size", &size, 0.1f * o.defaultSize(), 4.0f * o.defaultSize(), "%.3f"))
+      o.setSize(size);
+    ImGui::Checkbox("show probes", &scene.showProbes);
+    ImGui::TextDisabled("%s, lit through them", grid.describe().c_str());
+  }
+
   /// The panel: what is shown and the controls used most (transfer, bands, environment,
   /// exposure) always; the material, the display and light controls and the help as sections
   /// (the material open for glossy transfer, where it matters). Collapsed to its title bar when
@@ -155,9 +174,14 @@ struct Ui {
     if (ImGui::SliderFloat("exposure", &scene.exposureStops, -8.0f, 8.0f, "%.1f stops"))
       scene.exposureStops = image::clampExposure(scene.exposureStops);
 
-    const bool glossy = scene.transfer().transfer.isMatrix();
-    if (ImGui::CollapsingHeader("material", glossy ? ImGuiTreeNodeFlags_DefaultOpen : 0))
-      materialPanel(scene);
+    if (scene.object) {
+      if (ImGui::CollapsingHeader("object in the probe grid", ImGuiTreeNodeFlags_DefaultOpen))
+        objectPanel(scene);
+    } else {
+      const bool glossy = scene.transfer().transfer.isMatrix();
+      if (ImGui::CollapsingHeader("material", glossy ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+        materialPanel(scene);
+    }
     if (ImGui::CollapsingHeader("display and light")) {
       int bg = int(scene.background);
       const char* bgNames[] = {"environment", "SH reconstruction", "black"};
@@ -176,6 +200,7 @@ struct Ui {
     if (ImGui::CollapsingHeader("help and renderer")) {
       ImGui::TextDisabled("left drag: orbit   right/shift drag: light");
       ImGui::TextDisabled("middle/ctrl drag: pan   wheel: zoom");
+      if (scene.object) ImGui::TextDisabled("alt drag: move the object");
       ImGui::TextDisabled("space: auto-rotate   B: background");
       ImGui::TextDisabled("[ ]: bands   Tab: next environment");
       ImGui::TextDisabled("drop an image, face folder or .glb");
@@ -202,7 +227,9 @@ void handleInput(Scene& scene, int height) {
   if (!io.WantCaptureMouse) {
     const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;
     const bool left = io.MouseDown[0], right = io.MouseDown[1], middle = io.MouseDown[2];
-    if ((right || (left && io.KeyShift)) && (dx != 0 || dy != 0))
+    if (left && io.KeyAlt && scene.object && (dx != 0 || dy != 0))
+      scene.object->drag(scene.orbit.camera(), dx, dy, height);
+    else if ((right || (left && io.KeyShift)) && (dx != 0 || dy != 0))
       scene.dragLight(dx, dy);
     else if ((middle || (left && io.KeyCtrl)) && (dx != 0 || dy != 0))
       scene.orbit.pan(dx / height, dy / height);

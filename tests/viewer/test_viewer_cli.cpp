@@ -353,6 +353,32 @@ TEST(ViewCli, GlossyRelitEveryFrameAsLightAndCameraMove) {
   EXPECT_NE(w.err.find("needs a matrix bake"), std::string::npos) << w.err;
 }
 
+TEST(ViewCli, ProbeBakeWithAMovingObjectMatchesRender) {
+  // A probe grid (prt probes): the scene and the object placed in it, every vertex lit through
+  // the relit probes, as prt render --object draws them; under a turned light too.
+  PRT_REQUIRE_HEADLESS_GL();
+  const Result b = prt("-q probes 'builtin:cornell?grid=12' --grid 6x6x6 --samples 64 -o probes.glb");
+  ASSERT_EQ(b.rc, 0) << b.err;
+  const std::string object = "--object 'builtin:sphere?subdiv=3' --object-size 0.7 ";
+  EXPECT_LT(compareWithRender(path("probes.glb"), object + "--at -0.4,0.5,0.3"), kMatch);
+  EXPECT_LT(compareWithRender(path("probes.glb"), object + "--at 0.3,1.2,-0.2 --rotate 0,90,0"),
+            kMatch);
+  // The comparison can fail: the object elsewhere is far from render's image of it here.
+  const Result moved = prt("-q view '" + path("probes.glb") + "' --headless " + kSize + " " +
+                           object + "--at -0.4,1.5,0.3 --rotate 0,90,0 --screenshot moved.png");
+  ASSERT_EQ(moved.rc, 0) << moved.err;
+  EXPECT_GT(displayedRmse(path("moved.png"), path("render.png")), 2 * kMatch);
+  // Probe markers draw; a surface bake has no grid to place an object in.
+  const Result markers = prt("-q view '" + path("probes.glb") + "' --headless " + kSize +
+                             " --show-probes --screenshot markers.png");
+  EXPECT_EQ(markers.rc, 0) << markers.err;
+  const Result surface = prt("-q view '" + cornellBake() + "' --headless " + kSize +
+                             " --object builtin:sphere --screenshot no.png");
+  EXPECT_NE(surface.rc, 0);
+  EXPECT_NE(surface.err.find("place an object in a probe grid"), std::string::npos)
+      << surface.err;
+}
+
 TEST(ViewCli, ViewerLightEnvFlagIsItsEnvironment) {
   PRT_REQUIRE_HEADLESS_GL();
   // prt view names the environment --env (several allowed; the first is shown first).

@@ -333,3 +333,42 @@ TEST(Scene, CompressedFrameEqualsDenseReconstructionFrame) {
 
 }  // namespace
 }  // namespace prt::viewer::test
+
+namespace prt::viewer::test {
+namespace {
+
+TEST(MovingObject, StaysInTheProbesBoxAndFollowsTheCursor) {
+  ProbeGrid g;
+  g.origin = Vec3f(0.0f);
+  g.spacing = Vec3f(1.0f);
+  g.count = {4, 4, 4};  // probes span [0, 3]³
+  MovingObject o(builtinScene("builtin:sphere?subdiv=1"), "builtin:sphere", g);
+  EXPECT_EQ(o.position(), Vec3f(1.5f));
+  EXPECT_FLOAT_EQ(o.size(), 0.2f * 4.0f);  // a fifth of the grid's side, cells included
+  o.moveTo({10.0f, -5.0f, 1.0f});
+  EXPECT_EQ(o.position(), Vec3f(3.0f, 0.0f, 1.0f));
+  // A camera on +Z looking at the object: a drag of (dx, dy) pixels moves it by dx, −dy pixels
+  // of the view at its depth (2 d tan(fovY/2) / height a pixel) along right and up.
+  o.moveTo(Vec3f(1.5f));
+  render::Camera cam;
+  cam.eye = {1.5f, 1.5f, 11.5f};
+  cam.target = Vec3f(1.5f);
+  cam.fovY = 60.0f;
+  const int height = 500;
+  o.drag(cam, 50, -25, height);
+  const double perPixel = 2.0 * 10.0 * std::tan(30.0 * kPi / 180.0) / height;
+  EXPECT_NEAR(o.position().x, 1.5 + 50 * perPixel, 1e-4);
+  EXPECT_NEAR(o.position().y, 1.5 + 25 * perPixel, 1e-4);
+  EXPECT_NEAR(o.position().z, 1.5, 1e-6);
+  // Placed, its largest side is its size and its centre where it is.
+  o.setSize(1.0f);
+  const Mesh m = o.placed();
+  const Bounds b = computeBounds(m);
+  EXPECT_NEAR(b.hi.x - b.lo.x, 1.0f, 1e-5);
+  EXPECT_NEAR(b.centre().x, o.position().x, 1e-5);
+  o.setSize(100.0f);  // clamped to four times the default
+  EXPECT_FLOAT_EQ(o.size(), 4 * o.defaultSize());
+}
+
+}  // namespace
+}  // namespace prt::viewer::test
