@@ -108,11 +108,11 @@ endfunction()
 # Every stage, and those each consumer compiles.
 set(PRT_SHADER_STAGES_VIEWER mesh.vert radiance.vert glossy.vert compressed.vert
     compressedGlossy.vert lightmap.vert mesh.frag fullscreen.vert background.frag tone.frag)
-set(PRT_SHADER_STAGES_WEB mesh.vert compressed.vert compressedGlossy.vert lightmap.vert mesh.frag
-    fullscreen.vert background.frag tone.frag)
+set(PRT_SHADER_STAGES_WEB mesh.vert radiance.vert compressed.vert compressedGlossy.vert
+    lightmap.vert mesh.frag fullscreen.vert background.frag tone.frag)
 # The three.js module (web/three): the page's mesh stages, as a ShaderMaterial, and its fragments.
-set(PRT_SHADER_STAGES_THREE mesh.vert compressed.vert compressedGlossy.vert lightmap.vert
-    three.frag)
+set(PRT_SHADER_STAGES_THREE mesh.vert radiance.vert compressed.vert compressedGlossy.vert
+    lightmap.vert three.frag)
 
 # The desktop viewer's header: its stages flattened with hosts/gl33.glsl, embedded.
 function(prt_viewer_shader_header out_header)

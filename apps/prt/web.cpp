@@ -43,6 +43,7 @@
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/exposure.hpp"
+#include "prt/render/probe_shading.hpp"
 #include "prt/render/texel_points.hpp"
 #include "prt/transfer/prepared_material.hpp"
 #include "report.hpp"
@@ -177,8 +178,9 @@ void checkOptions(const WebOptions& a) {
 /// transfer on a GPU path of relight/shader_transfer.hpp — vectors (dense or compressed; per
 /// vertex, or per texel relit per pixel) and compressed matrices (per vertex, or per texel
 /// shaded at the texels' points, texelPointsBytes). Dense matrices (2.5 KB per vertex
-/// at 5 bands) are refused, as the page refuses such a file dropped on it. A file beyond what the
-/// page takes is refused before it is read.
+/// at 5 bands) are refused, as the page refuses such a file dropped on it. A probe grid
+/// (docs/probes.md) is relit on the CPU, any form. A file beyond what the page takes is refused
+/// before it is read.
 std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) {
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(a.bake, ec);
@@ -190,8 +192,14 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
                                     double(size) / 1e6, double(kMaxPageBakeBytes) / 1e6));
   std::vector<unsigned char> glb = readFileBytes(a.bake, kMaxPageBakeBytes, "the page's limit");
   bake = decodeBake(glb, a.bake);
-  bake.requireSurface(a.bake, "prt web draws a surface's transfer");
+  // A probe grid's matrices are relit on the CPU, in JavaScript (web/src/probe_lighting.js):
+  // any bands, dense or compressed. What the page shades with them is diffuse.
+  if (bake.domain() == TransferDomain::Probes && !a.material.empty())
+    throw Error(a.bake,
+                "holds a probe grid, which lights what moves through it diffusely; "
+                "--material belongs to a surface's transfer");
   for (const BakedTransfer& t : bake.transfers) {
+    if (t.transfer.domain() == TransferDomain::Probes) continue;
     if (t.transfer.isMatrix() && !t.transfer.compressed())
       throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices; the browser "
                                       "viewer draws them CPCA-compressed only (prt compress), or "
@@ -246,9 +254,14 @@ float initialExposure(const WebOptions& a, const BakeFile& bake, const sh::RgbSh
   const render::Framing f = render::meshFraming(bake.mesh);
   render::Camera c = render::frameCamera(f, 640, 480);
   if (!a.camera.empty()) c = render::parseCamera(a.camera, c);
+  const image::ToneMap op = image::parseToneMap(a.toneMap);
+  // A probe grid: the scene lit through its relit probes (what the page draws around the ball).
   const render::FrameSurvey survey =
-      render::relitSurvey(bake.mesh, t.transfer, material, light, parseRotation(a.rotate), c, 640,
-                          480, image::parseToneMap(a.toneMap), a.bands);
+      bake.domain() == TransferDomain::Probes
+          ? render::probeSurvey(bake.mesh, t.transfer, light, parseRotation(a.rotate), c, 640, 480,
+                                op, a.bands)
+          : render::relitSurvey(bake.mesh, t.transfer, material, light, parseRotation(a.rotate), c,
+                                640, 480, op, a.bands);
   const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
   if (!ringing.empty()) warn(ringing + " (the page's first view)");
   return survey.exposureStops;
@@ -286,7 +299,7 @@ Json viewJson(const WebOptions& a, const Mesh& mesh, float exposure) {
 Json glossyJson(const WebOptions& a, const BakeFile& bake) {
   Json out = Json::object();
   for (const BakedTransfer& t : bake.transfers) {
-    if (!t.transfer.isMatrix()) continue;
+    if (!t.transfer.isMatrix() || t.transfer.domain() == TransferDomain::Probes) continue;
     const Material material =
         materialOption(a.material, t, a.bake,
                        "the page shades each vertex with --material, the bounced light keeps the "

@@ -1,6 +1,7 @@
-// Mesh pass for radiance made on the CPU (relight::ShaderPath::CpuRadiance: glossy matrices
-// relit by relight::Relighter toward the eye, the desktop viewer's default): passes each
-// vertex's exit radiance through. Desktop viewer only.
+// Mesh pass for radiance made on the CPU: passes each vertex's exit radiance through. The
+// desktop viewer's glossy matrices relit by relight::Relighter toward the eye
+// (relight::ShaderPath::CpuRadiance, its default), and a probe bake's scene and ball lit through
+// the relit probes in JavaScript (the page and prtkit-three: web/src/probe_lighting.js).
 #include "prt_mesh.glsl"
 layout(location = 2) in vec3 radiance;  // albedo ⊙ diffuse + ks ⊙ glossy, done
 #ifdef PRT_BASE_COLOUR

@@ -295,17 +295,20 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     for (int a = 0; a < 3; ++a) {
       const std::string at = "[" + std::to_string(a) + "]";
       const auto finite = [&](const json& v, const std::string& what) {
-        if (!v.is_number() || !std::isfinite(v.get<double>()) || std::abs(v.get<double>()) > 1e30)
+        if (!v.is_number() || !std::isfinite(v.get<double>()) ||
+            std::abs(v.get<double>()) > kMaxProbeGridNumber)
           r.fail(gw + "." + what + at + " is not a finite number");
         return v.get<float>();
       };
       probeGrid.origin[a] = finite(origin[a], "origin");
       probeGrid.spacing[a] = finite(spacing[a], "spacing");
       if (!(probeGrid.spacing[a] > 0)) r.fail(gw + ".spacing" + at + " is not positive");
-      if (!count[a].is_number_integer() || count[a].get<long long>() < 1 ||
-          count[a].get<long long>() > kMaxProbeSide)
+      // An integral number, as Reader::integer takes one (2 and 2.0 alike: JavaScript's
+      // JSON.parse, which the page's reader uses, cannot tell them apart).
+      const double n = count[a].is_number() ? count[a].get<double>() : 0.0;
+      if (!(n == std::floor(n)) || n < 1 || n > kMaxProbeSide)
         r.fail(gw + ".count" + at + " is not an integer in 1.." + std::to_string(kMaxProbeSide));
-      probeGrid.count[a] = count[a].get<int>();
+      probeGrid.count[a] = static_cast<int>(n);
     }
     r.within(where, [&] { checkProbeGrid(probeGrid, gw); });
     domain = TransferDomain::Probes;

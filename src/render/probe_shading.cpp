@@ -1,7 +1,10 @@
 #include "prt/render/probe_shading.hpp"
 
 #include "prt/core/parallel.hpp"
+#include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight_probes.hpp"
+#include "prt/render/render.hpp"
+#include "prt/sh/rotate.hpp"
 
 namespace prt::render {
 
@@ -16,6 +19,19 @@ std::vector<Rgb> shadeThroughProbes(const relight::ProbeLighting& lighting, cons
     }
   });
   return out;
+}
+
+FrameSurvey probeSurvey(const Mesh& mesh, const Transfer& transfer, const sh::RgbSh& light,
+                        const Mat3d& rotation, const Camera& camera, int width, int height,
+                        image::ToneMap op, int bands) {
+  const Transfer cut = bands > 0 && bands < transfer.bands() ? transfer.cut(bands) : transfer;
+  sh::RgbSh turned = light;
+  sh::Rotation(light.bands, rotation).apply(light.c.data(), turned.c.data());
+  Mesh scene = mesh;
+  foldBaseColour(scene);
+  const std::vector<Rgb> radiance = shadeThroughProbes(relight::relightProbes(cut, turned), scene);
+  const auto occluder = makeEmbreeOccluder(scene);
+  return surveyFrame(*occluder, vertexRadianceShader(scene, radiance), camera, width, height, op);
 }
 
 }  // namespace prt::render

@@ -23,6 +23,7 @@
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
 #include "prt/core/version.hpp"
+#include "prt/geometry/load.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
@@ -30,8 +31,10 @@
 #include "prt/io/light_file.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/relight/shader_transfer.hpp"
+#include "prt/sh/convolve.hpp"
 #include "prt/transfer/bake_settings.hpp"
 #include "prt/transfer/material.hpp"
+#include "prt/transfer/probe_grid.hpp"
 
 namespace {
 
@@ -133,7 +136,19 @@ json constants() {
                      {"compressedPrefix", transferCompressedPrefix(m)}});
   c["modes"] = modes;
   c["layouts"] = {toString(TransferLayout::Vector), toString(TransferLayout::Matrix)};
-  c["domains"] = {toString(TransferDomain::Vertices), toString(TransferDomain::Texels)};
+  c["domains"] = {toString(TransferDomain::Vertices), toString(TransferDomain::Texels),
+                  toString(TransferDomain::Probes)};
+  // Probe grids (docs/probes.md): what decodeBake holds a probeGrid to (checkProbeGrid), and
+  // the clamped cosine's kernel A_l (sh::clampedCosineKernel, every band the library reads) that
+  // the page shades a normal with, ρ E(n)/π (relight::shadeDiffuse).
+  const std::vector<double> kernel = sh::clampedCosineKernel(bands::kMaxLibrary);
+  c["probeGrid"] = {{"firstVersion", kFirstProbeVersion},
+                    {"maxSide", kMaxProbeSide},
+                    {"maxProbes", kMaxProbes},
+                    {"maxNumber", kMaxProbeGridNumber}};
+  c["clampedCosine"] = kernel;
+  // The albedo of an object placed in a scene that has one (appendMesh): the page's ball.
+  c["defaultAlbedo"] = kDefaultAlbedo;
 
   // The pick order: transferPreference on a bake with one transfer of every (mode, layout).
   BakeFile all;

@@ -11,6 +11,8 @@ import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { bakeFile, bakeFormat, bands as kBands, domains, layouts, maxLightmapSide, modes } from 'prt:constants';
 import { packRows, preferenceOrder, readTransfer } from './transfer.js';
 import { textureShape } from './texels.js';
+import { checkProbeGridDocument, probeCount, readProbeBake } from './probe_bake.js';
+import { meshParts } from './parts.js';
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
@@ -297,6 +299,7 @@ function checkTransfers(prt, where, version, domain, rows, ar, r) {
     const B = r.integer(s, 'bands', sw, 1, kBandsMaxLibrary), C = r.integer(s, 'channels', sw, 1, 3);
     if (C === 2) r.fail(`${sw}.channels must be 1 or 3`);
     if (d !== domain) r.fail(`${sw}.domain is ${d} in a bake over ${domain}`);
+    if (domain === domains[2] && layout !== 'matrix') r.fail(`${tw} is a ${layout} transfer over probes (a probe holds a matrix)`);
     if (seen.has(`${mode} ${layout}`)) r.fail(`two ${layout} transfers of mode ${mode}`);
     seen.add(`${mode} ${layout}`);
     const S = (layout === 'matrix' ? B ** 4 : B * B) * C, n = rows;
@@ -379,20 +382,27 @@ export function checkBakeDocument(gltf, bin, name) {
     if (lightmap < 0) r.fail(`${where} holds per-texel transfer but names no lightmapTexCoord (the UVs it is over)`);
     domain = domains[1], domainRows = W * H, rangeKey = 'texelRange';
   }
-  // A probe grid (format 7 on) holds the light arriving at points in space, not a surface's
-  // transfer: prt probes makes it, the library and prtkit.relight_probes relight it.
-  if (has(prt, 'probeRange') || has(prt, 'probeGrid'))
-    r.fail(`${where} holds a probe grid (prt probes), the light arriving at points in space, not a surface's transfer; this page draws surfaces`);
+  // Or the probes of a grid in space (format 7 on; probe_bake.js).
+  if (has(prt, 'probeRange') || has(prt, 'probeGrid')) {
+    const grid = checkProbeGridDocument(prt, where, version, domain === domains[1], r);
+    domain = domains[2], domainRows = probeCount(grid), rangeKey = 'probeRange';
+  }
   checkMesh(gltf, ar, V, T, lightmap, domain === domains[1], r);
   checkBaseColour(gltf, ar, r);
   const rw = `${where}.${rangeKey}`, range = r.member(prt, rangeKey, where);
   const first = r.integer(range, 'first', rw, 0, 4294967295), count = r.integer(range, 'count', rw, 1, 4294967295);
   if (first + count > domainRows)
-    r.fail(`${domain === domains[1] ? 'texel' : 'vertex'} range ${first}+${count} is outside the ${domain === domains[1] ? `lightmap (${domainRows} texels)` : `mesh (${domainRows} vertices)`}`);
+    r.fail(`${kRowName[domain]} range ${first}+${count} is outside the ${kExtent[domain](domainRows)}`);
   const transfers = checkTransfers(prt, where, version, domain, count, ar, r);
   if (transfers === 0 && (first !== 0 || count !== domainRows)) r.fail('a partial bake without transfers');
   if (transfers === 0 && domain === domains[1]) r.fail('a per-texel bake without transfers');
+  if (transfers === 0 && domain === domains[2]) r.fail('a probe bake without transfers');
 }
+
+/** rowName and domainExtent (bake_file.cpp): what a row is, and where a range must lie. */
+const kRowName = { [domains[0]]: 'vertex', [domains[1]]: 'texel', [domains[2]]: 'probe' };
+const kExtent = { [domains[0]]: (n) => `mesh (${n} vertices)`, [domains[1]]: (n) => `lightmap (${n} texels)`,
+                  [domains[2]]: (n) => `grid (${n} probes)` };
 
 /** The binary chunk GLTFLoader holds for a parsed .glb (null for a .gltf). */
 function binaryBody(parser) {
@@ -515,6 +525,8 @@ async function readCheckedBake(gltf, name, limits, extras) {
     fail(name, `bake format version ${prt.formatVersion} is not supported by this page (it reads versions ${bakeFormat.reads.join(', ')})`);
   const entries = Array.isArray(prt.transfers) ? prt.transfers : [];
   if (entries.length === 0) fail(name, 'the bake holds no transfer (bake it with prt bake --mode ...)');
+  // A probe grid: the light arriving at points in space, relit on the CPU (probe_bake.js).
+  if (prt.probeGrid) return readProbeBake(gltf, prt, name);
   // The domain: the vertices, or the texels of one lightmap over the mesh's lightmap UVs (format
   // 6; relit per pixel). Either must be complete.
   let lightmap = null, rowCount = prt.vertexCount, uvName = null;
@@ -547,34 +559,15 @@ async function readCheckedBake(gltf, name, limits, extras) {
   const transfers = preferenceOrder(read);
   const glossy = transfers.some((t) => t.matrix);
 
-  const meshes = [];
-  gltf.scene.traverse((o) => { if (o.isMesh) meshes.push(o); });
-  if (meshes.length === 0) fail(name, 'holds no triangle mesh');
-  const parts = [];
-  let vertices = 0, triangles = 0;
-  const lo = new THREE.Vector3(Infinity, Infinity, Infinity), hi = lo.clone().negate();
-  for (const m of meshes) {
-    const g = m.geometry;
-    const pos = g.getAttribute('position');
-    if (!pos || !g.index) fail(name, `part '${m.name}' has no positions or indices`);
-    const V = pos.count;
-    vertices += V;
-    triangles += g.index.count / 3;
-    g.computeBoundingBox();
-    lo.min(g.boundingBox.min);
-    hi.max(g.boundingBox.max);
-    // The part's first vertex in the file's (global) order: its POSITION window's offset.
-    const assoc = gltf.parser.associations.get(m);
-    const posAccessor = assoc && json.meshes[assoc.meshes].primitives[assoc.primitives || 0].attributes.POSITION;
-    const first = posAccessor !== undefined ? (json.accessors[posAccessor].byteOffset || 0) / 12 : -1;
-    if (!(first >= 0 && first + V <= prt.vertexCount)) fail(name, `part '${m.name}' has no place in the vertex order`);
-    const part = { mesh: m, geometry: g, name: m.name, first, vertices: V, hasAlbedo: !!g.getAttribute('color'),
-                   baseColour: baseColourTexture(m, g, name), texels: {} };
+  const mesh = meshParts(gltf, prt, name);
+  const parts = mesh.parts.map((p) => {
+    const g = p.geometry, m = p.mesh;
+    const part = { ...p, baseColour: baseColourTexture(m, g, name), texels: {} };
     for (const t of transfers) part.texels[t.key] = packRows(t, part, limits, name);
     // Per-texel transfer: the lightmap UVs, under the name the lightmap stage reads.
     if (lightmap) {
       const uv = g.getAttribute(uvName);
-      if (!uv || uv.itemSize !== 2 || uv.count !== V)
+      if (!uv || uv.itemSize !== 2 || uv.count !== p.vertices)
         fail(name, `part '${m.name}' has no lightmap UVs (TEXCOORD_${prt.lightmapTexCoord}), which its per-texel transfer is over`);
       g.setAttribute('prtLightmapUv', uv);
     }
@@ -584,20 +577,10 @@ async function readCheckedBake(gltf, name, limits, extras) {
                                               part.baseColour ? ['uv'] : []);
     for (const a of Object.keys(g.attributes)) if (!keep.includes(a)) g.deleteAttribute(a);
     if (glossy && !g.getAttribute('normal')) fail(name, `part '${m.name}' has no normals (glossy transfer needs them)`);
-    parts.push(part);
-  }
-  if (vertices !== prt.vertexCount) fail(name, `has ${vertices} vertices but extras.prtkit says ${prt.vertexCount}`);
-  // render::meshFraming: the box's centre, radius to the farthest vertex.
-  const centre = lo.clone().add(hi).multiplyScalar(0.5);
-  let r2 = 0;
-  for (const p of parts) {
-    const pos = p.geometry.getAttribute('position');
-    for (let v = 0; v < pos.count; ++v) {
-      const dx = pos.getX(v) - centre.x, dy = pos.getY(v) - centre.y, dz = pos.getZ(v) - centre.z;
-      r2 = Math.max(r2, dx * dx + dy * dy + dz * dz);
-    }
-  }
+    return part;
+  });
+  const { vertices, triangles, centre, radius } = mesh;
   return { name, parts, transfers, lightmap, texelPoints: transfers.some((t) => t.perPixel && t.matrix) ? points : null,
            maxBands: Math.max(...transfers.map((t) => t.bands)),
-           vertices, triangles, centre, radius: Math.max(Math.sqrt(r2), 1e-6) };
+           vertices, triangles, centre, radius };
 }

@@ -1,6 +1,7 @@
 // One frame of the page, as the desktop viewer draws it (docs/viewer.md, "How a frame is
 // made"): the light's first b bands rotated on the CPU (sh.js) and packed as vec4 uL[i] =
-// (r, g, b, 0), zero past b², and the transfer's per-frame step (draw.js); then, into a 4×
+// (r, g, b, 0), zero past b², and the transfer's per-frame step (draw.js) — or, for a probe
+// bake, the grid relit and the meshes shaded through it (probe_scene.js); then, into a 4×
 // multisampled half-float target, the background (a full-screen triangle) and the relit parts;
 // a second full-screen pass applies 2^exposure, the tone map and the sRGB encode.
 import * as THREE from 'three';
@@ -62,12 +63,17 @@ export function createFrame(renderer) {
     const { gpu, transfer: t, env, state } = v;
     const b = Math.min(state.bands, t.bands);
     const R = state.spin ? mul3(axisAngle([0, 1, 0], state.spin), v.lightRotation) : v.lightRotation;
-    setFrameLight(gpu, t, b, R, env.coeffs);
     const forward = fitProjection(camera, w, h, gpu.bake.centre, gpu.bake.radius);
-    gpu.meshes.forEach((m, p) => {
-      m.material = gpu.parts[p].materials[t.key];
-      setTransferUniforms(gpu, p, t, { bands: b, eye: camera.position });
-    });
+    if (gpu.probes) {
+      // A probe bake: the grid relit on the CPU, the scene and the ball shaded through it.
+      gpu.probes.frame({ transfer: t, bands: b, rotation: R, light: env.coeffs, at: state.at, showProbes: state.probes });
+    } else {
+      setFrameLight(gpu, t, b, R, env.coeffs);
+      gpu.meshes.forEach((m, p) => {
+        m.material = gpu.parts[p].materials[t.key];
+        setTransferUniforms(gpu, p, t, { bands: b, eye: camera.position });
+      });
+    }
     const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();
     const up = new THREE.Vector3().crossVectors(right, forward);
     const tanY = Math.tan((camera.fov / 2) * Math.PI / 180), tanX = tanY * w / h;

@@ -1,6 +1,8 @@
 // The page's test hooks (tests/web, docs/web.md): ?screenshot renders one frame at a fixed size
 // and writes its pixels into <pre id="prt-test">; ?bench=N times N frames; ?test=drop drops
 // files through the real drop handler.
+import * as THREE from 'three';
+
 import { base64Bytes, bytesBase64 } from './environment.js';
 
 /** Writes a test hook's result where `chromium --dump-dom` reads it. */
@@ -18,9 +20,25 @@ export function screenshotHook(page) {
   page.frameCamera(w, h);
   const rgb = page.read(w, h);
   const t = page.transfer(), c = t.compressed;
+  if (page.bake().probes) return report({ ok: true, width: w, height: h, renderer: page.rendererName, mode: t.mode,
+                                          layout: t.layout, probes: probeReport(page, w, h), rgb: bytesBase64(rgb) });
   report({ ok: true, width: w, height: h, renderer: page.rendererName, mode: t.mode, layout: t.layout,
            path: t.path, compressed: c ? `${c.clusters}x${c.basisCount}, ${16 * c.texelsPerVertex} bytes per ${t.perPixel ? 'texel' : 'vertex'}` : 'no',
            perPixel: !!t.perPixel, rgb: bytesBase64(rgb) });
+}
+
+/** A probe bake's frame: the grid, the ball (centre, radius, and where it lies in the frame,
+ *  pixels from the top left) and the relit incident SH at its centre (our basis, b² RGB), which
+ *  tests/web/test_probes_web.cpp holds to the library's. */
+function probeReport(page, w, h) {
+  const g = page.gpu.probes, at = page.state.at, camera = page.frame.camera;
+  const centre = new THREE.Vector3().fromArray(at), ndc = centre.clone().project(camera);
+  const right = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 0);
+  const rim = centre.clone().addScaledVector(right, g.ball.radius).project(camera);
+  const incident = g.relighter.incidentAt(at[0], at[1], at[2]);
+  return { grid: page.bake().grid, at, radius: g.ball.radius, bands: g.relighter.lighting.bands,
+           pixel: [(ndc.x + 1) / 2 * w, (1 - ndc.y) / 2 * h], pixelRadius: Math.abs(rim.x - ndc.x) / 2 * w,
+           incident: Array.from(incident) };
 }
 
 /** ?bench=N: N frames drawn back to back into the canvas, each waited for with a 1-pixel

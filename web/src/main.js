@@ -2,6 +2,10 @@
 // Data come from prt-data.js (window.PRT_DATA, written by `prt web`); the page is one classic
 // script so that it runs from file://. The parts, by concept:
 //   bake.js, transfer.js, compressed.js   reading a bake: one reader, one dispatch by path
+//   parts.js, probe_bake.js               a bake's mesh parts; a probe grid's bake (format 7)
+//   probe_lighting.js, probe_relighter.js a probe grid relit on the CPU, as the library does
+//   probe_scene.js, probe_ui.js,          a probe bake on screen: its scene and a ball lit
+//   radiance_mesh.js                      through the grid, the ball's controls
 //   lights.js, environment.js, sh.js      lights, their band rule, backgrounds, SH rotation
 //   draw.js, frame.js, camera.js          the GPU side of a transfer, one frame, the camera
 //   ui.js, hooks.js                       the interactive page, the test hooks (tests/web)
@@ -16,6 +20,7 @@ import { rotationEulerXYZ } from './sh.js';
 import { base64Bytes, environment, fitEnvironment } from './environment.js';
 import { pickTransfer } from './transfer.js';
 import { disposeTransfers, uploadTransfers } from './draw.js';
+import { ballDefaults, disposeProbeScene, uploadProbeScene } from './probe_scene.js';
 import { pageHost } from './page_host.js';
 import { glossyFromFile } from './glossy.js';
 import { applyView, frameView } from './camera.js';
@@ -41,6 +46,7 @@ function fatal(text) {
 /** The GPU side of a parsed bake (draw.js, the page's host) and per part a mesh wearing the
  *  first transfer's material. Touches no scene. */
 function uploadBake(b, limits) {
+  if (b.probes) return uploadProbeScene(b);
   const gpu = uploadTransfers(b, limits, pageHost);
   gpu.meshes = b.parts.map((p, i) => {
     const mesh = new THREE.Mesh(p.geometry, gpu.parts[i].materials[b.transfers[0].key]);
@@ -56,7 +62,8 @@ function disposeBake(gpu, scene) {
     scene.remove(m);
     m.geometry.dispose();
   }
-  disposeTransfers(gpu);
+  if (gpu.probes) disposeProbeScene(gpu);
+  else disposeTransfers(gpu);
 }
 
 /**
@@ -142,6 +149,10 @@ async function main() {
     tonemap: query.get('tonemap') || view.tonemap || defaultToneMap,
     background: query.get('background') || 'env',
     spin: 0,
+    // A probe bake (probe_scene.js): the ball's centre (?at=x,y,z, else the grid's centre) and
+    // whether the probes show as points (?probes).
+    at: query.has('at') ? query.get('at').split(',').map(Number) : null,
+    probes: query.has('probes'),
   };
   const euler = (query.get('rotate') || (view.rotate || [0, 0, 0]).join(',')).split(',').map(Number);
   const page = {
@@ -194,6 +205,8 @@ async function main() {
     for (const m of gpu.meshes) page.frame.scene.add(m);
     const warnings = [];
     for (const e of page.envs) warnings.push(...fitEnvironment(e, b.maxBands));
+    if (b.probes && !(state.at && state.at.length === 3 && state.at.every(Number.isFinite) && b.name === data.bake.name))
+      state.at = ballDefaults(b.grid).centre;
     state.transfer = pickTransfer(b.transfers, state.mode).key;
     const maxB = page.transfer().bands;
     if (!(state.bands >= 1 && state.bands <= maxB)) state.bands = maxB;

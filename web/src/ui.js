@@ -10,6 +10,7 @@ import { environment } from './environment.js';
 import { parseLightJson, parseLightTxt } from './lights.js';
 import { axisAngle, mul3 } from './sh.js';
 import { describeTransfer } from './draw.js';
+import { ballDrag, describeProbes, probeControls } from './probe_ui.js';
 
 const kBackgrounds = ['env', 'sh', 'none'];
 // The light drag, as prt view's (apps/viewer/scene.hpp, kDragDegreesPerPixel).
@@ -59,15 +60,19 @@ export function startInteractive(page) {
   canvas.addEventListener('pointerup', endDrag, { capture: true });
   canvas.addEventListener('pointercancel', endDrag, { capture: true });
   canvas.addEventListener('contextmenu', (e) => e.preventDefault());
+  // A probe bake's ball: Alt + left drag (probe_ui.js).
+  ballDrag(page, canvas, camera, () => ballFolder && ballFolder.sync());
 
   // Panel.
   const gui = new GUI({ title: 'prtkit', container: document.getElementById('prt-panel') });
   const envNames = () => Object.fromEntries(envs.map((e, i) => [e.name, i]));
   const envCtl = gui.add(state, 'env', envNames()).name('environment');
-  let transferCtl = null, bandsCtl = null;
+  let transferCtl = null, bandsCtl = null, ballFolder = null;
   function rebuildBakeControls() {
     if (transferCtl) transferCtl.destroy();
     if (bandsCtl) bandsCtl.destroy();
+    if (ballFolder) ballFolder.destroy();
+    ballFolder = page.bake().probes ? probeControls(gui, page) : null;
     // The transfers in the library's preference order, each named with its layout.
     transferCtl = gui.add(state, 'transfer', page.bake().transfers.map((t) => t.key)).name('transfer').onChange(() => {
       state.mode = page.transfer().mode;
@@ -156,7 +161,7 @@ export function startInteractive(page) {
     const b = page.bake(), t = page.transfer();
     hud.textContent = `${b.name}  ${b.triangles} triangles, ${b.vertices} vertices\n` +
       `${t.mode} ${t.layout}, ${Math.min(state.bands, t.bands)} of ${t.bands} bands, ${t.channels === 3 ? 'RGB' : 'scalar'}\n` +
-      describeTransfer(t).map((l) => l + '\n').join('') +
+      (b.probes ? describeProbes(b, t, state) : describeTransfer(t)).map((l) => l + '\n').join('') +
       (smooth > 0 ? `frame ${smooth.toFixed(1)} ms (${(1000 / smooth).toFixed(0)} fps)` : 'frame time: measuring') +
       `\n${page.rendererName}`;
     if (!query.has('test')) requestAnimationFrame(loop);

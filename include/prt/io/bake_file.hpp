@@ -53,6 +53,9 @@ namespace prt {
 inline constexpr int kBakeFormatVersion = 7;
 /// The first version that holds probe grids (issue 32).
 inline constexpr int kFirstProbeVersion = 7;
+/// The largest |value| a probe grid's origin and spacing may hold in a file (a float's range,
+/// with room to add them).
+inline constexpr double kMaxProbeGridNumber = 1e30;
 /// The glTF extension that holds a bake's object from version 5 (earlier: extras.prtkit).
 inline constexpr const char* kBakeExtension = "PRTKIT_radiance_transfer";
 /// The first version written as the extension.

@@ -1,4 +1,5 @@
-// node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb: writes the malformed
+// node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb PROBES.glb PROBES_CPCA.glb
+// (a 2 x 2 x 2 probe grid, dense and CPCA-compressed): writes the malformed
 // (and a few valid) bakes of the verdict corpus into OUTDIR, each a mutation of a bake prt wrote
 // (run.sh), named accept_* or reject_* after what the library is meant to answer (verdicts.mjs
 // checks that prt does, so a mutation that stops breaking the file fails the test). The GLB is
@@ -6,9 +7,9 @@
 import fs from 'node:fs';
 import path from 'node:path';
 
-const [out, vertexFile, texelFile, cpcaFile, texelCpcaFile] = process.argv.slice(2);
-if (!texelCpcaFile) {
-  console.error('usage: node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb');
+const [out, vertexFile, texelFile, cpcaFile, texelCpcaFile, probesFile, probesCpcaFile] = process.argv.slice(2);
+if (!probesCpcaFile) {
+  console.error('usage: node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb PROBES.glb PROBES_CPCA.glb');
   process.exit(2);
 }
 const EXT = 'PRTKIT_radiance_transfer';
@@ -30,7 +31,8 @@ function writeGlb({ json, bin }, text = JSON.stringify(json)) {
   binHead.writeUInt32LE(bin.length, 0), binHead.writeUInt32LE(0x004e4942, 4);
   return Buffer.concat([head, j, binHead, bin]);
 }
-const bases = { v: readGlb(vertexFile), t: readGlb(texelFile), c: readGlb(cpcaFile), tc: readGlb(texelCpcaFile) };
+const bases = { v: readGlb(vertexFile), t: readGlb(texelFile), c: readGlb(cpcaFile), tc: readGlb(texelCpcaFile),
+                p: readGlb(probesFile), pc: readGlb(probesCpcaFile) };
 const copy = (g) => ({ json: structuredClone(g.json), bin: Buffer.from(g.bin) });
 
 // Helpers on a copy: the bake object, accessors by index or name, element addresses.
@@ -127,6 +129,42 @@ const cases = {
   reject_cpca_means_nan: ['c', (g) => setFloat(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'MEANS'), 1, 0, NaN)],
   reject_cpca_basis_count_too_large: ['c', (g) => { cpca(g).compressed.basisCount = 1000; }],
   reject_texel_cpca_cluster_out_of_range: ['tc', (g) => g.bin.writeUInt16LE(9999, at(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'CLUSTER'), 0))],
+  // Probe grids (format 7): the grid, its range, its matrices.
+  accept_probes: ['p', () => {}],
+  accept_probes_cpca: ['pc', () => {}],
+  accept_probes_without_response: ['p', (g) => { delete prt(g).transfers[0].response; }],
+  accept_probe_grid_larger_than_its_range: ['p', (g) => { prt(g).probeGrid.count[2] = 3; }],  // partial: prt web refuses
+  accept_probe_spacing_uneven: ['p', (g) => { prt(g).probeGrid.spacing = [0.25, 1, 2]; }],
+  accept_probe_origin_1e30: ['p', (g) => { prt(g).probeGrid.origin[1] = 1e30; }],
+  reject_probe_version_6: ['p', (g) => { prt(g).formatVersion = 6; }],
+  reject_probe_beside_vertex_range: ['p', (g) => { prt(g).vertexRange = { first: 0, count: prt(g).vertexCount }; }],
+  reject_probe_beside_texel_range: ['p', (g) => { prt(g).lightmap = { width: 2, height: 2, padding: 0 }; prt(g).texelRange = { first: 0, count: 4 }; }],
+  reject_probe_grid_missing: ['p', (g) => { delete prt(g).probeGrid; }],
+  reject_probe_range_missing: ['p', (g) => { delete prt(g).probeRange; }],
+  reject_probe_grid_not_object: ['p', (g) => { prt(g).probeGrid = [1, 2, 3]; }],
+  reject_probe_origin_two_numbers: ['p', (g) => { prt(g).probeGrid.origin = [0, 0]; }],
+  reject_probe_origin_null: ['p', (g) => { prt(g).probeGrid.origin[0] = null; }],
+  reject_probe_origin_string: ['p', (g) => { prt(g).probeGrid.origin[2] = '0'; }],
+  reject_probe_origin_1e31: ['p', (g) => { prt(g).probeGrid.origin[1] = 1e31; }],
+  reject_probe_spacing_zero: ['p', (g) => { prt(g).probeGrid.spacing[1] = 0; }],
+  reject_probe_spacing_negative: ['p', (g) => { prt(g).probeGrid.spacing[0] = -0.5; }],
+  reject_probe_spacing_below_float: ['p', (g) => { prt(g).probeGrid.spacing[2] = 1e-50; }],
+  reject_probe_count_zero: ['p', (g) => { prt(g).probeGrid.count[0] = 0; }],
+  reject_probe_count_fraction: ['p', (g) => { prt(g).probeGrid.count[1] = 1.5; }],
+  reject_probe_count_513: ['p', (g) => { prt(g).probeGrid.count[2] = 513; }],
+  reject_probe_count_string: ['p', (g) => { prt(g).probeGrid.count[0] = '2'; }],
+  reject_probe_grid_over_the_limit: ['p', (g) => { prt(g).probeGrid.count = [512, 512, 512]; }],
+  reject_probe_range_outside_grid: ['p', (g) => { prt(g).probeRange.count = 9; }],
+  reject_probe_rows_short: ['p', (g) => { prt(g).probeGrid.count[2] = 1; prt(g).probeRange.count = 4; }],
+  reject_probe_matrix_accessor_short: ['p', (g) => { g.json.accessors[transferAcc(g)].count -= 1; }],
+  reject_probe_matrix_nan: ['p', (g) => setFloat(g, transferAcc(g), 37, 0, NaN)],
+  reject_probe_matrix_bytes: ['p', (g) => { g.json.accessors[transferAcc(g)].componentType = 5121; }],
+  reject_probe_bands_3: ['p', (g) => { prt(g).transfers[0].settings.bands = 3; }],
+  reject_probe_vector_layout: ['p', (g) => { prt(g).transfers[0].settings.layout = 'vector'; }],
+  reject_probe_transfer_over_vertices: ['p', (g) => { prt(g).transfers[0].settings.domain = 'vertices'; }],
+  reject_probe_without_transfers: ['p', (g) => { prt(g).transfers = []; }],
+  reject_probe_cpca_cluster_out_of_range: ['pc', (g) => g.bin.writeUInt16LE(7, at(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'CLUSTER'), 3))],
+  reject_probe_cpca_basis_nan: ['pc', (g) => setFloat(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'BASIS'), 5, 0, NaN)],
 };
 
 fs.mkdirSync(out, { recursive: true });
@@ -150,4 +188,8 @@ file('reject_json_broken', writeGlb(copy(bases.v), JSON.stringify(bases.v.json).
 file('reject_json_too_deep', writeGlb(copy(bases.v), JSON.stringify({ ...bases.v.json, extras: { deep: JSON.parse('['.repeat(300) + ']'.repeat(300)) } })));
 file('reject_not_a_bake', writeGlb({ json: { asset: { version: '2.0' } }, bin: Buffer.alloc(0) }));
 file('accept_trailing_bytes', Buffer.concat([v, Buffer.alloc(16)]));
-console.log(`${Object.keys(cases).length + 8} cases written to ${out}`);
+// A probe count written 2.0: JSON.parse cannot tell it from 2, so the library takes it too.
+const probeText = JSON.stringify(bases.p.json).replace('"count":[2,2,2]', '"count":[2.0,2,2.0]');
+if (probeText === JSON.stringify(bases.p.json)) throw new Error('the probe grid\'s counts are not [2,2,2]');
+file('accept_probe_count_written_2.0', writeGlb(copy(bases.p), probeText));
+console.log(`${Object.keys(cases).length + 9} cases written to ${out}`);

@@ -73,7 +73,8 @@ function glossyWithoutKernels(bytes) {
     const b = Buffer.from(bytes), n = b.readUInt32LE(12);
     const j = JSON.parse(b.subarray(20, 20 + n).toString('utf8'));
     const o = (j.extensions || {}).PRTKIT_radiance_transfer || (j.extras || {}).prtkit || {};
-    return (o.transfers || []).some((t) => t.settings && t.settings.layout === 'matrix' && !t.response);
+    // (A probe grid's matrices are relit, not shaded with a material: they need no kernels.)
+    return (o.transfers || []).some((t) => t.settings && t.settings.layout === 'matrix' && t.settings.domain !== 'probes' && !t.response);
   } catch {
     return false;
   }

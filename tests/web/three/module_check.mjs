@@ -7,8 +7,8 @@
 import fs from 'node:fs';
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
-import { PRTKitRadianceTransfer, lightFromSphericalHarmonics3, lightToSphericalHarmonics3, parseLight,
-         rotateLight } from 'prtkit-three';
+import { PRTKitRadianceTransfer, ProbeGridLighting, lightFromSphericalHarmonics3, lightProbeGridAtlas,
+         lightToSphericalHarmonics3, parseLight, rotateLight } from 'prtkit-three';
 
 let failures = 0;
 function check(ok, what) {
@@ -118,5 +118,53 @@ await new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, {
 check(/^plain\.glb: is a glTF file but not a prtkit bake/.test(rejected), `required: refused by name ("${rejected}")`);
 
 prt.dispose();
+
+// A probe bake (prt probes): a ProbeGridLighting, its LightProbe, its exported grid. (Its numbers
+// against the library: tests/web/test_probes_web.cpp.)
+const probeGltf = await new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { name: 'probes.glb' }))
+  .parseAsync(bytes('probes.glb'), '');
+const grid = probeGltf.userData.prtkit;
+check(grid instanceof ProbeGridLighting && grid.isProbeGridLighting, 'a probe bake gives a ProbeGridLighting');
+check(JSON.stringify(grid.grid.count) === '[3,2,2]' && grid.bands === 3, `its grid and bands (${JSON.stringify(grid.grid)})`);
+throws(() => grid.incidentAt(new THREE.Vector3()), /^probes\.glb: no light yet/, 'a query before setLight');
+grid.setLight(sky);
+const lp = grid.updateLightProbe(new THREE.LightProbe(), new THREE.Vector3(0.1, 0.9, 0.2));
+const here = grid.incidentAt(new THREE.Vector3(0.1, 0.9, 0.2));
+check(maxDiff(lp.sh.toArray(), lightToSphericalHarmonics3(here).toArray()) === 0, 'updateLightProbe holds incidentAt in three.js\'s basis');
+check(here.coeffs.some((x) => x !== 0), 'the light arrives');
+// The light stays in the world: turning the light and the bake's scene alike turns the light
+// arriving at a probe by the same rotation.
+const probe0 = new THREE.Vector3(...grid.irradianceVolume().positions.slice(0, 3));
+const still = grid.incidentAt(probe0);
+const turn = new THREE.Quaternion().setFromEuler(new THREE.Euler(0.3, -0.7, 0.4));
+grid.lightRotation.copy(turn);
+probeGltf.scene.quaternion.copy(turn);
+probeGltf.scene.updateMatrixWorld(true);
+const turnedAt = grid.incidentAt(probe0.clone().applyQuaternion(turn));
+check(maxDiff(turnedAt.coeffs, rotateLight({ bands: 3, coeffs: Float32Array.from(still.coeffs) }, turn).coeffs) < 1e-4,
+      'turning the light and the scene together turns the light arriving at a probe with them');
+grid.lightRotation.identity();
+probeGltf.scene.quaternion.identity();
+probeGltf.scene.updateMatrixWorld(true);
+const v = grid.irradianceVolume('sky.json');
+check(v.asset.format === 'prtkit probe grid' && v.engine === 'threejs' && v.light === 'sky.json' && v.source === 'probes.glb',
+      'the exported grid is prt export --format probe-grid\'s (three.js)');
+check(v.positions.length === 36 && v.probes.length === 324 && v.coefficients.count === 9, 'the exported grid: 12 positions, 27 floats each');
+const sh1 = new THREE.SphericalHarmonics3().fromArray(v.probes, 27);
+const p1 = new THREE.Vector3().fromArray(v.positions, 3);
+check(maxDiff(sh1.toArray(), lp.sh.toArray()) > 0 && maxDiff(sh1.toArray(), grid.updateLightProbe(new THREE.LightProbe(), p1).sh.toArray()) < 1e-6,
+      'probe 1 of the export is the LightProbe at its position');
+const g = v.lightProbeGrid, size = [g.width, g.height, g.depth];
+check(maxDiff(g.resolution, [3, 2, 2]) === 0 && maxDiff(g.position.map((c, a) => c - size[a] / 2), v.positions.slice(0, 3)) < 1e-6,
+      'LightProbeGrid\'s first corner is probe 0');
+const atlas = lightProbeGridAtlas(grid.grid, v.probes);
+const written = new Float32Array(Uint8Array.from(atlas.length ? Buffer.from(g.atlas.data, 'base64') : []).buffer);
+check(atlas.length === 4 * 3 * 2 * 7 * 4 && maxDiff(written, atlas) === 0 && maxDiff(g.atlas.size, [3, 2, 28]) === 0,
+      'the atlas: 7 sub-volumes of nz + 2 slices, as written in the export');
+check(grid.meshes.length > 1 && grid.meshes.every((m) => m.material.isShaderMaterial && m.geometry.getAttribute('radiance')),
+      'the bake\'s meshes are drawn lit through the grid');
+grid.meshes[0].onBeforeRender();
+check(grid.meshes[0].geometry.getAttribute('radiance').array.some((x) => x > 0), 'their radiance is filled before they draw');
+grid.dispose();
 if (failures) process.exit(1);
 console.log('prtkit-three under node: all checks passed');

@@ -25,6 +25,7 @@ cp "$here/module_check.mjs" "$work/" || exit 1
 cd "$work" || exit 1
 "$prt" -q bake 'builtin:cornell?grid=6' --mode shadowed --mode interreflected --bands 3 \
   --samples 16 -o cornell.glb || exit 1
+"$prt" -q probes 'builtin:cornell?grid=6' --grid 3x2x2 --bands 3 --samples 16 -o probes.glb || exit 1
 "$prt" -q light builtin:sky --bands 3 -o sky.json || exit 1
 "$prt" -q light builtin:sky --bands 3 --rotate 30,-50,20 -o sky-turned.json || exit 1
 "$prt" -q light builtin:sky --bands 3 --format threejs -o sky-three.json || exit 1

@@ -1,7 +1,9 @@
 // The three.js example (docs/three.md): a prtkit bake loaded with three.js's own GLTFLoader and
 // the prtkit-three plugin, in an ordinary scene — a ground plane, a torus knot and a sphere in
 // MeshStandardMaterial lit by a LightProbe holding the same SH light (its first three bands,
-// turned by the same rotation), orbit controls, tone mapping by the renderer.
+// turned by the same rotation), orbit controls, tone mapping by the renderer. A probe bake
+// (prt probes) shows its scene lit through the grid and a ball moving through it, lit by a
+// LightProbe the grid sets at the ball every frame.
 //
 // ?bake=URL&light=URL (default bake.glb, light.json beside the page, served over http), or
 // example-data.js beside the page. Test hook (tests/web/test_three_web.cpp):
@@ -123,6 +125,24 @@ async function main() {
   const deg = (query.get('rotate') || '0,0,0').split(',').map((x) => (Number(x) || 0) * Math.PI / 180);
   const settings = { light: lights[0].name, exposure: Number(query.get('exposure') || (page && page.view && page.view.exposure) || 0), turnX: deg[0], turnY: deg[1], turnZ: deg[2],
                      mode: query.get('mode') || prt.mode, bands: Number(query.get('bands') || 0) || prt.bands, spin: false };
+  // A probe bake (prt probes; prt.isProbeGridLighting): the ball moves through its grid, lit by
+  // the LightProbe the grid sets at it each frame (updateLightProbe), matte (MeshLambertMaterial:
+  // ρ E(n)/π, as the grid shades a normal); the knot and the floor step aside.
+  const grid = prt.isProbeGridLighting ? prt.grid : null;
+  if (grid) {
+    knot.visible = floor.visible = false;
+    // prt render's --object: a fifth of the grid's largest side (its cells') across.
+    ball.geometry = new THREE.SphereGeometry(0.1 * Math.max(...grid.count.map((n, a) => n * grid.spacing[a])), 48, 24);
+    ball.material = new THREE.MeshLambertMaterial({ color: new THREE.Color().setRGB(0.8, 0.8, 0.8, THREE.LinearSRGBColorSpace) });
+  }
+  const placeBall = (t) => {
+    // A slow Lissajous path about the grid's centre, within its probes.
+    ball.position.fromArray(grid.origin.map((o, a) => {
+      const half = 0.5 * (grid.count[a] - 1) * grid.spacing[a];
+      return o + half + 0.8 * half * Math.sin(0.3 * (a + 1) * t + a);
+    }));
+    prt.updateLightProbe(probe, ball.position);
+  };
   const apply = () => {
     light = lights.find((l) => l.name === settings.light).light;
     const warnings = prt.setLight(light);
@@ -131,7 +151,8 @@ async function main() {
     prt.mode = settings.mode;
     prt.bands = settings.bands;
     prt.lightRotation.setFromEuler(new THREE.Euler(settings.turnX, settings.turnY, settings.turnZ, 'ZYX'));
-    lightToSphericalHarmonics3(rotateLight(light, prt.lightRotation), probe.sh);
+    if (grid) placeBall(0);
+    else lightToSphericalHarmonics3(rotateLight(light, prt.lightRotation), probe.sh);
     probe.intensity = Math.pow(2, settings.exposure);
   };
   apply();
@@ -163,8 +184,9 @@ async function main() {
     camera.aspect = innerWidth / innerHeight;
     camera.updateProjectionMatrix();
   });
-  const clock = new THREE.Clock();
+  const clock = new THREE.Clock(), start = performance.now();
   renderer.setAnimationLoop(() => {
+    if (grid) placeBall((performance.now() - start) / 1000);
     if (settings.spin) {
       settings.turnY = ((settings.turnY + clock.getDelta() * 0.5 + Math.PI) % (2 * Math.PI)) - Math.PI;
       apply();

@@ -2,8 +2,11 @@
 // transfer and dresses its meshes in materials that relight them from SH lights on the GPU —
 // dense vectors, CPCA-compressed vectors and CPCA-compressed glossy matrices — with the light's
 // rotation and the exposure as properties, through the same GLSL as prtkit's page and desktop
-// viewer (shaders/, hosts/three.glsl).
+// viewer (shaders/, hosts/three.glsl). A probe bake (prt probes) gives a ProbeGridLighting: the
+// light at any point of its grid, relit on the CPU, for LightProbes and engines.
 export { PRTKitRadianceTransfer } from './plugin.js';
 export { PRTBake } from './prt_bake.js';
+export { ProbeGridLighting } from './probe_grid_lighting.js';
+export { lightProbeGridAtlas, lightProbeGridParameters } from './irradiance_volume.js';
 export { parseLight, lightFromSphericalHarmonics3, lightToSphericalHarmonics3 } from './light.js';
 export { rotateLight, rotationRows } from './rotation.js';

@@ -4,6 +4,7 @@
 //   const loader = new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { renderer }));
 //   const gltf = await loader.loadAsync('bunny.glb');
 //   const prt = gltf.userData.prtkit;   // a PRTBake; its meshes already wear prtkit materials
+//                                       // (a probe bake: a ProbeGridLighting)
 //
 // An asset that is not a bake loads untouched (userData.prtkit stays undefined) unless
 // options.required; a bake that cannot be shown rejects the load with one line naming the file.
@@ -11,6 +12,7 @@ import { bakeFormat, bands as kBands } from 'prt:constants';
 import { bakeObject, checkParsedBake, readBake } from '../../src/bake.js';
 import { glossyFromFile } from '../../src/glossy.js';
 import { PRTBake } from './prt_bake.js';
+import { ProbeGridLighting } from './probe_grid_lighting.js';
 
 export class PRTKitRadianceTransfer {
   /**
@@ -50,6 +52,11 @@ export class PRTKitRadianceTransfer {
                      maxBands: Math.min(kBands.maxPackedLight, Math.floor(Math.sqrt(vectors - 16))),
                      maxFragmentBands: Math.min(kBands.maxPackedLight, Math.floor(Math.sqrt(fragment - 16))) };
     const bake = await readBake(result, name, limits, { texelPoints: o.texelPoints });
+    // A probe grid (prt probes) lights what moves through it: a ProbeGridLighting.
+    if (bake.probes) {
+      result.userData.prtkit = new ProbeGridLighting(bake, result.scene);
+      return;
+    }
     for (const t of bake.transfers) if (t.matrix) t.material = glossyFromFile(t, name);
     result.userData.prtkit = new PRTBake(bake, result.scene, limits);
   }

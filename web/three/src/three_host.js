@@ -4,6 +4,7 @@
 // renderer's tone mapping and output colour space, and the material sits in any scene.
 import * as THREE from 'three';
 import meshVert from 'prt:three-shaders/mesh.vert';
+import radianceVert from 'prt:three-shaders/radiance.vert';
 import compressedVert from 'prt:three-shaders/compressed.vert';
 import compressedGlossyVert from 'prt:three-shaders/compressedGlossy.vert';
 import lightmapVert from 'prt:three-shaders/lightmap.vert';
@@ -12,7 +13,7 @@ import threeFrag from 'prt:three-shaders/three.frag';
 /** The host of one bake: its materials share `exposure` ({ value: 2^stops }). */
 export function threeHost(exposure) {
   return {
-    stages: { 'mesh.vert': meshVert, 'compressed.vert': compressedVert,
+    stages: { 'mesh.vert': meshVert, 'radiance.vert': radianceVert, 'compressed.vert': compressedVert,
               'compressedGlossy.vert': compressedGlossyVert, 'lightmap.vert': lightmapVert,
             fragment: threeFrag },
     uniforms: { uExposureScale: exposure },
