@@ -26,6 +26,10 @@ void exportProbeGrid(const ProbeGridExportArgs& a) {
   const Mat3d rotation = parseRotation(a.rotate);
   const double stops = a.exposure.empty() ? 0.0 : std::stod(a.exposure);
   const std::string lightSpec = a.light.empty() ? "builtin:sky" : a.light;
+  const std::string ext = fileExtension(a.output);
+  if (ext != "json" && ext != "glb")
+    throw Error(a.output, "--format probe-grid writes .json (the grid as JSON) or .glb (glTF with "
+                          "the PRTKIT_probe_grid extension)");
   const std::vector<NamedPath> inputs = {{"input", a.input}, {"--light", lightSpec}};
   checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
@@ -61,8 +65,10 @@ void exportProbeGrid(const ProbeGridExportArgs& a) {
   g.light = lightSpec;
   g.rotateDegrees = euler;
   g.exposureStops = stops;
-  const std::string text = io::formatProbeGrid(g, convention);
-  writeFileAtomically(a.output, text);
+  if (ext == "glb")
+    io::writeProbeGridGltf(a.output, g, convention);
+  else
+    writeFileAtomically(a.output, io::formatProbeGrid(g, convention));
   info(fmt::format("wrote {} ({} under {}: {} probes, {} bands as {} SH)", a.output,
                    lit.grid.describe(), lightSpec, lit.grid.probes(),
                    convention.engine ? std::min(3, lit.bands) : lit.bands,

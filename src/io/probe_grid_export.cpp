@@ -1,5 +1,7 @@
 #include "prt/io/probe_grid_export.hpp"
 
+#include "glb.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -8,6 +10,7 @@
 
 #include "prt/core/base64.hpp"
 #include "prt/core/error.hpp"
+#include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
 #include "prt/core/version.hpp"
 
@@ -79,39 +82,46 @@ const char* probeGridConventionName(const ProbeGridConvention& c) {
   return c.engine ? engineLightName(*c.engine) : "prtkit";
 }
 
-std::string formatProbeGrid(const ProbeGridExport& g, const ProbeGridConvention& convention) {
+namespace {
+
+/// Every probe's coefficients in the convention (probes × K), K per probe.
+struct Converted {
+  std::vector<Rgb> coefficients;
+  std::size_t perProbe = 0;
+};
+
+Converted convert(const ProbeGridExport& g, const ProbeGridConvention& convention) {
   checkProbeGrid(g.grid, "probe grid");
   const std::size_t b2 = std::size_t(g.bands) * std::size_t(g.bands);
   if (g.bands < 1 || g.radiance.size() != g.grid.probes() * b2)
     throw Error("probe grid: " + std::to_string(g.radiance.size()) + " coefficients for " +
                 std::to_string(g.grid.probes()) + " probes of " + std::to_string(g.bands) +
                 " bands");
+  Converted out;
+  sh::RgbSh probe(g.bands);
+  for (std::size_t p = 0; p < g.grid.probes(); ++p) {
+    std::copy_n(g.radiance.begin() + std::ptrdiff_t(p * b2), b2, probe.c.begin());
+    const sh::RgbSh c = convention.engine ? toEngineConvention(*convention.engine, probe) : probe;
+    out.perProbe = c.c.size();
+    out.coefficients.insert(out.coefficients.end(), c.c.begin(), c.c.end());
+  }
+  return out;
+}
+
+/// What the JSON file and the glTF extension share: provenance, the convention, the grid in the
+/// engine's world, three.js LightProbeGrid's parameters (the atlas' shape; its data is the
+/// caller's) and the coefficients' layout.
+Json describe(const ProbeGridExport& g, const ProbeGridConvention& convention,
+              std::size_t perProbe) {
   // Unity's world negates x: the grid's first probe is then its largest x, stepped by −sx.
-  Vec3f origin = toWorld(convention, g.grid.origin);
+  const Vec3f origin = toWorld(convention, g.grid.origin);
   Vec3f spacing = g.grid.spacing;
   if (convention.engine == EngineLight::Unity) spacing.x = -spacing.x;
   const Vec3f n(float(g.grid.count[0] - 1), float(g.grid.count[1] - 1),
                 float(g.grid.count[2] - 1));
   const Vec3f extent = g.grid.spacing * n;
   const Vec3f centre = toWorld(convention, g.grid.origin + extent * 0.5f);
-
-  Json flat = Json::array();
-  std::size_t perProbe = 0;
-  std::vector<Rgb> converted;  // every probe's, in the convention
-  sh::RgbSh probe(g.bands);
-  for (std::size_t p = 0; p < g.grid.probes(); ++p) {
-    std::copy_n(g.radiance.begin() + std::ptrdiff_t(p * b2), b2, probe.c.begin());
-    const sh::RgbSh out =
-        convention.engine ? toEngineConvention(*convention.engine, probe) : probe;
-    perProbe = out.c.size();
-    converted.insert(converted.end(), out.c.begin(), out.c.end());
-    for (const Rgb& c : out.c)
-      for (int ch = 0; ch < 3; ++ch) flat.push_back(shortest(c[ch]));
-  }
   Json j;
-  j["asset"] = {{"generator", std::string("prtkit ") + kVersion + " (prt export)"},
-                {"format", "prtkit probe grid"},
-                {"version", 1}};
   j["source"] = g.source;
   j["light"] = g.light;
   j["rotateDegrees"] = g.rotateDegrees;
@@ -127,24 +137,74 @@ std::string formatProbeGrid(const ProbeGridExport& g, const ProbeGridConvention&
                            {"height", shortest(extent.y)},
                            {"depth", shortest(extent.z)},
                            {"resolution", g.grid.count}};
+  if (convention.engine == EngineLight::ThreeJs)
+    j["lightProbeGrid"]["atlas"] = {
+        {"size",
+         {g.grid.count[0], g.grid.count[1],
+          7 * (g.grid.count[2] + 2 * kLightProbeGridPadding)}},
+        {"padding", kLightProbeGridPadding},
+        {"format", "RGBA, float32 little-endian, texel (x, y, slice) at ((slice ny + y) nx + x) 4"}};
+  j["coefficients"] = {{"count", perProbe},
+                       {"bands", perProbe == 9 ? 3 : g.bands},
+                       {"layout", "probe-major, then coefficient, then r g b"}};
+  return j;
+}
+
+std::string generator() { return std::string("prtkit ") + kVersion + " (prt export)"; }
+
+}  // namespace
+
+std::string formatProbeGrid(const ProbeGridExport& g, const ProbeGridConvention& convention) {
+  const Converted c = convert(g, convention);
+  Json j;
+  j["asset"] = {{"generator", generator()}, {"format", "prtkit probe grid"}, {"version", 1}};
+  const Json shared = describe(g, convention, c.perProbe);
+  for (const auto& [key, value] : shared.items()) j[key] = value;
   if (convention.engine == EngineLight::ThreeJs) {
-    const std::vector<float> atlas = lightProbeGridAtlas(g.grid, converted);
+    const std::vector<float> atlas = lightProbeGridAtlas(g.grid, c.coefficients);
     std::string bytes(atlas.size() * sizeof(float), '\0');
     for (std::size_t i = 0; i < atlas.size(); ++i) {
       const std::uint32_t u = std::bit_cast<std::uint32_t>(atlas[i]);
       for (int b = 0; b < 4; ++b) bytes[4 * i + b] = char((u >> (8 * b)) & 0xff);
     }
-    j["lightProbeGrid"]["atlas"] = {
-        {"size", {g.grid.count[0], g.grid.count[1], 7 * (g.grid.count[2] + 2 * kLightProbeGridPadding)}},
-        {"padding", kLightProbeGridPadding},
-        {"format", "RGBA, float32 little-endian, texel (x, y, slice) at ((slice ny + y) nx + x) 4"},
-        {"data", base64(bytes)}};
+    j["lightProbeGrid"]["atlas"]["data"] = base64(bytes);
   }
-  j["coefficients"] = {{"count", perProbe},
-                       {"bands", perProbe == 9 ? 3 : g.bands},
-                       {"layout", "probe-major, then coefficient, then r g b"}};
+  Json flat = Json::array();
+  for (const Rgb& v : c.coefficients)
+    for (int ch = 0; ch < 3; ++ch) flat.push_back(shortest(v[ch]));
   j["probes"] = std::move(flat);
   return formatJson(j, 1) + "\n";
+}
+
+void writeProbeGridGltf(const std::string& path, const ProbeGridExport& g,
+                        const ProbeGridConvention& convention) {
+  const Converted c = convert(g, convention);
+  Json ext = describe(g, convention, c.perProbe);
+  glb::BinaryChunk bin;
+  // Rgb is three packed floats: the coefficients are the accessor's VEC3 elements as they lie.
+  static_assert(sizeof(Rgb) == 3 * sizeof(float));
+  const int probes = bin.view(c.coefficients.data(), c.coefficients.size() * sizeof(Rgb), 0, 0,
+                              "probes");
+  ext["probes"] = bin.accessor(probes, 0, c.coefficients.size(), "VEC3", 5126, "probes");
+  std::vector<float> atlas;
+  if (convention.engine == EngineLight::ThreeJs) {
+    atlas = lightProbeGridAtlas(g.grid, c.coefficients);
+    const int view = bin.view(atlas.data(), atlas.size() * sizeof(float), 0, 0,
+                              "LightProbeGrid atlas");
+    ext["lightProbeGrid"]["atlas"]["accessor"] =
+        bin.accessor(view, 0, atlas.size() / 4, "VEC4", 5126, "LightProbeGrid atlas");
+  }
+  Json gltf;
+  gltf["asset"] = {{"generator", generator()}, {"version", "2.0"}};
+  gltf["extensionsUsed"] = Json::array({kProbeGridExtension});
+  gltf["extensions"][kProbeGridExtension] = std::move(ext);
+  gltf["accessors"] = bin.accessors();
+  gltf["bufferViews"] = bin.views();
+  gltf["buffers"] = Json::array({{{"byteLength", bin.length()}}});
+  std::string text = gltf.dump();
+  if (glb::fileBytes(text, bin) > std::uint64_t(0xffffffffu))
+    throw Error(path, "the grid exceeds the 4 GiB a GLB file can hold");
+  writeFileAtomically(path, [&](std::ostream& os) { glb::write(os, std::move(text), bin); });
 }
 
 }  // namespace prt::io

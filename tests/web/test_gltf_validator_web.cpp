@@ -87,6 +87,33 @@ TEST_F(GltfValidatorWeb, EveryBakeIsValidGltf) {
   }
 }
 
+TEST_F(GltfValidatorWeb, ProbeGridExportsAreValidGltf) {
+  // prt export --format probe-grid -o .glb: the relit grid under PRTKIT_probe_grid, every
+  // engine's convention; no scene, the accessors read through the extension.
+  ASSERT_EQ(prt("-q probes 'builtin:cornell?grid=6' --grid 3x2x2 --samples 8 -o p.glb").rc, 0);
+  std::string files;
+  for (const std::string engine : {"threejs", "unity", "gltf-ibl", "prtkit"}) {
+    const Result r =
+        prt("-q export p.glb --format probe-grid --engine " + engine + " -o " + engine + ".glb");
+    ASSERT_EQ(r.rc, 0) << engine << ": " << r.err;
+    files += engine + ".glb ";
+  }
+  const Json report = validate(files);
+  ASSERT_EQ(report.size(), 4u);
+  for (const auto& [file, r] : report.items()) {
+    SCOPED_TRACE(file);
+    EXPECT_EQ(r["errors"], 0) << r["messages"].dump();
+    EXPECT_EQ(r["warnings"], 0) << r["messages"].dump();
+    bool extensionNamed = false;
+    for (const Json& m : r["messages"]) {
+      const std::string code = m[1];
+      EXPECT_TRUE(code == "UNSUPPORTED_EXTENSION" || code == "UNUSED_OBJECT") << m.dump();
+      if (code == "UNSUPPORTED_EXTENSION") extensionNamed = true;
+    }
+    EXPECT_TRUE(extensionNamed) << "the validator saw no extensionsUsed";
+  }
+}
+
 TEST_F(GltfValidatorWeb, UnwrappedMeshesAreValidGltf) {
   // prt unwrap's plain glTF (no extension): with and without parts, with and without albedo.
   for (const std::string& cmd : {std::string("unwrap builtin:cornell -o cornell.glb"),

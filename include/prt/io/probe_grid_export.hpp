@@ -26,6 +26,7 @@
 //   probes       probes × coefficients × 3 numbers, flat
 //
 // A reader needs nothing else: `probes[(p·K + k)·3 + c]` is coefficient k, channel c of probe p.
+// `-o grid.glb` writes the same as a glTF extension (writeProbeGridGltf).
 
 #include <array>
 #include <optional>
@@ -72,7 +73,17 @@ inline constexpr int kLightProbeGridPadding = 1;
 /// floats: texel (x, y, slice) at ((slice · ny + y) · nx + x) · 4.
 std::vector<float> lightProbeGridAtlas(const ProbeGrid& grid, std::span<const Rgb> threeJs);
 
+/// The glTF extension the grid is written as in a .glb (docs/extensions/PRTKIT_probe_grid).
+inline constexpr const char* kProbeGridExtension = "PRTKIT_probe_grid";
+
 /// The JSON text (see the top). Throws prt::Error when the radiance does not match the grid.
 std::string formatProbeGrid(const ProbeGridExport& grid, const ProbeGridConvention& convention);
+
+/// The same as a glTF 2.0 binary (.glb) holding the extension PRTKIT_probe_grid at its root:
+/// the JSON's members (its `asset` apart) with `probes` the index of a FLOAT VEC3 accessor of
+/// probes × K elements and, for three.js, `lightProbeGrid.atlas.accessor` a FLOAT VEC4 accessor
+/// of the atlas' texels in place of its base64 `data`. Written atomically to `path`.
+void writeProbeGridGltf(const std::string& path, const ProbeGridExport& grid,
+                        const ProbeGridConvention& convention);
 
 }  // namespace prt::io
