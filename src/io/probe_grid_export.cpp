@@ -119,8 +119,11 @@ Json describe(const ProbeGridExport& g, const ProbeGridConvention& convention,
   if (convention.engine == EngineLight::Unity) spacing.x = -spacing.x;
   const Vec3f n(float(g.grid.count[0] - 1), float(g.grid.count[1] - 1),
                 float(g.grid.count[2] - 1));
-  const Vec3f extent = g.grid.spacing * n;
-  const Vec3f centre = toWorld(convention, g.grid.origin + extent * 0.5f);
+  const Vec3f centre = toWorld(convention, g.grid.origin + g.grid.spacing * n * 0.5f);
+  // three.js r187's LightProbeGrid puts its probes at the centres of the cells of its box, as
+  // ours are: the box is a cell per probe (r184–r186 put them on the box's corners, (n − 1)·s).
+  const Vec3f extent =
+      g.grid.spacing * Vec3f(float(g.grid.count[0]), float(g.grid.count[1]), float(g.grid.count[2]));
   Json j;
   j["source"] = g.source;
   j["light"] = g.light;

@@ -167,14 +167,15 @@ TEST_F(ProbesCli, ProbeGridExportsAreTheRelitGridInEachEnginesConvention) {
   const ProbeGrid& g = bake.transfers[0].transfer.shape().probes;
   ASSERT_EQ(ours["probes"].size(), g.probes() * 9 * 3);
   ASSERT_EQ(three["probes"].size(), g.probes() * 9 * 3);
-  // three.js's LightProbeGrid over the same points: position − size/2 + i size/(res − 1).
+  // three.js r187's LightProbeGrid over the same points (getProbePosition: position − size/2 +
+  // (i + 0.5) size/res, a probe at each cell's centre).
   const nlohmann::json& lpg = three["lightProbeGrid"];
   for (std::size_t p = 0; p < g.probes(); ++p) {
     const auto cell = g.cell(p);
     for (int a = 0; a < 3; ++a) {
       const double size = lpg[a == 0 ? "width" : a == 1 ? "height" : "depth"];
       const double at = lpg["position"][a].get<double>() - size / 2 +
-                        cell[a] * size / (lpg["resolution"][a].get<int>() - 1);
+                        (cell[a] + 0.5) * size / lpg["resolution"][a].get<int>();
       EXPECT_NEAR(at, g.position(p)[a], 1e-6) << p << " axis " << a;
     }
   }

@@ -17,9 +17,10 @@
 //                  gltf-ibl  EXT_lights_image_based's irradianceCoefficients, 9 × RGB
 //   grid         {origin, spacing, count [nx, ny, nz], order "x + nx (y + ny z)"}: probe (x, y, z)
 //                at origin + (x sx, y sy, z sz), in the engine's world
-//   lightProbeGrid  three.js's LightProbeGrid (r183+) over the same probes: `position` its
-//                centre, `width`/`height`/`depth` = (n − 1)·s, `resolution` = count (its probes
-//                sit at the corners of its box, ours at the lattice points: the same points);
+//   lightProbeGrid  three.js's LightProbeGrid (r187: LightProbeGridWebGL, LightProbeGrid) over
+//                the same probes: `position` its centre, `width`/`height`/`depth` = n·s (a cell
+//                per probe, the probes at the cells' centres, as ours), `resolution` = count
+//                (r184–r186 put the probes on the box's corners: there the size is (n − 1)·s);
 //                with --engine threejs also `atlas`, the grid's texture as LightProbeGridNode
 //                samples it (lightProbeGridAtlas below), base64 of little-endian float32 RGBA
 //   coefficients {count: per probe, layout "probe-major, coefficient, then r g b"}
@@ -62,8 +63,8 @@ struct ProbeGridExport {
 /// Padding slices at each end of every sub-volume of three.js's LightProbeGrid atlas.
 inline constexpr int kLightProbeGridPadding = 1;
 
-/// three.js LightProbeGrid's texture (examples/jsm/lighting/LightProbeGrid.js and
-/// tsl/lighting/LightProbeGridNode.js, r183+): one RGBA 3D texture of nx × ny × 7 (nz + 2)
+/// three.js LightProbeGrid's texture (examples/jsm/lighting/LightProbeGridWebGL.js and
+/// LightProbeGrid.js, r184 to r187 alike): one RGBA 3D texture of nx × ny × 7 (nz + 2)
 /// texels, seven sub-volumes stacked along z, sub-volume t at slices t (nz + 2) .. with probe
 /// layer z at slice t (nz + 2) + 1 + z and the first and last layers repeated in the padding
 /// slices around them (so that its linear filter never blends two sub-volumes). The nine RGB

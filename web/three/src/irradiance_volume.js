@@ -7,12 +7,11 @@
 // diffuse exit radiance); three.js's basis is ours without the Condon–Shortley phase
 // (coefficients 1, 3, 5, 7 change sign: light.js).
 //
-// three.js r183+'s LightProbeGrid / LightProbeGridWebGL over the same points: it puts probe
-// (i, j, k) at position − size/2 + (i, j, k)·size/(resolution − 1) (its box's corners are probes;
-// along an axis of one probe, at `position`). Ours sit at origin + (x·sx, y·sy, z·sz), the
-// centres of the cells of the box baked, so the same lattice is resolution = (nx, ny, nz),
-// width/height/depth = ((nx−1)·sx, (ny−1)·sy, (nz−1)·sz) and position = origin + size/2: the
-// lattice's centre (the box baked is a cell larger). Its texture is one RGBA float 3D atlas of
+// three.js r187's LightProbeGridWebGL / LightProbeGrid over the same points: it puts probe
+// (i, j, k) at position − size/2 + (i, j, k, + 0.5)·size/resolution, the centres of the cells of
+// its box, as ours sit at the centres of the cells of the box baked (origin + (x·sx, y·sy, z·sz)):
+// resolution = (nx, ny, nz), width/height/depth = (nx·sx, ny·sy, nz·sz), position the lattice's
+// centre. (r184–r186 put the probes on the box's corners: size (n − 1)·s there.) Its texture is one RGBA float 3D atlas of
 // nx × ny × 7 (nz + 2) texels (io::lightProbeGridAtlas, LightProbeGridWebGL.js): sub-volume t
 // (0..6) holds floats 4t..4t+3 of each probe's 27 (SphericalHarmonics3.toArray() order, then a 0),
 // probe layer z at slice t (nz + 2) + 1 + z, the first and last layers repeated in a padding
@@ -32,7 +31,7 @@ function shortest(x) {
 
 /** Positions, origin, spacing of a grid { origin, spacing, count } (arrays of three). */
 function lattice(grid) {
-  const size = grid.count.map((n, a) => shortest((n - 1) * grid.spacing[a]));
+  const size = grid.count.map((n, a) => shortest(n * grid.spacing[a]));
   return { size, centre: grid.origin.map((o, a) => shortest(o + 0.5 * (grid.count[a] - 1) * grid.spacing[a])) };
 }
 

@@ -154,7 +154,7 @@ export class ProbeGridLighting {
     });
   }
 
-  /** three.js r183+'s LightProbeGrid parameters for this grid (irradiance_volume.js). */
+  /** three.js r187's LightProbeGrid parameters for this grid (irradiance_volume.js). */
   lightProbeGridParameters() {
     return lightProbeGridParameters(this._bake.grid);
   }
