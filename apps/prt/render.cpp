@@ -2,10 +2,16 @@
 //
 //   prt render bunny.glb --light builtin:sky --rotate 0,90,0 --size 800x600 -o bunny.png
 //   prt render bunny.glb --light studio.exr --turntable 12 --contact-sheet sheet.png -o frame.png
+//   prt render boxm.glb --encoding l1 -o box_l1.png     (a matrix bake, as an engine's L1 shows it)
 //
 // The light is an environment (image, face folder or builtin:NAME), projected to the bake's
 // bands. --rotate turns the environment (X, then Y, then Z, degrees) by rotating its SH
 // coefficients; the background rotates with it.
+//
+// --encoding E draws, instead of PRT's radiance, the diffuse shading an engine gets from one of
+// the irradiance encodings it stores (sh/irradiance_encoding.hpp) of the light arriving at each
+// row of a matrix bake (relight/encoded_diffuse.hpp; docs/lightmaps.md). Diffuse only: a glossy
+// material is refused, as are vector and probe bakes (they hold no incident light).
 
 #include <chrono>
 #include <cmath>
@@ -30,6 +36,7 @@
 #include "prt/render/primary.hpp"
 #include "prt/render/relit_view.hpp"
 #include "prt/render/render.hpp"
+#include "prt/sh/encode_irradiance.hpp"
 #include "reference_input.hpp"
 #include "render_probes.hpp"
 #include "report.hpp"
@@ -61,6 +68,7 @@ struct RenderOptions {
   // A probe bake (render_probes.hpp): the object placed in its grid.
   std::string object, at;
   float objectSize = 0;
+  std::string encoding;  ///< --encoding: "" or "none" = PRT's own radiance
 };
 
 void checkOutput(const std::string& path, const char* what) {
@@ -107,6 +115,13 @@ void run(const RenderOptions& o) {
   outputs.push_back({"--contact-sheet", o.contactSheet});
   if (!o.reference.empty() && o.turntable > 0)
     throw Error("--reference: the reference holds one light rotation; --turntable turns it");
+  std::optional<sh::IrradianceEncoding> encoding;
+  if (!o.encoding.empty() && o.encoding != "none")
+    encoding = sh::parseIrradianceEncoding(o.encoding);
+  if (encoding && !o.reference.empty())
+    throw Error(
+        "--reference draws the reference's radiance, --encoding PRT's through an encoding: "
+        "one or the other");
   const std::vector<NamedPath> inputs = {
       {"input", o.bake}, {"--light", o.light}, {"--reference", o.reference}};
   checkOutputs(outputs, inputs);
@@ -117,12 +132,17 @@ void run(const RenderOptions& o) {
   const BakeFile bake = readBake(o.bake);
   bake.requireComplete(o.bake);
   if (bake.domain() == TransferDomain::Probes) {
+    if (encoding)
+      throw Error(o.bake,
+                  "holds a probe grid: --encoding draws a surface's matrix transfer "
+                  "through an irradiance encoding (prt bake --transfer matrix)");
     // The scene and an object lit through the probes (render_probes.cpp): one light, one frame.
     if (o.turntable > 0 || !o.reference.empty() || !o.material.empty())
-      throw Error(o.bake, "holds a probe grid: --turntable, --reference and --material draw a "
-                          "surface's transfer (render the probes with --object, --at)");
-    ProbeRenderArgs p{o.bake, o.light, o.camera, o.output, o.object, o.at, o.objectSize, o.bands,
-                      frame, userRotation, bgKind, bgColour, write, exposure};
+      throw Error(o.bake,
+                  "holds a probe grid: --turntable, --reference and --material draw a "
+                  "surface's transfer (render the probes with --object, --at)");
+    ProbeRenderArgs p{o.bake,  o.light, o.camera,     o.output, o.object, o.at,  o.objectSize,
+                      o.bands, frame,   userRotation, bgKind,   bgColour, write, exposure};
     renderProbeBake(bake, p, report);
     if (report.wanted()) {
       report.input(o.bake);
@@ -132,14 +152,26 @@ void run(const RenderOptions& o) {
     return;
   }
   if (!o.object.empty() || !o.at.empty())
-    throw Error(o.bake, "--object and --at place an object in a probe grid (prt probes); this "
-                        "bake holds a surface's transfer");
+    throw Error(o.bake,
+                "--object and --at place an object in a probe grid (prt probes); this "
+                "bake holds a surface's transfer");
   const BakedTransfer& baked = pickTransfer(bake, o.transfer, o.bake);
   // The material: --material, else the one the bake stored.
   const Material material =
       materialOption(o.material, baked, o.bake,
                      "--material changes the surface at each vertex, not the light the surfaces "
                      "send each other (bake again for both)");
+  if (encoding && !baked.transfer.isMatrix())
+    throw Error(o.bake, "holds " + baked.describe() +
+                            " transfer: --encoding encodes the light arriving at each row, which "
+                            "a matrix bake holds (prt bake --transfer matrix); vector (diffuse) "
+                            "transfer has already integrated it against the normal");
+  if (encoding && material.glossy())
+    throw Error(o.bake, "--encoding " + o.encoding +
+                            ": an irradiance encoding shades the diffuse "
+                            "part only, and the material " +
+                            material.spec() +
+                            " has a glossy lobe (pass --material lambert to see the encoding)");
   warnLobeOnVectors(material, baked, o.bake,
                     "the material's glossy lobe needs a matrix bake (prt bake --transfer matrix)");
   // Every frame through one view (render/relit_view.hpp): the transfer cut to --bands once, per
@@ -151,6 +183,7 @@ void run(const RenderOptions& o) {
                      baked.transfer.bands(), baked.transfer.bands()));
   if (o.bands > 0) view.setBands(std::min(o.bands, baked.transfer.bands()));
   if (baked.transfer.isMatrix()) warnLobeEnergyLoss(material, view.bands(), o.bake);
+  view.setEncoding(encoding);
 
   // The light: an SH light file, or an environment projected to the transfer's bands.
   const io::Lighting lighting = io::loadLighting(o.light, view.bands(), progressBar("projecting"));
@@ -211,8 +244,8 @@ void run(const RenderOptions& o) {
     // every turntable frame so they compare.
     // The first frame's probe pixels also say whether SH ringing blacks out the model.
     if (k == 0) {
-      const render::FrameSurvey survey = render::surveyFrame(*occluder, shade, camera, frame.width,
-                                                             frame.height, write.toneMap);
+      const render::FrameSurvey survey =
+          render::surveyFrame(*occluder, shade, camera, frame.width, frame.height, write.toneMap);
       write.exposureStops = exposure ? *exposure : survey.exposureStops;
       const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
       if (!ringing.empty()) warn(ringing);
@@ -234,9 +267,11 @@ void run(const RenderOptions& o) {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count()}});
     if (k == 0) report["bands"] = relit.bands;
     if (!o.contactSheet.empty()) sheet.push_back(std::move(img));
-    info(fmt::format("{} {} ({}x{}, {} spp, {} bands, {} transfer, {}, exposure {:.2f}{})", did,
+    info(fmt::format("{} {} ({}x{}, {} spp, {} bands, {} transfer, {}{}, exposure {:.2f}{})", did,
                      path, frame.width, frame.height, frame.spp, relit.bands, baked.describe(),
-                     material.spec(), write.exposureStops, exposure ? "" : " auto"));
+                     material.spec(),
+                     encoding ? fmt::format(", {} irradiance", sh::toString(*encoding)) : "",
+                     write.exposureStops, exposure ? "" : " auto"));
   }
   if (!o.contactSheet.empty()) {
     image::writeImage(o.contactSheet, render::contactSheet(sheet), write);
@@ -251,6 +286,7 @@ void run(const RenderOptions& o) {
                           {"layout", toString(baked.transfer.layout())},
                           {"representation", baked.transfer.compressed() ? "cpca" : "dense"}};
     report["material"] = material.spec();
+    report["encoding"] = encoding ? sh::toString(*encoding) : "none";
     report["width"] = frame.width;
     report["height"] = frame.height;
     report["spp"] = frame.spp;
@@ -322,6 +358,11 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--object-size", opts->objectSize,
                   "With --object: its largest side (default: a fifth of the grid's)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--encoding", opts->encoding,
+                  "Draw the diffuse shading an engine gets from an irradiance encoding of the "
+                  "light arriving at each row (a matrix bake, a diffuse material): l1, "
+                  "l1-windowed, l1-geomerics, zh3, zh3-optimal, zh3-hallucinated, l2, "
+                  "l2-deringed, or none (PRT's own radiance; docs/lightmaps.md)");
   addJsonOption(cmd, opts->json);
   cmd->callback([opts] { run(*opts); });
 }

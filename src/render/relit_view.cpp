@@ -1,6 +1,7 @@
 #include "prt/render/relit_view.hpp"
 
 #include "prt/core/error.hpp"
+#include "prt/relight/encoded_diffuse.hpp"
 #include "prt/render/base_colour.hpp"
 
 namespace prt::render {
@@ -37,6 +38,10 @@ relight::Surface RelitView::surface() const {
 }
 
 void RelitView::setMaterial(const Material& material) {
+  if (encoding_ && material.glossy())
+    throw Error(mesh_.source, "the material " + material.spec() +
+                                  " has a glossy lobe; an irradiance encoding shades the diffuse "
+                                  "part only");
   material_ = material;
   texture_ = pixelTexture(mesh_, material);
   const TextureSplit split = splitForTexture(material, texture_, transfer_);
@@ -57,6 +62,20 @@ void RelitView::setBands(int bands) {
   if (glossy_) glossy_->setBands(bands);
 }
 
+void RelitView::setEncoding(std::optional<sh::IrradianceEncoding> encoding) {
+  if (encoding && !transfer_.isMatrix())
+    throw Error(mesh_.source,
+                "an irradiance encoding is made from the light arriving at each row, which a "
+                "matrix transfer holds; vector (diffuse) transfer has already integrated it "
+                "against the normal");
+  if (encoding && material_.glossy())
+    throw Error(mesh_.source, "the material " + material_.spec() +
+                                  " has a glossy lobe; an irradiance encoding shades the diffuse "
+                                  "part only");
+  encoding_ = encoding;
+  encoded_.clear();
+}
+
 const char* RelitView::rowNoun() const {
   return rowName(transfer_.domain());
 }
@@ -64,6 +83,13 @@ const char* RelitView::rowNoun() const {
 std::span<const Rgb> RelitView::relight(const sh::RgbSh& light, const Mat3d& rotation,
                                         const Vec3f& eye, const std::string& name,
                                         relight::RelightInfo* info) {
+  if (encoding_) {
+    // The diffuse material of the split (the texture, if any, multiplies per pixel as ever).
+    encoded_ = relight::encodedDiffuse(relighter_.shown(), light, *encoding_, relighter_.material(),
+                                       surface(), rotation, info);
+    checkFiniteRadiance(encoded_, name, rowNoun());
+    return encoded_;
+  }
   const std::span<const Rgb> radiance = relighter_.relight(light, rotation, eye, info);
   checkFiniteRadiance(radiance, name, rowNoun());
   if (texture_ && glossy_) {
@@ -75,6 +101,7 @@ std::span<const Rgb> RelitView::relight(const sh::RgbSh& light, const Mat3d& rot
 
 bool RelitView::relightRotated(std::span<const Rgb> rotatedLight, int lightBands,
                                const Vec3f& eye) {
+  PRT_CHECK(!encoding_, "RelitView::relightRotated with an irradiance encoding");
   const int before = relighter_.frames() + (glossy_ ? glossy_->frames() : 0);
   relighter_.relightRotated(rotatedLight, lightBands, eye);
   if (glossy_) highlight_ = glossy_->relightRotated(rotatedLight, lightBands, eye);
@@ -88,7 +115,7 @@ ShadeFn RelitView::shader() const {
     const TransferShape::LightmapSize lm = transfer_.shape().lightmap;
     return texelRadianceShader(mesh_, values, lm.width, lm.height, pixelAlbedo);
   };
-  ShadeFn shade = rows(relighter_.radiance(), texels_.pixelAlbedo);
+  ShadeFn shade = rows(radiance(), texels_.pixelAlbedo);
   if (!texture_) return shade;
   return texturedShader(mesh_, *texture_, std::move(shade),
                         glossy_ ? rows(highlight_, {}) : ShadeFn());

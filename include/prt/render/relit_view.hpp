@@ -11,7 +11,10 @@
 //                matrices at the texels' sample points), fetched bilinearly at the hit's
 //                lightmap UV (texelRadianceShader);
 //   textured     the base-colour texture multiplies the diffuse part per pixel, a glossy
-//                matrix lobe relit apart and added untextured (render/base_colour.hpp).
+//                matrix lobe relit apart and added untextured (render/base_colour.hpp);
+//   encoded      (matrices, diffuse materials) the rows' diffuse radiance through an engine's
+//                irradiance encoding instead of PRT's (relight/encoded_diffuse.hpp), drawn the
+//                same way.
 
 #include <optional>
 #include <span>
@@ -24,6 +27,7 @@
 #include "prt/render/camera.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/texel_points.hpp"
+#include "prt/sh/irradiance_encoding.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transfer/material.hpp"
 #include "prt/transfer/transfer.hpp"
@@ -48,6 +52,12 @@ class RelitView {
   /// Relights with another material from the next relight on (per vertex: per texel the rows'
   /// sample points were placed for the first).
   void setMaterial(const Material& material);
+  /// Relights through `encoding` from the next relight on (none: PRT's own radiance): each
+  /// row's diffuse radiance from the encoded irradiance of the light arriving there
+  /// (relight::encodedDiffuse). Throws prt::Error for vector transfer or a glossy material
+  /// (an encoding holds irradiance: diffuse shading only).
+  void setEncoding(std::optional<sh::IrradianceEncoding> encoding);
+  std::optional<sh::IrradianceEncoding> encoding() const { return encoding_; }
   /// "vertex" or "texel": what a row is, for messages.
   const char* rowNoun() const;
   /// True when the rows are the mesh's vertices (other radiance can be drawn: shader(rows)).
@@ -60,10 +70,13 @@ class RelitView {
                                const std::string& name, relight::RelightInfo* info = nullptr);
   /// The same for a light already rotated (a viewer's packed light: (r, g, b) per coefficient,
   /// lightBands² of them). Returns false when nothing changed since the last relight (the same
-  /// light, eye, bands and material): radiance() and highlight() then still hold it.
+  /// light, eye, bands and material): radiance() and highlight() then still hold it. Not with
+  /// an encoding (PRT_CHECK).
   bool relightRotated(std::span<const Rgb> rotatedLight, int lightBands, const Vec3f& eye);
   /// The rows' radiance of the last relight (the part the texture multiplies, when textured).
-  std::span<const Rgb> radiance() const { return relighter_.radiance(); }
+  std::span<const Rgb> radiance() const {
+    return encoding_ ? std::span<const Rgb>(encoded_) : relighter_.radiance();
+  }
   /// The glossy lobe's radiance of the last relight, added untextured per pixel (empty unless
   /// the mesh is textured and the material glossy over matrices: render/base_colour.hpp).
   std::span<const Rgb> highlight() const { return glossy_ ? highlight_ : std::span<const Rgb>(); }
@@ -89,6 +102,8 @@ class RelitView {
   relight::Relighter relighter_;
   std::optional<relight::Relighter> glossy_;  ///< the lobe, relit apart under a texture
   std::span<const Rgb> highlight_;
+  std::optional<sh::IrradianceEncoding> encoding_;
+  std::vector<Rgb> encoded_;  ///< the last relight's rows through encoding_
 
   relight::Surface surface() const;  ///< the rows' points: the vertices, or the texels' samples
 };
