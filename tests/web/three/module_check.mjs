@@ -155,8 +155,10 @@ const p1 = new THREE.Vector3().fromArray(v.positions, 3);
 check(maxDiff(sh1.toArray(), lp.sh.toArray()) > 0 && maxDiff(sh1.toArray(), grid.updateLightProbe(new THREE.LightProbe(), p1).sh.toArray()) < 1e-6,
       'probe 1 of the export is the LightProbe at its position');
 const g = v.lightProbeGrid, size = [g.width, g.height, g.depth];
-check(maxDiff(g.resolution, [3, 2, 2]) === 0 && maxDiff(g.position.map((c, a) => c - size[a] / 2), v.positions.slice(0, 3)) < 1e-6,
-      'LightProbeGrid\'s first corner is probe 0');
+// three.js r187's getProbePosition: position − size/2 + (i + ½)·size/resolution (cell centres).
+check(maxDiff(g.resolution, [3, 2, 2]) === 0 &&
+      maxDiff(g.position.map((c, a) => c - size[a] / 2 + 0.5 * size[a] / g.resolution[a]), v.positions.slice(0, 3)) < 1e-6,
+      'LightProbeGrid\'s first cell centre is probe 0');
 const atlas = lightProbeGridAtlas(grid.grid, v.probes);
 const written = new Float32Array(Uint8Array.from(atlas.length ? Buffer.from(g.atlas.data, 'base64') : []).buffer);
 check(atlas.length === 4 * 3 * 2 * 7 * 4 && maxDiff(written, atlas) === 0 && maxDiff(g.atlas.size, [3, 2, 28]) === 0,
