@@ -32,9 +32,6 @@ void appendOctahedron(Mesh& m, const Vec3f& c, float r) {
 Mesh probeSceneMesh(const BakeFile& bake, const MovingObject* object, bool showProbes) {
   Mesh drawn = bake.mesh;
   foldBaseColour(drawn);
-  // Nothing here is drawn through a lightmap or a texture: the radiance arrives per vertex.
-  drawn.uvs.clear();
-  drawn.lightmapUvs.clear();
   if (object) {
     Mesh placed = object->placed();
     foldBaseColour(placed);
@@ -51,6 +48,7 @@ Mesh probeSceneMesh(const BakeFile& bake, const MovingObject* object, bool showP
                              std::uint32_t(markers.triangles.size())});
     appendMesh(drawn, markers);
   }
+  // Nothing here is drawn through a lightmap or a texture: the radiance arrives per vertex.
   drawn.uvs.clear();
   drawn.lightmapUvs.clear();
   return drawn;

@@ -244,6 +244,36 @@ void SceneView::setTransfer(const DrawState& now) {
   if (path_ == relight::ShaderPath::CpuRadiance) cpuView_.emplace(mesh, t, now.material);
 }
 
+void SceneView::uploadEnvironment(const Scene& scene, const DrawState& now) {
+  if (now.environment != drawn_.environment && now.environment) {
+    renderer_.setEnvironmentImage(now.environment->latLong);
+    packer_.setLight(now.environment->light);
+  }
+  // The SH background image is made only while it is shown.
+  const bool shChanged = now.environment != drawn_.environment || now.bands != drawn_.bands;
+  if (shChanged) shImageValid_ = false;
+  if (now.background == BackgroundMode::Sh && !shImageValid_) {
+    renderer_.setShImage(scene.shBackground());
+    shImageValid_ = true;
+  }
+}
+
+FrameParams SceneView::beginFrame(const Scene& scene, const DrawState& now, int width,
+                                  int height) {
+  FrameParams f;
+  f.width = width, f.height = height;
+  f.camera = scene.orbit.camera();
+  f.bands = now.bands;
+  f.lightRotation = scene.lightRotation();
+  packer_.pack(f.lightRotation, now.bands);
+  relightSeconds_ = 0;
+  f.light = &packer_;
+  f.background = now.background;
+  f.exposureStops = scene.exposureStops;
+  f.toneMap = scene.toneMap;
+  return f;
+}
+
 FrameParams SceneView::prepareProbes(const Scene& scene, const DrawState& now, int width,
                                      int height) {
   const bool newMesh = now.bake != drawn_.bake || now.object != drawn_.object ||
@@ -262,26 +292,12 @@ FrameParams SceneView::prepareProbes(const Scene& scene, const DrawState& now, i
     cpuView_.reset();
     probeLight_.clear();
   }
-  if (now.environment != drawn_.environment && now.environment) {
-    renderer_.setEnvironmentImage(now.environment->latLong);
-    packer_.setLight(now.environment->light);
-  }
-  if (now.environment != drawn_.environment || now.bands != drawn_.bands) shImageValid_ = false;
-  if (now.background == BackgroundMode::Sh && !shImageValid_) {
-    renderer_.setShImage(scene.shBackground());
-    shImageValid_ = true;
-  }
+  uploadEnvironment(scene, now);
   const bool newTransfer = now.transfer != drawn_.transfer;
   drawn_ = now;
 
-  FrameParams f;
-  f.width = width, f.height = height;
-  f.camera = scene.orbit.camera();
-  f.bands = now.bands;
   const auto t0 = std::chrono::steady_clock::now();
-  f.lightRotation = scene.lightRotation();
-  packer_.pack(f.lightRotation, now.bands);
-  relightSeconds_ = 0;
+  FrameParams f = beginFrame(scene, now, width, height);
   const std::span<const Rgb> light = packer_.rotated();
   if (newMesh || newTransfer || !std::equal(light.begin(), light.end(), probeLight_.begin(),
                                             probeLight_.end())) {
@@ -292,10 +308,6 @@ FrameParams SceneView::prepareProbes(const Scene& scene, const DrawState& now, i
     relightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  f.light = &packer_;
-  f.background = now.background;
-  f.exposureStops = scene.exposureStops;
-  f.toneMap = scene.toneMap;
   return f;
 }
 
@@ -323,27 +335,11 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
     const PreparedMaterial pm = prepareMaterial(now.material, t.bands());
     renderer_.setGlossyMaterial(pm.diffuse, pm.glossy, pm.kd, pm.specular);
   }
-  if (now.environment != drawn_.environment && now.environment) {
-    renderer_.setEnvironmentImage(now.environment->latLong);
-    packer_.setLight(now.environment->light);
-  }
-  // The SH background image is made only while it is shown.
-  const bool shChanged = now.environment != drawn_.environment || now.bands != drawn_.bands;
-  if (shChanged) shImageValid_ = false;
-  if (now.background == BackgroundMode::Sh && !shImageValid_) {
-    renderer_.setShImage(scene.shBackground());
-    shImageValid_ = true;
-  }
+  uploadEnvironment(scene, now);
   drawn_ = now;
 
-  FrameParams f;
-  f.width = width, f.height = height;
-  f.camera = scene.orbit.camera();
-  f.bands = now.bands;
   const auto t0 = std::chrono::steady_clock::now();
-  f.lightRotation = scene.lightRotation();
-  packer_.pack(f.lightRotation, now.bands);
-  relightSeconds_ = 0;
+  FrameParams f = beginFrame(scene, now, width, height);
   if (path_ == ShaderPath::CpcaVector || path_ == ShaderPath::CpcaMatrix) {
     // K(N+1) projections of D(R) L onto the transfer cut to the shown bands.
     relight::packClusterTable(
@@ -359,11 +355,7 @@ FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
     }
   }
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  f.light = &packer_;
-  f.background = now.background;
   f.baseColour = texture != nullptr;
-  f.exposureStops = scene.exposureStops;
-  f.toneMap = scene.toneMap;
   return f;
 }
 

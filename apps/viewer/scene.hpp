@@ -238,6 +238,10 @@ class SceneView {
  private:
   /// The transfer-dependent part of an upload: the path, the per-vertex texels, the relighter.
   void setTransfer(const DrawState& now);
+  /// The environment's image and light when they changed, and the SH background while shown.
+  void uploadEnvironment(const Scene& scene, const DrawState& now);
+  /// This frame's parameters, the light turned and packed (the light work's start).
+  FrameParams beginFrame(const Scene& scene, const DrawState& now, int width, int height);
   /// prepare for a probe bake (probe_view.hpp): the scene, the object and the markers as one
   /// mesh, shaded on the CPU when the light, the bands or the mesh change.
   FrameParams prepareProbes(const Scene& scene, const DrawState& now, int width, int height);

@@ -531,12 +531,12 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
   }
   if (!albedo.empty()) albedo.resize(padded, Rgb(1.0f));
   // Of a probe grid, the probes of the validated rows, each once.
-  std::vector<std::uint32_t> gathered = verts;
+  std::vector<std::uint32_t> probeRows;
   if (probes) {
-    for (std::uint32_t& r : gathered) r /= kProbeNormals;
-    gathered.erase(std::unique(gathered.begin(), gathered.end()), gathered.end());
+    for (std::uint32_t r : verts) probeRows.push_back(r / kProbeNormals);
+    probeRows.erase(std::unique(probeRows.begin(), probeRows.end()), probeRows.end());
   }
-  const Transfer validated = gatherRows(transfer, gathered, settings.bakeName);
+  const Transfer validated = gatherRows(transfer, probes ? probeRows : verts, settings.bakeName);
 
   // Vertices whose negative radiance counts: for glossy transfer those facing the eye.
   std::vector<char> counted(n, 1);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/bake_variance.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/geometry/builtin.hpp"
@@ -71,23 +72,12 @@ std::vector<Rgb> relightAt(const Scene& s, const Transfer& t, const sh::RgbSh& l
   return out;
 }
 
-/// The bake's own variance in the rel RMSE metric, from two seeds: ½ mean (R₁ − R₂)² / (R_ref² + ε)
-/// (per vertex and channel; E[(R₁ − R₂)²] = 2 Var R). What rel RMSE² holds beyond floor² + noise².
+/// The bake's own variance in the rel RMSE metric from two seeds (common/bake_variance.hpp): what
+/// rel RMSE² holds beyond floor² + noise².
 double bakeVariance(const Scene& s, const sh::RgbSh& light, int b, const ValidationReport& rep) {
   const std::vector<Rgb> r1 = relightAt(s, s.transfer, light, b, rep);
   const std::vector<Rgb> r2 = relightAt(s, s.second, light, b, rep);
-  const std::vector<Rgb>& ref = rep.reference.radiance;
-  double m = 0;
-  for (const Rgb& c : ref) m += (double(c.x) + c.y + c.z) / 3.0;
-  m /= double(ref.size());
-  const double eps = 1e-2 * m * m;
-  double sum = 0;
-  for (std::size_t i = 0; i < ref.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double d = double(r1[i][c]) - r2[i][c];
-      sum += 0.5 * d * d / (double(ref[i][c]) * ref[i][c] + eps);
-    }
-  return sum / (3.0 * double(ref.size()));
+  return prt::testing::bakeVarianceOf(r1, r2, rep.reference.radiance);
 }
 
 struct Case {

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "common/bake_variance.hpp"
 #include "prt/envmap/builtin.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/geometry/builtin.hpp"
@@ -69,18 +70,7 @@ std::vector<Rgb> probeRadiance(const Transfer& t, const sh::RgbSh& light, int b,
 double bakeVariance(const Transfer& a, const Transfer& b, const sh::RgbSh& light, int bands,
                     const ValidationReport& rep) {
   const std::vector<Rgb> r1 = probeRadiance(a, light, bands, rep), r2 = probeRadiance(b, light, bands, rep);
-  const std::vector<Rgb>& ref = rep.reference.radiance;
-  double m = 0;
-  for (const Rgb& c : ref) m += (double(c.x) + c.y + c.z) / 3.0;
-  m /= double(ref.size());
-  const double eps = 1e-2 * m * m;
-  double sum = 0;
-  for (std::size_t i = 0; i < ref.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double d = double(r1[i][c]) - r2[i][c];
-      sum += 0.5 * d * d / (double(ref[i][c]) * ref[i][c] + eps);
-    }
-  return sum / (3.0 * double(ref.size()));
+  return prt::testing::bakeVarianceOf(r1, r2, rep.reference.radiance);
 }
 
 TEST(ValidateProbes, AboveALargePlaneTheReferenceIsTheClosedForm) {

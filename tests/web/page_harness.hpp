@@ -97,22 +97,7 @@ inline std::string jsonField(const std::string& json, const std::string& key) {
   return b == std::string::npos ? "" : json.substr(a + k.size(), b - a - k.size());
 }
 
-/// Standard base64 of `bytes` (padded), as the pages' data scripts hold them.
-inline std::string base64(const std::string& bytes) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  unsigned v = 0;
-  int n = 0;
-  for (unsigned char c : bytes) {
-    v = (v << 8) | c;
-    n += 8;
-    while (n >= 6) out += k[(v >> (n -= 6)) & 63];
-  }
-  if (n > 0) out += k[(v << (6 - n)) & 63];
-  while (out.size() % 4) out += '=';
-  return out;
-}
-
+/// Bytes from standard base64 (prt::base64's, as the pages' data scripts hold them).
 inline std::vector<unsigned char> unbase64(const std::string& s) {
   std::vector<unsigned char> out;
   unsigned v = 0;

@@ -18,6 +18,7 @@
 
 #include "cli/cli_harness.hpp"
 #include "common/checker_plane.hpp"
+#include "prt/core/base64.hpp"
 #include "web/page_harness.hpp"
 
 namespace {
@@ -54,7 +55,7 @@ std::string examplePage(const std::string& name, const std::string& bake,
     fs::copy_file(kExample / f, dir / f, fs::copy_options::overwrite_existing);
   std::ofstream(dir / "example-data.js")
       << "window.PRT_EXAMPLE = {\"name\": \"" << bake << "\", \"glb\": \""
-      << base64(prt::testing::slurp(scratch() / bake))
+      << prt::base64(prt::testing::slurp(scratch() / bake))
       << "\", \"light\": " << prt::testing::slurp(scratch() / light) << "};\n";
   return dir.string();
 }

@@ -12,9 +12,8 @@
 // the bake's scene moves the grid with it and turns the light the other way in its frame, as
 // for PRTBake. Rigid motions and uniform scale only.
 import * as THREE from 'three';
-import { image as kImage } from 'prt:constants';
+import { checkedBands, exposureScale, transferLight } from './relight_settings.js';
 import { pickTransfer } from '../../src/transfer.js';
-import { lightForTransfer } from '../../src/lights.js';
 import { mul3, rotateLight as rotateCoefficients, transpose3 } from '../../src/sh.js';
 import { ProbeRelighter } from '../../src/probe_relighter.js';
 import { probePosition, shadeDiffuse } from '../../src/probe_lighting.js';
@@ -66,23 +65,19 @@ export class ProbeGridLighting {
   /** The bands relit, 1 .. the transfer's. */
   get bands() { return this._bands; }
   set bands(b) {
-    if (!(Number.isInteger(b) && b >= 1)) throw new Error(`${this.name}: bands must be a positive integer, not ${b}`);
-    this._bands = Math.min(b, this._transfer.bands);
+    this._bands = checkedBands(this.name, b, this._transfer.bands);
   }
   /** Exposure in stops of the bake's own meshes (2^exposure before the renderer's tone map). */
   get exposure() { return Math.log2(this._exposure.value); }
   set exposure(stops) {
-    if (!Number.isFinite(stops)) throw new Error(`${this.name}: exposure must be a finite number of stops, not ${stops}`);
-    this._exposure.value = Math.pow(2, Math.min(Math.max(stops, -kImage.maxExposureStops), kImage.maxExposureStops));
+    this._exposure.value = exposureScale(this.name, stops);
   }
   get light() { return this._light; }
 
   /** Relights under `light` ({ bands, coeffs: B² × 3 }, parseLight's); the library's band rule
    *  (more bands cut, fewer used as they are: the returned warnings say so). */
   setLight(light) {
-    if (!light || !Number.isInteger(light.bands) || !(light.coeffs && light.coeffs.length === light.bands * light.bands * 3))
-      throw new Error(`${this.name}: a light is { bands, coeffs: bands² × 3 numbers } (parseLight makes one)`);
-    const { coeffs, warnings } = lightForTransfer('light', light, this._transfer.bands);
+    const { coeffs, warnings } = transferLight(this.name, light, this._transfer.bands);
     this._light = light;
     this._coeffs = coeffs;
     return warnings;

@@ -6,9 +6,8 @@
 // the light the other way in the bake's frame, and glossy transfer sees the camera from where
 // the part is (rigid motions and uniform scale).
 import * as THREE from 'three';
-import { image as kImage } from 'prt:constants';
+import { checkedBands, exposureScale, transferLight } from './relight_settings.js';
 import { pickTransfer } from '../../src/transfer.js';
-import { lightForTransfer } from '../../src/lights.js';
 import { disposeTransfers, setFrameLight, setTransferUniforms, uploadTransfers } from '../../src/draw.js';
 import { mul3, transpose3 } from '../../src/sh.js';
 import { threeHost } from './three_host.js';
@@ -59,15 +58,13 @@ export class PRTBake {
   /** The bands shown, 1 .. the transfer's. */
   get bands() { return this._bands; }
   set bands(b) {
-    if (!(Number.isInteger(b) && b >= 1)) throw new Error(`${this.name}: bands must be a positive integer, not ${b}`);
-    this._bands = Math.min(b, this._transfer.bands);
+    this._bands = checkedBands(this.name, b, this._transfer.bands);
     ++this._version;
   }
   /** Exposure in stops: the radiance is scaled by 2^exposure before the renderer's tone map. */
   get exposure() { return Math.log2(this._exposure.value); }
   set exposure(stops) {
-    if (!Number.isFinite(stops)) throw new Error(`${this.name}: exposure must be a finite number of stops, not ${stops}`);
-    this._exposure.value = Math.pow(2, Math.min(Math.max(stops, -kImage.maxExposureStops), kImage.maxExposureStops));
+    this._exposure.value = exposureScale(this.name, stops);
   }
   get light() { return this._light; }
 
@@ -77,9 +74,7 @@ export class PRTBake {
    * one with fewer is used as it is, and the returned warnings say so (the library's rule).
    */
   setLight(light) {
-    if (!light || !Number.isInteger(light.bands) || !(light.coeffs && light.coeffs.length === light.bands * light.bands * 3))
-      throw new Error(`${this.name}: a light is { bands, coeffs: bands² × 3 numbers } (parseLight makes one)`);
-    const { coeffs, warnings } = lightForTransfer('light', light, this._transfer.bands);
+    const { coeffs, warnings } = transferLight(this.name, light, this._transfer.bands);
     this._light = light;
     this._coeffs = coeffs;
     ++this._version;
