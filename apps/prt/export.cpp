@@ -29,6 +29,7 @@
 #include "prt/io/engine_lightmaps.hpp"
 #include "prt/io/games202_transport.hpp"
 #include "prt/io/lighting.hpp"
+#include "prt/io/lightmap_gltf.hpp"
 #include "prt/io/lightmap_textures.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/incident_light.hpp"
@@ -159,6 +160,26 @@ const BakedTransfer& matrixTransfer(const BakeFile& bake, const ExportArgs& a) {
   return *found;
 }
 
+/// The layers' names, comma-separated.
+std::string layerNames(const io::LightmapLayers& layers) {
+  std::string list;
+  for (const io::LightmapLayer& l : layers.layers)
+    list += std::string(list.empty() ? "" : ", ") + l.name;
+  return list;
+}
+
+/// -o NAME.glb of --format lightmap | lightmap-sh: the mesh and PRTKIT_lightmap, one file
+/// (io/lightmap_gltf.hpp); the report names it and its layers.
+void writeLightmapGltfFile(const ExportArgs& a, const io::LightmapLayers& layers,
+                           const Mesh& mesh, Report& report) {
+  io::writeLightmapGltf(a.output, layers, mesh);
+  report.output(a.output);
+  report["lightmap"] = Json(layers.manifest.at("lightmap"));
+  Json names = Json::array();
+  for (const io::LightmapLayer& l : layers.layers) names.push_back(l.name);
+  report["layers"] = std::move(names);
+}
+
 /// --format lightmap | lightmap-sh: a per-texel bake relit under --light (rotated by --rotate,
 /// scaled by 2^--exposure), written as the textures engines' lightmap shaders sample
 /// (io/engine_lightmaps.hpp; docs/lightmaps.md), in a folder written as a whole.
@@ -177,16 +198,25 @@ void runExportLightmap(const ExportArgs& a) {
         "one RGB lightmap every engine reads");
   const sh::IrradianceEncoding encoding =
       sh::parseIrradianceEncoding(a.encoding.empty() ? "l1" : a.encoding);
+  // -o NAME.glb: one glTF file (the mesh and PRTKIT_lightmap's unpacked layers), else a folder
+  // of engines' textures.
+  const bool gltf = fileExtension(a.output) == "glb";
+  if (gltf && !a.engine.empty())
+    throw Error(
+        "--engine picks the engines' packed layouts of a lightmap folder; -o " + a.output +
+        " (glTF) keeps the encoding's own numbers, unpacked (PRTKIT_lightmap)");
   const std::vector<io::LightmapEngine> engines =
       io::parseLightmapEngines(a.engine.empty() ? "godot,bakery" : a.engine);
   const std::array<double, 3> euler = parseEulerDegrees(a.rotate);
   const Mat3d rotation = parseRotation(a.rotate);
   const double stops = a.exposure.empty() ? 0.0 : std::stod(a.exposure);
   const std::string lightSpec = a.light.empty() ? "builtin:sky" : a.light;
-  if (isStandardOutput(a.output)) throw Error("-o: an engine lightmap is a folder, not a stream");
+  if (isStandardOutput(a.output))
+    throw Error("-o: an engine lightmap is a folder or a .glb file, not a stream");
   const std::vector<NamedPath> inputs = {{"input", a.input}, {"--light", lightSpec}};
   checkOutputs({{"-o", a.output}}, inputs);
-  Report report = exportReport(a, true);
+  if (gltf) checkWritable(a.output);
+  Report report = exportReport(a, !gltf);
   report.check({{"-o", a.output}}, inputs);
 
   const BakeFile bake = readBake(a.input);
@@ -208,6 +238,7 @@ void runExportLightmap(const ExportArgs& a) {
   d.lightmap = lm;
   d.exposureStops = stops;
   io::EngineLightmaps out;
+  io::LightmapLayers layers;
   if (sh) {
     const int bands = std::min(3, t.transfer.bands());
     const std::vector<Rgb> incident =
@@ -217,7 +248,10 @@ void runExportLightmap(const ExportArgs& a) {
                   {"layout", toString(t.transfer.layout())},
                   {"bands", t.transfer.bands()},
                   {"relit", "L'_p = M_p L: the SH of the light arriving at each texel"}};
-    out = io::encodeIrradianceLightmaps(incident, bands, encoding, engines, bake.mesh, d);
+    if (gltf)
+      layers = io::irradianceLayers(incident, bands, encoding, bake.mesh, d);
+    else
+      out = io::encodeIrradianceLightmaps(incident, bands, encoding, engines, bake.mesh, d);
   } else {
     // f = E(n_p)/π: a vector's Σ T_i L_i (relit white), or a matrix's diffuse part d(n_p)·L'_p
     // at each texel's normal (as the bake placed its samples: render/texel_points.hpp).
@@ -237,9 +271,28 @@ void runExportLightmap(const ExportArgs& a) {
                   {"relit", t.transfer.isMatrix()
                                 ? "the diffuse part d(n_p).(M_p L) at each texel's normal"
                                 : "sum_i T_i L_i, white (the albedo at the texel left out)"}};
-    out = io::encodeRadianceLightmap(radiance, bake.mesh, d);
+    if (gltf)
+      layers = io::radianceLayers(radiance, bake.mesh, d);
+    else
+      out = io::encodeRadianceLightmap(radiance, bake.mesh, d);
   }
   if (!relit.warning().empty()) warn(a.input + ": " + relit.warning());
+  if (gltf) {
+    writeLightmapGltfFile(a, layers, bake.mesh, report);
+    info(fmt::format("wrote {} ({}x{} texels: {} of the {} transfer under {}{}: layers {})",
+                     a.output, lm.width, lm.height,
+                     sh ? std::string(sh::toString(encoding)) + " irradiance SH"
+                        : std::string("E/pi (RGB)"),
+                     t.describe(), lightSpec,
+                     stops != 0 ? fmt::format(", exposure {:+g} stops", stops) : std::string(),
+                     layerNames(layers)));
+    report["transfer"] = transferJson(t);
+    report["light"] = Json(d.light);
+    report["exposureStops"] = stops;
+    if (sh) report["encoding"] = sh::toString(encoding);
+    report.write();
+    return;
+  }
   if (out.clampedTexels > 0)
     warn(
         fmt::format("{}: {} of {} texels hold more band-1 light than an engine's packed L1 "
@@ -393,7 +446,8 @@ void addExportCommand(CLI::App& root) {
   cmd->add_option("--channel", args->channel, "For RGB transfer: luminance | r | g | b");
   cmd->add_option("-o,--output", args->output,
                   "Output file (games202), or folder (exr, png: t0.., transfer.json; lightmap, "
-                  "lightmap-sh: textures and lightmap.json)")
+                  "lightmap-sh: textures and lightmap.json, or NAME.glb: the mesh and the "
+                  "PRTKIT_lightmap extension)")
       ->required();
   cmd->add_option("--light", args->light,
                   "lightmap, lightmap-sh, probe-grid: environment image, face folder, builtin:NAME, or SH "

@@ -134,6 +134,64 @@ void checkTexels(std::size_t values, std::size_t perTexel, const LightmapDescrip
                               std::to_string(d.lightmap.height) + " lightmap");
 }
 
+
+/// Every texel's encoding, once (zh3-optimal's axis search is the costly part), already over π
+/// and scaled by 2^stops: what every layout below is made from.
+struct EncodedTexels {
+  std::vector<TexelValues> values;
+  std::vector<std::array<Rgbd, 9>> l2;  ///< E_i / π per texel, for l2 and l2-deringed only
+};
+EncodedTexels encodeTexels(std::span<const Rgb> incident, int bands,
+                           sh::IrradianceEncoding encoding, const LightmapDescription& d) {
+  sh::checkBands(bands);
+  const std::size_t n = std::size_t(bands) * std::size_t(bands);
+  checkTexels(incident.size(), n, d);
+  const double scale = std::exp2(d.exposureStops) / kPi;
+  const std::size_t texels = d.lightmap.texels();
+  EncodedTexels out;
+  out.values.resize(texels);
+  out.l2.resize(shRows(encoding) == 9 ? texels : 0);
+  parallelFor(texels, 16, [&](std::size_t begin, std::size_t end) {
+    sh::RgbSh light(bands);
+    for (std::size_t t = begin; t < end; ++t) {
+      std::copy_n(incident.data() + t * n, n, light.c.begin());
+      const sh::EncodedIrradiance e = sh::encodeIrradiance(light, encoding);
+      TexelValues& v = out.values[t];
+      for (int ch = 0; ch < 3; ++ch) {
+        v.a[ch] = e.sh[0][ch] * kY00 * scale;
+        v.c[ch] = sh::bandOneVector(e.sh[1][ch], e.sh[2][ch], e.sh[3][ch]) * (kY1 * scale);
+      }
+      v.k = e.zonal * (kY20 * scale);
+      v.axis = e.axis;
+      if (!out.l2.empty())
+        for (std::size_t i = 0; i < 9; ++i) out.l2[t][i] = e.sh[i] * scale;
+    }
+  });
+  return out;
+}
+
+
+/// How the layers beyond L1 decode (the manifest's "decode"); `storedAxis` says where
+/// zh3-optimal's axis is.
+nlohmann::json decodeJson(sh::IrradianceEncoding encoding, const char* storedAxis) {
+  nlohmann::json decode = {{"A", "the L1 layers' constant term L0 (f ~ A + c.n)"}};
+  if (sh::isZonal(encoding)) {
+    decode["axis"] = encoding == sh::IrradianceEncoding::ZH3Optimal
+                         ? storedAxis
+                         : "a = normalize(0.2126 c_r + 0.7152 c_g + 0.0722 c_b), +Z when zero";
+    if (encoding == sh::IrradianceEncoding::ZH3Hallucinated)
+      decode["zonal"] =
+          "k = A (sqrt(5)/8) (0.08 r + 0.6 r^2), r = (sqrt(3)/2) |c.a| / A (A > 0; "
+          "else k = 0); f = A + c.n + k (3 (a.n)^2 - 1)";
+  }
+  if (encoding == sh::IrradianceEncoding::L1Geomerics)
+    decode["nonLinear"] =
+        "per channel: s = min(|c| / 2A, 1), p = 1 + 2s, alpha = (1 - s)/(1 + s), q = (1 + "
+        "c.n/|c|)/2, f = A (alpha + (1 - alpha)(p + 1) q^p) (Hazel, Geomerics 2014); A + c.n "
+        "where A <= 0 or c = 0";
+  return decode;
+}
+
 }  // namespace
 
 const char* toString(LightmapEngine e) {
@@ -198,33 +256,12 @@ EngineLightmaps encodeIrradianceLightmaps(std::span<const Rgb> incident, int ban
                                           sh::IrradianceEncoding encoding,
                                           std::span<const LightmapEngine> engines, const Mesh& mesh,
                                           const LightmapDescription& d) {
-  sh::checkBands(bands);
-  const std::size_t n = std::size_t(bands) * std::size_t(bands);
-  checkTexels(incident.size(), n, d);
   if (engines.empty()) throw Error("engine lightmap: no engine layout asked for");
-  const double scale = std::exp2(d.exposureStops) / kPi;
   const std::size_t texels = d.lightmap.texels();
   const int W = d.lightmap.width, H = d.lightmap.height;
 
-  // Every texel's encoding, once (zh3-optimal's axis search is the costly part).
-  std::vector<TexelValues> values(texels);
-  std::vector<std::array<Rgbd, 9>> l2Values(shRows(encoding) == 9 ? texels : 0);
-  parallelFor(texels, 16, [&](std::size_t begin, std::size_t end) {
-    sh::RgbSh light(bands);
-    for (std::size_t t = begin; t < end; ++t) {
-      std::copy_n(incident.data() + t * n, n, light.c.begin());
-      const sh::EncodedIrradiance e = sh::encodeIrradiance(light, encoding);
-      TexelValues& v = values[t];
-      for (int ch = 0; ch < 3; ++ch) {
-        v.a[ch] = e.sh[0][ch] * kY00 * scale;
-        v.c[ch] = sh::bandOneVector(e.sh[1][ch], e.sh[2][ch], e.sh[3][ch]) * (kY1 * scale);
-      }
-      v.k = e.zonal * (kY20 * scale);
-      v.axis = e.axis;
-      if (!l2Values.empty())
-        for (std::size_t i = 0; i < 9; ++i) l2Values[t][i] = e.sh[i] * scale;
-    }
-  });
+  const EncodedTexels enc = encodeTexels(incident, bands, encoding, d);
+  const std::vector<TexelValues>& values = enc.values;
 
   EngineLightmaps out;
   out.manifest = baseManifest("lightmap-sh", mesh, d);
@@ -324,7 +361,6 @@ EngineLightmaps encodeIrradianceLightmaps(std::span<const Rgb> incident, int ban
   }
 
   // What the encoding holds beyond L1, in prtkit's own layouts.
-  const bool zonal = sh::isZonal(encoding);
   if (encoding == sh::IrradianceEncoding::ZH3 || encoding == sh::IrradianceEncoding::ZH3Optimal) {
     Stack zh(W, H, 1);
     for (std::size_t t = 0; t < texels; ++t) zh.set(0, t, values[t].k);
@@ -350,7 +386,7 @@ EngineLightmaps encodeIrradianceLightmaps(std::span<const Rgb> incident, int ban
   if (shRows(encoding) == 9) {
     Stack l2(W, H, 9);
     for (std::size_t t = 0; t < texels; ++t)
-      for (int i = 0; i < 9; ++i) l2.set(i, t, l2Values[t][i]);
+      for (int i = 0; i < 9; ++i) l2.set(i, t, enc.l2[t][std::size_t(i)]);
     out.files.emplace_back("l2.exr", l2.exr(d.source + " (l2.exr)"));
     files.push_back({{"file", "l2.exr"},
                      {"engine", "prtkit's L2 layout (no engine ships L2 lightmaps)"},
@@ -361,25 +397,66 @@ EngineLightmaps encodeIrradianceLightmaps(std::span<const Rgb> incident, int ban
                       "f = sum_i layer_i Y_i(n), prtkit's real SH with the "
                       "Condon-Shortley phase (docs/conventions.md), glTF axes"}});
   }
-  nlohmann::json decode = {{"A", "the L1 layers' constant term L0 (f ~ A + c.n)"}};
-  if (zonal) {
-    decode["axis"] = encoding == sh::IrradianceEncoding::ZH3Optimal
-                         ? "a = zh3-axis.exr"
-                         : "a = normalize(0.2126 c_r + 0.7152 c_g + 0.0722 c_b), +Z when zero";
-    if (encoding == sh::IrradianceEncoding::ZH3Hallucinated)
-      decode["zonal"] =
-          "k = A (sqrt(5)/8) (0.08 r + 0.6 r^2), r = (sqrt(3)/2) |c.a| / A (A > 0; "
-          "else k = 0); f = A + c.n + k (3 (a.n)^2 - 1)";
-  }
-  if (encoding == sh::IrradianceEncoding::L1Geomerics)
-    decode["nonLinear"] =
-        "per channel: s = min(|c| / 2A, 1), p = 1 + 2s, alpha = (1 - s)/(1 + s), q = (1 + "
-        "c.n/|c|)/2, f = A (alpha + (1 - alpha)(p + 1) q^p) (Hazel, Geomerics 2014); A + c.n "
-        "where A <= 0 or c = 0";
-  out.manifest["decode"] = std::move(decode);
+  out.manifest["decode"] = decodeJson(encoding, "a = zh3-axis.exr");
   out.manifest["files"] = std::move(files);
   out.manifest["clampedTexels"] = std::move(clamped);
   out.files.emplace_back("lightmap.json", out.manifest.dump(2) + "\n");
+  return out;
+}
+
+LightmapLayers radianceLayers(std::span<const Rgb> radiance, const Mesh& mesh,
+                              const LightmapDescription& d) {
+  checkTexels(radiance.size(), 1, d);
+  const float scale = float(std::exp2(d.exposureStops));
+  LightmapLayers out;
+  LightmapLayer f{"f", "f (RGB, linear): the lightmap itself", {}};
+  f.texels.reserve(radiance.size());
+  for (const Rgb& v : radiance) f.texels.push_back(v * scale);
+  out.layers.push_back(std::move(f));
+  out.manifest = baseManifest("lightmap", mesh, d);
+  out.manifest["decode"] = {{"f", "f = f"}};
+  return out;
+}
+
+LightmapLayers irradianceLayers(std::span<const Rgb> incident, int bands,
+                                sh::IrradianceEncoding encoding, const Mesh& mesh,
+                                const LightmapDescription& d) {
+  const EncodedTexels enc = encodeTexels(incident, bands, encoding, d);
+  const std::size_t texels = enc.values.size();
+  LightmapLayers out;
+  auto layer = [&](std::string name, std::string holds, auto value) {
+    LightmapLayer l{std::move(name), std::move(holds), std::vector<Rgb>(texels)};
+    for (std::size_t t = 0; t < texels; ++t) l.texels[t] = Rgb(value(t));
+    out.layers.push_back(std::move(l));
+  };
+  nlohmann::json decode;
+  if (shRows(encoding) == 9) {
+    for (int i = 0; i < 9; ++i)
+      layer("sh" + std::to_string(i), "E_" + std::to_string(i) + " / pi (i = l(l+1)+m)",
+            [&](std::size_t t) { return enc.l2[t][std::size_t(i)]; });
+    decode["f"] =
+        "f = sum_i sh_i Y_i(n), prtkit's real SH with the Condon-Shortley phase "
+        "(docs/conventions.md), glTF axes";
+  } else {
+    const auto& v = enc.values;
+    layer("L0", "A: f's mean over normals (its constant term)", [&](std::size_t t) { return v[t].a; });
+    const char* axes[3] = {"L1x", "L1y", "L1z"};
+    for (int k = 0; k < 3; ++k)
+      layer(axes[k], std::string("the ") + "xyz"[k] + " component of c per channel (glTF axes)",
+            [&](std::size_t t) { return Rgbd(v[t].c[0][k], v[t].c[1][k], v[t].c[2][k]); });
+    if (encoding == sh::IrradianceEncoding::ZH3 || encoding == sh::IrradianceEncoding::ZH3Optimal)
+      layer("zonal", "k per channel: f += k (3 (a.n)^2 - 1)", [&](std::size_t t) { return v[t].k; });
+    if (encoding == sh::IrradianceEncoding::ZH3Optimal)
+      layer("axis", "the zonal axis a (unit, glTF axes)", [&](std::size_t t) {
+        return Rgbd(v[t].axis.x, v[t].axis.y, v[t].axis.z);
+      });
+    decode = decodeJson(encoding, "a = the axis layer");
+    decode["f"] = sh::isZonal(encoding) ? "f = L0 + L1x n.x + L1y n.y + L1z n.z + k (3 (a.n)^2 - 1)"
+                                        : "f = L0 + L1x n.x + L1y n.y + L1z n.z";
+  }
+  out.manifest = baseManifest("lightmap-sh", mesh, d);
+  out.manifest["encoding"] = sh::toString(encoding);
+  out.manifest["decode"] = std::move(decode);
   return out;
 }
 

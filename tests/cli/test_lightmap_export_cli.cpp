@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
+#include "common/glb_reader.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/raytrace/occluder.hpp"
@@ -393,6 +395,126 @@ TEST_F(LightmapExportCli, PlainLightmapIsTheWhiteSurfacesRadiance) {
     EXPECT_GT(largest, 0.1);
     EXPECT_LE(worst, 1e-5 * largest);
   }
+}
+
+// -o NAME.glb: the mesh and PRTKIT_lightmap, whose float layers decode (as the extension's
+// README writes the decode, here from its layer names) to the encoding at every texel and
+// normal; and the plain lightmap's layer is lightmap.exr's values exactly.
+TEST_F(LightmapExportCli, GltfLightmapLayersDecodeToTheTexelsIrradiance) {
+  writeLight(path("light.json"));
+  const io::Lighting light = io::loadLighting(path("light.json"), 3);
+  const std::vector<Vec3d> ns = normals();
+  const double scale = std::exp2(kStops) / kPi;
+  const std::size_t texels = std::size_t(kRes) * kRes;
+  ASSERT_EQ(prt("-q bake " + kBox + " --mode interreflected --domain texels --resolution " +
+                std::to_string(kRes) + " --samples 32 --transfer matrix -o m.glb")
+                .rc,
+            0);
+  const BakeFile bake = readBake(path("m.glb"));
+  const Incident inc = incidentFromBake(bake, light.coefficients, rotationEulerXYZ(10, 60, -20));
+  const std::string relight = " --light light.json --rotate " + kRotate + " --exposure 1";
+  for (const sh::IrradianceEncoding enc : sh::kIrradianceEncodings) {
+    const std::string name = sh::toString(enc);
+    SCOPED_TRACE(name);
+    const Result r = prt("export m.glb --format lightmap-sh --encoding " + name + relight +
+                         " -o " + name + ".glb --json " + name + ".json");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const Glb glb = splitGlb(slurp(path(name + ".glb")));
+    EXPECT_EQ(glb.json["extensionsUsed"], nlohmann::json({"PRTKIT_lightmap"}));
+    EXPECT_FALSE(glb.json.contains("extensionsRequired"));
+    EXPECT_EQ(glb.json["meshes"].size(), bake.mesh.parts.empty() ? 1u : bake.mesh.parts.size());
+    const nlohmann::json& ext = glb.json["extensions"]["PRTKIT_lightmap"];
+    EXPECT_EQ(ext["kind"], "lightmap-sh");
+    EXPECT_EQ(ext["encoding"], name);
+    EXPECT_EQ(ext["lightmap"]["width"], kRes);
+    EXPECT_EQ(ext["lightmap"]["texCoord"], 0);
+    EXPECT_TRUE(glb.json["meshes"][0]["primitives"][0]["attributes"].contains("TEXCOORD_0"));
+    const nlohmann::json report = nlohmann::json::parse(slurp(path(name + ".json")));
+    EXPECT_EQ(report["outputs"], nlohmann::json({name + ".glb"}));
+    std::map<std::string, std::vector<float>> layer;
+    for (const nlohmann::json& l : ext["layers"]) {
+      layer[l["name"]] = accessorFloats(glb, l["accessor"]);
+      ASSERT_EQ(layer[l["name"]].size(), 3 * texels) << l["name"];
+    }
+    EXPECT_EQ(report["layers"].size(), layer.size());
+    const auto rgb = [&](const std::string& n, std::size_t t) {
+      const std::vector<float>& v = layer.at(n);
+      return Rgbd(v[3 * t], v[3 * t + 1], v[3 * t + 2]);
+    };
+    const bool l2 = sh::shRows(enc) == 9;
+    EXPECT_EQ(layer.count("sh8"), l2 ? 1u : 0u);
+    EXPECT_EQ(layer.count("L0"), l2 ? 0u : 1u);
+    EXPECT_EQ(layer.count("zonal"),
+              enc == sh::IrradianceEncoding::ZH3 || enc == sh::IrradianceEncoding::ZH3Optimal);
+    EXPECT_EQ(layer.count("axis"), enc == sh::IrradianceEncoding::ZH3Optimal);
+    double worst = 0, largest = 0;
+    for (std::size_t t = 0; t < texels; ++t) {
+      const sh::EncodedIrradiance e = sh::encodeIrradiance(asLight(inc.rows[t]), enc);
+      L1 l;
+      if (!l2) {
+        l.a = rgb("L0", t);
+        const Rgbd x = rgb("L1x", t), y = rgb("L1y", t), z = rgb("L1z", t);
+        for (int ch = 0; ch < 3; ++ch) l.c[ch] = Vec3d(x[ch], y[ch], z[ch]);
+      }
+      for (const Vec3d& n : ns) {
+        const Rgbd want = sh::evaluate(e, n) * scale;
+        largest = std::max({largest, std::abs(want.x), std::abs(want.y), std::abs(want.z)});
+        Rgbd got(0.0);
+        if (l2) {
+          const std::array<double, 9> y = sh9(n);
+          for (int i = 0; i < 9; ++i) got += rgb("sh" + std::to_string(i), t) * y[i];
+        } else {
+          got = l.at(n);
+          if (sh::isZonal(enc)) {
+            Vec3d ax = layer.count("axis") ? Vec3d(rgb("axis", t))
+                                           : l.c[0] * 0.2126 + l.c[1] * 0.7152 + l.c[2] * 0.0722;
+            ax = length(ax) > 0 ? normalize(ax) : Vec3d(0, 0, 1);
+            const double zonal = 3 * dot(ax, n) * dot(ax, n) - 1;
+            for (int ch = 0; ch < 3; ++ch) {
+              double kz = 0;
+              if (layer.count("zonal")) {
+                kz = rgb("zonal", t)[ch];
+              } else if (l.a[ch] > 0) {
+                const double rr = std::sqrt(3.0) / 2 * std::abs(dot(l.c[ch], ax)) / l.a[ch];
+                kz = l.a[ch] * std::sqrt(5.0) / 8 * (0.08 * rr + 0.6 * rr * rr);
+              }
+              got[ch] += kz * zonal;
+            }
+          } else if (enc == sh::IrradianceEncoding::L1Geomerics) {
+            for (int ch = 0; ch < 3; ++ch) {
+              const double a0 = l.a[ch], len = length(l.c[ch]);
+              if (a0 <= 0 || len == 0) continue;
+              const double s = std::min(len / (2 * a0), 1.0), p = 1 + 2 * s,
+                           alpha = (1 - s) / (1 + s), q = 0.5 * (1 + dot(l.c[ch], n) / len);
+              got[ch] = a0 * (alpha + (1 - alpha) * (p + 1) * std::pow(std::max(q, 0.0), p));
+            }
+          }
+        }
+        worst = std::max(worst, length(got - want));
+      }
+    }
+    std::printf("glTF %-17s worst |decoded - E/pi| %.3g of %.3g\n", name.c_str(), worst, largest);
+    EXPECT_GT(largest, 0.1);
+    EXPECT_LE(worst, 1e-5 * largest);
+  }
+
+  // The plain lightmap: its one layer f holds lightmap.exr's floats, value for value.
+  ASSERT_EQ(prt("-q export m.glb --format lightmap" + relight + " -o lm").rc, 0);
+  ASSERT_EQ(prt("-q export m.glb --format lightmap" + relight + " -o lm.glb").rc, 0);
+  const Glb glb = splitGlb(slurp(path("lm.glb")));
+  const nlohmann::json& ext = glb.json["extensions"]["PRTKIT_lightmap"];
+  EXPECT_EQ(ext["kind"], "lightmap");
+  ASSERT_EQ(ext["layers"].size(), 1u);
+  EXPECT_EQ(ext["layers"][0]["name"], "f");
+  const std::vector<float> f = accessorFloats(glb, ext["layers"][0]["accessor"]);
+  const Exr lm = readExr(dir_ / "lm" / "lightmap.exr");
+  ASSERT_EQ(f.size(), 3 * texels);
+  for (std::size_t t = 0; t < texels; ++t)
+    for (int ch = 0; ch < 3; ++ch) ASSERT_EQ(f[3 * t + ch], lm.rgba[4 * t + ch]) << t;
+
+  // --engine picks a folder's packed layouts: refused with a .glb, nothing written.
+  expectCleanFailure("export m.glb --format lightmap-sh --engine godot -o out/x.glb",
+                     "--engine picks the engines' packed layouts");
 }
 
 // What cannot be a lightmap is refused in one line naming the file, writing nothing.

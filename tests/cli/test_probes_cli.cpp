@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
+#include "common/glb_reader.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/sh.hpp"
@@ -240,34 +241,6 @@ TEST_F(ProbesCli, ProbeGridExportsAreTheRelitGridInEachEnginesConvention) {
   expectCleanFailure("export p.glb --format probe-grid --encoding l1 -o out/g.json", "--encoding");
 }
 
-/// A GLB's JSON and BIN chunks, split here independently of the writer (glTF 2.0 §4.4).
-std::pair<nlohmann::json, std::string> readGlb(const std::string& bytes) {
-  const auto u32 = [&](std::size_t at) {
-    std::uint32_t v;
-    std::memcpy(&v, bytes.data() + at, 4);
-    return v;
-  };
-  EXPECT_EQ(bytes.substr(0, 4), "glTF");
-  EXPECT_EQ(u32(8), bytes.size());
-  const std::uint32_t jsonLength = u32(12);
-  const nlohmann::json j = nlohmann::json::parse(bytes.substr(20, jsonLength));
-  const std::size_t bin = 20 + jsonLength;
-  return {j, bytes.substr(bin + 8, u32(bin))};
-}
-
-/// Accessor `index` of a GLB as floats (FLOAT components, tightly packed).
-std::vector<float> accessorFloats(const nlohmann::json& j, const std::string& bin, int index) {
-  const nlohmann::json& a = j["accessors"][index];
-  const nlohmann::json& v = j["bufferViews"][a["bufferView"].get<int>()];
-  EXPECT_EQ(a["componentType"], 5126);
-  const std::size_t width = a["type"] == "VEC4" ? 4 : 3;
-  std::vector<float> out(a["count"].get<std::size_t>() * width);
-  const std::size_t at = v.value("byteOffset", 0) + a.value("byteOffset", 0);
-  EXPECT_LE(at + out.size() * 4, bin.size());
-  std::memcpy(out.data(), bin.data() + at, out.size() * 4);
-  return out;
-}
-
 TEST_F(ProbesCli, ProbeGridAsGltfHoldsTheJsonExportsValuesInAccessors) {
   ASSERT_EQ(prt("-q probes " + kBox + " --grid 3x2x4 --samples 32 -o p.glb").rc, 0);
   for (const std::string engine : {"threejs", "unity", "prtkit"}) {
@@ -275,20 +248,21 @@ TEST_F(ProbesCli, ProbeGridAsGltfHoldsTheJsonExportsValuesInAccessors) {
     ASSERT_EQ(prt("-q export p.glb --format probe-grid --engine " + engine + " -o g.json").rc, 0);
     ASSERT_EQ(prt("-q export p.glb --format probe-grid --engine " + engine + " -o g.glb").rc, 0);
     const nlohmann::json json = nlohmann::json::parse(slurp(path("g.json")));
-    const auto [gltf, bin] = readGlb(slurp(path("g.glb")));
+    const Glb glb = splitGlb(slurp(path("g.glb")));
+    const nlohmann::json& gltf = glb.json;
     EXPECT_EQ(gltf["asset"]["version"], "2.0");
     EXPECT_EQ(gltf["extensionsUsed"], nlohmann::json({"PRTKIT_probe_grid"}));
     const nlohmann::json& ext = gltf["extensions"]["PRTKIT_probe_grid"];
     EXPECT_EQ(ext["grid"], json["grid"]);
     EXPECT_EQ(ext["engine"], engine);
     EXPECT_EQ(ext["coefficients"], json["coefficients"]);
-    const std::vector<float> probes = accessorFloats(gltf, bin, ext["probes"]);
+    const std::vector<float> probes = accessorFloats(glb, ext["probes"]);
     ASSERT_EQ(probes.size(), json["probes"].size());
     for (std::size_t i = 0; i < probes.size(); ++i)
       ASSERT_EQ(probes[i], json["probes"][i].get<float>()) << i;
     if (engine == "threejs") {
       const std::vector<float> atlas =
-          accessorFloats(gltf, bin, ext["lightProbeGrid"]["atlas"]["accessor"]);
+          accessorFloats(glb, ext["lightProbeGrid"]["atlas"]["accessor"]);
       EXPECT_EQ(atlas, floatsFromBase64(json["lightProbeGrid"]["atlas"]["data"]));
     }
   }

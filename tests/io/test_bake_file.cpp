@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "common/error_text.hpp"
+#include "common/glb_reader.hpp"
 #include "common/random_data.hpp"
 #include "common/scratch.hpp"
 #include "prt/compress/cpca.hpp"
@@ -171,24 +172,8 @@ void expectSameBake(const BakeFile& a, const BakeFile& b) {
   }
 }
 
-// Splits GLB bytes into its JSON and the BIN chunk payload.
-struct Glb {
-  nlohmann::json json;
-  std::string bin;
-};
-Glb splitGlb(const std::string& bytes) {
-  auto u32 = [&](std::size_t at) {
-    std::uint32_t x;
-    std::memcpy(&x, bytes.data() + at, 4);
-    return x;
-  };
-  Glb g;
-  const std::uint32_t jsonLen = u32(12);
-  g.json = nlohmann::json::parse(bytes.substr(20, jsonLen));
-  const std::size_t binAt = 20 + jsonLen;
-  if (binAt < bytes.size()) g.bin = bytes.substr(binAt + 8, u32(binAt));
-  return g;
-}
+using prt::testing::Glb;
+using prt::testing::splitGlb;
 
 TEST(BakeFile, RoundTripIsBitExact) {
   const BakeFile b = sampleBake();

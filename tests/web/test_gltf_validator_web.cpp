@@ -1,7 +1,8 @@
 // Every kind of bake file, and prt unwrap's plain mesh, passes the Khronos glTF validator with
 // 0 errors and 0 warnings: dense
 // vectors of several modes, matrices, CPCA-compressed transfer, a vertex range of a split bake,
-// per-texel transfer dense and compressed, a probe grid whole and a range of it.
+// per-texel transfer dense and compressed, a probe grid whole and a range of it, and the
+// exports that are glTF (a relit probe grid, relit lightmaps).
 // The only information it gives is the vendor extension it does not know
 // (PRTKIT_radiance_transfer, docs/extensions/) and transfer accessors no primitive uses (they
 // are read through the extension). The validator runs under node from web/node_modules; the
@@ -102,6 +103,29 @@ TEST_F(GltfValidatorWeb, ProbeGridExportsAreValidGltf) {
         prt("-q export p.glb --format probe-grid --engine " + engine + " -o " + engine + ".glb");
     ASSERT_EQ(r.rc, 0) << engine << ": " << r.err;
     files += engine + ".glb ";
+  }
+  const Json report = validate(files);
+  ASSERT_EQ(report.size(), 4u);
+  expectValidWithOurExtension(report);
+}
+
+TEST_F(GltfValidatorWeb, LightmapExportsAreValidGltf) {
+  // prt export --format lightmap | lightmap-sh -o .glb: the bake's mesh and PRTKIT_lightmap's
+  // float layers, for a plain lightmap and the encodings with the most layers of each kind.
+  ASSERT_EQ(prt("-q bake builtin:cornell --mode interreflected --domain texels --resolution 16 "
+                "--transfer matrix --samples 8 -o m.glb")
+                .rc,
+            0);
+  std::string files;
+  int count = 0;
+  for (const std::string& format :
+       {std::string("lightmap"), std::string("lightmap-sh --encoding l1"),
+        std::string("lightmap-sh --encoding zh3-optimal"),
+        std::string("lightmap-sh --encoding l2-deringed")}) {
+    const std::string out = "lm" + std::to_string(count++) + ".glb";
+    const Result r = prt("-q export m.glb --format " + format + " -o " + out);
+    ASSERT_EQ(r.rc, 0) << format << ": " << r.err;
+    files += out + " ";
   }
   const Json report = validate(files);
   ASSERT_EQ(report.size(), 4u);

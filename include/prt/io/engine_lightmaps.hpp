@@ -59,6 +59,16 @@
 //
 // A manifest, lightmap.json, says all of this for the files written, with the light, rotation,
 // exposure and lightmap UV set.
+//
+// `-o NAME.glb` instead keeps the encoding's own numbers, unpacked (no engine's packing, no
+// clamping: floats hold them all), as named layers of W × H RGB texels beside the bake's mesh
+// (LightmapLayers; io/lightmap_gltf.hpp writes them under the glTF extension PRTKIT_lightmap):
+//
+//   lightmap      f
+//   lightmap-sh   L0, L1x, L1y, L1z (A and the x, y, z components of each channel's c, glTF
+//                 axes: f ≈ L0 + L1x n_x + L1y n_y + L1z n_z), then zonal (k: zh3,
+//                 zh3-optimal) and axis (zh3-optimal); l2 and l2-deringed: sh0 .. sh8
+//                 (E_i / π) in place of the L1 layers.
 
 #include <cstddef>
 #include <span>
@@ -115,5 +125,29 @@ EngineLightmaps encodeIrradianceLightmaps(std::span<const Rgb> incident, int ban
                                           sh::IrradianceEncoding encoding,
                                           std::span<const LightmapEngine> engines, const Mesh& mesh,
                                           const LightmapDescription& d);
+
+/// One layer of an export: W·H RGB texels, row-major, row 0 at v = 0.
+struct LightmapLayer {
+  std::string name;   ///< "f", "L0", "L1x", ..., "sh8"
+  std::string holds;  ///< what it holds, for the manifest
+  std::vector<Rgb> texels;
+};
+
+/// The unpacked layers of an export and its manifest (lightmap.json's members, without
+/// "files": `layers` lists the layers' names, what they hold and how f decodes from them).
+struct LightmapLayers {
+  std::vector<LightmapLayer> layers;
+  nlohmann::json manifest;
+};
+
+/// --format lightmap as layers: "f" alone (`radiance` scaled by 2^stops).
+LightmapLayers radianceLayers(std::span<const Rgb> radiance, const Mesh& mesh,
+                              const LightmapDescription& d);
+
+/// --format lightmap-sh as layers (see the top), from the same per-texel encoding as
+/// encodeIrradianceLightmaps. Parallel over texels.
+LightmapLayers irradianceLayers(std::span<const Rgb> incident, int bands,
+                                sh::IrradianceEncoding encoding, const Mesh& mesh,
+                                const LightmapDescription& d);
 
 }  // namespace prt::io

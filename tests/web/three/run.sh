@@ -1,7 +1,8 @@
 #!/bin/sh
 # ctest web.ThreeModuleUnderNode: run.sh PRT NODE PACKAGE WORKDIR — the built prtkit-three
 # package (PACKAGE = build/web/three) imported by name under node as an app imports it, with
-# three.js from web/node_modules, against prt's own files (module_check.mjs). Exits 77 (skipped,
+# three.js from web/node_modules, against prt's own files (module_check.mjs; lightmap_check.mjs
+# for the relit lightmaps exported as glTF). Exits 77 (skipped,
 # saying why) without node, web/node_modules or the built package.
 prt=$1 node=$2 pkg=$3 work=$4
 here=$(cd "$(dirname "$0")" && pwd)
@@ -21,7 +22,7 @@ rm -rf "$work" && mkdir -p "$work/node_modules" || exit 1
 mkdir "$work/node_modules/prtkit-three" || exit 1
 cp "$pkg/package.json" "$pkg/prtkit-three.js" "$pkg/README.md" "$work/node_modules/prtkit-three/" || exit 1
 ln -s "$(cd "$three" && pwd)" "$work/node_modules/three" || exit 1
-cp "$here/module_check.mjs" "$work/" || exit 1
+cp "$here/module_check.mjs" "$here/lightmap_check.mjs" "$work/" || exit 1
 cd "$work" || exit 1
 "$prt" -q bake 'builtin:cornell?grid=6' --mode shadowed --mode interreflected --bands 3 \
   --samples 16 -o cornell.glb || exit 1
@@ -30,4 +31,10 @@ cd "$work" || exit 1
 "$prt" -q light builtin:sky --bands 3 --rotate 30,-50,20 -o sky-turned.json || exit 1
 "$prt" -q light builtin:sky --bands 3 --format threejs -o sky-three.json || exit 1
 "$prt" -q light builtin:sky --bands 2 -o sky2.json || exit 1
-exec "$node" module_check.mjs
+"$prt" -q bake 'builtin:cornell?grid=6' --mode interreflected --domain texels --resolution 16 \
+  --transfer matrix --bands 3 --samples 16 -o texels.glb || exit 1
+"$prt" -q export texels.glb --format lightmap -o lm.glb || exit 1
+"$prt" -q export texels.glb --format lightmap-sh --encoding l1 -o lm-l1.glb || exit 1
+"$prt" -q export texels.glb --format lightmap-sh --encoding l2 -o lm-l2.glb || exit 1
+"$node" module_check.mjs || exit 1
+exec "$node" lightmap_check.mjs
