@@ -436,7 +436,7 @@ void addExportCommand(CLI::App& root) {
                   "(per-texel matrix bake relit under --light: irradiance SH per texel in "
                   "engines' layouts, --encoding, --engine; docs/lightmaps.md) | probe-grid "
                   "(a probe bake relit under --light: each probe's SH as --engine reads it, "
-                  "JSON; docs/probes.md)")
+                  ".json, .glb or .exr volume; docs/probes.md)")
       ->capture_default_str();
   cmd->add_option("--mode", args->mode, "Which transfer, if the file holds several");
   cmd->add_option(

@@ -27,9 +27,9 @@ void exportProbeGrid(const ProbeGridExportArgs& a) {
   const double stops = a.exposure.empty() ? 0.0 : std::stod(a.exposure);
   const std::string lightSpec = a.light.empty() ? "builtin:sky" : a.light;
   const std::string ext = fileExtension(a.output);
-  if (ext != "json" && ext != "glb")
-    throw Error(a.output, "--format probe-grid writes .json (the grid as JSON) or .glb (glTF with "
-                          "the PRTKIT_probe_grid extension)");
+  if (ext != "json" && ext != "glb" && ext != "exr")
+    throw Error(a.output, "--format probe-grid writes .json (the grid as JSON), .glb (glTF with "
+                          "the PRTKIT_probe_grid extension) or .exr (an OpenEXR volume)");
   const std::vector<NamedPath> inputs = {{"input", a.input}, {"--light", lightSpec}};
   checkOutputs({{"-o", a.output}}, inputs);
   checkWritable(a.output);
@@ -67,6 +67,8 @@ void exportProbeGrid(const ProbeGridExportArgs& a) {
   g.exposureStops = stops;
   if (ext == "glb")
     io::writeProbeGridGltf(a.output, g, convention);
+  else if (ext == "exr")
+    writeFileAtomically(a.output, io::encodeProbeGridExr(g, convention, a.output));
   else
     writeFileAtomically(a.output, io::formatProbeGrid(g, convention));
   info(fmt::format("wrote {} ({} under {}: {} probes, {} bands as {} SH)", a.output,

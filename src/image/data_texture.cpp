@@ -15,12 +15,14 @@ namespace prt::image {
 
 namespace {
 
-void checkSize(int width, int height, int channels, const std::string& name) {
+void checkSize(int width, int height, int channels, const std::string& name,
+               int maxChannels = 4) {
   if (width < 1 || height < 1 || width > 65535 || height > 65535)
     throw Error(name, "a data texture of " + std::to_string(width) + " x " +
                           std::to_string(height) + " texels cannot be written");
-  if (channels < 1 || channels > 4)
-    throw Error(name, "a data texture holds 1 to 4 channels, not " + std::to_string(channels));
+  if (channels < 1 || channels > maxChannels)
+    throw Error(name, "a data texture holds 1 to " + std::to_string(maxChannels) +
+                          " channels, not " + std::to_string(channels));
 }
 
 void appendToString(png_structp png, png_bytep data, png_size_t length) {
@@ -53,8 +55,8 @@ bool writePng(std::string& out, int width, int height, int channels, const png_b
 }  // namespace
 
 std::string encodeExrData(const DataTexture& t, const std::string& name) {
-  const int n = static_cast<int>(t.planes.size());
-  checkSize(t.width, t.height, n, name);
+  const int n = static_cast<int>(std::min<std::size_t>(t.planes.size(), kMaxExrChannels + 1));
+  checkSize(t.width, t.height, n, name, kMaxExrChannels);
   const std::size_t texels = std::size_t(t.width) * std::size_t(t.height);
   if (t.channelNames.size() != t.planes.size())
     throw Error(name, "data texture: the channel names do not match the planes");
@@ -65,6 +67,11 @@ std::string encodeExrData(const DataTexture& t, const std::string& name) {
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return t.channelNames[a] < t.channelNames[b]; });
+  for (int k = 0; k < n; ++k)
+    if (t.channelNames[order[k]].empty() || t.channelNames[order[k]].size() > 255 ||
+        (k > 0 && t.channelNames[order[k]] == t.channelNames[order[k - 1]]))
+      throw Error(name, "data texture: channel name '" + t.channelNames[order[k]] +
+                            "' is empty, too long or not unique");
   std::vector<const float*> ptrs(n);
   std::vector<EXRChannelInfo> info(n);
   std::vector<int> types(n, TINYEXR_PIXELTYPE_FLOAT);
@@ -86,6 +93,22 @@ std::string encodeExrData(const DataTexture& t, const std::string& name) {
   header.pixel_types = types.data();
   header.requested_pixel_types = types.data();
   header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+  // String attributes: EXR's "string" type, its bytes without a terminator.
+  if (t.attributes.size() > TINYEXR_MAX_CUSTOM_ATTRIBUTES)
+    throw Error(name, "data texture: more header attributes than OpenEXR files hold here");
+  std::vector<EXRAttribute> attributes(t.attributes.size());
+  for (std::size_t i = 0; i < t.attributes.size(); ++i) {
+    const auto& [key, value] = t.attributes[i];
+    if (key.empty() || key.size() > 255 || value.size() > (std::size_t(1) << 30))
+      throw Error(name, "data texture: attribute '" + key.substr(0, 40) + "' cannot be written");
+    std::memset(&attributes[i], 0, sizeof(EXRAttribute));
+    std::strncpy(attributes[i].name, key.c_str(), 255);
+    std::strncpy(attributes[i].type, "string", 255);
+    attributes[i].size = int(value.size());
+    attributes[i].value = reinterpret_cast<unsigned char*>(const_cast<char*>(value.data()));
+  }
+  header.num_custom_attributes = int(attributes.size());
+  header.custom_attributes = attributes.empty() ? nullptr : attributes.data();
   unsigned char* memory = nullptr;
   const char* err = nullptr;
   const std::size_t size = SaveEXRImageToMemory(&image, &header, &memory, &err);

@@ -13,6 +13,7 @@
 #include "prt/core/file.hpp"
 #include "prt/core/json.hpp"
 #include "prt/core/version.hpp"
+#include "prt/image/data_texture.hpp"
 
 namespace prt::io {
 
@@ -208,6 +209,40 @@ void writeProbeGridGltf(const std::string& path, const ProbeGridExport& g,
   if (glb::fileBytes(text, bin) > std::uint64_t(0xffffffffu))
     throw Error(path, "the grid exceeds the 4 GiB a GLB file can hold");
   writeFileAtomically(path, [&](std::ostream& os) { glb::write(os, std::move(text), bin); });
+}
+
+std::string encodeProbeGridExr(const ProbeGridExport& g, const ProbeGridConvention& convention,
+                               const std::string& name) {
+  const Converted c = convert(g, convention);
+  const int nx = g.grid.count[0], ny = g.grid.count[1], nz = g.grid.count[2];
+  if (std::int64_t(ny) * nz > 65535)
+    throw Error(name, "an EXR volume stacks the grid's " + std::to_string(nz) + " z slices of " +
+                          std::to_string(ny) + " rows: " + std::to_string(ny * nz) +
+                          " rows, more than the 65,535 it holds (write .json or .glb)");
+  image::DataTexture volume;
+  volume.width = nx;
+  volume.height = ny * nz;
+  const std::size_t K = c.perProbe;
+  const char* channel[3] = {"R", "G", "B"};
+  for (std::size_t k = 0; k < K; ++k)
+    for (int ch = 0; ch < 3; ++ch) {
+      volume.channelNames.push_back("sh" + std::to_string(k) + "." + channel[ch]);
+      std::vector<float> plane(g.grid.probes());
+      // Probe (x, y, z) is row x + nx (y + ny z) of the grid and texel (x, z·ny + y): the same
+      // order, so plane element p is probe p.
+      for (std::size_t p = 0; p < g.grid.probes(); ++p) plane[p] = c.coefficients[p * K + k][ch];
+      volume.planes.push_back(std::move(plane));
+    }
+  Json j;
+  j["asset"] = {{"generator", generator()}, {"format", "prtkit probe grid"}, {"version", 1}};
+  const Json shared = describe(g, convention, K);  // (items() of a temporary would dangle)
+  for (const auto& [key, value] : shared.items()) j[key] = value;
+  j["volume"] = {{"width", nx},
+                 {"height", ny * nz},
+                 {"texel", "probe (x, y, z) at column x, row z ny + y (row 0 the top)"},
+                 {"channels", "shK.R, shK.G, shK.B: coefficient K of the convention"}};
+  volume.attributes.emplace_back("prtkit", formatJson(j, 1));
+  return image::encodeExrData(volume, name);
 }
 
 }  // namespace prt::io

@@ -5,8 +5,10 @@
 // scene with an object lit through the grid; prt validate compares it with the reference.
 
 #include <gtest/gtest.h>
+#include <tinyexr.h>
 
 #include <cmath>
+#include <map>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -268,6 +270,87 @@ TEST_F(ProbesCli, ProbeGridAsGltfHoldsTheJsonExportsValuesInAccessors) {
   }
   expectCleanFailure("export p.glb --format probe-grid -o out/g.txt", "out/g.txt: --format "
                                                                        "probe-grid writes .json");
+}
+
+/// A multi-channel float EXR read with tinyexr's low-level API: each channel's plane by name,
+/// and the header's string attributes.
+struct ExrVolume {
+  int width = 0, height = 0;
+  std::map<std::string, std::vector<float>> planes;
+  std::map<std::string, std::string> attributes;
+};
+ExrVolume readExrVolume(const std::string& bytes) {
+  ExrVolume v;
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  EXRVersion version;
+  EXPECT_EQ(ParseEXRVersionFromMemory(&version, data, bytes.size()), TINYEXR_SUCCESS);
+  EXRHeader header;
+  InitEXRHeader(&header);
+  const char* err = nullptr;
+  EXPECT_EQ(ParseEXRHeaderFromMemory(&header, &version, data, bytes.size(), &err), TINYEXR_SUCCESS)
+      << (err ? err : "");
+  for (int i = 0; i < header.num_custom_attributes; ++i) {
+    const EXRAttribute& a = header.custom_attributes[i];
+    if (std::string(a.type) == "string")
+      v.attributes[a.name] = std::string(reinterpret_cast<const char*>(a.value), std::size_t(a.size));
+  }
+  EXRImage image;
+  InitEXRImage(&image);
+  EXPECT_EQ(LoadEXRImageFromMemory(&image, &header, data, bytes.size(), &err), TINYEXR_SUCCESS)
+      << (err ? err : "");
+  v.width = image.width;
+  v.height = image.height;
+  for (int c = 0; c < header.num_channels && image.images; ++c) {
+    EXPECT_EQ(header.pixel_types[c], TINYEXR_PIXELTYPE_FLOAT);
+    const float* p = reinterpret_cast<const float*>(image.images[c]);
+    v.planes[header.channels[c].name] =
+        std::vector<float>(p, p + std::size_t(image.width) * std::size_t(image.height));
+  }
+  FreeEXRImage(&image);
+  FreeEXRHeader(&header);
+  return v;
+}
+
+// -o grid.exr: nx x (ny nz) texels, probe (x, y, z) at column x, row z ny + y, a layer per
+// coefficient (shK.R/G/B), the JSON's description in the header; the values are the JSON
+// export's, for an engine's 9 coefficients and prtkit's B^2.
+TEST_F(ProbesCli, ProbeGridAsExrVolumeHoldsTheJsonExportsValues) {
+  ASSERT_EQ(prt("-q probes " + kBox + " --grid 3x2x4 --bands 4 --samples 32 -o p.glb").rc, 0);
+  for (const std::string engine : {"threejs", "unity", "prtkit"}) {
+    SCOPED_TRACE(engine);
+    ASSERT_EQ(prt("-q export p.glb --format probe-grid --engine " + engine + " -o g.json").rc, 0);
+    ASSERT_EQ(prt("-q export p.glb --format probe-grid --engine " + engine + " -o g.exr").rc, 0);
+    const nlohmann::json json = nlohmann::json::parse(slurp(path("g.json")));
+    const ExrVolume exr = readExrVolume(slurp(path("g.exr")));
+    const int K = json["coefficients"]["count"];
+    EXPECT_EQ(K, engine == "prtkit" ? 16 : 9);
+    ASSERT_EQ(exr.width, 3);
+    ASSERT_EQ(exr.height, 2 * 4);
+    ASSERT_EQ(exr.planes.size(), std::size_t(3 * K));
+    const nlohmann::json described = nlohmann::json::parse(exr.attributes.at("prtkit"));
+    EXPECT_EQ(described["grid"], json["grid"]);
+    EXPECT_EQ(described["engine"], engine);
+    EXPECT_EQ(described["coefficients"], json["coefficients"]);
+    EXPECT_FALSE(described.contains("probes"));
+    const char* channel[3] = {"R", "G", "B"};
+    for (int z = 0; z < 4; ++z)
+      for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x) {
+          const std::size_t probe = std::size_t(x + 3 * (y + 2 * z));
+          const std::size_t texel = std::size_t((z * 2 + y) * 3 + x);
+          for (int k = 0; k < K; ++k)
+            for (int c = 0; c < 3; ++c)
+              ASSERT_EQ(exr.planes.at("sh" + std::to_string(k) + "." + channel[c])[texel],
+                        json["probes"][(probe * std::size_t(K) + std::size_t(k)) * 3 + std::size_t(c)]
+                            .get<float>())
+                  << x << y << z << " sh" << k << channel[c];
+        }
+  }
+  // 300 z slices of 300 rows pass the 65,535 rows an EXR holds: refused by name, nothing
+  // written.
+  ASSERT_EQ(prt("-q probes " + kBox + " --grid 1x300x300 --bands 1 --samples 1 -o big.glb").rc, 0);
+  expectCleanFailure("export big.glb --format probe-grid -o out/big.exr",
+                     "out/big.exr: an EXR volume stacks the grid's 300 z slices of 300 rows");
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // coefficients for engines, issue 18), written as they are — no exposure, tone map or sRGB
 // encoding, which belong to pictures (image_io.hpp):
 //
-//   * float OpenEXR: 1–4 named 32-bit float channels, ZIP-compressed (tinyexr);
+//   * float OpenEXR: named 32-bit float channels (1–4 for a texture, up to kMaxExrChannels for
+//     a volume's layers), ZIP-compressed (tinyexr), with optional string attributes in its
+//     header;
 //   * 16-bit PNG: 1–4 channels (grey, grey + alpha, RGB, RGBA) of unsigned 16-bit values
 //     (libpng), the caller's quantisation (a value v is stored as round(65535 (v − offset) /
 //     scale); io/lightmap_textures.hpp keeps offset and scale beside the images).
@@ -15,17 +17,24 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace prt::image {
 
+/// The most channels an EXR data texture holds (a probe grid's 3 B² layers at 16 bands).
+inline constexpr int kMaxExrChannels = 768;
+
 struct DataTexture {
   int width = 0, height = 0;
-  std::vector<std::string> channelNames;   ///< 1..4, the EXR channel names ("R", "G", "B", "A")
+  std::vector<std::string> channelNames;   ///< the EXR channel names ("R", "sh0.R", ...)
   std::vector<std::vector<float>> planes;  ///< one per channel, width · height, row by row
+  /// EXR only: string attributes of the header (name, value), e.g. a JSON description.
+  std::vector<std::pair<std::string, std::string>> attributes;
 };
 
-/// The texture as a float OpenEXR file (channels stored in name order, as EXR requires).
+/// The texture as a float OpenEXR file (channels stored in name order, as EXR requires; 1 to
+/// kMaxExrChannels of them, names unique, at most 255 bytes).
 std::string encodeExrData(const DataTexture& texture, const std::string& name);
 
 /// Interleaved 16-bit values (width · height · channels, row by row) as a 16-bit PNG.

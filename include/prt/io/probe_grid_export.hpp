@@ -27,7 +27,11 @@
 //   probes       probes × coefficients × 3 numbers, flat
 //
 // A reader needs nothing else: `probes[(p·K + k)·3 + c]` is coefficient k, channel c of probe p.
-// `-o grid.glb` writes the same as a glTF extension (writeProbeGridGltf).
+// `-o grid.glb` writes the same as a glTF extension (writeProbeGridGltf), and `-o grid.exr` as
+// an OpenEXR volume (encodeProbeGridExr): nx × (ny · nz) float texels, probe (x, y, z) at column
+// x, row z·ny + y (the z slices stacked down the image), a layer per coefficient k with channels
+// shK.R, shK.G, shK.B, and the JSON's description (without `probes`) as the header's string
+// attribute `prtkit`.
 
 #include <array>
 #include <optional>
@@ -86,5 +90,10 @@ std::string formatProbeGrid(const ProbeGridExport& grid, const ProbeGridConventi
 /// of the atlas' texels in place of its base64 `data`. Written atomically to `path`.
 void writeProbeGridGltf(const std::string& path, const ProbeGridExport& grid,
                         const ProbeGridConvention& convention);
+
+/// The EXR volume (see the top): its bytes. Throws prt::Error naming `name` when the radiance
+/// does not match the grid or ny · nz passes the 65,535 rows an EXR image holds here.
+std::string encodeProbeGridExr(const ProbeGridExport& grid, const ProbeGridConvention& convention,
+                               const std::string& name);
 
 }  // namespace prt::io
