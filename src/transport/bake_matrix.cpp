@@ -40,13 +40,23 @@
 //
 // with the bounce columns z of the surfaces' diffuse transfer as above, and a probe in open
 // space comes out exactly the identity. Rays leave the probe itself (no offset: it lies on no
-// surface).
+// surface). Every probe casts the same N directions ω'_s (Owen-scrambled Sobol' points of the
+// pass's seed, made once with their SH Y(ω'_s)) turned by its own uniformly random rotation R_p
+// (Shoemake's quaternion from three uniforms of the probe's seed): a randomly rotated QMC set,
+// unbiased and independent from probe to probe as per-probe scrambles are. Since
+// Y(R ω') = D(R) Y(ω') (D the SH rotation, sh/rotate.hpp), the sums are taken over the set's
+// own Y and turned once per probe, Σ Y Yᵀ = D (Σ Y' Y'ᵀ) Dᵀ and Σ Y zᵀ = D (Σ Y' zᵀ): no SH
+// evaluation and no direction sampling per ray, only R ω'.
 //
 // Speed. Samples are batched 64 at a time; the blocked ones form the columns of Y (B² × k) and
 // enter as one symmetric rank-k update P += Y Yᵀ (Eigen's selfadjointView::rankUpdate, the
 // lower triangle only), the bounce term as one GEMM G += Y Zᵀ with Z the hit points' bounced
-// transfer. Float within a batch group, double across groups (as the vector bake), per vertex
-// in a fixed order: bit-identical for any thread count and any vertex range.
+// transfer. Probes skip both the SH and the rank update: a blocked ray's direction is one of the
+// set's, whose packed Y Yᵀ (B²(B² + 1)/2 floats) the pass tabulated, so a batch adds the table's
+// columns weighted by its blocked mask (one GEMV); the table is kept up to 64 MiB (past it the
+// set's Y columns go through the rank update). Float within a batch group, double across groups
+// (as the vector bake), per vertex in a fixed order: bit-identical for any thread count and any
+// vertex range.
 
 #include <Eigen/Dense>
 #include <array>
@@ -71,6 +81,8 @@ namespace {
 
 constexpr std::size_t kBatch = 64;
 constexpr int kFlushBatches = 4;  // float rank updates summed before going to double
+/// Probes: the largest packed Y Yᵀ table of a direction set (B²(B² + 1)/2 × N floats) kept.
+constexpr std::size_t kMaxPackedSetBytes = std::size_t(64) << 20;
 constexpr std::size_t kVertexGrain = 2;
 constexpr std::uint64_t kMatrixPass = 0x6d61747269780000ull;   // decorrelates from vector passes
 constexpr std::uint64_t kBounceOrder = 0x626f756e63650000ull;  // one seed per bounce order
@@ -151,6 +163,38 @@ class HemisphereSampler {
   std::uint32_t seed0_ = 0, seed1_ = 0, index_ = 0;
 };
 
+/// A uniformly random rotation (Shoemake, "Uniform random rotations", Graphics Gems III, 1992:
+/// the unit quaternion (√(1−u₁) sin 2πu₂, √(1−u₁) cos 2πu₂, √u₁ sin 2πu₃, √u₁ cos 2πu₃)) from
+/// three uniforms of `key`.
+Mat3d randomRotation(std::uint64_t key) {
+  const auto uniform = [&](std::uint64_t k) {
+    return double(deriveSeed(key, k) >> 11) * (1.0 / 9007199254740992.0);  // [0, 1), 53 bits
+  };
+  const double u1 = uniform(1), u2 = uniform(2), u3 = uniform(3);
+  const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+  const double x = a * std::sin(2 * kPi * u2), y = a * std::cos(2 * kPi * u2);
+  const double z = b * std::sin(2 * kPi * u3), w = b * std::cos(2 * kPi * u3);
+  Mat3d r;
+  r.m[0][0] = 1 - 2 * (y * y + z * z), r.m[0][1] = 2 * (x * y - z * w), r.m[0][2] = 2 * (x * z + y * w);
+  r.m[1][0] = 2 * (x * y + z * w), r.m[1][1] = 1 - 2 * (x * x + z * z), r.m[1][2] = 2 * (y * z - x * w);
+  r.m[2][0] = 2 * (x * z - y * w), r.m[2][1] = 2 * (y * z + x * w), r.m[2][2] = 1 - 2 * (x * x + y * y);
+  return r;
+}
+
+/// out = D m Dᵀ (both sides) or D m (`leftOnly`), D the SH rotation `rot`; tmp is scratch.
+void rotateRows(const sh::Rotation& rot, MatD& m, MatD& tmp, bool leftOnly) {
+  const int nc = int(m.rows());
+  tmp.resize(nc, nc);
+  for (int j = 0; j < nc; ++j) rot.apply(m.col(j).data(), tmp.col(j).data());  // D m
+  if (leftOnly) {
+    m = tmp;
+    return;
+  }
+  m = tmp.transpose();
+  for (int j = 0; j < nc; ++j) rot.apply(m.col(j).data(), tmp.col(j).data());  // D (D m)ᵀ
+  m = tmp.transpose();  // (D (D m)ᵀ)ᵀ = D m Dᵀ
+}
+
 /// Where a bounce reads the transfer of one order less at a hit: the barycentric blend of the
 /// hit triangle's vertex rows (vertex domain), or the four bilinear taps of its dilated lightmap
 /// at the hit's lightmap UV (texel domain, bake_texels.cpp; bilinearTaps).
@@ -201,6 +245,11 @@ struct MatrixContext {
   bool glossy = false;
   const PreparedMaterial& kernels;  ///< the material's d and g kernels (glossy bounces)
   bool sphere = false;              ///< probes: the whole sphere about a point (see the top)
+  const std::vector<Vec3f>* sphereDirs = nullptr;  ///< probes: the pass's directions ω'_s
+  const MatF* sphereY = nullptr;                   ///< probes: their SH, B² × N
+  /// Probes: the packed lower triangles of Y(ω'_s) Y(ω'_s)ᵀ, B²(B² + 1)/2 × N (null past
+  /// kMaxPackedSetBytes: the blocked columns then go through the rank update).
+  const MatF* sphereYY = nullptr;
   std::atomic<std::uint64_t> rays{0};
 };
 
@@ -212,6 +261,9 @@ struct Workspace {
   std::vector<MatD> gtotal;
   std::vector<float> interp;
   std::vector<float> d, g, scratch, response;  // glossy bounces: d, g, SH scratch, r per channel
+  Eigen::VectorXf mask;                        // probes: 1 for each blocked ray of the batch
+  Eigen::VectorXf packedPart;                  // probes: Σ Y'Y'ᵀ packed, float partial
+  Eigen::VectorXd packedTotal;                 // ... and its double total
   explicit Workspace(int nc, int channels)
       : total(nc, nc),
         y(nc, kBatch),
@@ -220,7 +272,10 @@ struct Workspace {
         d(nc),
         g(nc),
         scratch(nc),
-        response(static_cast<std::size_t>(nc) * channels) {
+        response(static_cast<std::size_t>(nc) * channels),
+        mask(Eigen::VectorXf::Zero(kBatch)),
+        packedPart(Eigen::VectorXf::Zero(nc * (nc + 1) / 2)),
+        packedTotal(Eigen::VectorXd::Zero(nc * (nc + 1) / 2)) {
     for (int c = 0; c < channels; ++c) {
       z.emplace_back(nc, kBatch);
       gpart.emplace_back(nc, nc);
@@ -312,10 +367,37 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
   const int n = ctx.settings.samples;
   const Vec3f origin = ctx.sphere ? p : p + nrm * ctx.occluder.rayOffset(p);
   HemisphereSampler sampler(ctx.settings, *ctx.sobol, point.id, nrm, ctx.sphere);
+  // Probes: the pass's direction set turned by this probe's rotation (see the top).
+  Mat3d turn = Mat3d::identity();
+  float turnF[3][3] = {};
+  if (ctx.sphere) {
+    turn = randomRotation(deriveSeed(deriveSeed(ctx.settings.seed, kMatrixPass), point.id));
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) turnF[a][b] = float(turn.m[a][b]);
+  }
+  const auto direction = [&](int s) {
+    if (!ctx.sphere) return sampler.next();
+    const Vec3f w = (*ctx.sphereDirs)[std::size_t(s)];
+    return Vec3f(turnF[0][0] * w.x + turnF[0][1] * w.y + turnF[0][2] * w.z,
+                 turnF[1][0] * w.x + turnF[1][1] * w.y + turnF[1][2] * w.z,
+                 turnF[2][0] * w.x + turnF[2][1] * w.y + turnF[2][2] * w.z);
+  };
+  // Column j of the batch's Y: evaluated at the ray's direction, or the set's own (probes).
+  const auto yColumn = [&](int base, int j, const Vec3f& dir, int col) {
+    if (ctx.sphere)
+      ws.y.col(col) = ctx.sphereY->col(base + j);
+    else
+      sh::eval(ctx.bands, dir, ws.y.col(col).data());
+  };
   // The solid angle the directions are spread over: 2π (hemisphere) or 4π (sphere).
   const double omega = ctx.sphere ? 4.0 * kPi : 2.0 * kPi;
+  // Probes with the packed table: a blocked ray adds its direction's Y'Y'ᵀ (one GEMV per
+  // batch: the table's columns times the batch's mask), no Y column, no rank update.
+  const bool packed = ctx.sphereYY != nullptr;
   ws.total.setZero();
   ws.part.setZero();
+  ws.packedPart.setZero();
+  ws.packedTotal.setZero();
   for (int c = 0; c < channels; ++c) {
     ws.gtotal[c].setZero();
     ws.gpart[c].setZero();
@@ -329,7 +411,7 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
   for (int base = 0; base < n; base += static_cast<int>(kBatch)) {
     const int count = std::min<int>(kBatch, n - base);
     for (int j = 0; j < count; ++j)
-      rays[j] = Ray{origin, sampler.next(), 0.0f, std::numeric_limits<float>::infinity()};
+      rays[j] = Ray{origin, direction(base + j), 0.0f, std::numeric_limits<float>::infinity()};
     cast += static_cast<std::uint64_t>(count);
     int k = 0, kz = 0;  // blocked columns; of those, front-face hits (bounce columns)
     if (!inter) {
@@ -337,8 +419,12 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
                             std::span<std::uint8_t>(blocked.data(), count));
       for (int j = 0; j < count; ++j) {
         m.add(blocked[j] ? omega * y00sq : 0.0);
+        if (packed) {
+          ws.mask[j] = blocked[j] ? 1.0f : 0.0f;
+          continue;
+        }
         if (!blocked[j]) continue;
-        sh::eval(ctx.bands, rays[j].dir, ws.y.col(k++).data());
+        yColumn(base, j, rays[j].dir, k++);
       }
     } else {
       // Closest hits: every hit blocks; a front-face hit also sends its bounced light toward p.
@@ -349,6 +435,7 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
       int nf = 0, nb = 0;
       for (int j = 0; j < count; ++j) {
         hits[j] = ctx.occluder.intersect(rays[j]);
+        if (packed) ws.mask[j] = hits[j].hit ? 1.0f : 0.0f;
         if (!hits[j].hit) {
           m.add(0.0);
           continue;
@@ -365,7 +452,7 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
       }
       for (int q = 0; q < nf; ++q) {
         const int j = front[q];
-        sh::eval(ctx.bands, rays[j].dir, ws.y.col(k++).data());
+        yColumn(base, j, rays[j].dir, k++);
         const Hit& h = hits[j];
         // Its sample of M_00's estimator: blocked (Ω Y00²) less the bounce (Ω Y00 z_0).
         const auto addSample = [&](int col) {
@@ -379,15 +466,23 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
         diffuseBounceColumn(ctx, h, ws, kz);
         addSample(kz++);
       }
-      for (int q = 0; q < nb; ++q) sh::eval(ctx.bands, rays[back[q]].dir, ws.y.col(k++).data());
+      for (int q = 0; q < nb && !packed; ++q) yColumn(base, back[q], rays[back[q]].dir, k++);
     }
-    if (k > 0) ws.part.selfadjointView<Eigen::Lower>().rankUpdate(ws.y.leftCols(k));
+    if (packed)
+      ws.packedPart.noalias() += ctx.sphereYY->middleCols(base, count) * ws.mask.head(count);
+    else if (k > 0)
+      ws.part.selfadjointView<Eigen::Lower>().rankUpdate(ws.y.leftCols(k));
     if (kz > 0)
       for (int c = 0; c < channels; ++c)
         ws.gpart[c].noalias() += ws.y.leftCols(kz) * ws.z[c].leftCols(kz).transpose();
     if (++batches % kFlushBatches == 0 || base + static_cast<int>(kBatch) >= n) {
-      ws.total += ws.part.cast<double>();
-      ws.part.setZero();
+      if (packed) {
+        ws.packedTotal += ws.packedPart.cast<double>();
+        ws.packedPart.setZero();
+      } else {
+        ws.total += ws.part.cast<double>();
+        ws.part.setZero();
+      }
       for (int c = 0; c < channels && inter; ++c) {
         ws.gtotal[c] += ws.gpart[c].cast<double>();
         ws.gpart[c].setZero();
@@ -396,7 +491,16 @@ double matrixRow(MatrixContext& ctx, const RowPoint& point, float* out, Workspac
   }
   ctx.rays.fetch_add(cast, std::memory_order_relaxed);
   const double scale = omega / n;
+  if (packed)  // unpack the lower triangle, column by column (as the table packs it)
+    for (int j = 0, e = 0; j < nc; ++j)
+      for (int i = j; i < nc; ++i) ws.total(i, j) = ws.packedTotal[e++];
   ws.total.triangularView<Eigen::StrictlyUpper>() = ws.total.transpose();
+  if (ctx.sphere) {
+    // Sums over the set's own Y, turned to the probe's directions: D (Σ Y'Y'ᵀ) Dᵀ, D (Σ Y'zᵀ).
+    const sh::Rotation rot(ctx.bands, turn);
+    rotateRows(rot, ws.total, ws.tmpT, false);
+    for (int c = 0; c < channels && inter; ++c) rotateRows(rot, ws.gtotal[c], ws.tmpT, true);
+  }
   for (int c = 0; c < channels; ++c) {
     ws.tmp = ws.h - scale * ws.total;
     if (inter) ws.tmp += scale * ws.gtotal[c];
@@ -419,6 +523,9 @@ struct MatrixSetup {
   bool sphere = false;  ///< probes: over the whole sphere about a point
   MatD hz;
   std::unique_ptr<OwenSobol2D> sobol;
+  std::vector<Vec3f> sphereDirs;  ///< probes: the pass's N directions (see the top)
+  MatF sphereY;                   ///< probes: their SH, B² × N
+  MatF sphereYY;                  ///< probes: Y Yᵀ's lower triangles, packed (or empty)
   BounceAlbedo albedo;
   PreparedMaterial kernels;
 };
@@ -434,6 +541,26 @@ std::shared_ptr<const MatrixSetup> makeMatrixSetup(const Mesh& mesh, const BakeS
   if (!setup->sphere) setup->hz = hemisphereProductZ(s.bands);
   if (s.mode != TransferMode::Unshadowed)
     setup->sobol = std::make_unique<OwenSobol2D>(static_cast<std::uint32_t>(s.samples));
+  if (setup->sphere && setup->sobol) {
+    // One set for the pass, from a point id no row has (rows are < 2⁶³).
+    HemisphereSampler set(s, *setup->sobol, std::numeric_limits<std::size_t>::max(), Vec3f(0.0f),
+                          true);
+    const int nc = s.bands * s.bands;
+    setup->sphereDirs.resize(std::size_t(s.samples));
+    setup->sphereY.resize(nc, s.samples);
+    for (int k = 0; k < s.samples; ++k) {
+      setup->sphereDirs[std::size_t(k)] = set.next();
+      sh::eval(s.bands, setup->sphereDirs[std::size_t(k)], setup->sphereY.col(k).data());
+    }
+    const std::size_t np = std::size_t(nc) * std::size_t(nc + 1) / 2;
+    if (np * std::size_t(s.samples) * sizeof(float) <= kMaxPackedSetBytes) {
+      setup->sphereYY.resize(Eigen::Index(np), s.samples);
+      for (int k = 0; k < s.samples; ++k)
+        for (int j = 0, e = 0; j < nc; ++j)
+          for (int i = j; i < nc; ++i, ++e)
+            setup->sphereYY(e, k) = setup->sphereY(i, k) * setup->sphereY(j, k);
+    }
+  }
   setup->albedo = resolveAlbedo(mesh, setup->settings);
   if (glossy) setup->kernels = prepareMaterial(s.material, s.bands);
   return setup;
@@ -460,6 +587,9 @@ std::uint64_t matrixRows(const Mesh& mesh, const Occluder& occluder, const Matri
                     setup.glossy,
                     setup.kernels,
                     setup.sphere,
+                    setup.sphere ? &setup.sphereDirs : nullptr,
+                    setup.sphere ? &setup.sphereY : nullptr,
+                    setup.sphereYY.size() > 0 ? &setup.sphereYY : nullptr,
                     {}};
   const std::size_t stride =
       static_cast<std::size_t>(ctx.nc) * static_cast<std::size_t>(ctx.nc) * setup.channels;
