@@ -3,6 +3,8 @@
 //
 //   prt web bunny.glb --env studio.exr --env builtin:sky -o bunny-web/
 //   prt web bunny.glb -o bunny-web/ --json web.json       (what it wrote and what the page draws)
+//   prt web boxm.glb --encoding l1 -o boxm-web/            (a matrix bake as an engine's L1 shows
+//   it)
 //
 // The folder: index.html and prt-web.js (the page and its bundled JavaScript: three.js, lil-gui,
 // the shared GLSL; built from web/ by CMake with esbuild, see web/build.mjs), and prt-data.js,
@@ -44,7 +46,9 @@
 #include "prt/render/camera.hpp"
 #include "prt/render/exposure.hpp"
 #include "prt/render/probe_shading.hpp"
+#include "prt/render/relit_view.hpp"
 #include "prt/render/texel_points.hpp"
+#include "prt/sh/irradiance_encoding.hpp"
 #include "prt/transfer/prepared_material.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
@@ -96,10 +100,10 @@ std::string base64(const void* data, std::size_t n) {
   } else if (i + 2 == n) {
     const unsigned v = (p[i] << 16) | (p[i + 1] << 8);
     out += k[v >> 18], out += k[(v >> 12) & 63], out += k[(v >> 6) & 63], out += '=';
+
   }
   return out;
 }
-
 
 WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
   io::Lighting l = io::loadLighting(spec, bands, progressBar("projecting"));
@@ -172,15 +176,32 @@ void checkOptions(const WebOptions& a) {
   if (a.embed != "auto" && a.embed != "always" && a.embed != "never")
     throw Error("--embed '" + a.embed + "': expected auto, always or never");
   if (!a.material.empty()) parseMaterial(a.material);
+  if (!a.encoding.empty() && a.encoding != "none") sh::parseIrradianceEncoding(a.encoding);
+}
+
+bool perVertexMatrix(const Transfer& t) {
+  return t.isMatrix() && t.domain() == TransferDomain::Vertices;
+}
+
+/// The encoding the page opens the picked transfer `t` drawn through (the page's shownEncoding,
+/// web/src/encoded_diffuse.js): --encoding for a per-vertex matrix transfer, l2 for dense ones
+/// without it (the page draws those on the CPU only), else none.
+std::optional<sh::IrradianceEncoding> openingEncoding(const WebOptions& a, const Transfer& t) {
+  if (!perVertexMatrix(t)) return std::nullopt;
+  if (!a.encoding.empty() && a.encoding != "none") return sh::parseIrradianceEncoding(a.encoding);
+  if (!t.compressed()) return sh::IrradianceEncoding::L2;
+  return std::nullopt;
 }
 
 /// The bake, validated here (one clear line now rather than on the page): complete, and every
 /// transfer on a GPU path of relight/shader_transfer.hpp — vectors (dense or compressed; per
 /// vertex, or per texel relit per pixel) and compressed matrices (per vertex, or per texel
-/// shaded at the texels' points, texelPointsBytes). Dense matrices (2.5 KB per vertex
-/// at 5 bands) are refused, as the page refuses such a file dropped on it. A probe grid
-/// (docs/probes.md) is relit on the CPU, any form. A file beyond what the page takes is refused
-/// before it is read.
+/// shaded at the texels' points, texelPointsBytes) — or dense per-vertex matrices, which the
+/// page relights on the CPU and draws through an irradiance encoding (l2 unless --encoding
+/// names one). Dense per-texel matrices are refused, as the page refuses such a file dropped on
+/// it. A probe grid (docs/probes.md) is relit on the CPU, any form. --encoding is refused, as
+/// prt render --encoding refuses it, where the picked transfer is not a per-vertex matrix. A
+/// file beyond what the page takes is refused before it is read.
 std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) {
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(a.bake, ec);
@@ -198,13 +219,20 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
     throw Error(a.bake,
                 "holds a probe grid, which lights what moves through it diffusely; "
                 "--material belongs to a surface's transfer");
+  const bool encoding = !a.encoding.empty() && a.encoding != "none";
+  if (encoding && bake.domain() == TransferDomain::Probes)
+    throw Error(a.bake,
+                "holds a probe grid: --encoding draws a surface's matrix transfer through an "
+                "irradiance encoding (prt bake --transfer matrix)");
   for (const BakedTransfer& t : bake.transfers) {
     if (t.transfer.domain() == TransferDomain::Probes) continue;
-    if (t.transfer.isMatrix() && !t.transfer.compressed())
-      throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices; the browser "
-                                      "viewer draws them CPCA-compressed only (prt compress), or "
-                                      "view them with prt view",
+    if (t.transfer.isMatrix() && !t.transfer.compressed() &&
+        t.transfer.domain() == TransferDomain::Texels)
+      throw Error(a.bake, fmt::format("the {} transfer holds dense glossy matrices per texel; the "
+                                      "browser viewer draws them CPCA-compressed only (prt "
+                                      "compress), or view them with prt view",
                                       toString(t.mode())));
+    if (perVertexMatrix(t.transfer) && !t.transfer.compressed()) continue;  // on the CPU
     try {
       relight::shaderPath(t.transfer, true);
     } catch (const Error& e) {
@@ -214,7 +242,18 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(a.bake);
-  if (!a.mode.empty()) prt::pickTransfer(bake, parseTransferMode(a.mode), {}, a.bake);
+  std::optional<TransferMode> mode;
+  if (!a.mode.empty()) mode = parseTransferMode(a.mode);
+  const BakedTransfer& picked = prt::pickTransfer(bake, mode, {}, a.bake);
+  if (encoding && !picked.transfer.isMatrix())
+    throw Error(a.bake, "holds " + picked.describe() +
+                            " transfer: --encoding encodes the light arriving at each row, which "
+                            "a matrix bake holds (prt bake --transfer matrix); vector (diffuse) "
+                            "transfer has already integrated it against the normal");
+  if (encoding && !perVertexMatrix(picked.transfer))
+    throw Error(a.bake, "holds " + picked.describe() +
+                            " transfer: the browser viewer draws --encoding per vertex only (prt "
+                            "render --encoding draws it per texel)");
   // A base-colour texture stays in the file: the page multiplies it per pixel, as prt render.
   return glb;
 }
@@ -237,6 +276,21 @@ Json vec3(const Vec3f& v) {
   return jsonFloats(&v.x, 3);
 }
 
+/// render::relitSurvey of a matrix transfer drawn through an irradiance encoding at 640x480, as
+/// prt render --encoding draws it: the material's diffuse part (what the page draws of it).
+render::FrameSurvey encodedSurvey(const Mesh& mesh, const Transfer& transfer, Material material,
+                                  sh::IrradianceEncoding encoding, const sh::RgbSh& light,
+                                  const Mat3d& rotation, const render::Camera& camera,
+                                  image::ToneMap op, int bands) {
+  material.specular = Rgb(0.0f);
+  const auto occluder = makeEmbreeOccluder(mesh);
+  render::RelitView view(mesh, *occluder, transfer, material);
+  if (bands > 0 && bands < transfer.bands()) view.setBands(bands);
+  view.setEncoding(encoding);
+  view.relight(light, rotation, camera.eye, mesh.source);
+  return render::surveyFrame(*occluder, view.shader(), camera, 640, 480, op);
+}
+
 /// The initial view. The camera from the library's numbers only (docs/conventions.md,
 /// "Camera"): the default framing (render::meshFraming: the bounding sphere, view direction,
 /// up, fov, margin), which the page turns into frameCamera's camera for its canvas, and
@@ -256,12 +310,15 @@ float initialExposure(const WebOptions& a, const BakeFile& bake, const sh::RgbSh
   if (!a.camera.empty()) c = render::parseCamera(a.camera, c);
   const image::ToneMap op = image::parseToneMap(a.toneMap);
   // A probe grid: the scene lit through its relit probes (what the page draws around the ball).
+  const std::optional<sh::IrradianceEncoding> encoding = openingEncoding(a, t.transfer);
   const render::FrameSurvey survey =
       bake.domain() == TransferDomain::Probes
           ? render::probeSurvey(bake.mesh, t.transfer, light, parseRotation(a.rotate), c, 640, 480,
                                 op, a.bands)
-          : render::relitSurvey(bake.mesh, t.transfer, material, light, parseRotation(a.rotate), c,
-                                640, 480, op, a.bands);
+      : encoding ? encodedSurvey(bake.mesh, t.transfer, material, *encoding, light,
+                                 parseRotation(a.rotate), c, op, a.bands)
+                 : render::relitSurvey(bake.mesh, t.transfer, material, light,
+                                       parseRotation(a.rotate), c, 640, 480, op, a.bands);
   const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
   if (!ringing.empty()) warn(ringing + " (the page's first view)");
   return survey.exposureStops;
@@ -273,6 +330,7 @@ Json viewJson(const WebOptions& a, const Mesh& mesh, float exposure) {
   Json camera = nullptr;
   if (!a.camera.empty()) {
     const render::Camera c = render::parseCamera(a.camera, render::frameCamera(f, 640, 480));
+
     camera = {{"eye", vec3(c.eye)},
               {"target", vec3(c.target)},
               {"up", vec3(c.up)},
@@ -282,6 +340,7 @@ Json viewJson(const WebOptions& a, const Mesh& mesh, float exposure) {
           {"exposure", jsonFloat(exposure)},
           {"tonemap", a.toneMap},
           {"mode", a.mode},
+          {"encoding", a.encoding.empty() ? "none" : a.encoding},
           {"bands", a.bands},
           {"camera", camera},
           {"framing",
@@ -293,18 +352,28 @@ Json viewJson(const WebOptions& a, const Mesh& mesh, float exposure) {
             {"margin", jsonFloat(f.margin)}}}};
 }
 
-/// Compressed glossy matrices: the bake's material (or --material) as the page's shader takes
-/// it (kernels times the SH normalisation its basis leaves out, relight::shaderKernel), per
-/// mode.
+/// Glossy matrices: the bake's material (or --material) as the page's shader takes it (kernels
+/// times the SH normalisation its basis leaves out, relight::shaderKernel), per mode; drawn
+/// through an irradiance encoding (dense ones always), their kd, and a warning when a lobe is
+/// left out.
 Json glossyJson(const WebOptions& a, const BakeFile& bake) {
   Json out = Json::object();
+  // --encoding, checked by checkOptions ("" for none).
+  const std::string asked = a.encoding == "none" ? "" : a.encoding;
   for (const BakedTransfer& t : bake.transfers) {
     if (!t.transfer.isMatrix() || t.transfer.domain() == TransferDomain::Probes) continue;
     const Material material =
         materialOption(a.material, t, a.bake,
                        "the page shades each vertex with --material, the bounced light keeps the "
                        "bake's");
-    warnLobeEnergyLoss(material, t.transfer.bands(), a.bake);
+    const bool dense = perVertexMatrix(t.transfer) && !t.transfer.compressed();
+    if (material.glossy() && (dense || (!asked.empty() && perVertexMatrix(t.transfer))))
+      warn(
+          fmt::format("{}: the page draws the {} matrices' diffuse part through {} irradiance "
+                      "(an encoding holds irradiance): the lobe of {} is left out{}",
+                      a.bake, toString(t.mode()), asked.empty() ? "l2" : asked, material.spec(),
+                      dense ? " (prt compress them to see it)" : ""));
+    if (!dense) warnLobeEnergyLoss(material, t.transfer.bands(), a.bake);
     const PreparedMaterial pm = prepareMaterial(material, t.transfer.bands());
     const std::array<float, 64> diffuse = relight::shaderKernel(pm.diffuse),
                                 lobe = relight::shaderKernel(pm.glossy);
@@ -329,7 +398,6 @@ Json environmentJson(const WebEnvironment& e) {
             {"height", e.background.height},
             {"rgbe", base64(rgbe.data(), rgbe.size())}}}};
 }
-
 
 }  // namespace
 
@@ -450,6 +518,11 @@ void addWebCommand(CLI::App& root) {
                   "default: framed)");
   cmd->add_option("--mode", args->mode, "Initial transfer mode");
   addMaterialOption(cmd, args->material, "for glossy (matrix) transfer");
+  cmd->add_option("--encoding", args->encoding,
+                  "Open a per-vertex matrix transfer drawn as an engine's irradiance encoding "
+                  "shades it (its diffuse part, as prt render --encoding): l1, l1-windowed, "
+                  "l1-geomerics, zh3, zh3-optimal, zh3-hallucinated, l2, l2-deringed, or none "
+                  "(PRT's own radiance; dense matrices are drawn through l2 then)");
   cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
   cmd->add_option_function<std::string>(
          "--exposure", [args](const std::string& s) { args->exposure = exposureOption(s); },

@@ -29,6 +29,9 @@ struct WebOptions {
   std::string camera;             ///< initial camera, prt render's --camera syntax ("" = framed)
   std::string mode;               ///< initial transfer mode ("" = the richest)
   std::string material;           ///< glossy matrices' material ("" = the bake's)
+  /// The irradiance encoding a per-vertex matrix transfer opens drawn through ("" or "none" =
+  /// PRT's own radiance; dense matrices are drawn through l2 then: docs/web.md).
+  std::string encoding;
   std::string toneMap = "aces";
   /// Initial exposure in stops; nullopt: auto (render::relitSurvey of the initial transfer and
   /// environment, relit on the CPU through the initial camera).

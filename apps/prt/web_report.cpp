@@ -28,6 +28,7 @@ Json initialViewJson(const WebOptions& a, const BakeFile& bake, const WebEnviron
            {{"mode", toString(t.mode())},
             {"layout", toString(t.transfer.layout())},
             {"representation", t.transfer.compressed() ? "cpca" : "dense"}}},
+          {"encoding", a.encoding.empty() ? "none" : a.encoding},
           {"environment", env.name},
           {"bands", a.bands > 0 ? a.bands : bands},
           {"rotationDegrees", {euler[0], euler[1], euler[2]}},

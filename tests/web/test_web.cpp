@@ -507,15 +507,17 @@ TEST(Web, CliRefusesWhatThePageCannotShow) {
   EXPECT_NE(r.err.find("prt web: error: "), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(path("nope/prt-data.js")));
-  // Dense glossy matrices: named, with what to use instead (compressed ones are drawn).
+  // Dense per-texel glossy matrices: named, with what to use instead (compressed ones are
+  // drawn; dense per-vertex ones are drawn on the CPU through an irradiance encoding,
+  // tests/web/test_encodings_web.cpp).
   r =
-      prt("-q bake 'builtin:sphere?subdiv=1' --mode unshadowed --transfer matrix --bands 2 "
-          "--samples 16 -o m.glb");
+      prt("-q bake 'builtin:sphere?subdiv=1' --mode unshadowed --domain texels --resolution 32 "
+          "--transfer matrix --bands 2 --samples 16 -o m.glb");
   ASSERT_EQ(r.rc, 0) << r.err;
   r = prt("web m.glb -o nope");
   EXPECT_EQ(r.rc, 1);
-  EXPECT_NE(r.err.find("m.glb: the unshadowed transfer holds dense glossy matrices; the browser "
-                       "viewer draws them CPCA-compressed only (prt compress)"),
+  EXPECT_NE(r.err.find("m.glb: the unshadowed transfer holds dense glossy matrices per texel; the "
+                       "browser viewer draws them CPCA-compressed only (prt compress)"),
             std::string::npos)
       << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

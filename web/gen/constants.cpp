@@ -22,6 +22,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/limits.hpp"
+#include "prt/core/luminance.hpp"
 #include "prt/core/version.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/geometry/texel_sampling.hpp"
@@ -32,6 +33,7 @@
 #include "prt/io/lighting.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/sh/convolve.hpp"
+#include "prt/sh/encode_irradiance.hpp"
 #include "prt/transfer/bake_settings.hpp"
 #include "prt/transfer/material.hpp"
 #include "prt/transfer/probe_grid.hpp"
@@ -86,6 +88,16 @@ std::string lightBandsTemplate() {
   }
   fs::remove_all(dir);
   return t;
+}
+
+/// sh::parseIrradianceEncoding's refusal of an unknown name, as a template over {name}.
+std::string encodingTemplate() {
+  try {
+    prt::sh::parseIrradianceEncoding("NAME");
+  } catch (const prt::Error& e) {
+    return cutTemplate(e.what(), {{"name", "NAME"}});
+  }
+  throw prt::Error("sh::parseIrradianceEncoding accepted 'NAME'");
 }
 
 /// The extreme lightmap UV coordinate geometry::firstUvOutside accepts on the side of `outside`
@@ -147,6 +159,17 @@ json constants() {
                     {"maxProbes", kMaxProbes},
                     {"maxNumber", kMaxProbeGridNumber}};
   c["clampedCosine"] = kernel;
+  // The irradiance encodings engines store (sh/irradiance_encoding.hpp), in the order tables
+  // list them, with the numbers each stores and its rows of irradiance SH, and the luminance
+  // weights of the zh3 forms' axis: web/src/irradiance_encoding.js ports encodeIrradiance.
+  json encodings = json::array();
+  for (sh::IrradianceEncoding e : sh::kIrradianceEncodings)
+    encodings.push_back({{"name", sh::toString(e)},
+                         {"numbers", sh::storedNumbers(e)},
+                         {"rows", sh::shRows(e)},
+                         {"zonal", sh::isZonal(e)}});
+  c["irradianceEncodings"] = encodings;
+  c["luminance"] = {kLuminanceR, kLuminanceG, kLuminanceB};
   // The albedo of an object placed in a scene that has one (appendMesh): the page's ball.
   c["defaultAlbedo"] = kDefaultAlbedo;
 
@@ -174,6 +197,7 @@ json constants() {
       {"DenseMatrix", relight::toString(relight::ShaderPath::DenseMatrix)},
       {"CpcaVector", relight::toString(relight::ShaderPath::CpcaVector)},
       {"CpcaMatrix", relight::toString(relight::ShaderPath::CpcaMatrix)},
+      {"CpuRadiance", relight::toString(relight::ShaderPath::CpuRadiance)},
   };
   c["maxShaderClusters"] = relight::kMaxShaderClusters;
   c["perTexelMatricesRefusal"] = relight::kPageTexelMatricesRefusal;
@@ -208,6 +232,7 @@ json constants() {
       {"bandLimit", cutTemplate(bands::bandLimitMessage("WHAT", 1001, "WHO", 1002),
                                 {{"what", "WHAT"}, {"bands", "1001"}, {"who", "WHO"}, {"max", "1002"}})},
       {"lightBands", lightBandsTemplate()},
+      {"encoding", encodingTemplate()},
   };
   return c;
 }

@@ -4,10 +4,15 @@
 // shares. The stages come flattened for a host (cmake/Shaders.cmake): the page's (webgl2,
 // RawShaderMaterial into its HDR target, page_host.js) or the three.js module's (three,
 // ShaderMaterial in anyone's scene, web/three). Nothing here touches a scene.
+// A per-vertex matrix transfer drawn through an irradiance encoding (dense matrices always,
+// CPCA ones when an encoding is chosen: encoded_diffuse.js) is drawn from radiance made on the
+// CPU, by the radiance stage (shaders/stages/radiance.vert), one material a part.
 import * as THREE from 'three';
 import { bands as kBands } from 'prt:constants';
 import { denseTexelsPerRow, frameStep, frameTable } from './transfer.js';
 import { rotateLight } from './sh.js';
+import { incidentRows, lobeLeftOut, shadeEncoded, shownEncoding } from './encoded_diffuse.js';
+import { packed } from './radiance_mesh.js';
 
 const kGlossyCoeffs = kBands.maxShaderGlossy * kBands.maxShaderGlossy;
 
@@ -117,6 +122,8 @@ const kDraw = {
     },
   },
 };
+// Radiance made on the CPU (an irradiance encoding's kd ⊙ Ê(n)/π per vertex): passed through.
+const kRadianceDraw = { stage: 'radiance.vert', uniforms: () => ({}), set() {} };
 
 /**
  * The material that draws transfer t on a part (light: the shared uL uniform, vec4s: its
@@ -125,7 +132,10 @@ const kDraw = {
  * fragment: text }, material(parameters) → a THREE material, uniforms: extra uniforms }.
  */
 export function transferMaterial(t, light, vec4s, hasAlbedo, host, baseColour = null) {
-  const d = drawOf(t);
+  return stageMaterial(drawOf(t), light, vec4s, hasAlbedo, host, baseColour);
+}
+
+function stageMaterial(d, light, vec4s, hasAlbedo, host, baseColour) {
   const defines = Object.assign({ PRT_LIGHT_VEC4S: vec4s, PRT_GLOSSY_COEFFS: kGlossyCoeffs }, d.defines || {});
   if (hasAlbedo) defines.PRT_HAS_ALBEDO = 1;
   const uniforms = Object.assign(d.uniforms(light), host.uniforms || {});
@@ -137,6 +147,25 @@ export function transferMaterial(t, light, vec4s, hasAlbedo, host, baseColour = 
   }
   return host.material({ vertexShader: host.stages[d.stage], fragmentShader: host.stages.fragment, defines,
                          uniforms, hasAlbedo });
+}
+
+/** Whether a bake's transfer can be drawn through an encoding (a per-vertex matrix). */
+const encodable = (t) => t.matrix && !t.perPixel;
+
+/**
+ * A part's radiance drawing (for a bake with per-vertex matrices): its material (the radiance
+ * stage; the albedo is in the radiance, the base-colour texture multiplies per pixel), the
+ * per-vertex `radiance` attribute it reads (and a zero `lobe`, the texture's unmultiplied part),
+ * and the packed normals and albedo the radiance is made from.
+ */
+function radianceDrawing(p, light, vec4s, host) {
+  const g = p.geometry, V = g.getAttribute('position').count;
+  const radiance = new THREE.Float32BufferAttribute(new Float32Array(3 * V), 3);
+  g.setAttribute('radiance', radiance);
+  if (p.baseColour) g.setAttribute('lobe', new THREE.Float32BufferAttribute(new Float32Array(3 * V), 3));
+  const colour = g.getAttribute('color');
+  return { material: stageMaterial(kRadianceDraw, light, vec4s, false, host, p.baseColour), radiance,
+           normals: packed(g.getAttribute('normal')), albedo: colour ? packed(colour) : null };
 }
 
 /** A data texture of RGBA32F texels, read with texelFetch. */
@@ -165,17 +194,21 @@ export function uploadTransfers(b, limits, host) {
   // One texture per image: a per-texel transfer's rows are one image every part shares.
   const made = new Map();
   const textureOf = (img) => made.get(img) || made.set(img, dataTexture(img)).get(img);
+  const encoded = b.transfers.some(encodable);
   const parts = b.parts.map((p) => {
     const textures = {}, materials = {};
+    const radiance = encoded ? radianceDrawing(p, light, vec4s, host) : null;
     for (const t of b.transfers) {
-      textures[t.key] = textureOf(p.texels[t.key]);
-      materials[t.key] = transferMaterial(t, light, vec4s, p.hasAlbedo, host, p.baseColour);
+      // (CpuRadiance has no rows on the GPU, and is drawn by the part's radiance material only.)
+      textures[t.key] = p.texels[t.key] ? textureOf(p.texels[t.key]) : null;
+      materials[t.key] = t.path === 'CpuRadiance' ? radiance.material
+        : transferMaterial(t, light, vec4s, p.hasAlbedo, host, p.baseColour);
     }
-    return { textures, materials };
+    return { textures, materials, radiance };
   });
   // Per-texel glossy matrices' points: one image for the bake.
   const points = b.texelPoints ? dataTexture(b.texelPoints) : null;
-  return { bake: b, light, tables, parts, points };
+  return { bake: b, light, tables, parts, points, rotated: null, encodedFor: null };
 }
 
 /** Frees what uploadTransfers made, and the parts' base-colour textures it drew with (the
@@ -185,7 +218,8 @@ export function disposeTransfers(gpu) {
   for (const p of gpu.bake.parts) if (p.baseColour) textures.add(p.baseColour);
   for (const p of gpu.parts) {
     for (const x of Object.values(p.materials)) x.dispose();
-    for (const x of Object.values(p.textures)) textures.add(x);
+    if (p.radiance) p.radiance.material.dispose();
+    for (const x of Object.values(p.textures)) if (x) textures.add(x);
   }
   for (const x of textures) x.dispose();
   for (const t of Object.values(gpu.tables)) t.texture.dispose();
@@ -207,21 +241,65 @@ export function setFrameLight(gpu, t, b, R, coeffs) {
     frameStep(t, b, rotated, table.image);
     table.texture.needsUpdate = true;
   }
+  gpu.rotated = rotated;
+}
+
+/**
+ * The material transfer t wears on part p of `gpu` when drawn through `encoding` ('none' or a
+ * name): the part's radiance material if t is drawn through one (encoded_diffuse.js
+ * shownEncoding), else t's own.
+ */
+export function transferMaterialOf(gpu, p, t, encoding) {
+  return shownEncoding(t, encoding) ? gpu.parts[p].radiance.material : gpu.parts[p].materials[t.key];
+}
+
+/**
+ * After setFrameLight for transfer t at b bands: if t is drawn through `encoding` ('none' or a
+ * name, shownEncoding), every part's radiance kd ⊙ Ê(n)/π per vertex (encoded_diffuse.js) — made
+ * again only when the transfer, the bands, the encoding or the rotated light changed. Returns
+ * whether it made it.
+ */
+export function setEncodedRadiance(gpu, t, b, encoding) {
+  const shown = shownEncoding(t, encoding);
+  if (!shown) return false;
+  const last = gpu.encodedFor, light = gpu.rotated;
+  if (last && last.t === t && last.b === b && last.encoding === shown && last.light.length === light.length &&
+      last.light.every((x, i) => x === light[i])) return false;
+  const table = gpu.tables[t.key];
+  const incident = incidentRows(t, b, light, table ? table.image.data : null);
+  const kd = t.material && t.material.kd;
+  gpu.bake.parts.forEach((p, i) => {
+    const r = gpu.parts[i].radiance;
+    shadeEncoded(incident, b, shown, p.first, r.normals, r.albedo, kd, r.radiance.array);
+    r.radiance.needsUpdate = true;
+  });
+  gpu.encodedFor = { t, b, encoding: shown, light: Float32Array.from(light) };
+  return true;
 }
 
 /** Sets a frame's uniforms of t's material on part p of `gpu` (uploadTransfers'): f = { bands,
- *  eye } (eye: the camera's position in the part's frame). */
+ *  eye, encoding } (eye: the camera's position in the part's frame; encoding: 'none' or the
+ *  name t is drawn through, transferMaterialOf). */
 export function setTransferUniforms(gpu, p, t, f) {
-  const part = gpu.parts[p], table = gpu.tables[t.key], u = part.materials[t.key].uniforms;
+  const part = gpu.parts[p], table = gpu.tables[t.key];
+  const encoded = !!shownEncoding(t, f.encoding);
+  const u = (encoded ? part.radiance.material : part.materials[t.key]).uniforms;
   if (u.uBaseColourOn) u.uBaseColourOn.value = !(t.material && t.material.kd);
-  drawOf(t).set(u, t,
+  (encoded ? kRadianceDraw : drawOf(t)).set(u, t,
                     { bands: f.bands, eye: f.eye, rows: part.textures[t.key], table: table ? table.texture : null,
                       points: gpu.points });
 }
 
-/** What the status line says about how t is drawn. */
-export function describeTransfer(t) {
+/** What the status line says about how t is drawn (through `encoding`: 'none' or a name). */
+export function describeTransfer(t, encoding = 'none') {
   const lines = [];
+  const shown = shownEncoding(t, encoding);
+  if (shown) {
+    lines.push(`diffuse through ${shown} irradiance: kd ⊙ Ê(n)/π per vertex, made on the CPU` +
+               (encoding === 'none' ? ' (dense matrices: l2 unless an encoding is chosen)' : ''));
+    if (lobeLeftOut(t)) lines.push(`the ${t.material.material} lobe is left out (an encoding holds irradiance)`);
+    return lines;
+  }
   if (t.matrix) lines.push(`glossy ${t.material.material}, toward the eye`);
   if (t.perPixel) lines.push(`relit per pixel from a ${t.lightmap.width} x ${t.lightmap.height} lightmap`);
   if (t.compressed) {

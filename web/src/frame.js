@@ -2,7 +2,8 @@
 // made"): the light's first b bands rotated on the CPU (sh.js) and packed as vec4 uL[i] =
 // (r, g, b, 0), zero past b², and the transfer's per-frame step (draw.js) — or, for a probe
 // bake, the grid relit and the meshes shaded through it (probe_scene.js); then, into a 4×
-// multisampled half-float target, the background (a full-screen triangle) and the relit parts;
+// multisampled half-float target, the background (a full-screen triangle) and the relit parts
+// (a matrix transfer drawn through an irradiance encoding: from radiance made on the CPU);
 // a second full-screen pass applies 2^exposure, the tone map and the sRGB encode.
 import * as THREE from 'three';
 
@@ -10,7 +11,7 @@ import { defaultToneMap, toneMaps } from 'prt:constants';
 import { axisAngle, mul3 } from './sh.js';
 import { fitProjection } from './camera.js';
 import { backgroundTexture } from './environment.js';
-import { setFrameLight, setTransferUniforms } from './draw.js';
+import { setEncodedRadiance, setFrameLight, setTransferUniforms, transferMaterialOf } from './draw.js';
 import fullscreenVert from 'prt:shaders/fullscreen.vert';
 import backgroundFrag from 'prt:shaders/background.frag';
 import toneFrag from 'prt:shaders/tone.frag';
@@ -68,10 +69,13 @@ export function createFrame(renderer) {
       // A probe bake: the grid relit on the CPU, the scene and the ball shaded through it.
       gpu.probes.frame({ transfer: t, bands: b, rotation: R, light: env.coeffs, at: state.at, showProbes: state.probes });
     } else {
+      // A matrix transfer drawn through an irradiance encoding: its radiance per vertex, made
+      // on the CPU when the light, its rotation, the bands or the encoding changed.
       setFrameLight(gpu, t, b, R, env.coeffs);
+      setEncodedRadiance(gpu, t, b, state.encoding);
       gpu.meshes.forEach((m, p) => {
-        m.material = gpu.parts[p].materials[t.key];
-        setTransferUniforms(gpu, p, t, { bands: b, eye: camera.position });
+        m.material = transferMaterialOf(gpu, p, t, state.encoding);
+        setTransferUniforms(gpu, p, t, { bands: b, eye: camera.position, encoding: state.encoding });
       });
     }
     const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();

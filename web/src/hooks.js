@@ -4,6 +4,7 @@
 import * as THREE from 'three';
 
 import { base64Bytes, bytesBase64 } from './environment.js';
+import { shownEncoding } from './encoded_diffuse.js';
 
 /** Writes a test hook's result where `chromium --dump-dom` reads it. */
 export function report(result) {
@@ -24,7 +25,7 @@ export function screenshotHook(page) {
                                           layout: t.layout, probes: probeReport(page, w, h), rgb: bytesBase64(rgb) });
   report({ ok: true, width: w, height: h, renderer: page.rendererName, mode: t.mode, layout: t.layout,
            path: t.path, compressed: c ? `${c.clusters}x${c.basisCount}, ${16 * c.texelsPerVertex} bytes per ${t.perPixel ? 'texel' : 'vertex'}` : 'no',
-           perPixel: !!t.perPixel, rgb: bytesBase64(rgb) });
+           perPixel: !!t.perPixel, encoding: shownEncoding(t, page.state.encoding) || 'none', rgb: bytesBase64(rgb) });
 }
 
 /** A probe bake's frame: the grid, the ball (centre, radius, and where it lies in the frame,

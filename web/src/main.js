@@ -7,6 +7,8 @@
 //   probe_scene.js, probe_ui.js,          a probe bake on screen: its scene and a ball lit
 //   radiance_mesh.js                      through the grid, the ball's controls
 //   lights.js, environment.js, sh.js      lights, their band rule, backgrounds, SH rotation
+//   irradiance_encoding.js,               engines' irradiance encodings, and a matrix transfer
+//   encoded_diffuse.js                    drawn through one (the encoding option)
 //   draw.js, frame.js, camera.js          the GPU side of a transfer, one frame, the camera
 //   ui.js, hooks.js                       the interactive page, the test hooks (tests/web)
 //   'prt:constants', 'prt:shaders/…'      generated from the C++ and shaders/ (web/build.mjs)
@@ -19,6 +21,7 @@ import { parseBake } from './bake.js';
 import { rotationEulerXYZ } from './sh.js';
 import { base64Bytes, environment, fitEnvironment } from './environment.js';
 import { pickTransfer } from './transfer.js';
+import { encodingRefusal } from './encoded_diffuse.js';
 import { disposeTransfers, uploadTransfers } from './draw.js';
 import { ballDefaults, disposeProbeScene, uploadProbeScene } from './probe_scene.js';
 import { pageHost } from './page_host.js';
@@ -149,6 +152,9 @@ async function main() {
     tonemap: query.get('tonemap') || view.tonemap || defaultToneMap,
     background: query.get('background') || 'env',
     spin: 0,
+    // The irradiance encoding a matrix transfer is drawn through ('none': PRT's own radiance;
+    // encoded_diffuse.js), as prt render --encoding.
+    encoding: query.get('encoding') || view.encoding || 'none',
     // A probe bake (probe_scene.js): the ball's centre (?at=x,y,z, else the grid's centre) and
     // whether the probes show as points (?probes).
     at: query.has('at') ? query.get('at').split(',').map(Number) : null,
@@ -199,6 +205,10 @@ async function main() {
     // --material's override) for the page's own bake, else from the file (glossy.js).
     for (const t of b.transfers)
       if (t.matrix) t.material = (b.name === data.bake.name && data.glossy && data.glossy[t.mode]) || glossyFromFile(t, b.name);
+    // An encoding asked for (?encoding=, prt web --encoding, the panel) refuses a bake whose
+    // transfer cannot take it, in one line naming the file, as prt render --encoding does.
+    const refusal = encodingRefusal(b, pickTransfer(b.transfers, state.mode), state.encoding);
+    if (refusal) throw new Error(refusal);
     const gpu = uploadBake(b, limits);
     disposeBake(page.gpu, page.frame.scene);
     page.gpu = gpu;

@@ -11,7 +11,7 @@
 import { bands as kBands, maxShaderClusters, probeGrid as kGrid } from 'prt:constants';
 import { readCompressed } from './compressed.js';
 import { meshParts } from './parts.js';
-import { preferenceOrder } from './transfer.js';
+import { preferenceOrder, readDenseMatrices } from './transfer.js';
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
@@ -69,17 +69,6 @@ function gridOf(prt) {
   return { origin: g.origin.map(Math.fround), spacing: g.spacing.map(Math.fround), count: g.count.slice() };
 }
 
-/** A dense transfer's matrices: the SCALAR float accessor the entry's matrixAccessor names. */
-async function denseMatrices(gltf, entry, count, name, mode) {
-  const json = gltf.parser.json;
-  const idx = (entry.accessors || []).find((i) => json.accessors[i] && json.accessors[i].name === entry.matrixAccessor);
-  if (idx === undefined) fail(name, `the ${mode} probe transfer lacks its accessor ${entry.matrixAccessor}`);
-  const a = await gltf.parser.getDependency('accessor', idx);
-  if (!a || a.itemSize !== 1 || a.array.length !== count)
-    fail(name, `${entry.matrixAccessor} holds ${a ? a.array.length : 0} values, ${count} expected`);
-  return a.array;
-}
-
 /** A CPCA-compressed transfer's rows made dense (Transfer::reconstructRow): x̂_p = M_k +
  *  Σ_j w_pj B_kj, summed in j order, for every probe p of cluster k. */
 async function reconstructedMatrices(gltf, entry, shape, probes, name) {
@@ -108,7 +97,7 @@ async function readProbeTransfer(gltf, entry, probes, name) {
   const count = probes * bands ** 4 * channels;
   const matrices = entry.compressed
     ? await reconstructedMatrices(gltf, entry, shape, probes, name)
-    : await denseMatrices(gltf, entry, count, name, mode);
+    : await readDenseMatrices(gltf, entry, count, name, `the ${mode} probe transfer`);
   for (let i = 0; i < matrices.length; ++i) if (!Number.isFinite(matrices[i])) fail(name, `the ${mode} probe transfer: value ${i} is not finite`);
   return { key: `${mode} matrix`, mode, layout: 'matrix', bands, channels, compressed: !!entry.compressed,
            probes: true, matrices };

@@ -6,7 +6,7 @@
 import * as THREE from 'three';
 
 /** Three floats a vertex of a three.js attribute, tightly packed. */
-function packed(a) {
+export function packed(a) {
   const out = new Float32Array(a.count * 3);
   for (let v = 0; v < a.count; ++v) out[3 * v] = a.getX(v), out[3 * v + 1] = a.getY(v), out[3 * v + 2] = a.getZ(v);
   return out;

@@ -1,6 +1,7 @@
 // The one reader of a transfer in the page — one dispatch, as the library's
 // (include/prt/relight/shader_transfer.hpp): shaderPath says once how a transfer is drawn
-// (dense vectors, CPCA-compressed vectors or matrices; the page draws dense matrices nowhere),
+// (dense vectors, CPCA-compressed vectors or matrices on the GPU; dense per-vertex matrices on
+// the CPU, through an irradiance encoding: CpuRadiance, encoded_diffuse.js),
 // and every later step — reading its rows from the glTF, packing a part's texels, the per-frame
 // work, the shader and its uniforms (draw.js) — is looked up by that path, never re-decided from
 // the layout or the representation. The pick order is the library's (transferPreference,
@@ -41,8 +42,9 @@ export function shaderPath(shape, compressed, name, limits) {
   }
   if (shape.layout === 'matrix') {
     // Dense matrices are 4·B⁴ bytes per vertex (2.5 KB at 5 bands); compressed 16·⌈(N+1)/4⌉.
-    if (!compressed)
-      fail(name, `the ${shape.mode} transfer holds dense glossy matrices; prtkit's shaders draw them CPCA-compressed only (prt compress)`);
+    // prtkit's shaders draw them compressed; dense, the browser viewers relight them on the CPU
+    // and draw their diffuse part through an irradiance encoding (l2 unless one is chosen).
+    if (!compressed) return 'CpuRadiance';
     if (shape.bands > kBands.maxShaderGlossy)
       fail(name, bandLimitMessage(`the ${shape.mode} transfer's glossy matrices`, shape.bands, 'the shaders\' glossy response', kBands.maxShaderGlossy));
     return 'CpcaMatrix';
@@ -120,6 +122,30 @@ const kPaths = {
   },
 };
 kPaths.CpcaMatrix = kPaths.CpcaVector;
+// Dense per-vertex matrices, relit on the CPU through an irradiance encoding (encoded_diffuse.js
+// makes each vertex's radiance; draw.js draws it with the radiance stage): the rows stay in JS.
+kPaths.CpuRadiance = {
+  read: (gltf, json, entry, t, rowCount, name) =>
+    readDenseMatrices(gltf, entry, rowCount * t.bands ** 4 * t.channels, name, `the ${t.mode} transfer`, true),
+  texelsPerRow: () => 0,
+  rows: () => null,
+  table: () => null,
+  frame() {},
+};
+
+/** A dense matrix transfer's rows: the SCALAR float accessor its entry's matrixAccessor names
+ *  (element (i, j), channel c of row r at ((r·B² + i)·B² + j)·C + c), `count` values, each
+ *  finite if `finite` is asked. */
+export async function readDenseMatrices(gltf, entry, count, name, what, finite = false) {
+  const json = gltf.parser.json;
+  const idx = (entry.accessors || []).find((i) => json.accessors[i] && json.accessors[i].name === entry.matrixAccessor);
+  if (idx === undefined) fail(name, `${what} lacks its accessor ${entry.matrixAccessor}`);
+  const a = await gltf.parser.getDependency('accessor', idx);
+  if (!a || a.itemSize !== 1 || a.array.length !== count)
+    fail(name, `${entry.matrixAccessor} holds ${a ? a.array.length : 0} values, ${count} expected`);
+  if (finite) for (let i = 0; i < a.array.length; ++i) if (!Number.isFinite(a.array[i])) fail(name, `${what}: value ${i} is not finite`);
+  return a.array;
+}
 
 /** Per-texel rows are packed once for every part (they are the one lightmap's). */
 function once(t, pack) {
@@ -174,6 +200,7 @@ export async function readTransfer(gltf, entry, rowCount, name, limits, lightmap
   const p = kPaths[t.path];
   const read = await p.read(gltf, gltf.parser.json, entry, t, rowCount, name, maxShaderClusters);
   if (t.path === 'DenseVector') t.texelValues = read;
+  else if (t.path === 'CpuRadiance') t.matrices = read;
   else t.compressed = read;
   t.texelsPerRow = p.texelsPerRow(t);
   return t;

@@ -10,6 +10,7 @@ import { environment } from './environment.js';
 import { parseLightJson, parseLightTxt } from './lights.js';
 import { axisAngle, mul3 } from './sh.js';
 import { describeTransfer } from './draw.js';
+import { encodingNames } from './irradiance_encoding.js';
 import { ballDrag, describeProbes, probeControls } from './probe_ui.js';
 
 const kBackgrounds = ['env', 'sh', 'none'];
@@ -67,10 +68,11 @@ export function startInteractive(page) {
   const gui = new GUI({ title: 'prtkit', container: document.getElementById('prt-panel') });
   const envNames = () => Object.fromEntries(envs.map((e, i) => [e.name, i]));
   const envCtl = gui.add(state, 'env', envNames()).name('environment');
-  let transferCtl = null, bandsCtl = null, ballFolder = null;
+  let transferCtl = null, bandsCtl = null, encodingCtl = null, ballFolder = null;
   function rebuildBakeControls() {
     if (transferCtl) transferCtl.destroy();
     if (bandsCtl) bandsCtl.destroy();
+    if (encodingCtl) encodingCtl.destroy();
     if (ballFolder) ballFolder.destroy();
     ballFolder = page.bake().probes ? probeControls(gui, page) : null;
     // The transfers in the library's preference order, each named with its layout.
@@ -80,6 +82,10 @@ export function startInteractive(page) {
       bandsCtl.max(page.transfer().bands).updateDisplay();
     });
     bandsCtl = gui.add(state, 'bands', 1, page.transfer().bands, 1).name('bands');
+    // Per-vertex matrices: the irradiance encoding they are drawn through (encoded_diffuse.js),
+    // as prt render --encoding; 'none' is PRT's own radiance.
+    encodingCtl = page.bake().transfers.some((t) => t.matrix && !t.perPixel)
+      ? gui.add(state, 'encoding', ['none', ...encodingNames]).name('encoding') : null;
   }
   rebuildBakeControls();
   gui.add(state, 'background', kBackgrounds).name('background');
@@ -161,7 +167,7 @@ export function startInteractive(page) {
     const b = page.bake(), t = page.transfer();
     hud.textContent = `${b.name}  ${b.triangles} triangles, ${b.vertices} vertices\n` +
       `${t.mode} ${t.layout}, ${Math.min(state.bands, t.bands)} of ${t.bands} bands, ${t.channels === 3 ? 'RGB' : 'scalar'}\n` +
-      (b.probes ? describeProbes(b, t, state) : describeTransfer(t)).map((l) => l + '\n').join('') +
+      (b.probes ? describeProbes(b, t, state) : describeTransfer(t, state.encoding)).map((l) => l + '\n').join('') +
       (smooth > 0 ? `frame ${smooth.toFixed(1)} ms (${(1000 / smooth).toFixed(0)} fps)` : 'frame time: measuring') +
       `\n${page.rendererName}`;
     if (!query.has('test')) requestAnimationFrame(loop);

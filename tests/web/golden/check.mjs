@@ -19,6 +19,9 @@ const { parseBake } = await import(new URL('bake.js', src));
 const { frameView } = await import(new URL('camera.js', src));
 const { parseLightJson, lightForTransfer } = await import(new URL('lights.js', src));
 const { bandLimitMessage } = await import(new URL('messages.js', src));
+const { encode, evaluate, encodingNames } = await import(new URL('irradiance_encoding.js', src));
+const { incidentRows, shadeEncoded } = await import(new URL('encoded_diffuse.js', src));
+const { irradianceEncodings } = await import('prt:constants');
 
 const golden = JSON.parse(fs.readFileSync(goldenPath, 'utf8'));
 const dir = path.dirname(goldenPath);
@@ -176,6 +179,69 @@ function compressedOf(c) {
   }
   console.log(`lights: ${golden.lights.length} files (fewer, one fewer, more, as many bands), warnings and padding as the library; ` +
               `${golden.messages.length} band-limit messages`);
+}
+
+// ---- irradiance encodings (irradiance_encoding.js) against sh::encodeIrradiance, sh::evaluate ----
+{
+  const g = golden.encodings, normals = g.normals;
+  // The names: the library's list, in its order (kIrradianceEncodings, generated).
+  const libraryNames = g.lights[0].encoded.map((e) => e.encoding);
+  expect(encodingNames.join(' ') === libraryNames.join(' '),
+         `encodings: the page lists ${encodingNames.join(', ')}, the library ${libraryNames.join(', ')}`);
+  expect(irradianceEncodings.length === 8, `encodings: ${irradianceEncodings.length} generated, 8 expected`);
+  const d = [], spread = {};
+  for (const c of g.lights) {
+    for (const w of c.encoded) {
+      const what = `encoding ${w.encoding} of the light '${c.light}' (${c.bands} bands)`;
+      const x = encode(Float32Array.from(c.coefficients), c.bands, w.encoding);
+      d.push(compare(`${what}: irradiance SH`, x.sh, w.sh, 1e-5));
+      d.push(compare(`${what}: zonal coefficients`, x.zonal, w.zonal, 1e-5));
+      // The axis up to its sign (a and −a are the same zonal harmonic), where it matters.
+      if (w.zonal.some((z) => Math.abs(z) > 1e-6)) {
+        const s = Math.sign(x.axis[0] * w.axis[0] + x.axis[1] * w.axis[1] + x.axis[2] * w.axis[2]) || 1;
+        d.push(compare(`${what}: axis`, x.axis.map((a) => s * a), w.axis, 1e-5));
+      }
+      const values = normals.flatMap((n) => evaluate(x, n[0], n[1], n[2]));
+      d.push(compare(`${what}: evaluated at ${normals.length} normals`, values, w.values, 1e-5));
+      (spread[c.light] = spread[c.light] || []).push(w.values);
+    }
+  }
+  // Not vacuous: on the sun, the encodings differ from one another.
+  const sun = spread.sun, l1 = sun[encodingNames.indexOf('l1')];
+  const apart = (a, b) => largest(sun[encodingNames.indexOf(a)].map((v, i) => Math.abs(v - sun[encodingNames.indexOf(b)][i])));
+  for (const name of ['l1-windowed', 'l1-geomerics', 'zh3-hallucinated', 'zh3', 'zh3-optimal', 'l2'])
+    expect(apart(name, 'l1') > 1e-3, `encodings: ${name} evaluates as l1 does on the sun (bad golden case)`);
+  expect(apart('l2-deringed', 'l2') > 1e-3, 'encodings: the sun\'s l2 needs no de-ringing (bad golden case)');
+  expect(apart('zh3-optimal', 'zh3') > 1e-6, 'encodings: on the sun the best zonal axis is the luminance\'s (bad golden case)');
+  console.log(`encodings: ${encodingNames.length} encodings of ${g.lights.length} lights (1..4 bands, one ringing, one ` +
+              `with a negative mean) at ${normals.length} normals, largest difference ${largest(d).toExponential(2)} (tolerance 1e-5)`);
+}
+
+// ---- a matrix transfer drawn through an encoding (encoded_diffuse.js) against relight::encodedDiffuse
+{
+  const d = [];
+  for (const c of golden.encodedDiffuse) {
+    const b = c.shown, what = `encodedDiffuse, ${c.compressed ? 'CPCA' : 'dense'} ${c.bands}-band ` +
+      `${c.channels === 3 ? 'RGB' : 'scalar'} matrices shown at ${b} bands, ${c.encoding}${c.kd ? ', kd' : ''}`;
+    const light = Float32Array.from(c.light);
+    let t, table = null;
+    if (c.compressed) {
+      const x = compressedOf(c);
+      t = { matrix: true, bands: c.bands, channels: c.channels, compressed: x };
+      const img = clusterTableImage(x, limits, 'golden', 'test');
+      projectClusters(x, b, c.channels, light, img.data);
+      table = img.data;
+    } else {
+      t = { matrix: true, bands: c.bands, channels: c.channels, compressed: null, matrices: Float32Array.from(c.matrices) };
+    }
+    const out = new Float32Array(3 * c.rows);
+    shadeEncoded(incidentRows(t, b, light, table), b, c.encoding, 0, Float32Array.from(c.normals),
+                 Float32Array.from(c.albedo), c.kd, out);
+    expect(maxAbs(c.radiance) > 0.01, `${what}: the library's radiance is all zero (bad golden case)`);
+    d.push(compare(what, out, c.radiance, 1e-5));
+  }
+  console.log(`encodedDiffuse: ${d.length} matrix transfers (dense and CPCA, RGB and scalar, all and fewer bands, ` +
+              `albedo and kd), largest difference ${largest(d).toExponential(2)} (tolerance 1e-5)`);
 }
 
 if (failures.length) {

@@ -17,6 +17,11 @@
 //   lights       light files with fewer and more bands than the transfer: io::loadLighting's
 //                warnings and io::padded's coefficients (lights.js)
 //   messages     bands::bandLimitMessage (messages.js, filled from the generated template)
+//   encodings    sh::encodeIrradiance and sh::evaluate of every irradiance encoding, on lights
+//                of 1..4 bands (the sky, turned; random ones; one whose mean is negative; a
+//                sun) at random normals (irradiance_encoding.js encode, evaluate); and
+//                relight::encodedDiffuse of small dense and CPCA matrix transfers, with and
+//                without the material's kd (encoded_diffuse.js incidentRows, shadeEncoded)
 
 #include <cstdio>
 #include <exception>
@@ -35,9 +40,12 @@
 #include "prt/io/light_file.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/relight/cluster_projection.hpp"
+#include "prt/relight/encoded_diffuse.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/sh/encode_irradiance.hpp"
+#include "prt/sh/project.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
 
@@ -292,8 +300,130 @@ json lightCases(const fs::path& dir) {
     io::writeLightJson((dir / name).string(), lf);
     const io::Lighting l = io::loadLighting((dir / name).string(), transferBands);
     const sh::RgbSh padded = io::padded(l.coefficients, transferBands);
-    cases.push_back({{"file", name}, {"path", (dir / name).string()}, {"transferBands", transferBands},
-                     {"warnings", l.warnings}, {"coefficients", rgbArray(padded.c)}});
+    cases.push_back({{"file", name},
+                     {"path", (dir / name).string()},
+                     {"transferBands", transferBands},
+                     {"warnings", l.warnings},
+                     {"coefficients", rgbArray(padded.c)}});
+  }
+  return cases;
+}
+
+/// The lights the encodings are checked on: the sky (3 bands, and turned), random lights of 1..4
+/// bands, one whose mean is negative in red, and a sun (a narrow cap, 3 bands: it rings).
+std::vector<std::pair<std::string, sh::RgbSh>> encodingLights() {
+  std::vector<std::pair<std::string, sh::RgbSh>> out;
+  const sh::RgbSh sky = io::loadLighting("builtin:sky", 3).coefficients;
+  out.push_back({"builtin:sky", sky});
+  out.push_back({"builtin:sky turned", sh::Rotation(3, rotationEulerXYZ(30, -50, 20)).apply(sky)});
+  for (int bands : {1, 2, 3, 4}) {
+    sh::RgbSh l(bands);
+    for (Rgb& x : l.c) x = {uniform(-0.5f, 0.5f), uniform(-0.5f, 0.5f), uniform(-0.5f, 0.5f)};
+    l.c[0] = {uniform(0.5f, 2), uniform(0.5f, 2), uniform(0.5f, 2)};
+    out.push_back({"random, " + std::to_string(bands) + " bands", l});
+  }
+  sh::RgbSh negative(3);
+  for (Rgb& x : negative.c) x = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+  negative.c[0].x = -0.3f;
+  out.push_back({"negative mean", negative});
+  const Vec3d sun = normalize(Vec3d{0.3, 0.8, -0.5});
+  const sh::RgbSh cap = sh::projectFunctionRgb(
+      3,
+      [&](const Vec3d& d) {
+        return dot(d, sun) > 0.97 ? Rgbd(20, 18, 15) : Rgbd(0.01, 0.015, 0.03);
+      },
+      64);
+  out.push_back({"sun", cap});
+  return out;
+}
+
+json encodingCases() {
+  std::vector<Vec3d> normals = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0, 0, -1}};
+  for (int k = 0; k < 12; ++k)
+    normals.push_back(normalize(Vec3d{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)}));
+  json dirs = json::array();
+  for (const Vec3d& n : normals) dirs.push_back({n.x, n.y, n.z});
+  json cases = json::array();
+  for (const auto& [name, light] : encodingLights()) {
+    json encoded = json::array();
+    for (sh::IrradianceEncoding e : sh::kIrradianceEncodings) {
+      const sh::EncodedIrradiance x = sh::encodeIrradiance(light, e);
+      json values = json::array(), coeffs = json::array();
+      for (const Vec3d& n : normals) {
+        const Rgbd v = sh::evaluate(x, n);
+        values.push_back(v.x), values.push_back(v.y), values.push_back(v.z);
+      }
+      for (const Rgbd& c : x.sh)
+        coeffs.push_back(c.x), coeffs.push_back(c.y), coeffs.push_back(c.z);
+      encoded.push_back({{"encoding", sh::toString(e)},
+                         {"sh", coeffs},
+                         {"axis", {x.axis.x, x.axis.y, x.axis.z}},
+                         {"zonal", {x.zonal.x, x.zonal.y, x.zonal.z}},
+                         {"values", values}});
+    }
+    cases.push_back({{"light", name},
+                     {"bands", light.bands},
+                     {"coefficients", rgbArray(light.c)},
+                     {"encoded", encoded}});
+  }
+  return {{"normals", dirs}, {"lights", cases}};
+}
+
+/// relight::encodedDiffuse of small matrix transfers (dense RGB, dense scalar and CPCA RGB, 3
+/// and 4 bands, shown at all or fewer bands), with the rows' albedo or the material's kd.
+json encodedDiffuseCases() {
+  json cases = json::array();
+  const std::size_t rows = 9;
+  struct Case {
+    bool compressed;
+    int bands, channels, shown;
+    bool kd;
+  };
+  int k = 0;
+  for (const Case& c : {Case{false, 3, 3, 3, false}, Case{false, 4, 1, 4, true},
+                        Case{true, 3, 3, 3, false}, Case{false, 4, 3, 2, false}}) {
+    const sh::IrradianceEncoding encoding =
+        sh::kIrradianceEncodings[std::size_t(k++) * 3 % sh::kIrradianceEncodings.size()];
+    TransferShape shape;
+    shape.layout = TransferLayout::Matrix;
+    shape.bands = c.bands;
+    shape.channels = c.channels;
+    shape.rows = {0, rows};
+    Transfer t = c.compressed ? randomCpca(TransferLayout::Matrix, c.bands, c.channels, rows, 3, 2)
+                              : Transfer::dense(
+                                    shape, FloatArray(randoms(rows * shape.stride(), -0.3f, 0.6f)));
+    const Transfer shown = c.shown < c.bands ? t.cut(c.shown) : t;
+    std::vector<Vec3f> normals;
+    std::vector<Rgb> albedo;
+    for (std::size_t r = 0; r < rows; ++r) {
+      const Vec3d n = normalize(Vec3d{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)});
+      normals.push_back(Vec3f(n));
+      albedo.push_back({uniform(0, 1), uniform(0, 1), uniform(0, 1)});
+    }
+    sh::RgbSh light(c.shown);
+    for (Rgb& x : light.c) x = {uniform(-0.5f, 0.5f), uniform(-0.5f, 0.5f), uniform(-0.5f, 0.5f)};
+    light.c[0] = {2, 1.8f, 1.5f};
+    Material material;
+    if (c.kd) material.diffuse = Rgb{0.7f, 0.5f, 0.3f};
+    const relight::Surface surface{{}, normals, albedo};
+    const std::vector<Rgb> out = relight::encodedDiffuse(shown, light, encoding, material, surface);
+    json n = json::array(), a = json::array();
+    for (const Vec3f& x : normals) n.push_back(x.x), n.push_back(x.y), n.push_back(x.z);
+    json j = c.compressed ? cpcaJson(t)
+                          : json{{"layout", "matrix"},
+                                 {"bands", c.bands},
+                                 {"channels", c.channels},
+                                 {"rows", rows},
+                                 {"matrices", array(t.values().data(), t.values().size())}};
+    j["compressed"] = c.compressed;
+    j["shown"] = c.shown;
+    j["encoding"] = sh::toString(encoding);
+    j["light"] = rgbArray(light.c);
+    j["normals"] = n;
+    j["albedo"] = rgbArray(albedo);
+    j["kd"] = c.kd ? json{0.7f, 0.5f, 0.3f} : json(nullptr);
+    j["radiance"] = rgbArray(out);
+    cases.push_back(j);
   }
   return cases;
 }
@@ -316,6 +446,8 @@ int main(int argc, char** argv) {
     g["bake"] = bakeCase(dir);
     g["texelBake"] = texelBakeCase(dir);
     g["lights"] = lightCases(dir);
+    g["encodings"] = encodingCases();
+    g["encodedDiffuse"] = encodedDiffuseCases();
     g["messages"] = json::array();
     for (const auto& [what, b, who, max] :
          {std::tuple{"the shadowed vector transfer", 20, "this page's light", 15},

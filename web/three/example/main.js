@@ -7,14 +7,16 @@
 //
 // ?bake=URL&light=URL (default bake.glb, light.json beside the page, served over http), or
 // example-data.js beside the page. Test hook (tests/web/test_three_web.cpp):
-// ?screenshot&size=WxH&camera=eye;target;up;fov&rotate=X,Y,Z&exposure=S&mode=M&bands=B[&only]
+// ?screenshot&size=WxH&camera=eye;target;up;fov&rotate=X,Y,Z&exposure=S&mode=M&bands=B&encoding=E[&only]
 // draws one frame with no tone mapping (prt render --tonemap clamp) and writes its RGB bytes
 // into <pre id="prt-test">; &only hides everything but the bake (on black).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import GUI from 'lil-gui';
-import { PRTKitRadianceTransfer, lightToSphericalHarmonics3, parseLight, rotateLight } from 'prtkit-three';
+import { PRTKitRadianceTransfer, PRTBake, lightToSphericalHarmonics3, parseLight, rotateLight } from 'prtkit-three';
+
+const encodingNames = PRTBake.encodings;
 
 const query = new URLSearchParams(location.search);
 const page = window.PRT_DATA;  // a prt web folder's, when this is its three/ folder
@@ -124,7 +126,9 @@ async function main() {
   // Light rotation: prt render --rotate X,Y,Z is Euler(X, Y, Z, 'ZYX').
   const deg = (query.get('rotate') || '0,0,0').split(',').map((x) => (Number(x) || 0) * Math.PI / 180);
   const settings = { light: lights[0].name, exposure: Number(query.get('exposure') || (page && page.view && page.view.exposure) || 0), turnX: deg[0], turnY: deg[1], turnZ: deg[2],
-                     mode: query.get('mode') || prt.mode, bands: Number(query.get('bands') || 0) || prt.bands, spin: false };
+                     mode: query.get('mode') || prt.mode, bands: Number(query.get('bands') || 0) || prt.bands, spin: false,
+                     // A matrix transfer drawn through an irradiance encoding ('none': PRT's own).
+                     encoding: query.get('encoding') || (page && page.view && page.view.encoding) || 'none' };
   // A probe bake (prt probes; prt.isProbeGridLighting): the ball moves through its grid, lit by
   // the LightProbe the grid sets at it each frame (updateLightProbe), matte (MeshLambertMaterial:
   // ρ E(n)/π, as the grid shades a normal); the knot and the floor step aside.
@@ -148,8 +152,10 @@ async function main() {
     const warnings = prt.setLight(light);
     document.getElementById('message').textContent = warnings.join('\n');
     prt.exposure = settings.exposure;
+    prt.encoding = 'none';  // (the new transfer may not take the last one)
     prt.mode = settings.mode;
     prt.bands = settings.bands;
+    prt.encoding = settings.encoding;
     prt.lightRotation.setFromEuler(new THREE.Euler(settings.turnX, settings.turnY, settings.turnZ, 'ZYX'));
     if (grid) placeBall(0);
     else lightToSphericalHarmonics3(rotateLight(light, prt.lightRotation), probe.sh);
@@ -158,6 +164,7 @@ async function main() {
   apply();
 
   if (test) {
+    prt.update();  // (an encoded transfer's radiance, a vertex attribute, in this very frame)
     renderer.render(scene, camera);
     const gl = renderer.getContext(), rgba = new Uint8Array(w * h * 4), rgb = new Uint8Array(w * h * 3);
     gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
@@ -166,7 +173,7 @@ async function main() {
         for (let c = 0; c < 3; ++c) rgb[(y * w + x) * 3 + c] = rgba[((h - 1 - y) * w + x) * 4 + c];
     let s = '';
     for (let i = 0; i < rgb.length; i += 0x8000) s += String.fromCharCode(...rgb.subarray(i, i + 0x8000));
-    report({ ok: true, width: w, height: h, mode: prt.mode, bands: prt.bands, transfers: prt.transfers,
+    report({ ok: true, width: w, height: h, mode: prt.mode, bands: prt.bands, encoding: prt.shownEncoding || prt.encoding, transfers: prt.transfers,
              meshes: prt.meshes.length, rgb: btoa(s) });
     return;
   }
@@ -178,6 +185,8 @@ async function main() {
   gui.add(settings, 'turnY', -Math.PI, Math.PI, 0.01).name('light turn').onChange(apply);
   gui.add(settings, 'mode', prt.transfers.map((t) => t.mode)).onChange(apply);
   gui.add(settings, 'bands', 1, prt.bands, 1).onChange(apply);
+  if (prt.transfers.some((t) => t.layout === 'matrix') && !grid)
+    gui.add(settings, 'encoding', ['none', ...encodingNames]).onChange(apply);
   gui.add(settings, 'spin');
   addEventListener('resize', () => {
     renderer.setSize(innerWidth, innerHeight);

@@ -12,7 +12,7 @@
 // the bake's scene moves the grid with it and turns the light the other way in its frame, as
 // for PRTBake. Rigid motions and uniform scale only.
 import * as THREE from 'three';
-import { checkedBands, exposureScale, transferLight } from './relight_settings.js';
+import { checkedBands, checkedEncoding, exposureScale, transferLight } from './relight_settings.js';
 import { pickTransfer } from '../../src/transfer.js';
 import { mul3, rotateLight as rotateCoefficients, transpose3 } from '../../src/sh.js';
 import { ProbeRelighter } from '../../src/probe_relighter.js';
@@ -66,6 +66,12 @@ export class ProbeGridLighting {
   get bands() { return this._bands; }
   set bands(b) {
     this._bands = checkedBands(this.name, b, this._transfer.bands);
+  }
+  /** 'none': an irradiance encoding (PRTBake's `encoding`) draws a surface's matrix transfer;
+   *  setting one here is refused in one line naming the bake. */
+  get encoding() { return 'none'; }
+  set encoding(name) {
+    checkedEncoding(this._bake, this._transfer, name);
   }
   /** Exposure in stops of the bake's own meshes (2^exposure before the renderer's tone map). */
   get exposure() { return Math.log2(this._exposure.value); }
