@@ -35,6 +35,7 @@
 #include "prt/raytrace/occluder.hpp"
 #include "prt/transport/bake_request.hpp"
 #include "report.hpp"
+#include "denoise.hpp"
 #include "seam_fix.hpp"
 #include "transfer_options.hpp"
 
@@ -153,6 +154,7 @@ void runBake(const BakeArgs& a) {
     };
     bake(request, file.mesh, *occluder, *executor, observer);
     if (!mpi.root()) return;
+    if (request.lightmap.denoise) denoiseBake(file, a.output, DenoiseSettings{});
     if (request.lightmap.seamFix) fixBakeSeams(file, a.output);
     writeBake(a.output, file);
     info(fmt::format("wrote {} ({}{} {} {}..{})", a.output, file.complete() ? "" : "partial: ",
@@ -214,6 +216,9 @@ void addBakeCommand(CLI::App& root) {
   cmd->add_option("--padding", args->padding,
                   "--domain texels: gutter texels dilated around the charts (default 2)")
       ->check(intRange(0, kMaxLightmapPadding));
+  cmd->add_flag("--denoise", args->denoise,
+                "--domain texels: filter the lightmap's noise (an edge-avoiding a-trous filter "
+                "within each chart, prt denoise --help), before any --seam-fix");
   cmd->add_flag("--seam-fix", args->seamFix,
                 "--domain texels: the least-squares seam fix (Sylvan 2015): texels on the two "
                 "sides of a UV seam agree under bilinear filtering");

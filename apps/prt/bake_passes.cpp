@@ -107,6 +107,10 @@ void runPassBake(const BakeArgs& a) {
     throw Error(
         "--seam-fix needs the whole lightmap: bake the passes without it, then prt merge "
         "--seam-fix the last pass's pieces");
+  if (request.lightmap.denoise)
+    throw Error(
+        "--denoise needs the whole lightmap: bake the passes without it, merge the last pass's "
+        "pieces, then prt denoise the merged bake");
   std::vector<NamedPath> inputs;
   for (const std::string& in : a.inputs) inputs.push_back({"input", in});
   if (!a.previous.empty()) inputs.push_back({"--previous", a.previous});

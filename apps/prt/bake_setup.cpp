@@ -167,9 +167,11 @@ BakeRequest requestOf(const BakeArgs& a) {
     if (!a.uv.empty()) r.lightmap.uv = parseUvSetOption(a.uv);
   } else if (a.resolution || a.padding >= 0 || !a.uv.empty()) {
     throw Error(
-        "--resolution, --uv, --padding and --seam-fix shape a lightmap: add --domain texels");
+        "--resolution, --uv, --padding, --seam-fix and --denoise shape a lightmap: add --domain "
+        "texels");
   }
   r.lightmap.seamFix = a.seamFix;
+  r.lightmap.denoise = a.denoise;
   if (r.domain == TransferDomain::Probes) {
     r.probes.count = parseGrid(a.grid);
     if (!a.bounds.empty()) r.probes.bounds = parseBounds(a.bounds);

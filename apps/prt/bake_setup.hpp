@@ -34,6 +34,7 @@ struct BakeArgs {
   std::string uv;        ///< "": not given (auto)
   int padding = -1;      ///< −1: not given (the request's default)
   bool seamFix = false;  ///< --seam-fix
+  bool denoise = false;  ///< --denoise
   // Probes (prt probes, --domain probes): the grid and the box it fills.
   std::string grid;    ///< "auto" or NXxNYxNZ; "": not given (auto)
   std::string bounds;  ///< "x0,y0,z0:x1,y1,z1"; "": the scene's bounds

@@ -47,6 +47,7 @@ void addReferenceCommand(CLI::App& root);
 void addViewCommand(CLI::App& root);
 void addMergeCommand(CLI::App& root);
 void addCompressCommand(CLI::App& root);
+void addDenoiseCommand(CLI::App& root);
 void addDemoCommand(CLI::App& root);
 void addWebCommand(CLI::App& root);
 void addUnwrapCommand(CLI::App& root);

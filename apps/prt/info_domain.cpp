@@ -25,6 +25,7 @@ void describeBakeDomain(const BakeFile& b, std::ostream& out, Json& j) {
                      {"height", lm.height},
                      {"padding", lm.padding},
                      {"seamsFixed", lm.seamsFixed},
+                     {"denoised", lm.denoised},
                      {"coveredTexels", s.samples.size()},
                      {"partialTexels", partial},
                      {"coverage", share}};

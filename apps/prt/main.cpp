@@ -137,6 +137,7 @@ const char* activity(const std::string& verb) {
   if (verb == "prt view") return "viewing";
   if (verb == "prt merge") return "merging the bakes";
   if (verb == "prt compress") return "compressing the transfer";
+  if (verb == "prt denoise") return "denoising the lightmap";
   if (verb == "prt demo") return "running the demo";
   if (verb == "prt web") return "writing the browser viewer";
   if (verb == "prt unwrap") return "unwrapping the mesh";
@@ -169,6 +170,7 @@ int main(int argc, char** argv) {
   addViewCommand(app);
   addMergeCommand(app);
   addCompressCommand(app);
+  addDenoiseCommand(app);
   addDemoCommand(app);
   addWebCommand(app);
   addUnwrapCommand(app);

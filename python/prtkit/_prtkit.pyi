@@ -183,7 +183,8 @@ def bake(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, samples: int =
          material: Optional[str] = None, albedo: Optional[npt.ArrayLike] = None,
          sampling: str = "cosine", range: Union[None, Tuple[int, int], range] = None,
          domain: str = "vertices", resolution: int = 512, uv: str = "auto", padding: int = 2,
-         seam_fix: bool = False, progress: Progress = None) -> npt.NDArray[np.float32]:
+         seam_fix: bool = False, denoise: bool = False,
+         progress: Progress = None) -> npt.NDArray[np.float32]:
     """SH transfer per vertex (or per texel, domain='texels': row y*resolution + x) as a numpy
     array owning the C++ buffer: (N, B²), (N, B², 3), (N, B², B²) or (N, B², B², 3);
     bit-identical to `prt bake` with the same settings."""
@@ -193,7 +194,7 @@ def bake_transfer(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, sampl
                   material: Optional[str] = None, albedo: Optional[npt.ArrayLike] = None,
                   sampling: str = "cosine", range: Union[None, Tuple[int, int], range] = None,
                   domain: str = "vertices", resolution: int = 512, uv: str = "auto",
-                  padding: int = 2, seam_fix: bool = False,
+                  padding: int = 2, seam_fix: bool = False, denoise: bool = False,
                   progress: Progress = None) -> Transfer:
     """bake, returning a Transfer with its recipe and statistics."""
 

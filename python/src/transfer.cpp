@@ -12,6 +12,7 @@
 #include "prt/transport/bake.hpp"
 #include "prt/transport/bake_request.hpp"
 #include "prt/transport/passes.hpp"
+#include "prt/transport/denoise_texels.hpp"
 #include "prt/transport/lightmap_seam_fix.hpp"
 
 namespace prtpy {
@@ -139,6 +140,7 @@ struct Lightmap {
   std::string uv = "auto";
   int padding = 2;
   bool seamFix = false;  ///< the least-squares seam fix (prt bake --seam-fix)
+  bool denoise = false;  ///< the à-trous filter (prt bake --denoise)
 };
 
 prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int bands,
@@ -164,6 +166,7 @@ prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int
   r.lightmap.resolution = lightmap.resolution;
   r.lightmap.padding = lightmap.padding;
   r.lightmap.seamFix = lightmap.seamFix;
+  r.lightmap.denoise = lightmap.denoise;
   asValueError([&] {
     prt::checkBakeRequest(r, prt::OptionSpelling::Python);
     return 0;
@@ -209,6 +212,7 @@ Baked runBake(py::handle meshObj, const std::string& mode, int bands, long long 
     std::vector<prt::BakeResult> results =
         prt::bake(request, prepared, mesh->occluder(), threads, observer);
     Baked b{std::move(results[0].transfer), results[0].stats};
+    if (lightmap.denoise) b.transfer = prt::denoiseTexels(prepared, mesh->occluder(), b.transfer);
     if (lightmap.seamFix) b.transfer = prt::fixLightmapSeams(prepared, b.transfer);
     return b;
   });
@@ -235,6 +239,9 @@ resolution, uv, padding: domain='texels': the lightmap's side; the UV set, 'auto
     lightmap set, else the texture set when it holds one), '1' or '0'; gutter texels dilated.
 seam_fix: domain='texels': the least-squares seam fix (Sylvan 2015; prt bake --seam-fix):
     texels on the two sides of a UV seam agree under bilinear filtering.
+denoise: domain='texels': filter the lightmap's Monte Carlo noise within each chart, before any
+    seam fix (prt bake --denoise: an edge-avoiding a-trous filter of the estimated part of each
+    row, transport/denoise_texels.hpp).
 progress: None, True (a tqdm bar, when tqdm is installed) or a callable(fraction) that may
     return False to cancel (prtkit.Cancelled). Ctrl-C cancels within a fraction of a second
     (KeyboardInterrupt).
@@ -365,9 +372,10 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
             d["height"] = lm.height;
             d["padding"] = lm.padding;
             d["seams_fixed"] = lm.seamsFixed;
+            d["denoised"] = lm.denoised;
             return py::object(std::move(d));
           },
-          "domain 'texels': {'width', 'height', 'padding', 'seams_fixed'} of the lightmap (rows "
+          "domain 'texels': {'width', 'height', 'padding', 'seams_fixed', 'denoised'} of the lightmap (rows "
           "y*width + x); "
           "None per vertex.")
       .def_property_readonly(
@@ -537,9 +545,9 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
          int bounces, const std::string& transfer, py::object spec, py::object albedo,
          const std::string& sampling, py::object range, const std::string& domain, int resolution,
-         const std::string& uv, int padding, bool seamFix, py::object progress) {
+         const std::string& uv, int padding, bool seamFix, bool denoise, py::object progress) {
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                          sampling, range, domain, {resolution, uv, padding, seamFix}, progress,
+                          sampling, range, domain, {resolution, uv, padding, seamFix, denoise}, progress,
                           nullptr);
         return transferArray(std::move(b.transfer), true);
       },
@@ -548,7 +556,8 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       py::arg("transfer") = "vector", py::arg("material") = py::none(),
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
       py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
-      py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("progress") = py::none(),
+      py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("denoise") = false,
+      py::arg("progress") = py::none(),
       (std::string(
            "Bakes per-vertex SH transfer and returns its dense rows as a numpy array, without a "
            "copy:\n"
@@ -562,10 +571,10 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
          int bounces, const std::string& transfer, py::object spec, py::object albedo,
          const std::string& sampling, py::object range, const std::string& domain, int resolution,
-         const std::string& uv, int padding, bool seamFix, py::object progress) {
+         const std::string& uv, int padding, bool seamFix, bool denoise, py::object progress) {
         prt::BakeSettings s;
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                          sampling, range, domain, {resolution, uv, padding, seamFix}, progress,
+                          sampling, range, domain, {resolution, uv, padding, seamFix, denoise}, progress,
                           &s);
         auto t = std::make_shared<PyTransfer>();
         t->transfer = std::move(b.transfer);
@@ -578,7 +587,8 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       py::arg("transfer") = "vector", py::arg("material") = py::none(),
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
       py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
-      py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("progress") = py::none(),
+      py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("denoise") = false,
+      py::arg("progress") = py::none(),
       (std::string(
            "bake, returning a prtkit.Transfer (values, recipe, stats) for write_bake, relight,\n"
            "compress and validate.\n") +

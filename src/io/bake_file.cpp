@@ -148,6 +148,7 @@ void streamBake(const BakeFile& bake, std::ostream& os) {
     const TransferShape::LightmapSize lm = bake.lightmap();
     prt["lightmap"] = {{"width", lm.width}, {"height", lm.height}, {"padding", lm.padding}};
     if (lm.seamsFixed) prt["lightmap"]["seamsFixed"] = true;
+    if (lm.denoised) prt["lightmap"]["denoised"] = true;
     prt["texelRange"] = {{"first", rows.first}, {"count", rows.count}};
   } else if (bake.domain() == TransferDomain::Probes) {
     const ProbeGrid g = bake.probeGrid();
@@ -266,6 +267,7 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
     lightmapSize.height = static_cast<int>(r.integer(lm, "height", lw, 1, kMaxLightmapSide));
     lightmapSize.padding = static_cast<int>(r.integer(lm, "padding", lw, 0, kMaxLightmapPadding));
     lightmapSize.seamsFixed = r.has(lm, "seamsFixed") && r.boolean(lm, "seamsFixed", lw);
+    lightmapSize.denoised = r.has(lm, "denoised") && r.boolean(lm, "denoised", lw);
     if (lightmap < 0)
       r.fail(where +
              " holds per-texel transfer but names no lightmapTexCoord (the UVs it is over)");

@@ -194,5 +194,8 @@ std::uint64_t computeMatrixProbeRows(const Mesh& mesh, const Occluder& occluder,
                                      Progress* progress);
 /// The seed of the glossy bounce order `order` baked under a bake of seed `seed`.
 std::uint64_t matrixBounceOrderSeed(std::uint64_t seed, int order);
+/// The unshadowed matrix H(n) = ∫_{n·ω>0} Y Yᵀ dω at each of `normals` (unit): B² × B² floats,
+/// row-major, one after another — what a matrix bake's control variate makes exact.
+std::vector<float> unshadowedMatrixRows(int bands, std::span<const Vec3f> normals);
 
 }  // namespace prt::bakedetail

@@ -645,6 +645,22 @@ std::uint64_t computeMatrixProbeRows(const Mesh& mesh, const Occluder& occluder,
       variance, progress);
 }
 
+std::vector<float> unshadowedMatrixRows(int bands, std::span<const Vec3f> normals) {
+  const MatD hz = hemisphereProductZ(bands);
+  const std::size_t nc = std::size_t(bands) * std::size_t(bands);
+  std::vector<float> out(normals.size() * nc * nc);
+  parallelFor(normals.size(), 64, [&](std::size_t b, std::size_t e) {
+    MatD h, tmp, tmpT;
+    for (std::size_t r = b; r < e; ++r) {
+      hemisphereProduct(hz, bands, Vec3d(normals[r]), h, tmp, tmpT);
+      for (std::size_t i = 0; i < nc; ++i)
+        for (std::size_t j = 0; j < nc; ++j)
+          out[(r * nc + i) * nc + j] = float(h(Eigen::Index(i), Eigen::Index(j)));
+    }
+  });
+  return out;
+}
+
 std::uint64_t matrixBounceOrderSeed(std::uint64_t seed, int order) {
   return deriveSeed(seed, kBounceOrder + static_cast<std::uint64_t>(order));
 }

@@ -35,6 +35,10 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
                   " needs the whole lightmap (a seam joins texels of other ranges): bake the "
                   "pieces without it, then fix the seams of the merged bake (prt merge "
                   "--seam-fix)");
+    if (r.lightmap.denoise && (r.rows.first > 0 || (r.rows.count && r.rows.count < texels)))
+      throw Error(optionName(spelling, "denoise") +
+                  " needs the whole lightmap (its filter reads texels of other ranges): bake the "
+                  "pieces without it, merge them, then prt denoise the merged bake");
   } else if (r.domain == TransferDomain::Probes) {
     if (r.layout != TransferLayout::Matrix)
       throw Error("a probe holds the matrix of the light arriving from every direction: " +
@@ -44,8 +48,13 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
     for (int n : r.probes.count) checkOptionRange(spelling, "grid", n, 0, kMaxProbeSide);
     if (r.lightmap.seamFix)
       throw Error(optionName(spelling, "seam-fix") + " fixes the seams of a lightmap, not probes");
+    if (r.lightmap.denoise)
+      throw Error(optionName(spelling, "denoise") + " filters a lightmap, not probes");
   } else if (r.lightmap.seamFix) {
     throw Error(optionName(spelling, "seam-fix") + " fixes the seams of a lightmap: add " +
+                (spelling == OptionSpelling::Cli ? "--domain texels" : "domain='texels'"));
+  } else if (r.lightmap.denoise) {
+    throw Error(optionName(spelling, "denoise") + " filters a lightmap: add " +
                 (spelling == OptionSpelling::Cli ? "--domain texels" : "domain='texels'"));
   }
 }

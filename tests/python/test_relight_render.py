@@ -145,7 +145,7 @@ def test_texel_transfer_bakes_relights_and_renders_as_prt_render(tmp_path, prt_c
     mesh = prtkit.load_mesh(box)
     t = prtkit.bake_transfer(mesh, mode="shadowed", domain="texels", resolution=24, samples=32)
     assert t.domain == "texels" and t.lightmap == {"width": 24, "height": 24, "padding": 2,
-                                                    "seams_fixed": False}
+                                                    "seams_fixed": False, "denoised": False}
     glb = tmp_path / "t.glb"
     prt_cli("bake", box, "--mode", "shadowed", "--domain", "texels", "--resolution", 24,
             "--samples", 32, "-o", glb)

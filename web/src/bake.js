@@ -379,6 +379,7 @@ export function checkBakeDocument(gltf, bin, name) {
     const W = r.integer(lm, 'width', lw, 1, maxLightmapSide), H = r.integer(lm, 'height', lw, 1, maxLightmapSide);
     r.integer(lm, 'padding', lw, 0, bakeFile.maxLightmapPadding);
     if (has(lm, 'seamsFixed') && typeof lm.seamsFixed !== 'boolean') r.fail(`${lw}.seamsFixed is not a boolean`);
+    if (has(lm, 'denoised') && typeof lm.denoised !== 'boolean') r.fail(`${lw}.denoised is not a boolean`);
     if (lightmap < 0) r.fail(`${where} holds per-texel transfer but names no lightmapTexCoord (the UVs it is over)`);
     domain = domains[1], domainRows = W * H, rangeKey = 'texelRange';
   }

@@ -81,6 +81,7 @@ struct TransferShape {
     int width = 0, height = 0;
     int padding = 0;
     bool seamsFixed = false;
+    bool denoised = false;  ///< transport/denoise_texels.hpp's filter was applied
     std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
     bool operator==(const LightmapSize&) const = default;
   };

@@ -31,6 +31,7 @@ struct LightmapRequest {
   int padding = 2;                     ///< rings of gutter dilated around the charts
   UvSetOption uv = UvSetOption::Auto;  ///< which UV set it lies over
   bool seamFix = false;                ///< the least-squares seam fix after the bake
+  bool denoise = false;                ///< the à-trous filter after the bake (before the seam fix)
 };
 
 /// The grid of a probe bake (TransferDomain::Probes): probes at the centres of count[a] cells
