@@ -460,7 +460,7 @@ void addExportCommand(CLI::App& root) {
                   "own units)")
       ->check(exposureStops());
   cmd->add_option("--encoding", args->encoding,
-                  "lightmap-sh: l1 | l1-windowed | l1-geomerics | zh3 | zh3-optimal | "
+                  "lightmap-sh: l1 | l1-windowed | l1-geomerics | zh3 | zh3-shared | zh3-optimal | "
                   "zh3-hallucinated | l2 | l2-deringed (default l1; docs/formats-light.md)");
   cmd->add_option("--engine", args->engine,
                   "lightmap-sh: the L1 layouts to write, comma-separated: godot (4.4+), "

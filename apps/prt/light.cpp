@@ -292,8 +292,8 @@ void addLightCommand(CLI::App& root) {
   cmd->add_flag("--strict", opts->strict, "Fail on NaN/Inf or negative pixels instead of warning");
   cmd->add_option("--encoding", opts->encoding,
                   "Also store the irradiance as an engine does, with its error against 12 bands "
-                  "(JSON light files): l1|l1-windowed|l1-geomerics|zh3|zh3-hallucinated|l2|"
-                  "l2-deringed (docs/formats-light.md)");
+                  "(JSON light files): l1, l1-windowed, l1-geomerics, zh3, zh3-shared, "
+                  "zh3-optimal, zh3-hallucinated, l2 or l2-deringed (docs/formats-light.md)");
   addJsonOption(cmd, opts->json);
   cmd->callback([opts] { runLight(*opts); });
 }

@@ -361,7 +361,7 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--encoding", opts->encoding,
                   "Draw the diffuse shading an engine gets from an irradiance encoding of the "
                   "light arriving at each row (a matrix bake, a diffuse material): l1, "
-                  "l1-windowed, l1-geomerics, zh3, zh3-optimal, zh3-hallucinated, l2, "
+                  "l1-windowed, l1-geomerics, zh3, zh3-shared, zh3-optimal, zh3-hallucinated, l2, "
                   "l2-deringed, or none (PRT's own radiance; docs/lightmaps.md)");
   addJsonOption(cmd, opts->json);
   cmd->callback([opts] { run(*opts); });

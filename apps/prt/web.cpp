@@ -521,8 +521,8 @@ void addWebCommand(CLI::App& root) {
   cmd->add_option("--encoding", args->encoding,
                   "Open a per-vertex matrix transfer drawn as an engine's irradiance encoding "
                   "shades it (its diffuse part, as prt render --encoding): l1, l1-windowed, "
-                  "l1-geomerics, zh3, zh3-optimal, zh3-hallucinated, l2, l2-deringed, or none "
-                  "(PRT's own radiance; dense matrices are drawn through l2 then)");
+                  "l1-geomerics, zh3, zh3-shared, zh3-optimal, zh3-hallucinated, l2, l2-deringed, "
+                  "or none (PRT's own radiance; dense matrices are drawn through l2 then)");
   cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
   cmd->add_option_function<std::string>(
          "--exposure", [args](const std::string& s) { args->exposure = exposureOption(s); },

@@ -41,8 +41,8 @@ constexpr EngineName kEngines[] = {{LightmapEngine::Godot, "godot"},
 struct TexelValues {
   Rgbd a{0, 0, 0};
   std::array<Vec3d, 3> c{};  ///< per channel
-  Rgbd k{0, 0, 0};           ///< zh3, zh3-optimal: f += k (3 (a·n)² − 1)
-  Vec3d axis{0, 0, 1};       ///< zh3-optimal's stored axis
+  Rgbd k{0, 0, 0};           ///< the zh3 forms: f += k (3 (a·n)² − 1)
+  Vec3d axis{0, 0, 1};       ///< the zh3 forms' axis (stored by zh3-shared and zh3-optimal)
 };
 
 /// Planes of an RGB float texture of `layers` W × H layers stacked down the image.
@@ -134,9 +134,8 @@ void checkTexels(std::size_t values, std::size_t perTexel, const LightmapDescrip
                               std::to_string(d.lightmap.height) + " lightmap");
 }
 
-
-/// Every texel's encoding, once (zh3-optimal's axis search is the costly part), already over π
-/// and scaled by 2^stops: what every layout below is made from.
+/// Every texel's encoding, once (zh3-optimal's and zh3-shared's axis search is the costly part),
+/// already over π and scaled by 2^stops: what every layout below is made from.
 struct EncodedTexels {
   std::vector<TexelValues> values;
   std::vector<std::array<Rgbd, 9>> l2;  ///< E_i / π per texel, for l2 and l2-deringed only
@@ -170,19 +169,22 @@ EncodedTexels encodeTexels(std::span<const Rgb> incident, int bands,
   return out;
 }
 
-
 /// How the layers beyond L1 decode (the manifest's "decode"); `storedAxis` says where
-/// zh3-optimal's axis is.
+/// zh3-optimal's and zh3-shared's axis is.
 nlohmann::json decodeJson(sh::IrradianceEncoding encoding, const char* storedAxis) {
   nlohmann::json decode = {{"A", "the L1 layers' constant term L0 (f ~ A + c.n)"}};
   if (sh::isZonal(encoding)) {
-    decode["axis"] = encoding == sh::IrradianceEncoding::ZH3Optimal
+    decode["axis"] = sh::storesAxis(encoding)
                          ? storedAxis
                          : "a = normalize(0.2126 c_r + 0.7152 c_g + 0.0722 c_b), +Z when zero";
     if (encoding == sh::IrradianceEncoding::ZH3Hallucinated)
       decode["zonal"] =
           "k = A (sqrt(5)/8) (0.08 r + 0.6 r^2), r = (sqrt(3)/2) |c.a| / A (A > 0; "
           "else k = 0); f = A + c.n + k (3 (a.n)^2 - 1)";
+    if (encoding == sh::IrradianceEncoding::ZH3Shared)
+      decode["zonal"] =
+          "k = s A per channel, one number s per texel (k / A is the same in every channel): "
+          "an engine stores s alone, 15 numbers with the octahedral axis";
   }
   if (encoding == sh::IrradianceEncoding::L1Geomerics)
     decode["nonLinear"] =
@@ -361,21 +363,25 @@ EngineLightmaps encodeIrradianceLightmaps(std::span<const Rgb> incident, int ban
   }
 
   // What the encoding holds beyond L1, in prtkit's own layouts.
-  if (encoding == sh::IrradianceEncoding::ZH3 || encoding == sh::IrradianceEncoding::ZH3Optimal) {
+  if (sh::storesZonal(encoding)) {
     Stack zh(W, H, 1);
     for (std::size_t t = 0; t < texels; ++t) zh.set(0, t, values[t].k);
     out.files.emplace_back("zh3.exr", zh.exr(d.source + " (zh3.exr)"));
+    const char* paper = "Roughton, Sloan et al., ZH3: Quadratic Zonal Harmonics, I3D 2024";
+    const std::string source =
+        encoding == sh::IrradianceEncoding::ZH3Shared
+            ? std::string("prtkit's zh3-shared, a variant of ") + paper +
+                  ": one zonal number shared in proportion to L0, about a searched axis"
+            : std::string(paper);
     files.push_back({{"file", "zh3.exr"},
                      {"engine", "prtkit's ZH3 layout (no engine ships ZH3 lightmaps)"},
                      {"layout", "RGB float, W x H: k per channel"},
                      {"decode",
                       "f = A + c.n + k (3 (a.n)^2 - 1), A and c the L1 part "
                       "(f ~ A + c.n) of any layout above, in glTF axes"},
-                     {"source",
-                      "Roughton, Sloan et al., ZH3: Quadratic Zonal Harmonics, I3D "
-                      "2024"}});
+                     {"source", source}});
   }
-  if (encoding == sh::IrradianceEncoding::ZH3Optimal) {
+  if (sh::storesAxis(encoding)) {
     Stack ax(W, H, 1);
     for (std::size_t t = 0; t < texels; ++t) ax.set(0, t, values[t].axis);
     out.files.emplace_back("zh3-axis.exr", ax.exr(d.source + " (zh3-axis.exr)"));
@@ -444,9 +450,9 @@ LightmapLayers irradianceLayers(std::span<const Rgb> incident, int bands,
     for (int k = 0; k < 3; ++k)
       layer(axes[k], std::string("the ") + "xyz"[k] + " component of c per channel (glTF axes)",
             [&](std::size_t t) { return Rgbd(v[t].c[0][k], v[t].c[1][k], v[t].c[2][k]); });
-    if (encoding == sh::IrradianceEncoding::ZH3 || encoding == sh::IrradianceEncoding::ZH3Optimal)
+    if (sh::storesZonal(encoding))
       layer("zonal", "k per channel: f += k (3 (a.n)^2 - 1)", [&](std::size_t t) { return v[t].k; });
-    if (encoding == sh::IrradianceEncoding::ZH3Optimal)
+    if (sh::storesAxis(encoding))
       layer("axis", "the zonal axis a (unit, glTF axes)", [&](std::size_t t) {
         return Rgbd(v[t].axis.x, v[t].axis.y, v[t].axis.z);
       });

@@ -33,6 +33,7 @@ constexpr Names kNames[] = {{IrradianceEncoding::L2, "l2"},
                             {IrradianceEncoding::L1Windowed, "l1-windowed"},
                             {IrradianceEncoding::L1Geomerics, "l1-geomerics"},
                             {IrradianceEncoding::ZH3, "zh3"},
+                            {IrradianceEncoding::ZH3Shared, "zh3-shared"},
                             {IrradianceEncoding::ZH3Optimal, "zh3-optimal"},
                             {IrradianceEncoding::ZH3Hallucinated, "zh3-hallucinated"}};
 
@@ -57,17 +58,11 @@ Rgbd zonalProjection(const std::vector<Rgbd>& l, const Vec3d& a) {
   return z;
 }
 
-/// Σ_c z_c(a)²: what the zonal harmonic about `a` holds of band 2 (up to the constant 4π/5),
-/// summed over the channels.
-double zonalEnergy(const std::vector<Rgbd>& l, const Vec3d& a) {
-  const Rgbd z = zonalProjection(l, a);
-  return dot(z, z);
-}
-
-/// The axis that holds the most of band 2: the maximum of the quartic zonalEnergy over the
-/// sphere, by a Fibonacci search of 2,000 directions (neighbours ~4.6° apart) refined by
-/// shrinking steps towards the best neighbour. Axis and −axis are the same zonal harmonic.
-Vec3d bestZonalAxis(const std::vector<Rgbd>& l) {
+/// The maximum over the sphere of a score of the axis (zh3-optimal's and zh3-shared's quartics
+/// in a), by a Fibonacci search of 2,000 directions (neighbours ~4.6° apart) refined by shrinking
+/// steps towards the best neighbour. Axis and −axis are the same zonal harmonic.
+template <class Score>
+Vec3d bestAxis(Score score) {
   constexpr int kSearch = 2000;
   const double golden = kPi * (3.0 - std::sqrt(5.0));
   Vec3d best(0, 0, 1);
@@ -75,7 +70,7 @@ Vec3d bestZonalAxis(const std::vector<Rgbd>& l) {
   for (int i = 0; i < kSearch; ++i) {
     const double z = 1 - (i + 0.5) / kSearch, r = std::sqrt(1 - z * z), phi = golden * i;
     const Vec3d a(r * std::cos(phi), r * std::sin(phi), z);  // a hemisphere suffices
-    const double e = zonalEnergy(l, a);
+    const double e = score(a);
     if (e > bestE) bestE = e, best = a;
   }
   for (double step = 0.05; step > 1e-7; step *= 0.5) {
@@ -86,12 +81,30 @@ Vec3d bestZonalAxis(const std::vector<Rgbd>& l) {
       moved = false;
       for (const Vec3d& d : {t, -t, b, -b}) {
         const Vec3d a = normalize(best + d * step);
-        const double e = zonalEnergy(l, a);
+        const double e = score(a);
         if (e > bestE) bestE = e, best = a, moved = true;
       }
     }
   }
   return best;
+}
+
+/// zh3-optimal's axis: the one that holds the most of band 2 summed over the channels, the
+/// maximum of Σ_c z_c(a)² (what the zonal harmonic about a holds, up to the constant 4π/5).
+Vec3d bestZonalAxis(const std::vector<Rgbd>& l) {
+  return bestAxis([&](const Vec3d& a) {
+    const Rgbd z = zonalProjection(l, a);
+    return dot(z, z);
+  });
+}
+
+/// zh3-shared's axis for the chroma `w` (the channels' L₀₀): the maximum of (Σ_c w_c z_c(a))²,
+/// which is what the least-squares zonal term s w Y₂₀(a·ω) removes of band 2, times |w|² 5/4π.
+Vec3d bestSharedAxis(const std::vector<Rgbd>& l, const Rgbd& w) {
+  return bestAxis([&](const Vec3d& a) {
+    const double p = dot(zonalProjection(l, a), w);
+    return p * p;
+  });
 }
 
 /// Hazel's (Geomerics 2014) non-negative reconstruction of one channel from its mean E₀ and
@@ -130,6 +143,7 @@ int storedNumbers(IrradianceEncoding e) {
     case IrradianceEncoding::L2Deringed:
       return 27;
     case IrradianceEncoding::ZH3:
+    case IrradianceEncoding::ZH3Shared:
       return 15;
     case IrradianceEncoding::ZH3Optimal:
       return 17;
@@ -168,15 +182,26 @@ EncodedIrradiance encodeIrradiance(const RgbSh& radiance, IrradianceEncoding enc
   }
   if (isZonal(encoding)) {
     // The zonal coefficient is made from the radiance's bands, then convolved.
-    out.axis = encoding == IrradianceEncoding::ZH3Optimal ? bestZonalAxis(l) : luminanceAxis(l);
     const double lambda2 = clampedCosineKernel(3)[2];
-    if (encoding != IrradianceEncoding::ZH3Hallucinated) {
+    if (encoding == IrradianceEncoding::ZH3Shared) {
+      // One zonal number s shared in proportion to the channels' L₀₀, about the axis where
+      // that colour holds the most of band 2: s = Σ_c L₀₀,c ẑ_c / Σ_c L₀₀,c² (least squares),
+      // ẑ = √(4π/5) z(a). No L₀₀ (an unlit texel): nothing to share, the luminance axis kept.
+      const Rgbd w = l[0];
+      const double w2 = dot(w, w);
+      out.axis = w2 > 0 ? bestSharedAxis(l, w) : luminanceAxis(l);
+      const double s =
+          w2 > 0 ? std::sqrt(4 * kPi / 5) * dot(zonalProjection(l, out.axis), w) / w2 : 0;
+      out.zonal = w * (s * lambda2);
+    } else if (encoding != IrradianceEncoding::ZH3Hallucinated) {
       // The projection of band 2 on the zonal harmonic about the axis, z = √(4π/5) Σ_m L₂ₘ
       // Y₂ₘ(a): the best one number along a fixed axis can hold of band 2 (least squares).
+      out.axis = encoding == IrradianceEncoding::ZH3Optimal ? bestZonalAxis(l) : luminanceAxis(l);
       out.zonal = zonalProjection(l, out.axis) * (std::sqrt(4 * kPi / 5) * lambda2);
     } else {
       // Roughton et al. 2024's fit from band 1 alone: r = |L₁·a| / L₀ per channel,
       // z = L₀ (0.08 r + 0.6 r²) (their SHHallucinateZH3Irradiance, RGB form).
+      out.axis = luminanceAxis(l);
       for (int ch = 0; ch < 3; ++ch) {
         const double l0 = l[0][ch];
         if (l0 <= 0) continue;

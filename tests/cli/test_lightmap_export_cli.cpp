@@ -241,14 +241,14 @@ TEST_F(LightmapExportCli, LightmapShDecodesInEveryEngineLayoutToTheTexelsIrradia
       EXPECT_NE(slurp(d / "godot.exr.import").find("slices/vertical=4"), std::string::npos);
       const Exr b0 = readExr(d / "bakery-L0.exr"), bx = readExr(d / "bakery-L1x.exr"),
                 by = readExr(d / "bakery-L1y.exr"), bz = readExr(d / "bakery-L1z.exr");
-      const bool zh3Stored =
-          enc == sh::IrradianceEncoding::ZH3 || enc == sh::IrradianceEncoding::ZH3Optimal;
+      const bool axisStored =
+          enc == sh::IrradianceEncoding::ZH3Shared || enc == sh::IrradianceEncoding::ZH3Optimal;
+      const bool zh3Stored = enc == sh::IrradianceEncoding::ZH3 || axisStored;
       EXPECT_EQ(fs::exists(d / "zh3.exr"), zh3Stored);
-      EXPECT_EQ(fs::exists(d / "zh3-axis.exr"), enc == sh::IrradianceEncoding::ZH3Optimal);
+      EXPECT_EQ(fs::exists(d / "zh3-axis.exr"), axisStored);
       EXPECT_EQ(fs::exists(d / "l2.exr"), sh::shRows(enc) == 9);
       const Exr zh3 = zh3Stored ? readExr(d / "zh3.exr") : Exr();
-      const Exr axes =
-          enc == sh::IrradianceEncoding::ZH3Optimal ? readExr(d / "zh3-axis.exr") : Exr();
+      const Exr axes = axisStored ? readExr(d / "zh3-axis.exr") : Exr();
       const Exr l2 = sh::shRows(enc) == 9 ? readExr(d / "l2.exr") : Exr();
       if (sh::shRows(enc) == 9) {
         ASSERT_EQ(l2.height, 9 * kRes);
@@ -287,9 +287,8 @@ TEST_F(LightmapExportCli, LightmapShDecodesInEveryEngineLayoutToTheTexelsIrradia
             Rgbd got = l.at(n);
             // What each encoding adds to (or makes of) the L1 part, as docs/lightmaps.md says.
             if (sh::isZonal(enc)) {
-              Vec3d ax = enc == sh::IrradianceEncoding::ZH3Optimal
-                             ? Vec3d(axes.at(0, t, kRes))
-                             : l.c[0] * 0.2126 + l.c[1] * 0.7152 + l.c[2] * 0.0722;
+              Vec3d ax = axisStored ? Vec3d(axes.at(0, t, kRes))
+                                    : l.c[0] * 0.2126 + l.c[1] * 0.7152 + l.c[2] * 0.0722;
               ax = length(ax) > 0 ? normalize(ax) : Vec3d(0, 0, 1);
               const double zonal = 3 * dot(ax, n) * dot(ax, n) - 1;
               for (int ch = 0; ch < 3; ++ch) {
@@ -444,9 +443,10 @@ TEST_F(LightmapExportCli, GltfLightmapLayersDecodeToTheTexelsIrradiance) {
     const bool l2 = sh::shRows(enc) == 9;
     EXPECT_EQ(layer.count("sh8"), l2 ? 1u : 0u);
     EXPECT_EQ(layer.count("L0"), l2 ? 0u : 1u);
-    EXPECT_EQ(layer.count("zonal"),
-              enc == sh::IrradianceEncoding::ZH3 || enc == sh::IrradianceEncoding::ZH3Optimal);
-    EXPECT_EQ(layer.count("axis"), enc == sh::IrradianceEncoding::ZH3Optimal);
+    const bool axisStored =
+        enc == sh::IrradianceEncoding::ZH3Shared || enc == sh::IrradianceEncoding::ZH3Optimal;
+    EXPECT_EQ(layer.count("zonal"), enc == sh::IrradianceEncoding::ZH3 || axisStored);
+    EXPECT_EQ(layer.count("axis"), axisStored);
     double worst = 0, largest = 0;
     for (std::size_t t = 0; t < texels; ++t) {
       const sh::EncodedIrradiance e = sh::encodeIrradiance(asLight(inc.rows[t]), enc);
@@ -455,6 +455,15 @@ TEST_F(LightmapExportCli, GltfLightmapLayersDecodeToTheTexelsIrradiance) {
         l.a = rgb("L0", t);
         const Rgbd x = rgb("L1x", t), y = rgb("L1y", t), z = rgb("L1z", t);
         for (int ch = 0; ch < 3; ++ch) l.c[ch] = Vec3d(x[ch], y[ch], z[ch]);
+      }
+      if (enc == sh::IrradianceEncoding::ZH3Shared) {
+        // One zonal number a texel: k = s A in every channel, so an engine stores s alone.
+        const Rgbd k = rgb("zonal", t);
+        if (l.a[1] > 1e-4) {
+          const double s = k[1] / l.a[1];
+          for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(k[ch], s * l.a[ch], 1e-5 * std::abs(s * l.a[ch]) + 1e-9) << t;
+        }
       }
       for (const Vec3d& n : ns) {
         const Rgbd want = sh::evaluate(e, n) * scale;

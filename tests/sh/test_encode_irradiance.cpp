@@ -61,13 +61,17 @@ TEST(IrradianceEncoding, NamesRoundTripAndABadOneListsThem) {
     parseIrradianceEncoding("zh4");
     FAIL() << "accepted zh4";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("encoding must be l2, l2-deringed, l1, l1-windowed, "
-                                         "l1-geomerics, zh3, zh3-optimal or zh3-hallucinated, got 'zh4'"),
+    EXPECT_NE(std::string(e.what()).find(
+                  "encoding must be l2, l2-deringed, l1, l1-windowed, "
+                  "l1-geomerics, zh3, zh3-shared, zh3-optimal or zh3-hallucinated, "
+                  "got 'zh4'"),
               std::string::npos)
         << e.what();
   }
   EXPECT_EQ(storedNumbers(IrradianceEncoding::L2), 27);
   EXPECT_EQ(storedNumbers(IrradianceEncoding::ZH3), 15);
+  EXPECT_EQ(storedNumbers(IrradianceEncoding::ZH3Shared), 15);
+  EXPECT_EQ(storedNumbers(IrradianceEncoding::ZH3Optimal), 17);
   EXPECT_EQ(storedNumbers(IrradianceEncoding::ZH3Hallucinated), 12);
   EXPECT_EQ(storedNumbers(IrradianceEncoding::L1Geomerics), 12);
 }
@@ -166,6 +170,72 @@ TEST(IrradianceEncoding, Zh3IsNeverWorseThanL1AndTheOptimalAxisIsBest) {
     }
   }
   EXPECT_GT(better, 10);  // the luminance axis is not the best one for random lights
+}
+
+// zh3-shared: one zonal number s shared by the channels in proportion to their L₀₀, about the
+// axis where that is the least-squares best. Checked against quadrature: the projection of each
+// channel's band 2 on Y₂₀(a·ω) summed over a Gauss–Legendre grid (not the addition theorem the
+// encoder uses), the least-squares s from it, and 300 random axes each with its own best s.
+TEST(IrradianceEncoding, Zh3SharedIsTheBestZonalOfTheLightsOwnColour) {
+  const double lambda2 = kPi / 4;
+  const SphereQuadrature q = gaussLegendreSphere(12);
+  // ∫ band2_c(ω) Y₂₀(a·ω) dω per channel (exact for the degree-4 integrand on this grid).
+  const auto project = [&](const RgbSh& L, const Vec3d& a) {
+    Rgbd proj(0.0);
+    std::vector<double> y(9);
+    for (std::size_t p = 0; p < q.dirs.size(); ++p) {
+      eval(3, q.dirs[p], y.data());
+      Rgbd band2(0.0);
+      for (int i = 4; i < 9; ++i) band2 += Rgbd(L.c[i]) * y[i];
+      const double t = dot(a, q.dirs[p]);
+      proj += band2 * (q.weights[p] * std::sqrt(5 / (16 * kPi)) * (3 * t * t - 1));
+    }
+    return proj;
+  };
+  std::mt19937 rng(17);
+  for (int k = 0; k < 4; ++k) {
+    SCOPED_TRACE(k);
+    const RgbSh L = randomLight(3, rng, 0.6);
+    const Rgbd l0(L.c[0]);
+    const EncodedIrradiance e = encodeIrradiance(L, IrradianceEncoding::ZH3Shared);
+    EXPECT_NEAR(length(e.axis), 1.0, 1e-12);
+    // (a) The zonal coefficients are in the proportion of the channels' L₀₀.
+    for (int ch = 1; ch < 3; ++ch)
+      EXPECT_NEAR(e.zonal[ch] / l0[ch], e.zonal[0] / l0[0], 1e-12 * std::abs(e.zonal[0] / l0[0]));
+    // (b) s is the least-squares best for that colour about the axis: Σ_c L₀₀,c P_c / Σ_c L₀₀,c².
+    const double s = dot(project(L, e.axis), l0) / dot(l0, l0);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(e.zonal[ch], lambda2 * s * l0[ch], 1e-6) << ch;
+    // ... and the axis is: no random axis, with its own best s, comes closer.
+    const double got = encodingError(L, e).relativeRms;
+    std::mt19937 dirs(100 + k);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int i = 0; i < 300; ++i) {
+      const double z = 2 * u(dirs) - 1, phi = 2 * kPi * u(dirs), r = std::sqrt(1 - z * z);
+      EncodedIrradiance trial = e;
+      trial.axis = Vec3d(r * std::cos(phi), r * std::sin(phi), z);
+      trial.zonal = l0 * (lambda2 * dot(project(L, trial.axis), l0) / dot(l0, l0));
+      ASSERT_GE(encodingError(L, trial).relativeRms, got - 1e-7) << "axis " << i;
+    }
+    // Least squares never loses: no worse than l1 with the same 12 numbers.
+    EXPECT_LE(got, encodingError(L, encodeIrradiance(L, IrradianceEncoding::L1)).relativeRms);
+  }
+}
+
+// A light whose band 2 is exactly a zonal harmonic of one colour (its own mean's, about an axis
+// band 1 does not point along) is kept exactly by zh3-shared, not by the paper's zh3.
+TEST(IrradianceEncoding, Zh3SharedIsExactForAZonalBandTwoOfTheLightsColour) {
+  std::mt19937 rng(23);
+  RgbSh L = randomLight(3, rng, 0.3);  // bands 0 and 1 random, band 2 replaced below
+  const Vec3d d = normalize(Vec3d(0.7, -0.1, 0.5));
+  double y[9];
+  eval(3, d, y);
+  for (int i = 4; i < 9; ++i)
+    for (int ch = 0; ch < 3; ++ch) L.c[i][ch] = float(0.9 * L.c[0][ch] * y[i]);
+  const EncodedIrradiance e = encodeIrradiance(L, IrradianceEncoding::ZH3Shared);
+  EXPECT_NEAR(std::abs(dot(e.axis, d)), 1.0, 1e-9);
+  EXPECT_LT(encodingError(L, e).relativeRms, 1e-6);
+  // The comparison can fail: the luminance's band-1 axis is elsewhere.
+  EXPECT_GT(encodingError(L, encodeIrradiance(L, IrradianceEncoding::ZH3)).relativeRms, 1e-3);
 }
 
 // The paper's hallucination on a delta light: r = |L₁·a|/L₀ = √3, zonal = Λ₂ L₀ (0.08 r + 0.6 r²).

@@ -12,6 +12,9 @@
 //   zh3-hallucinated         the axis that holds the most of band 2 (a search), or guessed from
 //                            band 1 (Roughton, Sloan et al., "ZH3: Quadratic Zonal Harmonics",
 //                            I3D 2024)
+//   zh3-shared               our variant: one zonal number shared by the channels in proportion
+//                            to their L₀₀, about the axis where that colour holds the most of
+//                            band 2 (a search)
 //
 // The names, the numbers each stores, the clamped cosine's kernel Λ_l and the luminance weights
 // come from the library ('prt:constants'); the search and fit constants below are the library's,
@@ -67,12 +70,6 @@ function zonalProjection(l, a, y = new Float64Array(9)) {
   return z;
 }
 
-/** Σ_c z_c(a)²: what the zonal harmonic about a holds of band 2, summed over the channels. */
-function zonalEnergy(l, a, y) {
-  const z = zonalProjection(l, a, y);
-  return dot3(z, z);
-}
-
 /** Duff et al. 2017's orthonormal frame (t, b) about unit n (core/vec.hpp orthonormalBasis). */
 function orthonormalBasis(n) {
   const sign = n[2] < 0 || Object.is(n[2], -0) ? -1 : 1;
@@ -80,16 +77,16 @@ function orthonormalBasis(n) {
   return [[1 + sign * n[0] * n[0] * a, sign * c, -sign * n[0]], [c, sign + n[1] * n[1] * a, -n[1]]];
 }
 
-/** The axis that holds the most of band 2: the maximum of the quartic zonalEnergy over the
- *  sphere, by a Fibonacci search of 2,000 directions (a hemisphere: a and −a are the same zonal
- *  harmonic) refined by halving steps from 0.05 toward the best of four neighbours. */
-function bestZonalAxis(l) {
-  const kSearch = 2000, golden = Math.PI * (3 - Math.sqrt(5)), y = new Float64Array(9);
+/** The maximum over the sphere of score(a) (zh3-optimal's and zh3-shared's quartics in a), by a
+ *  Fibonacci search of 2,000 directions (a hemisphere: a and −a are the same zonal harmonic)
+ *  refined by halving steps from 0.05 toward the best of four neighbours. */
+function bestAxis(score) {
+  const kSearch = 2000, golden = Math.PI * (3 - Math.sqrt(5));
   let best = [0, 0, 1], bestE = -1;
   for (let i = 0; i < kSearch; ++i) {
     const z = 1 - (i + 0.5) / kSearch, r = Math.sqrt(1 - z * z), phi = golden * i;
     const a = [r * Math.cos(phi), r * Math.sin(phi), z];
-    const e = zonalEnergy(l, a, y);
+    const e = score(a);
     if (e > bestE) bestE = e, best = a;
   }
   for (let step = 0.05; step > 1e-7; step *= 0.5) {
@@ -99,12 +96,32 @@ function bestZonalAxis(l) {
       moved = false;
       for (const d of [t, [-t[0], -t[1], -t[2]], b, [-b[0], -b[1], -b[2]]]) {
         const a = normalize3([best[0] + d[0] * step, best[1] + d[1] * step, best[2] + d[2] * step]);
-        const e = zonalEnergy(l, a, y);
+        const e = score(a);
         if (e > bestE) bestE = e, best = a, moved = true;
       }
     }
   }
   return best;
+}
+
+/** zh3-optimal's axis: the one that holds the most of band 2 summed over the channels,
+ *  the maximum of Σ_c z_c(a)². */
+function bestZonalAxis(l) {
+  const y = new Float64Array(9);
+  return bestAxis((a) => {
+    const z = zonalProjection(l, a, y);
+    return dot3(z, z);
+  });
+}
+
+/** zh3-shared's axis for the colour w (the channels' L₀₀): the maximum of (Σ_c w_c z_c(a))²,
+ *  what the least-squares zonal term s w Y₂₀(a·ω) removes of band 2. */
+function bestSharedAxis(l, w) {
+  const y = new Float64Array(9);
+  return bestAxis((a) => {
+    const p = dot3(zonalProjection(l, a, y), w);
+    return p * p;
+  });
 }
 
 // ---- de-ringing (sh::dering, window.cpp) ------------------------------------------------------
@@ -228,12 +245,21 @@ export function encode(radiance, bands, name) {
   let axis = [0, 0, 1], zonal = [0, 0, 0];
   if (spec.zonal) {
     // The zonal coefficient is made from the radiance's bands, then convolved.
-    axis = name === 'zh3-optimal' ? bestZonalAxis(l) : luminanceAxis(l);
     const lambda2 = clampedCosine[2];
-    if (name !== 'zh3-hallucinated') {
+    if (name === 'zh3-shared') {
+      // One zonal number s shared in proportion to the channels' L₀₀, about the axis where that
+      // colour holds the most of band 2: s = Σ_c L₀₀,c ẑ_c / Σ_c L₀₀,c² (least squares),
+      // ẑ = √(4π/5) z(a). No L₀₀: nothing to share, the luminance axis kept.
+      const w = [l[0], l[1], l[2]], w2 = dot3(w, w);
+      axis = w2 > 0 ? bestSharedAxis(l, w) : luminanceAxis(l);
+      const s = w2 > 0 ? kZonalScale * dot3(zonalProjection(l, axis), w) / w2 : 0;
+      zonal = w.map((x) => x * (s * lambda2));
+    } else if (name !== 'zh3-hallucinated') {
       // z = √(4π/5) Σ_m L₂ₘ Y₂ₘ(a): the best one number along a fixed axis can hold of band 2.
+      axis = name === 'zh3-optimal' ? bestZonalAxis(l) : luminanceAxis(l);
       zonal = zonalProjection(l, axis).map((z) => z * (kZonalScale * lambda2));
     } else {
+      axis = luminanceAxis(l);
       // Roughton et al. 2024's fit from band 1 alone: r = |L₁·a| / L₀ per channel,
       // z = L₀ (0.08 r + 0.6 r²) (their SHHallucinateZH3Irradiance, RGB form).
       for (let ch = 0; ch < 3; ++ch) {

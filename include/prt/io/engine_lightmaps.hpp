@@ -45,12 +45,13 @@
 // prtkit's own layouts for what no engine ships (the decode adds to the L1 part's A + c·n):
 //
 //   zh3.exr        k (RGB): f += k (3 (a·n)² − 1), k = z √(5/16π) / π with z the zonal
-//                  coefficient (zh3, zh3-optimal; Roughton et al., "ZH3: Quadratic Zonal
-//                  Harmonics", I3D 2024). The axis a is the luminance's band-1 direction,
+//                  coefficient (zh3, zh3-shared, zh3-optimal; Roughton et al., "ZH3: Quadratic
+//                  Zonal Harmonics", I3D 2024). The axis a is the luminance's band-1 direction,
 //                  normalize(Σ_c w_c c_c) with Rec. 709 weights (+Z when zero), so the engine
-//                  derives it from the L1 layers; zh3-optimal stores it instead, zh3-axis.exr
-//                  (RGB = a, glTF axes). zh3-hallucinated stores nothing more: per channel
-//                  r = (√3/2) |c·a| / A and k = A (√5/8)(0.08 r + 0.6 r²) (A > 0, else 0).
+//                  derives it from the L1 layers; zh3-shared and zh3-optimal store it instead,
+//                  zh3-axis.exr (RGB = a, glTF axes). zh3-shared's k is s A per channel (one s a
+//                  texel: an engine stores s alone). zh3-hallucinated stores nothing more: per
+//                  channel r = (√3/2) |c·a| / A and k = A (√5/8)(0.08 r + 0.6 r²) (A > 0, else 0).
 //   l2.exr         W × 9H, RGB float: layer i = E_i / π (i = l(l+1) + m, prtkit's basis);
 //                  f = Σ_i layer_i Y_i(n) (l2, l2-deringed).
 //   l1-geomerics   the L1 layers alone, decoded with Hazel's non-linear form (Geomerics 2014):
@@ -67,7 +68,8 @@
 //   lightmap      f
 //   lightmap-sh   L0, L1x, L1y, L1z (A and the x, y, z components of each channel's c, glTF
 //                 axes: f ≈ L0 + L1x n_x + L1y n_y + L1z n_z), then zonal (k: zh3,
-//                 zh3-optimal) and axis (zh3-optimal); l2 and l2-deringed: sh0 .. sh8
+//                 zh3-shared, zh3-optimal) and axis (zh3-shared, zh3-optimal); l2 and
+//                 l2-deringed: sh0 .. sh8
 //                 (E_i / π) in place of the L1 layers.
 
 #include <cstddef>

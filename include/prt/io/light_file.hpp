@@ -8,7 +8,7 @@
 //    "irradiance": {...}}  (optional: `prt light --encoding`, below)
 // "irradiance" holds the light's irradiance in an engine's form (sh/irradiance_encoding.hpp):
 //   {"encoding": "zh3", "numbers": 15, "coefficients": [[r, g, b], … 4 or 9 irradiance SH rows],
-//    "axis": [x, y, z], "zonal": [r, g, b] (zh3 and zh3-hallucinated),
+//    "axis": [x, y, z], "zonal": [r, g, b] (the zh3 forms),
 //    "error": {"referenceBands": 12, "relativeRms": 0.05, "negativeShare": 0}}
 // GAMES202 light.txt (the course's homework 2): B² lines "r g b", nothing else; B = sqrt(lines).
 // Readers validate everything and throw prt::Error("FILE: line N: what is wrong") on one line.

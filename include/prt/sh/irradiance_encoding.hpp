@@ -19,6 +19,17 @@
 //                                  luminance's band-1 direction: the zonal harmonic that carries
 //                                  the most of band 2 that one number can (Roughton, Sloan et al.,
 //                                  "ZH3: Quadratic Zonal Harmonics", I3D 2024)
+//   zh3-shared       15           our variant of Roughton et al.'s zh3 (not in their paper): l1,
+//                                  a stored axis a (2 numbers, octahedral) and ONE zonal number s
+//                                  that the channels share in proportion to their means. zh3
+//                                  spends its 3 extra numbers on a zonal per channel about an
+//                                  axis band 1 guesses; band 2 is mostly of the light's own
+//                                  colour, so 2 of them hold more as the axis that fits it:
+//                                    z_c = s L₀₀,c,  s = Σ_c L₀₀,c ẑ_c(a) / Σ_c L₀₀,c²,
+//                                    ẑ_c(a) = √(4π/5) Σ_m L₂ₘ,c Y₂ₘ(a),
+//                                  a maximising (Σ_c L₀₀,c ẑ_c(a))² (zh3-optimal's search): the
+//                                  least-squares best zonal term of that colour; the
+//                                  irradiance's zonal is Λ₂ z_c
 //   zh3-optimal      17           zh3 about the axis that holds the most of band 2 (summed over
 //                                  channels: the least-squares best axis, found by search), which
 //                                  the engine must then store (2 numbers, octahedral); the
@@ -44,25 +55,39 @@ enum class IrradianceEncoding {
   L1Windowed,
   L1Geomerics,
   ZH3,
+  ZH3Shared,
   ZH3Optimal,
   ZH3Hallucinated
 };
 
 /// Every encoding, in the order tables list them.
-inline constexpr std::array<IrradianceEncoding, 8> kIrradianceEncodings = {
+inline constexpr std::array<IrradianceEncoding, 9> kIrradianceEncodings = {
     IrradianceEncoding::L1,          IrradianceEncoding::L1Windowed,
     IrradianceEncoding::L1Geomerics, IrradianceEncoding::ZH3Hallucinated,
-    IrradianceEncoding::ZH3,         IrradianceEncoding::ZH3Optimal,
-    IrradianceEncoding::L2,          IrradianceEncoding::L2Deringed};
+    IrradianceEncoding::ZH3,         IrradianceEncoding::ZH3Shared,
+    IrradianceEncoding::ZH3Optimal,  IrradianceEncoding::L2,
+    IrradianceEncoding::L2Deringed};
 
 /// Whether the encoding keeps a zonal harmonic (axis and per-channel coefficient).
 constexpr bool isZonal(IrradianceEncoding e) {
-  return e == IrradianceEncoding::ZH3 || e == IrradianceEncoding::ZH3Optimal ||
-         e == IrradianceEncoding::ZH3Hallucinated;
+  return e == IrradianceEncoding::ZH3 || e == IrradianceEncoding::ZH3Shared ||
+         e == IrradianceEncoding::ZH3Optimal || e == IrradianceEncoding::ZH3Hallucinated;
 }
 
-/// "l2", "l2-deringed", "l1", "l1-windowed", "l1-geomerics", "zh3", "zh3-optimal",
-/// "zh3-hallucinated".
+/// Whether the engine stores the zonal axis (zh3-shared, zh3-optimal) rather than deriving it
+/// from band 1 (zh3, zh3-hallucinated).
+constexpr bool storesAxis(IrradianceEncoding e) {
+  return e == IrradianceEncoding::ZH3Shared || e == IrradianceEncoding::ZH3Optimal;
+}
+
+/// Whether the engine stores the zonal coefficients (every zh3 form but zh3-hallucinated, which
+/// derives them from band 1).
+constexpr bool storesZonal(IrradianceEncoding e) {
+  return isZonal(e) && e != IrradianceEncoding::ZH3Hallucinated;
+}
+
+/// "l2", "l2-deringed", "l1", "l1-windowed", "l1-geomerics", "zh3", "zh3-shared",
+/// "zh3-optimal", "zh3-hallucinated".
 const char* toString(IrradianceEncoding e);
 /// Parses a name above; throws prt::Error("encoding must be l1, l1-windowed, ..., got 'X'").
 IrradianceEncoding parseIrradianceEncoding(const std::string& name);
@@ -76,9 +101,10 @@ int storedNumbers(IrradianceEncoding e);
 /// An encoded irradiance. `sh` holds irradiance SH (E_lm = Λ_l L_lm, the project's basis and
 /// order): 9 coefficients for l2 and l2-deringed, 4 for the others (windowed ones already
 /// windowed). For the zh3 forms, `axis` is the zonal axis (the luminance's band-1 direction, +Z
-/// when that is zero; for zh3-optimal the best axis) and `zonal` each channel's coefficient of the
-/// zonal harmonic Y₂₀(axis·n) in the irradiance (Λ₂ times the radiance's; stored for zh3, derived
-/// from band 1 for zh3-hallucinated, where an engine derives it the same way).
+/// when that is zero; for zh3-optimal and zh3-shared the searched one) and `zonal` each channel's
+/// coefficient of the zonal harmonic Y₂₀(axis·n) in the irradiance (Λ₂ times the radiance's;
+/// stored for zh3 and zh3-optimal, Λ₂ s L₀₀,c for zh3-shared, whose engine stores s alone,
+/// derived from band 1 for zh3-hallucinated, where an engine derives it the same way).
 struct EncodedIrradiance {
   IrradianceEncoding encoding = IrradianceEncoding::L2;
   std::vector<Rgbd> sh;

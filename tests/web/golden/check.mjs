@@ -188,7 +188,7 @@ function compressedOf(c) {
   const libraryNames = g.lights[0].encoded.map((e) => e.encoding);
   expect(encodingNames.join(' ') === libraryNames.join(' '),
          `encodings: the page lists ${encodingNames.join(', ')}, the library ${libraryNames.join(', ')}`);
-  expect(irradianceEncodings.length === 8, `encodings: ${irradianceEncodings.length} generated, 8 expected`);
+  expect(irradianceEncodings.length === 9, `encodings: ${irradianceEncodings.length} generated, 9 expected`);
   const d = [], spread = {};
   for (const c of g.lights) {
     for (const w of c.encoded) {
@@ -209,10 +209,12 @@ function compressedOf(c) {
   // Not vacuous: on the sun, the encodings differ from one another.
   const sun = spread.sun, l1 = sun[encodingNames.indexOf('l1')];
   const apart = (a, b) => largest(sun[encodingNames.indexOf(a)].map((v, i) => Math.abs(v - sun[encodingNames.indexOf(b)][i])));
-  for (const name of ['l1-windowed', 'l1-geomerics', 'zh3-hallucinated', 'zh3', 'zh3-optimal', 'l2'])
+  for (const name of ['l1-windowed', 'l1-geomerics', 'zh3-hallucinated', 'zh3', 'zh3-shared', 'zh3-optimal', 'l2'])
     expect(apart(name, 'l1') > 1e-3, `encodings: ${name} evaluates as l1 does on the sun (bad golden case)`);
   expect(apart('l2-deringed', 'l2') > 1e-3, 'encodings: the sun\'s l2 needs no de-ringing (bad golden case)');
   expect(apart('zh3-optimal', 'zh3') > 1e-6, 'encodings: on the sun the best zonal axis is the luminance\'s (bad golden case)');
+  expect(apart('zh3-shared', 'zh3') > 1e-6, 'encodings: on the sun one shared zonal is zh3\'s three (bad golden case)');
+  expect(apart('zh3-shared', 'zh3-optimal') > 1e-6, 'encodings: on the sun one shared zonal is zh3-optimal\'s three (bad golden case)');
   console.log(`encodings: ${encodingNames.length} encodings of ${g.lights.length} lights (1..4 bands, one ringing, one ` +
               `with a negative mean) at ${normals.length} normals, largest difference ${largest(d).toExponential(2)} (tolerance 1e-5)`);
 }

@@ -383,7 +383,7 @@ json encodedDiffuseCases() {
   for (const Case& c : {Case{false, 3, 3, 3, false}, Case{false, 4, 1, 4, true},
                         Case{true, 3, 3, 3, false}, Case{false, 4, 3, 2, false}}) {
     const sh::IrradianceEncoding encoding =
-        sh::kIrradianceEncodings[std::size_t(k++) * 3 % sh::kIrradianceEncodings.size()];
+        sh::kIrradianceEncodings[std::size_t(k++) * 5 % sh::kIrradianceEncodings.size()];
     TransferShape shape;
     shape.layout = TransferLayout::Matrix;
     shape.bands = c.bands;

@@ -76,8 +76,8 @@ export class PRTBake {
   /**
    * The irradiance encoding a matrix transfer is drawn through, as `prt render --encoding`:
    * 'none' (PRT's own radiance, the default) or one of the library's encodings ('l1',
-   * 'l1-windowed', 'l1-geomerics', 'zh3-hallucinated', 'zh3', 'zh3-optimal', 'l2',
-   * 'l2-deringed'): the diffuse part kd ⊙ Ê(n)/π per vertex, Ê the encoded irradiance of the
+   * 'l1-windowed', 'l1-geomerics', 'zh3-hallucinated', 'zh3', 'zh3-shared', 'zh3-optimal',
+   * 'l2', 'l2-deringed'): the diffuse part kd ⊙ Ê(n)/π per vertex, Ê the encoded irradiance of the
    * light arriving there, made on the CPU when the light, its rotation, the bands or the encoding
    * change. A vector or per-texel transfer refuses a name (one line naming the bake).
    */
