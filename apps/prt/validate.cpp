@@ -24,6 +24,7 @@
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
+#include "prt/sh/irradiance_encoding.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/render/probe_points.hpp"
@@ -37,8 +38,26 @@ namespace prt::cli {
 
 namespace {
 
+/// --encoding: "" (none), "all" (every encoding), or names separated by commas.
+std::vector<sh::IrradianceEncoding> parseEncodingList(const std::string& list) {
+  std::vector<sh::IrradianceEncoding> out;
+  if (list.empty()) return out;
+  if (list == "all") return {sh::kIrradianceEncodings.begin(), sh::kIrradianceEncodings.end()};
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const sh::IrradianceEncoding e = sh::parseIrradianceEncoding(list.substr(start, comma - start));
+    if (std::find(out.begin(), out.end(), e) != out.end())
+      throw Error("--encoding names " + std::string(sh::toString(e)) + " twice");
+    out.push_back(e);
+    start = comma + 1;
+  }
+  return out;
+}
+
 struct ValidateArgs {
   std::string bake, light, json, image, imageSize = "640x480", mis = "power", window = "none";
+  std::string encoding;  ///< --encoding: a list of names, or all
   std::string reference;  ///< --reference FILE: prt reference's JSON instead of computing it
   /// The reference options given on the command line (refused beside --reference: the file's).
   std::vector<std::string> referenceOptionsGiven;
@@ -120,6 +139,7 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   vs.maxVertices = a.vertices;
   vs.window = parseWindow(a.window);
   vs.bakeName = a.bake;
+  vs.encodings = parseEncodingList(a.encoding);
   info("validating " + bt.describe() + " transfer (" + std::to_string(bt.transfer.bands()) +
        " bands) of " + a.bake + " under " + a.light +
        (probes ? fmt::format(": at each probe, a white diffuse surface facing each of the {} "
@@ -254,6 +274,10 @@ void addValidateCommand(CLI::App& root) {
       ->check(unsignedInt(UINT32_MAX));
   cmd->add_option("--seed", a->seed, "Reference seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();
+  cmd->add_option("--encoding", a->encoding,
+                  "Also measure irradiance encodings of a matrix bake (comma-separated names, or "
+                  "all): the diffuse shading an engine gets from each against the reference and "
+                  "the bake's own relighting");
   cmd->add_option("--window", a->window,
                   "Window the light against ringing at each band count: none | hanning | "
                   "lanczos | dering")

@@ -13,7 +13,9 @@
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
 #include "prt/geometry/texel_sampling.hpp"
+#include "prt/relight/encoded_diffuse.hpp"
 #include "prt/relight/relight.hpp"
+#include "prt/sh/encode_irradiance.hpp"
 #include "prt/relight/relight_probes.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
@@ -445,8 +447,23 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     rep.warnings.push_back("light has " + std::to_string(light.bands) + " bands, transfer " +
                            std::to_string(transfer.bands()) + ": validating up to " +
                            std::to_string(rep.bands) + " bands");
+  if (!settings.encodings.empty()) {
+    // Checked before the reference runs: an encoding holds the light arriving at a row.
+    const char* label = "--encoding";
+    if (!transfer.isMatrix() || transfer.domain() == TransferDomain::Probes)
+      throw Error(settings.bakeName,
+                  std::string(label) + " measures an irradiance encoding of the light arriving at "
+                                       "each row, which a surface's matrix bake holds (prt bake "
+                                       "--transfer matrix); this is " +
+                      (transfer.domain() == TransferDomain::Probes ? "a probe grid"
+                                                                   : "vector transfer"));
+  }
   const std::vector<int> kept = bandsToValidate(settings, rep);
   const ReferenceSettings rs = referenceFor(settings, bake, mesh, occluder, transfer, nv);
+  if (!settings.encodings.empty() && rs.material.glossy())
+    throw Error(settings.bakeName, "--encoding: the bake's material " + rs.material.spec() +
+                                       " has a glossy lobe; an irradiance encoding shades the "
+                                       "diffuse part only");
   const RowPoints* points = rs.points.get();
   const bool probes = transfer.domain() == TransferDomain::Probes;
   // Glossy: a surface's matrix transfer, seen from the eye (a probe's matrix has no eye).
@@ -579,6 +596,26 @@ ValidationReport validate(const Mesh& mesh, const Occluder& occluder, const Tran
     rep.rows.push_back(r);
     rep.vertexError = std::move(err);
   }
+  // Each encoding at the full band count (padPrt holds the bake's own relighting there).
+  const std::vector<Rgb> own(padPrt.begin(), padPrt.begin() + std::ptrdiff_t(n));
+  for (const sh::IrradianceEncoding e : settings.encodings) {
+    std::vector<Rgb> shaded = relight::encodedDiffuse(validated, lights.back(), e, rs.material,
+                                                      {positions, normals, albedo}, rs.rotation);
+    shaded.resize(n);
+    BandRow r;
+    std::vector<float> err;
+    fillErrors(r, err, metric, shaded, counted, -1e-3 * metric.meanRef, rep.negativeVertices);
+    double d2 = 0, o2 = 0;
+    for (std::size_t i = 0; i < n; ++i) d2 += sumSq(shaded[i] - own[i]), o2 += sumSq(own[i]);
+    EncodingRow row;
+    row.encoding = e;
+    row.numbers = sh::storedNumbers(e);
+    row.relRmse = r.relRmse;
+    row.energyRel = r.energyRel;
+    row.vsBake = o2 > 0 ? std::sqrt(d2 / o2) : 0.0;
+    row.negativeShare = r.negativeShare;
+    rep.encodings.push_back(row);
+  }
   return rep;
 }
 
@@ -616,6 +653,19 @@ std::string formatTable(const ValidationReport& rep) {
   }
   if (rep.referenceIsZero)
     os << "n/a: the reference is zero at every validated vertex; relative errors are undefined\n";
+  if (!rep.encodings.empty()) {
+    std::snprintf(line, sizeof line, "\n%-16s | %7s | %9s | %15s | %15s | %8s\n",
+                  "encoding", "numbers", "rel RMSE", "energy-weighted", "vs the bake's", "negative");
+    os << line;
+    os << "-----------------+---------+-----------+-----------------+-----------------+---------\n";
+    for (const EncodingRow& e : rep.encodings) {
+      std::snprintf(line, sizeof line, "%-16s | %7d | %s | %s | %s | %7.2f%%\n",
+                    sh::toString(e.encoding), e.numbers, pct(e.relRmse, 8).c_str(),
+                    pct(e.energyRel, 14).c_str(), pct(e.vsBake, 14).c_str(),
+                    100 * e.negativeShare);
+      os << line;
+    }
+  }
   return os.str();
 }
 
@@ -652,6 +702,17 @@ std::string reportJson(const ValidationReport& rep, int indent) {
                     {"negativeShare", r.negativeShare},
                     {"lobeEnergyBeyond", r.lobeEnergyBeyond}});
   j["rows"] = std::move(rows);
+  if (!rep.encodings.empty()) {
+    Json enc = Json::array();
+    for (const EncodingRow& e : rep.encodings)
+      enc.push_back({{"encoding", sh::toString(e.encoding)},
+                     {"numbers", e.numbers},
+                     {"relRmse", e.relRmse},
+                     {"energyWeightedRelErr", e.energyRel},
+                     {"vsBake", e.vsBake},
+                     {"negativeShare", e.negativeShare}});
+    j["encodings"] = std::move(enc);
+  }
   return formatJson(j, indent);
 }
 

@@ -8,6 +8,10 @@
 #include <cmath>
 #include <string>
 
+#include <map>
+
+#include <nlohmann/json.hpp>
+
 #include "cli_harness.hpp"
 #include "prt/image/image_io.hpp"
 
@@ -107,6 +111,49 @@ TEST_F(RenderEncodingCli, RefusesWhatHoldsNoIncidentLight) {
       "-o out/x.png",
       "glossy");
   expectCleanFailure("render mat.glb --encoding l3 -o out/x.png", "encoding must be");
+}
+
+// prt validate --encoding (issue 34): each encoding's diffuse shading at the validated rows,
+// against the reference and the bake's own relighting. At 3 bands l2 is the bake's relighting
+// exactly; l1 is not; every encoding is listed once, in the order asked; what holds no incident
+// light, or a glossy lobe, is refused before the reference runs.
+TEST_F(RenderEncodingCli, ValidateMeasuresEachEncodingAgainstTheBakeAndTheReference) {
+  ASSERT_EQ(prt("-q bake 'builtin:cornell?grid=6' --mode interreflected --transfer matrix "
+                "--bands 3 --samples 64 -o m.glb")
+                .rc,
+            0);
+  const Result r = prt("validate m.glb --light builtin:sky --vertices 60 --reference-samples 64 "
+                       "--encoding all --json v.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("vs the bake's"), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir_ / "v.json"));
+  const nlohmann::json& e = j["encodings"];
+  ASSERT_EQ(e.size(), 9u);
+  std::map<std::string, nlohmann::json> by;
+  for (const nlohmann::json& x : e) by[x["encoding"]] = x;
+  EXPECT_EQ(e[0]["encoding"], "l1");
+  EXPECT_LT(by["l2"]["vsBake"].get<double>(), 1e-5);
+  EXPECT_GT(by["l1"]["vsBake"].get<double>(), 1e-3);
+  EXPECT_EQ(by["zh3-shared"]["numbers"], 15);
+  // l2's rel RMSE against the reference is the table's own at 3 bands (the same radiance).
+  EXPECT_NEAR(by["l2"]["relRmse"].get<double>(), j["rows"].back()["relRmse"].get<double>(), 1e-6);
+  const Result two = prt("-q validate m.glb --light builtin:sky --vertices 20 "
+                         "--reference-samples 16 --encoding zh3,l1 --json -");
+  ASSERT_EQ(two.rc, 0) << two.err;
+  const nlohmann::json t = nlohmann::json::parse(two.out)["encodings"];
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0]["encoding"], "zh3");
+  EXPECT_EQ(t[1]["encoding"], "l1");
+
+  ASSERT_EQ(prt("-q bake 'builtin:cornell?grid=6' --mode shadowed --samples 16 -o v.glb").rc, 0);
+  expectCleanFailure("validate v.glb --light builtin:sky --encoding l1", "v.glb: --encoding");
+  ASSERT_EQ(prt("-q bake 'builtin:cornell?grid=6' --mode shadowed --transfer matrix --bands 3 "
+                "--samples 16 --material 'phong?exponent=1&ks=0.3' -o g.glb")
+                .rc,
+            0);
+  expectCleanFailure("validate g.glb --light builtin:sky --encoding l1", "glossy lobe");
+  expectCleanFailure("validate m.glb --light builtin:sky --encoding l3", "encoding must be");
+  expectCleanFailure("validate m.glb --light builtin:sky --encoding l1,l1", "l1 twice");
 }
 
 }  // namespace

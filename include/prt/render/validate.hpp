@@ -40,6 +40,7 @@
 #include "prt/image/image.hpp"
 #include "prt/render/reference.hpp"
 #include "prt/sh/convolve.hpp"
+#include "prt/sh/irradiance_encoding.hpp"
 #include "prt/sh/sh.hpp"
 #include "prt/transport/bake.hpp"
 
@@ -58,6 +59,11 @@ struct ValidateSettings {
   /// A window on the light against ringing, applied at each band count b to the b-band light
   /// (as `prt light --bands b --window W` would) for PRT and the floor alike.
   sh::Window window = sh::Window::None;
+  /// Irradiance encodings to measure (issue 34; a diffuse matrix bake only): at each validated
+  /// row, the diffuse shading an engine gets from encoding E of the light arriving there
+  /// (relight::encodedDiffuse) at the full band count, against the reference and against the
+  /// bake's own relighting (ValidationReport::encodings).
+  std::vector<sh::IrradianceEncoding> encodings;
   /// The bake file the transfer came from, named when its relighting overflows.
   std::string bakeName;
   /// Runs the reference (the main run and the floor's band-limited run): renderReference over
@@ -93,6 +99,16 @@ struct BandRow {
   double lobeEnergyBeyond = 0;
 };
 
+/// What an irradiance encoding costs at the validated rows (ValidateSettings::encodings).
+struct EncodingRow {
+  sh::IrradianceEncoding encoding = sh::IrradianceEncoding::L2;
+  int numbers = 0;          ///< stored per row, RGB (sh::storedNumbers)
+  double relRmse = 0;       ///< the table's metric against the reference
+  double energyRel = 0;     ///< ‖E − R_ref‖ / ‖R_ref‖
+  double vsBake = 0;        ///< ‖E − R_b‖ / ‖R_b‖: against the bake's own relighting (all bands)
+  double negativeShare = 0; ///< validated rows with a negative channel
+};
+
 /// What the floor is, in one phrase (the report's floorMethod; the CLI's label).
 inline constexpr const char* kFloorMethod = "exact band-limited relighting";
 
@@ -103,6 +119,7 @@ struct ValidationReport {
   std::vector<std::string> warnings;
   ReferenceResult reference;       ///< over the validated vertices
   std::vector<BandRow> rows;       ///< one per band count, ascending
+  std::vector<EncodingRow> encodings;  ///< one per ValidateSettings::encodings, in its order
   std::vector<float> vertexError;  ///< e(p) at the last row's band count, per validated vertex
   std::string floorMethod;         ///< kFloorMethod
   std::size_t floorVertices = 0;   ///< vertices the floor was taken over
