@@ -8,7 +8,9 @@
 //     tests/web/probes/probe_check.mjs);
 //   * prt web draws a probe bake: its ball reports the library's incident SH at its centre, is
 //     darker deep in the box than by its open side, redder by the red wall than by the green one,
-//     and the frame matches prt render --object of the same ball.
+//     and the frame matches prt render --object of the same ball;
+//   * three.js r187's own LightProbeGridWebGL, filled from prt export --format probe-grid
+//     (JSON and .glb), shades every pixel of white spheres as the library's relit grid does.
 // Each test skips, saying why, where node, chromium or the built page is missing.
 
 #include <gtest/gtest.h>
@@ -20,10 +22,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "cli/cli_harness.hpp"
+#include "prt/core/base64.hpp"
 #include "prt/core/json.hpp"
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
@@ -336,6 +342,150 @@ TEST(ProbesWeb, ThreeExampleDrawsAProbeBake) {
   std::size_t lit = 0;
   for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) lit += rgb[i] + rgb[i + 1] + rgb[i + 2] > 60;
   EXPECT_GT(lit, rgb.size() / 3 / 2) << "the box is not lit";
+}
+
+// prt export --format probe-grid --engine threejs drawn by three.js's own LightProbeGridWebGL
+// (r187; docs/probes.md "Exports"): the page tests/web/probe_grid builds the grid as an app
+// would — LightProbeGridWebGL(width, height, depth, nx, ny, nz) at `position`, the atlas as an
+// RGBA float Data3DTexture, linearly filtered — from the JSON and from the .glb (read by three's
+// GLTFLoader), and renders white Lambert spheres lit by it alone into a float target with the
+// pixels' world positions and normals. Each pixel must be what three's shader is meant to give
+// from the library's relit grid: ρ E(n)/π (three's max(·, 0)) of the trilinear blend of the
+// probes at p + n·s/2 — three samples half a cell out along the normal
+// (lightprobes_pars_fragment), where prt render samples at p, so the frame is checked against
+// the library pixel by pixel rather than against prt render's. The same spheres under the
+// atlas shifted by one cell, and under r184–r186's corner convention (size (n − 1)·s), must fail.
+
+/// A float RGBA frame's linear RGB against `want` at the covered pixels: the RMS of the error
+/// over the mean of `want`.
+double relativeRms(const std::vector<float>& frame, const std::vector<prt::Rgb>& want,
+                   const std::vector<std::size_t>& covered) {
+  double sum = 0, mean = 0;
+  for (std::size_t k = 0; k < covered.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const double d = frame[4 * covered[k] + std::size_t(c)] - want[k][c];
+      sum += d * d;
+      mean += want[k][c];
+    }
+  const double n = 3.0 * double(covered.size());
+  return std::sqrt(sum / n) / std::max(mean / n, 1e-30);
+}
+
+std::vector<float> floatsOf(const std::string& b64) {
+  const std::vector<unsigned char> b = unbase64(b64);
+  std::vector<float> f(b.size() / 4);
+  std::memcpy(f.data(), b.data(), f.size() * 4);
+  return f;
+}
+
+TEST(ProbesWeb, ThreeLightProbeGridDrawsTheExport) {
+  PRT_REQUIRE_CHROMIUM();
+  if (which({"node", "nodejs"}).empty()) GTEST_SKIP() << "no node here (apt-get install nodejs)";
+  const fs::path modules = kSource / "web/node_modules";
+  if (!fs::exists(modules / "three/examples/jsm/lighting/LightProbeGridWebGL.js") ||
+      !fs::exists(modules / ".bin/esbuild"))
+    GTEST_SKIP() << "web/node_modules lacks three r187's LightProbeGridWebGL or esbuild "
+                    "(run scripts/setup.sh)";
+  probeBake();
+  for (const char* out : {"grid.json", "grid.glb"}) {
+    const Result x = prt(std::string("-q export probes.glb --format probe-grid --engine threejs "
+                                     "--light builtin:sky -o ") +
+                         out);
+    ASSERT_EQ(x.rc, 0) << x.err;
+  }
+  // The page, bundled with three.js from web/node_modules as an app bundles it.
+  const fs::path page = scratch() / "probe_grid_page";
+  fs::create_directories(page);
+  fs::copy_file(kSource / "tests/web/probe_grid/index.html", page / "index.html",
+                fs::copy_options::overwrite_existing);
+  const Result b =
+      shell("NODE_PATH='" + modules.string() + "' '" + (modules / ".bin/esbuild").string() + "' '" +
+            (kSource / "tests/web/probe_grid/page.mjs").string() +
+            "' --bundle --format=iife --log-level=warning --outfile='" +
+            (page / "page.js").string() + "'");
+  ASSERT_EQ(b.rc, 0) << b.out << b.err;
+
+  const Json grid = Json::parse(prt::testing::slurp(scratch() / "grid.json"));
+  const Json& g = grid["lightProbeGrid"];
+  const prt::relight::ProbeLighting lib = libraryLighting("builtin:sky", {0, 0, 0});
+  ASSERT_EQ(lib.bands, 3);
+  // The mistakes the check must catch: every probe moved one cell along x (the atlas' texel x
+  // takes probe x + 1's, the last repeated), and r184–r186's box through the probes, not
+  // around their cells.
+  Json shifted = grid;
+  {
+    std::vector<float> atlas = floatsOf(g["atlas"]["data"].get<std::string>());
+    const int nx = g["atlas"]["size"][0];
+    for (std::size_t row = 0; row < atlas.size() / 4 / std::size_t(nx); ++row)
+      for (int x = 0; x + 1 < nx; ++x)
+        std::memcpy(&atlas[(row * std::size_t(nx) + std::size_t(x)) * 4],
+                    &atlas[(row * std::size_t(nx) + std::size_t(x) + 1) * 4], 16);
+    shifted["lightProbeGrid"]["atlas"]["data"] = prt::base64(
+        std::string_view(reinterpret_cast<const char*>(atlas.data()), atlas.size() * 4));
+  }
+  Json corners = grid;
+  for (const auto& [key, axis] : {std::pair{"width", 0}, {"height", 1}, {"depth", 2}})
+    corners["lightProbeGrid"][key] = g[key].get<double>() *
+                                     (g["resolution"][axis].get<double>() - 1) /
+                                     g["resolution"][axis].get<double>();
+  const std::string glb = prt::testing::slurp(scratch() / "grid.glb");
+  // Looking into the box through its open side at four balls: by the open side, deep inside,
+  // low by the red wall, high by the green one.
+  const Json input = {
+      {"width", 256},
+      {"height", 192},
+      {"camera", {{"eye", {0, 1, 3.4}}, {"target", {0, 1, 0}}, {"up", {0, 1, 0}}, {"fov", 45}}},
+      {"radius", 0.2},
+      {"spheres", {{-0.45, 0.9, 0.45}, {0.45, 1.3, -0.5}, {-0.5, 0.45, 0.0}, {0.5, 1.55, 0.1}}},
+      {"grids",
+       {{{"name", "json"}, {"json", grid}},
+        {{"name", "glb"}, {"glb", prt::base64(glb)}},
+        {{"name", "shifted"}, {"json", shifted}},
+        {{"name", "corners"}, {"json", corners}}}}};
+  std::ofstream(page / "grid-data.js") << "window.PRT_PROBE_GRID = " << input.dump() << ";\n";
+  std::string log;
+  const std::string json = runPage(page.string(), "", &log);
+  ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json.substr(0, 600) << "\n" << log;
+  const Json j = Json::parse(json);
+  EXPECT_EQ(j["three"], "187");
+  const std::vector<float> position = floatsOf(j["position"]), normal = floatsOf(j["normal"]);
+  // The library's shading of every covered pixel, at three's sample point and (to show that
+  // the point matters) at the pixel itself.
+  const prt::Vec3f s = lib.grid.spacing;
+  std::vector<std::size_t> covered;
+  std::vector<prt::Rgb> want, atPixel;
+  std::vector<prt::Rgb> sh(lib.coeffs());
+  const auto shade = [&](const prt::Vec3f& at, const prt::Vec3f& n) {
+    prt::relight::sampleProbes(lib, at, sh.data());
+    const prt::Rgb c = prt::relight::shadeDiffuse(sh.data(), lib.bands, n, prt::Rgb(1.0f));
+    return prt::Rgb(std::max(c.x, 0.0f), std::max(c.y, 0.0f), std::max(c.z, 0.0f));
+  };
+  for (std::size_t i = 0; i < position.size() / 4; ++i) {
+    if (position[4 * i + 3] < 0.5f) continue;
+    const prt::Vec3f p(position[4 * i], position[4 * i + 1], position[4 * i + 2]);
+    const prt::Vec3f n(normal[4 * i], normal[4 * i + 1], normal[4 * i + 2]);
+    covered.push_back(i);
+    want.push_back(shade(p + n * s * 0.5f, n));
+    atPixel.push_back(shade(p, n));
+  }
+  ASSERT_GT(covered.size(), 2000u) << "the spheres cover too few pixels";
+  std::map<std::string, double> error;
+  for (const char* name : {"json", "glb", "shifted", "corners"})
+    error[name] = relativeRms(floatsOf(j["frames"][name]), want, covered);
+  const double pixelPoint = relativeRms(floatsOf(j["frames"]["json"]), atPixel, covered);
+  std::cout << "three.js r" << j["three"].get<std::string>() << " LightProbeGridWebGL from prt "
+            << "export, " << covered.size() << " pixels, relative RMS error against the library: "
+            << "JSON " << error["json"] << ", .glb " << error["glb"] << "; the library at the "
+            << "pixel (no normal offset) " << pixelPoint << "; atlas shifted one cell "
+            << error["shifted"] << ", r184-r186 corners " << error["corners"] << "\n";
+  // The harness renders with SwiftShader, which filters float textures in float (1e-6
+  // measured); 1e-3 leaves room for fixed-point filter weights. The mistakes give 0.17–0.7.
+  constexpr double kGrid = 1e-3, kWrong = 0.05;
+  EXPECT_LT(error["json"], kGrid) << "OES_texture_float_linear: " << j["floatLinear"];
+  EXPECT_EQ(j["frames"]["glb"], j["frames"]["json"]) << "the .glb draws another grid";
+  EXPECT_GT(error["shifted"], kWrong);
+  EXPECT_GT(error["corners"], kWrong);
+  EXPECT_GT(pixelPoint, kWrong) << "three's half-cell step along the normal is not seen";
 }
 
 }  // namespace
