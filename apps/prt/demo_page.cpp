@@ -213,16 +213,19 @@ void writeTexelRow(std::ostream& h, const TexelRow& t) {
        "the same mesh gets them at texel resolution. Beside them, per vertex on the box "
        "tessellated to as many vertices as the lightmap has texels: the same bytes of transfer. "
        "The reference is brute-force Monte Carlo (no SH) at the "
-    << t.referenceVertices << " vertices of a fine tessellation, " << t.referenceSamples
-    << " samples each, in two forms: the exact relighting under the light cut to " << t.bands
+    << t.referenceVertices << " vertices of a fine tessellation (those on a surface's edge "
+       "estimated 1 mm inside it, where the light is, not on the corner line, where half the "
+       "rays pass under the adjacent surface), "
+    << t.referenceSamples << " samples each, in two forms: the exact relighting under the light cut to " << t.bands
     << " bands (what a noise-free bake at any resolution would give: the errors against it are "
        "the storage's) and the brute force with no SH (the band limit's error included: the "
        "sky's sun casts a sharp shadow no "
     << t.bands << "-band light can). The errors are relative RMSEs over the model's pixels; "
     << fmt::format("the reference's own noise is {:.1f}% of them.", 100 * t.referenceNoise)
-    << " Per vertex at the same bytes does well here because the box can be tessellated anew "
-       "and the builtin grids give each small block face as many vertices as a wall; an asset "
-       "whose mesh is fixed has the first two choices only.</p>\n<div class=\"imgs\">";
+    << " Per vertex at the same bytes has vertices on every corner, where a vertex's rays pass "
+       "under the adjacent surface, and it draws that darkness along the corners; the lightmap's "
+       "samples lie at texel centres, off the corners. An asset whose mesh is fixed has the "
+       "first two choices only.</p>\n<div class=\"imgs\">";
   for (const TexelRowEntry* e : {&t.coarse, &t.texels, &t.dense})
     h << "<figure><img src=\"" << e->image << "\"><figcaption>" << htmlEscape(e->label)
       << fmt::format(": {} rows, {:.0f} KB; rel. RMSE {:.1f}% ({:.1f}% against the brute force)",
