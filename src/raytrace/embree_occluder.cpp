@@ -111,6 +111,8 @@ class EmbreeOccluder final : public Occluder {
   }
 
   void occluded(std::span<const Ray> rays, std::span<std::uint8_t> out) const override;
+  void intersect(std::span<const Ray> rays, std::span<Hit> out) const override;
+  using Occluder::intersect;
 
   Hit intersect(const Ray& ray) const override {
     RTCIntersectContext ctx;
@@ -253,6 +255,36 @@ void EmbreeOccluder::occluded(std::span<const Ray> rays, std::span<std::uint8_t>
     for (std::size_t k = 0; k < m; ++k) buf[k] = toRtc(rays[base + k]);
     rtcOccluded1M(scene_, &ctx, buf, static_cast<unsigned>(m), sizeof(RTCRay));
     for (std::size_t k = 0; k < m; ++k) out[base + k] = buf[k].tfar < 0.0f ? 1 : 0;
+  }
+}
+
+void EmbreeOccluder::intersect(std::span<const Ray> rays, std::span<Hit> out) const {
+  PRT_CHECK(out.size() >= rays.size(), "intersect: output span shorter than the rays");
+  // Streams of up to 64 rays through rtcIntersect1M, as occluded's.
+  constexpr std::size_t kChunk = 64;
+  RTCRayHit buf[kChunk];
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  for (std::size_t base = 0; base < rays.size(); base += kChunk) {
+    const std::size_t m = std::min(kChunk, rays.size() - base);
+    for (std::size_t k = 0; k < m; ++k) {
+      buf[k].ray = toRtc(rays[base + k]);
+      buf[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      buf[k].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(scene_, &ctx, buf, static_cast<unsigned>(m), sizeof(RTCRayHit));
+    for (std::size_t k = 0; k < m; ++k) {
+      Hit h;
+      if (buf[k].hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        h.hit = true;
+        h.triangle = buf[k].hit.primID;
+        h.u = buf[k].hit.u;
+        h.v = buf[k].hit.v;
+        h.t = buf[k].ray.tfar;
+      }
+      out[base + k] = h;
+    }
   }
 }
 

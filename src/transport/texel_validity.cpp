@@ -37,26 +37,34 @@ std::vector<std::uint8_t> insideGeometry(const Mesh& mesh, const Occluder& occlu
       orthonormalBasis(n, t, bt);
       const Vec3f origin = positions[i] + n * occluder.rayOffset(positions[i]);
       // The rule (more than half the rays hit a back face) is settled as soon as either side
-      // holds a majority: an outside point stops after half its rays missed or hit a front,
-      // an inside one after a majority hit backs — the same verdict as all rays, at half the
-      // cost or less (issue 37: the probe was most of a quick per-texel bake).
+      // holds a majority (issue 37: the probe was most of a quick per-texel bake). An outside
+      // point — most are — settles with its first half of the rays if none hits a back face,
+      // so they go as one stream; the rest, only when that did not settle it, as another. The
+      // verdict is the one all the rays give.
       constexpr int kMajority = kValidityProbeRays / 2 + 1;
-      int back = 0, notBack = 0;
-      for (const Vec3f& l : local) {
-        if (back >= kMajority || notBack > kValidityProbeRays - kMajority) break;
-        Ray ray;
-        ray.origin = origin;
-        ray.dir = t * l.x + bt * l.y + n * l.z;
-        const Hit h = occluder.intersect(ray);
-        bool fromBehind = false;
-        if (h.hit) {
+      constexpr int kFirst = kValidityProbeRays - kMajority + 1;  // enough to settle "outside"
+      std::array<Ray, kValidityProbeRays> rays;
+      std::array<Hit, kValidityProbeRays> hits;
+      for (int k = 0; k < kValidityProbeRays; ++k) {
+        rays[std::size_t(k)].origin = origin;
+        rays[std::size_t(k)].dir = t * local[std::size_t(k)].x + bt * local[std::size_t(k)].y +
+                                   n * local[std::size_t(k)].z;
+      }
+      int back = 0;
+      const auto castRays = [&](int from, int to) {
+        occluder.intersect(std::span<const Ray>(rays.data() + from, std::size_t(to - from)),
+                           std::span<Hit>(hits.data() + from, std::size_t(to - from)));
+        for (int k = from; k < to; ++k) {
+          const Hit& h = hits[std::size_t(k)];
+          if (!h.hit) continue;
           const auto& tri = mesh.triangles[h.triangle];
           const Vec3f p0 = mesh.positions[tri[0]];
           const Vec3f g = cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0);
-          fromBehind = dot(g, ray.dir) > 0.0f;
+          back += dot(g, rays[std::size_t(k)].dir) > 0.0f;
         }
-        (fromBehind ? back : notBack) += 1;
-      }
+      };
+      castRays(0, kFirst);
+      if (back > 0) castRays(kFirst, kValidityProbeRays);
       inside[i] = back >= kMajority;
     }
   });

@@ -177,6 +177,22 @@ TEST(EmbreeOccluder, BatchedAndThreadedEqualSingle) {
   EXPECT_GT(occludedCount, 1000);
   EXPECT_LT(occludedCount, int(rays.size()) - 1000);
   EXPECT_GT(occ->memoryBytes(), m.triangleCount() * 12);
+
+  // Closest hits in streams (rtcIntersect1M) are the single-ray query's, field for field.
+  std::vector<Hit> hits(rays.size());
+  occ->intersect(rays, hits);
+  int hitCount = 0;
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    const Hit single = occ->intersect(rays[k]);
+    ASSERT_EQ(hits[k].hit, single.hit) << k;
+    hitCount += single.hit;
+    if (!single.hit) continue;
+    ASSERT_EQ(hits[k].triangle, single.triangle) << k;
+    ASSERT_EQ(hits[k].t, single.t) << k;
+    ASSERT_EQ(hits[k].u, single.u) << k;
+    ASSERT_EQ(hits[k].v, single.v) << k;
+  }
+  EXPECT_EQ(hitCount, occludedCount);  // every ray that is blocked has a closest hit
 }
 
 TEST(EmbreeOccluder, BadMeshesThrow) {

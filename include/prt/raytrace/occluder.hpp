@@ -23,6 +23,9 @@ class Occluder {
   virtual void occluded(std::span<const Ray> rays, std::span<std::uint8_t> out) const;
   /// Closest hit.
   virtual Hit intersect(const Ray& ray) const = 0;
+  /// Batched closest hits: out[k] = intersect(rays[k]). Implementations may use packets or
+  /// streams; results equal the single-ray query.
+  virtual void intersect(std::span<const Ray> rays, std::span<Hit> out) const;
   /// Offset along the normal that moves a ray origin off the surface at `p` robustly: scaled to
   /// the magnitude of p and the scene extent (floating-point error of the hit), not a constant.
   virtual float rayOffset(const Vec3f& p) const = 0;
