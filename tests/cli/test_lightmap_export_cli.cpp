@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -145,6 +146,38 @@ L1 decodeBakery(const Exr& l0e, const Exr& xe, const Exr& ye, const Exr& ze, std
   for (int ch = 0; ch < 3; ++ch)
     r.c[ch] = Vec3d(-(x[ch] * 2 - 1), y[ch] * 2 - 1, z[ch] * 2 - 1) * (l0[ch] * 2);
   return r;
+}
+
+/// f(n) of an encoding from its L1 part as a layout decodes it (docs/lightmaps.md): what zh3's
+/// zonal term adds to A + c·n (its axis and k stored — `axis`, `k` — or derived from the L1
+/// part), or Geomerics' non-linear form of the same L1 numbers; the L1 part alone otherwise.
+Rgbd decodeBeyondL1(sh::IrradianceEncoding enc, const L1& l, const Vec3d& n,
+                    const std::optional<Vec3d>& axis, const std::optional<Rgbd>& k) {
+  Rgbd got = l.at(n);
+  if (sh::isZonal(enc)) {
+    Vec3d ax = axis ? *axis : l.c[0] * 0.2126 + l.c[1] * 0.7152 + l.c[2] * 0.0722;
+    ax = length(ax) > 0 ? normalize(ax) : Vec3d(0, 0, 1);
+    const double zonal = 3 * dot(ax, n) * dot(ax, n) - 1;
+    for (int ch = 0; ch < 3; ++ch) {
+      double kz = 0;
+      if (k) {
+        kz = (*k)[ch];
+      } else if (l.a[ch] > 0) {
+        const double rr = std::sqrt(3.0) / 2 * std::abs(dot(l.c[ch], ax)) / l.a[ch];
+        kz = l.a[ch] * std::sqrt(5.0) / 8 * (0.08 * rr + 0.6 * rr * rr);
+      }
+      got[ch] += kz * zonal;
+    }
+  } else if (enc == sh::IrradianceEncoding::L1Geomerics) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const double a0 = l.a[ch], len = length(l.c[ch]);
+      if (a0 <= 0 || len == 0) continue;  // A + c·n
+      const double s = std::min(len / (2 * a0), 1.0), p = 1 + 2 * s, alpha = (1 - s) / (1 + s),
+                   q = 0.5 * (1 + dot(l.c[ch], n) / len);
+      got[ch] = a0 * (alpha + (1 - alpha) * (p + 1) * std::pow(std::max(q, 0.0), p));
+    }
+  }
+  return got;
 }
 
 /// The light and the bake's matrices, and L'_p = M_p L per texel (double sums of the stored
@@ -284,32 +317,12 @@ TEST_F(LightmapExportCli, LightmapShDecodesInEveryEngineLayoutToTheTexelsIrradia
           for (const Vec3d& n : ns) {
             const Rgbd want = sh::evaluate(e, n) * scale;
             largest = std::max({largest, std::abs(want.x), std::abs(want.y), std::abs(want.z)});
-            Rgbd got = l.at(n);
             // What each encoding adds to (or makes of) the L1 part, as docs/lightmaps.md says.
-            if (sh::isZonal(enc)) {
-              Vec3d ax = axisStored ? Vec3d(axes.at(0, t, kRes))
-                                    : l.c[0] * 0.2126 + l.c[1] * 0.7152 + l.c[2] * 0.0722;
-              ax = length(ax) > 0 ? normalize(ax) : Vec3d(0, 0, 1);
-              const double zonal = 3 * dot(ax, n) * dot(ax, n) - 1;
-              for (int ch = 0; ch < 3; ++ch) {
-                double kz = 0;
-                if (zh3Stored) {
-                  kz = zh3.at(0, t, kRes)[ch];
-                } else if (l.a[ch] > 0) {
-                  const double rr = std::sqrt(3.0) / 2 * std::abs(dot(l.c[ch], ax)) / l.a[ch];
-                  kz = l.a[ch] * std::sqrt(5.0) / 8 * (0.08 * rr + 0.6 * rr * rr);
-                }
-                got[ch] += kz * zonal;
-              }
-            } else if (enc == sh::IrradianceEncoding::L1Geomerics) {
-              for (int ch = 0; ch < 3; ++ch) {
-                const double a0 = l.a[ch], len = length(l.c[ch]);
-                if (a0 <= 0 || len == 0) continue;  // A + c·n, as decoded above
-                const double s = std::min(len / (2 * a0), 1.0), p = 1 + 2 * s,
-                             alpha = (1 - s) / (1 + s), q = 0.5 * (1 + dot(l.c[ch], n) / len);
-                got[ch] = a0 * (alpha + (1 - alpha) * (p + 1) * std::pow(std::max(q, 0.0), p));
-              }
-            } else if (sh::shRows(enc) == 9) {
+            Rgbd got = decodeBeyondL1(
+                enc, l, n, axisStored ? std::optional<Vec3d>(Vec3d(axes.at(0, t, kRes)))
+                                      : std::nullopt,
+                zh3Stored ? std::optional<Rgbd>(zh3.at(0, t, kRes)) : std::nullopt);
+            if (sh::shRows(enc) == 9) {
               // l2.exr alone: f = Σ_i layer_i Y_i(n).
               got = Rgbd(0.0);
               const std::array<double, 9> y = sh9(n);
@@ -473,31 +486,10 @@ TEST_F(LightmapExportCli, GltfLightmapLayersDecodeToTheTexelsIrradiance) {
           const std::array<double, 9> y = sh9(n);
           for (int i = 0; i < 9; ++i) got += rgb("sh" + std::to_string(i), t) * y[i];
         } else {
-          got = l.at(n);
-          if (sh::isZonal(enc)) {
-            Vec3d ax = layer.count("axis") ? Vec3d(rgb("axis", t))
-                                           : l.c[0] * 0.2126 + l.c[1] * 0.7152 + l.c[2] * 0.0722;
-            ax = length(ax) > 0 ? normalize(ax) : Vec3d(0, 0, 1);
-            const double zonal = 3 * dot(ax, n) * dot(ax, n) - 1;
-            for (int ch = 0; ch < 3; ++ch) {
-              double kz = 0;
-              if (layer.count("zonal")) {
-                kz = rgb("zonal", t)[ch];
-              } else if (l.a[ch] > 0) {
-                const double rr = std::sqrt(3.0) / 2 * std::abs(dot(l.c[ch], ax)) / l.a[ch];
-                kz = l.a[ch] * std::sqrt(5.0) / 8 * (0.08 * rr + 0.6 * rr * rr);
-              }
-              got[ch] += kz * zonal;
-            }
-          } else if (enc == sh::IrradianceEncoding::L1Geomerics) {
-            for (int ch = 0; ch < 3; ++ch) {
-              const double a0 = l.a[ch], len = length(l.c[ch]);
-              if (a0 <= 0 || len == 0) continue;
-              const double s = std::min(len / (2 * a0), 1.0), p = 1 + 2 * s,
-                           alpha = (1 - s) / (1 + s), q = 0.5 * (1 + dot(l.c[ch], n) / len);
-              got[ch] = a0 * (alpha + (1 - alpha) * (p + 1) * std::pow(std::max(q, 0.0), p));
-            }
-          }
+          got = decodeBeyondL1(
+              enc, l, n,
+              layer.count("axis") ? std::optional<Vec3d>(Vec3d(rgb("axis", t))) : std::nullopt,
+              layer.count("zonal") ? std::optional<Rgbd>(rgb("zonal", t)) : std::nullopt);
         }
         worst = std::max(worst, length(got - want));
       }
