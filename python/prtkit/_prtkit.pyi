@@ -268,8 +268,10 @@ def validate(mesh: MeshLike, transfer: TransferLike, environment: EnvironmentLik
              floor_vertices: int = 1024, window: str = "none", seed: int = 0,
              rotation: Rotation = None, heuristic: str = "power", mode: Optional[Mode] = None,
              bounces: Optional[int] = None, material: Optional[str] = None,
+             encodings: Union[None, str, Sequence[str]] = None,
              progress: Progress = None) -> Dict[str, Any]:
-    """The error per band count against the reference, as `prt validate --json`."""
+    """The error per band count against the reference, as `prt validate --json`; with
+    encodings ('all' or names), each irradiance encoding's cost too (`--encoding`)."""
 
 # --- files ----------------------------------------------------------------------------------------
 

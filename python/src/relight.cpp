@@ -1,6 +1,7 @@
 // Relighting and images: relight (every layout and representation, through the library's one
 // entry point), Camera, render, and the Monte Carlo reference and validation.
 
+#include <algorithm>
 #include <cstring>
 
 #include "common.hpp"
@@ -16,6 +17,7 @@
 #include "prt/render/render.hpp"
 #include "prt/render/texel_points.hpp"
 #include "prt/render/validate.hpp"
+#include "prt/sh/irradiance_encoding.hpp"
 
 namespace prtpy {
 
@@ -293,7 +295,7 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
                     py::handle bandsList, std::size_t vertices, std::size_t floorVertices,
                     const std::string& window, std::uint64_t seed, py::handle rot,
                     const std::string& heuristic, py::handle modeObj, py::handle bouncesObj,
-                    py::handle spec, py::handle progress) {
+                    py::handle spec, py::handle encodings, py::handle progress) {
   const MeshPtr mesh = toMesh(meshObj);
   const prt::Mesh& mm = mesh->mesh();
   const TransferPtr t = toTransfer(transferObj);
@@ -323,6 +325,22 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
   vs.floorVertices = floorVertices;
   vs.window = asValueError([&] { return prt::sh::parseWindow(window); });
   vs.bakeName = "transfer";
+  // encodings=: 'all', or a sequence of names (prt validate --encoding).
+  if (!encodings.is_none()) {
+    if (py::isinstance<py::str>(encodings) && encodings.cast<std::string>() == "all") {
+      vs.encodings.assign(prt::sh::kIrradianceEncodings.begin(),
+                          prt::sh::kIrradianceEncodings.end());
+    } else {
+      for (py::handle e : encodings) {
+        const auto enc = asValueError(
+            [&] { return prt::sh::parseIrradianceEncoding(py::str(e).cast<std::string>()); });
+        if (std::find(vs.encodings.begin(), vs.encodings.end(), enc) != vs.encodings.end())
+          throw py::value_error(std::string("encodings= names ") + prt::sh::toString(enc) +
+                                " twice");
+        vs.encodings.push_back(enc);
+      }
+    }
+  }
   // Per texel: a subset of the valid texels is validated, at their sample points (placed by
   // validate itself, as for prt validate).
   prt::render::ValidationReport rep =
@@ -454,13 +472,17 @@ std_error (M, 3) per channel, rays, seconds. GIL released; progress as for bake.
       py::arg("vertices") = 0, py::arg("floor_vertices") = 1024, py::arg("window") = "none",
       py::arg("seed") = 0, py::arg("rotation") = py::none(), py::arg("heuristic") = "power",
       py::arg("mode") = py::none(), py::arg("bounces") = py::none(),
-      py::arg("material") = py::none(), py::arg("progress") = py::none(),
+      py::arg("material") = py::none(), py::arg("encodings") = py::none(),
+      py::arg("progress") = py::none(),
       R"(Validates a transfer against the Monte Carlo reference per band count (as `prt validate`).
 
 transfer: every vertex of mesh; its recipe (bake_transfer, read_bake_file) gives mode,
 bounces and material unless given. The environment is projected to the transfer's bands.
 samples: reference samples per vertex; bands: band counts to tabulate (default 1..B);
 vertices: 0 (all) or a subset size; window: none | hanning | lanczos | dering.
+encodings: 'all' or names of irradiance encodings ('l1', 'zh3-shared', ...; a diffuse matrix
+transfer only): the report's 'encodings' then lists each one's shading against the reference
+and the transfer's own relighting (prt validate --encoding).
 Returns the report as a dict (the JSON of `prt validate --json`: rows per band count with
 relRmse, floor, refStdErr, ...), plus 'table' (the text table), 'vertex_error' (M,) and
 'vertices' (M,).)");

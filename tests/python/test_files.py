@@ -160,3 +160,25 @@ def test_validate_reports_per_band(scene):
     assert rep["rows"][-1]["relRmse"] < rep["rows"][0]["relRmse"]
     with pytest.raises(ValueError, match="give mode="):
         prtkit.validate(scene, t.values, "builtin:sky", samples=8, vertices=10)
+
+
+def test_validate_measures_encodings_as_the_cli(scene):
+    # A diffuse matrix bake: each encoding's shading against the reference and the transfer's
+    # own relighting; at 3 bands l2 is that relighting, l1 is not.
+    m = prtkit.bake_transfer(scene, mode="shadowed", samples=64, transfer="matrix")
+    rep = prtkit.validate(scene, m, "builtin:sky", samples=32, vertices=40, floor_vertices=20,
+                          encodings="all")
+    enc = {e["encoding"]: e for e in rep["encodings"]}
+    assert len(rep["encodings"]) == 9 and rep["encodings"][0]["encoding"] == "l1"
+    assert enc["l2"]["vsBake"] < 1e-5 < enc["l1"]["vsBake"]
+    assert "vs the bake's" in rep["table"]
+    two = prtkit.validate(scene, m, "builtin:sky", samples=16, vertices=10, floor_vertices=10,
+                          encodings=["zh3-shared", "l1"])
+    assert [e["encoding"] for e in two["encodings"]] == ["zh3-shared", "l1"]
+    with pytest.raises(ValueError, match="encoding must be"):
+        prtkit.validate(scene, m, "builtin:sky", samples=8, vertices=10, encodings=["l3"])
+    with pytest.raises(ValueError, match="twice"):
+        prtkit.validate(scene, m, "builtin:sky", samples=8, vertices=10, encodings=["l1", "l1"])
+    v = prtkit.bake_transfer(scene, mode="shadowed", samples=16)
+    with pytest.raises(prtkit.Error, match="--encoding measures"):
+        prtkit.validate(scene, v, "builtin:sky", samples=8, vertices=10, encodings="all")
