@@ -3,6 +3,7 @@
 // probes show as points; and what the status line says. The light turns as for any bake.
 import * as THREE from 'three';
 import { ballDefaults, gridBox } from './probe_scene.js';
+import { pointerDrag } from './pointer_drag.js';
 
 /** The panel's folder for the ball and the probes (destroy() it when the bake changes). */
 export function probeControls(gui, page) {
@@ -32,16 +33,7 @@ export function probeControls(gui, page) {
  * sync). Listens on the canvas for the page's life; does nothing unless a probe bake is shown.
  */
 export function ballDrag(page, canvas, camera, onMove) {
-  let drag = null;
-  canvas.addEventListener('pointerdown', (e) => {
-    if (!(e.button === 0 && e.altKey && page.bake().probes)) return;
-    drag = { x: e.clientX, y: e.clientY, id: e.pointerId };
-    canvas.setPointerCapture(e.pointerId);
-    e.stopImmediatePropagation();
-    e.preventDefault();
-  }, { capture: true });
-  canvas.addEventListener('pointermove', (e) => {
-    if (!drag || e.pointerId !== drag.id) return;
+  pointerDrag(canvas, (e) => e.button === 0 && e.altKey && page.bake().probes, (dx, dy) => {
     const { state } = page, { lo, hi } = gridBox(page.bake().grid);
     const at = new THREE.Vector3().fromArray(state.at);
     const forward = camera.getWorldDirection(new THREE.Vector3());
@@ -50,15 +42,10 @@ export function ballDrag(page, canvas, camera, onMove) {
     // World units per pixel at the ball's depth.
     const depth = at.clone().sub(camera.position).dot(forward);
     const k = (2 * Math.max(depth, 1e-6) * Math.tan((camera.fov / 2) * Math.PI / 180)) / canvas.clientHeight;
-    at.addScaledVector(right, (e.clientX - drag.x) * k).addScaledVector(up, -(e.clientY - drag.y) * k);
+    at.addScaledVector(right, dx * k).addScaledVector(up, -dy * k);
     state.at = at.toArray().map((x, a) => Math.min(Math.max(x, lo[a]), hi[a]));
-    drag.x = e.clientX, drag.y = e.clientY;
     onMove();
-    e.stopImmediatePropagation();
-  }, { capture: true });
-  const end = (e) => { if (drag && e.pointerId === drag.id) drag = null; };
-  canvas.addEventListener('pointerup', end, { capture: true });
-  canvas.addEventListener('pointercancel', end, { capture: true });
+  });
 }
 
 /** The status line's lines for probe transfer t of bake b. */

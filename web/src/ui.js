@@ -12,6 +12,7 @@ import { axisAngle, mul3 } from './sh.js';
 import { describeTransfer } from './draw.js';
 import { encodingNames } from './irradiance_encoding.js';
 import { ballDrag, describeProbes, probeControls } from './probe_ui.js';
+import { pointerDrag } from './pointer_drag.js';
 
 const kBackgrounds = ['env', 'sh', 'none'];
 // The light drag, as prt view's (apps/viewer/scene.hpp, kDragDegreesPerPixel).
@@ -37,29 +38,14 @@ export function startInteractive(page) {
 
   // Light drag: right button, or shift + left; horizontal about world +Y, vertical about the
   // camera's right axis.
-  let drag = null;
   const canvas = renderer.domElement;
-  canvas.addEventListener('pointerdown', (e) => {
-    if (e.button === 2 || (e.button === 0 && e.shiftKey)) {
-      drag = { x: e.clientX, y: e.clientY, id: e.pointerId };
-      canvas.setPointerCapture(e.pointerId);
-      e.stopImmediatePropagation();
-      e.preventDefault();
-    }
-  }, { capture: true });
-  canvas.addEventListener('pointermove', (e) => {
-    if (!drag || e.pointerId !== drag.id) return;
+  pointerDrag(canvas, (e) => e.button === 2 || (e.button === 0 && e.shiftKey), (dx, dy) => {
     const k = kDragRadiansPerPixel;
     const forward = new THREE.Vector3().subVectors(controls.target, camera.position).normalize();
     const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();
-    const turn = mul3(axisAngle([0, 1, 0], (e.clientX - drag.x) * k), axisAngle(right.toArray(), (e.clientY - drag.y) * k));
+    const turn = mul3(axisAngle([0, 1, 0], dx * k), axisAngle(right.toArray(), dy * k));
     page.lightRotation = mul3(turn, page.lightRotation);
-    drag.x = e.clientX, drag.y = e.clientY;
-    e.stopImmediatePropagation();
-  }, { capture: true });
-  const endDrag = (e) => { if (drag && e.pointerId === drag.id) drag = null; };
-  canvas.addEventListener('pointerup', endDrag, { capture: true });
-  canvas.addEventListener('pointercancel', endDrag, { capture: true });
+  });
   canvas.addEventListener('contextmenu', (e) => e.preventDefault());
   // A probe bake's ball: Alt + left drag (probe_ui.js).
   ballDrag(page, canvas, camera, () => ballFolder && ballFolder.sync());
