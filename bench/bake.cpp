@@ -58,10 +58,12 @@
 #include "prt/transport/bake.hpp"
 #include "prt/transport/bake_texels.hpp"
 #include "prt/unwrap/unwrap.hpp"
+#include "raw_embree.hpp"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using prt::bench::RawScene;
 constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
 
 struct Scene {
@@ -88,38 +90,6 @@ Scene* scene(const std::string& name) {
   s->occluder = prt::makeEmbreeOccluder(s->mesh);
   return cache.emplace(name, std::move(s)).first->second.get();
 }
-
-/// A bare Embree scene with the occluder's build flags (robust, high quality).
-class RawScene {
- public:
-  explicit RawScene(const prt::Mesh& mesh) {
-    device_ = rtcNewDevice("threads=0,verbose=0");
-    scene_ = rtcNewScene(device_);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, mesh.positions.size()));
-    std::memcpy(v, mesh.positions.data(), mesh.positions.size() * 12);
-    auto* idx = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, mesh.triangles.size()));
-    std::memcpy(idx, mesh.triangles.data(), mesh.triangles.size() * 12);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene_, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(scene_);
-  }
-  ~RawScene() {
-    rtcReleaseScene(scene_);
-    rtcReleaseDevice(device_);
-  }
-  RTCScene scene() const { return scene_; }
-
- private:
-  RTCDevice device_;
-  RTCScene scene_;
-};
 
 RawScene* rawScene(const std::string& name) {
   static std::map<std::string, std::unique_ptr<RawScene>> cache;

@@ -182,7 +182,16 @@ void addBakeCommand(CLI::App& root) {
   cmd->add_option("--bands", args->bands,
                   "SH bands B (B² coefficients; the course's SHOrder 2 = 3 bands)")
       ->capture_default_str();
-  cmd->add_option("--samples", args->samples, "Directions per vertex")->capture_default_str();
+  cmd->add_option("--samples", args->samples,
+                  "Directions per vertex (default 1024); --basis haar: rays per cube texel "
+                  "(default 1)");
+  cmd->add_option("--basis", args->basis,
+                  "sh (spherical harmonics of --bands bands) | haar (all-frequency: Haar "
+                  "wavelets over a cube map of --resolution² texels per face, each row pruned "
+                  "to its --terms largest coefficients; Ng et al. 2003)")
+      ->capture_default_str();
+  cmd->add_option("--terms", args->terms,
+                  "--basis haar: wavelet coefficients kept per vertex (default 64; 8 bytes each)");
   cmd->add_option("--bounces", args->bounces, "Inter-reflection bounces (interreflected mode)")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed (results are identical for any thread count)")
@@ -207,7 +216,8 @@ void addBakeCommand(CLI::App& root) {
                   "mesh's lightmap UVs) | probes (a grid in space: prt probes)")
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution,
-                  "--domain texels: the lightmap's side in texels (default 512)")
+                  "--domain texels: the lightmap's side in texels (default 512); --basis haar "
+                  "per vertex: the cube's side, 2..256, a power of two (default 32)")
       ->check(intRange(1, kMaxLightmapSide));
   cmd->add_option("--uv", args->uv,
                   "--domain texels: the UV set: auto (the lightmap set, glTF TEXCOORD_1, else the "

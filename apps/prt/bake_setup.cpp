@@ -154,18 +154,27 @@ BakeRequest requestOf(const BakeArgs& a) {
   for (const std::string& m : a.modes) r.modes.push_back(parseTransferMode(m));
   r.layout = parseTransferLayout(a.transfer);
   r.bands = a.bands;
-  r.samples = a.samples;
+  r.basis = parseTransferBasis(a.basis);
+  r.samples = a.samples >= 0 ? a.samples : defaultSamples(r.basis);
   r.bounces = a.bounces;
   r.seed = a.seed;
   r.sampling = parseSampling(a.sampling);
   if (!a.material.empty()) r.material = parseMaterial(a.material);
   if (!a.albedo.empty()) r.albedo = parseAlbedo(a.albedo);
   r.domain = parseTransferDomain(a.domain);
+  const bool cubeResolution = r.basis == TransferBasis::Haar && r.domain != TransferDomain::Texels;
+  if (r.basis == TransferBasis::Haar) {
+    // --resolution is the cube's side, unless it is a lightmap's (--domain texels).
+    if (a.resolution && cubeResolution) r.haar.resolution = a.resolution;
+    if (a.terms) r.haar.terms = a.terms;
+  } else if (a.terms) {
+    throw Error("--terms is the Haar transfer's budget per row: add --basis haar");
+  }
   if (r.domain == TransferDomain::Texels) {
     if (a.resolution) r.lightmap.resolution = a.resolution;
     if (a.padding >= 0) r.lightmap.padding = a.padding;
     if (!a.uv.empty()) r.lightmap.uv = parseUvSetOption(a.uv);
-  } else if (a.resolution || a.padding >= 0 || !a.uv.empty()) {
+  } else if ((a.resolution && !cubeResolution) || a.padding >= 0 || !a.uv.empty()) {
     throw Error(
         "--resolution, --uv, --padding, --seam-fix and --denoise shape a lightmap: add --domain "
         "texels");

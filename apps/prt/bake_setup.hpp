@@ -19,7 +19,10 @@ struct BakeArgs {
   std::vector<std::string> inputs;
   std::vector<std::string> modes;
   int bands = 3;
-  long long samples = 1024;  // wide, so absurd counts get our message, not a parse error
+  long long samples = -1;  // −1: not given (the basis's default); wide, so absurd counts get
+                           // our message
+  std::string basis = "sh";
+  int terms = 0;  ///< Haar: terms kept per row; 0: not given (the request's default)
   int bounces = 1;
   std::uint64_t seed = 0;
   std::string sampling = "cosine";

@@ -133,6 +133,7 @@ void runCompress(const CompressArgs& a, bool clustersGiven, bool basisGiven) {
   // The clusters are fitted to every row: a piece compressed alone could not be merged with the
   // others (each has its own cluster table), so pieces are merged first.
   bake.requireComplete(a.bake);
+  bake.requireSh(a.bake, "prt compress fits SH transfer");
   const BakedTransfer& picked = pickTransfer(bake, a.transfer, a.bake);
   if (picked.transfer.compressed())
     throw Error(a.bake, "the " + picked.describe() + " transfer is already compressed");

@@ -25,6 +25,9 @@
 // Per-texel row (demo_texels.hpp): the builtin Cornell box as a coarse mesh, per vertex, per
 // texel and per vertex at the lightmap's bytes, against its Monte Carlo reference.
 //
+// All-frequency row (demo_haar.hpp): the shadowed SH bake beside a Haar bake of the scene at the
+// same bytes per vertex, under the first two environments, against the same reference.
+//
 // --json reports the figures index.html shows (the bakes' statistics, every validation table,
 // the per-texel row) as numbers, with every file the folder holds.
 //
@@ -44,6 +47,7 @@
 #include "cli.hpp"
 #include "demo_page.hpp"
 #include "demo_report.hpp"
+#include "demo_haar.hpp"
 #include "demo_texels.hpp"
 #include "guard.hpp"
 #include "prt/core/band_limits.hpp"
@@ -437,19 +441,28 @@ void runDemo(const DemoArgs& a) {
   // The per-texel row, under the first environment.
   const TexelRow texels =
       demoTexelRow(envs.front().env, envSpecs.front(), a, frame, file.root.string());
+  // The all-frequency row, under the first two.
+  std::optional<HaarRow> haarRow;
+  if (const BakedTransfer* shadowed = bake.find(TransferMode::Shadowed)) {
+    std::vector<const envmap::Environment*> envPtrs;
+    for (const auto& e : envs) envPtrs.push_back(&e.env);
+    haarRow = demoHaarRow(bake.mesh, *occluder, *shadowed, envPtrs, envSpecs, a, frame, camera,
+                          file.root.string());
+  }
   Json web;
   const std::string webWhy =
       writeLiveViewer(envSpecs, file, a.output, lights.front().exposure, web);
   const double totalSeconds = since(t0);
   writeDemoPage(file("index.html"), scene, bake, lights, a, bakeSeconds, totalSeconds, webWhy,
-                glossy ? &*glossy : nullptr, &texels);
+                glossy ? &*glossy : nullptr, &texels, haarRow ? &*haarRow : nullptr);
   // Into place: replace an earlier demo folder only now that the new one is complete.
   folder.commit();
   info(
       fmt::format("demo: finished in {:.0f} s; open {}", since(t0), (out / "index.html").string()));
 
   writeDemoReport(report, {scene, bake, glossy ? &*glossy : nullptr, std::move(envReports),
-                           texels, std::move(web), webWhy, bakeSeconds, totalSeconds},
+                           texels, haarRow ? &*haarRow : nullptr, std::move(web), webWhy,
+                           bakeSeconds, totalSeconds},
                   a.output, envSpecs);
 }
 

@@ -4,7 +4,9 @@
 
 #include <sstream>
 
+#include "demo_haar.hpp"
 #include "prt/core/file.hpp"
+#include "prt/transfer/haar_rows.hpp"
 #include "prt/core/json.hpp"
 #include "prt/core/version.hpp"
 
@@ -240,17 +242,52 @@ void writeTexelRow(std::ostream& h, const TexelRow& t) {
     << "\"><figcaption>Monte Carlo reference, no SH</figcaption></figure></div>\n";
 }
 
+/// The all-frequency row: SH and Haar at the same bytes per vertex, per environment.
+void writeHaarRow(std::ostream& h, const HaarRow& r) {
+  h << "<h2>All-frequency shadows: SH and Haar wavelets at the same bytes</h2>\n<p>Shadowed "
+       "transfer of the same scene stored two ways in the same bytes per vertex: "
+    << r.bands << " SH bands (" << r.bands * r.bands * 4
+    << " B), and Haar wavelets over a " << r.resolution << "² cube map, each vertex's " << r.terms
+    << " largest terms (" << haar::storedHaarRowBytes(r.resolution, r.terms)
+    << " B, quantised to 16 bits; <code>prt bake --basis haar</code>, docs/haar.md, after Ng, Ramamoorthi &amp; "
+       "Hanrahan 2003). The Haar rows hold the shadow only (the occluded part of the transfer); "
+       "the light is the environment's "
+    << r.lightTerms
+    << " largest wavelet terms. Both are measured against the same brute-force Monte Carlo "
+       "reference (no basis) at "
+    << r.vertices << " vertices, " << r.referenceSamples << " samples each.</p>\n<table>"
+    << "<tr><th>environment</th><th>SH rel. RMSE</th><th>SH energy-weighted</th><th>Haar rel. "
+       "RMSE</th><th>Haar energy-weighted</th><th>reference noise</th></tr>\n";
+  for (const HaarRowLight& L : r.lights)
+    h << "<tr><td>" << htmlEscape(L.environment) << "</td>"
+      << fmt::format("<td>{:.1f}%</td><td>{:.1f}%</td><td>{:.1f}%</td><td>{:.1f}%</td><td>{:.1f}%"
+                     "</td></tr>\n",
+                     100 * L.sh.relRmse, 100 * L.sh.energyRel, 100 * L.haar.relRmse,
+                     100 * L.haar.energyRel, 100 * L.refStdErr);
+  h << "</table>\n";
+  for (const HaarRowLight& L : r.lights) {
+    h << "<div class=\"imgs\">";
+    for (const HaarRowEntry* e : {&L.sh, &L.haar})
+      h << "<figure><img src=\"" << e->image << "\"><figcaption>" << htmlEscape(e->label) << ", "
+        << htmlEscape(L.environment)
+        << fmt::format(": {} B a vertex, rel. RMSE {:.1f}%", e->bytesPerVertex, 100 * e->relRmse)
+        << "</figcaption></figure>";
+    h << "</div>\n";
+  }
+}
+
 }  // namespace
 
 void writeDemoPage(const std::string& path, const DemoScene& scene, const BakeFile& bake,
                    const std::vector<LightResult>& lights, const DemoArgs& a, double bakeSeconds,
                    double totalSeconds, const std::string& webWhy, const GlossyBake* glossy,
-                   const TexelRow* texels) {
+                   const TexelRow* texels, const HaarRow* haar) {
   std::ostringstream h;
   writeIntro(h, scene, bake, a, bakeSeconds, totalSeconds, webWhy);
   writeBakeTable(h, bake, lights, a, glossy);
   for (const LightResult& L : lights) writeLight(h, L, a, glossy);
   if (texels) writeTexelRow(h, *texels);
+  if (haar) writeHaarRow(h, *haar);
   h << "<p>Made by <code>prt demo</code> (prtkit " << kVersion
     << "). Relative error per vertex: sqrt(Σ<sub>c</sub>(R<sub>PRT</sub>−R<sub>ref</sub>)² / "
        "Σ<sub>c</sub>(R<sub>ref</sub>² + ε)); energy-weighted: ‖R<sub>PRT</sub>−R<sub>ref</sub>‖ / "

@@ -12,6 +12,8 @@
 namespace prt::cli {
 
 /// prt demo's options.
+struct HaarRow;
+
 struct DemoArgs {
   std::string output = "demo-out";
   std::string mesh = "auto";
@@ -71,6 +73,6 @@ struct GlossyBake {
 void writeDemoPage(const std::string& path, const DemoScene& scene, const BakeFile& bake,
                    const std::vector<LightResult>& lights, const DemoArgs& a, double bakeSeconds,
                    double totalSeconds, const std::string& webWhy, const GlossyBake* glossy,
-                   const TexelRow* texels);
+                   const TexelRow* texels, const HaarRow* haar);
 
 }  // namespace prt::cli

@@ -40,6 +40,33 @@ Json texelRowJson(const TexelRow& t) {
           {"seconds", t.seconds}};
 }
 
+Json haarEntryJson(const HaarRowEntry& e) {
+  return {{"label", e.label},
+          {"image", e.image},
+          {"bytesPerVertex", e.bytesPerVertex},
+          {"relRmse", e.relRmse},
+          {"energyRel", e.energyRel}};
+}
+
+/// The all-frequency row as the page's table gives it.
+Json haarRowJson(const HaarRow& r) {
+  Json lights = Json::array();
+  for (const HaarRowLight& L : r.lights)
+    lights.push_back({{"environment", L.environment},
+                      {"sh", haarEntryJson(L.sh)},
+                      {"haar", haarEntryJson(L.haar)},
+                      {"refStdErr", L.refStdErr}});
+  return {{"bands", r.bands},
+          {"resolution", r.resolution},
+          {"terms", r.terms},
+          {"lightTerms", r.lightTerms},
+          {"vertices", r.vertices},
+          {"referenceSamples", r.referenceSamples},
+          {"bakeSeconds", r.bakeSeconds},
+          {"seconds", r.seconds},
+          {"lights", std::move(lights)}};
+}
+
 }  // namespace
 
 Json environmentJson(const LightResult& L, const sh::RgbSh& light) {
@@ -83,6 +110,7 @@ void writeDemoReport(Report& report, DemoOutcome o, const std::string& output,
                         {"transfer", transferJson(o.glossy->file.transfers.front())}};
   report["environments"] = std::move(o.environments);
   report["texels"] = texelRowJson(o.texels);
+  report["haar"] = o.haar ? haarRowJson(*o.haar) : Json(nullptr);
   report["web"] = std::move(o.web);
   report["webMissing"] = o.webMissing.empty() ? Json(nullptr) : Json(o.webMissing);
   report["totalSeconds"] = o.totalSeconds;

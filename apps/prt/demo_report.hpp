@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "demo_haar.hpp"
 #include "demo_page.hpp"
 #include "demo_texels.hpp"
 #include "prt/io/bake_file.hpp"
@@ -21,6 +22,7 @@ struct DemoOutcome {
   const GlossyBake* glossy;  ///< null without the glossy row
   Json environments;         ///< environmentJson of each
   const TexelRow& texels;
+  const HaarRow* haar;       ///< null without a shadowed bake
   Json web;                  ///< the live viewer's web report
   std::string webMissing;    ///< why there is no live viewer ("" when there is)
   double bakeSeconds = 0;

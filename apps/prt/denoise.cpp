@@ -31,6 +31,7 @@ Json denoiseBake(BakeFile& file, const std::string& name, const DenoiseSettings&
     throw Error(name, std::string("holds ") + toString(file.domain()) +
                           " transfer: prt denoise filters a lightmap (bake with --domain texels)");
   file.requireComplete(name);
+  file.requireSh(name, "prt denoise filters SH lightmaps");
   for (const BakedTransfer& t : file.transfers)
     if (t.transfer.compressed())
       throw Error(name, "holds compressed transfer (" + t.describe() +

@@ -106,6 +106,7 @@ void runExportTextures(const ExportArgs& a) {
   const BakeFile bake = readBake(a.input);
   bake.requireComplete(a.input);
   bake.requireSurface(a.input, "coefficient textures lay out a surface's transfer");
+  bake.requireSh(a.input, "prt export writes SH coefficients");
   const BakedTransfer& t = exportedTransfer(bake, a);
   const io::CoefficientTextures tex =
       io::encodeCoefficientTextures(t, bake.mesh, encoding, a.input);
@@ -222,6 +223,7 @@ void runExportLightmap(const ExportArgs& a) {
   const BakeFile bake = readBake(a.input);
   bake.requireComplete(a.input);
   bake.requireSurface(a.input, "engine lightmaps lay out a surface's light");
+  bake.requireSh(a.input, "prt export writes SH coefficients");
   if (bake.domain() != TransferDomain::Texels)
     throw Error(a.input,
                 "holds per-vertex transfer: engine lightmaps are per texel (prt bake "
@@ -371,6 +373,7 @@ void runExport(const ExportArgs& a) {
 
   const BakeFile bake = readBake(a.input);
   bake.requireComplete(a.input);
+  bake.requireSh(a.input, "prt export writes SH coefficients");
   bake.requireVertices(a.input,
                        "transport.txt holds vertices: export it as coefficient "
                        "textures (--format exr or png)");

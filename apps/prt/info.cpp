@@ -29,10 +29,12 @@
 #include "prt/geometry/lightmap_uvs.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/geometry/texel_sampling.hpp"
+#include "prt/haar/resolution.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/games202_transport.hpp"
+#include "prt/io/haar_light_file.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/render/lightmap_seams.hpp"
 #include "prt/sh/encode_irradiance.hpp"
@@ -129,7 +131,13 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     const BakeStats& st = t.stats;
     const Transfer& x = t.transfer;
     const std::size_t dense = x.stride() * sizeof(float);
-    if (x.isMatrix())
+    if (x.isHaar())
+      out << fmt::format(
+          "  {}: vector (diffuse, its occluded part), Haar wavelets over a {}² cube ({} "
+          "coefficients), the {} largest kept per {} as (index, value) pairs, {} per {}, {}\n",
+          toString(s.mode), x.shape().haar.resolution, x.coeffs(), x.shape().haar.terms, per,
+          bytesText(dense), per, transferStorage(t));
+    else if (x.isMatrix())
       out << fmt::format(
           "  {}: matrix ({}), {} bands ({}x{} per {}) x {} channel(s), {} per {}, {}\n",
           toString(s.mode),
@@ -234,7 +242,32 @@ void describeEncodings(const sh::RgbSh& radiance, const sh::RgbSh& reference,
         100 * e["relativeRms"].get<double>(), 100 * e["negativeShare"].get<double>());
 }
 
+/// A Haar light file (prt light --basis haar; io/haar_light_file.hpp).
+void describeHaarLight(const std::string& path, std::ostream& out, Json& j) {
+  const io::HaarLightFile f = io::readHaarLightJson(path);
+  const haar::HaarLight& l = f.light;
+  j["kind"] = "haar-light";
+  j["source"] = f.source;
+  j["layout"] = f.layout;
+  j["rotationDegrees"] = f.rotationDeg;
+  j["resolution"] = l.resolution;
+  j["terms"] = l.terms();
+  j["selection"] = f.selection;
+  j["energyKept"] = l.energyKept;
+  j["brightTexels"] = l.bright.size();
+  out << fmt::format("{}: prtkit Haar light (JSON)\n", path);
+  out << fmt::format("source      {} ({}), rotation {},{},{} degrees\n", f.source, f.layout,
+                     f.rotationDeg[0], f.rotationDeg[1], f.rotationDeg[2]);
+  out << fmt::format("basis       Haar wavelets over a {}² cube ({} coefficients)\n", l.resolution,
+                     haar::coefficientCount(l.resolution));
+  out << fmt::format("terms       the {} largest ({}), {:.6f}% of the light's wavelet energy\n",
+                     l.terms(), f.selection, 100 * l.energyKept);
+  out << fmt::format("unshadowed  {} brightest texels exactly, the rest in {}-band SH\n",
+                     l.bright.size(), l.unshadowed.bands);
+}
+
 void describeLightJson(const std::string& path, std::ostream& out, Json& j) {
+  if (io::isHaarLightFile(path)) return describeHaarLight(path, out, j);
   const io::LightFile lf = io::readLightJson(path);
   j["kind"] = "light";
   j["source"] = lf.source;

@@ -23,8 +23,11 @@
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
+#include "prt/haar/cube_haar.hpp"
+#include "prt/haar/project_light.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/engine_light.hpp"
+#include "prt/io/haar_light_file.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/encode_irradiance.hpp"
@@ -53,6 +56,11 @@ struct LightOptions {
   bool strict = false;
   std::string encoding;
   std::string json;
+  // --basis haar (issue 33): the environment's largest wavelet terms over a cube map.
+  std::string basis = "sh";
+  int resolution = 0;  ///< 0: not given (32)
+  int terms = 0;       ///< 0: not given (200)
+  std::string selection = "area";
 };
 
 /// The repairs that changed the light are warned (envmap::repairWarnings); --strict refuses any.
@@ -69,7 +77,73 @@ void warnAboutPixels(const envmap::LoadedEnvironment& loaded, bool strict) {
   for (const std::string& w : envmap::repairWarnings(loaded)) warn(w);
 }
 
+/// prt light --basis haar: the cube's texel means, the K terms kept by --selection, and the SH
+/// of the unshadowed part, into a Haar light file (io/haar_light_file.hpp).
+void runHaarLight(const LightOptions& o) {
+  if (o.bands != 3 || o.window != "none" || !o.compat.empty() || !o.encoding.empty() ||
+      !o.preview.empty())
+    throw Error("--basis haar: --bands, --window, --compat, --encoding and --preview shape an "
+                "SH light (--resolution and --terms shape a Haar one)");
+  const int n = o.resolution ? o.resolution : 32;
+  haar::checkResolution(n, "--resolution");
+  // Not given: 200 (Ng et al.'s "a few hundred"), or the whole of a smaller cube.
+  const std::size_t terms =
+      o.terms ? std::size_t(o.terms) : std::min<std::size_t>(200, haar::coefficientCount(n));
+  if (terms > haar::coefficientCount(n))
+    throw Error(fmt::format("--terms {}: a {}² cube has {} coefficients", terms, n,
+                            haar::coefficientCount(n)));
+  const haar::Selection selection = haar::parseSelection(o.selection);
+  if (!o.format.empty() && o.format != "json")
+    throw Error("--basis haar writes prtkit's JSON light file (--format json)");
+  checkOutputs({{"-o", o.output}}, {{"input", o.input}});
+  if (!isStandardOutput(o.output) && fileExtension(o.output) != "json")
+    throw Error(o.output, "--basis haar writes a .json light file");
+  Report report("light", o.json);
+  report.check({{"-o", o.output}}, {{"input", o.input}});
+  checkWritable(o.output);
+  const std::array<double, 3> rot = parseEulerDegrees(o.rotate);
+  envmap::LoadOptions lo;
+  if (!o.layout.empty()) lo.layout = envmap::parseLayout(o.layout);
+  const envmap::LoadedEnvironment loaded = envmap::loadEnvironment(o.input, lo);
+  warnAboutPixels(loaded, o.strict);
+  std::vector<NamedPath> read;
+  for (const std::string& f : loaded.files) read.push_back({"input", f});
+  checkOutputs({{"-o", o.output}}, read);
+  io::HaarLightFile f;
+  f.light = haar::projectLight(loaded.env, n, terms, rotationEulerXYZ(rot[0], rot[1], rot[2]),
+                               selection);
+  for (const Rgb& v : f.light.value)
+    if (!isFinite(v))
+      throw Error(o.input, "a wavelet coefficient is not finite: the environment is too bright "
+                           "for 32-bit floats (scale it down); nothing written");
+  f.selection = haar::toString(selection);
+  f.source = o.input;
+  f.layout = loaded.layout;
+  f.rotationDeg = rot;
+  f.prtkitVersion = kVersion;
+  io::writeHaarLightJson(o.output, f);
+  info(fmt::format("wrote {}: Haar {}² cube, the {} largest ({}) of {} terms, {:.4f}% of the "
+                   "light's energy",
+                   o.output, n, f.light.terms(), f.selection, haar::coefficientCount(n),
+                   100 * f.light.energyKept));
+  if (report.wanted()) {
+    report.input(o.input);
+    report.output(o.output);
+    report["basis"] = "haar";
+    report["resolution"] = n;
+    report["terms"] = f.light.terms();
+    report["selection"] = f.selection;
+    report["energyKept"] = f.light.energyKept;
+    report["rotationDegrees"] = rot;
+    report.write();
+  }
+}
+
 void runLight(const LightOptions& o) {
+  if (o.basis == "haar") return runHaarLight(o);
+  if (o.basis != "sh") throw Error("--basis must be sh or haar, got '" + o.basis + "'");
+  if (o.resolution || o.terms || o.selection != "area")
+    throw Error("--resolution, --terms and --selection shape a Haar light: add --basis haar");
   // Validate everything first: nothing is written unless all of it works.
   checkOptionRange(OptionSpelling::Cli, "bands", o.bands, 1, bands::kMaxLibrary);
   if (o.previewWidth < 8 || o.previewWidth % 2)
@@ -294,6 +368,19 @@ void addLightCommand(CLI::App& root) {
                   "Also store the irradiance as an engine does, with its error against 12 bands "
                   "(JSON light files): l1, l1-windowed, l1-geomerics, zh3, zh3-shared, "
                   "zh3-optimal, zh3-hallucinated, l2 or l2-deringed (docs/formats-light.md)");
+  cmd->add_option("--basis", opts->basis,
+                  "sh (spherical harmonics, --bands) | haar (all-frequency: the largest Haar "
+                  "wavelet terms over a cube map, for Haar bakes; Ng et al. 2003)")
+      ->capture_default_str();
+  cmd->add_option("--resolution", opts->resolution,
+                  "--basis haar: the cube's side, a power of two 2..256 (default 32)");
+  cmd->add_option("--terms", opts->terms,
+                  "--basis haar: wavelet terms kept, the non-linear approximation (default 200)")
+      ->check(intRange(1, 1 << 20));
+  cmd->add_option("--selection", opts->selection,
+                  "--basis haar: area (largest |c| x support area, as Ng et al.) | magnitude "
+                  "(largest |c|)")
+      ->capture_default_str();
   addJsonOption(cmd, opts->json);
   cmd->callback([opts] { runLight(*opts); });
 }

@@ -48,8 +48,8 @@ void addProbesCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--bands", args->bands, "SH bands B (a B² x B² matrix per probe)")
       ->capture_default_str();
-  cmd->add_option("--samples", args->samples, "Directions per probe (over the whole sphere)")
-      ->capture_default_str();
+  cmd->add_option("--samples", args->samples,
+                  "Directions per probe (over the whole sphere; default 1024)");
   cmd->add_option("--bounces", args->bounces, "Inter-reflection bounces (interreflected mode)")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed (results are identical for any thread count)")

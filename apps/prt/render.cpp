@@ -38,6 +38,7 @@
 #include "prt/render/render.hpp"
 #include "prt/sh/encode_irradiance.hpp"
 #include "reference_input.hpp"
+#include "render_haar.hpp"
 #include "render_probes.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
@@ -69,6 +70,7 @@ struct RenderOptions {
   std::string object, at;
   float objectSize = 0;
   std::string encoding;  ///< --encoding: "" or "none" = PRT's own radiance
+  int terms = 0;         ///< --terms: a Haar bake's light terms (0: kDefaultHaarLightTerms)
 };
 
 void checkOutput(const std::string& path, const char* what) {
@@ -174,6 +176,27 @@ void run(const RenderOptions& o) {
                             " has a glossy lobe (pass --material lambert to see the encoding)");
   warnLobeOnVectors(material, baked, o.bake,
                     "the material's glossy lobe needs a matrix bake (prt bake --transfer matrix)");
+  if (baked.transfer.isHaar()) {
+    // The all-frequency basis (render_haar.cpp): the light is the environment's largest
+    // wavelet terms, rotated by resampling; one frame, PRT's own radiance.
+    if (o.turntable > 0 || !o.reference.empty() || encoding || o.bands > 0)
+      throw Error(o.bake, "holds Haar transfer: --turntable, --reference, --encoding and --bands "
+                          "draw SH transfer (prt render of a Haar bake draws one frame; "
+                          "--terms sets the light's wavelet terms)");
+    HaarRenderArgs h{o.bake, o.light, o.camera, o.output,
+                     o.terms ? o.terms : kDefaultHaarLightTerms, frame, userRotation, bgKind,
+                     bgColour, write, exposure};
+    renderHaarBake(bake, baked, material, h, report);
+    if (report.wanted()) {
+      report.input(o.bake);
+      report.input(o.light);
+      report.write();
+    }
+    return;
+  }
+  if (o.terms != 0)
+    throw Error(o.bake, "--terms sets a Haar light's wavelet terms; this bake holds " +
+                            baked.describe() + " (SH) transfer");
   // Every frame through one view (render/relit_view.hpp): the transfer cut to --bands once, per
   // vertex or per texel, the base-colour texture per pixel.
   const auto occluder = makeEmbreeOccluder(bake.mesh);
@@ -358,6 +381,10 @@ void addRenderCommand(CLI::App& root) {
   cmd->add_option("--object-size", opts->objectSize,
                   "With --object: its largest side (default: a fifth of the grid's)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--terms", opts->terms,
+                  "A Haar bake: the light's largest wavelet terms kept (default 200; Ng et al. "
+                  "2003's non-linear approximation)")
+      ->check(intRange(1, 1 << 20));
   cmd->add_option("--encoding", opts->encoding,
                   "Draw the diffuse shading an engine gets from an irradiance encoding of the "
                   "light arriving at each row (a matrix bake, a diffuse material): l1, "

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -30,6 +31,7 @@
 #include "prt/render/probe_points.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
+#include "prt/render/validate_haar.hpp"
 #include "reference_input.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
@@ -66,7 +68,79 @@ struct ValidateArgs {
   TransferChoice transfer;
   std::size_t vertices = 0;
   std::uint64_t seed = 0;
+  std::string terms;  ///< --terms: a Haar bake's light budgets, comma-separated
 };
+
+/// A Haar bake (render/validate_haar.hpp): per light budget K, the relighting under the
+/// environment's K largest wavelet terms against the reference, ending with the whole cube.
+void validateHaarBake(const ValidateArgs& a, MpiVerb& mpi, const BakeFile& file,
+                      const BakedTransfer& bt, const BakeRecipe& recipe, const Mat3d& rotation,
+                      Report& report) {
+  if (!a.bandsList.empty() || a.window != "none" || !a.encoding.empty() || !a.image.empty())
+    throw Error(a.bake, "holds Haar transfer: --bands-list, --window, --encoding and --image "
+                        "measure SH transfer (--terms lists the Haar light's budgets)");
+  render::HaarValidateSettings hs;
+  hs.lightTerms.clear();
+  for (double k : parseNumberList(a.terms.empty() ? "200" : a.terms, "--terms")) {
+    if (k != std::floor(k) || k < 1 || k > 1e7)
+      throw Error("--terms: light budgets are positive integers");
+    hs.lightTerms.push_back(static_cast<std::size_t>(k));
+  }
+  hs.reference.samples = a.samples;
+  hs.reference.seed = a.seed;
+  hs.reference.rotation = rotation;
+  hs.reference.heuristic = parseMis(a.mis);
+  hs.maxVertices = a.vertices;
+  hs.bakeName = a.bake;
+  const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
+  for (const std::string& w : envmap::repairWarnings(env)) warn(w);
+  auto occluder = makeEmbreeOccluder(file.mesh);
+  if (mpi.active())
+    hs.runReference = [&](const render::ReferenceSettings& rs, const ProgressFn& p) {
+      return mpi.reference(file.mesh, *occluder, env.env, rs, p);
+    };
+  render::ReferenceResult stored;
+  if (!a.reference.empty()) {
+    const io::ReferenceFile ref = readMatchingReference(
+        a.reference, referenceScene(file.mesh, env.env, a.bake, a.light, rotation, bt,
+                                    recipe.material, render::frameMesh(file.mesh, 640, 480).eye));
+    stored = toReferenceResult(ref);
+    hs.precomputed = &stored;
+    hs.reference.samples = ref.samples;
+  }
+  info("validating " + bt.describe() + " transfer (" + bt.transfer.shape().describe() + ") of " +
+       a.bake + " under " + a.light);
+  const render::HaarValidationReport rep = render::validateHaar(
+      file.mesh, *occluder, bt.transfer, recipe, env.env, hs, progressBar("reference"));
+  if (!mpi.root()) return;
+  for (const std::string& w : rep.warnings) warn(w);
+  info(fmt::format("reference: {} vertices x {} samples, {} rays, {:.2f} s; mode {}",
+                   rep.reference.vertices.size(), hs.reference.samples, rep.reference.rays,
+                   rep.reference.seconds, toString(rep.mode)));
+  (report.toStandardOutput() ? std::cerr : std::cout) << render::formatHaarTable(rep)
+                                                      << std::flush;
+  if (report.wanted()) {
+    report.input(a.bake);
+    report.input(a.light);
+    if (!a.reference.empty()) report.input(a.reference);
+    report["basis"] = "haar";
+    report["resolution"] = rep.resolution;
+    report["transferTerms"] = rep.transferTerms;
+    report["vertices"] = rep.reference.vertices.size();
+    report["refStdErr"] = rep.refStdErr;
+    Json rows = Json::array();
+    for (const render::HaarRow& r : rep.rows)
+      rows.push_back({{"lightTerms", r.lightTerms},
+                      {"energyKept", r.energyKept},
+                      {"relRmse", r.relRmse},
+                      {"energyWeightedRelErr", r.energyRel},
+                      {"meanRel", r.meanRel},
+                      {"maxRel", r.maxRel},
+                      {"negativeShare", r.negativeShare}});
+    report["rows"] = std::move(rows);
+    report.write();
+  }
+}
 
 void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
   if (a.samples < 1) throw Error("--reference-samples must be at least 1");
@@ -122,6 +196,13 @@ void validateBody(const ValidateArgs& a, MpiVerb& mpi) {
                       "validating its diffuse part (the reference drops the lobe, and its "
                       "bounces are diffuse too)");
   file.requireComplete(a.bake);
+  if (bt.transfer.isHaar()) {
+    validateHaarBake(a, mpi, file, bt, recipe, rotation, report);
+    return;
+  }
+  if (!a.terms.empty())
+    throw Error(a.bake, "--terms lists a Haar light's budgets; this bake holds " +
+                            bt.describe() + " (SH) transfer");
   const envmap::LoadedEnvironment env = envmap::loadEnvironment(a.light);
   for (const std::string& w : envmap::repairWarnings(env)) warn(w);
   const sh::RgbSh light = envmap::projectEnvironment(env.env, bt.transfer.bands());
@@ -274,6 +355,9 @@ void addValidateCommand(CLI::App& root) {
       ->check(unsignedInt(UINT32_MAX));
   cmd->add_option("--seed", a->seed, "Reference seed")->check(unsignedInt())->capture_default_str();
   cmd->add_option("--mis", a->mis, "MIS heuristic: power | balance")->capture_default_str();
+  cmd->add_option("--terms", a->terms,
+                  "A Haar bake: the light's wavelet budgets to tabulate, e.g. 50,200,1000 "
+                  "(default 200; the whole cube is always added)");
   cmd->add_option("--encoding", a->encoding,
                   "Also measure irradiance encodings of a matrix bake (comma-separated names, or "
                   "all): the diffuse shading an engine gets from each against the reference and "

@@ -242,6 +242,7 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
   if (bake.transfers.empty())
     throw Error(a.bake, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(a.bake);
+  bake.requireSh(a.bake, "the page relights SH transfer");
   std::optional<TransferMode> mode;
   if (!a.mode.empty()) mode = parseTransferMode(a.mode);
   const BakedTransfer& picked = prt::pickTransfer(bake, mode, {}, a.bake);

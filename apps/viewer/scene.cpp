@@ -72,6 +72,7 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
+  bake.requireSh(path, "prt view relights SH transfer");
   for (const BakedTransfer& t : bake.transfers) {
     // Some path draws it (per-texel matrices only compressed; probes on the CPU, probe_view),
     // else refused naming the file.

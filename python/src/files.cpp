@@ -59,6 +59,7 @@ struct PyBakeFile {
 prt::BakeFile readFile(const std::string& path) {
   py::gil_scoped_release nogil;
   prt::BakeFile f = prt::readBake(path);
+  f.requireSh(path, "the Python module reads SH transfer");
   prt::foldBaseColour(f.mesh);  // as load_mesh: the module shades per vertex (and per texel)
   return f;
 }

@@ -94,6 +94,7 @@ void checkTransfersForWriting(const BakeFile& bake) {
     }
     if (!t.transfer.compressed() && t.transfer.values().size() != rows.count * t.transfer.stride())
       throw Error(std::string("bake file: transfer rows do not match the ") + row + " range");
+    if (t.transfer.isHaar()) t.transfer.check("bake file");
     if (t.transfer.compressed()) {
       t.transfer.check("bake file");
       // A cut below its basis (Transfer::cut keeps N): more basis vectors than values per row,
@@ -381,7 +382,7 @@ BakeFile decode(std::span<const unsigned char> bytes, const std::string& name,
 
 std::string BakedTransfer::describe() const {
   return std::string(toString(recipe.mode)) + " " + toString(transfer.layout()) +
-         (transfer.compressed() ? " (CPCA-compressed)" : "");
+         (transfer.isHaar() ? " (Haar)" : "") + (transfer.compressed() ? " (CPCA-compressed)" : "");
 }
 
 BakeSettings BakedTransfer::settings() const {
@@ -389,6 +390,8 @@ BakeSettings BakedTransfer::settings() const {
   static_cast<BakeRecipe&>(s) = recipe;
   s.layout = transfer.layout();
   s.bands = transfer.bands();
+  s.basis = transfer.shape().basis;
+  s.haar = transfer.shape().haar;
   s.rows = transfer.rows();
   return s;
 }
@@ -439,6 +442,14 @@ void BakeFile::requireSurface(const std::string& file, const std::string& use) c
                         use);
 }
 
+void BakeFile::requireSh(const std::string& file, const std::string& use) const {
+  for (const BakedTransfer& t : transfers)
+    if (t.transfer.isHaar())
+      throw Error(file, "holds Haar-wavelet transfer (" + t.describe() + ", " +
+                            t.transfer.shape().describe() + "); " + use +
+                            " (prt render and prt validate relight Haar bakes)");
+}
+
 void BakeFile::requireVertices(const std::string& file, const std::string& use) const {
   if (domain() == TransferDomain::Vertices) return;
   requireSurface(file, use);
@@ -465,6 +476,10 @@ std::string transferTexelName(TransferMode mode) {
   return "_PRT_" + upper(mode) + "_TEXELS";
 }
 
+std::string transferHaarPrefix(TransferMode mode) {
+  return "_PRT_" + upper(mode) + "_HAAR_";
+}
+
 std::string transferCompressedPrefix(TransferMode mode) {
   return "_PRT_" + upper(mode) + "_CPCA_";
 }
@@ -473,6 +488,7 @@ std::string transferStorage(const BakedTransfer& t) {
   const Transfer& x = t.transfer;
   const TransferMode mode = t.mode();
   if (x.compressed()) return "CPCA-compressed, accessors " + transferCompressedPrefix(mode) + "*";
+  if (x.isHaar()) return "quantised, accessors " + transferHaarPrefix(mode) + "*";
   if (x.isMatrix()) return "accessor " + transferMatrixName(mode);
   if (x.domain() == TransferDomain::Texels) return "accessor " + transferTexelName(mode);
   return "attributes " + transferAttributePrefix(mode) + "0.." +

@@ -8,6 +8,8 @@
 
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
+#include "prt/haar/resolution.hpp"
+#include "prt/io/bake_file.hpp"
 #include "prt/sh/convolve.hpp"
 
 namespace prt::io::schema {
@@ -173,16 +175,22 @@ json responseJson(const Material& m, int bands) {
 }
 
 json settingsJson(const TransferShape& shape, const BakeRecipe& recipe) {
-  return {{"mode", toString(recipe.mode)},
-          {"layout", toString(shape.layout)},
-          {"domain", toString(shape.domain)},
-          {"bands", shape.bands},
-          {"channels", shape.channels},
-          {"samples", recipe.samples},
-          {"bounces", recipe.bounces},
-          {"seed", exactInteger(recipe.seed)},
-          {"sampling", toString(recipe.sampling)},
-          {"material", materialJson(recipe.material)}};
+  json o = {{"mode", toString(recipe.mode)},
+            {"layout", toString(shape.layout)},
+            {"domain", toString(shape.domain)},
+            {"bands", shape.bands},
+            {"channels", shape.channels},
+            {"samples", recipe.samples},
+            {"bounces", recipe.bounces},
+            {"seed", exactInteger(recipe.seed)},
+            {"sampling", toString(recipe.sampling)},
+            {"material", materialJson(recipe.material)}};
+  if (shape.isHaar()) {
+    o.erase("bands");
+    o["basis"] = toString(shape.basis);
+    o["haar"] = {{"resolution", shape.haar.resolution}, {"terms", shape.haar.terms}};
+  }
+  return o;
 }
 
 void readSettings(const json& o, const std::string& where, int version, const Reader& r,
@@ -204,9 +212,28 @@ void readSettings(const json& o, const std::string& where, int version, const Re
       r.has(o, "domain")
           ? r.within(where, [&] { return parseTransferDomain(r.string(o, "domain", where)); })
           : TransferDomain::Vertices;
-  shape.bands = static_cast<int>(r.integer(o, "bands", where, 1, bands::kMaxLibrary));
+  shape.basis = r.has(o, "basis") ? r.within(where, [&] {
+    return parseTransferBasis(r.string(o, "basis", where));
+  })
+                                  : TransferBasis::SphericalHarmonics;
   shape.channels = static_cast<int>(r.integer(o, "channels", where, 1, 3));
   if (shape.channels == 2) r.fail(where + ".channels must be 1 or 3");
+  if (shape.isHaar()) {
+    if (version < prt::kFirstHaarVersion)
+      r.fail(where + " is Haar transfer in a version " + std::to_string(version) +
+             " file (Haar needs version " + std::to_string(kFirstHaarVersion) + ")");
+    const std::string hw = where + ".haar";
+    const json& h = r.member(o, "haar", where);
+    if (!h.is_object()) r.fail(hw + " is not an object");
+    shape.bands = 0;
+    shape.haar.resolution =
+        static_cast<int>(r.integer(h, "resolution", hw, haar::kMinResolution, haar::kMaxResolution));
+    shape.haar.terms = static_cast<int>(r.integer(
+        h, "terms", hw, 1, static_cast<double>(haar::coefficientCount(shape.haar.resolution))));
+    r.within(where, [&] { shape.check(where); });
+  } else {
+    shape.bands = static_cast<int>(r.integer(o, "bands", where, 1, bands::kMaxLibrary));
+  }
   if (r.has(o, "material")) recipe.material = readMaterial(o["material"], where + ".material", r);
   // Versions 1–3 kept a uniform bounce albedo apart from the material.
   if (r.has(o, "albedo"))

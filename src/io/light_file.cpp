@@ -126,6 +126,10 @@ LightFile readLightJson(const std::string& path) {
 LightFile parseLightJson(std::string_view text, const std::string& path) {
   nlohmann::json j = parseJsonText(text, path);  // not const: operator[] on a missing key is null
   if (!j.is_object()) throw Error(path, "expected a JSON object");
+  if (j.contains("basis") && j["basis"] != "sh")
+    throw Error(path, "is a " + j["basis"].dump() +
+                          " light (prt light --basis haar): it relights Haar bakes, with prt "
+                          "render; SH bakes need an SH light");
   if (!j.contains("coefficients") || !j["coefficients"].is_array())
     throw Error(path, "missing \"coefficients\" array");
   const auto& rows = j["coefficients"];

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <memory>
 
 #include "prt/core/error.hpp"
+#include "prt/haar/resolution.hpp"
+#include "prt/transfer/haar_rows.hpp"
 
 namespace prt::io {
 
@@ -12,6 +16,7 @@ namespace {
 
 using nlohmann::json;
 constexpr int kFloat = gltf::kFloat, kUint = gltf::kUnsignedInt, kUshort = gltf::kUnsignedShort;
+constexpr int kShort = gltf::kShort;
 constexpr int kArrayBuffer = 34962;
 
 /// The accessor indices an entry lists, each checked to be an integer.
@@ -141,6 +146,104 @@ class DenseRowsCodec final : public TransferCodec {
   }
 };
 
+// ---- Haar rows: per row its scale, per term a 16-bit (or 32-bit) index and a 16-bit value -----
+
+class HaarRowsCodec final : public TransferCodec {
+ public:
+  std::vector<std::pair<std::string, int>> encode(const BakedTransfer& bt, glb::BinaryChunk& bin,
+                                                  json& entry) const override {
+    const Transfer& t = bt.transfer;
+    const std::size_t rows = t.rowCount(), terms = std::size_t(t.shape().haar.terms);
+    const bool wide = haar::coefficientCount(t.shape().haar.resolution) > 65536;
+    // The rows are on their grid (haar_rows.hpp): the scale is the row's largest |value| and
+    // every q an integer, read back exactly.
+    auto scale = std::make_shared<std::vector<float>>(rows, 0.0f);
+    auto index = std::make_shared<std::vector<std::uint32_t>>(rows * terms);
+    auto value = std::make_shared<std::vector<std::int16_t>>(rows * terms);
+    for (std::size_t r = 0; r < rows; ++r) {
+      const float* p = t.row(r);
+      float s = 0;
+      for (std::size_t k = 0; k < terms; ++k) s = std::max(s, std::abs(p[2 * k + 1]));
+      (*scale)[r] = s;
+      for (std::size_t k = 0; k < terms; ++k) {
+        (*index)[r * terms + k] = static_cast<std::uint32_t>(p[2 * k]);
+        (*value)[r * terms + k] = static_cast<std::int16_t>(haar::quantizeHaarValue(p[2 * k + 1], s));
+      }
+    }
+    const std::string prefix = transferHaarPrefix(bt.mode());
+    json acc = json::array();
+    acc.push_back(bin.accessor(
+        bin.view(rows * 4, 0, 0, prefix + "SCALE",
+                 [scale](std::ostream& os) {
+                   os.write(reinterpret_cast<const char*>(scale->data()),
+                            std::streamsize(scale->size() * 4));
+                 }),
+        0, rows, "SCALAR", kFloat, prefix + "SCALE"));
+    acc.push_back(bin.accessor(
+        bin.view(rows * terms * (wide ? 4 : 2), 0, 0, prefix + "INDEX",
+                 [index, wide](std::ostream& os) {
+                   if (wide) {
+                     os.write(reinterpret_cast<const char*>(index->data()),
+                              std::streamsize(index->size() * 4));
+                     return;
+                   }
+                   std::vector<std::uint16_t> narrow(index->begin(), index->end());
+                   os.write(reinterpret_cast<const char*>(narrow.data()),
+                            std::streamsize(narrow.size() * 2));
+                 }),
+        0, rows * terms, "SCALAR", wide ? kUint : kUshort, prefix + "INDEX"));
+    acc.push_back(bin.accessor(
+        bin.view(rows * terms * 2, 0, 0, prefix + "VALUE",
+                 [value](std::ostream& os) {
+                   os.write(reinterpret_cast<const char*>(value->data()),
+                            std::streamsize(value->size() * 2));
+                 }),
+        0, rows * terms, "SCALAR", kShort, prefix + "VALUE"));
+    entry["haarAccessorPrefix"] = prefix;
+    entry["accessors"] = std::move(acc);
+    return {};
+  }
+
+  Transfer decode(const json& entry, const std::string& where, const TransferShape& shape,
+                  TransferMode mode, const gltf::AccessorReader& a, const schema::Reader& r,
+                  const ByteKeeper& bytes) const override {
+    const std::vector<int> acc = accessorList(entry, 3, "the Haar rows (scale, index, value)",
+                                              where, r);
+    const std::size_t rows = shape.rows.count, terms = std::size_t(shape.haar.terms);
+    const bool wide = haar::coefficientCount(shape.haar.resolution) > 65536;
+    const std::string what = std::string(toString(mode)) + " Haar rows";
+    const std::vector<float> scale = a.exact<float>(acc[0], 1, kFloat, rows, what + " scales");
+    std::vector<std::uint32_t> index;
+    if (wide) {
+      index = a.exact<std::uint32_t>(acc[1], 1, kUint, rows * terms, what + " indices");
+    } else {
+      const auto narrow =
+          a.exact<std::uint16_t>(acc[1], 1, kUshort, rows * terms, what + " indices");
+      index.assign(narrow.begin(), narrow.end());
+    }
+    const std::vector<std::int16_t> value =
+        a.exact<std::int16_t>(acc[2], 1, kShort, rows * terms, what + " values");
+    std::vector<float> rowsOut(rows * terms * 2);
+    for (std::size_t i = 0; i < rows; ++i) {
+      if (!std::isfinite(scale[i]) || scale[i] < 0)
+        r.fail(where + ": Haar row " + std::to_string(i) + " has scale " +
+               std::to_string(scale[i]) + " (a finite number >= 0)");
+      for (std::size_t k = 0; k < terms; ++k) {
+        const std::int16_t q = value[i * terms + k];
+        if (q < -haar::kHaarValueSteps)
+          r.fail(where + ": Haar row " + std::to_string(i) + ", term " + std::to_string(k) +
+                 ": value " + std::to_string(q) + " is off the grid (-32767..32767)");
+        rowsOut[(i * terms + k) * 2] = float(index[i * terms + k]);
+        rowsOut[(i * terms + k) * 2 + 1] = haar::dequantizeHaarValue(scale[i], q);
+      }
+    }
+    Transfer t = Transfer::dense(shape, FloatArray(std::move(rowsOut)));
+    (void)bytes;  // dequantised: always a copy, always checked
+    r.within(where, [&] { t.check(what); });
+    return t;
+  }
+};
+
 // ---- CPCA -------------------------------------------------------------------------------------
 
 class CpcaCodec final : public TransferCodec {
@@ -227,9 +330,11 @@ class CpcaCodec final : public TransferCodec {
 const DenseVectorCodec kDenseVector;
 const DenseRowsCodec kDenseRows;
 const CpcaCodec kCpca;
+const HaarRowsCodec kHaarRows;
 
 /// Dense vectors over vertices are vertex attributes; every other dense transfer is its rows.
 const TransferCodec& denseCodecFor(const TransferShape& shape) {
+  if (shape.isHaar()) return kHaarRows;
   if (shape.isMatrix() || shape.domain == TransferDomain::Texels) return kDenseRows;
   return kDenseVector;
 }

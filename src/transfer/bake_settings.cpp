@@ -83,4 +83,11 @@ BakeStats combineBakeStats(const BakeStats& a, std::size_t rowsA, const BakeStat
   return x;
 }
 
+TransferShape BakeSettings::inBasis(TransferShape shape) const {
+  shape.basis = basis;
+  shape.bands = basis == TransferBasis::Haar ? 0 : bands;
+  shape.haar = basis == TransferBasis::Haar ? haar : TransferShape::HaarSize{};
+  return shape;
+}
+
 }  // namespace prt

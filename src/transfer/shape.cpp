@@ -1,9 +1,11 @@
 #include "prt/transfer/shape.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
+#include "prt/haar/resolution.hpp"
 
 namespace prt {
 
@@ -54,7 +56,22 @@ TransferDomain parseTransferDomain(const std::string& s) {
   throw Error("unknown transfer domain '" + s + "' (expected vertices, texels or probes)");
 }
 
+const char* toString(TransferBasis basis) {
+  return basis == TransferBasis::Haar ? "haar" : "sh";
+}
+
+TransferBasis parseTransferBasis(const std::string& s) {
+  if (s == "sh") return TransferBasis::SphericalHarmonics;
+  if (s == "haar") return TransferBasis::Haar;
+  throw Error("unknown basis '" + s + "' (expected sh or haar)");
+}
+
+int TransferShape::coeffs() const {
+  return isHaar() ? static_cast<int>(haar::coefficientCount(haar.resolution)) : bands * bands;
+}
+
 std::size_t TransferShape::rowSize() const {
+  if (isHaar()) return 2 * static_cast<std::size_t>(std::max(haar.terms, 0));
   const std::size_t n = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
   return layout == TransferLayout::Matrix ? n * n : n;
 }
@@ -73,6 +90,24 @@ TransferShape TransferShape::withBands(int b) const {
 }
 
 void TransferShape::check(const std::string& what) const {
+  if (isHaar()) {
+    if (!haar::validResolution(haar.resolution))
+      throw Error(what, "the Haar cube's resolution must be a power of two from " +
+                            std::to_string(haar::kMinResolution) + " to " +
+                            std::to_string(haar::kMaxResolution) + ", got " +
+                            std::to_string(haar.resolution));
+    const auto count = haar::coefficientCount(haar.resolution);
+    if (haar.terms < 1 || static_cast<std::size_t>(haar.terms) > count)
+      throw Error(what, "a Haar row keeps 1 to " + std::to_string(count) + " terms, got " +
+                            std::to_string(haar.terms));
+    if (bands != 0) throw Error(what, "a Haar transfer has no bands");
+    if (layout != TransferLayout::Vector || domain == TransferDomain::Probes)
+      throw Error(what, "Haar transfer is diffuse (vector rows) over vertices or texels");
+    if (channels != 1)
+      throw Error(what, "Haar transfer is scalar (unshadowed or shadowed), got " +
+                            std::to_string(channels) + " channels");
+    return;
+  }
   if (bands < 1 || bands > bands::kMaxLibrary)
     throw Error(what, bands::bandLimitMessage("the transfer", bands, "prtkit", bands::kMaxLibrary));
   if (channels != 1 && channels != 3)
@@ -86,6 +121,11 @@ void TransferShape::check(const std::string& what) const {
 }
 
 std::string TransferShape::describe() const {
+  if (isHaar())
+    return std::string(toString(layout)) + ", Haar " + std::to_string(haar.resolution) +
+           "² cube, " + std::to_string(haar.terms) + " terms, " +
+           (channels == 3 ? "RGB" : "scalar") + ", " + std::to_string(rows.count) + " " +
+           toString(domain);
   return std::string(toString(layout)) + ", " + std::to_string(bands) + " bands, " +
          (channels == 3 ? "RGB" : "scalar") + ", " + std::to_string(rows.count) + " " +
          toString(domain);

@@ -5,6 +5,7 @@
 
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
+#include "prt/transfer/haar_rows.hpp"
 
 namespace prt {
 
@@ -121,6 +122,7 @@ void Transfer::reconstructRow(std::size_t r, float* out) const {
 }
 
 Transfer Transfer::cut(int b) const {
+  PRT_CHECK(!isHaar(), "a Haar transfer has no bands to cut");
   PRT_CHECK(b >= 1 && b <= bands(), "cut to more bands than the transfer holds");
   if (b == bands()) return *this;
   const TransferShape to = shape_.withBands(b);
@@ -149,6 +151,8 @@ Transfer Transfer::toDense() const {
 }
 
 std::size_t Transfer::bytes() const {
+  if (shape_.isHaar())
+    return rowCount() * haar::storedHaarRowBytes(shape_.haar.resolution, shape_.haar.terms);
   if (representation_ == Representation::Dense) return shape_.denseBytes();
   const std::size_t id = cpca_.clusters <= 65536 ? 2 : 4;
   const std::size_t N = static_cast<std::size_t>(cpca_.basisCount);
@@ -162,6 +166,12 @@ void Transfer::check(const std::string& what) const {
     if (values_.size() != rowCount() * stride())
       throw Error(what, "the transfer holds " + std::to_string(values_.size()) +
                             " values, expected " + std::to_string(rowCount() * stride()));
+    if (shape_.isHaar()) {
+      for (std::size_t r = 0; r < rowCount(); ++r)
+        haar::checkRow(values_.data() + r * stride(), shape_.haar.resolution,
+                       static_cast<std::size_t>(shape_.haar.terms), r, what);
+      return;
+    }
     requireFinite(values_, what, "rows", stride());
     return;
   }

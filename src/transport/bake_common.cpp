@@ -30,8 +30,19 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
         throw Error(name, "triangle " + std::to_string(t) + " references vertex " +
                               std::to_string(i) + " (mesh has " +
                               std::to_string(mesh.vertexCount()) + ")");
-  if (s.bands < 1 || s.bands > bands::kMaxBake)
+  if (s.basis == TransferBasis::Haar) {
+    if (s.mode == TransferMode::Interreflected || s.layout != TransferLayout::Vector ||
+        s.domain != TransferDomain::Vertices)
+      throw Error(name, "a Haar bake is diffuse transfer (vector), unshadowed or shadowed, per "
+                        "vertex (inter-reflected and per-texel Haar transfer are not made yet)");
+    if (s.samples > kMaxHaarRaysPerTexel)
+      throw Error(name, "a Haar bake casts 1 to " + std::to_string(kMaxHaarRaysPerTexel) +
+                            " rays per cube texel (its samples), got " +
+                            std::to_string(s.samples));
+    s.inBasis(TransferShape{}).check(name);
+  } else if (s.bands < 1 || s.bands > bands::kMaxBake) {
     throw Error(bands::bandLimitMessage("the bake", s.bands, "baking", bands::kMaxBake));
+  }
   checkRecipe(s);
   if (s.domain == TransferDomain::Texels) {
     const auto& lm = s.lightmap;
@@ -211,8 +222,8 @@ BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   const bool colouredLobe = glossy && !(ks.x == ks.y && ks.y == ks.z);
   f.channels = inter && (!a.grey || colouredLobe) ? 3 : 1;
   const auto bytes = [&](TransferLayout layout, std::size_t rows) {
-    TransferShape shape;
-    shape.layout = layout, shape.bands = s.bands, shape.channels = f.channels;
+    TransferShape shape = s.inBasis(TransferShape{});
+    shape.layout = layout, shape.channels = f.channels;
     shape.rows.count = rows;
     return shape.denseBytes();
   };

@@ -6,10 +6,15 @@
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/geometry/texel_sampling.hpp"
+#include "prt/haar/resolution.hpp"
 #include "prt/transport/bake.hpp"
 #include "prt/transport/passes.hpp"
 
 namespace prt {
+
+long long defaultSamples(TransferBasis basis) {
+  return basis == TransferBasis::Haar ? kDefaultHaarRaysPerTexel : 1024;
+}
 
 void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
   if (r.modes.empty()) throw Error("no " + optionName(spelling, "mode") + " given");
@@ -18,8 +23,31 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
       if (r.modes[i] == r.modes[j])
         throw Error(optionName(spelling, "mode") + (spelling == OptionSpelling::Cli ? " " : "") +
                     toString(r.modes[i]) + " given twice");
-  checkOptionRange(spelling, "bands", r.bands, 1, bands::kMaxBake);
-  checkOptionRange(spelling, "samples", r.samples, 1, kMaxBakeSamples);
+  if (r.basis == TransferBasis::Haar) {
+    const bool cli = spelling == OptionSpelling::Cli;
+    for (TransferMode m : r.modes)
+      if (m == TransferMode::Interreflected)
+        throw Error(std::string(cli ? "--basis haar" : "basis='haar'") +
+                    " bakes unshadowed and shadowed transfer (inter-reflected Haar transfer is "
+                    "not made yet)");
+    if (r.layout != TransferLayout::Vector)
+      throw Error(std::string(cli ? "--basis haar" : "basis='haar'") +
+                  " bakes diffuse transfer (vector): the glossy matrices are SH only");
+    if (r.domain != TransferDomain::Vertices)
+      throw Error(std::string(cli ? "--basis haar" : "basis='haar'") +
+                  " bakes per vertex (per-texel Haar transfer is not made yet)");
+    if (!haar::validResolution(r.haar.resolution))
+      throw Error(optionLabel(spelling, "resolution") + ": the Haar cube's side must be a power " +
+                  "of two from " + std::to_string(haar::kMinResolution) + " to " +
+                  std::to_string(haar::kMaxResolution) + ", got " +
+                  std::to_string(r.haar.resolution));
+    checkOptionRange(spelling, "terms", r.haar.terms, 1,
+                     static_cast<long long>(haar::coefficientCount(r.haar.resolution)));
+    checkOptionRange(spelling, "samples", r.samples, 1, kMaxHaarRaysPerTexel);
+  } else {
+    checkOptionRange(spelling, "bands", r.bands, 1, bands::kMaxBake);
+    checkOptionRange(spelling, "samples", r.samples, 1, kMaxBakeSamples);
+  }
   checkOptionRange(spelling, "bounces", r.bounces, 0, kMaxBounces);
   if (r.albedo)
     for (float x : {r.albedo->x, r.albedo->y, r.albedo->z})
@@ -111,6 +139,8 @@ BakeSettings bakeSettings(const BakeRequest& r, const Mesh& mesh, TransferMode m
   s.material = bakeMaterial(r, mesh);
   s.layout = r.layout;
   s.bands = r.bands;
+  s.basis = r.basis;
+  if (r.basis == TransferBasis::Haar) s.haar = r.haar;
   s.domain = r.domain;
   if (r.domain == TransferDomain::Texels)
     s.lightmap = {r.lightmap.resolution, r.lightmap.resolution, r.lightmap.padding, false};

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "bake_common.hpp"
+#include "bake_haar.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/hash.hpp"
 #include "prt/core/parallel.hpp"
@@ -40,6 +41,8 @@ struct BakePasses::Impl {
   /// tables.
   std::vector<std::shared_ptr<const VectorSetup>> vector;
   std::vector<std::shared_ptr<const MatrixSetup>> matrix;
+  /// Per pass: the Haar tables (a Haar bake's one pass), else null.
+  std::vector<std::shared_ptr<const HaarSetup>> haar;
   TransferShape result;
   bool sum = false, fullSum = false;
   int sumChannels = 1;
@@ -75,7 +78,7 @@ struct BakePasses::Impl {
            std::shared_ptr<const MatrixSetup> mx) {
     BakePassInfo p;
     p.name = std::move(name);
-    p.shape = TransferShape{passDomain(layout), layout, settings.bands, channels, r};
+    p.shape = settings.inBasis(TransferShape{passDomain(layout), layout, settings.bands, channels, r});
     if (perTexel()) p.shape.lightmap = {texels->width, texels->height, texels->padding, false};
     if (p.shape.domain == TransferDomain::Probes) p.shape.probes = settings.probes;
     p.input = input;
@@ -83,6 +86,7 @@ struct BakePasses::Impl {
     info.push_back(std::move(p));
     vector.push_back(std::move(v));
     matrix.push_back(std::move(mx));
+    haar.push_back(nullptr);
   }
 
   /// The vector passes 0..K of `vs` (K = its bounces): all over the whole domain except the
@@ -146,7 +150,12 @@ BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSet
     m.texels = std::make_unique<TexelDomain>(makeTexelDomain(
         mesh, occluder, uvs, lm.width, lm.height, lm.padding, bounces > 0 ? all : last));
   }
-  if (settings.layout == TransferLayout::Vector) {
+  if (settings.basis == TransferBasis::Haar) {
+    // One pass: the rows' pruned wavelet transfer (planBake refused bounces).
+    m.add("direct", TransferLayout::Vector, 1, last, PassInput::None, true, nullptr, nullptr);
+    m.haar.back() = makeHaarSetup(settings);
+    m.statsKind = StatsKind::Vector;
+  } else if (settings.layout == TransferLayout::Vector) {
     m.addVectorPasses(settings, all, last, true);
     m.sum = bounces > 0;
     m.statsKind = StatsKind::Vector;
@@ -269,6 +278,8 @@ std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input,
   }
   if (!m.perTexel()) {
     const Transfer* in = input.transfer_;
+    if (m.haar[k0])
+      return computeHaarRows(m.mesh, m.occluder, *m.haar[k0], rows, out, variance, progress);
     if (m.vector[k0])
       return computeVectorRows(m.mesh, m.occluder, *m.vector[k0], k, rows, in, p.shape.channels,
                                out, variance, progress);
@@ -286,7 +297,9 @@ std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input,
       input.image_ ? texelImage(d, *input.image_, input.stride_) : TexelImage{};
   const TexelImage* source = input.image_ ? &image : nullptr;
   const std::uint64_t rays =
-      m.vector[k0] ? computeTexelRows(m.mesh, m.occluder, *m.vector[k0], k, points, source,
+      m.haar[k0]     ? computeHaarTexelRows(m.occluder, *m.haar[k0], points, values.data(),
+                                            var.data(), progress)
+      : m.vector[k0] ? computeTexelRows(m.mesh, m.occluder, *m.vector[k0], k, points, source,
                                       p.shape.channels, values.data(), var.data(), progress)
                    : computeMatrixTexelRows(m.mesh, m.occluder, *m.matrix[k0], points, source,
                                             values.data(), var.data(), progress);
@@ -408,7 +421,10 @@ std::string bakeIdentity(const Mesh& mesh, const BakeSettings& s) {
   }
   return std::to_string(mesh.vertexCount()) + " vertices, " + std::to_string(mesh.triangleCount()) +
          " triangles, mesh " + hex + "; " + toString(s.mode) + " " + toString(s.layout) + ", " +
-         std::to_string(s.bands) + " bands, " + std::to_string(s.samples) + " samples, " +
+         (s.basis == TransferBasis::Haar
+              ? "Haar " + std::to_string(s.haar.resolution) + "^2 cube, " +
+                    std::to_string(s.haar.terms) + " terms, "
+              : std::to_string(s.bands) + " bands, ") + std::to_string(s.samples) + " samples, " +
          std::to_string(s.effectiveBounces()) + " bounces, seed " + std::to_string(s.seed) + ", " +
          toString(s.sampling) + ", " + s.material.spec() + ", " + domain + " " +
          std::to_string(rows.first) + ".." + std::to_string(rows.end());

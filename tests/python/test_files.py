@@ -182,3 +182,14 @@ def test_validate_measures_encodings_as_the_cli(scene):
     v = prtkit.bake_transfer(scene, mode="shadowed", samples=16)
     with pytest.raises(prtkit.Error, match="--encoding measures"):
         prtkit.validate(scene, v, "builtin:sky", samples=8, vertices=10, encodings="all")
+
+
+def test_haar_bakes_are_refused_by_name(tmp_path, prt_cli):
+    # Haar-wavelet transfer (prt bake --basis haar) is relit by prt render and prt validate; the
+    # module reads SH transfer and says so, naming the file.
+    out = tmp_path / "haar.glb"
+    prt_cli("bake", "builtin:sphere-plane?grid=4&subdiv=1", "--mode", "shadowed", "--basis",
+            "haar", "--resolution", "4", "--terms", "4", "-o", out)
+    for read in (prtkit.read_bake, prtkit.read_bake_file):
+        with pytest.raises(prtkit.Error, match="haar.glb: holds Haar-wavelet transfer"):
+            read(str(out))

@@ -296,6 +296,9 @@ function checkTransfers(prt, where, version, domain, rows, ar, r) {
     if (layout === 'matrix' && version < 2) r.fail(`${sw} is a matrix transfer in a version ${version} file (matrices need version 2)`);
     const d = has(s, 'domain') ? r.string(s, 'domain', sw) : domains[0];
     if (!domains.includes(d)) r.fail(`${sw}: unknown domain '${d}'`);
+    // Haar-wavelet transfer (format 8) is relit on the CPU by prt render and prt validate only.
+    if (has(s, 'basis') && s.basis !== 'sh')
+      r.fail(`${sw}: holds ${JSON.stringify(s.basis)} transfer; this reader relights SH transfer only (prt render and prt validate relight Haar bakes)`);
     const B = r.integer(s, 'bands', sw, 1, kBandsMaxLibrary), C = r.integer(s, 'channels', sw, 1, 3);
     if (C === 2) r.fail(`${sw}.channels must be 1 or 3`);
     if (d !== domain) r.fail(`${sw}.domain is ${d} in a bake over ${domain}`);

@@ -31,8 +31,10 @@
 // material as structured fields (type, exponent or roughness, ks, kd as numbers that read back
 // exactly), 5 moves the object from the root's extras.prtkit into the vendor extension
 // PRTKIT_radiance_transfer (declared in extensionsUsed, not required: any glTF viewer still
-// shows the mesh; docs/extensions/PRTKIT_radiance_transfer/), 6 adds per-texel transfer. This
-// prtkit writes 6 and reads 1–6.
+// shows the mesh; docs/extensions/PRTKIT_radiance_transfer/), 6 adds per-texel transfer, 7 probe
+// grids, 8 Haar-wavelet transfer (settings.basis "haar" and settings.haar {resolution, terms};
+// its quantised rows in three accessors _PRT_<MODE>_HAAR_{SCALE,INDEX,VALUE}). This
+// prtkit writes 8 and reads 1–8.
 
 #include <cstddef>
 #include <cstdint>
@@ -50,9 +52,11 @@
 namespace prt {
 
 /// The bake-file format version this prtkit writes and the newest it reads.
-inline constexpr int kBakeFormatVersion = 7;
+inline constexpr int kBakeFormatVersion = 8;
 /// The first version that holds probe grids (issue 32).
 inline constexpr int kFirstProbeVersion = 7;
+/// The first version that holds Haar-wavelet transfer (issue 33).
+inline constexpr int kFirstHaarVersion = 8;
 /// The largest |value| a probe grid's origin and spacing may hold in a file (a float's range,
 /// with room to add them).
 inline constexpr double kMaxProbeGridNumber = 1e30;
@@ -111,6 +115,10 @@ struct BakeFile {
   /// transfer; USE") for a probe bake: the one check of every consumer that draws or reads the
   /// transfer as the mesh's surface (vertices or texels).
   void requireSurface(const std::string& file, const std::string& use) const;
+  /// Throws prt::Error("FILE: holds Haar-wavelet transfer (...); USE") when a transfer is in
+  /// the Haar basis: the one check of every consumer that reads SH coefficients only. `use`
+  /// says what does, e.g. "prt compress fits SH transfer".
+  void requireSh(const std::string& file, const std::string& use) const;
   /// The transfer of `mode` and `layout` (any layout if not given), or nullptr.
   const BakedTransfer* find(TransferMode mode, std::optional<TransferLayout> layout = {}) const;
 };
@@ -152,6 +160,9 @@ std::string transferAttributePrefix(TransferMode mode);
 std::string transferMatrixName(TransferMode mode);
 /// The accessor name of a mode's dense per-texel vector transfer: "_PRT_SHADOWED_TEXELS" etc.
 std::string transferTexelName(TransferMode mode);
+/// The accessor name prefix of a mode's Haar rows: "_PRT_SHADOWED_HAAR_" (then SCALE, INDEX,
+/// VALUE).
+std::string transferHaarPrefix(TransferMode mode);
 /// The accessor name prefix of a mode's compressed transfer: "_PRT_SHADOWED_CPCA_" etc.
 /// (then CLUSTER, WEIGHTS, MEANS, BASIS).
 std::string transferCompressedPrefix(TransferMode mode);

@@ -39,6 +39,9 @@ Sampling parseSampling(const std::string& s);
 /// Limits on the settings (checked by bake(); each violation is a one-line prt::Error).
 inline constexpr int kMaxBakeSamples = 1 << 24;
 inline constexpr int kMaxBounces = 16;
+/// Rays per cube texel of a Haar bake (its `samples`): at most 64, and 1 when not given.
+inline constexpr int kMaxHaarRaysPerTexel = 64;
+inline constexpr int kDefaultHaarRaysPerTexel = 1;
 
 /// The bounces a mode bakes (and its reference follows): `bounces` for Interreflected, else 0 —
 /// the one rule.
@@ -83,6 +86,13 @@ struct BakeSettings : BakeRecipe {
   /// prt/transfer/shape.hpp), sampled uniformly over each vertex's hemisphere.
   TransferLayout layout = TransferLayout::Vector;
   int bands = 3;
+  /// The basis: SH of `bands` bands, or Haar wavelets over a cube map (`haar`: its resolution
+  /// and the terms kept per row; bands unused), whose `samples` are the rays per cube texel
+  /// (transport/bake_haar: one jittered ray or more per texel above the horizon).
+  TransferBasis basis = TransferBasis::SphericalHarmonics;
+  TransferShape::HaarSize haar{};
+  /// `shape` in this basis: its bands, or no bands and the Haar size.
+  TransferShape inBasis(TransferShape shape) const;
   /// Where the rows lie: the mesh's vertices, or the texels of a lightmap (`lightmap`: its
   /// width, height and gutter padding) over the mesh's lightmap UVs (transport/passes.hpp).
   TransferDomain domain = TransferDomain::Vertices;

@@ -24,6 +24,16 @@
 // Rows: a transfer may hold a range [first, first + count) of its domain's rows (a split bake);
 // row r of the transfer is element first + r of the domain.
 //
+// Basis: spherical harmonics of B bands (everything above), or Haar wavelets over a cube map
+// of N² texels per face (prt/haar/cube_haar.hpp; Ng, Ramamoorthi & Hanrahan 2003): a Haar row
+// is the *occluded* part of diffuse transfer over the 6 N² texels,
+//   D_j(p) = (1/π) ∫_texel j (1 − V(p,ω)) max(n·ω,0) dω   (= U_j − T_j),
+// wavelet-transformed and pruned to its `terms` largest coefficients, stored as `terms`
+// (index, value) float pairs (prt/transfer/haar_rows.hpp). Relighting adds the unshadowed part
+// from the light's SH in closed form (prt/haar/haar_light.hpp):
+//   R(p) = albedo(p) ⊙ ( Σ_lm (A_l/π) L_lm Y_lm(n) − Σ_k D̃_k L̃_k ).
+// A Haar shape has no bands (0) and one channel.
+//
 // Memory: 4·B²·C bytes per row for vectors, 4·B⁴·C for matrices (9 bands, 1M vertices, RGB
 // matrices: 79 GB); denseBytes() states it before anything is allocated.
 
@@ -42,6 +52,15 @@ enum class TransferLayout {
 const char* toString(TransferLayout layout);
 /// Parses "vector" | "matrix"; throws prt::Error otherwise.
 TransferLayout parseTransferLayout(const std::string& s);
+
+/// Which functions the coefficients are of.
+enum class TransferBasis {
+  SphericalHarmonics,  ///< B² real SH, bands 0..B−1 (the default)
+  Haar,                ///< 2D Haar wavelets over a cube map's faces, pruned per row
+};
+const char* toString(TransferBasis basis);  ///< "sh", "haar"
+/// Parses "sh" | "haar"; throws prt::Error otherwise.
+TransferBasis parseTransferBasis(const std::string& s);
 
 /// What the rows index.
 enum class TransferDomain {
@@ -86,6 +105,15 @@ struct TransferShape {
     bool operator==(const LightmapSize&) const = default;
   };
   LightmapSize lightmap{};
+  TransferBasis basis = TransferBasis::SphericalHarmonics;
+  /// Haar: the cube's resolution N (a power of two, haar/resolution.hpp) and the coefficients
+  /// kept per row (1 ≤ terms ≤ 6 N²).
+  struct HaarSize {
+    int resolution = 0;
+    int terms = 0;
+    bool operator==(const HaarSize&) const = default;
+  };
+  HaarSize haar{};
   /// Probes: the grid the rows are the probes of.
   ProbeGrid probes{};
   /// Rows of the whole domain: the lightmap's texels, the grid's probes, or `vertices` (the
@@ -96,9 +124,11 @@ struct TransferShape {
                                               : vertices;
   }
 
-  int coeffs() const { return bands * bands; }
+  bool isHaar() const { return basis == TransferBasis::Haar; }
+  /// Coefficients of the basis: B² (SH) or 6 N² (Haar).
+  int coeffs() const;
   bool isMatrix() const { return layout == TransferLayout::Matrix; }
-  /// Values per row per channel: B² (vector) or B⁴ (matrix).
+  /// Values per row per channel: B² (vector), B⁴ (matrix) or 2 · terms (Haar).
   std::size_t rowSize() const;
   /// Floats per row, all channels.
   std::size_t stride() const { return rowSize() * static_cast<std::size_t>(channels); }
@@ -107,9 +137,11 @@ struct TransferShape {
   std::size_t denseBytes() const;
   /// The same shape with b bands.
   TransferShape withBands(int b) const;
-  /// Throws prt::Error("WHAT: ...") unless bands are in 1..bands::kMaxLibrary and channels 1|3.
+  /// Throws prt::Error("WHAT: ...") unless bands are in 1..bands::kMaxLibrary (SH; Haar: 0, a
+  /// valid resolution and terms, vector rows over vertices or texels) and channels 1|3.
   void check(const std::string& what) const;
-  /// "interreflected"-free description: "matrix, 5 bands, RGB, 34,835 vertices".
+  /// "interreflected"-free description: "matrix, 5 bands, RGB, 34,835 vertices"; Haar: "vector,
+  /// Haar 32² cube, 64 terms, scalar, 34,835 vertices".
   std::string describe() const;
   bool operator==(const TransferShape&) const = default;
 };

@@ -43,7 +43,8 @@ class Transfer {
 
   const TransferShape& shape() const { return shape_; }
   /// True for a default-constructed transfer (no bands, no rows).
-  bool empty() const { return shape_.bands == 0; }
+  bool empty() const { return shape_.bands == 0 && !shape_.isHaar(); }
+  bool isHaar() const { return shape_.isHaar(); }
   TransferLayout layout() const { return shape_.layout; }
   TransferDomain domain() const { return shape_.domain; }
   int bands() const { return shape_.bands; }
@@ -70,11 +71,12 @@ class Transfer {
 
   /// The dense values of row r (stride() floats) into out, from either representation.
   void reconstructRow(std::size_t r, float* out) const;
-  /// The first b bands, 1 ≤ b ≤ bands(), in the same representation (see above).
+  /// The first b bands, 1 ≤ b ≤ bands(), in the same representation (see above); SH only.
   Transfer cut(int b) const;
   /// The dense transfer (the reconstruction of compressed rows; a dense one unchanged).
   Transfer toDense() const;
-  /// Bytes as stored: dense 4 · rows · stride; CPCA a uint16 (K ≤ 65536) or uint32 id and N
+  /// Bytes as stored: dense 4 · rows · stride; Haar as its file holds it (transfer/haar_rows.hpp:
+  /// 4 + 4 · terms a row, 6 · terms past 6·104² coefficients); CPCA a uint16 (K ≤ 65536) or uint32 id and N
   /// floats per row, plus K(N + 1) vectors of stride floats.
   std::size_t bytes() const;
   /// Throws prt::Error("WHAT: ...") unless the shape is valid, the arrays fit it, every cluster

@@ -25,6 +25,13 @@ namespace prt {
 
 class PassExecutor;
 
+/// The defaults of a Haar bake: a 32² cube (6,144 texels) keeping 64 terms per row.
+inline constexpr int kDefaultHaarResolution = 32;
+inline constexpr int kDefaultHaarTerms = 64;
+/// The samples a bake takes when none are given: 1024 directions per row (SH), one ray per cube
+/// texel (Haar) — the one policy every front end follows.
+long long defaultSamples(TransferBasis basis);
+
 /// The lightmap of a per-texel bake (TransferDomain::Texels).
 struct LightmapRequest {
   int resolution = 512;                ///< the lightmap's side in texels
@@ -45,6 +52,10 @@ struct BakeRequest {
   std::vector<TransferMode> modes;  ///< one transfer per mode, in this order
   TransferLayout layout = TransferLayout::Vector;
   int bands = 3;
+  /// SH (bands), or Haar wavelets over a cube map (haar: its resolution and the terms kept per
+  /// row; samples are then rays per cube texel).
+  TransferBasis basis = TransferBasis::SphericalHarmonics;
+  TransferShape::HaarSize haar{kDefaultHaarResolution, kDefaultHaarTerms};
   long long samples = 1024;  ///< wide, so an absurd count gets the request's message
   int bounces = 1;           ///< inter-reflected modes only
   std::uint64_t seed = 0;
@@ -59,8 +70,9 @@ struct BakeRequest {
   RowRange rows;             ///< of the domain; count 0: to the last row
 };
 
-/// The one check of a request before anything is loaded: modes given and distinct, bands,
-/// samples and bounces in range, the lightmap's resolution and padding, the seam fix only per
+/// The one check of a request before anything is loaded: modes given and distinct, bands (or
+/// the Haar cube and terms: vector, per vertex, not inter-reflected), samples and bounces in
+/// range, the lightmap's resolution and padding, the seam fix only per
 /// texel and of a whole lightmap. Throws prt::Error with one line naming the option as
 /// `spelling` writes it.
 void checkBakeRequest(const BakeRequest& request, OptionSpelling spelling);

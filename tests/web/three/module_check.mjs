@@ -116,6 +116,12 @@ let rejected = '';
 await new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { name: 'plain.glb', required: true }))
   .parseAsync(foreign.buffer, '').catch((e) => { rejected = e.message; });
 check(/^plain\.glb: is a glTF file but not a prtkit bake/.test(rejected), `required: refused by name ("${rejected}")`);
+// A Haar bake (prt bake --basis haar): prt render relights it; this reader refuses it by name, as
+// prt web and the Python module do.
+let haar = '';
+await new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { name: 'haar.glb', required: true }))
+  .parseAsync(new Uint8Array(bytes('haar.glb')).buffer, '').catch((e) => { haar = e.message; });
+check(/^haar\.glb: .*"haar" transfer; this reader relights SH transfer only/.test(haar), `a Haar bake refused by name ("${haar}")`);
 
 prt.dispose();
 

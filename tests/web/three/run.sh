@@ -31,6 +31,8 @@ cd "$work" || exit 1
 "$prt" -q light builtin:sky --bands 3 --rotate 30,-50,20 -o sky-turned.json || exit 1
 "$prt" -q light builtin:sky --bands 3 --format threejs -o sky-three.json || exit 1
 "$prt" -q light builtin:sky --bands 2 -o sky2.json || exit 1
+"$prt" -q bake 'builtin:cornell?grid=6' --mode shadowed --basis haar --resolution 4 --terms 8 \
+  -o haar.glb || exit 1
 "$prt" -q bake 'builtin:cornell?grid=6' --mode interreflected --domain texels --resolution 16 \
   --transfer matrix --bands 3 --samples 16 -o texels.glb || exit 1
 "$prt" -q export texels.glb --format lightmap -o lm.glb || exit 1

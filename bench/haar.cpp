@@ -1,0 +1,207 @@
+// Benchmarks of the Haar basis (issue 33; docs/haar.md), each against a baseline in the same
+// run:
+//
+//   bench_haar
+//     BM_HaarRelight/SCENE/TERMS   relight every vertex of a Haar bake (32² cube, TERMS per
+//                                  vertex) under a 200-term light: ms per relight, against the
+//                                  streaming read of the same rows (vs_stream: how far from
+//                                  memory bound) and the 5-band SH relighting of the same mesh
+//                                  (vs_sh5).
+//     BM_HaarBake/SCENE            the shadowed Haar bake (16² cube, one ray per texel, 64
+//                                  terms) against raw Embree (rtcOccluded1M, 64-ray streams) on
+//                                  the same rays, ray generation untimed: vs_raw.
+//
+// Scenes: bunny = /usr/share/glmark2/models/bunny.obj (skipped with a message if absent),
+// sphere-plane = builtin:sphere-plane.
+
+#include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+
+#include "baselines.hpp"
+#include "prt/core/sampling.hpp"
+#include "prt/envmap/builtin.hpp"
+#include "prt/envmap/project.hpp"
+#include "prt/geometry/builtin.hpp"
+#include "prt/geometry/load.hpp"
+#include "prt/haar/cube_texels.hpp"
+#include "prt/haar/project_light.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/relight/relight.hpp"
+#include "prt/relight/relight_haar.hpp"
+#include "prt/transport/bake.hpp"
+#include "raw_embree.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
+
+struct Scene {
+  prt::Mesh mesh;
+  std::unique_ptr<prt::Occluder> occluder;
+};
+
+Scene* scene(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<Scene>> cache;
+  if (auto it = cache.find(name); it != cache.end()) return it->second.get();
+  auto s = std::make_unique<Scene>();
+  if (name == "bunny") {
+    if (!std::filesystem::exists(kBunny)) return nullptr;
+    s->mesh = prt::loadMesh(kBunny);
+  } else {
+    s->mesh = prt::builtinScene("builtin:sphere-plane");
+  }
+  s->occluder = prt::makeEmbreeOccluder(s->mesh);
+  return cache.emplace(name, std::move(s)).first->second.get();
+}
+
+prt::BakeSettings haarSettings(int resolution, int terms) {
+  prt::BakeSettings s;
+  s.mode = prt::TransferMode::Shadowed;
+  s.basis = prt::TransferBasis::Haar;
+  s.haar = {resolution, terms};
+  s.samples = 1;
+  s.seed = 7;
+  return s;
+}
+
+void BM_HaarRelight(benchmark::State& state, const std::string& name) {
+  Scene* s = scene(name);
+  if (!s) {
+    state.SkipWithError((std::string(kBunny) + " not found: bunny case skipped").c_str());
+    return;
+  }
+  const int terms = static_cast<int>(state.range(0));
+  const prt::Transfer haarT = prt::bake(s->mesh, *s->occluder, haarSettings(32, terms));
+  prt::BakeSettings ss;
+  ss.mode = prt::TransferMode::Shadowed;
+  ss.bands = 5;
+  ss.samples = 64;
+  const prt::Transfer shT = prt::bake(s->mesh, *s->occluder, ss);
+  const prt::envmap::Environment sky = prt::envmap::builtinEnvironment("builtin:sky");
+  const prt::haar::HaarLight light = prt::haar::projectLight(sky, 32, 200);
+  const prt::sh::RgbSh sh5 = prt::envmap::projectEnvironment(sky, 5);
+  std::vector<prt::Rgb> out(s->mesh.vertexCount());
+  const prt::relight::Surface surface{s->mesh.positions, s->mesh.normals, {}};
+  double haarSeconds = 0, streamSeconds = 0, shSeconds = 0;
+  int n = 0;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    prt::relight::relightHaar(haarT, light, s->mesh.normals, {}, out);
+    const double t = std::chrono::duration<double>(Clock::now() - t0).count();
+    benchmark::DoNotOptimize(out.data());
+    state.SetIterationTime(t);
+    haarSeconds += t;
+    streamSeconds += prt::bench::secondsOf(
+        [&] { benchmark::DoNotOptimize(prt::bench::streamSum(haarT)); }, 1);
+    shSeconds += prt::bench::secondsOf(
+        [&] {
+          prt::relight::relight(shT, sh5, prt::Material{}, surface, prt::Vec3f(0.0f), out);
+          benchmark::DoNotOptimize(out.data());
+        },
+        1);
+    ++n;
+  }
+  state.counters["vertices"] = double(s->mesh.vertexCount());
+  state.counters["ms"] = 1e3 * haarSeconds / n;
+  state.counters["stream_ms"] = 1e3 * streamSeconds / n;
+  state.counters["sh5_ms"] = 1e3 * shSeconds / n;
+  state.counters["vs_stream"] = streamSeconds / haarSeconds;
+  state.counters["vs_sh5"] = shSeconds / haarSeconds;
+  state.counters["threads"] = prt::maxThreads();
+}
+
+void BM_HaarBake(benchmark::State& state, const std::string& name) {
+  Scene* s = scene(name);
+  if (!s) {
+    state.SkipWithError((std::string(kBunny) + " not found: bunny case skipped").c_str());
+    return;
+  }
+  const prt::BakeSettings settings = haarSettings(16, 64);
+  const prt::haar::CubeTexels cube(16);
+  prt::bench::RawScene raw(s->mesh);
+  double bakeSeconds = 0, rawSeconds = 0;
+  std::uint64_t bakeRays = 0, rawRays = 0;
+  for (auto _ : state) {
+    prt::BakeStats stats;
+    auto t = prt::bake(s->mesh, *s->occluder, settings, &stats);
+    benchmark::DoNotOptimize(t.values().data());
+    bakeSeconds += stats.secondsDirect;
+    bakeRays += stats.rays;
+    state.SetIterationTime(stats.secondsTotal);
+    // The bake's rays (bake_haar.cpp: per vertex its seeded jitter, one ray per texel above
+    // the horizon), generated in blocks of vertices and traced untimed-generation.
+    const std::size_t block = 512;
+    std::vector<RTCRay> rays;
+    for (std::size_t lo = 0; lo < s->mesh.vertexCount(); lo += block) {
+      const std::size_t hi = std::min(lo + block, s->mesh.vertexCount());
+      rays.clear();
+      for (std::size_t v = lo; v < hi; ++v) {
+        const prt::Vec3f p = s->mesh.positions[v], nrm = s->mesh.normals[v];
+        const prt::Vec3f o = p + nrm * s->occluder->rayOffset(p);
+        prt::Pcg32 rng(prt::deriveSeed(settings.seed, v));
+        for (std::uint32_t j = 0; j < cube.count(); ++j) {
+          if (!cube.aboveHorizon(j, prt::Vec3d(nrm))) continue;
+          float w = 0;
+          const float a = rng.uniform(), b = rng.uniform();
+          const prt::Vec3f d = cube.sample(j, a, b, w);
+          if (prt::dot(nrm, d) <= 0.0f) continue;
+          RTCRay r{};
+          r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
+          r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
+          r.tfar = std::numeric_limits<float>::infinity();
+          r.mask = ~0u;
+          rays.push_back(r);
+        }
+      }
+      const std::size_t chunks = (rays.size() + 63) / 64;
+      const auto t0 = Clock::now();
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 16), [&](const auto& r) {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+        for (std::size_t c = r.begin(); c < r.end(); ++c) {
+          const std::size_t m = std::min<std::size_t>(64, rays.size() - c * 64);
+          rtcOccluded1M(raw.scene(), &ctx, &rays[c * 64], static_cast<unsigned>(m),
+                        sizeof(RTCRay));
+        }
+      });
+      rawSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
+      rawRays += rays.size();
+    }
+  }
+  state.counters["vertices"] = double(s->mesh.vertexCount());
+  state.counters["bake_Mrays/s"] = bakeRays / bakeSeconds * 1e-6;
+  state.counters["raw_Mrays/s"] = rawRays / rawSeconds * 1e-6;
+  state.counters["vs_raw"] = (bakeRays / bakeSeconds) / (rawRays / rawSeconds);
+  state.counters["threads"] = prt::maxThreads();
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_HaarRelight, bunny, std::string("bunny"))
+    ->Arg(64)
+    ->Arg(16)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_HaarRelight, sphere_plane, std::string("sphere-plane"))
+    ->Arg(64)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_HaarBake, bunny, std::string("bunny"))
+    ->Iterations(2)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_HaarBake, sphere_plane, std::string("sphere-plane"))
+    ->Iterations(2)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,97 @@
+#include "prt/relight/relight_haar.hpp"
+
+#include <atomic>
+
+#include "prt/core/error.hpp"
+#include "prt/core/parallel.hpp"
+#include "prt/haar/cube_texels.hpp"
+#include "prt/sh/convolve.hpp"
+#include "prt/transfer/albedo.hpp"
+
+namespace prt::relight {
+
+namespace {
+constexpr std::size_t kRowGrain = 256;
+}
+
+void relightHaar(const Transfer& transfer, const haar::HaarLight& light,
+                 std::span<const Vec3f> normals, std::span<const Rgb> albedo, std::span<Rgb> out) {
+  if (!transfer.isHaar())
+    throw Error("relight: a Haar light relights Haar transfer, and this transfer is " +
+                transfer.shape().describe());
+  const TransferShape& shape = transfer.shape();
+  if (light.resolution != shape.haar.resolution)
+    throw Error("relight: the light's cube is " + std::to_string(light.resolution) +
+                "² per face and the transfer's " + std::to_string(shape.haar.resolution) +
+                "² (project the light at the transfer's resolution)");
+  if (light.unshadowed.bands != haar::kUnshadowedBands)
+    throw Error("relight: the Haar light holds no SH for the unshadowed part");
+  const std::size_t rows = transfer.rowCount();
+  if (out.size() != rows || normals.size() != rows)
+    throw Error("relight: " + std::to_string(out.size()) + " outputs and " +
+                std::to_string(normals.size()) + " normals for " + std::to_string(rows) + " rows");
+  const Albedo kd(albedo, rows);
+  const std::vector<Rgb> dense = light.dense();
+  const Rgb* l = dense.data();
+  // The unshadowed part: the light's SH convolved with the clamped cosine over π.
+  constexpr int kBands = haar::kUnshadowedBands, kCoeffs = kBands * kBands;
+  std::vector<Rgb> lobe(kCoeffs);
+  const std::vector<double> a = sh::clampedCosineKernel(kBands);
+  for (int lb = 0; lb < kBands; ++lb)
+    for (int i = lb * lb; i < (lb + 1) * (lb + 1); ++i)
+      lobe[std::size_t(i)] = light.unshadowed.c[std::size_t(i)] * float(a[std::size_t(lb)] / kPi);
+  // The bright texels' geometry, for their exact share of the unshadowed part.
+  std::vector<haar::TexelGeometry> brightTexels;
+  for (const haar::BrightTexel& b : light.bright)
+    brightTexels.push_back(haar::texelGeometry(b.texel, light.resolution));
+  const std::size_t terms = static_cast<std::size_t>(shape.haar.terms);
+  const float* values = transfer.values().data();
+  // The indices are checked as they are read (a mapped bake's rows are not checked on loading:
+  // io/bake_file.hpp's mapBake), one compare per term.
+  const float count = static_cast<float>(dense.size());
+  std::atomic<bool> bad{false};
+  parallelFor(rows, kRowGrain, [&](std::size_t b, std::size_t e) {
+    std::vector<float> y((e - b) * kCoeffs);
+    sh::evalBatch(kBands, normals.subspan(b, e - b), y.data());
+    for (std::size_t r = b; r < e; ++r) {
+      const float* yr = y.data() + (r - b) * kCoeffs;
+      float x = 0, g = 0, z = 0;
+      for (int i = 0; i < kCoeffs; ++i) {
+        x += yr[i] * lobe[std::size_t(i)].x;
+        g += yr[i] * lobe[std::size_t(i)].y;
+        z += yr[i] * lobe[std::size_t(i)].z;
+      }
+      const Vec3d nrm(normals[r]);
+      for (std::size_t b = 0; b < brightTexels.size(); ++b) {
+        const float u = float(haar::clampedCosine(brightTexels[b], nrm));
+        x += u * light.bright[b].radiance.x;
+        g += u * light.bright[b].radiance.y;
+        z += u * light.bright[b].radiance.z;
+      }
+      const float* p = values + r * 2 * terms;
+      for (std::size_t t = 0; t < terms; ++t) {
+        const float k = p[2 * t];
+        if (!(k >= 0.0f && k < count)) {
+          bad = true;
+          break;
+        }
+        const Rgb& c = l[static_cast<std::uint32_t>(k)];
+        const float v = p[2 * t + 1];
+        x -= v * c.x;
+        g -= v * c.y;
+        z -= v * c.z;
+      }
+      out[r] = kd.at(r) * Rgb(x, g, z);
+    }
+  });
+  if (bad) throw Error("relight: a Haar row names a coefficient outside its cube");
+}
+
+std::vector<Rgb> relightHaar(const Transfer& transfer, const haar::HaarLight& light,
+                             std::span<const Vec3f> normals, std::span<const Rgb> albedo) {
+  std::vector<Rgb> out(transfer.rowCount());
+  relightHaar(transfer, light, normals, albedo, out);
+  return out;
+}
+
+}  // namespace prt::relight

@@ -1,0 +1,150 @@
+// The Haar bake (transport/bake_haar.cpp): rows hold the occluded part D = U − T, pruned to their
+// budget; against analytic answers (nothing occludes a convex sphere; the cosine-weighted
+// occluded fraction below a sphere over a plane is (r/h)²), deterministic over threads and
+// ranges, and its settings checked.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "prt/core/error.hpp"
+#include "prt/core/parallel.hpp"
+#include "prt/envmap/environment.hpp"
+#include "prt/geometry/builtin.hpp"
+#include "prt/haar/project_light.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/relight/relight_haar.hpp"
+#include "prt/transfer/haar_rows.hpp"
+#include "prt/transport/bake.hpp"
+
+namespace prt {
+namespace {
+
+BakeSettings haarSettings(TransferMode mode, int resolution, int terms, int raysPerTexel = 1) {
+  BakeSettings s;
+  s.mode = mode;
+  s.basis = TransferBasis::Haar;
+  s.haar = {resolution, terms};
+  s.samples = raysPerTexel;
+  s.seed = 77;
+  return s;
+}
+
+TEST(BakeHaar, UnshadowedAndConvexRowsHoldNoTerms) {
+  const Mesh sphere = builtinScene("builtin:sphere?subdiv=2");
+  const auto occ = makeEmbreeOccluder(sphere);
+  for (TransferMode mode : {TransferMode::Unshadowed, TransferMode::Shadowed}) {
+    const Transfer t = bake(sphere, *occ, haarSettings(mode, 8, 16));
+    ASSERT_TRUE(t.isHaar());
+    EXPECT_EQ(t.stride(), 32u);
+    for (float x : t.values()) ASSERT_EQ(x, 0.0f) << toString(mode);  // D = 0: padding only
+  }
+}
+
+TEST(BakeHaar, SphereAbovePlaneOccludesRatioSquared) {
+  // Under the constant light L = 1 a row relights to U·1 − Σ D̃ L̃ = 1 − (r/h)² at the plane's
+  // vertex below the sphere: the end-to-end check of bake, light and relighting.
+  const double r = 0.5, h = 1.25;
+  const Mesh mesh = builtinScene("builtin:sphere-plane?r=0.5&h=1.25&grid=32&subdiv=4");
+  const auto occ = makeEmbreeOccluder(mesh);
+  std::size_t below = 0;
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+    if (length(mesh.positions[v]) < length(mesh.positions[below])) below = v;
+  ASSERT_LT(length(mesh.positions[below]), 1e-6f);
+  BakeSettings s = haarSettings(TransferMode::Shadowed, 32, 256, 16);
+  s.rows = {below, 1};
+  BakeStats stats;
+  const Transfer t = bake(mesh, *occ, s, &stats);
+  const envmap::Environment white =
+      envmap::Environment::analytic([](const Vec3f&) { return Rgb(1.0f); }, {});
+  const haar::HaarLight light = haar::projectLight(white, 32, 200);
+  const std::vector<Vec3f> normal = {mesh.normals[below]};
+  const std::vector<Rgb> out = relight::relightHaar(t, light, normal, {});
+  EXPECT_GT(stats.stdErrConstMax, 1e-4);  // the estimate is not degenerate
+  EXPECT_NEAR(out[0].x, 1.0 - (r / h) * (r / h), 3 * stats.stdErrConstMax + 2e-3);
+  // Every kept term is a coefficient of the cube, in ascending order.
+  EXPECT_NO_THROW(t.check("haar"));
+}
+
+TEST(BakeHaar, DeterministicOverThreadsAndRanges) {
+  const Mesh mesh = builtinScene("builtin:sphere-plane?grid=8&subdiv=2");
+  const auto occ = makeEmbreeOccluder(mesh);
+  const BakeSettings s = haarSettings(TransferMode::Shadowed, 8, 24, 2);
+  const Transfer whole = bake(mesh, *occ, s);
+  Transfer oneThread;
+  {
+    ThreadLimit limit(1);
+    oneThread = bake(mesh, *occ, s);
+  }
+  ASSERT_EQ(whole.values().size(), oneThread.values().size());
+  for (std::size_t k = 0; k < whole.values().size(); ++k)
+    ASSERT_EQ(whole.values()[k], oneThread.values()[k]);
+  BakeSettings part = s;
+  part.rows = {30, 41};
+  const Transfer piece = bake(mesh, *occ, part);
+  for (std::size_t r = 0; r < 41; ++r)
+    for (std::size_t k = 0; k < whole.stride(); ++k)
+      ASSERT_EQ(piece.row(r)[k], whole.row(30 + r)[k]);
+}
+
+TEST(BakeHaar, RejectsWhatItDoesNotMake) {
+  const Mesh mesh = builtinScene("builtin:sphere?subdiv=1");
+  const auto occ = makeEmbreeOccluder(mesh);
+  BakeSettings s = haarSettings(TransferMode::Interreflected, 8, 16);
+  s.bounces = 1;
+  EXPECT_THROW(bake(mesh, *occ, s), Error);
+  s = haarSettings(TransferMode::Shadowed, 8, 16);
+  s.layout = TransferLayout::Matrix;
+  EXPECT_THROW(bake(mesh, *occ, s), Error);
+  EXPECT_THROW(bake(mesh, *occ, haarSettings(TransferMode::Shadowed, 12, 16)), Error);
+  EXPECT_THROW(bake(mesh, *occ, haarSettings(TransferMode::Shadowed, 8, 385)), Error);
+  EXPECT_THROW(bake(mesh, *occ, haarSettings(TransferMode::Shadowed, 8, 16, 65)), Error);
+  EXPECT_NO_THROW(bake(mesh, *occ, haarSettings(TransferMode::Shadowed, 8, 384)));
+}
+
+TEST(HaarRows, PruneKeepsTheLargestWeightedTermsInIndexOrder) {
+  const int n = 4;
+  std::vector<float> c(haar::coefficientCount(n), 0.0f);
+  c[5] = 0.5f;    // face 0 at (1, 1): a detail of side 4
+  c[17] = -3.0f;  // face 1
+  c[40] = 0.25f;
+  c[90] = 1.0f;
+  std::vector<std::uint32_t> order;
+  std::vector<float> out(6);
+  haar::pruneRow(c.data(), n, 3, out.data(), order);
+  // Weighted magnitudes |c|·side; the three largest, in ascending index.
+  std::vector<std::pair<double, std::uint32_t>> w;
+  for (std::uint32_t k : {5u, 17u, 40u, 90u})
+    w.push_back({std::abs(c[k]) * haar::supportSide(k, n), k});
+  std::sort(w.rbegin(), w.rend());
+  std::vector<std::uint32_t> expect = {w[0].second, w[1].second, w[2].second};
+  std::sort(expect.begin(), expect.end());
+  // The values on the row's 16-bit grid (haar_rows.hpp): within a step of the largest, 3.
+  for (int t = 0; t < 3; ++t) {
+    EXPECT_EQ(out[std::size_t(2 * t)], float(expect[std::size_t(t)]));
+    EXPECT_NEAR(out[std::size_t(2 * t + 1)], c[expect[std::size_t(t)]], 3.0f / 32767);
+  }
+  EXPECT_NO_THROW(haar::checkRow(out.data(), n, 3, 0, "row"));
+  // Fewer non-zeros than the budget: padding (0, 0) after them.
+  std::vector<float> wide(12);
+  haar::pruneRow(c.data(), n, 6, wide.data(), order);
+  EXPECT_EQ(wide[8], 0.0f);
+  EXPECT_EQ(wide[9], 0.0f);
+  EXPECT_NO_THROW(haar::checkRow(wide.data(), n, 6, 0, "row"));
+  // Broken rows are named.
+  std::vector<float> bad = out;
+  bad[2] = bad[0];  // not ascending
+  EXPECT_THROW(haar::checkRow(bad.data(), n, 3, 0, "row"), Error);
+  bad = out;
+  bad[0] = 96.0f;  // past 6·4²
+  EXPECT_THROW(haar::checkRow(bad.data(), n, 3, 0, "row"), Error);
+  bad = out;
+  bad[0] = 1.5f;  // not integral
+  EXPECT_THROW(haar::checkRow(bad.data(), n, 3, 0, "row"), Error);
+  bad = wide;
+  bad[8] = 7.0f;  // padding with an index
+  EXPECT_THROW(haar::checkRow(bad.data(), n, 6, 0, "row"), Error);
+}
+
+}  // namespace
+}  // namespace prt
