@@ -59,37 +59,16 @@
 #include "prt/transport/bake_texels.hpp"
 #include "prt/unwrap/unwrap.hpp"
 #include "raw_embree.hpp"
+#include "scenes.hpp"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 using prt::bench::RawScene;
-constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
+using prt::bench::kBunny;
 
-struct Scene {
-  prt::Mesh mesh;
-  std::unique_ptr<prt::Occluder> occluder;
-};
-
-// Scenes are loaded once and shared by all cases.
-Scene* scene(const std::string& name) {
-  static std::map<std::string, std::unique_ptr<Scene>> cache;
-  auto it = cache.find(name);
-  if (it != cache.end()) return it->second.get();
-  auto s = std::make_unique<Scene>();
-  if (name == "bunny" || name == "bunny-atlas") {
-    if (!std::filesystem::exists(kBunny)) return nullptr;
-    s->mesh = prt::loadMesh(kBunny);
-    // The per-texel case: the bunny has no lightmap UVs; prt unwrap's atlas at 512², padding 2.
-    if (name == "bunny-atlas") s->mesh = prt::unwrap(s->mesh).mesh;
-  } else if (name == "cornell") {
-    s->mesh = prt::builtinScene("builtin:cornell");
-  } else {
-    s->mesh = prt::builtinScene("builtin:sphere-plane");
-  }
-  s->occluder = prt::makeEmbreeOccluder(s->mesh);
-  return cache.emplace(name, std::move(s)).first->second.get();
-}
+using prt::bench::Scene;
+using prt::bench::scene;
 
 RawScene* rawScene(const std::string& name) {
   static std::map<std::string, std::unique_ptr<RawScene>> cache;
@@ -167,18 +146,8 @@ RawTimes traceRaw(const std::string& name, int samples, std::uint64_t seed,
           rtcOccluded1(rs, &ctx, &rays[k]);
     });
     auto t1 = Clock::now();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 16), [&](const auto& r) {
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-      for (std::size_t c = r.begin(); c < r.end(); ++c) {
-        const std::size_t m = std::min<std::size_t>(64, copy.size() - c * 64);
-        rtcOccluded1M(rs, &ctx, &copy[c * 64], static_cast<unsigned>(m), sizeof(RTCRay));
-      }
-    });
-    auto t2 = Clock::now();
     out.single += std::chrono::duration<double>(t1 - t0).count();
-    out.stream += std::chrono::duration<double>(t2 - t1).count();
+    out.stream += prt::bench::traceStreams(rs, copy);
     out.rays += rays.size();
     for (const RTCRay& r : rays) out.blocked += r.tfar < 0.0f;
   }

@@ -7,16 +7,14 @@
 //                                  streaming read of the same rows (vs_stream: how far from
 //                                  memory bound) and the 5-band SH relighting of the same mesh
 //                                  (vs_sh5).
-//     BM_HaarBake/SCENE            the shadowed Haar bake (16² cube, one ray per texel, 64
-//                                  terms) against raw Embree (rtcOccluded1M, 64-ray streams) on
-//                                  the same rays, ray generation untimed: vs_raw.
+//     BM_HaarBake/SCENE            the shadowed Haar bake (the default 32² cube, one ray per
+//                                  texel, 64 terms) against raw Embree (rtcOccluded1M, 64-ray
+//                                  streams) on the same rays, ray generation untimed: vs_raw.
 //
 // Scenes: bunny = /usr/share/glmark2/models/bunny.obj (skipped with a message if absent),
 // sphere-plane = builtin:sphere-plane.
 
 #include <benchmark/benchmark.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <filesystem>
@@ -37,30 +35,14 @@
 #include "prt/relight/relight_haar.hpp"
 #include "prt/transport/bake.hpp"
 #include "raw_embree.hpp"
+#include "scenes.hpp"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
-
-struct Scene {
-  prt::Mesh mesh;
-  std::unique_ptr<prt::Occluder> occluder;
-};
-
-Scene* scene(const std::string& name) {
-  static std::map<std::string, std::unique_ptr<Scene>> cache;
-  if (auto it = cache.find(name); it != cache.end()) return it->second.get();
-  auto s = std::make_unique<Scene>();
-  if (name == "bunny") {
-    if (!std::filesystem::exists(kBunny)) return nullptr;
-    s->mesh = prt::loadMesh(kBunny);
-  } else {
-    s->mesh = prt::builtinScene("builtin:sphere-plane");
-  }
-  s->occluder = prt::makeEmbreeOccluder(s->mesh);
-  return cache.emplace(name, std::move(s)).first->second.get();
-}
+using prt::bench::kBunny;
+using prt::bench::Scene;
+using prt::bench::scene;
 
 prt::BakeSettings haarSettings(int resolution, int terms) {
   prt::BakeSettings s;
@@ -124,8 +106,8 @@ void BM_HaarBake(benchmark::State& state, const std::string& name) {
     state.SkipWithError((std::string(kBunny) + " not found: bunny case skipped").c_str());
     return;
   }
-  const prt::BakeSettings settings = haarSettings(16, 64);
-  const prt::haar::CubeTexels cube(16);
+  const prt::BakeSettings settings = haarSettings(32, 64);
+  const prt::haar::CubeTexels cube(32);
   prt::bench::RawScene raw(s->mesh);
   double bakeSeconds = 0, rawSeconds = 0;
   std::uint64_t bakeRays = 0, rawRays = 0;
@@ -161,19 +143,7 @@ void BM_HaarBake(benchmark::State& state, const std::string& name) {
           rays.push_back(r);
         }
       }
-      const std::size_t chunks = (rays.size() + 63) / 64;
-      const auto t0 = Clock::now();
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 16), [&](const auto& r) {
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-        for (std::size_t c = r.begin(); c < r.end(); ++c) {
-          const std::size_t m = std::min<std::size_t>(64, rays.size() - c * 64);
-          rtcOccluded1M(raw.scene(), &ctx, &rays[c * 64], static_cast<unsigned>(m),
-                        sizeof(RTCRay));
-        }
-      });
-      rawSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
+      rawSeconds += prt::bench::traceStreams(raw.scene(), rays);
       rawRays += rays.size();
     }
   }

@@ -35,6 +35,7 @@
 #include "prt/relight/relight_probes.hpp"
 #include "prt/transport/bake.hpp"
 #include "prt/transport/passes.hpp"
+#include "raw_embree.hpp"
 
 namespace {
 
@@ -95,18 +96,7 @@ double rawSeconds(const prt::Mesh& mesh, const prt::ProbeGrid& grid, int samples
         ray.time = 0, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
       }
     });
-    const std::size_t chunks = (rays.size() + 63) / 64;
-    const auto t0 = Clock::now();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 16), [&](const auto& r) {
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-      for (std::size_t c = r.begin(); c < r.end(); ++c) {
-        const std::size_t m = std::min<std::size_t>(64, rays.size() - c * 64);
-        rtcOccluded1M(scene, &ctx, &rays[c * 64], static_cast<unsigned>(m), sizeof(RTCRay));
-      }
-    });
-    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    seconds += prt::bench::traceStreams(scene, rays);
   }
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);

@@ -78,7 +78,7 @@ void renderHaarBake(const BakeFile& bake, const BakedTransfer& baked, const Mate
   report["exposureStops"] = write.exposureStops;
   report["camera"] = cameraJson(camera);
   info(fmt::format("wrote {} ({}x{}, {} spp, {} transfer, Haar {}² cube, the light's {} largest "
-                   "terms of {} ({:.2f}% of its energy), {}, exposure {:.2f}{})",
+                   "terms of {} ({:.4f}% of its energy), {}, exposure {:.2f}{})",
                    a.output, a.frame.width, a.frame.height, a.frame.spp, baked.describe(), n,
                    light.terms(), haar::coefficientCount(n), 100 * light.energyKept,
                    material.spec(), write.exposureStops, a.exposure ? "" : " auto"));

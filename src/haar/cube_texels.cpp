@@ -77,6 +77,27 @@ CubeTexels::CubeTexels(int n) : n_(n) {
   const std::vector<double> omega = envmap::cubeTexelSolidAngles(n);
   omega_.resize(total);
   for (std::size_t j = 0; j < total; ++j) omega_[j] = omega[j % omega.size()];
+  for (int f = 0; f < 6; ++f) {
+    const Vec3d c = envmap::cubeFaceDirection(f, 0, 0);
+    faces_[std::size_t(f)].centre = Vec3f(c);
+    faces_[std::size_t(f)].s = Vec3f(envmap::cubeFaceDirection(f, 1, 0) - c);
+    faces_[std::size_t(f)].t = Vec3f(envmap::cubeFaceDirection(f, 0, 1) - c);
+    int k = 0;
+    for (double b : {-1.0, 1.0})
+      for (double a : {-1.0, 1.0})
+        faces_[std::size_t(f)].corners[std::size_t(k++)] =
+            Vec3f(normalize(envmap::cubeFaceDirection(f, a, b)));
+  }
+}
+
+CubeTexels::FaceSide CubeTexels::faceSide(int face, const Vec3f& normal) const {
+  int above = 0, below = 0;
+  for (const Vec3f& c : faces_[std::size_t(face)].corners) {
+    const float d = dot(c, normal);
+    above += d > 0;
+    below += d <= 0;
+  }
+  return above == 0 ? FaceSide::Below : below == 0 ? FaceSide::Above : FaceSide::Across;
 }
 
 bool CubeTexels::aboveHorizon(std::uint32_t j, const Vec3d& normal) const {
@@ -87,12 +108,7 @@ bool CubeTexels::aboveHorizon(std::uint32_t j, const Vec3d& normal) const {
 
 Vec3f CubeTexels::sample(std::uint32_t j, float u, float v, float& weight) const {
   const CubeTexel t = cubeTexel(j, n_);
-  const double step = 2.0 / n_;
-  const double s = -1.0 + step * (t.x + double(u)), tt = -1.0 + step * (t.y + double(v));
-  const Vec3d d = envmap::cubeFaceDirection(t.face, s, tt);
-  const double len = length(d);
-  weight = float(step * step / (len * len * len));
-  return Vec3f(d / len);
+  return sample(t.face, t.x, t.y, u, v, weight);
 }
 
 }  // namespace prt::haar

@@ -16,7 +16,7 @@ namespace {
 
 using nlohmann::json;
 constexpr int kFloat = gltf::kFloat, kUint = gltf::kUnsignedInt, kUshort = gltf::kUnsignedShort;
-constexpr int kShort = gltf::kShort;
+constexpr int kShort = gltf::kShort, kUbyte = gltf::kUnsignedByte;
 constexpr int kArrayBuffer = 34962;
 
 /// The accessor indices an entry lists, each checked to be an integer.
@@ -157,48 +157,49 @@ class HaarRowsCodec final : public TransferCodec {
     const bool wide = haar::coefficientCount(t.shape().haar.resolution) > 65536;
     // The rows are on their grid (haar_rows.hpp): the scale is the row's largest |value| and
     // every q an integer, read back exactly.
+    auto kind = std::make_shared<std::vector<std::uint8_t>>(rows, 0);
     auto scale = std::make_shared<std::vector<float>>(rows, 0.0f);
     auto index = std::make_shared<std::vector<std::uint32_t>>(rows * terms);
     auto value = std::make_shared<std::vector<std::int16_t>>(rows * terms);
     for (std::size_t r = 0; r < rows; ++r) {
       const float* p = t.row(r);
+      (*kind)[r] = static_cast<std::uint8_t>(p[0]);
       float s = 0;
-      for (std::size_t k = 0; k < terms; ++k) s = std::max(s, std::abs(p[2 * k + 1]));
+      for (std::size_t k = 0; k < terms; ++k) s = std::max(s, std::abs(p[2 + 2 * k]));
       (*scale)[r] = s;
       for (std::size_t k = 0; k < terms; ++k) {
-        (*index)[r * terms + k] = static_cast<std::uint32_t>(p[2 * k]);
-        (*value)[r * terms + k] = static_cast<std::int16_t>(haar::quantizeHaarValue(p[2 * k + 1], s));
+        (*index)[r * terms + k] = static_cast<std::uint32_t>(p[1 + 2 * k]);
+        (*value)[r * terms + k] =
+            static_cast<std::int16_t>(haar::quantizeHaarValue(p[2 + 2 * k], s));
       }
     }
     const std::string prefix = transferHaarPrefix(bt.mode());
     json acc = json::array();
-    acc.push_back(bin.accessor(
-        bin.view(rows * 4, 0, 0, prefix + "SCALE",
-                 [scale](std::ostream& os) {
-                   os.write(reinterpret_cast<const char*>(scale->data()),
-                            std::streamsize(scale->size() * 4));
-                 }),
-        0, rows, "SCALAR", kFloat, prefix + "SCALE"));
-    acc.push_back(bin.accessor(
-        bin.view(rows * terms * (wide ? 4 : 2), 0, 0, prefix + "INDEX",
-                 [index, wide](std::ostream& os) {
-                   if (wide) {
-                     os.write(reinterpret_cast<const char*>(index->data()),
-                              std::streamsize(index->size() * 4));
-                     return;
-                   }
-                   std::vector<std::uint16_t> narrow(index->begin(), index->end());
-                   os.write(reinterpret_cast<const char*>(narrow.data()),
-                            std::streamsize(narrow.size() * 2));
-                 }),
-        0, rows * terms, "SCALAR", wide ? kUint : kUshort, prefix + "INDEX"));
-    acc.push_back(bin.accessor(
-        bin.view(rows * terms * 2, 0, 0, prefix + "VALUE",
-                 [value](std::ostream& os) {
-                   os.write(reinterpret_cast<const char*>(value->data()),
-                            std::streamsize(value->size() * 2));
-                 }),
-        0, rows * terms, "SCALAR", kShort, prefix + "VALUE"));
+    const auto add = [&](const char* part, std::size_t count, int type, std::size_t size,
+                         glb::BinaryChunk::Writer write) {
+      acc.push_back(bin.accessor(bin.view(count * size, 0, 0, prefix + part, std::move(write)), 0,
+                                 count, "SCALAR", type, prefix + part));
+    };
+    add("KIND", rows, kUbyte, 1, [kind](std::ostream& os) {
+      os.write(reinterpret_cast<const char*>(kind->data()), std::streamsize(kind->size()));
+    });
+    add("SCALE", rows, kFloat, 4, [scale](std::ostream& os) {
+      os.write(reinterpret_cast<const char*>(scale->data()), std::streamsize(scale->size() * 4));
+    });
+    add("INDEX", rows * terms, wide ? kUint : kUshort, wide ? 4 : 2,
+        [index, wide](std::ostream& os) {
+          if (wide) {
+            os.write(reinterpret_cast<const char*>(index->data()),
+                     std::streamsize(index->size() * 4));
+            return;
+          }
+          std::vector<std::uint16_t> narrow(index->begin(), index->end());
+          os.write(reinterpret_cast<const char*>(narrow.data()),
+                   std::streamsize(narrow.size() * 2));
+        });
+    add("VALUE", rows * terms, kShort, 2, [value](std::ostream& os) {
+      os.write(reinterpret_cast<const char*>(value->data()), std::streamsize(value->size() * 2));
+    });
     entry["haarAccessorPrefix"] = prefix;
     entry["accessors"] = std::move(acc);
     return {};
@@ -206,39 +207,44 @@ class HaarRowsCodec final : public TransferCodec {
 
   Transfer decode(const json& entry, const std::string& where, const TransferShape& shape,
                   TransferMode mode, const gltf::AccessorReader& a, const schema::Reader& r,
-                  const ByteKeeper& bytes) const override {
-    const std::vector<int> acc = accessorList(entry, 3, "the Haar rows (scale, index, value)",
-                                              where, r);
+                  const ByteKeeper&) const override {
+    const std::vector<int> acc =
+        accessorList(entry, 4, "the Haar rows (kind, scale, index, value)", where, r);
     const std::size_t rows = shape.rows.count, terms = std::size_t(shape.haar.terms);
     const bool wide = haar::coefficientCount(shape.haar.resolution) > 65536;
     const std::string what = std::string(toString(mode)) + " Haar rows";
-    const std::vector<float> scale = a.exact<float>(acc[0], 1, kFloat, rows, what + " scales");
+    const std::vector<std::uint8_t> kind =
+        a.exact<std::uint8_t>(acc[0], 1, kUbyte, rows, what + " kinds");
+    const std::vector<float> scale = a.exact<float>(acc[1], 1, kFloat, rows, what + " scales");
     std::vector<std::uint32_t> index;
     if (wide) {
-      index = a.exact<std::uint32_t>(acc[1], 1, kUint, rows * terms, what + " indices");
+      index = a.exact<std::uint32_t>(acc[2], 1, kUint, rows * terms, what + " indices");
     } else {
       const auto narrow =
-          a.exact<std::uint16_t>(acc[1], 1, kUshort, rows * terms, what + " indices");
+          a.exact<std::uint16_t>(acc[2], 1, kUshort, rows * terms, what + " indices");
       index.assign(narrow.begin(), narrow.end());
     }
     const std::vector<std::int16_t> value =
-        a.exact<std::int16_t>(acc[2], 1, kShort, rows * terms, what + " values");
-    std::vector<float> rowsOut(rows * terms * 2);
+        a.exact<std::int16_t>(acc[3], 1, kShort, rows * terms, what + " values");
+    const std::size_t stride = haar::haarRowFloats(shape.haar.terms);
+    std::vector<float> out(rows * stride);
     for (std::size_t i = 0; i < rows; ++i) {
       if (!std::isfinite(scale[i]) || scale[i] < 0)
         r.fail(where + ": Haar row " + std::to_string(i) + " has scale " +
                std::to_string(scale[i]) + " (a finite number >= 0)");
+      float* row = out.data() + i * stride;
+      row[0] = float(kind[i]);  // 0 or 1: checked with the rest below
       for (std::size_t k = 0; k < terms; ++k) {
         const std::int16_t q = value[i * terms + k];
         if (q < -haar::kHaarValueSteps)
           r.fail(where + ": Haar row " + std::to_string(i) + ", term " + std::to_string(k) +
                  ": value " + std::to_string(q) + " is off the grid (-32767..32767)");
-        rowsOut[(i * terms + k) * 2] = float(index[i * terms + k]);
-        rowsOut[(i * terms + k) * 2 + 1] = haar::dequantizeHaarValue(scale[i], q);
+        row[1 + 2 * k] = float(index[i * terms + k]);
+        row[2 + 2 * k] = haar::dequantizeHaarValue(scale[i], q);
       }
     }
-    Transfer t = Transfer::dense(shape, FloatArray(std::move(rowsOut)));
-    (void)bytes;  // dequantised: always a copy, always checked
+    // Dequantised: always a copy, always checked (index range, order, padding, kind).
+    Transfer t = Transfer::dense(shape, FloatArray(std::move(out)));
     r.within(where, [&] { t.check(what); });
     return t;
   }

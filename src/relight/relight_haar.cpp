@@ -7,6 +7,7 @@
 #include "prt/haar/cube_texels.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/transfer/albedo.hpp"
+#include "prt/transfer/haar_rows.hpp"
 
 namespace prt::relight {
 
@@ -50,36 +51,43 @@ void relightHaar(const Transfer& transfer, const haar::HaarLight& light,
   // io/bake_file.hpp's mapBake), one compare per term.
   const float count = static_cast<float>(dense.size());
   std::atomic<bool> bad{false};
+  const std::size_t stride = haar::haarRowFloats(shape.haar.terms);
   parallelFor(rows, kRowGrain, [&](std::size_t b, std::size_t e) {
     std::vector<float> y((e - b) * kCoeffs);
     sh::evalBatch(kBands, normals.subspan(b, e - b), y.data());
     for (std::size_t r = b; r < e; ++r) {
-      const float* yr = y.data() + (r - b) * kCoeffs;
+      const float* p = values + r * stride;
+      // An occluded-part row starts from the unshadowed light (SH of the rest, the bright
+      // texels exactly) and takes its terms away; a visible-part row is its terms alone.
+      const bool occluded = p[0] == 0.0f;
       float x = 0, g = 0, z = 0;
-      for (int i = 0; i < kCoeffs; ++i) {
-        x += yr[i] * lobe[std::size_t(i)].x;
-        g += yr[i] * lobe[std::size_t(i)].y;
-        z += yr[i] * lobe[std::size_t(i)].z;
+      if (occluded) {
+        const float* yr = y.data() + (r - b) * kCoeffs;
+        for (int i = 0; i < kCoeffs; ++i) {
+          x += yr[i] * lobe[std::size_t(i)].x;
+          g += yr[i] * lobe[std::size_t(i)].y;
+          z += yr[i] * lobe[std::size_t(i)].z;
+        }
+        const Vec3d nrm(normals[r]);
+        for (std::size_t k = 0; k < brightTexels.size(); ++k) {
+          const float u = float(haar::clampedCosine(brightTexels[k], nrm));
+          x += u * light.bright[k].radiance.x;
+          g += u * light.bright[k].radiance.y;
+          z += u * light.bright[k].radiance.z;
+        }
       }
-      const Vec3d nrm(normals[r]);
-      for (std::size_t b = 0; b < brightTexels.size(); ++b) {
-        const float u = float(haar::clampedCosine(brightTexels[b], nrm));
-        x += u * light.bright[b].radiance.x;
-        g += u * light.bright[b].radiance.y;
-        z += u * light.bright[b].radiance.z;
-      }
-      const float* p = values + r * 2 * terms;
+      const float sign = occluded ? -1.0f : 1.0f;
       for (std::size_t t = 0; t < terms; ++t) {
-        const float k = p[2 * t];
+        const float k = p[1 + 2 * t];
         if (!(k >= 0.0f && k < count)) {
           bad = true;
           break;
         }
         const Rgb& c = l[static_cast<std::uint32_t>(k)];
-        const float v = p[2 * t + 1];
-        x -= v * c.x;
-        g -= v * c.y;
-        z -= v * c.z;
+        const float v = sign * p[2 + 2 * t];
+        x += v * c.x;
+        g += v * c.y;
+        z += v * c.z;
       }
       out[r] = kd.at(r) * Rgb(x, g, z);
     }

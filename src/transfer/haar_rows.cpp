@@ -9,27 +9,33 @@
 
 namespace prt::haar {
 
-void pruneRow(const float* coeffs, int n, std::size_t terms, float* out,
-              std::vector<std::uint32_t>& order) {
+void pruneRow(const float* coeffs, int n, std::size_t terms, HaarRowKind kind, float* row,
+              std::vector<std::pair<float, std::uint32_t>>& keys) {
+  row[0] = float(static_cast<int>(kind));
+  float* out = row + 1;
+  // Every non-zero coefficient's key |c|·s, then the `keep` largest in linear time (ties to the
+  // lower index: a strict order, so the choice is deterministic), then those in index order.
   const std::size_t count = coefficientCount(n);
-  order.clear();
+  keys.clear();
   for (std::uint32_t k = 0; k < count; ++k)
-    if (coeffs[k] != 0.0f) order.push_back(k);
-  const std::size_t keep = std::min(terms, order.size());
-  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(keep), order.end(),
-                    [&](std::uint32_t a, std::uint32_t b) {
-                      const float x = std::abs(coeffs[a]) * float(supportSide(a, n));
-                      const float y = std::abs(coeffs[b]) * float(supportSide(b, n));
-                      return x != y ? x > y : a < b;
-                    });
-  std::sort(order.begin(), order.begin() + std::ptrdiff_t(keep));
+    if (coeffs[k] != 0.0f) keys.push_back({std::abs(coeffs[k]) * float(supportSide(k, n)), k});
+  const std::size_t keep = std::min(terms, keys.size());
+  const auto larger = [](const std::pair<float, std::uint32_t>& a,
+                         const std::pair<float, std::uint32_t>& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  };
+  if (keep < keys.size())
+    std::nth_element(keys.begin(), keys.begin() + std::ptrdiff_t(keep), keys.end(), larger);
+  std::sort(keys.begin(), keys.begin() + std::ptrdiff_t(keep),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
   float scale = 0;
-  for (std::size_t t = 0; t < keep; ++t) scale = std::max(scale, std::abs(coeffs[order[t]]));
+  for (std::size_t t = 0; t < keep; ++t) scale = std::max(scale, std::abs(coeffs[keys[t].second]));
   std::size_t written = 0;
   for (std::size_t t = 0; t < keep; ++t) {
-    const int q = quantizeHaarValue(coeffs[order[t]], scale);
+    const std::uint32_t k = keys[t].second;
+    const int q = quantizeHaarValue(coeffs[k], scale);
     if (q == 0) continue;  // below the grid's step
-    out[2 * written] = float(order[t]);
+    out[2 * written] = float(k);
     out[2 * written + 1] = dequantizeHaarValue(scale, q);
     ++written;
   }
@@ -48,10 +54,15 @@ float dequantizeHaarValue(float scale, int q) {
 
 std::size_t storedHaarRowBytes(int n, int terms) {
   const std::size_t index = coefficientCount(n) <= 65536 ? 2 : 4;
-  return 4 + std::size_t(terms) * (index + 2);
+  return 5 + std::size_t(terms) * (index + 2);
 }
 
-void checkRow(const float* row, int n, std::size_t terms, std::size_t r, const std::string& what) {
+void checkRow(const float* header, int n, std::size_t terms, std::size_t r,
+              const std::string& what) {
+  if (header[0] != 0.0f && header[0] != 1.0f)
+    throw Error(what + ": row " + std::to_string(r) +
+                ": its kind must be 0 (occluded part) or 1 (visible part)");
+  const float* row = header + 1;
   const double count = double(coefficientCount(n));
   double last = -1;
   for (std::size_t t = 0; t < terms; ++t) {

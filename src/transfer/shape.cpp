@@ -6,6 +6,7 @@
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/haar/resolution.hpp"
+#include "prt/transfer/haar_rows.hpp"
 
 namespace prt {
 
@@ -71,7 +72,7 @@ int TransferShape::coeffs() const {
 }
 
 std::size_t TransferShape::rowSize() const {
-  if (isHaar()) return 2 * static_cast<std::size_t>(std::max(haar.terms, 0));
+  if (isHaar()) return haar::haarRowFloats(haar.terms);
   const std::size_t n = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
   return layout == TransferLayout::Matrix ? n * n : n;
 }

@@ -1,20 +1,28 @@
 // Haar transfer (Ng, Ramamoorthi & Hanrahan 2003, §5): each row's occluded diffuse transfer over
-// the texels of a cube map, D_j = (1/π) ∫_texel j (1 − V(ω)) max(n·ω, 0) dω = U_j − T_j,
-// wavelet-transformed (haar/cube_haar.hpp) and pruned to the row's budget of terms
-// (transfer/haar_rows.hpp). The unshadowed part U is not stored: relighting takes it from the
-// light's SH in closed form (haar/haar_light.hpp), so the terms go to the shadow alone — an
-// unoccluded vertex needs none, and a smooth cosine lobe never spends the budget a piecewise
-// constant basis needs for it. (Ng et al. store T itself; measured here, at 64 terms per vertex
-// storing D halves the error under a sun: docs/validation.md.)
+// the texels of a cube map, D_j = (1/π) ∫_texel j (1 − V(ω)) max(n·ω, 0) dω = U_j − T_j — or,
+// for a row that sees less than half its sky, the visible part T_j — wavelet-transformed
+// (haar/cube_haar.hpp) and pruned to the row's budget of terms (transfer/haar_rows.hpp). The
+// unshadowed part U of an occluded-part row is not stored: relighting takes it from the light in
+// closed form (haar/haar_light.hpp), so the terms go to the shadow alone — an unoccluded vertex
+// needs none, and a smooth cosine lobe never spends the budget a piecewise constant basis needs
+// for it. (Ng et al. store T itself; measured here, at 64 terms per vertex storing D lowers the
+// error under a sun from 13.7% to 5.0%: docs/haar.md.)
 //
-// The estimator, as the SH bake's control variate:
-//     D_j ≈ (1/S) Σ_s [ω_s blocked] max(n·ω_s, 0)/π · (2/N)² / |d_s|³
-// with S rays per texel (the bake's samples) at points uniform on the texel's square of the
-// face plane, jittered per row from (seed, row): unbiased, exactly 0 for unshadowed transfer
-// and where nothing is blocked. Texels wholly below the horizon cast nothing. Noise estimate: Σ_j Var(T_j) ≤ Σ_s x_s² / S² (each single-ray
-// term x_s; one ray per texel leaves no spread to measure, so the bound uses E[x²] ≥ Var x) —
-// the variance of the row's response to the constant light, reported as the SH bake reports
-// √(4π) T₀'s (so BakeStats' constant-light error means the same in both bases).
+// The estimator: per texel above the horizon, S rays (the bake's samples) through points
+// uniform on the texel's square of the face plane, jittered per row from (seed, row), and
+//     D_j ≈ U_j · Σ_s [blocked] c_s w_s / Σ_s c_s w_s,   c = max(n·ω, 0), w = (2/N)²/|d|³,
+// the texel's exact cosine integral U_j (Lambert's formula, haar/cube_texels.hpp) times the
+// cosine-weighted share of its rays that are blocked: a ratio estimator, consistent, and exact
+// where a texel is wholly open or wholly blocked — so in a sun's umbra the occluded part cancels
+// the unshadowed part exactly, whatever the noise elsewhere. (The plain estimator
+// Σ [blocked] c w / S left 1 in 20 of the bunny's vertices relit negative in the umbra.) Texels
+// wholly below the horizon, and whole faces, cast nothing.
+//
+// Noise estimate: Var D_j ≈ U_j² p(1 − p)/S_j with p the blocked share of the rays of the texel
+// and its eight neighbours on the face (one ray per texel leaves nothing to measure alone), summed
+// over the texels — zero where a neighbourhood agrees, as inside a shadow or out of one — and
+// reported over 4π, as the SH bake reports √(4π) T₀'s (so BakeStats' constant-light error means
+// the same in both bases).
 
 #include <algorithm>
 #include <atomic>
@@ -38,23 +46,31 @@ constexpr std::size_t kRowGrain = 2;
 
 struct Scratch {
   std::vector<float> coeffs;
-  std::vector<std::uint32_t> order;
+  std::vector<std::pair<float, std::uint32_t>> order;
+  std::vector<float> blockedWeight, totalWeight;  ///< per texel: Σ c w of blocked / all rays
+  std::vector<std::uint8_t> blocked, cast;        ///< per texel: rays blocked / cast
+  std::vector<std::uint8_t> near;                 ///< per texel: within one of a blocked ray
   std::array<Ray, kBatch> rays;
-  std::array<float, kBatch> value;  ///< max(n·ω,0)/π · weight / S of each ray
+  std::array<float, kBatch> weight;  ///< c w of each ray
   std::array<std::uint32_t, kBatch> texel;
-  std::array<std::uint8_t, kBatch> blocked;
+  std::array<std::uint8_t, kBatch> hit;
 };
 
-/// One row at q into out (2 · terms floats); returns the variance bound above, over 4π.
+/// One row at q into out (haarRowFloats(terms) floats); returns the noise estimate above, over
+/// 4π.
 double haarRow(const Occluder& occluder, const HaarSetup& setup, const RowPoint& q, Scratch& s,
-               float* out, std::uint64_t& cast) {
+               float* out, std::uint64_t& rayCount) {
   const haar::CubeTexels& cube = setup.texels;
   const int n = cube.resolution();
-  const std::size_t count = cube.count();
+  const std::size_t count = cube.count(), faceTexels = std::size_t(n) * std::size_t(n);
   const Vec3d normal(q.normal);
   s.coeffs.assign(count, 0.0f);
   double variance = 0;
   if (setup.settings.mode != TransferMode::Unshadowed) {
+    s.blockedWeight.assign(count, 0.0f);
+    s.totalWeight.assign(count, 0.0f);
+    s.blocked.assign(count, 0);
+    s.cast.assign(count, 0);
     const int perTexel = setup.settings.samples;
     const Vec3f origin = q.position + q.normal * occluder.rayOffset(q.position);
     Pcg32 rng(deriveSeed(setup.settings.seed, static_cast<std::uint64_t>(q.id)));
@@ -62,33 +78,95 @@ double haarRow(const Occluder& occluder, const HaarSetup& setup, const RowPoint&
     const auto flush = [&] {
       if (nr == 0) return;
       occluder.occluded(std::span<const Ray>(s.rays.data(), nr),
-                        std::span<std::uint8_t>(s.blocked.data(), nr));
-      cast += nr;
-      for (std::size_t r = 0; r < nr; ++r)
-        if (s.blocked[r]) {
-          s.coeffs[s.texel[r]] += s.value[r];
-          variance += double(s.value[r]) * s.value[r];
+                        std::span<std::uint8_t>(s.hit.data(), nr));
+      rayCount += nr;
+      for (std::size_t r = 0; r < nr; ++r) {
+        const std::uint32_t j = s.texel[r];
+        s.totalWeight[j] += s.weight[r];
+        ++s.cast[j];
+        if (s.hit[r]) {
+          s.blockedWeight[j] += s.weight[r];
+          ++s.blocked[j];
         }
+      }
       nr = 0;
     };
-    for (std::uint32_t j = 0; j < count; ++j) {
-      if (!cube.aboveHorizon(j, normal)) continue;
-      for (int k = 0; k < perTexel; ++k) {
-        float w = 0;
-        const float u = rng.uniform(), v = rng.uniform();
-        const Vec3f d = cube.sample(j, u, v, w);
-        const float c = dot(q.normal, d);
-        if (c <= 0.0f) continue;  // the part of a texel below the horizon: 0, no ray
-        s.rays[nr] = Ray{origin, d, 0.0f, std::numeric_limits<float>::infinity()};
-        s.value[nr] = c * float(1.0 / kPi) * w / float(perTexel);
-        s.texel[nr] = j;
-        if (++nr == kBatch) flush();
-      }
+    for (int f = 0; f < 6; ++f) {
+      const haar::CubeTexels::FaceSide side = cube.faceSide(f, q.normal);
+      if (side == haar::CubeTexels::FaceSide::Below) continue;
+      const auto first = std::uint32_t(std::size_t(f) * faceTexels);
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const std::uint32_t j = first + std::uint32_t(y * n + x);
+          if (side == haar::CubeTexels::FaceSide::Across && !cube.aboveHorizon(j, normal)) continue;
+          for (int k = 0; k < perTexel; ++k) {
+            float w = 0;
+            const float u = rng.uniform(), v = rng.uniform();
+            const Vec3f d = cube.sample(f, x, y, u, v, w);
+            const float c = dot(q.normal, d);
+            if (c <= 0.0f) continue;  // the part of a texel below the horizon: no ray
+            s.rays[nr] = Ray{origin, d, 0.0f, std::numeric_limits<float>::infinity()};
+            s.weight[nr] = c * w;
+            s.texel[nr] = j;
+            if (++nr == kBatch) flush();
+          }
+        }
     }
     flush();
+    // Only texels within one of a blocked ray can hold D or be mixed: mark them first.
+    s.near.assign(count, 0);
+    for (std::uint32_t j = 0; j < count; ++j) {
+      if (s.blocked[j] == 0) continue;
+      const std::size_t r = j % faceTexels, face = j - r;
+      const int x = int(r % std::size_t(n)), y = int(r / std::size_t(n));
+      for (int yy = std::max(0, y - 1); yy <= std::min(n - 1, y + 1); ++yy)
+        for (int xx = std::max(0, x - 1); xx <= std::min(n - 1, x + 1); ++xx)
+          s.near[face + std::size_t(yy) * std::size_t(n) + std::size_t(xx)] = 1;
+    }
+    for (std::uint32_t j = 0; j < count; ++j) {
+      if (!s.near[j] || s.cast[j] == 0) continue;
+      const std::size_t r = j % faceTexels, face = j - r;
+      const int x = int(r % std::size_t(n)), y = int(r / std::size_t(n));
+      // The blocked share of the neighbourhood's rays, for the noise estimate.
+      int b = 0, c = 0;
+      for (int yy = std::max(0, y - 1); yy <= std::min(n - 1, y + 1); ++yy)
+        for (int xx = std::max(0, x - 1); xx <= std::min(n - 1, x + 1); ++xx) {
+          const std::size_t k = face + std::size_t(yy) * std::size_t(n) + std::size_t(xx);
+          b += s.blocked[k];
+          c += s.cast[k];
+        }
+      const bool mixed = b > 0 && b < c;
+      if (s.blocked[j] == 0 && !mixed) continue;
+      const double u = cube.clampedCosine(j, normal);
+      if (s.blocked[j] > 0) s.coeffs[j] = float(u * s.blockedWeight[j] / s.totalWeight[j]);
+      if (mixed) {
+        const double p = double(b) / c;
+        variance += u * u * p * (1 - p) / s.cast[j];
+      }
+    }
+  }
+  // The smaller half (haar_rows.hpp): past half its sky occluded (Σ_j U_j = 1), the visible
+  // part T_j = U_j − D_j over every texel above the horizon.
+  double occluded = 0;
+  for (float d : s.coeffs) occluded += d;
+  haar::HaarRowKind kind = haar::HaarRowKind::Occluded;
+  if (occluded > haar::kVisibleRowAbove) {
+    kind = haar::HaarRowKind::Visible;
+    for (int f = 0; f < 6; ++f) {
+      const haar::CubeTexels::FaceSide side = cube.faceSide(f, q.normal);
+      const auto first = std::uint32_t(std::size_t(f) * faceTexels);
+      for (std::uint32_t j = first; j < first + faceTexels; ++j) {
+        if (side == haar::CubeTexels::FaceSide::Below ||
+            (side == haar::CubeTexels::FaceSide::Across && !cube.aboveHorizon(j, normal))) {
+          s.coeffs[j] = 0.0f;
+          continue;
+        }
+        s.coeffs[j] = float(cube.clampedCosine(j, normal)) - s.coeffs[j];
+      }
+    }
   }
   haar::forward(s.coeffs.data(), n);
-  haar::pruneRow(s.coeffs.data(), n, std::size_t(setup.settings.haar.terms), out, s.order);
+  haar::pruneRow(s.coeffs.data(), n, std::size_t(setup.settings.haar.terms), kind, out, s.order);
   return variance / (4.0 * kPi);
 }
 
@@ -96,7 +174,7 @@ template <typename PointOf>
 std::uint64_t computeRows(const Occluder& occluder, const HaarSetup& setup, std::size_t rows,
                           const PointOf& pointOf, float* out, double* variance,
                           Progress* progress) {
-  const std::size_t stride = 2 * std::size_t(setup.settings.haar.terms);
+  const std::size_t stride = haar::haarRowFloats(setup.settings.haar.terms);
   std::atomic<std::uint64_t> rays{0};
   parallelFor(rows, kRowGrain, [&](std::size_t b, std::size_t e) {
     if (progress) progress->check();

@@ -54,8 +54,14 @@ TEST(BakeFileHaar, RoundTripsExactly) {
   EXPECT_EQ(std::memcmp(c.values().data(), a.values().data(), a.values().size() * 4), 0);
   EXPECT_EQ(r.transfers[0].settings().haar, (TransferShape::HaarSize{8, 20}));
   EXPECT_NE(transferStorage(r.transfers[0]).find("_PRT_SHADOWED_HAAR_"), std::string::npos);
-  // As stored: 4 bytes a row and 4 a term (16-bit index and value).
-  EXPECT_EQ(c.bytes(), c.rowCount() * (4 + 20 * 4));
+  // As stored: 5 bytes a row (scale, kind) and 4 a term (16-bit index and value).
+  EXPECT_EQ(c.bytes(), c.rowCount() * (5 + 20 * 4));
+  // Both kinds of row are there (haar_rows.hpp): the plane's open vertices store their shadow,
+  // the sphere's underside, facing the plane, its window on the sky.
+  int kinds[2] = {0, 0};
+  for (std::size_t r = 0; r < c.rowCount(); ++r) ++kinds[c.row(r)[0] == 1.0f];
+  EXPECT_GT(kinds[0], 0);
+  EXPECT_GT(kinds[1], 0);
 }
 
 TEST(BakeFileHaar, SplitBakesMergeIntoTheWhole) {
@@ -77,19 +83,19 @@ TEST(BakeFileHaar, BrokenRowsAreRefusedByName) {
   float* v = b.transfers[0].transfer.mutableValues();
   const std::size_t stride = b.transfers[0].transfer.stride();
   std::size_t row = 0;
-  while (v[row * stride + 1] == 0.0f) ++row;  // a row with a kept term
-  const float saved = v[row * stride];
-  v[row * stride] = 384.0f;  // 6·8² = 384 coefficients
+  while (v[row * stride + 2] == 0.0f) ++row;  // a row with a kept term
+  const float saved = v[row * stride + 1];
+  v[row * stride + 1] = 384.0f;  // 6·8² = 384 coefficients
   const std::string w = testing::errorOf([&] { encodeBake(b); });
   EXPECT_NE(w.find("row " + std::to_string(row)), std::string::npos) << w;
   // ...and when read: the 16-bit indices follow the rows' scales; mark the row's last kept term
   // with the cube's last coefficient (still ascending), find it in the file and put one past
   // the cube in its place.
-  v[row * stride] = saved;
+  v[row * stride + 1] = saved;
   std::size_t last = 0;
-  while (last + 1 < 20 && v[row * stride + 2 * (last + 1) + 1] != 0.0f) ++last;
-  ASSERT_LT(v[row * stride + 2 * last], 383.0f);
-  v[row * stride + 2 * last] = 383.0f;
+  while (last + 1 < 20 && v[row * stride + 2 * (last + 1) + 2] != 0.0f) ++last;
+  ASSERT_LT(v[row * stride + 1 + 2 * last], 383.0f);
+  v[row * stride + 1 + 2 * last] = 383.0f;
   std::string bytes = encodeBake(b);
   const std::uint16_t mark = 383, bad = 384;
   std::size_t at = std::string::npos;
@@ -110,7 +116,7 @@ TEST(BakeFileHaar, RowsLieOnTheirQuantisationGrid) {
   const BakeFile b = haarBake();
   const Transfer& t = b.transfers[0].transfer;
   for (std::size_t r = 0; r < t.rowCount(); ++r) {
-    const float* p = t.row(r);
+    const float* p = t.row(r) + 1;  // past the kind
     float s = 0;
     for (int k = 0; k < 20; ++k) s = std::max(s, std::abs(p[2 * k + 1]));
     for (int k = 0; k < 20; ++k) {

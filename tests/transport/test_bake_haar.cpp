@@ -36,8 +36,9 @@ TEST(BakeHaar, UnshadowedAndConvexRowsHoldNoTerms) {
   for (TransferMode mode : {TransferMode::Unshadowed, TransferMode::Shadowed}) {
     const Transfer t = bake(sphere, *occ, haarSettings(mode, 8, 16));
     ASSERT_TRUE(t.isHaar());
-    EXPECT_EQ(t.stride(), 32u);
-    for (float x : t.values()) ASSERT_EQ(x, 0.0f) << toString(mode);  // D = 0: padding only
+    EXPECT_EQ(t.stride(), 33u);
+    // D = 0: an occluded-part row (kind 0) of padding only.
+    for (float x : t.values()) ASSERT_EQ(x, 0.0f) << toString(mode);
   }
 }
 
@@ -64,6 +65,35 @@ TEST(BakeHaar, SphereAbovePlaneOccludesRatioSquared) {
   EXPECT_NEAR(out[0].x, 1.0 - (r / h) * (r / h), 3 * stats.stdErrConstMax + 2e-3);
   // Every kept term is a coefficient of the cube, in ascending order.
   EXPECT_NO_THROW(t.check("haar"));
+}
+
+TEST(BakeHaar, EveryRowSeesTheSkyTheShBakeSees) {
+  // Under the constant light L = 1 every row relights to its cosine-weighted visible fraction,
+  // which the SH bake estimates independently as √(4π) T₀: both kinds of row (the open ones
+  // storing their shadow, those facing the plane their window on the sky) must agree with it.
+  const Mesh mesh = builtinScene("builtin:sphere-plane?grid=16&subdiv=3");
+  const auto occ = makeEmbreeOccluder(mesh);
+  const Transfer haarT = bake(mesh, *occ, haarSettings(TransferMode::Shadowed, 16, 1536, 4));
+  BakeSettings ss;
+  ss.mode = TransferMode::Shadowed;
+  ss.bands = 1;
+  ss.samples = 4096;
+  const Transfer shT = bake(mesh, *occ, ss);
+  const envmap::Environment white =
+      envmap::Environment::analytic([](const Vec3f&) { return Rgb(1.0f); }, {});
+  const std::vector<Rgb> relit =
+      relight::relightHaar(haarT, haar::projectLight(white, 16, 1536), mesh.normals, {});
+  double sq = 0, worst = 0;
+  int visibleRows = 0;
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+    const double sh = shT.row(v)[0] * std::sqrt(4 * kPi), d = relit[v].x - sh;
+    sq += d * d;
+    worst = std::max(worst, std::abs(d));
+    visibleRows += haarT.row(v)[0] == 1.0f;
+  }
+  EXPECT_GT(visibleRows, 10);
+  EXPECT_LT(std::sqrt(sq / double(mesh.vertexCount())), 0.01);
+  EXPECT_LT(worst, 0.08);
 }
 
 TEST(BakeHaar, DeterministicOverThreadsAndRanges) {
@@ -109,9 +139,11 @@ TEST(HaarRows, PruneKeepsTheLargestWeightedTermsInIndexOrder) {
   c[17] = -3.0f;  // face 1
   c[40] = 0.25f;
   c[90] = 1.0f;
-  std::vector<std::uint32_t> order;
-  std::vector<float> out(6);
-  haar::pruneRow(c.data(), n, 3, out.data(), order);
+  std::vector<std::pair<float, std::uint32_t>> order;
+  std::vector<float> row(haar::haarRowFloats(3));
+  haar::pruneRow(c.data(), n, 3, haar::HaarRowKind::Visible, row.data(), order);
+  EXPECT_EQ(row[0], 1.0f);  // the kind
+  const float* out = row.data() + 1;
   // Weighted magnitudes |c|·side; the three largest, in ascending index.
   std::vector<std::pair<double, std::uint32_t>> w;
   for (std::uint32_t k : {5u, 17u, 40u, 90u})
@@ -124,25 +156,29 @@ TEST(HaarRows, PruneKeepsTheLargestWeightedTermsInIndexOrder) {
     EXPECT_EQ(out[std::size_t(2 * t)], float(expect[std::size_t(t)]));
     EXPECT_NEAR(out[std::size_t(2 * t + 1)], c[expect[std::size_t(t)]], 3.0f / 32767);
   }
-  EXPECT_NO_THROW(haar::checkRow(out.data(), n, 3, 0, "row"));
+  EXPECT_NO_THROW(haar::checkRow(row.data(), n, 3, 0, "row"));
   // Fewer non-zeros than the budget: padding (0, 0) after them.
-  std::vector<float> wide(12);
-  haar::pruneRow(c.data(), n, 6, wide.data(), order);
-  EXPECT_EQ(wide[8], 0.0f);
+  std::vector<float> wide(haar::haarRowFloats(6));
+  haar::pruneRow(c.data(), n, 6, haar::HaarRowKind::Occluded, wide.data(), order);
+  EXPECT_EQ(wide[0], 0.0f);
   EXPECT_EQ(wide[9], 0.0f);
+  EXPECT_EQ(wide[10], 0.0f);
   EXPECT_NO_THROW(haar::checkRow(wide.data(), n, 6, 0, "row"));
   // Broken rows are named.
-  std::vector<float> bad = out;
-  bad[2] = bad[0];  // not ascending
+  std::vector<float> bad = row;
+  bad[3] = bad[1];  // not ascending
   EXPECT_THROW(haar::checkRow(bad.data(), n, 3, 0, "row"), Error);
-  bad = out;
-  bad[0] = 96.0f;  // past 6·4²
+  bad = row;
+  bad[1] = 96.0f;  // past 6·4²
   EXPECT_THROW(haar::checkRow(bad.data(), n, 3, 0, "row"), Error);
-  bad = out;
-  bad[0] = 1.5f;  // not integral
+  bad = row;
+  bad[1] = 1.5f;  // not integral
+  EXPECT_THROW(haar::checkRow(bad.data(), n, 3, 0, "row"), Error);
+  bad = row;
+  bad[0] = 2.0f;  // no such kind
   EXPECT_THROW(haar::checkRow(bad.data(), n, 3, 0, "row"), Error);
   bad = wide;
-  bad[8] = 7.0f;  // padding with an index
+  bad[9] = 7.0f;  // padding with an index
   EXPECT_THROW(haar::checkRow(bad.data(), n, 6, 0, "row"), Error);
 }
 

@@ -16,6 +16,7 @@
 // f(d̂) · (2/N)² / |d|³ estimates ∫_texel f dω without bias.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -53,13 +54,35 @@ class CubeTexels {
   bool aboveHorizon(std::uint32_t j, const Vec3d& normal) const;
 
   /// A direction in texel j from (u, v) ∈ [0, 1)², uniform on the texel's square of the face
-  /// plane, and the weight (2/N)²/|d|³ by which f(direction) estimates ∫_texel f dω.
+  /// plane, and the weight (2/N)²/|d|³ by which f(direction) estimates ∫_texel f dω. In float,
+  /// from the face's plane (its centre and axes, stored once).
   Vec3f sample(std::uint32_t j, float u, float v, float& weight) const;
+  /// The same for the texel (x, y) of `face` (no division: the bake's loop knows them).
+  Vec3f sample(int face, int x, int y, float u, float v, float& weight) const {
+    const float step = 2.0f / float(n_);
+    const float s = -1.0f + step * (float(x) + u), t = -1.0f + step * (float(y) + v);
+    const FacePlane& p = faces_[std::size_t(face)];
+    const Vec3f d = p.centre + p.s * s + p.t * t;
+    const float inv = 1.0f / std::sqrt(dot(d, d));
+    weight = step * step * inv * inv * inv;
+    return d * inv;
+  }
+
+  /// How face f lies against the horizon of a unit normal: wholly below (no texel above it),
+  /// wholly above (every texel above it) or across it (a faces's quad is convex, so its corners
+  /// say).
+  enum class FaceSide { Below, Above, Across };
+  FaceSide faceSide(int face, const Vec3f& normal) const;
 
  private:
   int n_ = 0;
   std::vector<TexelGeometry> texels_;
   std::vector<double> omega_;
+  struct FacePlane {
+    Vec3f centre, s, t;            ///< d(s, t) = centre + s·S + t·T at unit distance
+    std::array<Vec3f, 4> corners;  ///< unit
+  };
+  std::array<FacePlane, 6> faces_;
 };
 
 /// ∫_P max(n·ω, 0) dω over the convex spherical polygon with unit vertices `v` (its edges great

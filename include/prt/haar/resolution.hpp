@@ -2,6 +2,7 @@
 // The sizes of the Haar basis (cube_haar.hpp), header-only so that a transfer's shape can state
 // and check them without linking the basis.
 
+#include <bit>
 #include <cstddef>
 
 namespace prt::haar {
@@ -26,9 +27,8 @@ constexpr int supportSide(std::size_t index, int resolution) {
   const std::size_t n = std::size_t(resolution), r = index % (n * n);
   const std::size_t x = r % n, y = r / n, m = x > y ? x : y;
   if (m == 0) return resolution;
-  std::size_t h = 1;
-  while (2 * h <= m) h *= 2;  // the level's block: details of level h sit in [h, 2h)
-  return int(n / h);
+  // The level's block: details of level h sit in [h, 2h), h the highest power of two ≤ m.
+  return int(n / std::bit_floor(m));
 }
 
 }  // namespace prt::haar

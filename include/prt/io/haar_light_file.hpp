@@ -2,7 +2,7 @@
 // Haar light files: `prt light ENV --basis haar` (haar/haar_light.hpp) on disk, JSON:
 //   {"basis": "haar", "resolution": N, "selection": "area", "energyKept": 0.9999,
 //    "terms": [[index, r, g, b], … K rows, ascending index < 6 N²],
-//    "unshadowed": {"bands": 12, "coefficients": [[r, g, b], … 144 rows],
+//    "unshadowed": {"bands": 5, "coefficients": [[r, g, b], … 25 rows],
 //                   "bright": [[texel, r, g, b], … at most 16]},
 //    "source": "studio.exr", "layout": "latlong", "rotation": [x, y, z] (Euler degrees),
 //    "prtkit_version": "0.1.0"}

@@ -1,13 +1,15 @@
 #pragma once
 // Relighting Haar transfer (prt/transfer/shape.hpp's Haar basis; Ng, Ramamoorthi & Hanrahan
-// 2003, §6): exit radiance per row, the unshadowed part from the light's SH in closed form less
-// the occlusion as the product of two sparse vectors of wavelet coefficients,
-//     R(p) = kd(p) ⊙ ( Σ_lm (A_l/π) L_lm Y_lm(n_p) − Σ_t D̃_t(p) L̃[k_t(p)] )
-// over the row's `terms` pairs (k_t, D̃_t), against the light's K terms laid out densely (6 N² RGB
-// values, zeros where no term is kept: 72 KiB at N = 32, resident in cache while every row walks
-// its pairs) and its kUnshadowedBands-band SH. Organised by row, not by light coefficient as the
-// paper's loop was: each row's pairs are contiguous, each output written once, and the cost is
-// one gather per kept transfer term whatever K, plus the SH of the normal (docs/performance.md).
+// 2003, §6): exit radiance per row from its sparse wavelet terms and the light's,
+//     occluded-part row   R(p) = kd(p) ⊙ ( U(n_p)·L − Σ_t D̃_t(p) L̃[k_t(p)] )
+//     visible-part row    R(p) = kd(p) ⊙ Σ_t T̃_t(p) L̃[k_t(p)]
+// with U(n)·L = Σ_b L_b U_b(n) + Σ_lm (A_l/π) L'_lm Y_lm(n), the light's brightest texels exactly
+// and the rest in SH (haar/haar_light.hpp), against the light's K terms laid out densely (6 N²
+// RGB values, zeros where no term is kept: 72 KiB at N = 32, resident in cache while every row
+// walks its pairs). Organised by row, not by light coefficient as the paper's loop was: each
+// row's pairs are contiguous, each output written once, and the cost is one gather per kept
+// transfer term whatever K, plus, for an occluded-part row, the SH of its normal and the bright
+// texels' cosine integrals (docs/performance.md).
 
 #include <span>
 #include <vector>

@@ -26,12 +26,13 @@
 //
 // Basis: spherical harmonics of B bands (everything above), or Haar wavelets over a cube map
 // of N² texels per face (prt/haar/cube_haar.hpp; Ng, Ramamoorthi & Hanrahan 2003): a Haar row
-// is the *occluded* part of diffuse transfer over the 6 N² texels,
-//   D_j(p) = (1/π) ∫_texel j (1 − V(p,ω)) max(n·ω,0) dω   (= U_j − T_j),
-// wavelet-transformed and pruned to its `terms` largest coefficients, stored as `terms`
-// (index, value) float pairs (prt/transfer/haar_rows.hpp). Relighting adds the unshadowed part
-// from the light's SH in closed form (prt/haar/haar_light.hpp):
-//   R(p) = albedo(p) ⊙ ( Σ_lm (A_l/π) L_lm Y_lm(n) − Σ_k D̃_k L̃_k ).
+// holds the smaller half of diffuse transfer over the 6 N² texels — the occluded part
+//   D_j(p) = (1/π) ∫_texel j (1 − V(p,ω)) max(n·ω,0) dω   (= U_j − T_j)
+// of a mostly open row, or the visible part T_j of a mostly closed one — wavelet-transformed,
+// pruned to its `terms` largest coefficients and stored as a kind and `terms` (index, value)
+// float pairs (prt/transfer/haar_rows.hpp). Relighting (prt/relight/relight_haar.hpp):
+//   R(p) = albedo(p) ⊙ ( U(n)·L − Σ_k D̃_k L̃_k )   or   albedo(p) ⊙ Σ_k T̃_k L̃_k,
+// the unshadowed part U(n)·L from the light in closed form (prt/haar/haar_light.hpp).
 // A Haar shape has no bands (0) and one channel.
 //
 // Memory: 4·B²·C bytes per row for vectors, 4·B⁴·C for matrices (9 bands, 1M vertices, RGB
@@ -128,7 +129,7 @@ struct TransferShape {
   /// Coefficients of the basis: B² (SH) or 6 N² (Haar).
   int coeffs() const;
   bool isMatrix() const { return layout == TransferLayout::Matrix; }
-  /// Values per row per channel: B² (vector), B⁴ (matrix) or 2 · terms (Haar).
+  /// Values per row per channel: B² (vector), B⁴ (matrix) or 1 + 2 · terms (Haar).
   std::size_t rowSize() const;
   /// Floats per row, all channels.
   std::size_t stride() const { return rowSize() * static_cast<std::size_t>(channels); }
