@@ -43,9 +43,10 @@ HaarRow demoHaarRow(const Mesh& mesh, const Occluder& occluder, const BakedTrans
   HaarRow row;
   row.bands = shadowed.transfer.bands();
   row.resolution = kResolution;
-  // The same bytes per vertex: 4 B² of SH; a Haar row's scale and 4 bytes a term.
+  // The same bytes per vertex at most: 4 B² of SH; a Haar row's as stored (haar_rows.hpp).
   const std::size_t shBytes = shadowed.transfer.stride() * sizeof(float);
-  row.terms = int(std::max<std::size_t>(1, (shBytes - 4) / 4));
+  row.terms = 1;
+  while (haar::storedHaarRowBytes(kResolution, row.terms + 1) <= shBytes) ++row.terms;
   row.lightTerms = kLightTerms;
   row.referenceSamples = a.referenceSamples;
   BakeSettings hs;
@@ -106,8 +107,8 @@ HaarRow demoHaarRow(const Mesh& mesh, const Occluder& occluder, const BakedTrans
          {std::pair{&shShade, L.sh.image}, std::pair{&haarShade, L.haar.image}})
       image::writeImage((std::filesystem::path(folder) / image).string(),
                         render::tracePrimary(camera, frame, occluder, *shade, bg), wo);
-    info(fmt::format("demo: Haar row under {}: SH {:.1f}% vs Haar {:.1f}% rel. RMSE at {} B",
-                     L.environment, 100 * L.sh.relRmse, 100 * L.haar.relRmse, shBytes));
+    info(fmt::format("demo: Haar row under {}: SH {:.1f}% ({} B) vs Haar {:.1f}% ({} B) rel. RMSE",
+                     L.environment, 100 * L.sh.relRmse, shBytes, 100 * L.haar.relRmse, haarBytes));
     row.lights.push_back(std::move(L));
   }
   row.seconds = since(t0);
