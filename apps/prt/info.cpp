@@ -133,10 +133,12 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     const std::size_t dense = x.stride() * sizeof(float);
     if (x.isHaar())
       out << fmt::format(
-          "  {}: vector (diffuse, its occluded part), Haar wavelets over a {}² cube ({} "
-          "coefficients), the {} largest kept per {} as (index, value) pairs, {} per {}, {}\n",
+          "  {}: vector (diffuse; each row its occluded or its visible part), Haar wavelets "
+          "over a {}² cube ({} coefficients), the {} largest kept per {}, {} per {} as stored, "
+          "{}\n",
           toString(s.mode), x.shape().haar.resolution, x.coeffs(), x.shape().haar.terms, per,
-          bytesText(dense), per, transferStorage(t));
+          bytesText(x.bytes() / std::max<std::size_t>(x.rowCount(), 1)), per,
+          transferStorage(t));
     else if (x.isMatrix())
       out << fmt::format(
           "  {}: matrix ({}), {} bands ({}x{} per {}) x {} channel(s), {} per {}, {}\n",
