@@ -45,9 +45,7 @@ void renderHaarBake(const BakeFile& bake, const BakedTransfer& baked, const Mate
   const std::vector<Rgb> albedoAtRows = albedoAtVertices(bake.mesh);
   const std::vector<Rgb> radiance =
       relight::relightHaar(transfer, light, bake.mesh.normals, material.diffuseOr(albedoAtRows));
-  for (std::size_t v = 0; v < radiance.size(); ++v)
-    if (!isFinite(radiance[v]))
-      throw Error(a.bake, "the radiance of vertex " + std::to_string(v) + " is not finite");
+  render::checkFiniteRadiance(radiance, a.bake);
 
   const auto occluder = makeEmbreeOccluder(bake.mesh);
   const render::ShadeFn shade = render::vertexRadianceShader(bake.mesh, radiance);

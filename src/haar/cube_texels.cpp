@@ -23,8 +23,8 @@ Vec3d polygonMoment(const Vec3d* v, int count) {
   return sum * 0.5;
 }
 
-}  // namespace
-
+/// ∫_P max(n·ω, 0) dω over the convex spherical polygon with unit vertices `v` (its edges great
+/// arcs), clipped to n's hemisphere: Lambert's formula (the header).
 double polygonClampedCosine(const Vec3d* v, int count, const Vec3d& n) {
   // Sutherland–Hodgman against the plane n·ω = 0; a crossing edge meets it at
   // ((n·a) b − (n·b) a) / (n·a − n·b) (normalised): both weights positive, so the point of the
@@ -45,6 +45,8 @@ double polygonClampedCosine(const Vec3d* v, int count, const Vec3d& n) {
   if (m < 3) return 0.0;
   return std::abs(dot(n, polygonMoment(clipped.data(), m)));
 }
+
+}  // namespace
 
 TexelGeometry texelGeometry(std::uint32_t j, int n) {
   const CubeTexel t = cubeTexel(j, n);

@@ -25,6 +25,7 @@
 #include "prt/render/texel_points.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/rotate.hpp"
+#include "validation_errors.hpp"
 
 namespace prt::render {
 
@@ -202,16 +203,6 @@ void relightProbeRows(const Transfer& probes, const sh::RgbSh& light, const Mat3
   }
 }
 
-/// Per-vertex values as a one-row image, so render::metrics applies unchanged.
-image::Image row(const std::vector<Rgb>& v) {
-  image::Image img(static_cast<int>(v.size()), 1);
-  std::copy(v.begin(), v.end(), img.pixels.begin());
-  return img;
-}
-
-double sumSq(const Rgb& c) {
-  return double(c.x) * c.x + double(c.y) * c.y + double(c.z) * c.z;
-}
 
 /// The light PRT relights with at b bands: the first b² coefficients of `light`, windowed at b
 /// bands as `prt light --bands b --window W` would; `factors` receives the window's per-band
@@ -308,38 +299,6 @@ void checkReference(const envmap::Environment& env, ValidationReport& rep) {
         "errors are undefined (n/a)");
 }
 
-/// The relative-RMSE metric over the validated vertices: per vertex and channel the weight
-/// 1 / (R_ref² + ε), ε = 10⁻² mean(R_ref)², and the reference's own noise in it.
-struct Metric {
-  const std::vector<Rgb>& ref;
-  const std::vector<Rgb>& stdError;
-  double meanRef = 0;
-  double eps = 0;
-
-  Metric(const std::vector<Rgb>& reference, const std::vector<Rgb>& se)
-      : ref(reference), stdError(se) {
-    for (const Rgb& c : ref) meanRef += (double(c.x) + c.y + c.z) / 3.0;
-    meanRef /= double(std::max<std::size_t>(ref.size(), 1));
-    eps = 1e-2 * meanRef * meanRef + 1e-30;
-  }
-  double weight(std::size_t i, int c) const { return 1.0 / (double(ref[i][c]) * ref[i][c] + eps); }
-  /// What an exact transfer's squared rel RMSE would be at vertex entry i: the reference noise.
-  double noiseSq(std::size_t i) const {
-    double s = 0;
-    for (int c = 0; c < 3; ++c) s += double(stdError[i][c]) * stdError[i][c] * weight(i, c);
-    return s / 3.0;
-  }
-  /// Σ_c (R − R_ref)² weight / 3 at vertex entry i.
-  double errorSq(std::size_t i, const Rgb& prt) const {
-    double a = 0;
-    for (int c = 0; c < 3; ++c) {
-      const double d = double(prt[c]) - ref[i][c];
-      a += d * d * weight(i, c) / 3.0;
-    }
-    return a;
-  }
-};
-
 /// The floor's vertices: an even stride of at most `count` of the validated ones (an RMS over
 /// vertices; a thousand estimate it to a few per cent of itself), as positions among them.
 std::vector<std::size_t> floorEntries(std::size_t validated, std::size_t count) {
@@ -393,33 +352,17 @@ void fillFloor(BandRow& r, const Metric& metric, const ReferenceResult& floorRun
   r.explained = errSq > 0 ? std::sqrt(std::max(0.0, fSq + noise / count) / (errSq / count)) : 1.0;
 }
 
-/// The error columns of row r over every validated vertex, and the per-vertex error `err`; a
-/// vertex counts as negative where `counted` and some channel is below `negativeBelow`.
+/// The error columns of row r over every validated vertex, and the per-vertex error `err`
+/// (errorColumns, validation_errors.hpp).
 void fillErrors(BandRow& r, std::vector<float>& err, const Metric& metric,
                 const std::vector<Rgb>& prt, const std::vector<char>& counted, double negativeBelow,
                 std::size_t negativeVertices) {
-  const std::vector<Rgb>& ref = metric.ref;
-  const std::size_t n = ref.size();
-  err.assign(n, 0.0f);
-  double sum = 0, mx = 0, diffEnergy = 0, refEnergy = 0;
-  std::size_t negative = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double d2 = sumSq(prt[i] - ref[i]), r2 = sumSq(ref[i]);
-    const double e = std::sqrt(d2 / (r2 + 3 * metric.eps));
-    err[i] = static_cast<float>(e);
-    sum += e;
-    mx = std::max(mx, e);
-    diffEnergy += d2;
-    refEnergy += r2;
-    if (counted[i] && std::min({prt[i].x, prt[i].y, prt[i].z}) < negativeBelow) ++negative;
-  }
-  r.relRmse = relativeRmse(row(prt), row(ref), metric.eps);
-  // Energy-weighted: ‖R_b − R_ref‖ / ‖R_ref‖ over all vertices and channels, i.e. e(p)² weighted
-  // by each vertex's share of the reference energy (no ε): bright vertices count most.
-  r.energyRel = refEnergy > 0 ? std::sqrt(diffEnergy / refEnergy) : 0.0;
-  r.meanRel = sum / double(std::max<std::size_t>(n, 1));
-  r.maxRel = mx;
-  r.negativeShare = negativeVertices > 0 ? double(negative) / double(negativeVertices) : 0.0;
+  const ErrorColumns e = errorColumns(metric, prt, counted, negativeBelow, negativeVertices, &err);
+  r.relRmse = e.relRmse;
+  r.energyRel = e.energyRel;
+  r.meanRel = e.meanRel;
+  r.maxRel = e.maxRel;
+  r.negativeShare = e.negativeShare;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "prt/haar/project_light.hpp"
 #include "prt/relight/relight_haar.hpp"
 #include "prt/render/validate.hpp"
+#include "validation_errors.hpp"
 
 namespace prt::render {
 
@@ -45,19 +46,14 @@ HaarValidationReport validateHaar(const Mesh& mesh, const Occluder& occluder,
                                           : renderReference(mesh, occluder, env, rs, progress);
   }
   const auto& verts = rep.reference.vertices;
-  const auto& ref = rep.reference.radiance;
   const std::size_t count = verts.size();
-  double mean = 0;
-  for (const Rgb& c : ref) mean += (double(c.x) + c.y + c.z) / 3.0;
-  mean /= double(std::max<std::size_t>(count, 1));
-  const double eps = 1e-2 * mean * mean + 1e-30;
+  // The SH table's metric (validation_errors.hpp), over the same vertices.
+  const Metric metric(rep.reference.radiance, rep.reference.stdError);
   double noise = 0;
-  for (std::size_t i = 0; i < count; ++i)
-    for (int c = 0; c < 3; ++c)
-      noise += double(rep.reference.stdError[i][c]) * rep.reference.stdError[i][c] /
-               (double(ref[i][c]) * ref[i][c] + eps);
-  rep.refStdErr = std::sqrt(noise / double(3 * std::max<std::size_t>(count, 1)));
-  if (!(mean > 0))
+  for (std::size_t i = 0; i < count; ++i) noise += metric.noiseSq(i);
+  rep.refStdErr = std::sqrt(noise / double(std::max<std::size_t>(count, 1)));
+  const std::vector<char> counted(count, 1);
+  if (!(metric.meanRef > 0))
     rep.warnings.push_back("the reference is zero at every validated vertex: relative errors "
                            "are undefined");
 
@@ -80,33 +76,20 @@ HaarValidationReport validateHaar(const Mesh& mesh, const Occluder& occluder,
     HaarRow row;
     row.lightTerms = k;
     row.energyKept = light.energyKept;
-    double sq = 0, diff = 0, energy = 0, sum = 0, mx = 0;
-    std::size_t negative = 0;
+    std::vector<Rgb> atVertices(count);
     for (std::size_t i = 0; i < count; ++i) {
-      const Rgb& p = relit[verts[i]];
-      if (!isFinite(p))
+      atVertices[i] = relit[verts[i]];
+      if (!isFinite(atVertices[i]))
         throw Error(settings.bakeName, "the radiance of vertex " + std::to_string(verts[i]) +
                                            " is not finite");
-      double d2 = 0, r2 = 0;
-      for (int c = 0; c < 3; ++c) {
-        const double d = double(p[c]) - ref[i][c];
-        sq += d * d / (double(ref[i][c]) * ref[i][c] + eps);
-        d2 += d * d;
-        r2 += double(ref[i][c]) * ref[i][c];
-      }
-      diff += d2;
-      energy += r2;
-      const double e = std::sqrt(d2 / (r2 + 3 * eps));
-      sum += e;
-      mx = std::max(mx, e);
-      if (std::min({p.x, p.y, p.z}) < -1e-3 * mean) ++negative;
     }
-    const double nn = double(std::max<std::size_t>(count, 1));
-    row.relRmse = std::sqrt(sq / (3 * nn));
-    row.energyRel = energy > 0 ? std::sqrt(diff / energy) : 0.0;
-    row.meanRel = sum / nn;
-    row.maxRel = mx;
-    row.negativeShare = double(negative) / nn;
+    const ErrorColumns e =
+        errorColumns(metric, atVertices, counted, -1e-3 * metric.meanRef, count);
+    row.relRmse = e.relRmse;
+    row.energyRel = e.energyRel;
+    row.meanRel = e.meanRel;
+    row.maxRel = e.maxRel;
+    row.negativeShare = e.negativeShare;
     rep.rows.push_back(row);
   }
   return rep;

@@ -150,7 +150,9 @@ TEST(CubeTexels, SamplesAreUnbiasedForTheSolidAngle) {
       const float a = u(rng), b = u(rng);
       const Vec3f d = cube.sample(j, a, b, w);
       // (At the texel's very edge rounding may tip the direction into the neighbour.)
-      if (a > 0.01f && a < 0.99f && b > 0.01f && b < 0.99f) ASSERT_EQ(texelOf(d, 8), j);
+      if (a > 0.01f && a < 0.99f && b > 0.01f && b < 0.99f) {
+        ASSERT_EQ(texelOf(d, 8), j);
+      }
       sum += w;
     }
     EXPECT_NEAR(sum / k, cube.solidAngle(j), 2e-3 * cube.solidAngle(j)) << j;

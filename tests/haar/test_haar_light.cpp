@@ -108,7 +108,9 @@ TEST(HaarLight, TermsAreTheLargestByTheirRule) {
       smallestKept = std::min(smallestKept, score(k));
     }
     for (std::size_t k = 0; k < dense.size(); ++k)
-      if (!kept[k]) ASSERT_LE(score(k), smallestKept) << toString(sel) << " " << k;
+      if (!kept[k]) {
+        ASSERT_LE(score(k), smallestKept) << toString(sel) << " " << k;
+      }
     EXPECT_LT(l.energyKept, 1.0);
     EXPECT_GT(l.energyKept, 0.5);
   }

@@ -85,8 +85,4 @@ class CubeTexels {
   std::array<FacePlane, 6> faces_;
 };
 
-/// ∫_P max(n·ω, 0) dω over the convex spherical polygon with unit vertices `v` (its edges great
-/// arcs), clipped to n's hemisphere: Lambert's formula above. Exposed for the tests.
-double polygonClampedCosine(const Vec3d* v, int count, const Vec3d& normal);
-
 }  // namespace prt::haar

@@ -51,7 +51,6 @@ struct HaarLight {
   double energyKept = 1;
 
   std::size_t terms() const { return index.size(); }
-  bool empty() const { return resolution == 0; }
   /// The 6 N² coefficients with zeros where no term is kept.
   std::vector<Rgb> dense() const;
   /// Throws prt::Error("WHAT: ...") unless the resolution is valid, indices ascend below 6 N²,
