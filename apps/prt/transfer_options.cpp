@@ -4,6 +4,7 @@
 
 #include "cli.hpp"
 #include "prt/core/error.hpp"
+#include "prt/io/haar_light_file.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/core/band_limits.hpp"
 
@@ -82,9 +83,12 @@ void warnLobeEnergyLoss(const Material& m, int bands, const std::string& file) {
 
 void refuseShLight(const std::string& light, const std::string& verb) {
   if (io::isLightFile(light))
-    throw Error(light, "is an SH light file; prt " + verb +
+    throw Error(light, std::string(io::isHaarLightFile(light) ? "is a Haar light file"
+                                                              : "is an SH light file") +
+                           "; prt " + verb +
                            " traces the environment itself (an image, a face folder or "
-                           "builtin:NAME), whose radiance SH coefficients only approximate");
+                           "builtin:NAME), whose radiance a light file's coefficients only "
+                           "approximate");
 }
 
 }  // namespace prt::cli
