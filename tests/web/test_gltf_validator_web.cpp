@@ -82,14 +82,15 @@ TEST_F(GltfValidatorWeb, EveryBakeIsValidGltf) {
         std::string("compress texels.glb --clusters 4 --pca 2 -o texels-cpca.glb"),
         std::string("probes 'builtin:cornell?grid=6' --grid 3x2x2 --samples 8 -o probes.glb"),
         std::string("probes 'builtin:cornell?grid=6' --grid 3x2x2 --samples 8 --range 0:5 "
-                    "-o probes-range.glb")}) {
+                    "-o probes-range.glb"),
+        "bake " + scene + " --mode shadowed --basis haar --resolution 8 --terms 16 -o haar.glb"}) {
     const Result r = prt("-q " + cmd);
     ASSERT_EQ(r.rc, 0) << cmd << ": " << r.err;
   }
   const Json report = validate(
       "vectors.glb rgb.glb matrix.glb cpca.glb range.glb texels.glb texels-cpca.glb probes.glb "
-      "probes-range.glb");
-  ASSERT_EQ(report.size(), 9u);
+      "probes-range.glb haar.glb");
+  ASSERT_EQ(report.size(), 10u);
   expectValidWithOurExtension(report);
 }
 
