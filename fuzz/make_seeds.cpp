@@ -19,9 +19,12 @@
 #include <zlib.h>
 
 #include "prt/compress/cpca.hpp"
+#include "prt/envmap/builtin.hpp"
 #include "prt/geometry/builtin.hpp"
+#include "prt/haar/project_light.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
+#include "prt/io/haar_light_file.hpp"
 #include "prt/io/light_file.hpp"
 #include "prt/io/reference_file.hpp"
 #include "prt/raytrace/occluder.hpp"
@@ -128,6 +131,25 @@ std::string bakeSeed(prt::TransferLayout layout, int bands, bool compressed,
   return prt::encodeBake(file);
 }
 
+/// A Haar bake (format 8: the quantised rows' four accessors) of the sphere over a plane, small:
+/// a 4² cube keeping 8 terms a vertex, both kinds of row.
+std::string haarBakeSeed() {
+  prt::BakeFile file;
+  file.mesh = prt::builtinScene("builtin:sphere-plane?grid=4&subdiv=0");
+  file.generator = "prtkit make_seeds";
+  const auto occluder = prt::makeEmbreeOccluder(file.mesh);
+  prt::BakeSettings s;
+  s.mode = prt::TransferMode::Shadowed;
+  s.basis = prt::TransferBasis::Haar;
+  s.haar = {4, 8};
+  s.samples = 1;
+  prt::BakedTransfer t;
+  t.recipe = s;
+  t.transfer = prt::bake(file.mesh, *occluder, s, &t.stats);
+  file.transfers.push_back(std::move(t));
+  return prt::encodeBake(file);
+}
+
 /// A per-texel bake of the builtin plane (a 2 × 2 grid, its packed lightmap chart) at 8 × 8
 /// texels: the lightmap, texel range and texel-row accessor of format 6.
 std::string texelBakeSeed() {
@@ -210,6 +232,13 @@ int main(int argc, char** argv) {
   put("light_json", "light.json", slurp(tmp / "light.json"));
   prt::io::writeLightGames202((tmp / "light.txt").string(), light.coefficients);
   put("light_txt", "light.txt", slurp(tmp / "light.txt"));
+  prt::io::HaarLightFile haarLight;
+  haarLight.light =
+      prt::haar::projectLight(prt::envmap::builtinEnvironment("builtin:sky", 64), 4, 12);
+  haarLight.source = "builtin:sky";
+  prt::io::writeHaarLightJson((tmp / "haar.json").string(), haarLight);
+  put("haar_light_json", "haar.json", slurp(tmp / "haar.json"));
+  put("light_json", "haar.json", slurp(tmp / "haar.json"));  // refused by name, not read
   prt::io::ReferenceFile ref;
   ref.bakeFile = "seed.glb";
   ref.meshVertices = 4;
@@ -241,6 +270,7 @@ int main(int argc, char** argv) {
   put("bake", "compressed_vector.glb", bakeSeed(prt::TransferLayout::Vector, 3, true));
   put("bake", "compressed_matrix.glb", bakeSeed(prt::TransferLayout::Matrix, 2, true));
   put("bake", "texels.glb", texelBakeSeed());
+  put("bake", "haar.glb", haarBakeSeed());
   put("gltf", "bake.glb", bakeSeed(prt::TransferLayout::Vector, 2, false));
   // A base-colour texture: the bake reader's and the glTF loader's image paths.
   put("bake", "textured.glb", bakeSeed(prt::TransferLayout::Vector, 2, false, true));

@@ -4,7 +4,7 @@
 # the first finding (the crashing input is left in build-fuzz/findings/TARGET/) and exits non-zero.
 #
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]     (targets: hdr exr ldr obj ply off gltf bake
-#                                                   light_json light_txt transport_txt material reference_json)
+#                                                   light_json haar_light_json light_txt transport_txt material reference_json)
 # The growing corpora stay in build-fuzz/corpus/TARGET/, so later runs continue where earlier
 # ones stopped; the committed regression inputs (fuzz/corpus/TARGET/) join the seeds. This is a
 # separate check, not part of ctest (ctest replays the seeds and the regression inputs with the
@@ -13,7 +13,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-20}
 shift || true
-all=(hdr exr ldr obj ply off gltf bake light_json light_txt transport_txt material reference_json)
+all=(hdr exr ldr obj ply off gltf bake light_json haar_light_json light_txt transport_txt material reference_json)
 [[ $# -gt 0 ]] && targets=("$@") || targets=("${all[@]}")
 build="$root/build-fuzz"
 jobs=${FUZZ_BUILD_JOBS:-2}

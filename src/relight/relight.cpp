@@ -80,6 +80,7 @@ namespace {
 /// view-dependent layouts, one position and normal per row and the material's bands.
 Albedo checkInputs(const Transfer& t, const PreparedLight& light, const PreparedMaterial& material,
                    const Surface& surface, std::span<Rgb> out) {
+  requireShTransfer(t);
   const std::size_t rows = t.rowCount();
   if (t.channels() != 1 && t.channels() != 3)
     throw Error("relight: the transfer has " + std::to_string(t.channels()) +
@@ -126,9 +127,16 @@ void relightPrepared(const Transfer& t, const PreparedLight& light,
   }
 }
 
+void requireShTransfer(const Transfer& t) {
+  if (t.isHaar())
+    throw Error("relight: the transfer is Haar wavelets (" + t.shape().describe() +
+                "); it is relit under a Haar light (relight::relightHaar), not SH coefficients");
+}
+
 RelightInfo relight(const Transfer& t, const sh::RgbSh& light, const Material& material,
                     const Surface& surface, const Vec3f& eye, std::span<Rgb> out,
                     const Mat3d& rotation) {
+  requireShTransfer(t);
   RelightInfo info;
   const int bands = std::min(light.bands, t.bands());
   PreparedLight p;

@@ -21,6 +21,7 @@ PreparedMaterial prepareFor(const Transfer& t, const Material& m) {
 
 Relighter::Relighter(Transfer transfer, Surface surface)
     : full_(std::move(transfer)), cut_(full_), surface_(surface) {
+  requireShTransfer(full_);
   prepared_ = prepareFor(cut_, material_);
   radiance_.assign(full_.rowCount(), Rgb(0.0f));
 }

@@ -13,7 +13,9 @@
 #include "prt/geometry/builtin.hpp"
 #include "prt/haar/project_light.hpp"
 #include "prt/raytrace/occluder.hpp"
+#include "prt/relight/relight.hpp"
 #include "prt/relight/relight_haar.hpp"
+#include "prt/relight/relighter.hpp"
 #include "prt/transfer/haar_rows.hpp"
 #include "prt/transport/bake.hpp"
 
@@ -180,6 +182,31 @@ TEST(HaarRows, PruneKeepsTheLargestWeightedTermsInIndexOrder) {
   bad = wide;
   bad[9] = 7.0f;  // padding with an index
   EXPECT_THROW(haar::checkRow(bad.data(), n, 6, 0, "row"), Error);
+}
+
+}  // namespace
+}  // namespace prt
+
+namespace prt {
+namespace {
+
+TEST(BakeHaar, ShRelightingRefusesHaarTransferByName) {
+  // The SH entry points (relight::relight, the Relighter every viewer and RelitView draw
+  // through) say what a Haar transfer needs instead of reading its wavelet terms as SH.
+  const Mesh mesh = builtinScene("builtin:sphere?subdiv=1");
+  const auto occ = makeEmbreeOccluder(mesh);
+  const Transfer t = bake(mesh, *occ, haarSettings(TransferMode::Shadowed, 4, 8));
+  const relight::Surface surface{mesh.positions, mesh.normals, {}};
+  const std::string e = [&] {
+    try {
+      relight::relight(t, sh::RgbSh(3), Material{}, surface, Vec3f(0.0f));
+    } catch (const Error& x) {
+      return std::string(x.what());
+    }
+    return std::string();
+  }();
+  EXPECT_NE(e.find("relightHaar"), std::string::npos) << e;
+  EXPECT_THROW(relight::Relighter(t, surface), Error);
 }
 
 }  // namespace

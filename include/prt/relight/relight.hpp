@@ -79,6 +79,11 @@ struct Surface {
   std::span<const Rgb> albedo;
 };
 
+/// Throws prt::Error("relight: ...") for a Haar transfer: SH light cannot relight it (its rows
+/// are wavelet terms; relight_haar.hpp relights it under a Haar light). Every SH entry point
+/// here and relight::Relighter check it first.
+void requireShTransfer(const Transfer& transfer);
+
 /// The one entry point: out[r] = exit radiance of row r of `transfer` under `light` rotated by
 /// `rotation` (a lobe along d moves to R d), with `material`, seen from `eye` (matrices only).
 /// `out.size()` must equal transfer.rowCount(). Throws prt::Error on mismatched sizes.
