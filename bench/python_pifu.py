@@ -26,6 +26,9 @@ The baseline runs in numpy's float64 (as PIFu writes it) and float32 (--dtype bo
 default, times both): a float32 numpy is the fairer, faster baseline, and the ratio is quoted
 against it.
 
+Besides the smallest fixed sample count it times adaptive sampling (target_error, issue 35) at
+the largest target whose bake is at least as accurate.
+
     PYTHONPATH=build/python /usr/bin/python3 bench/python_pifu.py [--mesh PATH] [--n 40]
         [--ref-samples 8192] [--rounds 2] [--repeat 3] [--cache ref.npz]
         [--offset prtkit|pifu] [--dtype both|float64|float32]
@@ -264,9 +267,20 @@ def main():
     if chosen is None:
         print("prtkit.bake did not reach the baseline's error up to 2048 samples")
         return 1
+    # Adaptive sampling (prt bake --target-error, issue 35): the largest target error whose bake
+    # is at least as accurate, at most 4,096 rays per row.
+    print(f"{'target':>8} {'rays/row':>9} {'rel. RMS':>10}")
+    chosen_e = None
+    for te in (0.05, 0.04, 0.03, 0.025, 0.02, 0.0175, 0.015, 0.0125, 0.01, 0.008, 0.006):
+        t = prtkit.bake_transfer(mesh, mode="shadowed", samples=4096, seed=a.seed, target_error=te)
+        e = rel_rms(np.asarray(t), ref)
+        print(f"{te:>8} {t.stats['rays_per_row_and_pass']:>9.1f} {e:>10.3e}")
+        if e <= target:
+            chosen_e = te
+            break
     t_base = {dt: [] for dt in dtypes}
     t_rays = {dt: [] for dt in dtypes}
-    t_ours, t_uni = [], []
+    t_ours, t_uni, t_adaptive = [], [], []
     for r in range(a.rounds):
         line = f"round {r + 1}:"
         for dt in dtypes:
@@ -281,8 +295,13 @@ def main():
                                                 seed=a.seed), a.repeat)[0])
         t_uni.append(timed(lambda: prtkit.bake(mesh, mode="shadowed", samples=rays,
                                                sampling="uniform", seed=a.seed), 1)[0])
+        if chosen_e is not None:
+            t_adaptive.append(timed(lambda: prtkit.bake(mesh, mode="shadowed", samples=4096,
+                                                        seed=a.seed, target_error=chosen_e),
+                                    a.repeat)[0])
         print(f"{line} prtkit.bake {chosen} samples {t_ours[-1]:.3f} s, uniform {rays} samples "
-              f"{t_uni[-1]:.2f} s")
+              f"{t_uni[-1]:.2f} s" +
+              (f", adaptive to {chosen_e} {t_adaptive[-1]:.3f} s" if t_adaptive else ""))
     for dt in dtypes:
         print(f"equal error ({a.offset}'s offset): prtkit.bake at {chosen} samples is "
               f"{min(t_base[dt]) / min(t_ours):.1f}x faster than PIFu's computePRT in numpy "
@@ -290,6 +309,9 @@ def main():
               f"{min(t_base[dt]):.2f} s, of which rays {min(t_rays[dt]):.2f} s); the same "
               f"estimator in C++ (uniform, {rays} samples) "
               f"{min(t_base[dt]) / min(t_uni):.1f}x")
+        if t_adaptive:
+            print(f"  adaptive (target_error={chosen_e}, at most 4096): "
+                  f"{min(t_base[dt]) / min(t_adaptive):.1f}x ({min(t_adaptive):.3f} s)")
     return 0
 
 

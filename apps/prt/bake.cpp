@@ -201,6 +201,12 @@ void addBakeCommand(CLI::App& root) {
          "--sampling", args->sampling,
          "cosine (cosine-weighted Sobol'; also: sobol) | uniform (the course's uniform random)")
       ->capture_default_str();
+  cmd->add_option("--target-error", args->targetError,
+                  "Adaptive sampling: each row casts a pilot of 64 directions, then as many as "
+                  "its standard error of radiance under the unit sky needs to reach this (a "
+                  "power of two, at most --samples); deterministic. 0: off (every row casts "
+                  "--samples)")
+      ->type_name("E");
   cmd->add_option("--albedo", args->albedo,
                   "Uniform albedo r,g,b for the bounces (overrides the mesh's)");
   cmd->add_option("--transfer", args->transfer,

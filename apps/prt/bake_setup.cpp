@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <cstdlib>
@@ -159,6 +160,7 @@ BakeRequest requestOf(const BakeArgs& a) {
   r.bounces = a.bounces;
   r.seed = a.seed;
   r.sampling = parseSampling(a.sampling);
+  r.targetError = a.targetError;
   if (!a.material.empty()) r.material = parseMaterial(a.material);
   if (!a.albedo.empty()) r.albedo = parseAlbedo(a.albedo);
   r.domain = parseTransferDomain(a.domain);
@@ -308,6 +310,11 @@ void report(const BakedTransfer& t) {
                   "radiance mean {:.2e} max {:.2e}; {} channel(s)",
                   mode, st.stdErrT0Mean, st.stdErrT0Max, st.stdErrConstMean, st.stdErrConstMax,
                   t.transfer.channels()));
+  if (t.recipe.adaptive())
+    info(fmt::format("{}: adaptive sampling to a standard error of {:g}: {:.1f} rays per row and "
+                     "pass on average ({} pilot, at most {})",
+                     mode, t.recipe.targetError, st.raysPerRowAndPass(),
+                     std::min(t.recipe.samples, kAdaptivePilotSamples), t.recipe.samples));
 }
 
 /// --json: the written bake (or pass file) and how it was made. `ranks` > 0 for an MPI run.

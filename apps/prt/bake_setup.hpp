@@ -26,6 +26,7 @@ struct BakeArgs {
   int bounces = 1;
   std::uint64_t seed = 0;
   std::string sampling = "cosine";
+  double targetError = 0;  ///< --target-error: adaptive sampling (0: off)
   std::string albedo;
   std::string transfer = "vector";
   std::string material;

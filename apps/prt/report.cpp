@@ -127,7 +127,8 @@ Json statsJson(const BakeStats& st) {
           {"stdErrT00Mean", st.stdErrT0Mean},
           {"stdErrT00Max", st.stdErrT0Max},
           {"stdErrWhiteSkyMean", st.stdErrConstMean},
-          {"stdErrWhiteSkyMax", st.stdErrConstMax}};
+          {"stdErrWhiteSkyMax", st.stdErrConstMax},
+          {"raysPerRowAndPass", st.raysPerRowAndPass()}};
 }
 
 Json recipeJson(const BakeRecipe& r) {
@@ -136,6 +137,7 @@ Json recipeJson(const BakeRecipe& r) {
             {"seed", r.seed},
             {"sampling", toString(r.sampling)},
             {"material", r.material.spec()}};
+  if (r.adaptive()) j["targetError"] = r.targetError;
   return j;
 }
 

@@ -184,7 +184,7 @@ def bake(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, samples: int =
          sampling: str = "cosine", range: Union[None, Tuple[int, int], range] = None,
          domain: str = "vertices", resolution: int = 512, uv: str = "auto", padding: int = 2,
          seam_fix: bool = False, denoise: bool = False,
-         progress: Progress = None) -> npt.NDArray[np.float32]:
+         progress: Progress = None, target_error: float = 0.0) -> npt.NDArray[np.float32]:
     """SH transfer per vertex (or per texel, domain='texels': row y*resolution + x) as a numpy
     array owning the C++ buffer: (N, B²), (N, B², 3), (N, B², B²) or (N, B², B², 3);
     bit-identical to `prt bake` with the same settings."""
@@ -195,7 +195,7 @@ def bake_transfer(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, sampl
                   sampling: str = "cosine", range: Union[None, Tuple[int, int], range] = None,
                   domain: str = "vertices", resolution: int = 512, uv: str = "auto",
                   padding: int = 2, seam_fix: bool = False, denoise: bool = False,
-                  progress: Progress = None) -> Transfer:
+                  progress: Progress = None, target_error: float = 0.0) -> Transfer:
     """bake, returning a Transfer with its recipe and statistics."""
 
 def compress(transfer: TransferLike, clusters: int = 64, pca: int = 8, seed: int = 0,

@@ -41,6 +41,7 @@ py::dict recipeDict(const prt::BakeRecipe& r) {
   d["bounces"] = r.bounces;
   d["seed"] = r.seed;
   d["sampling"] = prt::toString(r.sampling);
+  d["target_error"] = r.targetError;
   d["material"] = r.material.spec();
   return d;
 }
@@ -59,6 +60,7 @@ py::dict statsDict(const prt::BakeStats& s) {
   d["std_err_t0_max"] = s.stdErrT0Max;
   d["std_err_const_mean"] = s.stdErrConstMean;
   d["std_err_const_max"] = s.stdErrConstMax;
+  d["rays_per_row_and_pass"] = s.raysPerRowAndPass();
   return d;
 }
 
@@ -147,7 +149,8 @@ prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int
                              long long samples, std::uint64_t seed, int bounces,
                              const std::string& transfer, py::handle spec, py::handle albedo,
                              const std::string& sampling, py::handle range,
-                             const std::string& domain, const Lightmap& lightmap) {
+                             const std::string& domain, const Lightmap& lightmap,
+                             double targetError) {
   prt::BakeRequest r;
   asValueError([&] {
     r.modes = {prt::parseTransferMode(mode)};
@@ -161,6 +164,7 @@ prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int
   r.samples = samples;
   r.bounces = bounces;
   r.seed = seed;
+  r.targetError = targetError;
   if (!spec.is_none()) r.material = material(spec);
   if (!albedo.is_none()) r.albedo = rgb(albedo, "albedo");
   r.lightmap.resolution = lightmap.resolution;
@@ -188,12 +192,12 @@ struct Baked {
 Baked runBake(py::handle meshObj, const std::string& mode, int bands, long long samples,
               std::uint64_t seed, int bounces, const std::string& transfer, py::handle spec,
               py::handle albedo, const std::string& sampling, py::handle range,
-              const std::string& domain, const Lightmap& lightmap, py::handle progress,
-              prt::BakeSettings* used) {
+              const std::string& domain, const Lightmap& lightmap, double targetError,
+              py::handle progress, prt::BakeSettings* used) {
   const MeshPtr mesh = toMesh(meshObj);
   const prt::BakeRequest request =
       bakeRequest(mesh->mesh(), mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                  sampling, range, domain, lightmap);
+                  sampling, range, domain, lightmap, targetError);
   // The mesh as the request bakes it (its albedo, its lightmap UV set), over the mesh's own BVH:
   // a copy, so that the Mesh object stays as the caller made it.
   prt::Mesh prepared = mesh->mesh();
@@ -242,6 +246,9 @@ seam_fix: domain='texels': the least-squares seam fix (Sylvan 2015; prt bake --s
 denoise: domain='texels': filter the lightmap's Monte Carlo noise within each chart, before any
     seam fix (prt bake --denoise: an edge-avoiding a-trous filter of the estimated part of each
     row, transport/denoise_texels.hpp).
+target_error: adaptive sampling (prt bake --target-error): 0 off; E > 0 makes samples the most a
+    row casts: a pilot of 64 directions, then the power of two its standard error of radiance
+    under the unit sky needs to reach E (vector SH bakes, cosine sampling; deterministic).
 progress: None, True (a tqdm bar, when tqdm is installed) or a callable(fraction) that may
     return False to cancel (prtkit.Cancelled). Ctrl-C cancels within a fraction of a second
     (KeyboardInterrupt).
@@ -545,10 +552,11 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
          int bounces, const std::string& transfer, py::object spec, py::object albedo,
          const std::string& sampling, py::object range, const std::string& domain, int resolution,
-         const std::string& uv, int padding, bool seamFix, bool denoise, py::object progress) {
+         const std::string& uv, int padding, bool seamFix, bool denoise, py::object progress,
+         double targetError) {
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                          sampling, range, domain, {resolution, uv, padding, seamFix, denoise}, progress,
-                          nullptr);
+                          sampling, range, domain, {resolution, uv, padding, seamFix, denoise},
+                          targetError, progress, nullptr);
         return transferArray(std::move(b.transfer), true);
       },
       py::arg("mesh"), py::arg("mode") = "shadowed", py::arg("bands") = 3,
@@ -557,7 +565,7 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
       py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
       py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("denoise") = false,
-      py::arg("progress") = py::none(),
+      py::arg("progress") = py::none(), py::arg("target_error") = 0.0,
       (std::string(
            "Bakes per-vertex SH transfer and returns its dense rows as a numpy array, without a "
            "copy:\n"
@@ -571,11 +579,12 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
          int bounces, const std::string& transfer, py::object spec, py::object albedo,
          const std::string& sampling, py::object range, const std::string& domain, int resolution,
-         const std::string& uv, int padding, bool seamFix, bool denoise, py::object progress) {
+         const std::string& uv, int padding, bool seamFix, bool denoise, py::object progress,
+         double targetError) {
         prt::BakeSettings s;
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                          sampling, range, domain, {resolution, uv, padding, seamFix, denoise}, progress,
-                          &s);
+                          sampling, range, domain, {resolution, uv, padding, seamFix, denoise},
+                          targetError, progress, &s);
         auto t = std::make_shared<PyTransfer>();
         t->transfer = std::move(b.transfer);
         t->recipe = s;
@@ -588,7 +597,7 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
       py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
       py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("denoise") = false,
-      py::arg("progress") = py::none(),
+      py::arg("progress") = py::none(), py::arg("target_error") = 0.0,
       (std::string(
            "bake, returning a prtkit.Transfer (values, recipe, stats) for write_bake, relight,\n"
            "compress and validate.\n") +

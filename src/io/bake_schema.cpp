@@ -185,6 +185,7 @@ json settingsJson(const TransferShape& shape, const BakeRecipe& recipe) {
             {"seed", exactInteger(recipe.seed)},
             {"sampling", toString(recipe.sampling)},
             {"material", materialJson(recipe.material)}};
+  if (recipe.adaptive()) o["targetError"] = recipe.targetError;
   if (shape.isHaar()) {
     o.erase("bands");
     o["basis"] = toString(shape.basis);
@@ -201,6 +202,7 @@ void readSettings(const json& o, const std::string& where, int version, const Re
   recipe.samples = static_cast<int>(r.integer(o, "samples", where, 1, kMaxBakeSamples));
   recipe.bounces = static_cast<int>(r.integer(o, "bounces", where, 0, kMaxBounces));
   recipe.seed = r.integer(o, "seed", where);
+  if (r.has(o, "targetError")) recipe.targetError = r.number(o, "targetError", where);
   shape.layout =
       r.has(o, "layout")
           ? r.within(where, [&] { return parseTransferLayout(r.string(o, "layout", where)); })

@@ -1,6 +1,8 @@
 #include "prt/transfer/bake_settings.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 
 #include "prt/core/error.hpp"
 
@@ -13,6 +15,12 @@ void checkRecipe(const BakeRecipe& r) {
   if (r.bounces < 0 || r.bounces > kMaxBounces)
     throw Error("bounces must be in 0.." + std::to_string(kMaxBounces) + ", got " +
                 std::to_string(r.bounces));
+  if (!(r.targetError >= 0 && r.targetError <= kMaxTargetError)) {
+    char got[32];
+    std::snprintf(got, sizeof got, "%g", r.targetError);
+    throw Error("the target error must be in [0, 1] (0: no adaptive sampling), got " +
+                std::string(got));
+  }
   checkMaterial(r.material);
 }
 

@@ -129,6 +129,8 @@ class RowSampler {
       w[j] = 1.0f;
     }
   }
+  /// The unit-square point of sample i (cosine-Sobol' only): where it lies in the net.
+  Point2 unitPoint(std::uint32_t i) const { return sobol_->point(i, seed0_, seed1_); }
   /// Next sample. w == 0: below the horizon (uniform sampling only), cast no ray.
   void next(Vec3f& dir, float& w) {
     if (sobol_) {
@@ -153,6 +155,44 @@ class RowSampler {
   Pcg32 rng_;
 };
 
+/// The error of a row's pilot, as a scrambled net knows it. The pilot's 64 points are a
+/// scrambled (0,6,2)-net (Owen 1995), so each of the 32 elementary boxes of 1/8 × 1/4 of the
+/// unit square holds two of them: the pilot is a stratified sample with two points per stratum,
+/// and Var(Î) ≈ Σ_h (k_h/64)² s_h²/k_h over the boxes h (k_h points, sample variance s_h²) —
+/// which measures how much of the integrand's jump (the visibility's edge) the boxes cut, not
+/// its i.i.d. variance, and is conservative for the net, whose two points in a box are
+/// themselves stratified. (The i.i.d. variance p(1−p)/N of a row blocked over a share p
+/// would spend most rays on half-blocked rows, whose net error is small, and too few on thinly
+/// blocked ones: at equal rays it loses to equal sampling; tests/transport.)
+class PilotStrata {
+ public:
+  void add(Point2 u, double x) {
+    const int cell = std::min(int(u.x * 8.0f), 7) * 4 + std::min(int(u.y * 4.0f), 3);
+    sum_[cell] += x;
+    squares_[cell] += x * x;
+    ++count_[cell];
+    ++total_;
+  }
+  /// The variance of the pilot's mean (0 when every box holds equal values).
+  double varianceOfMean() const {
+    double var = 0;
+    for (int h = 0; h < kCells; ++h) {
+      const int k = count_[h];
+      if (k < 2) continue;
+      const double s2 = std::max(0.0, (squares_[h] - sum_[h] * sum_[h] / k) / (k - 1));
+      const double w = double(k) / total_;
+      var += w * w * s2 / k;
+    }
+    return var;
+  }
+
+ private:
+  static constexpr int kCells = 32;
+  std::array<double, kCells> sum_{}, squares_{};
+  std::array<int, kCells> count_{};
+  int total_ = 0;
+};
+
 struct Context {
   const Mesh& mesh;
   const Occluder& occluder;
@@ -162,7 +202,31 @@ struct Context {
   const OwenSobol2D* sobol;  ///< null: uniform random sampling
   const BounceAlbedo& albedo;
   const std::vector<double>& lobe;  ///< A_l/π of the clamped cosine, l = 0..B-1
+  /// Adaptive sampling (BakeRecipe::targetError): the standard error of √(4π)·T₀ each pass aims
+  /// for, E/√P over the P passes (adaptivePassTarget); 0: every row casts `samples`.
+  double passTarget = 0;
   std::atomic<std::uint64_t> rays{0};
+  /// The directions a row casts first: all of them, or the pilot when adaptive.
+  int firstSamples() const {
+    return passTarget > 0 ? std::min(settings.samples, kAdaptivePilotSamples) : settings.samples;
+  }
+  /// After the pilot: the directions the row casts in all, from the variance `pilotVar` of the
+  /// pilot's estimate of √(4π)·T₀ (PilotStrata) — the power of two N within [pilot, samples]
+  /// at which
+  ///   pilotVar · (64/N)^{3/2} ≤ E²   (the net's error, falling as N^-3/4, reaches the target)
+  ///   and N ≥ 1/E,
+  /// the second because a pilot that saw nothing blocked estimates 0 yet may have missed a
+  /// blocked cosine-weighted share of about 1/N (a sliver at the horizon): N ≥ 1/E makes a
+  /// share of E show up about once. Decided once, from the pilot (the second stage of Stein's
+  /// rule), so the samples after it are not chosen by what they show.
+  int samplesAfterPilot(double pilotVar) const {
+    const double e2 = passTarget * passTarget;
+    const double byError = kAdaptivePilotSamples * std::pow(pilotVar / e2, 2.0 / 3.0);
+    const double needed = std::max(byError, 1.0 / passTarget);
+    int n = firstSamples();
+    while (n < settings.samples && double(n) < needed) n = std::min(settings.samples, 2 * n);
+    return n;
+  }
 };
 
 /// Float partial sums over a few batches, then double: accurate to ~1e-7 relative even at
@@ -185,6 +249,8 @@ struct Accumulator {
 };
 
 /// Pass 0: T⁰_i(v) = (1/π) ∫ Y_i V max(n·ω,0) dω, written to out[0..B²). Returns Var(T⁰₀).
+/// Adaptive (ctx.passTarget > 0): the pilot first, then as many more as samplesAfterPilot
+/// asks, all summed into the one estimate over the row's N.
 ///
 /// Cosine-Sobol' uses the unshadowed transfer as a control variate: V = 1 − (1 − V), and the
 /// unshadowed part is known in closed form, U_lm(n) = (A_l/π) Y_lm(n) (the clamped-cosine lobe,
@@ -198,7 +264,7 @@ struct Accumulator {
 /// estimator (1/N) Σ 4 max(n·ω,0) Y_i V.
 double directRow(Context& ctx, const RowPoint& q, float* out, Accumulator& acc,
                  std::vector<float>& y) {
-  const int n = ctx.settings.samples;
+  int n = ctx.firstSamples();
   const int nc = ctx.nc;
   const bool shadowed = ctx.settings.mode != TransferMode::Unshadowed;
   const bool controlVariate = ctx.sobol != nullptr;
@@ -220,6 +286,7 @@ double directRow(Context& ctx, const RowPoint& q, float* out, Accumulator& acc,
   std::array<Vec3f, kBatch> dirs;
   std::array<std::uint8_t, kBatch> blocked;
   Moments m;
+  PilotStrata pilot;
   std::uint64_t cast = 0;
   acc.reset();
   float* part = acc.part.data();
@@ -241,6 +308,10 @@ double directRow(Context& ctx, const RowPoint& q, float* out, Accumulator& acc,
     } else {
       std::fill_n(blocked.begin(), nr, std::uint8_t(0));
     }
+    if (ctx.passTarget > 0 && base < ctx.firstSamples())  // the pilot (cosine-Sobol': nr = count)
+      for (std::size_t j = 0; j < nr; ++j)
+        pilot.add(sampler.unitPoint(static_cast<std::uint32_t>(base + j)),
+                  blocked[j] == counted ? w[j] : 0.0f);
     for (std::size_t j = 0; j < nr; ++j) {
       if (blocked[j] != counted) continue;
       ctx.eval(rays[j].dir, y.data());
@@ -249,6 +320,9 @@ double directRow(Context& ctx, const RowPoint& q, float* out, Accumulator& acc,
       m.add(wj);
     }
     if ((base + static_cast<int>(kBatch)) % kFlushEvery == 0) acc.flush();
+    // √(4π)·T₀'s integrand is w [blocked] (√(4π)·Y00 = 1).
+    if (ctx.passTarget > 0 && base + count == ctx.firstSamples())
+      n = ctx.samplesAfterPilot(pilot.varianceOfMean());
   }
   acc.flush();
   for (int i = 0; i < nc; ++i)
@@ -262,13 +336,13 @@ double directRow(Context& ctx, const RowPoint& q, float* out, Accumulator& acc,
 /// (the light a diffuse surface sends toward v leaves its front side only; a back face blocks
 /// the direction and contributes nothing). prev(h, triangle, t) puts Tᵏ⁻¹ at the hit into t
 /// (prevChannels per coefficient; VertexLookup for vertex rows); out gets B² × outChannels
-/// values (added to when accumulate). Returns Var(Tᵏ₀, channel 0).
+/// values (added to when accumulate). Returns Var(Tᵏ₀, channel 0). Adaptive as directRow.
 template <typename Lookup>
 double bounceRow(Context& ctx, const RowPoint& q, int pass, const Lookup& prev, int prevChannels,
                  float* out, int outChannels, bool accumulate, Accumulator& acc,
                  std::vector<float>& t) {
   const Mesh& mesh = ctx.mesh;
-  const int n = ctx.settings.samples;
+  int n = ctx.firstSamples();
   const int nc = ctx.nc;
   const int width = nc * outChannels;
   const Vec3f p = q.position, nrm = q.normal;
@@ -276,6 +350,7 @@ double bounceRow(Context& ctx, const RowPoint& q, int pass, const Lookup& prev, 
   RowSampler sampler(ctx.settings, ctx.sobol, q.id, pass, nrm);
 
   Moments m;
+  PilotStrata pilot;
   std::uint64_t cast = 0;
   acc.reset();
   float* part = acc.part.data();
@@ -283,6 +358,7 @@ double bounceRow(Context& ctx, const RowPoint& q, int pass, const Lookup& prev, 
     Vec3f d;
     float wt;
     sampler.next(d, wt);
+    double x = 0;  // this sample's T₀ contribution (channel 0)
     if (wt > 0.0f) {
       ++cast;
       const Hit h =
@@ -309,11 +385,16 @@ double bounceRow(Context& ctx, const RowPoint& q, int pass, const Lookup& prev, 
               part[3 * i + 2] += rho.z * t[3 * i + 2];
             }
           }
-          m.add(double(rho.x) * t[0]);
+          x = double(rho.x) * t[0];
+          m.add(x);
         }
       }
     }
     if ((s + 1) % kFlushEvery == 0) acc.flush();
+    if (ctx.passTarget > 0 && s < ctx.firstSamples()) {
+      pilot.add(sampler.unitPoint(static_cast<std::uint32_t>(s)), x);
+      if (s + 1 == ctx.firstSamples()) n = ctx.samplesAfterPilot(4.0 * kPi * pilot.varianceOfMean());
+    }
   }
   acc.flush();
   for (int i = 0; i < width; ++i) {
@@ -382,6 +463,12 @@ bool vectorAlbedoGrey(const VectorSetup& setup) {
 
 namespace {
 
+/// Context::passTarget of a vector bake: its target error E shared among its P = 1 + bounces
+/// passes (independent estimators, so their variances add): E/√P each.
+double adaptivePassTarget(const BakeSettings& s) {
+  return s.adaptive() ? s.targetError / std::sqrt(1.0 + s.effectiveBounces()) : 0.0;
+}
+
 /// Rows 0..count−1 of vector pass `pass` at pointOf(r), the previous pass read through `lookup`
 /// (pass ≥ 1), in parallel: the loop every domain shares.
 template <typename PointOf, typename Lookup>
@@ -397,6 +484,7 @@ std::uint64_t computeRows(const Mesh& mesh, const Occluder& occluder, const Vect
               setup.sobol.get(),
               setup.albedo,
               setup.lobe,
+              adaptivePassTarget(setup.settings),
               {}};
   const int nc = ctx.nc;
   const std::size_t width = static_cast<std::size_t>(nc) * (pass == 0 ? 1 : outChannels);

@@ -49,6 +49,23 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
     checkOptionRange(spelling, "samples", r.samples, 1, kMaxBakeSamples);
   }
   checkOptionRange(spelling, "bounces", r.bounces, 0, kMaxBounces);
+  if (!(r.targetError >= 0 && r.targetError <= kMaxTargetError))
+    throw Error(optionLabel(spelling, "target-error") +
+                ": must be in [0, 1] (the standard error of a row's radiance under the unit sky; 0: off)");
+  if (r.targetError > 0) {
+    const std::string option = optionLabel(spelling, "target-error");
+    if (r.basis != TransferBasis::SphericalHarmonics)
+      throw Error(option + " samples SH rows adaptively: a Haar bake casts its rays per cube texel");
+    if (r.layout != TransferLayout::Vector)
+      throw Error(option + " samples diffuse transfer (vector) adaptively, not the glossy "
+                           "matrices");
+    if (r.domain == TransferDomain::Probes)
+      throw Error(option + " samples surfaces' rows adaptively (per vertex or per texel), not "
+                           "probes");
+    if (r.sampling != Sampling::CosineSobol)
+      throw Error(option + " needs cosine-Sobol' sampling (its pilot is the first 64 points of "
+                           "each row's Sobol' sequence)");
+  }
   if (r.albedo)
     for (float x : {r.albedo->x, r.albedo->y, r.albedo->z})
       if (!(x >= 0.0f && x <= 1.0f))
@@ -136,6 +153,7 @@ BakeSettings bakeSettings(const BakeRequest& r, const Mesh& mesh, TransferMode m
   s.bounces = effectiveBounces(mode, r.bounces);  // what a bake file records
   s.seed = r.seed;
   s.sampling = r.sampling;
+  s.targetError = r.targetError;
   s.material = bakeMaterial(r, mesh);
   s.layout = r.layout;
   s.bands = r.bands;

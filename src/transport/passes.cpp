@@ -419,12 +419,19 @@ std::string bakeIdentity(const Mesh& mesh, const BakeSettings& s) {
              std::to_string(s.lightmap.height) + " lightmap (padding " +
              std::to_string(s.lightmap.padding) + ", UVs " + uv.hex() + ")";
   }
+  std::string adaptive;
+  if (s.adaptive()) {
+    char e[40];
+    std::snprintf(e, sizeof e, "%.17g", s.targetError);
+    adaptive = std::string("target error ") + e + ", ";
+  }
   return std::to_string(mesh.vertexCount()) + " vertices, " + std::to_string(mesh.triangleCount()) +
          " triangles, mesh " + hex + "; " + toString(s.mode) + " " + toString(s.layout) + ", " +
          (s.basis == TransferBasis::Haar
               ? "Haar " + std::to_string(s.haar.resolution) + "^2 cube, " +
                     std::to_string(s.haar.terms) + " terms, "
               : std::to_string(s.bands) + " bands, ") + std::to_string(s.samples) + " samples, " +
+         adaptive +
          std::to_string(s.effectiveBounces()) + " bounces, seed " + std::to_string(s.seed) + ", " +
          toString(s.sampling) + ", " + s.material.spec() + ", " + domain + " " +
          std::to_string(rows.first) + ".." + std::to_string(rows.end());

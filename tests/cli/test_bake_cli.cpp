@@ -173,6 +173,33 @@ TEST_F(BakeCli, BadInputFailsCleanly) {
   expectCleanFailure("info bad.txt", "bad.txt");
 }
 
+// --target-error: adaptive sampling reported as it ran, recorded in the file and described by
+// prt info; refused in one line where it is not made.
+TEST_F(BakeCli, TargetErrorBakesAdaptivelyAndSaysSo) {
+  const Result r =
+      prt("bake builtin:sphere-plane --mode shadowed --samples 2048 --target-error 0.02 -o a.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string said = r.out + r.err;
+  EXPECT_NE(said.find("adaptive sampling to a standard error of 0.02"), std::string::npos) << said;
+  const BakeFile file = readBake((dir_ / "a.glb").string());
+  EXPECT_EQ(file.transfers[0].recipe.targetError, 0.02);
+  // Fewer rays than every row casting the cap, more than the pilot.
+  const BakeStats& st = file.transfers[0].stats;
+  EXPECT_GT(st.raysPerRowAndPass(), 64.0);
+  EXPECT_LT(st.raysPerRowAndPass(), 2048.0);
+  const Result info = prt("info a.glb");
+  ASSERT_EQ(info.rc, 0) << info.err;
+  EXPECT_NE(info.out.find("adaptive: at most 2048 per row, to a standard error of 0.02"),
+            std::string::npos)
+      << info.out;
+  const std::string bake = "bake builtin:sphere-plane --mode shadowed -o out/x.glb ";
+  expectCleanFailure(bake + "--target-error -0.1", "--target-error");
+  expectCleanFailure(bake + "--target-error 1.5", "--target-error");
+  expectCleanFailure(bake + "--target-error 0.01 --transfer matrix", "--target-error");
+  expectCleanFailure(bake + "--target-error 0.01 --sampling uniform", "--target-error");
+  expectCleanFailure(bake + "--target-error 0.01 --basis haar", "--target-error");
+}
+
 TEST_F(BakeCli, CtrlCCancelsWithoutOutput) {
   // ~1.7·10⁸ rays (tens of seconds): far longer than the second before SIGINT arrives.
   // --foreground: one SIGINT, to prt alone, as a terminal's Ctrl-C sends. Without it timeout

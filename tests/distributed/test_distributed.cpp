@@ -147,6 +147,17 @@ TEST_F(Mpi, RgbBouncesAndGlossyMatricesEqualTheSingleProcessFile) {
   }
 }
 
+// Adaptive sampling decides each row's rays from its own pilot, so any split of the rows among
+// ranks and chunks gives the same file.
+TEST_F(Mpi, AnAdaptiveBakeEqualsTheSingleProcessFile) {
+  const std::string cmd =
+      "bake builtin:cornell --mode interreflected --bounces 1 --samples 1024 --target-error 0.03";
+  ASSERT_EQ(prt(cmd + " -q -o one.glb").rc, 0);
+  const Result r = prt(cmd + " --chunk 37 -o mpi.glb", mpirun(3));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(withoutTimings(dir() / "mpi.glb"), withoutTimings(dir() / "one.glb"));
+}
+
 TEST_F(Mpi, ReferenceAndValidationEqualTheSingleProcessOnes) {
   ASSERT_EQ(prt("bake builtin:sphere-plane --mode interreflected --bounces 1 --samples 32 -q "
                 "-o b.glb")

@@ -728,6 +728,9 @@ TEST(BakeFile, WriterAndReaderHoldTheRecipeToWhatABakeCouldMake) {
        "albedo"},
       {"samples 0", [](nlohmann::json& s) { s["samples"] = 0; }, "samples"},
       {"bounces 17", [](nlohmann::json& s) { s["bounces"] = 17; }, "bounces"},
+      {"target error -1", [](nlohmann::json& s) { s["targetError"] = -1.0; }, "target error"},
+      {"target error 2", [](nlohmann::json& s) { s["targetError"] = 2.0; }, "target error"},
+      {"target error text", [](nlohmann::json& s) { s["targetError"] = "0.01"; }, "targetError"},
   };
   for (const Edit& e : edits) {
     SCOPED_TRACE(e.what);
@@ -747,6 +750,21 @@ TEST(BakeFile, WriterAndReaderHoldTheRecipeToWhatABakeCouldMake) {
       EXPECT_NE(m.find(e.expect), std::string::npos) << m;
     }
   }
+}
+
+// Adaptive sampling's target (BakeRecipe::targetError) is part of the recipe: written only when
+// set, read back exactly, and a file without it reads as 0 (every row cast `samples`).
+TEST(BakeFile, TheTargetErrorRoundTripsWhenSet) {
+  BakeFile b = sampleBake();
+  EXPECT_EQ(prtObject(splitGlb(encodeBake(b)).json)["transfers"][0]["settings"].count(
+                "targetError"),
+            0u);
+  b.transfers[0].recipe.targetError = 0.0125;
+  const std::string bytes = encodeBake(b);
+  EXPECT_EQ(prtObject(splitGlb(bytes).json)["transfers"][0]["settings"]["targetError"], 0.0125);
+  const BakeFile back = decodeBake(asBytes(bytes), "adaptive.glb");
+  EXPECT_EQ(back.transfers[0].recipe.targetError, 0.0125);
+  EXPECT_EQ(back.transfers[0].recipe, b.transfers[0].recipe);
 }
 
 // A compressed transfer cut below its basis (N > values per row) cannot be stored: refused by

@@ -24,6 +24,8 @@ CASES = [
           material="phong?exponent=8&ks=0.4&kd=0.6,0.5,0.4")),
     (["--mode", "shadowed", "--samples", "32", "--range", "100:250"],
      dict(mode="shadowed", samples=32, range=(100, 250))),
+    (["--mode", "interreflected", "--samples", "512", "--target-error", "0.02"],
+     dict(mode="interreflected", samples=512, target_error=0.02)),
 ]
 
 
@@ -185,3 +187,14 @@ def test_denoise_is_the_clis(tmp_path, prt_cli):
     with pytest.raises(ValueError, match="needs the whole lightmap"):
         prtkit.bake(mesh, denoise=True, range=(0, 10), **{k: kw[k] for k in kw if k != "samples"},
                     samples=8)
+
+
+def test_target_error_samples_adaptively_and_is_refused_where_not_made(scene):
+    t = prtkit.bake_transfer(scene, mode="shadowed", samples=1024, target_error=0.03)
+    assert t.recipe["target_error"] == 0.03
+    assert 64 < t.stats["rays_per_row_and_pass"] < 1024
+    for kwargs, match in [(dict(target_error=-1), "target_error: must be in"),
+                          (dict(target_error=0.01, transfer="matrix"), "target_error samples"),
+                          (dict(target_error=0.01, sampling="uniform"), "target_error needs")]:
+        with pytest.raises(ValueError, match=match):
+            prtkit.bake(scene, mode="shadowed", samples=64, **kwargs)

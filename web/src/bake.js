@@ -291,6 +291,9 @@ function checkTransfers(prt, where, version, domain, rows, ar, r) {
     r.integer(s, 'samples', sw, 1, bakeFile.maxBakeSamples);
     r.integer(s, 'bounces', sw, 0, bakeFile.maxBounces);
     r.integer(s, 'seed', sw, 0, 18446744073709551615);
+    // Adaptive sampling's target (checkRecipe): a number in [0, 1] when present.
+    if (has(s, 'targetError') && !(typeof s.targetError === 'number' && s.targetError >= 0 && s.targetError <= 1))
+      r.fail(`${sw}.targetError = ${JSON.stringify(s.targetError)} is not a number in [0, 1]`);
     const layout = has(s, 'layout') ? r.string(s, 'layout', sw) : layouts[0];
     if (!layouts.includes(layout)) r.fail(`${sw}: unknown layout '${layout}'`);
     if (layout === 'matrix' && version < 2) r.fail(`${sw} is a matrix transfer in a version ${version} file (matrices need version 2)`);

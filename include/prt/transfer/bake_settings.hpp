@@ -42,6 +42,12 @@ inline constexpr int kMaxBounces = 16;
 /// Rays per cube texel of a Haar bake (its `samples`): at most 64, and 1 when not given.
 inline constexpr int kMaxHaarRaysPerTexel = 64;
 inline constexpr int kDefaultHaarRaysPerTexel = 1;
+/// Adaptive sampling (BakeRecipe::targetError): the pilot every row casts before it decides how
+/// many more it needs — the first 64 points of its Owen-scrambled Sobol' sequence, a (0,6,2)-net,
+/// so each of 64 equal-measure cells of the cosine-weighted hemisphere holds one of them.
+inline constexpr int kAdaptivePilotSamples = 64;
+/// The largest target error: the radiance under the constant unit sky lies in [0, 1].
+inline constexpr double kMaxTargetError = 1.0;
 
 /// The bounces a mode bakes (and its reference follows): `bounces` for Interreflected, else 0 —
 /// the one rule.
@@ -56,6 +62,16 @@ struct BakeRecipe {
   int bounces = 0;     ///< inter-reflection bounces, 0..16 (only Interreflected bounces)
   std::uint64_t seed = 0;
   Sampling sampling = Sampling::CosineSobol;
+  /// Adaptive sampling (issue 35; docs/transport.md, "Adaptive sampling"): 0 casts `samples`
+  /// directions per row and pass. E > 0 makes `samples` the most a row may cast: each row first
+  /// casts kAdaptivePilotSamples, estimates its variance from them, and casts the power of two
+  /// of directions (at most `samples`, at least 1/E) at which the i.i.d. standard error of its
+  /// radiance under the constant unit sky (√(4π)·T₀, BakeStats::stdErrConst) reaches E/√P over
+  /// its P passes — a two-stage rule (Stein 1945) decided by the row's own pilot, so the bake
+  /// stays deterministic and independent of threads, ranks and ranges. Vector SH bakes with
+  /// cosine-Sobol' sampling only.
+  double targetError = 0;
+  bool adaptive() const { return targetError > 0; }
   /// The surface. Its diffuse colour (material.diffuse, else mesh.albedo, else 1) is the albedo
   /// of the bounces. Its lobe and ks shape the bounces of an inter-reflected matrix bake (the
   /// light glossy surfaces send toward each other); otherwise the lobe is applied at relighting
@@ -77,7 +93,8 @@ struct BakeRecipe {
 
 /// The one check of a recipe, for bake() and for the bake file's writer and reader alike (a file
 /// holds only what a bake could have made): samples in 1..kMaxBakeSamples, bounces in
-/// 0..kMaxBounces, the material by checkMaterial. Throws prt::Error naming the value.
+/// 0..kMaxBounces, the target error finite in [0, kMaxTargetError], the material by
+/// checkMaterial. Throws prt::Error naming the value.
 void checkRecipe(const BakeRecipe& recipe);
 
 /// What bake() takes: the recipe, and the shape of the transfer to make.
@@ -121,6 +138,12 @@ struct BakeStats {
   /// Of T·L for the constant environment L = 1 (L00 = √(4π)), i.e. of √(4π)·T₀, summed over the
   /// bounces (independent estimators; first channel for RGB transfer).
   double stdErrConstMean = 0, stdErrConstMax = 0;
+  /// Rays per sampled row and pass, on average: what adaptive sampling spent (0 without rows).
+  double raysPerRowAndPass() const {
+    const double passes = 1.0 + static_cast<double>(secondsBounce.size());
+    return vertices > 0 ? static_cast<double>(rays) / (static_cast<double>(vertices) * passes)
+                        : 0.0;
+  }
 };
 
 /// Rays per second: rays / seconds, 0 when no time was measured — the one formula.

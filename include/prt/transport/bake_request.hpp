@@ -60,6 +60,9 @@ struct BakeRequest {
   int bounces = 1;           ///< inter-reflected modes only
   std::uint64_t seed = 0;
   Sampling sampling = Sampling::CosineSobol;
+  /// Adaptive sampling (BakeRecipe::targetError): 0 off; E > 0 casts up to `samples` per row
+  /// until the standard error of its radiance under the unit sky reaches E.
+  double targetError = 0;
   /// The surface; none: the mesh file's own glossy surface (materialFromGloss), else lambert.
   std::optional<Material> material;
   /// A uniform albedo replacing the mesh's (and the material's kd).
