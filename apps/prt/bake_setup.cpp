@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -311,10 +311,11 @@ void report(const BakedTransfer& t) {
                   mode, st.stdErrT0Mean, st.stdErrT0Max, st.stdErrConstMean, st.stdErrConstMax,
                   t.transfer.channels()));
   if (t.recipe.adaptive())
-    info(fmt::format("{}: adaptive sampling to a standard error of {:g}: {:.1f} rays per row and "
-                     "pass on average ({} pilot, at most {})",
-                     mode, t.recipe.targetError, st.raysPerRowAndPass(),
-                     std::min(t.recipe.samples, kAdaptivePilotSamples), t.recipe.samples));
+    info(
+        fmt::format("{}: adaptive sampling to a standard error of {:g}: {:.1f} rays per row and "
+                    "pass on average ({} pilot, at most {})",
+                    mode, t.recipe.targetError, st.raysPerRowAndPass(),
+                    std::min(t.recipe.samples, kAdaptivePilotSamples), t.recipe.samples));
 }
 
 /// --json: the written bake (or pass file) and how it was made. `ranks` > 0 for an MPI run.

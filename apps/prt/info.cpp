@@ -174,9 +174,10 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     out << fmt::format("    samples {}, bounces {}, seed {}, sampling {}", s.samples, s.bounces,
                        s.seed, toString(s.sampling));
     if (s.adaptive())
-      out << fmt::format(" (adaptive: at most {} per row, to a standard error of {:g}; {:.1f} "
-                         "rays per row and pass on average)",
-                         s.samples, s.targetError, st.raysPerRowAndPass());
+      out << fmt::format(
+          " (adaptive: at most {} per row, to a standard error of {:g}; {:.1f} "
+          "rays per row and pass on average)",
+          s.samples, s.targetError, st.raysPerRowAndPass());
     if (s.material.diffuse)
       out << fmt::format(", albedo {},{},{}", s.material.diffuse->x, s.material.diffuse->y,
                          s.material.diffuse->z);

@@ -393,7 +393,8 @@ double bounceRow(Context& ctx, const RowPoint& q, int pass, const Lookup& prev, 
     if ((s + 1) % kFlushEvery == 0) acc.flush();
     if (ctx.passTarget > 0 && s < ctx.firstSamples()) {
       pilot.add(sampler.unitPoint(static_cast<std::uint32_t>(s)), x);
-      if (s + 1 == ctx.firstSamples()) n = ctx.samplesAfterPilot(4.0 * kPi * pilot.varianceOfMean());
+      if (s + 1 == ctx.firstSamples())
+        n = ctx.samplesAfterPilot(4.0 * kPi * pilot.varianceOfMean());
     }
   }
   acc.flush();

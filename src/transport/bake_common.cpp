@@ -44,11 +44,12 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
     throw Error(bands::bandLimitMessage("the bake", s.bands, "baking", bands::kMaxBake));
   }
   checkRecipe(s);
-  if (s.adaptive() && (s.basis != TransferBasis::SphericalHarmonics ||
-                       s.layout != TransferLayout::Vector || s.domain == TransferDomain::Probes ||
-                       s.sampling != Sampling::CosineSobol))
-    throw Error(name, "adaptive sampling (a target error) is made for diffuse SH transfer "
-                      "(vector) per vertex or per texel, sampled by cosine-Sobol'");
+  if (s.adaptive() &&
+      (s.basis != TransferBasis::SphericalHarmonics || s.layout != TransferLayout::Vector ||
+       s.domain == TransferDomain::Probes || s.sampling != Sampling::CosineSobol))
+    throw Error(name,
+                "adaptive sampling (a target error) is made for diffuse SH transfer "
+                "(vector) per vertex or per texel, sampled by cosine-Sobol'");
   if (s.domain == TransferDomain::Texels) {
     const auto& lm = s.lightmap;
     if (lm.width < 1 || lm.width > kMaxLightmapSide || lm.height < 1 ||

@@ -50,21 +50,26 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
   }
   checkOptionRange(spelling, "bounces", r.bounces, 0, kMaxBounces);
   if (!(r.targetError >= 0 && r.targetError <= kMaxTargetError))
-    throw Error(optionLabel(spelling, "target-error") +
-                ": must be in [0, 1] (the standard error of a row's radiance under the unit sky; 0: off)");
+    throw Error(
+        optionLabel(spelling, "target-error") +
+        ": must be in [0, 1] (the standard error of a row's radiance under the unit sky; 0: off)");
   if (r.targetError > 0) {
     const std::string option = optionLabel(spelling, "target-error");
     if (r.basis != TransferBasis::SphericalHarmonics)
-      throw Error(option + " samples SH rows adaptively: a Haar bake casts its rays per cube texel");
+      throw Error(option +
+                  " samples SH rows adaptively: a Haar bake casts its rays per cube texel");
     if (r.layout != TransferLayout::Vector)
-      throw Error(option + " samples diffuse transfer (vector) adaptively, not the glossy "
-                           "matrices");
+      throw Error(option +
+                  " samples diffuse transfer (vector) adaptively, not the glossy "
+                  "matrices");
     if (r.domain == TransferDomain::Probes)
-      throw Error(option + " samples surfaces' rows adaptively (per vertex or per texel), not "
-                           "probes");
+      throw Error(option +
+                  " samples surfaces' rows adaptively (per vertex or per texel), not "
+                  "probes");
     if (r.sampling != Sampling::CosineSobol)
-      throw Error(option + " needs cosine-Sobol' sampling (its pilot is the first 64 points of "
-                           "each row's Sobol' sequence)");
+      throw Error(option +
+                  " needs cosine-Sobol' sampling (its pilot is the first 64 points of "
+                  "each row's Sobol' sequence)");
   }
   if (r.albedo)
     for (float x : {r.albedo->x, r.albedo->y, r.albedo->z})

@@ -430,8 +430,8 @@ std::string bakeIdentity(const Mesh& mesh, const BakeSettings& s) {
          (s.basis == TransferBasis::Haar
               ? "Haar " + std::to_string(s.haar.resolution) + "^2 cube, " +
                     std::to_string(s.haar.terms) + " terms, "
-              : std::to_string(s.bands) + " bands, ") + std::to_string(s.samples) + " samples, " +
-         adaptive +
+              : std::to_string(s.bands) + " bands, ") +
+         std::to_string(s.samples) + " samples, " + adaptive +
          std::to_string(s.effectiveBounces()) + " bounces, seed " + std::to_string(s.seed) + ", " +
          toString(s.sampling) + ", " + s.material.spec() + ", " + domain + " " +
          std::to_string(rows.first) + ".." + std::to_string(rows.end());

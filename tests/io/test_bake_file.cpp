@@ -756,9 +756,8 @@ TEST(BakeFile, WriterAndReaderHoldTheRecipeToWhatABakeCouldMake) {
 // set, read back exactly, and a file without it reads as 0 (every row cast `samples`).
 TEST(BakeFile, TheTargetErrorRoundTripsWhenSet) {
   BakeFile b = sampleBake();
-  EXPECT_EQ(prtObject(splitGlb(encodeBake(b)).json)["transfers"][0]["settings"].count(
-                "targetError"),
-            0u);
+  EXPECT_EQ(
+      prtObject(splitGlb(encodeBake(b)).json)["transfers"][0]["settings"].count("targetError"), 0u);
   b.transfers[0].recipe.targetError = 0.0125;
   const std::string bytes = encodeBake(b);
   EXPECT_EQ(prtObject(splitGlb(bytes).json)["transfers"][0]["settings"]["targetError"], 0.0125);
