@@ -5,8 +5,10 @@ sampling").
 For each scene and target error E: bakes shadowed transfer adaptively (at most 4,096 rays per
 row), then with every row at the adaptive bake's mean rays per row (rounded up: the same rays or
 more), and prints against a converged reference (8,192 samples, another seed) the relative RMS
-error over every coefficient (what prt validate reports), the RMS error of the radiance under the
-unit sky (what E targets) and the ratio of the two bakes' errors at equal rays:
+error over every coefficient (what prt validate reports) of both and their ratio; the same for
+equal sampling at whole powers of two (where Sobol' points are whole nets: the bakes at the two
+powers of two around the adaptive bake's rays, interpolated log-log); and the RMS error of the
+radiance under the unit sky (what E targets), also as a share of E:
 
     PYTHONPATH=build/python /usr/bin/python3 bench/adaptive_quality.py [--quick]
 
@@ -48,7 +50,7 @@ def main():
         scenes.append(("dragon", DRAGON, {}))
     targets = (0.03, 0.01) if quick else (0.03, 0.015, 0.01, 0.005)
     print(f"{'scene':<26} {'E':>6} {'rays/row':>9} {'rel adaptive':>13} {'rel equal':>10} "
-          f"{'ratio':>6} {'sky err adaptive':>17} {'/E':>5}")
+          f"{'ratio':>6} {'equal 2^k':>10} {'ratio':>6} {'sky err adaptive':>17} {'/E':>5}")
     for name, path, kw in scenes:
         mesh = prtkit.load_mesh(path)
         ref = np.asarray(prtkit.bake(mesh, mode="shadowed", samples=8192, seed=12345, **kw))
@@ -60,8 +62,16 @@ def main():
                                            seed=0, **kw))
             ra, ca = errors(np.asarray(t), ref)
             ru, _ = errors(equal, ref)
+            # Equal sampling at the powers of two around the adaptive bake's rays (where Sobol'
+            # points are whole nets), interpolated log-log at its rays.
+            lo = 2 ** int(np.floor(np.log2(rays)))
+            e_lo, _ = errors(np.asarray(prtkit.bake(mesh, mode="shadowed", samples=lo, seed=0,
+                                                    **kw)), ref)
+            e_hi, _ = errors(np.asarray(prtkit.bake(mesh, mode="shadowed", samples=2 * lo,
+                                                    seed=0, **kw)), ref)
+            rp = np.exp(np.interp(np.log(rays), np.log([lo, 2 * lo]), np.log([e_lo, e_hi])))
             print(f"{name:<26} {e:>6} {rays:>9.1f} {ra:>13.3e} {ru:>10.3e} {ra / ru:>6.2f} "
-                  f"{ca:>17.3e} {ca / e:>5.2f}", flush=True)
+                  f"{rp:>10.3e} {ra / rp:>6.2f} {ca:>17.3e} {ca / e:>5.2f}", flush=True)
     return 0
 
 
