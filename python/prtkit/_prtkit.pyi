@@ -81,6 +81,14 @@ class Transfer:
     @property
     def bands(self) -> int: ...
     @property
+    def haar(self) -> Optional[Dict[str, int]]: ...
+    @property
+    def haar_kinds(self) -> npt.NDArray[np.uint8]: ...
+    @property
+    def haar_indices(self) -> npt.NDArray[np.uint32]: ...
+    @property
+    def haar_values(self) -> npt.NDArray[np.float32]: ...
+    @property
     def channels(self) -> int: ...
     @property
     def first_row(self) -> int: ...
@@ -210,6 +218,35 @@ def project_environment(source: EnvironmentLike, bands: int, layout: Optional[st
                         progress: Progress = None) -> npt.NDArray[np.float32]:
     """SH lighting (B², 3) of an environment, as `prt light`."""
 
+class HaarLight:
+    """All-frequency light: an environment's K largest Haar wavelet terms over an N² cube map
+    with its unshadowed part (`prt light --basis haar`; docs/haar.md)."""
+
+    @property
+    def resolution(self) -> int: ...
+    @property
+    def terms(self) -> int: ...
+    @property
+    def energy_kept(self) -> float: ...
+    @property
+    def indices(self) -> npt.NDArray[np.uint32]: ...
+    @property
+    def values(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def selection(self) -> str: ...
+    @property
+    def source(self) -> str: ...
+    def write(self, path: PathLike) -> None: ...
+
+def project_haar(source: EnvironmentLike, resolution: int = 32, terms: int = 200,
+                 rotation: Rotation = None, selection: str = "area",
+                 layout: Optional[str] = None) -> HaarLight:
+    """The K largest area-weighted wavelet terms of an environment's N² cube map, as
+    `prt light --basis haar`."""
+
+def read_haar_light(path: PathLike) -> HaarLight:
+    """A Haar light file (`prt light --basis haar`)."""
+
 def rotation_matrix(x: float, y: float, z: float) -> npt.NDArray[np.float64]: ...
 def rotate_light(light: npt.ArrayLike, rotation: Rotation) -> npt.NDArray[np.float32]: ...
 def window_light(light: npt.ArrayLike, window: str = "hanning",
@@ -221,11 +258,12 @@ def sh_eval(bands: int, directions: npt.ArrayLike) -> npt.NDArray[np.float32]: .
 
 # --- relighting and images ------------------------------------------------------------------------
 
-def relight(transfer: TransferLike, light: Union[npt.ArrayLike, PathLike],
+def relight(transfer: TransferLike, light: Union[npt.ArrayLike, PathLike, HaarLight],
             albedo: Optional[npt.ArrayLike] = None, rotation: Rotation = None, *,
             mesh: Optional[MeshLike] = None, eye: Optional[npt.ArrayLike] = None,
             material: Optional[str] = None) -> npt.NDArray[np.float32]:
-    """Exit radiance (N, 3) per row: vectors, matrices seen from `eye`, CPCA."""
+    """Exit radiance (N, 3) per row: vectors, matrices seen from `eye`, CPCA; a Haar transfer
+    under a HaarLight, a Haar light file or an environment (mesh= for its normals)."""
 
 def bake_probes(mesh: MeshLike, grid: Union[str, Tuple[int, int, int]] = "auto",
                 bounds: Optional[npt.ArrayLike] = None, mode: str = "interreflected",

@@ -158,6 +158,7 @@ void bindMesh(py::module_& m);      // mesh.cpp: Mesh, load_mesh, occluded, inte
 void bindTransfer(py::module_& m);  // transfer.cpp: Transfer, bake, compress
 void bindLight(py::module_& m);     // light.cpp: Environment, projection, SH operations
 void bindRelight(py::module_& m);   // relight.cpp: relight, render, reference, validate
+void bindHaar(py::module_& m);      // haar.cpp: HaarLight, project_haar, read_haar_light
 void bindFiles(py::module_& m);     // files.cpp: bake files, light files, course formats, images
 void bindProbes(py::module_& m);    // probes.cpp: bake_probes, relight_probes, shade_probes
 

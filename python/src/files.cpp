@@ -56,10 +56,13 @@ struct PyBakeFile {
   std::string path;
 };
 
-prt::BakeFile readFile(const std::string& path) {
+/// `shOnly`: read_bake's dense numpy rows hold SH transfer only (a Haar bake's rows are sparse
+/// wavelet terms: read_bake_file reads them as prtkit.Transfer).
+prt::BakeFile readFile(const std::string& path, bool shOnly) {
   py::gil_scoped_release nogil;
   prt::BakeFile f = prt::readBake(path);
-  f.requireSh(path, "the Python module reads SH transfer");
+  if (shOnly)
+    f.requireSh(path, "read_bake returns SH rows as numpy: read_bake_file reads Haar transfer");
   prt::foldBaseColour(f.mesh);  // as load_mesh: the module shades per vertex (and per texel)
   return f;
 }
@@ -128,7 +131,7 @@ void bindFiles(py::module_& m) {
         const std::string path = pathString(pathObj);
         prt::Transfer t;
         {
-          prt::BakeFile file = readFile(path);
+          prt::BakeFile file = readFile(path, true);
           const std::size_t i = pick(file, mode, transfer, path);
           t = std::move(file.transfers[i].transfer);
         }
@@ -152,7 +155,7 @@ matrix rows view the file's bytes (read-only).)");
       [](py::handle pathObj) {
         auto f = std::make_shared<PyBakeFile>();
         f->path = pathString(pathObj);
-        f->file = readFile(f->path);
+        f->file = readFile(f->path, false);
         f->mesh = std::make_shared<PyMesh>(std::move(f->file.mesh));
         f->file.mesh = prt::Mesh{};
         for (const prt::BakedTransfer& b : f->file.transfers) f->transfers.push_back(pyTransfer(b));
@@ -285,6 +288,7 @@ read_bake_file) is stored with it.)");
          std::optional<std::string> channel) {
         const std::string path = pathString(pathObj);
         const TransferPtr t = toTransfer(transferObj);
+        requireShTransfer(*t, "the course's transport files hold SH rows");
         const MeshPtr mesh = toMesh(meshObj);
         const prt::Games202Layout lay = games202Layout(layout);
         std::optional<prt::ChannelSelect> ch;

@@ -26,6 +26,7 @@ PYBIND11_MODULE(_prtkit, m) {
   prtpy::bindTransfer(m);
   prtpy::bindLight(m);
   prtpy::bindRelight(m);
+  prtpy::bindHaar(m);
   prtpy::bindFiles(m);
   prtpy::bindProbes(m);
 

@@ -69,6 +69,17 @@ Shape denseShape(const prt::TransferShape& shape);
 /// views other memory (a bake file's bytes).
 py::array transferArray(prt::Transfer t, bool writable);
 
+/// ValueError unless `t` is SH transfer: "the transfer is Haar ... : `use`" (transfer.cpp).
+void requireShTransfer(const PyTransfer& t, const std::string& use);
+
+/// True for a prtkit.HaarLight (haar.cpp).
+bool isHaarLight(py::handle obj);
+/// relight() of a Haar transfer (haar.cpp): under a HaarLight, a Haar light file or an
+/// environment (its 200 largest terms over the transfer's cube), at the mesh's normals, with
+/// `albedo` ((rows, 3), one colour, or None: the mesh's, else white); (rows, 3) radiance.
+py::array relightHaar(const PyTransfer& t, py::handle light, py::handle albedo, py::handle rot,
+                      const MeshPtr& mesh);
+
 /// prtkit.Environment: distant light as a function of direction.
 struct PyEnvironment {
   prt::envmap::Environment env;

@@ -53,6 +53,11 @@ py::array relightFn(py::handle transferObj, py::handle lightObj, py::handle albe
   const TransferPtr t = toTransfer(transferObj);
   const prt::Transfer& tr = t->transfer;
   const MeshPtr mesh = meshObj.is_none() ? nullptr : toMesh(meshObj);
+  if (tr.isHaar() || isHaarLight(lightObj)) {
+    if (!eyeObj.is_none() || !spec.is_none())
+      throw py::value_error("Haar transfer is diffuse: relight it without eye= or material=");
+    return relightHaar(*t, lightObj, albedo, rot, mesh);
+  }
   if (tr.domain() == prt::TransferDomain::Probes)
     throw py::value_error(
         "the transfer is a probe grid (the light arriving at points in space): relight it with "
@@ -299,6 +304,7 @@ py::dict validateFn(py::handle meshObj, py::handle transferObj, py::handle envir
   const MeshPtr mesh = toMesh(meshObj);
   const prt::Mesh& mm = mesh->mesh();
   const TransferPtr t = toTransfer(transferObj);
+  requireShTransfer(*t, "validate() checks SH transfer; `prt validate` checks Haar bakes");
   const prt::Transfer& tr = t->transfer;
   asValueError([&] {
     prt::render::requireWholeDomain(mm, tr, "validate");

@@ -145,6 +145,36 @@ struct Lightmap {
   bool denoise = false;  ///< the à-trous filter (prt bake --denoise)
 };
 
+/// A Haar transfer's rows (1 + 2K floats: kind, then K (index, value) pairs) as numpy columns:
+/// 0 the kinds (rows,) uint8, 1 the indices (rows, K) uint32, 2 the values (rows, K) float32.
+py::array haarColumn(const PyTransfer& t, int column) {
+  if (!t.transfer.isHaar())
+    throw py::value_error("the transfer is SH: haar_kinds, haar_indices and haar_values are a "
+                          "Haar transfer's (its rows are values)");
+  const std::size_t rows = t.transfer.rowCount();
+  const std::size_t k = static_cast<std::size_t>(t.transfer.shape().haar.terms);
+  const std::size_t stride = t.transfer.stride();
+  const float* v = t.transfer.values().data();
+  const auto r = static_cast<py::ssize_t>(rows), kk = static_cast<py::ssize_t>(k);
+  if (column == 0) {
+    py::array_t<std::uint8_t> a(r);
+    for (std::size_t i = 0; i < rows; ++i)
+      a.mutable_data()[i] = static_cast<std::uint8_t>(v[i * stride]);
+    return a;
+  }
+  if (column == 1) {
+    py::array_t<std::uint32_t> a({r, kk});
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t j = 0; j < k; ++j)
+        a.mutable_data()[i * k + j] = static_cast<std::uint32_t>(v[i * stride + 1 + 2 * j]);
+    return a;
+  }
+  py::array_t<float> a({r, kk});
+  for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t j = 0; j < k; ++j) a.mutable_data()[i * k + j] = v[i * stride + 2 + 2 * j];
+  return a;
+}
+
 prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int bands,
                              long long samples, std::uint64_t seed, int bounces,
                              const std::string& transfer, py::handle spec, py::handle albedo,
@@ -320,6 +350,12 @@ prt::Transfer transferFromArray(py::handle array, const std::optional<std::strin
       shape, prt::FloatArray::view(keepAlive(py::reinterpret_borrow<py::object>(a)), data, n));
 }
 
+void requireShTransfer(const PyTransfer& t, const std::string& use) {
+  if (t.transfer.isHaar())
+    throw py::value_error("the transfer is Haar-wavelet transfer (" +
+                          t.transfer.shape().describe() + "): " + use);
+}
+
 TransferPtr toTransfer(py::handle obj, const char* what) {
   if (py::isinstance<PyTransfer>(obj)) return obj.cast<TransferPtr>();
   auto t = std::make_shared<PyTransfer>();
@@ -398,7 +434,33 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
           },
           "domain 'probes': {'count': (nx, ny, nz), 'origin', 'spacing'} of the grid (probe "
           "(x, y, z) at origin + (x, y, z) * spacing, row x + nx*(y + ny*z)); None otherwise.")
-      .def_property_readonly("bands", [](const PyTransfer& t) { return t.transfer.bands(); })
+      .def_property_readonly("bands", [](const PyTransfer& t) { return t.transfer.bands(); },
+                             "SH bands B (0 for Haar transfer).")
+      .def_property_readonly(
+          "haar",
+          [](const PyTransfer& t) -> py::object {
+            if (!t.transfer.isHaar()) return py::none();
+            py::dict d;
+            d["resolution"] = t.transfer.shape().haar.resolution;
+            d["terms"] = t.transfer.shape().haar.terms;
+            return py::object(std::move(d));
+          },
+          "Haar-wavelet transfer (bake --basis haar; docs/haar.md): {'resolution': N, 'terms': "
+          "K} (an N² cube per face, K terms per row); None for SH transfer.")
+      .def_property_readonly(
+          "haar_kinds",
+          [](const PyTransfer& t) { return haarColumn(t, 0); },
+          "basis 'haar': (rows,) uint8, what each row holds: 0 its occluded part D = U - T (relit "
+          "as the unshadowed light less D·L), 1 its visible part T (transfer/haar_rows.hpp).")
+      .def_property_readonly(
+          "haar_indices",
+          [](const PyTransfer& t) { return haarColumn(t, 1); },
+          "basis 'haar': (rows, K) uint32, each row's wavelet coefficients, ascending (padding: "
+          "index 0 with value 0).")
+      .def_property_readonly(
+          "haar_values",
+          [](const PyTransfer& t) { return haarColumn(t, 2); },
+          "basis 'haar': (rows, K) float32, their values.")
       .def_property_readonly(
           "channels", [](const PyTransfer& t) { return t.transfer.channels(); },
           "1 (scalar) or 3 (RGB: coloured inter-reflection).")
@@ -422,6 +484,9 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
           "values",
           [](py::object self) {
             const PyTransfer& t = self.cast<const PyTransfer&>();
+            requireShTransfer(t,
+                              "its rows are sparse wavelet terms (haar_kinds, haar_indices, "
+                              "haar_values), not dense SH rows");
             if (t.transfer.compressed())
               throw py::value_error(
                   "the transfer is CPCA-compressed: to_dense() reconstructs its rows");
@@ -609,6 +674,7 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       [](py::handle transfer, int clusters, int pca, std::uint64_t seed, int iterations,
          double tolerance, py::object progress) {
         const TransferPtr src = toTransfer(transfer);
+        requireShTransfer(*src, "CPCA compresses SH rows (a Haar row is already its K terms)");
         const prt::Transfer& t = src->transfer;
         if (t.compressed()) throw py::value_error("the transfer is already compressed");
         if (pca < 0 || static_cast<std::size_t>(pca) > t.stride())

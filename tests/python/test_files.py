@@ -184,12 +184,60 @@ def test_validate_measures_encodings_as_the_cli(scene):
         prtkit.validate(scene, v, "builtin:sky", samples=8, vertices=10, encodings="all")
 
 
-def test_haar_bakes_are_refused_by_name(tmp_path, prt_cli):
-    # Haar-wavelet transfer (prt bake --basis haar) is relit by prt render and prt validate; the
-    # module reads SH transfer and says so, naming the file.
+def test_haar_bakes_read_and_relight_all_frequency(tmp_path, prt_cli):
+    # Haar-wavelet transfer (prt bake --basis haar): read_bake_file reads it, relight() relights
+    # it under a HaarLight; read_bake's dense numpy rows, compress and validate refuse it by name.
+    scene = "builtin:sphere-plane?grid=8&subdiv=2"
     out = tmp_path / "haar.glb"
-    prt_cli("bake", "builtin:sphere-plane?grid=4&subdiv=1", "--mode", "shadowed", "--basis",
-            "haar", "--resolution", "4", "--terms", "4", "-o", out)
-    for read in (prtkit.read_bake, prtkit.read_bake_file):
-        with pytest.raises(prtkit.Error, match="haar.glb: holds Haar-wavelet transfer"):
-            read(str(out))
+    prt_cli("bake", scene, "--mode", "shadowed", "--basis", "haar", "--resolution", "16",
+            "--terms", "96", "--samples", "4", "-o", out)
+    f = prtkit.read_bake_file(str(out))
+    t = f.transfers[0]
+    assert t.haar == {"resolution": 16, "terms": 96} and t.bands == 0
+    kinds, idx, val = t.haar_kinds, t.haar_indices, t.haar_values
+    assert kinds.shape == (f.mesh.vertex_count,) and set(np.unique(kinds)) <= {0, 1}
+    assert idx.shape == val.shape == (f.mesh.vertex_count, 96)
+    assert idx.max() < 6 * 16 * 16 and np.isfinite(val).all()
+
+    # The constant sky: every row relights to its visible cosine-weighted share, which the SH
+    # bake's √(4π)·T₀ estimates independently (its own rays).
+    const = prtkit.project_haar("builtin:constant", resolution=16, terms=6 * 16 * 16)
+    assert const.terms <= 6 * 16 * 16 and const.indices.shape == (const.terms,)
+    assert const.values.shape == (const.terms, 3) and abs(const.energy_kept - 1) < 1e-6
+    haar = prtkit.relight(t, const, albedo=(1, 1, 1), mesh=f.mesh)
+    sh = prtkit.bake(f.mesh, mode="shadowed", bands=3, samples=1024)[:, 0] * np.sqrt(4 * np.pi)
+    assert haar.shape == (f.mesh.vertex_count, 3)
+    assert np.abs(haar[:, 0] - sh).mean() < 0.01, np.abs(haar[:, 0] - sh).mean()
+
+    # The sun: against the Monte Carlo reference the Haar relighting is closer than 3-band SH.
+    sky = prtkit.project_haar("builtin:sky", resolution=16, terms=200)
+    assert sky.terms == 200 and 0 < sky.energy_kept < 1
+    path = tmp_path / "sky-haar.json"
+    sky.write(path)
+    again = prtkit.read_haar_light(path)
+    assert np.array_equal(again.indices, sky.indices) and np.array_equal(again.values, sky.values)
+    lit = prtkit.relight(t, again, mesh=f.mesh)  # the mesh's albedo, as the reference's
+    assert np.array_equal(lit, prtkit.relight(t, str(path), mesh=f.mesh))
+    ref = prtkit.reference(f.mesh, "builtin:sky", mode="shadowed", samples=256)
+    ref = np.asarray(ref["radiance"] if isinstance(ref, dict) else ref)
+    shb = prtkit.bake(f.mesh, mode="shadowed", bands=3, samples=256)
+    shl = prtkit.relight(shb, prtkit.project_environment("builtin:sky", 3), mesh=f.mesh)
+
+    def rel(x):
+        return np.sqrt(((x - ref) ** 2).sum() / (ref ** 2).sum())
+
+    assert rel(lit) < 0.7 * rel(shl), (rel(lit), rel(shl))
+
+    with pytest.raises(prtkit.Error, match="haar.glb: holds Haar-wavelet transfer"):
+        prtkit.read_bake(str(out))
+    for call, match in [(lambda: t.values, "sparse wavelet terms"),
+                        (lambda: prtkit.compress(t), "CPCA compresses SH rows"),
+                        (lambda: prtkit.relight(t, const), "needs mesh="),
+                        (lambda: prtkit.relight(t, np.zeros((9, 3), np.float32), mesh=f.mesh),
+                         "the light is SH"),
+                        (lambda: prtkit.relight(shb, const, mesh=f.mesh), "this transfer is SH"),
+                        (lambda: prtkit.project_haar("builtin:sky", resolution=12), "resolution"),
+                        (lambda: prtkit.project_haar("builtin:sky", resolution=4, terms=97),
+                         "terms must be 1..96")]:
+        with pytest.raises(ValueError, match=match):
+            call()
