@@ -109,7 +109,8 @@ py::array relightHaar(const PyTransfer& t, py::handle lightObj, py::handle albed
     light = std::make_shared<PyHaarLight>();
     const std::string path = fsPath(lightObj);
     light->file = asValueError([&] { return prt::io::readHaarLightJson(path); });
-  } else if (py::isinstance<py::array>(lightObj) && py::array(lightObj.cast<py::array>()).ndim() == 2) {
+  } else if (py::isinstance<py::array>(lightObj) &&
+             py::array(lightObj.cast<py::array>()).ndim() == 2) {
     throw py::value_error(
         "the light is SH ((B², 3)) and the transfer Haar: give a prtkit.HaarLight "
         "(project_haar), a Haar light file or an environment");
@@ -158,11 +159,12 @@ rest in 5-band SH) — what `prt light --basis haar` writes. Made by project_haa
 read_haar_light; relights a Haar bake with relight(transfer, light, mesh=...).)")
       .def_property_readonly("resolution",
                              [](const PyHaarLight& l) { return l.file.light.resolution; })
-      .def_property_readonly("terms", [](const PyHaarLight& l) { return l.file.light.terms(); },
-                             "K, the wavelet terms kept.")
-      .def_property_readonly("energy_kept",
-                             [](const PyHaarLight& l) { return l.file.light.energyKept; },
-                             "Σ|c|² of the kept terms over that of all 6 N² (RGB summed).")
+      .def_property_readonly(
+          "terms", [](const PyHaarLight& l) { return l.file.light.terms(); },
+          "K, the wavelet terms kept.")
+      .def_property_readonly(
+          "energy_kept", [](const PyHaarLight& l) { return l.file.light.energyKept; },
+          "Σ|c|² of the kept terms over that of all 6 N² (RGB summed).")
       .def_property_readonly(
           "indices", [](const PyHaarLight& l) { return termIndices(l.file.light); },
           "(K,) uint32: the kept coefficients (face·N² + y·N + x of the pyramid), ascending.")

@@ -149,8 +149,9 @@ struct Lightmap {
 /// 0 the kinds (rows,) uint8, 1 the indices (rows, K) uint32, 2 the values (rows, K) float32.
 py::array haarColumn(const PyTransfer& t, int column) {
   if (!t.transfer.isHaar())
-    throw py::value_error("the transfer is SH: haar_kinds, haar_indices and haar_values are a "
-                          "Haar transfer's (its rows are values)");
+    throw py::value_error(
+        "the transfer is SH: haar_kinds, haar_indices and haar_values are a "
+        "Haar transfer's (its rows are values)");
   const std::size_t rows = t.transfer.rowCount();
   const std::size_t k = static_cast<std::size_t>(t.transfer.shape().haar.terms);
   const std::size_t stride = t.transfer.stride();
@@ -418,7 +419,8 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
             d["denoised"] = lm.denoised;
             return py::object(std::move(d));
           },
-          "domain 'texels': {'width', 'height', 'padding', 'seams_fixed', 'denoised'} of the lightmap (rows "
+          "domain 'texels': {'width', 'height', 'padding', 'seams_fixed', 'denoised'} of the "
+          "lightmap (rows "
           "y*width + x); "
           "None per vertex.")
       .def_property_readonly(
@@ -434,8 +436,9 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
           },
           "domain 'probes': {'count': (nx, ny, nz), 'origin', 'spacing'} of the grid (probe "
           "(x, y, z) at origin + (x, y, z) * spacing, row x + nx*(y + ny*z)); None otherwise.")
-      .def_property_readonly("bands", [](const PyTransfer& t) { return t.transfer.bands(); },
-                             "SH bands B (0 for Haar transfer).")
+      .def_property_readonly(
+          "bands", [](const PyTransfer& t) { return t.transfer.bands(); },
+          "SH bands B (0 for Haar transfer).")
       .def_property_readonly(
           "haar",
           [](const PyTransfer& t) -> py::object {
@@ -448,18 +451,15 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
           "Haar-wavelet transfer (bake --basis haar; docs/haar.md): {'resolution': N, 'terms': "
           "K} (an N² cube per face, K terms per row); None for SH transfer.")
       .def_property_readonly(
-          "haar_kinds",
-          [](const PyTransfer& t) { return haarColumn(t, 0); },
+          "haar_kinds", [](const PyTransfer& t) { return haarColumn(t, 0); },
           "basis 'haar': (rows,) uint8, what each row holds: 0 its occluded part D = U - T (relit "
           "as the unshadowed light less D·L), 1 its visible part T (transfer/haar_rows.hpp).")
       .def_property_readonly(
-          "haar_indices",
-          [](const PyTransfer& t) { return haarColumn(t, 1); },
+          "haar_indices", [](const PyTransfer& t) { return haarColumn(t, 1); },
           "basis 'haar': (rows, K) uint32, each row's wavelet coefficients, ascending (padding: "
           "index 0 with value 0).")
       .def_property_readonly(
-          "haar_values",
-          [](const PyTransfer& t) { return haarColumn(t, 2); },
+          "haar_values", [](const PyTransfer& t) { return haarColumn(t, 2); },
           "basis 'haar': (rows, K) float32, their values.")
       .def_property_readonly(
           "channels", [](const PyTransfer& t) { return t.transfer.channels(); },
