@@ -86,11 +86,15 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
     std::fprintf(
         to, "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
   } else if (path == ShaderPath::CpuRadiance) {
-    std::fprintf(
-        to,
-        "glossy relighting (CPU relight::Relighter + radiance upload): median %.3f ms over "
-        "%zu relit frames\n",
-        s.relightMedianMs, s.relitFrames);
+    // What the CPU relights: glossy matrices, a probe grid, or Haar transfer.
+    const char* what = t.isHaar()          ? "Haar relighting (CPU haar::projectLight + "
+                                             "relight::relightHaar + radiance upload)"
+                       : scene.probeBake() ? "probe relighting (CPU relight::relightProbes + "
+                                             "shading + radiance upload)"
+                                           : "glossy relighting (CPU relight::Relighter + "
+                                             "radiance upload)";
+    std::fprintf(to, "%s: median %.3f ms over %zu relit frames\n", what, s.relightMedianMs,
+                 s.relitFrames);
   }
   std::fprintf(to, "light upload (%s, %zu bytes): median %.2f us\n",
                table ? "cluster table, glBufferData" : "glBufferSubData", lightBytes,

@@ -62,9 +62,9 @@ std::vector<Rgb> shadeProbeScene(const Transfer& transfer, int bands,
   return render::shadeThroughProbes(relight::relightProbes(cut, light), mesh);
 }
 
-render::FrameSurvey probeSceneSurvey(const Mesh& mesh, std::span<const Rgb> radiance,
-                                     const render::Camera& camera, int width, int height,
-                                     image::ToneMap op) {
+render::FrameSurvey vertexRadianceSurvey(const Mesh& mesh, std::span<const Rgb> radiance,
+                                         const render::Camera& camera, int width, int height,
+                                         image::ToneMap op) {
   const auto occluder = makeEmbreeOccluder(mesh);
   return render::surveyFrame(*occluder, render::vertexRadianceShader(mesh, radiance), camera,
                              width, height, op);

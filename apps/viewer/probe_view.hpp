@@ -26,9 +26,10 @@ Mesh probeSceneMesh(const BakeFile& bake, const MovingObject* object, bool showP
 std::vector<Rgb> shadeProbeScene(const Transfer& transfer, int bands,
                                  std::span<const Rgb> rotatedLight, const Mesh& mesh);
 
-/// prt render's exposure rule for the first view of it (render::surveyFrame).
-render::FrameSurvey probeSceneSurvey(const Mesh& mesh, std::span<const Rgb> radiance,
-                                     const render::Camera& camera, int width, int height,
-                                     image::ToneMap op);
+/// prt render's exposure rule for the first view of a mesh drawn from per-vertex radiance (a probe
+/// scene, a Haar bake): render::surveyFrame.
+render::FrameSurvey vertexRadianceSurvey(const Mesh& mesh, std::span<const Rgb> radiance,
+                                         const render::Camera& camera, int width, int height,
+                                         image::ToneMap op);
 
 }  // namespace prt::viewer

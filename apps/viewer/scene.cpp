@@ -6,19 +6,20 @@
 #include <chrono>
 #include <cmath>
 
+#include "haar_view.hpp"
+#include "probe_view.hpp"
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
-#include "prt/core/units.hpp"
 #include "prt/core/file.hpp"
+#include "prt/core/units.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
+#include "prt/geometry/load.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/base_colour.hpp"
 #include "prt/render/texel_points.hpp"
-#include "prt/geometry/load.hpp"
-#include "probe_view.hpp"
 
 namespace prt::viewer {
 
@@ -72,7 +73,11 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
   if (bake.transfers.empty())
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
-  bake.requireSh(path, "prt view relights SH transfer");
+  if (bake.transfers.front().transfer.isHaar()) {
+    // Relit on the CPU (haar_view.hpp); a file holds one basis.
+    bake.requireVertices(path, "prt view relights Haar transfer per vertex");
+    return bake;
+  }
   for (const BakedTransfer& t : bake.transfers) {
     // Some path draws it (per-texel matrices only compressed; probes on the CPU, probe_view),
     // else refused naming the file.
@@ -111,7 +116,14 @@ EnvironmentEntry Scene::loadEnvironment(const std::string& spec, int bands) {
 
 void Scene::setBake(BakeFile bake, const std::string& name, int width, int height) {
   PRT_CHECK(!bake.transfers.empty(), "setBake needs a transfer");
-  const int bands = bake.transfers.front().transfer.bands();
+  // A Haar bake has no SH bands: its environments' 1-band SH serve the background alone, and it
+  // is relit from their images (an SH light file holds none).
+  const int bands = std::max(1, bake.transfers.front().transfer.bands());
+  if (bake.transfers.front().transfer.isHaar())
+    for (const auto& e : envs_)
+      if (e->lighting.isShFile())
+        throw Error(name, "holds Haar transfer, and the light " + e->name +
+                              " is an SH light file: load an environment first");
   if (bands != bakeBands_) {
     // The environments at the new band count, all or nothing.
     std::vector<std::shared_ptr<const EnvironmentEntry>> envs;
@@ -144,6 +156,10 @@ void Scene::setObject(Mesh mesh, const std::string& name) {
 }
 
 void Scene::addEnvironment(EnvironmentEntry entry) {
+  if (haarBake() && entry.lighting.isShFile())
+    throw Error(entry.name, "is an SH light file, and " + bakeName_ +
+                                " holds Haar transfer: give the environment (an image, a face "
+                                "folder or builtin:NAME)");
   if (warn)
     for (const std::string& w : entry.lighting.warnings) warn(w);
   envs_.push_back(std::make_shared<const EnvironmentEntry>(std::move(entry)));
@@ -312,9 +328,49 @@ FrameParams SceneView::prepareProbes(const Scene& scene, const DrawState& now, i
   return f;
 }
 
+FrameParams SceneView::prepareHaar(const Scene& scene, const DrawState& now, int width,
+                                   int height) {
+  const bool newMesh = now.bake != drawn_.bake;
+  const bool newTransfer = newMesh || now.transfer != drawn_.transfer;
+  const bool newLight = now.environment != drawn_.environment || !(now.material == drawn_.material);
+  if (newMesh) renderer_.setMesh(now.bake->mesh);
+  if (newTransfer) {
+    relight::ShaderRows rows;
+    rows.path = relight::ShaderPath::CpuRadiance;
+    TransferShape shape;
+    shape.rows = {0, now.bake->mesh.vertexCount()};
+    renderer_.setTransfer(rows, shape);
+    path_ = rows.path;
+    cpuView_.reset();
+  }
+  uploadEnvironment(scene, now);
+  drawn_ = now;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  FrameParams f = beginFrame(scene, now, width, height);
+  if (newTransfer || newLight || !(f.lightRotation == haarRotation_)) {
+    const Transfer& t = now.transfer->transfer;
+    PRT_CHECK(now.environment && now.environment->lighting.image,
+              "a Haar bake is relit from an environment image (Scene::addEnvironment)");
+    const haar::HaarLight light =
+        haarViewLight(*now.environment->lighting.image, t.shape().haar.resolution, f.lightRotation);
+    probeRadiance_ = haarViewRadiance(now.bake->mesh, t, now.material, light);
+    renderer_.setRadiance(probeRadiance_);
+    haarRotation_ = f.lightRotation;
+    haarLightTerms_ = light.terms();
+    ++probeRelights_;
+    relightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  f.baseColour = false;  // folded into the vertices' albedo, as prt render draws a Haar bake
+  return f;
+}
+
 FrameParams SceneView::prepare(const Scene& scene, int width, int height) {
   const DrawState now = scene.drawState();
   if (now.bake->domain() == TransferDomain::Probes) return prepareProbes(scene, now, width, height);
+  if (now.transfer && now.transfer->transfer.isHaar())
+    return prepareHaar(scene, now, width, height);
   using relight::ShaderPath;
   const bool newMesh = now.bake != drawn_.bake;
   const bool newTransfer = newMesh || now.transfer != drawn_.transfer;
@@ -386,6 +442,12 @@ std::string SceneView::uploadSummary(const Scene& scene) const {
           ? sizeof(float) * std::size_t(t.coeffs()) * std::size_t(t.coeffs()) * t.channels()
           : 16 * std::size_t(relight::shaderTexelsPerRow(t, relight::ShaderPath::DenseVector));
   const std::string upload = bytesText(t.rowCount() * renderer_.bytesPerVertex());
+  if (t.isHaar())
+    return fmt::format(
+        "Haar transfer ({}² cube, {} terms a vertex, {} B stored) relit on the CPU under the "
+        "light's {} largest terms: {} bytes of radiance per vertex per relit frame",
+        t.shape().haar.resolution, t.shape().haar.terms,
+        t.rowCount() ? t.bytes() / t.rowCount() : 0, haarLightTerms_, sizeof(Rgb));
   if (t.domain() == TransferDomain::Probes)
     return fmt::format(
         "{} relit on the CPU, then the scene, the object and the markers shaded through them: "

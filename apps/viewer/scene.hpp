@@ -98,8 +98,8 @@ class OrbitCamera {
 
 class Scene {
  public:
-  /// Reads and checks a bake: complete, holds a transfer, bands within the viewer's limit.
-  /// Throws prt::Error("FILE: problem").
+  /// Reads and checks a bake: complete, holds a transfer, bands within the viewer's limit (or
+  /// Haar transfer only). Throws prt::Error("FILE: problem").
   static BakeFile readCheckedBake(const std::string& path);
   /// Loads an environment (image, face folder, builtin:NAME) and projects it to `bands`, or
   /// reads an SH light file (.json, .txt) and cuts or pads it to `bands` (io::loadLighting's
@@ -111,6 +111,8 @@ class Scene {
   /// default) at its full band count with its material (unless one was set with
   /// overrideMaterial), resets the camera to the default framing of a width × height view.
   void setBake(BakeFile bake, const std::string& name, int width, int height);
+  /// Adds and selects an environment; throws prt::Error naming it when it is an SH light file
+  /// and the bake is Haar.
   void addEnvironment(EnvironmentEntry entry);
 
   /// Loads a file dropped on the window: a .glb replaces the bake, anything else is added as an
@@ -165,6 +167,12 @@ class Scene {
   /// A probe bake (prt probes) is drawn with an object the user moves through its grid
   /// (probe_view.hpp); probeBake() says whether the bake is one.
   bool probeBake() const { return bake_->domain() == TransferDomain::Probes; }
+  /// A Haar bake (prt bake --basis haar) is relit on the CPU under the environment's largest
+  /// wavelet terms (haar_view.hpp); its SH band count is 1 (the background and the exposure's
+  /// light only). Its environments must be images (an SH light file holds no wavelets).
+  bool haarBake() const {
+    return !bake_->transfers.empty() && bake_->transfers.front().transfer.isHaar();
+  }
   /// The moving object of a probe bake: set by setBake (a sphere, unless setObject gave another
   /// mesh), placed anew in the grid of every probe bake set.
   std::optional<MovingObject> object;
@@ -218,7 +226,8 @@ class SceneView {
   /// Seconds the last CPU relighting took (relighting + radiance upload); 0 when the last
   /// prepare did not relight on the CPU.
   double lastRelightSeconds() const { return relightSeconds_; }
-  /// CPU relightings so far (frames where something view- or light-dependent changed).
+  /// CPU relightings so far (frames where something view- or light-dependent changed; probe
+  /// and Haar bakes: where the light or the mesh changed).
   int cpuRelights() const { return cpuView_ ? cpuView_->frames() : probeRelights_; }
   /// Of those, the ones served from the view-collapsed transfer (only the light had changed).
   int cpuLightOnlyRelights() const { return cpuView_ ? cpuView_->lightOnlyFrames() : 0; }
@@ -245,6 +254,9 @@ class SceneView {
   /// prepare for a probe bake (probe_view.hpp): the scene, the object and the markers as one
   /// mesh, shaded on the CPU when the light, the bands or the mesh change.
   FrameParams prepareProbes(const Scene& scene, const DrawState& now, int width, int height);
+  /// prepare for a Haar bake (haar_view.hpp): relit on the CPU when the light (environment or
+  /// rotation), the transfer or the material change.
+  FrameParams prepareHaar(const Scene& scene, const DrawState& now, int width, int height);
 
   Renderer renderer_;
   LightPacker packer_;
@@ -261,6 +273,8 @@ class SceneView {
   std::vector<Rgb> probeLight_;    ///< the rotated light its radiance was shaded under
   std::vector<Rgb> probeRadiance_;
   int probeRelights_ = 0;
+  Mat3d haarRotation_;  ///< the light rotation the Haar radiance (probeRadiance_) was relit at
+  std::size_t haarLightTerms_ = 0;
 };
 
 }  // namespace prt::viewer

@@ -12,16 +12,17 @@
 
 #include "capture.hpp"
 #include "context.hpp"
+#include "haar_view.hpp"
+#include "probe_view.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/file.hpp"
 #include "prt/core/options.hpp"
+#include "prt/geometry/load.hpp"
 #include "prt/image/image.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/render/exposure.hpp"
-#include "prt/geometry/load.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
-#include "probe_view.hpp"
 #include "scene.hpp"
 #include "window.hpp"
 
@@ -83,6 +84,10 @@ Scene loadScene(const Options& o, const Output& out) {
         fmt::format("{}: the {} transfer is a vector (diffuse only); the material's glossy "
                     "lobe needs a matrix bake (prt bake --transfer matrix)",
                     o.bake, toString(scene.transfer().mode())));
+  if (scene.haarBake() && o.bands > 0)
+    throw Error(o.bake,
+                "--bands shows SH transfer at fewer bands; this bake holds Haar transfer "
+                "(relit under the light's largest wavelet terms)");
   if (o.bands > scene.bakeBands())
     out.warn(fmt::format("--bands {} asked for, but the bake has only {} bands: showing {}",
                          o.bands, scene.bakeBands(), scene.bakeBands()));
@@ -106,10 +111,25 @@ Scene loadScene(const Options& o, const Output& out) {
     scene.setUserRotation(
         rotationEulerXYZ((*o.rotateDeg)[0], (*o.rotateDeg)[1], (*o.rotateDeg)[2]));
   scene.background = parseBackgroundMode(o.background);
+  if (scene.haarBake() && scene.background == BackgroundMode::Sh)
+    throw Error("--background sh draws an SH light, and " + o.bake + " holds Haar transfer");
   scene.toneMap = image::parseToneMap(o.toneMap);
   if (o.exposure) {
     image::checkExposure(*o.exposure, "--exposure");
     scene.exposureStops = *o.exposure;
+  } else if (scene.haarBake()) {
+    // prt render's rule on the first view of a Haar bake: its radiance, relit as it draws it.
+    const Mesh& mesh = scene.bake().mesh;
+    const Transfer& t = scene.transfer().transfer;
+    const EnvironmentEntry& env = scene.environment(std::size_t(scene.environmentIndex()));
+    const std::vector<Rgb> radiance = haarViewRadiance(
+        mesh, t, scene.material(),
+        haarViewLight(*env.lighting.image, t.shape().haar.resolution, scene.lightRotation()));
+    const render::FrameSurvey survey = vertexRadianceSurvey(mesh, radiance, scene.orbit.camera(),
+                                                            o.width, o.height, scene.toneMap);
+    scene.exposureStops = survey.exposureStops;
+    const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
+    if (!ringing.empty()) out.warn(ringing + " (the first view)");
   } else if (scene.probeBake()) {
     // prt render's rule on the first view: the scene and the object shaded through the probes.
     const Mesh drawn = probeSceneMesh(scene.bake(), &*scene.object, scene.showProbes);
@@ -118,8 +138,8 @@ Scene loadScene(const Options& o, const Output& out) {
         scene.environment(std::size_t(scene.environmentIndex())).light.truncated(scene.bands()));
     const std::vector<Rgb> radiance =
         shadeProbeScene(scene.transfer().transfer, scene.bands(), light.c, drawn);
-    const render::FrameSurvey survey = probeSceneSurvey(drawn, radiance, scene.orbit.camera(),
-                                                        o.width, o.height, scene.toneMap);
+    const render::FrameSurvey survey = vertexRadianceSurvey(drawn, radiance, scene.orbit.camera(),
+                                                            o.width, o.height, scene.toneMap);
     scene.exposureStops = survey.exposureStops;
     const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
     if (!ringing.empty()) out.warn(ringing + " (the first view)");

@@ -427,6 +427,29 @@ void expectCleanFailure(const std::string& args, const std::string& mention,
   EXPECT_NE(r.err.find(mention), std::string::npos) << "expected '" << mention << "' in " << r.err;
 }
 
+TEST(ViewCli, HaarBakeMatchesRenderUnderATurnedLight) {
+  // A Haar bake (prt bake --basis haar): every vertex relit on the CPU under the environment's
+  // largest wavelet terms, as prt render draws it; a turned light resamples the environment.
+  PRT_REQUIRE_HEADLESS_GL();
+  const Result b =
+      prt("-q bake 'builtin:sphere-plane?size=1.5&grid=40&subdiv=3' --mode shadowed "
+          "--basis haar --resolution 16 --terms 64 -o haar.glb");
+  ASSERT_EQ(b.rc, 0) << b.err;
+  EXPECT_LT(compareWithRender(path("haar.glb"), "--light builtin:sky"), kMatch);
+  EXPECT_LT(compareWithRender(path("haar.glb"), "--light builtin:sky --rotate 0,120,0"), kMatch);
+  // The comparison can fail: the unturned view against render's image of the turned light.
+  const Result v = prt("-q view '" + path("haar.glb") + "' --headless " + std::string(kSize) +
+                       " --light builtin:sky --screenshot unturned.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_GT(displayedRmse(path("unturned.png"), path("render.png")), 2 * kMatch);
+  // What it cannot draw is refused in one line: an SH light file holds no wavelets.
+  ASSERT_EQ(prt("-q light builtin:sky --bands 3 -o sky3.json").rc, 0);
+  const std::string view = "'" + path("haar.glb") + "' --headless " + std::string(kSize);
+  expectCleanFailure(view + " --light sky3.json", "sky3.json: is an SH light file");
+  expectCleanFailure(view + " --bands 2", "holds Haar transfer");
+  expectCleanFailure(view + " --background sh", "holds Haar transfer");
+}
+
 TEST(ViewCli, NoDisplayFailsCleanly) {
   // No skip: this needs no OpenGL at all.
   expectCleanFailure("'" + spherePlaneBake() + "'", "no display",

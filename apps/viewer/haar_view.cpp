@@ -1,0 +1,23 @@
+#include "haar_view.hpp"
+
+#include <algorithm>
+
+#include "prt/haar/project_light.hpp"
+#include "prt/haar/resolution.hpp"
+#include "prt/relight/relight_haar.hpp"
+
+namespace prt::viewer {
+
+haar::HaarLight haarViewLight(const envmap::Environment& env, int resolution,
+                              const Mat3d& rotation) {
+  const std::size_t terms = std::min(kHaarViewLightTerms, haar::coefficientCount(resolution));
+  return haar::projectLight(env, resolution, terms, rotation);
+}
+
+std::vector<Rgb> haarViewRadiance(const Mesh& mesh, const Transfer& transfer,
+                                  const Material& material, const haar::HaarLight& light) {
+  const std::vector<Rgb> albedo = albedoAtVertices(mesh);
+  return relight::relightHaar(transfer, light, mesh.normals, material.diffuseOr(albedo));
+}
+
+}  // namespace prt::viewer
