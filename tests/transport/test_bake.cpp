@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/builtin_scene.hpp"
 #include "common/random_data.hpp"
 
 #include <algorithm>
@@ -34,13 +35,7 @@ namespace {
 
 const double kSqrt4Pi = std::sqrt(4.0 * kPi);
 
-struct Scene {
-  Mesh mesh;
-  std::unique_ptr<Occluder> occluder;
-  explicit Scene(const std::string& name) : mesh(builtinScene(name)) {
-    occluder = makeEmbreeOccluder(mesh);
-  }
-};
+using Scene = testdata::BuiltinScene;
 
 BakeSettings settings(TransferMode mode, int bands, int samples) {
   BakeSettings s;

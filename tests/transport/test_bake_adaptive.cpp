@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/builtin_scene.hpp"
 #include "common/random_data.hpp"
 
 #include <cmath>
@@ -28,13 +29,7 @@ namespace {
 
 const double kSqrt4Pi = std::sqrt(4.0 * kPi);
 
-struct Scene {
-  Mesh mesh;
-  std::unique_ptr<Occluder> occluder;
-  explicit Scene(const std::string& name) : mesh(builtinScene(name)) {
-    occluder = makeEmbreeOccluder(mesh);
-  }
-};
+using Scene = testdata::BuiltinScene;
 
 BakeSettings settings(int samples, double targetError) {
   BakeSettings s;

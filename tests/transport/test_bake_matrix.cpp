@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/builtin_scene.hpp"
 #include "common/random_data.hpp"
 
 #include <cmath>
@@ -27,13 +28,7 @@
 namespace prt {
 namespace {
 
-struct Scene {
-  Mesh mesh;
-  std::unique_ptr<Occluder> occluder;
-  explicit Scene(const std::string& name) : mesh(builtinScene(name)) {
-    occluder = makeEmbreeOccluder(mesh);
-  }
-};
+using Scene = testdata::BuiltinScene;
 
 BakeSettings matrixSettings(TransferMode mode, int bands, int samples) {
   BakeSettings s;
