@@ -151,7 +151,8 @@ std::string haarBakeSeed() {
 }
 
 /// A per-texel bake of the builtin plane (a 2 × 2 grid, its packed lightmap chart) at 8 × 8
-/// texels: the lightmap, texel range and texel-row accessor of format 6.
+/// texels: the lightmap, texel range and texel-row accessor of format 6; sampled adaptively, so
+/// that its recipe holds a target error (settings.targetError).
 std::string texelBakeSeed() {
   prt::BakeFile file;
   file.mesh = prt::builtinScene("builtin:plane?grid=2");
@@ -161,6 +162,7 @@ std::string texelBakeSeed() {
   s.mode = prt::TransferMode::Shadowed;
   s.bands = 2;
   s.samples = 8;
+  s.targetError = 0.05;
   prt::BakedTransfer t;
   t.recipe = s;
   t.transfer =
