@@ -300,13 +300,7 @@ FrameParams SceneView::prepareProbes(const Scene& scene, const DrawState& now, i
     probeMesh_ = probeSceneMesh(*now.bake, scene.object ? &*scene.object : nullptr,
                                 now.showProbes);
     renderer_.setMesh(probeMesh_);
-    relight::ShaderRows rows;
-    rows.path = relight::ShaderPath::CpuRadiance;
-    TransferShape shape;
-    shape.rows = {0, probeMesh_.vertexCount()};
-    renderer_.setTransfer(rows, shape);
-    path_ = rows.path;
-    cpuView_.reset();
+    useCpuRadiance(probeMesh_.vertexCount());
     probeLight_.clear();
   }
   uploadEnvironment(scene, now);
@@ -319,13 +313,23 @@ FrameParams SceneView::prepareProbes(const Scene& scene, const DrawState& now, i
   if (newMesh || newTransfer || !std::equal(light.begin(), light.end(), probeLight_.begin(),
                                             probeLight_.end())) {
     probeLight_.assign(light.begin(), light.end());
-    probeRadiance_ = shadeProbeScene(now.transfer->transfer, now.bands, light, probeMesh_);
-    renderer_.setRadiance(probeRadiance_);
-    ++probeRelights_;
+    shadedRadiance_ = shadeProbeScene(now.transfer->transfer, now.bands, light, probeMesh_);
+    renderer_.setRadiance(shadedRadiance_);
+    ++shadedRelights_;
     relightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return f;
+}
+
+void SceneView::useCpuRadiance(std::size_t vertices) {
+  relight::ShaderRows rows;
+  rows.path = relight::ShaderPath::CpuRadiance;
+  TransferShape shape;
+  shape.rows = {0, vertices};
+  renderer_.setTransfer(rows, shape);
+  path_ = rows.path;
+  cpuView_.reset();
 }
 
 FrameParams SceneView::prepareHaar(const Scene& scene, const DrawState& now, int width,
@@ -334,15 +338,7 @@ FrameParams SceneView::prepareHaar(const Scene& scene, const DrawState& now, int
   const bool newTransfer = newMesh || now.transfer != drawn_.transfer;
   const bool newLight = now.environment != drawn_.environment || !(now.material == drawn_.material);
   if (newMesh) renderer_.setMesh(now.bake->mesh);
-  if (newTransfer) {
-    relight::ShaderRows rows;
-    rows.path = relight::ShaderPath::CpuRadiance;
-    TransferShape shape;
-    shape.rows = {0, now.bake->mesh.vertexCount()};
-    renderer_.setTransfer(rows, shape);
-    path_ = rows.path;
-    cpuView_.reset();
-  }
+  if (newTransfer) useCpuRadiance(now.bake->mesh.vertexCount());
   uploadEnvironment(scene, now);
   drawn_ = now;
 
@@ -354,11 +350,11 @@ FrameParams SceneView::prepareHaar(const Scene& scene, const DrawState& now, int
               "a Haar bake is relit from an environment image (Scene::addEnvironment)");
     const haar::HaarLight light =
         haarViewLight(*now.environment->lighting.image, t.shape().haar.resolution, f.lightRotation);
-    probeRadiance_ = haarViewRadiance(now.bake->mesh, t, now.material, light);
-    renderer_.setRadiance(probeRadiance_);
+    shadedRadiance_ = haarViewRadiance(now.bake->mesh, t, now.material, light);
+    renderer_.setRadiance(shadedRadiance_);
     haarRotation_ = f.lightRotation;
     haarLightTerms_ = light.terms();
-    ++probeRelights_;
+    ++shadedRelights_;
     relightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -422,7 +418,7 @@ std::size_t SceneView::lightUploadBytes() const {
     case relight::ShaderPath::CpcaMatrix:
       return renderer_.clusterTableBytes();
     case relight::ShaderPath::CpuRadiance:
-      return sizeof(Rgb) * (cpuView_ ? cpuView_->radiance().size() : probeRadiance_.size());
+      return sizeof(Rgb) * (cpuView_ ? cpuView_->radiance().size() : shadedRadiance_.size());
     default:
       return packer_.bytes();
   }

@@ -228,12 +228,12 @@ class SceneView {
   double lastRelightSeconds() const { return relightSeconds_; }
   /// CPU relightings so far (frames where something view- or light-dependent changed; probe
   /// and Haar bakes: where the light or the mesh changed).
-  int cpuRelights() const { return cpuView_ ? cpuView_->frames() : probeRelights_; }
+  int cpuRelights() const { return cpuView_ ? cpuView_->frames() : shadedRelights_; }
   /// Of those, the ones served from the view-collapsed transfer (only the light had changed).
   int cpuLightOnlyRelights() const { return cpuView_ ? cpuView_->lightOnlyFrames() : 0; }
   /// The last CPU relighting's per-vertex exit radiance (what the shader shows).
   std::span<const Rgb> cpuRadiance() const {
-    return cpuView_ ? cpuView_->radiance() : std::span<const Rgb>(probeRadiance_);
+    return cpuView_ ? cpuView_->radiance() : std::span<const Rgb>(shadedRadiance_);
   }
   /// One line on what the shown transfer costs the GPU, after a prepare: what is uploaded once
   /// per vertex (against the dense rows) and per frame.
@@ -247,6 +247,9 @@ class SceneView {
  private:
   /// The transfer-dependent part of an upload: the path, the per-vertex texels, the relighter.
   void setTransfer(const DrawState& now);
+  /// Draws `vertices` vertices from radiance the CPU relights (setRadiance each relit frame):
+  /// a probe scene's, a Haar bake's.
+  void useCpuRadiance(std::size_t vertices);
   /// The environment's image and light when they changed, and the SH background while shown.
   void uploadEnvironment(const Scene& scene, const DrawState& now);
   /// This frame's parameters, the light turned and packed (the light work's start).
@@ -271,9 +274,10 @@ class SceneView {
   double lightSeconds_ = 0, relightSeconds_ = 0;
   Mesh probeMesh_;                 ///< a probe bake's drawn mesh (probeSceneMesh)
   std::vector<Rgb> probeLight_;    ///< the rotated light its radiance was shaded under
-  std::vector<Rgb> probeRadiance_;
-  int probeRelights_ = 0;
-  Mat3d haarRotation_;  ///< the light rotation the Haar radiance (probeRadiance_) was relit at
+  /// The radiance the CPU shaded last (a probe scene's or a Haar bake's), and how often.
+  std::vector<Rgb> shadedRadiance_;
+  int shadedRelights_ = 0;
+  Mat3d haarRotation_;  ///< the light rotation the Haar radiance (shadedRadiance_) was relit at
   std::size_t haarLightTerms_ = 0;
 };
 

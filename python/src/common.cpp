@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstring>
 #include <exception>
 #include <mutex>
 #include <sstream>
@@ -206,6 +207,25 @@ prt::Rgb rgb(py::handle obj, const char* what) {
     return prt::Rgb(static_cast<float>(g.data()[0]));
   }
   return vec3(obj, what);
+}
+
+std::vector<prt::Rgb> albedoOf(py::handle obj, std::size_t rows) {
+  const py::array a = py::array::ensure(obj);
+  if (a && a.ndim() == 2) {
+    const auto al = floats(obj, "albedo", {static_cast<py::ssize_t>(rows), 3});
+    std::vector<prt::Rgb> out(rows);
+    std::memcpy(static_cast<void*>(out.data()), al.data(), rows * sizeof(prt::Rgb));
+    return out;
+  }
+  return {rgb(obj, "albedo")};
+}
+
+bool isPath(py::handle obj) {
+  return py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__");
+}
+
+std::string pathString(py::handle obj) {
+  return py::str(py::module_::import("os").attr("fspath")(obj)).cast<std::string>();
 }
 
 prt::Mat3d rotation(py::handle obj, const char* what) {

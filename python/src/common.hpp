@@ -86,6 +86,12 @@ std::vector<std::uint32_t> indices(py::handle obj, const char* what, std::size_t
 prt::Vec3f vec3(py::handle obj, const char* what);
 /// An RGB colour: one grey number or three.
 prt::Rgb rgb(py::handle obj, const char* what);
+/// Per-row albedo: (rows, 3), or one colour for every row.
+std::vector<prt::Rgb> albedoOf(py::handle obj, std::size_t rows);
+/// True for a path argument: a str or an os.PathLike.
+bool isPath(py::handle obj);
+/// A path argument as a string (os.fspath).
+std::string pathString(py::handle obj);
 /// A rotation: a 3×3 matrix (applied to column vectors: a feature at d moves to R d), or three
 /// Euler angles in degrees about X, then Y, then Z (R = Rz Ry Rx, as `prt --rotate X,Y,Z`).
 /// None: the identity.

@@ -21,10 +21,6 @@ namespace prtpy {
 
 namespace {
 
-std::string pathString(py::handle obj) {
-  return py::str(py::module_::import("os").attr("fspath")(obj)).cast<std::string>();
-}
-
 /// The file's choice of transfer: prt::pickTransfer with optional mode and layout names.
 std::size_t pick(const prt::BakeFile& file, const std::optional<std::string>& mode,
                  const std::optional<std::string>& layout, const std::string& path) {

@@ -26,14 +26,6 @@ struct PyHaarLight {
 };
 using HaarLightPtr = std::shared_ptr<PyHaarLight>;
 
-std::string fsPath(py::handle obj) {
-  return py::str(py::module_::import("os").attr("fspath")(obj)).cast<std::string>();
-}
-
-bool isPathLike(py::handle obj) {
-  return py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__");
-}
-
 HaarLightPtr project(py::handle source, int resolution, std::size_t terms, py::handle rot,
                      const std::string& selection, std::optional<std::string> layout) {
   asValueError([&] {
@@ -105,9 +97,9 @@ py::array relightHaar(const PyTransfer& t, py::handle lightObj, py::handle albed
   HaarLightPtr light;
   if (isHaarLight(lightObj)) {
     light = lightObj.cast<HaarLightPtr>();
-  } else if (isPathLike(lightObj) && prt::io::isHaarLightFile(fsPath(lightObj))) {
+  } else if (isPath(lightObj) && prt::io::isHaarLightFile(pathString(lightObj))) {
     light = std::make_shared<PyHaarLight>();
-    const std::string path = fsPath(lightObj);
+    const std::string path = pathString(lightObj);
     light->file = asValueError([&] { return prt::io::readHaarLightJson(path); });
   } else if (py::isinstance<py::array>(lightObj) &&
              py::array(lightObj.cast<py::array>()).ndim() == 2) {
@@ -128,14 +120,7 @@ py::array relightHaar(const PyTransfer& t, py::handle lightObj, py::handle albed
   std::vector<prt::Rgb> albedoStore;
   std::span<const prt::Rgb> kd;
   if (!albedo.is_none()) {
-    const py::array a = py::array::ensure(albedo);
-    if (a && a.ndim() == 2) {
-      const auto al = floats(albedo, "albedo", {static_cast<py::ssize_t>(rows), 3});
-      albedoStore.resize(rows);
-      std::memcpy(static_cast<void*>(albedoStore.data()), al.data(), rows * sizeof(prt::Rgb));
-    } else {
-      albedoStore = {rgb(albedo, "albedo")};
-    }
+    albedoStore = albedoOf(albedo, rows);
     kd = albedoStore;
   } else if (!mm.albedo.empty()) {
     kd = std::span<const prt::Rgb>(mm.albedo).subspan(first, rows);
@@ -176,7 +161,7 @@ read_haar_light; relights a Haar bake with relight(transfer, light, mesh=...).)"
       .def(
           "write",
           [](const PyHaarLight& l, py::handle path) {
-            const std::string p = fsPath(path);
+            const std::string p = pathString(path);
             asValueError([&] {
               py::gil_scoped_release nogil;
               prt::io::writeHaarLightJson(p, l.file);
@@ -202,7 +187,7 @@ read_haar_light; relights a Haar bake with relight(transfer, light, mesh=...).)"
       "read_haar_light",
       [](py::handle path) {
         auto l = std::make_shared<PyHaarLight>();
-        const std::string p = fsPath(path);
+        const std::string p = pathString(path);
         l->file = asValueError([&] { return prt::io::readHaarLightJson(p); });
         return l;
       },

@@ -20,14 +20,6 @@ namespace prtpy {
 
 namespace {
 
-std::string pathString(py::handle obj) {
-  return py::str(py::module_::import("os").attr("fspath")(obj)).cast<std::string>();
-}
-
-bool isPath(py::handle obj) {
-  return py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__");
-}
-
 prt::image::Image imageFrom(const float* p, py::ssize_t h, py::ssize_t w) {
   prt::image::Image img(static_cast<int>(w), static_cast<int>(h));
   std::memcpy(static_cast<void*>(img.pixels.data()), p, img.pixels.size() * sizeof(prt::Rgb));

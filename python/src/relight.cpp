@@ -23,29 +23,9 @@ namespace prtpy {
 
 namespace {
 
-bool isPath(py::handle obj) {
-  return py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__");
-}
-
-std::string pathString(py::handle obj) {
-  return py::str(py::module_::import("os").attr("fspath")(obj)).cast<std::string>();
-}
-
 py::array rgbArray(std::vector<prt::Rgb> v) {
   const auto n = static_cast<py::ssize_t>(v.size());
   return adoptVector(std::move(v), {n, 3});
-}
-
-/// Per-row albedo: (rows, 3), or one colour.
-std::vector<prt::Rgb> albedoOf(py::handle obj, std::size_t rows) {
-  const py::array a = py::array::ensure(obj);
-  if (a && a.ndim() == 2) {
-    const auto al = floats(obj, "albedo", {static_cast<py::ssize_t>(rows), 3});
-    std::vector<prt::Rgb> out(rows);
-    std::memcpy(static_cast<void*>(out.data()), al.data(), rows * sizeof(prt::Rgb));
-    return out;
-  }
-  return {rgb(obj, "albedo")};
 }
 
 py::array relightFn(py::handle transferObj, py::handle lightObj, py::handle albedo, py::handle rot,
