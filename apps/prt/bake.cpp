@@ -190,8 +190,13 @@ void addBakeCommand(CLI::App& root) {
                   "wavelets over a cube map of --resolution² texels per face, each row pruned "
                   "to its --terms largest coefficients; Ng et al. 2003)")
       ->capture_default_str();
+  cmd->add_option("--cube-resolution", args->cubeResolution,
+                  "--basis haar: the cube's side, 2..256, a power of two (default 32; per "
+                  "vertex --resolution says it too)")
+      ->check(intRange(1, kMaxLightmapSide));
   cmd->add_option("--terms", args->terms,
-                  "--basis haar: wavelet coefficients kept per vertex (default 64; 8 bytes each)");
+                  "--basis haar: wavelet coefficients kept per row, vertex or texel (default 64; 4 "
+                  "bytes each in the file)");
   cmd->add_option("--bounces", args->bounces, "Inter-reflection bounces (interreflected mode)")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed (results are identical for any thread count)")
@@ -223,7 +228,8 @@ void addBakeCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution,
                   "--domain texels: the lightmap's side in texels (default 512); --basis haar "
-                  "per vertex: the cube's side, 2..256, a power of two (default 32)")
+                  "per vertex: the cube's side, 2..256, a power of two (default 32; per texel: "
+                  "--cube-resolution)")
       ->check(intRange(1, kMaxLightmapSide));
   cmd->add_option("--uv", args->uv,
                   "--domain texels: the UV set: auto (the lightmap set, glTF TEXCOORD_1, else the "

@@ -166,11 +166,18 @@ BakeRequest requestOf(const BakeArgs& a) {
   r.domain = parseTransferDomain(a.domain);
   const bool cubeResolution = r.basis == TransferBasis::Haar && r.domain != TransferDomain::Texels;
   if (r.basis == TransferBasis::Haar) {
-    // --resolution is the cube's side, unless it is a lightmap's (--domain texels).
+    // The cube's side: --cube-resolution, or per vertex --resolution (per texel the lightmap's).
+    if (a.cubeResolution && a.resolution && cubeResolution)
+      throw Error(
+          "--resolution and --cube-resolution both give the Haar cube's side of a "
+          "per-vertex bake: give one");
+    if (a.cubeResolution) r.haar.resolution = a.cubeResolution;
     if (a.resolution && cubeResolution) r.haar.resolution = a.resolution;
     if (a.terms) r.haar.terms = a.terms;
-  } else if (a.terms) {
-    throw Error("--terms is the Haar transfer's budget per row: add --basis haar");
+  } else if (a.terms || a.cubeResolution) {
+    throw Error(std::string(a.terms ? "--terms is the Haar transfer's budget per row"
+                                    : "--cube-resolution is the Haar cube's side") +
+                ": add --basis haar");
   }
   if (r.domain == TransferDomain::Texels) {
     if (a.resolution) r.lightmap.resolution = a.resolution;

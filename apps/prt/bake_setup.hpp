@@ -23,6 +23,7 @@ struct BakeArgs {
                            // our message
   std::string basis = "sh";
   int terms = 0;  ///< Haar: terms kept per row; 0: not given (the request's default)
+  int cubeResolution = 0;  ///< --cube-resolution: the Haar cube's side; 0: not given
   int bounces = 1;
   std::uint64_t seed = 0;
   std::string sampling = "cosine";

@@ -33,10 +33,11 @@ void describeBakeDomain(const BakeFile& b, std::ostream& out, Json& j) {
         "lightmap    {}x{} over the lightmap UVs, padding {}: {:.1f}% of the texels covered ({}; "
         "{} partly)\n",
         lm.width, lm.height, lm.padding, 100.0 * share, s.samples.size(), partial);
-    // The seams of the richest vector transfer (render/lightmap_seams.hpp).
+    // The seams of the richest vector transfer (render/lightmap_seams.hpp), relit in SH: not of
+    // Haar transfer.
     for (std::size_t i : transferPreference(b)) {
       const Transfer& x = b.transfers[i].transfer;
-      if (x.isMatrix() || !b.complete()) continue;
+      if (x.isMatrix() || x.isHaar() || !b.complete()) continue;
       // Under a white sky (the transfer's mean) and under the builtin sky's sun (the shadow
       // edges, where seams show most).
       Json under = Json::array();

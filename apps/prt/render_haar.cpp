@@ -12,6 +12,7 @@
 #include "prt/relight/relight_haar.hpp"
 #include "prt/render/exposure.hpp"
 #include "prt/render/primary.hpp"
+#include "prt/render/texel_points.hpp"
 
 namespace prt::cli {
 
@@ -42,13 +43,27 @@ void renderHaarBake(const BakeFile& bake, const BakedTransfer& baked, const Mate
                                "folder or builtin:NAME) or a Haar light (prt light --basis haar)");
     light = haar::projectLight(*lighting->image, n, std::size_t(a.lightTerms), a.rotation);
   }
-  const std::vector<Rgb> albedoAtRows = albedoAtVertices(bake.mesh);
-  const std::vector<Rgb> radiance =
-      relight::relightHaar(transfer, light, bake.mesh.normals, material.diffuseOr(albedoAtRows));
-  render::checkFiniteRadiance(radiance, a.bake);
-
+  // Per vertex: the rows relit with the albedo at the vertices, blended across triangles. Per
+  // texel: relit white at the texels' normals and fetched bilinearly, the albedo multiplied per
+  // pixel (render::texelRelight, as for SH).
   const auto occluder = makeEmbreeOccluder(bake.mesh);
-  const render::ShadeFn shade = render::vertexRadianceShader(bake.mesh, radiance);
+  std::vector<Rgb> radiance;
+  render::ShadeFn shade;
+  if (transfer.domain() == TransferDomain::Texels) {
+    const render::TexelRelight texels =
+        render::texelRelight(bake.mesh, *occluder, transfer, material);
+    radiance = relight::relightHaar(transfer, light, texels.points.normals, material.diffuseOr({}));
+    render::checkFiniteRadiance(radiance, a.bake, "texel");
+    const auto& lm = transfer.shape().lightmap;
+    shade =
+        render::texelRadianceShader(bake.mesh, radiance, lm.width, lm.height, texels.pixelAlbedo);
+  } else {
+    const std::vector<Rgb> albedoAtRows = albedoAtVertices(bake.mesh);
+    radiance =
+        relight::relightHaar(transfer, light, bake.mesh.normals, material.diffuseOr(albedoAtRows));
+    render::checkFiniteRadiance(radiance, a.bake);
+    shade = render::vertexRadianceShader(bake.mesh, radiance);
+  }
   render::Camera camera = render::frameMesh(bake.mesh, a.frame.width, a.frame.height);
   if (!a.camera.empty()) camera = render::parseCamera(a.camera, camera);
   image::WriteOptions write = a.write;

@@ -13,6 +13,9 @@ void fixBakeSeams(BakeFile& file, const std::string& name) {
   if (file.domain() != TransferDomain::Texels)
     throw Error(name, "--seam-fix is of per-texel transfer (bake with --domain texels)");
   file.requireComplete(name);
+  file.requireSh(name,
+                 "the seam fix solves for SH coefficients across seams, and a Haar row's "
+                 "sparse terms differ from texel to texel");
   for (BakedTransfer& t : file.transfers) {
     if (t.transfer.compressed())
       throw Error(name, "holds compressed transfer (" + t.describe() +

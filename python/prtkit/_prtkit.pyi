@@ -186,25 +186,29 @@ def intersect(mesh: MeshLike, origins: npt.ArrayLike, directions: npt.ArrayLike,
 
 # --- baking ---------------------------------------------------------------------------------------
 
-def bake(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, samples: int = 1024,
+def bake(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, samples: Optional[int] = None,
          seed: int = 0, bounces: int = 1, transfer: Layout = "vector",
          material: Optional[str] = None, albedo: Optional[npt.ArrayLike] = None,
          sampling: str = "cosine", range: Union[None, Tuple[int, int], range] = None,
          domain: str = "vertices", resolution: int = 512, uv: str = "auto", padding: int = 2,
          seam_fix: bool = False, denoise: bool = False,
-         progress: Progress = None, target_error: float = 0.0) -> npt.NDArray[np.float32]:
+         progress: Progress = None, target_error: float = 0.0, basis: str = "sh",
+         cube_resolution: int = 32, terms: int = 64) -> npt.NDArray[np.float32]:
     """SH transfer per vertex (or per texel, domain='texels': row y*resolution + x) as a numpy
     array owning the C++ buffer: (N, B²), (N, B², 3), (N, B², B²) or (N, B², B², 3);
     bit-identical to `prt bake` with the same settings."""
 
-def bake_transfer(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3, samples: int = 1024,
-                  seed: int = 0, bounces: int = 1, transfer: Layout = "vector",
-                  material: Optional[str] = None, albedo: Optional[npt.ArrayLike] = None,
-                  sampling: str = "cosine", range: Union[None, Tuple[int, int], range] = None,
-                  domain: str = "vertices", resolution: int = 512, uv: str = "auto",
-                  padding: int = 2, seam_fix: bool = False, denoise: bool = False,
-                  progress: Progress = None, target_error: float = 0.0) -> Transfer:
-    """bake, returning a Transfer with its recipe and statistics."""
+def bake_transfer(mesh: MeshLike, mode: Mode = "shadowed", bands: int = 3,
+                  samples: Optional[int] = None, seed: int = 0, bounces: int = 1,
+                  transfer: Layout = "vector", material: Optional[str] = None,
+                  albedo: Optional[npt.ArrayLike] = None, sampling: str = "cosine",
+                  range: Union[None, Tuple[int, int], range] = None, domain: str = "vertices",
+                  resolution: int = 512, uv: str = "auto", padding: int = 2,
+                  seam_fix: bool = False, denoise: bool = False, progress: Progress = None,
+                  target_error: float = 0.0, basis: str = "sh", cube_resolution: int = 32,
+                  terms: int = 64) -> Transfer:
+    """bake, returning a Transfer with its recipe and statistics; basis='haar' bakes Haar
+    wavelet transfer (sparse rows: haar_kinds, haar_indices, haar_values)."""
 
 def compress(transfer: TransferLike, clusters: int = 64, pca: int = 8, seed: int = 0,
              iterations: int = 30, tolerance: float = 1e-3, progress: Progress = None) -> Transfer:

@@ -13,6 +13,7 @@
 #include "prt/haar/resolution.hpp"
 #include "prt/io/haar_light_file.hpp"
 #include "prt/relight/relight_haar.hpp"
+#include "prt/render/texel_points.hpp"
 #include "prt/transfer/haar_rows.hpp"
 
 namespace prtpy {
@@ -113,19 +114,32 @@ py::array relightHaar(const PyTransfer& t, py::handle lightObj, py::handle albed
   }
   const prt::Mesh& mm = mesh->mesh();
   const std::size_t first = tr.rows().first, rows = tr.rowCount();
-  if (mm.vertexCount() < first + rows)
-    throw py::value_error("mesh has " + std::to_string(mm.vertexCount()) +
-                          " vertices; the transfer's rows are vertices " + std::to_string(first) +
-                          ".." + std::to_string(first + rows - 1));
   std::vector<prt::Rgb> albedoStore;
   std::span<const prt::Rgb> kd;
+  std::span<const prt::Vec3f> normals;
+  prt::render::TexelRelight texels;
+  if (tr.domain() == prt::TransferDomain::Texels) {
+    // Per texel: relit white (render(mesh, radiance.reshape(h, w, 3)) multiplies the albedo per
+    // pixel) at each texel's normal, as prt render relights it (render::texelRelight).
+    if (first != 0 || rows != tr.shape().lightmap.texels())
+      throw py::value_error(
+          "relighting per-texel Haar transfer needs every texel (a complete "
+          "bake)");
+    texels = asValueError(
+        [&] { return prt::render::texelRelight(mm, mesh->occluder(), tr, prt::Material{}); });
+    normals = texels.points.normals;
+  } else {
+    if (mm.vertexCount() < first + rows)
+      throw py::value_error("mesh has " + std::to_string(mm.vertexCount()) +
+                            " vertices; the transfer's rows are vertices " + std::to_string(first) +
+                            ".." + std::to_string(first + rows - 1));
+    normals = std::span<const prt::Vec3f>(mm.normals).subspan(first, rows);
+    if (!mm.albedo.empty()) kd = std::span<const prt::Rgb>(mm.albedo).subspan(first, rows);
+  }
   if (!albedo.is_none()) {
     albedoStore = albedoOf(albedo, rows);
     kd = albedoStore;
-  } else if (!mm.albedo.empty()) {
-    kd = std::span<const prt::Rgb>(mm.albedo).subspan(first, rows);
   }
-  const auto normals = std::span<const prt::Vec3f>(mm.normals).subspan(first, rows);
   std::vector<prt::Rgb> out(rows);
   asValueError([&] {
     py::gil_scoped_release nogil;

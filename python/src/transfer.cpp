@@ -145,6 +145,20 @@ struct Lightmap {
   bool denoise = false;  ///< the à-trous filter (prt bake --denoise)
 };
 
+/// basis='haar': the cube and each row's budget of terms (prt bake --basis haar).
+struct Basis {
+  std::string name = "sh";
+  int cubeResolution = prt::kDefaultHaarResolution;
+  int terms = prt::kDefaultHaarTerms;
+};
+
+/// samples=None: the basis's default (prt bake's: 1024 directions; Haar 1 ray per cube texel).
+long long samplesOf(py::handle samples, const Basis& basis) {
+  if (samples.is_none())
+    return asValueError([&] { return prt::defaultSamples(prt::parseTransferBasis(basis.name)); });
+  return samples.cast<long long>();
+}
+
 /// A Haar transfer's rows (1 + 2K floats: kind, then K (index, value) pairs) as numpy columns:
 /// 0 the kinds (rows,) uint8, 1 the indices (rows, K) uint32, 2 the values (rows, K) float32.
 py::array haarColumn(const PyTransfer& t, int column) {
@@ -181,10 +195,11 @@ prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int
                              const std::string& transfer, py::handle spec, py::handle albedo,
                              const std::string& sampling, py::handle range,
                              const std::string& domain, const Lightmap& lightmap,
-                             double targetError) {
+                             double targetError, const Basis& basis) {
   prt::BakeRequest r;
   asValueError([&] {
     r.modes = {prt::parseTransferMode(mode)};
+    r.basis = prt::parseTransferBasis(basis.name);
     r.layout = prt::parseTransferLayout(transfer);
     r.sampling = prt::parseSampling(sampling);
     r.domain = prt::parseTransferDomain(domain);
@@ -193,6 +208,8 @@ prt::BakeRequest bakeRequest(const prt::Mesh& mesh, const std::string& mode, int
   });
   r.bands = bands;
   r.samples = samples;
+  r.haar.resolution = basis.cubeResolution;
+  r.haar.terms = basis.terms;
   r.bounces = bounces;
   r.seed = seed;
   r.targetError = targetError;
@@ -220,15 +237,15 @@ struct Baked {
   prt::BakeStats stats;
 };
 
-Baked runBake(py::handle meshObj, const std::string& mode, int bands, long long samples,
+Baked runBake(py::handle meshObj, const std::string& mode, int bands, py::handle samples,
               std::uint64_t seed, int bounces, const std::string& transfer, py::handle spec,
               py::handle albedo, const std::string& sampling, py::handle range,
               const std::string& domain, const Lightmap& lightmap, double targetError,
-              py::handle progress, prt::BakeSettings* used) {
+              const Basis& basis, py::handle progress, prt::BakeSettings* used) {
   const MeshPtr mesh = toMesh(meshObj);
   const prt::BakeRequest request =
-      bakeRequest(mesh->mesh(), mode, bands, samples, seed, bounces, transfer, spec, albedo,
-                  sampling, range, domain, lightmap, targetError);
+      bakeRequest(mesh->mesh(), mode, bands, samplesOf(samples, basis), seed, bounces, transfer,
+                  spec, albedo, sampling, range, domain, lightmap, targetError, basis);
   // The mesh as the request bakes it (its albedo, its lightmap UV set), over the mesh's own BVH:
   // a copy, so that the Mesh object stays as the caller made it.
   prt::Mesh prepared = mesh->mesh();
@@ -258,7 +275,8 @@ mesh: a prtkit.Mesh (its BVH is kept for the next bake) or any object with .vert
     .faces (trimesh, Open3D: copied, BVH built each call).
 mode: 'unshadowed' | 'shadowed' | 'interreflected'.
 bands: SH bands B (B² coefficients; the course's SHOrder 2 is bands=3), 1..16.
-samples: directions per vertex; seed: the random seed (results never depend on threads).
+samples: directions per row (None: 1024); basis='haar': rays per cube texel (None: 1);
+    seed: the random seed (results never depend on threads).
 bounces: inter-reflection bounces (interreflected only).
 transfer: 'vector' (diffuse) | 'matrix' (glossy: B² x B² per vertex).
 material: a spec ('lambert', 'phong?exponent=32&ks=0.5', 'ggx?roughness=0.3&ks=0.5', each
@@ -280,6 +298,10 @@ denoise: domain='texels': filter the lightmap's Monte Carlo noise within each ch
 target_error: adaptive sampling (prt bake --target-error): 0 off; E > 0 makes samples the most a
     row casts: a pilot of 64 directions, then the power of two its standard error of radiance
     under the unit sky needs to reach E (vector SH bakes, cosine sampling; deterministic).
+basis, cube_resolution, terms: 'sh' (bands) | 'haar' (prt bake --basis haar; docs/haar.md):
+    all-frequency Haar wavelets over a cube of cube_resolution² texels a face (a power of two,
+    2..256), each row pruned to its `terms` largest coefficients; unshadowed or shadowed vector
+    transfer, per vertex or per texel (bake_transfer only: the rows are sparse terms).
 progress: None, True (a tqdm bar, when tqdm is installed) or a callable(fraction) that may
     return False to cancel (prtkit.Cancelled). Ctrl-C cancels within a fraction of a second
     (KeyboardInterrupt).
@@ -614,23 +636,31 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
 
   m.def(
       "bake",
-      [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
-         int bounces, const std::string& transfer, py::object spec, py::object albedo,
-         const std::string& sampling, py::object range, const std::string& domain, int resolution,
-         const std::string& uv, int padding, bool seamFix, bool denoise, py::object progress,
-         double targetError) {
+      [](py::object mesh, const std::string& mode, int bands, py::object samples,
+         std::uint64_t seed, int bounces, const std::string& transfer, py::object spec,
+         py::object albedo, const std::string& sampling, py::object range,
+         const std::string& domain, int resolution, const std::string& uv, int padding,
+         bool seamFix, bool denoise, py::object progress, double targetError,
+         const std::string& basis, int cubeResolution, int terms) {
+        if (basis == "haar")
+          throw py::value_error(
+              "basis='haar': bake returns dense SH rows, and a Haar transfer's rows are sparse "
+              "wavelet terms: use bake_transfer (Transfer.haar_kinds, haar_indices, "
+              "haar_values)");
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
                           sampling, range, domain, {resolution, uv, padding, seamFix, denoise},
-                          targetError, progress, nullptr);
+                          targetError, {basis, cubeResolution, terms}, progress, nullptr);
         return transferArray(std::move(b.transfer), true);
       },
       py::arg("mesh"), py::arg("mode") = "shadowed", py::arg("bands") = 3,
-      py::arg("samples") = 1024, py::arg("seed") = 0, py::arg("bounces") = 1,
+      py::arg("samples") = py::none(), py::arg("seed") = 0, py::arg("bounces") = 1,
       py::arg("transfer") = "vector", py::arg("material") = py::none(),
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
       py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
       py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("denoise") = false,
-      py::arg("progress") = py::none(), py::arg("target_error") = 0.0,
+      py::arg("progress") = py::none(), py::arg("target_error") = 0.0, py::arg("basis") = "sh",
+      py::arg("cube_resolution") = prt::kDefaultHaarResolution,
+      py::arg("terms") = prt::kDefaultHaarTerms,
       (std::string(
            "Bakes per-vertex SH transfer and returns its dense rows as a numpy array, without a "
            "copy:\n"
@@ -641,15 +671,16 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
           .c_str());
   m.def(
       "bake_transfer",
-      [](py::object mesh, const std::string& mode, int bands, long long samples, std::uint64_t seed,
-         int bounces, const std::string& transfer, py::object spec, py::object albedo,
-         const std::string& sampling, py::object range, const std::string& domain, int resolution,
-         const std::string& uv, int padding, bool seamFix, bool denoise, py::object progress,
-         double targetError) {
+      [](py::object mesh, const std::string& mode, int bands, py::object samples,
+         std::uint64_t seed, int bounces, const std::string& transfer, py::object spec,
+         py::object albedo, const std::string& sampling, py::object range,
+         const std::string& domain, int resolution, const std::string& uv, int padding,
+         bool seamFix, bool denoise, py::object progress, double targetError,
+         const std::string& basis, int cubeResolution, int terms) {
         prt::BakeSettings s;
         Baked b = runBake(mesh, mode, bands, samples, seed, bounces, transfer, spec, albedo,
                           sampling, range, domain, {resolution, uv, padding, seamFix, denoise},
-                          targetError, progress, &s);
+                          targetError, {basis, cubeResolution, terms}, progress, &s);
         auto t = std::make_shared<PyTransfer>();
         t->transfer = std::move(b.transfer);
         t->recipe = s;
@@ -657,12 +688,14 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
         return t;
       },
       py::arg("mesh"), py::arg("mode") = "shadowed", py::arg("bands") = 3,
-      py::arg("samples") = 1024, py::arg("seed") = 0, py::arg("bounces") = 1,
+      py::arg("samples") = py::none(), py::arg("seed") = 0, py::arg("bounces") = 1,
       py::arg("transfer") = "vector", py::arg("material") = py::none(),
       py::arg("albedo") = py::none(), py::arg("sampling") = "cosine", py::arg("range") = py::none(),
       py::arg("domain") = "vertices", py::arg("resolution") = 512, py::arg("uv") = "auto",
       py::arg("padding") = 2, py::arg("seam_fix") = false, py::arg("denoise") = false,
-      py::arg("progress") = py::none(), py::arg("target_error") = 0.0,
+      py::arg("progress") = py::none(), py::arg("target_error") = 0.0, py::arg("basis") = "sh",
+      py::arg("cube_resolution") = prt::kDefaultHaarResolution,
+      py::arg("terms") = prt::kDefaultHaarTerms,
       (std::string(
            "bake, returning a prtkit.Transfer (values, recipe, stats) for write_bake, relight,\n"
            "compress and validate.\n") +

@@ -359,7 +359,7 @@ Vec3f sampleNormal(const Mesh& mesh, const TexelSample& s) {
 }
 
 void dilateTexels(std::span<float> values, int stride, std::vector<std::uint8_t>& filled, int width,
-                  int height, int padding) {
+                  int height, int padding, TexelDilation how) {
   const std::size_t n = std::size_t(width) * height;
   PRT_CHECK(values.size() == n * std::size_t(stride) && filled.size() == n,
             "dilateTexels: buffers do not match the lightmap");
@@ -380,11 +380,18 @@ void dilateTexels(std::span<float> values, int stride, std::vector<std::uint8_t>
             if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
             const std::size_t o = std::size_t(ny) * width + nx;
             if (!before[o]) continue;
+            if (how == TexelDilation::CopyFirst) {
+              if (count++ == 0)
+                std::copy_n(values.begin() + std::ptrdiff_t(o * stride), stride,
+                            values.begin() + std::ptrdiff_t(texel * stride));
+              continue;
+            }
             ++count;
             for (int c = 0; c < stride; ++c) sum[c] += values[o * stride + c];
           }
         if (count == 0) continue;
-        for (int c = 0; c < stride; ++c) values[texel * stride + c] = float(sum[c] / count);
+        if (how == TexelDilation::Mean)
+          for (int c = 0; c < stride; ++c) values[texel * stride + c] = float(sum[c] / count);
         filled[texel] = 1;
         any = true;
       }

@@ -5,6 +5,7 @@
 #include "prt/core/error.hpp"
 #include "prt/geometry/texel_sampling.hpp"
 #include "prt/render/render.hpp"
+#include "prt/transfer/row_dilation.hpp"
 #include "prt/transport/texel_validity.hpp"
 
 namespace prt::render {
@@ -34,7 +35,8 @@ void requireLightmapUvs(const Mesh& mesh) {
 }  // namespace
 
 RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
-                         const TransferShape::LightmapSize& lightmap, bool withTexture) {
+                         const TransferShape::LightmapSize& lightmap, bool withTexture,
+                         TexelDilation how) {
   requireLightmapUvs(mesh);
   const TexelSamples s = sampleTexels(mesh, mesh.lightmapUvs, lightmap.width, lightmap.height);
   RowPoints out;
@@ -70,14 +72,16 @@ RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
     filled[t] = 1;
   }
   std::vector<std::uint8_t> valid = filled;
-  dilateTexels(v, kStride, filled, lightmap.width, lightmap.height, std::max(lightmap.padding, 1));
+  dilateTexels(v, kStride, filled, lightmap.width, lightmap.height, std::max(lightmap.padding, 1),
+               how);
   for (std::size_t t = 0; t < rows; ++t) {
     if (valid[t] || !filled[t]) continue;
     const float* r = v.data() + t * kStride;
     out.positions[t] = {r[0], r[1], r[2]};
     const Vec3f m{r[3], r[4], r[5]};
     const float len = length(m);
-    out.normals[t] = len > 0 ? m / len : Vec3f(0, 0, 1);
+    // A copied normal is a neighbour's own, bit for bit; a mean is normalised again.
+    out.normals[t] = how == TexelDilation::CopyFirst ? m : len > 0 ? m / len : Vec3f(0, 0, 1);
     if (coloured) out.albedo[t] = {r[6], r[7], r[8]};
   }
   return out;
@@ -114,12 +118,12 @@ RowPoints texelSamplePoints(const Mesh& mesh, const Occluder& occluder,
 
 RowPoints texelRowPointsAt(const Mesh& mesh, const Occluder& occluder,
                            const TransferShape::LightmapSize& lightmap,
-                           std::span<const std::uint32_t> texels) {
+                           std::span<const std::uint32_t> texels, TexelDilation how) {
   RowPoints own = texelSamplePoints(mesh, occluder, lightmap, texels);
   if (own.valid.size() == texels.size()) return own;  // every point its own sample's
   // Some are the gutter or inside geometry: their points are dilated from their valid
   // neighbours', which takes the whole lightmap's.
-  const RowPoints all = texelRowPoints(mesh, occluder, lightmap);
+  const RowPoints all = texelRowPoints(mesh, occluder, lightmap, true, how);
   RowPoints out;
   out.rows = std::move(own.rows);
   out.valid = std::move(own.valid);
@@ -151,6 +155,9 @@ TexelRelight texelRelight(const Mesh& mesh, const Occluder& occluder, const Tran
   TexelRelight r;
   if (!transfer.isMatrix()) {
     r.pixelAlbedo = texelAlbedo(mesh, material);
+    if (transfer.isHaar())
+      r.points = texelRowPoints(mesh, occluder, transfer.shape().lightmap, false,
+                                rowDilation(transfer.shape().basis));
     return r;
   }
   r.points = texelRowPoints(mesh, occluder, transfer.shape().lightmap, false);

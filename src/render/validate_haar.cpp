@@ -7,7 +7,9 @@
 #include "prt/core/error.hpp"
 #include "prt/haar/project_light.hpp"
 #include "prt/relight/relight_haar.hpp"
+#include "prt/render/texel_points.hpp"
 #include "prt/render/validate.hpp"
+#include "prt/transfer/row_dilation.hpp"
 #include "validation_errors.hpp"
 
 namespace prt::render {
@@ -17,31 +19,42 @@ HaarValidationReport validateHaar(const Mesh& mesh, const Occluder& occluder,
                                   const envmap::Environment& env,
                                   const HaarValidateSettings& settings,
                                   const ProgressFn& progress) {
-  if (!transfer.isHaar() || transfer.domain() != TransferDomain::Vertices)
-    throw Error(settings.bakeName, "validateHaar validates per-vertex Haar transfer");
-  if (transfer.rowCount() != mesh.vertexCount() || transfer.rows().first != 0)
-    throw Error(settings.bakeName, "transfer has " + std::to_string(transfer.rowCount()) +
-                                       " rows, the mesh " + std::to_string(mesh.vertexCount()) +
-                                       " (validation needs a complete bake)");
+  const bool perTexel = transfer.domain() == TransferDomain::Texels;
+  if (!transfer.isHaar() || (!perTexel && transfer.domain() != TransferDomain::Vertices))
+    throw Error(settings.bakeName, "validateHaar validates Haar transfer per vertex or per texel");
+  requireWholeDomain(mesh, transfer, "validation");
   const int n = transfer.shape().haar.resolution;
   HaarValidationReport rep;
   rep.mode = bake.mode;
+  rep.domain = transfer.domain();
   rep.resolution = n;
   rep.transferTerms = transfer.shape().haar.terms;
 
+  // The rows: the SH validation's (chooseRows; per texel valid texels with their points), or the
+  // precomputed reference's.
   ReferenceSettings rs = settings.reference;
   rs.mode = bake.mode;
   rs.bounces = 0;
   rs.material = referenceMaterial(bake.material, TransferLayout::Vector);
   rs.bandLimit.reset();
+  const std::size_t domainRows = transfer.rowCount();
   if (settings.precomputed) {
     rep.reference = *settings.precomputed;
     for (std::uint32_t v : rep.reference.vertices)
-      if (v >= mesh.vertexCount())
-        throw Error("the reference has vertex " + std::to_string(v) + " of a mesh with " +
-                    std::to_string(mesh.vertexCount()));
+      if (v >= domainRows)
+        throw Error(std::string("the reference has ") + rowName(transfer.domain()) + " " +
+                    std::to_string(v) + " of " + std::to_string(domainRows));
+    if (perTexel) {
+      std::vector<std::uint32_t> texels = rep.reference.vertices;
+      std::sort(texels.begin(), texels.end());
+      texels.erase(std::unique(texels.begin(), texels.end()), texels.end());
+      rs.points = std::make_shared<const RowPoints>(texelRowPointsAt(
+          mesh, occluder, transfer.shape().lightmap, texels, rowDilation(TransferBasis::Haar)));
+    }
   } else {
-    rs.vertices = vertexSubset(mesh.vertexCount(), settings.maxVertices, rs.seed);
+    RowChoice c = chooseRows(mesh, occluder, transfer, settings.maxVertices, rs.seed);
+    rs.vertices = std::move(c.rows);
+    rs.points = std::move(c.points);
     rep.reference = settings.runReference ? settings.runReference(rs, progress)
                                           : renderReference(mesh, occluder, env, rs, progress);
   }
@@ -66,23 +79,40 @@ HaarValidationReport validateHaar(const Mesh& mesh, const Occluder& occluder,
   std::sort(budgets.begin(), budgets.end());
   budgets.erase(std::unique(budgets.begin(), budgets.end()), budgets.end());
   const haar::UnshadowedPart unshadowed = haar::unshadowedPart(env, means, n, rs.rotation);
-  const std::vector<Rgb> albedo = albedoAtVertices(mesh);
+  // The validated rows alone, gathered with their normals and albedo (the mesh's vertices, or
+  // the texels' points), so that nothing here is of the lightmap's size.
+  const std::size_t stride = transfer.stride();
+  std::vector<float> values(count * stride);
+  std::vector<Vec3f> normals(count);
+  std::vector<Rgb> albedo;
+  const std::vector<Rgb> vertexAlbedo = perTexel ? std::vector<Rgb>() : albedoAtVertices(mesh);
+  const RowPoints* points = rs.points.get();
+  if (points ? !points->albedo.empty() : !vertexAlbedo.empty()) albedo.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t r = verts[i];
+    std::copy_n(transfer.values().data() + (r - transfer.rows().first) * stride, stride,
+                values.data() + i * stride);
+    const std::size_t at = points ? points->entry(r) : r;
+    normals[i] = points ? points->normals[at] : mesh.normals[at];
+    if (!albedo.empty()) albedo[i] = points ? points->albedo[at] : vertexAlbedo[at];
+  }
+  TransferShape gatheredShape = transfer.shape();
+  gatheredShape.rows = {0, count};
+  const Transfer gathered = Transfer::dense(gatheredShape, FloatArray(std::move(values)));
   const std::span<const Rgb> kd = rs.material.diffuseOr(albedo);
   for (std::size_t k : budgets) {
     haar::HaarLight light = haar::approximate(means, n, k);
     light.unshadowed = unshadowed.sh;
     light.bright = unshadowed.bright;
-    const std::vector<Rgb> relit = relight::relightHaar(transfer, light, mesh.normals, kd);
+    const std::vector<Rgb> atVertices = relight::relightHaar(gathered, light, normals, kd);
     HaarRow row;
     row.lightTerms = k;
     row.energyKept = light.energyKept;
-    std::vector<Rgb> atVertices(count);
-    for (std::size_t i = 0; i < count; ++i) {
-      atVertices[i] = relit[verts[i]];
+    for (std::size_t i = 0; i < count; ++i)
       if (!isFinite(atVertices[i]))
-        throw Error(settings.bakeName, "the radiance of vertex " + std::to_string(verts[i]) +
-                                           " is not finite");
-    }
+        throw Error(settings.bakeName, std::string("the radiance of ") +
+                                           rowName(transfer.domain()) + " " +
+                                           std::to_string(verts[i]) + " is not finite");
     const ErrorColumns e =
         errorColumns(metric, atVertices, counted, -1e-3 * metric.meanRef, count);
     row.relRmse = e.relRmse;
@@ -98,9 +128,8 @@ HaarValidationReport validateHaar(const Mesh& mesh, const Occluder& occluder,
 std::string formatHaarTable(const HaarValidationReport& r) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line,
-                "Haar %d² cube, %d terms per vertex; reference std err %.2f%%\n", r.resolution,
-                r.transferTerms, 100 * r.refStdErr);
+  std::snprintf(line, sizeof line, "Haar %d² cube, %d terms per %s; reference std err %.2f%%\n",
+                r.resolution, r.transferTerms, rowName(r.domain), 100 * r.refStdErr);
   out += line;
   out += "light terms   energy kept   rel RMSE   energy-weighted   mean rel   max rel   negative\n";
   for (const HaarRow& row : r.rows) {

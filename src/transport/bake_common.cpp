@@ -32,9 +32,10 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
                               std::to_string(mesh.vertexCount()) + ")");
   if (s.basis == TransferBasis::Haar) {
     if (s.mode == TransferMode::Interreflected || s.layout != TransferLayout::Vector ||
-        s.domain != TransferDomain::Vertices)
-      throw Error(name, "a Haar bake is diffuse transfer (vector), unshadowed or shadowed, per "
-                        "vertex (inter-reflected and per-texel Haar transfer are not made yet)");
+        s.domain == TransferDomain::Probes)
+      throw Error(name,
+                  "a Haar bake is diffuse transfer (vector), unshadowed or shadowed, per "
+                  "vertex or per texel (inter-reflected Haar transfer is not made)");
     if (s.samples > kMaxHaarRaysPerTexel)
       throw Error(name, "a Haar bake casts 1 to " + std::to_string(kMaxHaarRaysPerTexel) +
                             " rays per cube texel (its samples), got " +

@@ -33,11 +33,23 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
     if (r.layout != TransferLayout::Vector)
       throw Error(std::string(cli ? "--basis haar" : "basis='haar'") +
                   " bakes diffuse transfer (vector): the glossy matrices are SH only");
-    if (r.domain != TransferDomain::Vertices)
+    if (r.domain == TransferDomain::Probes)
       throw Error(std::string(cli ? "--basis haar" : "basis='haar'") +
-                  " bakes per vertex (per-texel Haar transfer is not made yet)");
+                  " bakes surfaces (per vertex or per texel): a probe holds SH matrices");
+    if (r.domain == TransferDomain::Texels && r.lightmap.denoise)
+      throw Error(optionName(spelling, "denoise") +
+                  " filters SH lightmaps: a Haar row's terms are the sparse largest of its own "
+                  "transfer, and no two texels keep the same ones");
+    if (r.domain == TransferDomain::Texels && r.lightmap.seamFix)
+      throw Error(optionName(spelling, "seam-fix") +
+                  " solves for SH coefficients across seams: a Haar row's sparse terms differ "
+                  "from texel to texel");
+    // The cube's side: --resolution per vertex (--cube-resolution too), --cube-resolution per
+    // texel, where --resolution is the lightmap's; cube_resolution in Python.
+    const std::string cube =
+        cli && r.domain == TransferDomain::Vertices ? "resolution" : "cube-resolution";
     if (!haar::validResolution(r.haar.resolution))
-      throw Error(optionLabel(spelling, "resolution") + ": the Haar cube's side must be a power " +
+      throw Error(optionLabel(spelling, cube) + ": the Haar cube's side must be a power " +
                   "of two from " + std::to_string(haar::kMinResolution) + " to " +
                   std::to_string(haar::kMaxResolution) + ", got " +
                   std::to_string(r.haar.resolution));

@@ -9,11 +9,12 @@
 
 #include "bake_common.hpp"
 #include "bake_haar.hpp"
+#include "probe_domain.hpp"
 #include "prt/core/error.hpp"
 #include "prt/core/hash.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/sh/sh.hpp"
-#include "probe_domain.hpp"
+#include "prt/transfer/row_dilation.hpp"
 #include "texel_domain.hpp"
 
 namespace prt {
@@ -149,6 +150,7 @@ BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSet
     last = probe.widen(m.rows);
     m.texels = std::make_unique<TexelDomain>(makeTexelDomain(
         mesh, occluder, uvs, lm.width, lm.height, lm.padding, bounces > 0 ? all : last));
+    m.texels->dilation = rowDilation(settings.basis);
   }
   if (settings.basis == TransferBasis::Haar) {
     // One pass: the rows' pruned wavelet transfer (planBake refused bounces).

@@ -42,7 +42,7 @@ std::vector<float> TexelDomain::layOut(const float* values, RowRange rows, std::
     std::copy_n(row(i), stride, image.begin() + std::ptrdiff_t(s[i].texel * stride));
     filled[s[i].texel] = 1;
   }
-  dilateTexels(image, int(stride), filled, width, height, rings());
+  dilateTexels(image, int(stride), filled, width, height, rings(), dilation);
   for (std::size_t i = b; i < e; ++i)
     if (inside[i] && !filled[s[i].texel]) {
       std::copy_n(row(i), stride, image.begin() + std::ptrdiff_t(s[i].texel * stride));

@@ -9,13 +9,15 @@
 #include <vector>
 
 #include "bake_common.hpp"
-#include "prt/geometry/texel_samples.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 
 namespace prt::bakedetail {
 
 struct TexelDomain {
   int width = 0, height = 0;
   int padding = 0;  ///< rings of gutter the result is dilated into
+  /// How a gutter texel takes its neighbours' rows (transfer/row_dilation.hpp).
+  TexelDilation dilation = TexelDilation::Mean;
   std::span<const Vec2f> uvs;
   /// The covered texels kept (those the passes compute: all, or a range's widened by the
   /// dilation's reach), in texel order, with their points and inside-geometry flags.

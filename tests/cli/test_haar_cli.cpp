@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "cli_harness.hpp"
@@ -69,6 +70,52 @@ TEST_F(HaarCli, BakeInfoRenderValidate) {
   EXPECT_NE(report.find("\"lightTerms\": 1536"), std::string::npos) << report;  // whole cube
 }
 
+TEST_F(HaarCli, PerTexelBakeInfoRenderValidateMerge) {
+  // Per texel: --resolution is the lightmap's side, --cube-resolution the cube's.
+  const std::string bake = std::string("-q bake ") + kScene +
+                           " --mode shadowed --basis haar --domain texels --resolution 24 "
+                           "--cube-resolution 8 --terms 24 --samples 2 ";
+  Result r = prt(bake + "-o t.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const BakeFile b = readBake(path("t.glb"));
+  const Transfer& t = b.transfers[0].transfer;
+  EXPECT_TRUE(t.isHaar());
+  EXPECT_EQ(t.domain(), TransferDomain::Texels);
+  EXPECT_EQ(t.shape().lightmap.width, 24);
+  EXPECT_EQ(t.shape().haar, (TransferShape::HaarSize{8, 24}));
+  r = prt("info t.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("Haar wavelets over a 8² cube"), std::string::npos) << r.out;
+  // Two ranges merged: the whole bake's bytes.
+  ASSERT_EQ(prt(bake + "--range 0:300 -o a.glb").rc, 0);
+  ASSERT_EQ(prt(bake + "--range 300:576 -o b.glb").rc, 0);
+  r = prt("-q merge a.glb b.glb -o m.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const BakeFile merged = readBake(path("m.glb"));
+  const Transfer& m = merged.transfers[0].transfer;
+  ASSERT_EQ(m.values().size(), t.values().size());
+  EXPECT_TRUE(std::equal(m.values().begin(), m.values().end(), t.values().begin()));
+
+  r =
+      prt("-q render t.glb --light builtin:sky --background none --size 48x36 --spp 1 "
+          "--exposure 0 -o t.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const image::Image img = image::readImage(path("t.exr"));
+  double lit = 0;
+  for (const auto& p : img.pixels) lit = std::max(lit, double(p[0]));
+  EXPECT_GT(lit, 0.05) << "the relit lightmap draws the scene";
+  r =
+      prt("validate t.glb --light builtin:sky --vertices 150 --reference-samples 256 --terms "
+          "100 --json v.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("terms per texel"), std::string::npos) << r.out;
+  const std::string report = slurp(path("v.json"));
+  EXPECT_NE(report.find("\"basis\": \"haar\""), std::string::npos) << report;
+  // What reads lightmaps as SH refuses it by name.
+  expectCleanFailure("denoise t.glb -o out/d.glb", "Haar");
+  expectCleanFailure("merge a.glb b.glb --seam-fix -o out/s.glb", "Haar");
+}
+
 TEST_F(HaarCli, OtherVerbsRefuseItByName) {
   ASSERT_EQ(prt(std::string("-q bake ") + kScene +
                 " --mode shadowed --basis haar --resolution 8 --terms 8 -o h.glb")
@@ -94,7 +141,21 @@ TEST_F(HaarCli, BadOptionsWriteNothing) {
   const std::string bake = std::string("bake ") + kScene + " --basis haar ";
   expectCleanFailure(bake + "--mode interreflected -o out/h.glb", "inter-reflected");
   expectCleanFailure(bake + "--mode shadowed --transfer matrix -o out/h.glb", "vector");
-  expectCleanFailure(bake + "--mode shadowed --domain texels -o out/h.glb", "per vertex");
+  expectCleanFailure(bake + "--mode shadowed --domain probes --transfer vector -o out/h.glb",
+                     "probe");
+  expectCleanFailure(
+      bake + "--mode shadowed --domain texels --resolution 16 --denoise -o out/h.glb", "--denoise");
+  expectCleanFailure(
+      bake + "--mode shadowed --domain texels --resolution 16 --seam-fix -o out/h.glb",
+      "--seam-fix");
+  expectCleanFailure(
+      bake + "--mode shadowed --domain texels --resolution 16 --cube-resolution 12 -o out/h.glb",
+      "--cube-resolution: the Haar cube's side must be a power of two");
+  expectCleanFailure(bake + "--mode shadowed --resolution 8 --cube-resolution 8 -o out/h.glb",
+                     "give one");
+  expectCleanFailure(
+      std::string("bake ") + kScene + " --mode shadowed --cube-resolution 8 -o out/h.glb",
+      "--basis haar");
   expectCleanFailure(bake + "--mode shadowed --resolution 24 -o out/h.glb", "power of two");
   expectCleanFailure(bake + "--mode shadowed --resolution 8 --terms 385 -o out/h.glb", "terms");
   expectCleanFailure(bake + "--mode shadowed --samples 65 -o out/h.glb", "samples");

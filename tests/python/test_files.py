@@ -241,3 +241,55 @@ def test_haar_bakes_read_and_relight_all_frequency(tmp_path, prt_cli):
                          "terms must be 1..96")]:
         with pytest.raises(ValueError, match=match):
             call()
+
+
+def test_haar_bakes_in_python_per_vertex_and_per_texel(tmp_path, prt_cli):
+    # bake_transfer(basis='haar') is prt bake --basis haar, bit for bit, per vertex and per
+    # texel (--cube-resolution: the cube, --resolution the lightmap); a per-texel Haar bake
+    # relights white at its texels' normals, as prt render does, and render() draws it.
+    scene = "builtin:sphere-plane?grid=8&subdiv=2"
+    for domain, args, kw in [
+            ("vertices", ["--resolution", "8"], {}),
+            ("texels", ["--domain", "texels", "--resolution", "16", "--cube-resolution", "8"],
+             {"domain": "texels", "resolution": 16})]:
+        out = tmp_path / f"h-{domain}.glb"
+        prt_cli("bake", scene, "--mode", "shadowed", "--basis", "haar", "--terms", "20",
+                "--samples", "2", *args, "-o", out)
+        f = prtkit.read_bake_file(str(out))  # per texel: the mesh unwrapped as prt bake did
+        cli, m = f.transfers[0], f.mesh
+        t = prtkit.bake_transfer(m, mode="shadowed", basis="haar", cube_resolution=8, terms=20,
+                                 samples=2, **kw)
+        assert t.haar == {"resolution": 8, "terms": 20} and t.domain == domain
+        assert t.recipe["samples"] == 2
+        for column in ("haar_kinds", "haar_indices", "haar_values"):
+            assert np.array_equal(getattr(t, column), getattr(cli, column)), (domain, column)
+    # One ray per cube texel unless told.
+    assert prtkit.bake_transfer(m, basis="haar", cube_resolution=4, terms=4).recipe["samples"] == 1
+
+    # Per texel under the constant sky: each covered texel's visible share, the SH bake's √(4π)T₀.
+    # Every term kept, so that what is left is the bake's noise; no gutter (padding 0), which SH
+    # fills with its neighbours' mean and Haar with one neighbour's row.
+    t = prtkit.bake_transfer(m, mode="shadowed", basis="haar", cube_resolution=8, terms=384,
+                             samples=4, domain="texels", resolution=16, padding=0)
+    const = prtkit.project_haar("builtin:constant", resolution=8, terms=6 * 8 * 8)
+    lit = prtkit.relight(t, const, mesh=m)
+    assert lit.shape == (16 * 16, 3)
+    sh = prtkit.bake(m, mode="shadowed", bands=1, samples=1024, domain="texels", resolution=16,
+                     padding=0)
+    sh = sh[:, 0] * np.sqrt(4 * np.pi)
+    covered = sh != 0
+    assert covered.sum() > 50
+    assert np.abs(lit[covered, 0] - sh[covered]).mean() < 0.015
+    image = prtkit.render(m, lit.reshape(16, 16, 3), size=(32, 24))
+    assert image.shape == (24, 32, 3) and np.isfinite(image).all() and image.max() > 0
+
+    for call, match in [
+            (lambda: prtkit.bake(m, basis="haar"), "use bake_transfer"),
+            (lambda: prtkit.bake_transfer(m, basis="haar", cube_resolution=12), "cube_resolution"),
+            (lambda: prtkit.bake_transfer(m, basis="haar", domain="texels", resolution=16,
+                                          denoise=True), "denoise"),
+            (lambda: prtkit.bake_transfer(m, basis="haar", mode="interreflected"),
+             "inter-reflected"),
+            (lambda: prtkit.bake_transfer(m, basis="wavelet"), "basis")]:
+        with pytest.raises(ValueError, match=match):
+            call()

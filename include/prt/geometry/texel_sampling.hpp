@@ -62,11 +62,19 @@ Vec3f samplePosition(const Mesh& mesh, const TexelSample& s);
 /// the blend vanishes).
 Vec3f sampleNormal(const Mesh& mesh, const TexelSample& s);
 
+/// How a dilated texel takes its filled neighbours' values.
+enum class TexelDilation {
+  Mean,       ///< their mean (values that blend: SH coefficients, points, normals)
+  CopyFirst,  ///< the first of them whole, in the order (−1,−1), (0,−1), (1,−1), (−1,0), …:
+              ///< values that are records, which a mean would scramble
+};
+
 /// Dilates per-texel values (`stride` floats per texel, W·H texels) into at most `padding` rings
 /// of unfilled texels around the filled ones: each ring, an unfilled texel with filled
-/// neighbours (of the 8) takes their mean and becomes filled. Every texel within Chebyshev
-/// distance `padding` of a filled one is filled afterwards; no other changes.
+/// neighbours (of the 8, filled before the ring) takes their values as `how` says and becomes
+/// filled. Every texel within Chebyshev distance `padding` of a filled one is filled afterwards;
+/// no other changes.
 void dilateTexels(std::span<float> values, int stride, std::vector<std::uint8_t>& filled, int width,
-                  int height, int padding);
+                  int height, int padding, TexelDilation how = TexelDilation::Mean);
 
 }  // namespace prt

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "prt/geometry/mesh.hpp"
+#include "prt/geometry/texel_sampling.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/reference.hpp"
@@ -26,9 +27,12 @@ namespace prt::render {
 /// view and the lobe matter (matrices) is relit where its transfer came from.
 /// The albedo at a point is the diffuse colour there with the base-colour texture folded in at
 /// the vertices (albedoAtVertices, as the bake's bounces and the reference see it); without
-/// `withTexture` the mesh's albedo alone (an image multiplies the texture per pixel).
+/// `withTexture` the mesh's albedo alone (an image multiplies the texture per pixel). `how` is
+/// the dilation of the rows these points are for (transfer/row_dilation.hpp): copied, a gutter
+/// row is relit at the point of the neighbour it copied.
 RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
-                         const TransferShape::LightmapSize& lightmap, bool withTexture = true);
+                         const TransferShape::LightmapSize& lightmap, bool withTexture = true,
+                         TexelDilation how = TexelDilation::Mean);
 
 /// The points of some texels alone (`texels`: distinct, ascending), each exactly as
 /// texelRowPoints gives it, and which of them are valid — at the cost of those texels (their
@@ -38,7 +42,8 @@ RowPoints texelRowPoints(const Mesh& mesh, const Occluder& occluder,
 /// the whole lightmap's points are made and those of `texels` kept.
 RowPoints texelRowPointsAt(const Mesh& mesh, const Occluder& occluder,
                            const TransferShape::LightmapSize& lightmap,
-                           std::span<const std::uint32_t> texels);
+                           std::span<const std::uint32_t> texels,
+                           TexelDilation how = TexelDilation::Mean);
 
 /// The texels' own sample points (before any dilation), for `texels` alone (distinct,
 /// ascending): an entry for each (RowPoints::rows = `texels`), its point, normal and albedo where
@@ -62,13 +67,15 @@ std::vector<float> shadingPoints(const Mesh& mesh, const Transfer& transfer,
 /// How a per-texel transfer is relit for an image, the one rule for prt render, auto exposure
 /// and the Python module:
 ///  * vectors are relit white, texel by texel, and the albedo multiplies per pixel (pixelAlbedo,
-///    texelAlbedo of render.hpp), as it varies across a texel;
+///    texelAlbedo of render.hpp), as it varies across a texel; Haar rows (vectors) are relit at
+///    their texels' normals (`points`: an occluded-part row's unshadowed light is the normal's,
+///    relight/relight_haar.hpp);
 ///  * matrices are relit at each texel's sample point (`points`: the eye's direction and the lobe
 ///    need its position and normal) with the texel's albedo, since only their diffuse term takes
 ///    the albedo (kd ⊙ diffuse + ks ⊙ glossy): the pixel multiplies nothing more but the
 ///    base-colour texture (render/base_colour.hpp), which the rows' albedo leaves out.
 struct TexelRelight {
-  RowPoints points;                  ///< matrices: the rows' points (empty for vectors)
+  RowPoints points;                  ///< matrices and Haar: the rows' points (else empty)
   std::span<const Rgb> pixelAlbedo;  ///< what texelRadianceShader multiplies (empty: nothing)
   relight::Surface surface() const { return {points.positions, points.normals, points.albedo}; }
 };

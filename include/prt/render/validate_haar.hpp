@@ -27,7 +27,7 @@ struct HaarValidateSettings {
   ReferenceSettings reference;
   /// Light budgets to tabulate (each clamped to 6 N²); the whole cube is added last.
   std::vector<std::size_t> lightTerms{200};
-  std::size_t maxVertices = 0;  ///< 0: every vertex; else vertexSubset
+  std::size_t maxVertices = 0;  ///< rows: 0 every one; else chooseRows' (validate.hpp)
   std::string bakeName;         ///< named when a row is not finite
   /// As ValidateSettings: a scheduler's reference, or one already computed (its vertices).
   std::function<ReferenceResult(const ReferenceSettings&, const ProgressFn&)> runReference;
@@ -43,6 +43,7 @@ struct HaarRow {
 
 struct HaarValidationReport {
   TransferMode mode = TransferMode::Shadowed;
+  TransferDomain domain = TransferDomain::Vertices;  ///< what a row is
   int resolution = 0;     ///< the cube's N
   int transferTerms = 0;  ///< kept per row
   ReferenceResult reference;
@@ -51,8 +52,9 @@ struct HaarValidationReport {
   std::vector<std::string> warnings;
 };
 
-/// Validates the Haar `transfer` (complete, per vertex of `mesh`, baked with `bake`) under `env`
-/// against the reference. Throws prt::Error for another basis or domain, or non-finite rows.
+/// Validates the Haar `transfer` (complete, per vertex of `mesh` or per texel of its lightmap,
+/// baked with `bake`) under `env` against the reference, at the rows the SH validation draws
+/// (chooseRows). Throws prt::Error for another basis or domain, or non-finite rows.
 HaarValidationReport validateHaar(const Mesh& mesh, const Occluder& occluder,
                                   const Transfer& transfer, const BakeRecipe& bake,
                                   const envmap::Environment& env,
