@@ -7,6 +7,7 @@
 #include <string>
 
 #include "prt/core/vec.hpp"
+#include "prt/haar/haar_light.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/render/camera.hpp"
@@ -18,7 +19,7 @@ namespace prt::cli {
 
 /// The light's terms when --terms is not given: Ng et al.'s "a few hundred" (their figures use
 /// 100–200 of a 6 × 64² cube).
-inline constexpr int kDefaultHaarLightTerms = 200;
+inline constexpr int kDefaultHaarLightTerms = int(haar::kDefaultLightTerms);
 
 struct HaarRenderArgs {
   std::string bake, light, camera, output;

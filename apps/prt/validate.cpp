@@ -22,16 +22,17 @@
 #include "prt/core/file.hpp"
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/project.hpp"
+#include "prt/haar/haar_light.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/light_file.hpp"
-#include "prt/sh/irradiance_encoding.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/metrics.hpp"
 #include "prt/render/probe_points.hpp"
 #include "prt/render/render.hpp"
 #include "prt/render/validate.hpp"
 #include "prt/render/validate_haar.hpp"
+#include "prt/sh/irradiance_encoding.hpp"
 #include "reference_input.hpp"
 #include "report.hpp"
 #include "transfer_options.hpp"
@@ -81,7 +82,8 @@ void validateHaarBake(const ValidateArgs& a, MpiVerb& mpi, const BakeFile& file,
                         "measure SH transfer (--terms lists the Haar light's budgets)");
   render::HaarValidateSettings hs;
   hs.lightTerms.clear();
-  for (double k : parseNumberList(a.terms.empty() ? "200" : a.terms, "--terms")) {
+  for (double k : parseNumberList(
+           a.terms.empty() ? std::to_string(haar::kDefaultLightTerms) : a.terms, "--terms")) {
     if (k != std::floor(k) || k < 1 || k > 1e7)
       throw Error("--terms: light budgets are positive integers");
     hs.lightTerms.push_back(static_cast<std::size_t>(k));

@@ -38,10 +38,13 @@
 #include "prt/envmap/load.hpp"
 #include "prt/envmap/preview.hpp"
 #include "prt/envmap/project.hpp"
+#include "prt/haar/resolution.hpp"
+#include "prt/haar/turned_cube.hpp"
 #include "prt/image/color.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/raytrace/occluder.hpp"
+#include "prt/relight/relight_haar.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/exposure.hpp"
@@ -105,7 +108,9 @@ std::string base64(const void* data, std::size_t n) {
   return out;
 }
 
-WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
+/// `spec` for the page: its SH at `bands`, its background and, for a Haar bake over an N =
+/// `haarResolution` cube (0: an SH bake), the cube the page turns the light from.
+WebEnvironment loadEnvironment(const std::string& spec, int bands, int width, int haarResolution) {
   io::Lighting l = io::loadLighting(spec, bands, progressBar("projecting"));
   for (const std::string& w : l.warnings) warn(w);
   WebEnvironment e;
@@ -122,6 +127,13 @@ WebEnvironment loadEnvironment(const std::string& spec, int bands, int width) {
     for (Rgb& p : e.background.pixels) p = max(p, Rgb(0.0f));
   } else {
     e.background = envmap::renderEnvironment(*l.image, width);
+  }
+  if (haarResolution > 0) {
+    if (l.isShFile())
+      throw Error(spec,
+                  "is an SH light file, and the bake holds Haar transfer, relit from an "
+                  "environment: give an image, a face folder or builtin:NAME");
+    e.haar = haar::environmentCube(*l.image, haarResolution);
   }
   return e;
 }
@@ -173,6 +185,9 @@ void checkOptions(const WebOptions& a) {
   if (a.backgroundWidth < 8 || a.backgroundWidth > 8192 || a.backgroundWidth % 2)
     throw Error("--background-width must be an even number of pixels in 8..8192");
   if (a.bands != 0) checkOptionRange(OptionSpelling::Cli, "bands", a.bands, 1, bands::kMaxLibrary);
+  if (a.terms != 0)
+    checkOptionRange(OptionSpelling::Cli, "terms", a.terms, 1,
+                     long(haar::coefficientCount(haar::kMaxTurnedResolution)));
   if (a.embed != "auto" && a.embed != "always" && a.embed != "never")
     throw Error("--embed '" + a.embed + "': expected auto, always or never");
   if (!a.material.empty()) parseMaterial(a.material);
@@ -191,6 +206,42 @@ std::optional<sh::IrradianceEncoding> openingEncoding(const WebOptions& a, const
   if (!a.encoding.empty() && a.encoding != "none") return sh::parseIrradianceEncoding(a.encoding);
   if (!t.compressed()) return sh::IrradianceEncoding::L2;
   return std::nullopt;
+}
+
+/// A Haar bake (docs/haar.md), relit by the page on the CPU per vertex under a light it turns
+/// from each environment's finer cube (haar/turned_cube.hpp, web/src/haar_light.js): complete,
+/// per vertex, over a cube of at most kMaxTurnedResolution² a face, without a base-colour
+/// texture (prt render folds it into the vertices' albedo, which the page cannot: it does not
+/// read a texture's pixels), and without the options that shape SH transfer.
+void checkHaarForPage(const WebOptions& a, const BakeFile& bake) {
+  bake.requireComplete(a.bake);
+  bake.requireVertices(a.bake,
+                       "the page relights Haar transfer per vertex (prt render draws a "
+                       "per-texel one)");
+  const int n = bake.transfers.front().transfer.shape().haar.resolution;
+  if (n > haar::kMaxTurnedResolution)
+    throw Error(a.bake, fmt::format("holds Haar transfer over a {0}² cube; the page turns its "
+                                    "light from a cube {1} times finer and takes cubes up to "
+                                    "{2}² (bake with --resolution {2} or less, or view it with "
+                                    "prt view)",
+                                    n, haar::kFineCubeFactor, haar::kMaxTurnedResolution));
+  if (bake.mesh.baseColour)
+    throw Error(a.bake,
+                "holds Haar transfer on a mesh with a base-colour texture, which prt "
+                "render folds into the vertices' albedo; the page does not read a "
+                "texture's pixels (view it with prt view)");
+  if (!a.encoding.empty() && a.encoding != "none")
+    throw Error(a.bake,
+                "holds Haar transfer: --encoding draws a matrix transfer through an "
+                "irradiance encoding");
+  if (a.bands != 0)
+    throw Error(a.bake,
+                "holds Haar transfer: --bands cuts SH transfer (--terms sets the light's "
+                "wavelet terms)");
+  if (!a.material.empty())
+    throw Error(a.bake,
+                "holds Haar transfer, which is diffuse: --material shades glossy "
+                "matrices");
 }
 
 /// The bake, validated here (one clear line now rather than on the page): complete, and every
@@ -220,6 +271,14 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
                 "holds a probe grid, which lights what moves through it diffusely; "
                 "--material belongs to a surface's transfer");
   const bool encoding = !a.encoding.empty() && a.encoding != "none";
+  if (!bake.transfers.empty() && bake.transfers.front().transfer.isHaar()) {
+    checkHaarForPage(a, bake);
+    return glb;
+  }
+  if (a.terms != 0)
+    throw Error(a.bake,
+                "--terms sets the light's wavelet terms of a Haar bake; this one holds SH "
+                "transfer");
   if (encoding && bake.domain() == TransferDomain::Probes)
     throw Error(a.bake,
                 "holds a probe grid: --encoding draws a surface's matrix transfer through an "
@@ -292,6 +351,11 @@ render::FrameSurvey encodedSurvey(const Mesh& mesh, const Transfer& transfer, Ma
   return render::surveyFrame(*occluder, view.shader(), camera, 640, 480, op);
 }
 
+/// A Haar bake's light terms on the page: --terms, else the viewers' default.
+std::size_t haarLightTerms(const WebOptions& a) {
+  return a.terms > 0 ? std::size_t(a.terms) : haar::kDefaultLightTerms;
+}
+
 /// The initial view. The camera from the library's numbers only (docs/conventions.md,
 /// "Camera"): the default framing (render::meshFraming: the bounding sphere, view direction,
 /// up, fov, margin), which the page turns into frameCamera's camera for its canvas, and
@@ -299,8 +363,9 @@ render::FrameSurvey encodedSurvey(const Mesh& mesh, const Transfer& transfer, Ma
 /// 640x480), which it uses as they are.
 /// The exposure the page opens at: --exposure, else the auto exposure of what it first shows
 /// (the picked transfer under the first environment, the initial rotation and camera at 640x480).
-float initialExposure(const WebOptions& a, const BakeFile& bake, const sh::RgbSh& light) {
+float initialExposure(const WebOptions& a, const BakeFile& bake, const WebEnvironment& env) {
   if (a.exposure) return *a.exposure;
+  const sh::RgbSh& light = env.light;
   std::optional<TransferMode> mode;
   if (!a.mode.empty()) mode = parseTransferMode(a.mode);
   const BakedTransfer& t = prt::pickTransfer(bake, mode, {}, a.bake);
@@ -310,6 +375,18 @@ float initialExposure(const WebOptions& a, const BakeFile& bake, const sh::RgbSh
   render::Camera c = render::frameCamera(f, 640, 480);
   if (!a.camera.empty()) c = render::parseCamera(a.camera, c);
   const image::ToneMap op = image::parseToneMap(a.toneMap);
+  if (t.transfer.isHaar()) {
+    // The light the page turns from the environment's cube, relit per vertex as prt render
+    // relights a Haar bake.
+    const haar::HaarLight l = haar::turnedLight(*env.haar, t.transfer.shape().haar.resolution,
+                                                haarLightTerms(a), parseRotation(a.rotate));
+    const std::vector<Rgb> radiance = relight::relightHaar(
+        t.transfer, l, bake.mesh.normals, material.diffuseOr(albedoAtVertices(bake.mesh)));
+    const auto occluder = makeEmbreeOccluder(bake.mesh);
+    return render::surveyFrame(*occluder, render::vertexRadianceShader(bake.mesh, radiance), c, 640,
+                               480, op)
+        .exposureStops;
+  }
   // A probe grid: the scene lit through its relit probes (what the page draws around the ball).
   const std::optional<sh::IrradianceEncoding> encoding = openingEncoding(a, t.transfer);
   const render::FrameSurvey survey =
@@ -343,6 +420,7 @@ Json viewJson(const WebOptions& a, const Mesh& mesh, float exposure) {
           {"mode", a.mode},
           {"encoding", a.encoding.empty() ? "none" : a.encoding},
           {"bands", a.bands},
+          {"terms", haarLightTerms(a)},
           {"camera", camera},
           {"framing",
            {{"centre", vec3(f.centre)},
@@ -391,13 +469,26 @@ Json environmentJson(const WebEnvironment& e) {
   Json coefficients = Json::array();
   for (const Rgb& c : e.light.c) coefficients.push_back(jsonFloats(&c.x, 3));
   const std::vector<unsigned char> rgbe = encodeRgbe(e.background);
-  return {{"name", e.name},
-          {"bands", e.light.bands},
-          {"coefficients", std::move(coefficients)},
-          {"background",
-           {{"width", e.background.width},
-            {"height", e.background.height},
-            {"rgbe", base64(rgbe.data(), rgbe.size())}}}};
+  Json j = {{"name", e.name},
+            {"bands", e.light.bands},
+            {"coefficients", std::move(coefficients)},
+            {"background",
+             {{"width", e.background.width},
+              {"height", e.background.height},
+              {"rgbe", base64(rgbe.data(), rgbe.size())}}}};
+  if (e.haar) {
+    // The cube a Haar bake's light is turned from: its 6 M² texel means as RGBE (face by face,
+    // row by row: cube_haar.hpp's order) and its SH at kUnshadowedBands.
+    image::Image means(e.haar->resolution, 6 * e.haar->resolution);
+    means.pixels = e.haar->means;
+    const std::vector<unsigned char> cube = encodeRgbe(means);
+    Json sh = Json::array();
+    for (const Rgb& c : e.haar->sh.c) sh.push_back(jsonFloats(&c.x, 3));
+    j["haar"] = {{"resolution", e.haar->resolution},
+                 {"rgbe", base64(cube.data(), cube.size())},
+                 {"sh", std::move(sh)}};
+  }
+  return j;
 }
 
 }  // namespace
@@ -418,10 +509,15 @@ Json writeWebViewer(const WebOptions& a) {
   const std::vector<unsigned char> glb = readBakeForPage(a, bake);
   int bands = 0;
   for (const BakedTransfer& t : bake.transfers) bands = std::max(bands, t.transfer.bands());
+  // A Haar bake has no bands: its environments' one-band SH serve the background's 'sh' mode,
+  // and each carries the cube the page turns the light from.
+  const Transfer& first = bake.transfers.front().transfer;
+  const int haarResolution = first.isHaar() ? first.shape().haar.resolution : 0;
   std::vector<WebEnvironment> envs;
   const std::vector<std::string> specs =
       a.envs.empty() ? std::vector<std::string>{"builtin:sky"} : a.envs;
-  for (const std::string& s : specs) envs.push_back(loadEnvironment(s, bands, a.backgroundWidth));
+  for (const std::string& s : specs)
+    envs.push_back(loadEnvironment(s, std::max(bands, 1), a.backgroundWidth, haarResolution));
 
   // Small bakes inside prt-data.js (base64: the page then works opened from disk); larger ones
   // beside it as bake.glb, which the page fetches (over http; a browser refuses file:// fetches).
@@ -443,7 +539,7 @@ Json writeWebViewer(const WebOptions& a) {
       p["file"] = kTexelPointsFileName;
     bakeEntry["texelPoints"] = std::move(p);
   }
-  const float exposure = initialExposure(a, bake, envs.front().light);
+  const float exposure = initialExposure(a, bake, envs.front());
   Json data;
   data["generator"] = kGenerator;
   data["view"] = viewJson(a, bake.mesh, exposure);
@@ -525,6 +621,9 @@ void addWebCommand(CLI::App& root) {
                   "l1-geomerics, zh3, zh3-shared, zh3-optimal, zh3-hallucinated, l2, l2-deringed, "
                   "or none (PRT's own radiance; dense matrices are drawn through l2 then)");
   cmd->add_option("--bands", args->bands, "Initial band count (default: the bake's)");
+  cmd->add_option("--terms", args->terms,
+                  "A Haar bake: the light's wavelet terms the page opens with (default 200; the "
+                  "page turns the light itself)");
   cmd->add_option_function<std::string>(
          "--exposure", [args](const std::string& s) { args->exposure = exposureOption(s); },
          "Initial exposure in stops, or auto (default): prt render's rule on a CPU relight of "

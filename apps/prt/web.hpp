@@ -37,6 +37,7 @@ struct WebOptions {
   /// environment, relit on the CPU through the initial camera).
   std::optional<float> exposure;
   int bands = 0;  ///< initial band count (0 = the bake's)
+  int terms = 0;  ///< a Haar bake's initial light terms (0 = haar::kDefaultLightTerms)
   int backgroundWidth = 512;
   std::string embed = "auto";  ///< auto | always | never: the bake inside prt-data.js or beside
   std::string reportAs;        ///< the folder's name in the closing line ("" = output)

@@ -3,10 +3,12 @@
 // the bake, what the page draws and what it opens on.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "prt/core/json.hpp"
+#include "prt/haar/turned_cube.hpp"
 #include "prt/image/image.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/sh/sh.hpp"
@@ -20,6 +22,8 @@ struct WebEnvironment {
   std::string name;
   sh::RgbSh light;
   image::Image background;  // lat-long, linear RGB
+  /// A Haar bake's: the environment's cube the page turns its light from (haar/turned_cube.hpp).
+  std::optional<haar::EnvironmentCube> haar;
 };
 
 /// What writeWebViewer decided and wrote, for the report.

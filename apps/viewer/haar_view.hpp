@@ -17,7 +17,7 @@
 namespace prt::viewer {
 
 /// The light's terms a Haar bake is relit under: prt render's default (--terms).
-inline constexpr std::size_t kHaarViewLightTerms = 200;
+inline constexpr std::size_t kHaarViewLightTerms = haar::kDefaultLightTerms;
 
 /// `env` turned by `rotation`, as the Haar light over an N² cube (N = the transfer's).
 haar::HaarLight haarViewLight(const envmap::Environment& env, int resolution,

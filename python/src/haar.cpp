@@ -108,8 +108,9 @@ py::array relightHaar(const PyTransfer& t, py::handle lightObj, py::handle albed
         "the light is SH ((B², 3)) and the transfer Haar: give a prtkit.HaarLight "
         "(project_haar), a Haar light file or an environment");
   } else {
-    // An environment: its 200 largest terms over the transfer's cube (prt render's default).
-    light = project(lightObj, n, std::min<std::size_t>(200, prt::haar::coefficientCount(n)),
+    // An environment: its largest terms over the transfer's cube (prt render's default count).
+    light = project(lightObj, n,
+                    std::min(prt::haar::kDefaultLightTerms, prt::haar::coefficientCount(n)),
                     py::none(), "area", std::nullopt);
   }
   const prt::Mesh& mm = mesh->mesh();
@@ -190,8 +191,8 @@ read_haar_light; relights a Haar bake with relight(transfer, light, mesh=...).)"
       });
 
   m.def("project_haar", &project, py::arg("source"), py::arg("resolution") = 32,
-        py::arg("terms") = 200, py::arg("rotation") = py::none(), py::arg("selection") = "area",
-        py::arg("layout") = py::none(),
+        py::arg("terms") = prt::haar::kDefaultLightTerms, py::arg("rotation") = py::none(),
+        py::arg("selection") = "area", py::arg("layout") = py::none(),
         "An environment's all-frequency light, as `prt light ENV --basis haar --resolution N "
         "--terms K` makes it: the K largest wavelet terms of its N² cube map (selection 'area': "
         "area-weighted, Ng et al. 2003; 'magnitude'), rotated by resampling the environment "

@@ -147,11 +147,18 @@ HaarLight approximate(const std::vector<Rgb>& means, int n, std::size_t terms,
 
 UnshadowedPart unshadowedPart(const envmap::Environment& env, const std::vector<Rgb>& means,
                               int n, const Mat3d& rotation) {
+  return unshadowedPart(envmap::projectEnvironment(env, kUnshadowedBands), means, n, rotation);
+}
+
+UnshadowedPart unshadowedPart(const sh::RgbSh& environmentSh, const std::vector<Rgb>& means, int n,
+                              const Mat3d& rotation) {
   checkResolution(n, "Haar lighting");
   PRT_CHECK(means.size() == coefficientCount(n), "texel means of the cube");
+  if (environmentSh.bands != kUnshadowedBands)
+    throw Error("Haar lighting: the environment's SH has " + std::to_string(environmentSh.bands) +
+                " bands, the unshadowed part " + std::to_string(kUnshadowedBands));
   UnshadowedPart out;
-  out.sh = sh::Rotation(kUnshadowedBands, rotation)
-               .apply(envmap::projectEnvironment(env, kUnshadowedBands));
+  out.sh = sh::Rotation(kUnshadowedBands, rotation).apply(environmentSh);
   const std::vector<double> omega = envmap::cubeTexelSolidAngles(n);
   const auto power = [&](std::size_t k) {
     const Rgb& c = means[k];

@@ -26,6 +26,9 @@
 #include "prt/core/version.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/geometry/texel_sampling.hpp"
+#include "prt/haar/haar_light.hpp"
+#include "prt/haar/resolution.hpp"
+#include "prt/haar/turned_cube.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image_io.hpp"
 #include "prt/io/bake_file.hpp"
@@ -35,6 +38,7 @@
 #include "prt/sh/convolve.hpp"
 #include "prt/sh/encode_irradiance.hpp"
 #include "prt/transfer/bake_settings.hpp"
+#include "prt/transfer/haar_rows.hpp"
 #include "prt/transfer/material.hpp"
 #include "prt/transfer/probe_grid.hpp"
 
@@ -200,6 +204,19 @@ json constants() {
       {"CpuRadiance", relight::toString(relight::ShaderPath::CpuRadiance)},
   };
   c["maxShaderClusters"] = relight::kMaxShaderClusters;
+  // The Haar basis (docs/haar.md) as the page reads and relights it: the cube's sizes, a row's
+  // quantisation grid (transfer/haar_rows.hpp), the light's unshadowed part (haar_light.hpp) and
+  // the turned light's fine cube (turned_cube.hpp).
+  c["haar"] = {{"minResolution", haar::kMinResolution},
+               {"maxResolution", haar::kMaxResolution},
+               {"firstVersion", prt::kFirstHaarVersion},
+               {"valueSteps", haar::kHaarValueSteps},
+               {"visibleKind", static_cast<int>(haar::HaarRowKind::Visible)},
+               {"unshadowedBands", haar::kUnshadowedBands},
+               {"brightTexels", haar::kBrightTexels},
+               {"fineCubeFactor", haar::kFineCubeFactor},
+               {"maxTurnedResolution", haar::kMaxTurnedResolution},
+               {"defaultLightTerms", haar::kDefaultLightTerms}};
   c["perTexelMatricesRefusal"] = relight::kPageTexelMatricesRefusal;
   c["maxLightmapSide"] = kMaxLightmapSide;
   // What decodeBake holds a file to beyond the names above (docs/formats-bake.md, "Limits the

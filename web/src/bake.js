@@ -13,6 +13,7 @@ import { packRows, preferenceOrder, readTransfer } from './transfer.js';
 import { textureShape } from './texels.js';
 import { checkProbeGridDocument, probeCount, readProbeBake } from './probe_bake.js';
 import { meshParts } from './parts.js';
+import { checkHaarTransfer, isHaarEntry, readHaarBake } from './haar_bake.js';
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
@@ -32,7 +33,7 @@ const kComponentBytes = { 5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4 }
 const kComponentName = { 5120: 'BYTE', 5121: 'UNSIGNED_BYTE', 5122: 'SHORT', 5123: 'UNSIGNED_SHORT', 5125: 'UNSIGNED_INT', 5126: 'FLOAT' };
 const kTypeComponents = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 };
 const kVectorType = ['', 'SCALAR', 'VEC2', 'VEC3', 'VEC4'];
-const kFloat = 5126, kUint = 5125, kUshort = 5123;
+const kFloat = 5126, kUint = 5125, kUshort = 5123, kShort = 5122, kUbyte = 5121;
 
 /** glb::split: { json (text), bin (Uint8Array or null), length (the header's) }. */
 function splitGlb(buffer, name) {
@@ -125,7 +126,7 @@ function reader(name) {
 
 /** gltf::AccessorReader over the JSON and the BIN chunk: exact(index, components,
  *  componentType, count, what) checks an accessor as spanExact does and returns its elements
- *  (tightly packed: Float32Array, Uint32Array or Uint16Array). */
+ *  (tightly packed: Float32Array, Uint32Array, Uint16Array, Int16Array or Uint8Array). */
 function accessorReader(gltf, bin, name) {
   const nonNegative = (o, key, where, fallback) => {
     if (o[key] === undefined) return fallback;
@@ -182,9 +183,12 @@ function accessorReader(gltf, bin, name) {
     if (n > len) fail(name, `${what}: accessor count ${n} exceeds the ${len} bytes of its bufferView`);
     if (n > 0 && (a.byteOffset > len || n - 1 > Math.floor((len - a.byteOffset) / stride) || elem > len - a.byteOffset - (n - 1) * stride))
       fail(name, `${what}: accessor ${index} (${n} elements of ${elem} bytes, stride ${stride}, at ${a.byteOffset}) runs past its bufferView of ${len} bytes`);
-    const out = new (componentType === kFloat ? Float32Array : componentType === kUint ? Uint32Array : Uint16Array)(n * components);
+    const out = new ({ [kFloat]: Float32Array, [kUint]: Uint32Array, [kUshort]: Uint16Array, [kShort]: Int16Array,
+                       [kUbyte]: Uint8Array })[componentType](n * components);
     const d = new DataView(v.bytes.buffer, v.bytes.byteOffset + v.at, len);
-    const get = componentType === kFloat ? (o) => d.getFloat32(o, true) : componentType === kUint ? (o) => d.getUint32(o, true) : (o) => d.getUint16(o, true);
+    const get = { [kFloat]: (o) => d.getFloat32(o, true), [kUint]: (o) => d.getUint32(o, true),
+                  [kUshort]: (o) => d.getUint16(o, true), [kShort]: (o) => d.getInt16(o, true),
+                  [kUbyte]: (o) => d.getUint8(o) }[componentType];
     for (let i = 0; i < n; ++i)
       for (let c = 0; c < components; ++c) out[i * components + c] = get(a.byteOffset + i * stride + c * size);
     return out;
@@ -299,15 +303,23 @@ function checkTransfers(prt, where, version, domain, rows, ar, r) {
     if (layout === 'matrix' && version < 2) r.fail(`${sw} is a matrix transfer in a version ${version} file (matrices need version 2)`);
     const d = has(s, 'domain') ? r.string(s, 'domain', sw) : domains[0];
     if (!domains.includes(d)) r.fail(`${sw}: unknown domain '${d}'`);
-    // Haar-wavelet transfer (format 8) is relit on the CPU by prt render and prt validate only.
-    if (has(s, 'basis') && s.basis !== 'sh')
-      r.fail(`${sw}: holds ${JSON.stringify(s.basis)} transfer; this reader relights SH transfer only (prt render and prt validate relight Haar bakes)`);
+    const basis = has(s, 'basis') ? r.string(s, 'basis', sw) : 'sh';
+    if (basis !== 'sh' && basis !== 'haar') r.fail(`${sw}: unknown basis '${basis}' (expected sh or haar)`);
+    const sameMode = () => {
+      if (d !== domain) r.fail(`${sw}.domain is ${d} in a bake over ${domain}`);
+      if (seen.has(`${mode} ${layout}`)) r.fail(`two ${layout} transfers of mode ${mode}`);
+      seen.add(`${mode} ${layout}`);
+    };
+    // Haar-wavelet transfer (format 8): its own shape and quantised rows (haar_bake.js).
+    if (basis === 'haar') {
+      checkHaarTransfer(t, s, tw, sw, version, layout, d, rows, ar, r);
+      sameMode();
+      return;
+    }
     const B = r.integer(s, 'bands', sw, 1, kBandsMaxLibrary), C = r.integer(s, 'channels', sw, 1, 3);
     if (C === 2) r.fail(`${sw}.channels must be 1 or 3`);
-    if (d !== domain) r.fail(`${sw}.domain is ${d} in a bake over ${domain}`);
     if (domain === domains[2] && layout !== 'matrix') r.fail(`${tw} is a ${layout} transfer over probes (a probe holds a matrix)`);
-    if (seen.has(`${mode} ${layout}`)) r.fail(`two ${layout} transfers of mode ${mode}`);
-    seen.add(`${mode} ${layout}`);
+    sameMode();
     const S = (layout === 'matrix' ? B ** 4 : B * B) * C, n = rows;
     const list = (want, what) => {
       const acc = r.member(t, 'accessors', tw);
@@ -534,6 +546,8 @@ async function readCheckedBake(gltf, name, limits, extras) {
   if (entries.length === 0) fail(name, 'the bake holds no transfer (bake it with prt bake --mode ...)');
   // A probe grid: the light arriving at points in space, relit on the CPU (probe_bake.js).
   if (prt.probeGrid) return readProbeBake(gltf, prt, name);
+  // Haar wavelets: relit on the CPU per vertex under a light turned from the environment's cube.
+  if (entries.some(isHaarEntry)) return readHaarBake(gltf, prt, name);
   // The domain: the vertices, or the texels of one lightmap over the mesh's lightmap UVs (format
   // 6; relit per pixel). Either must be complete.
   let lightmap = null, rowCount = prt.vertexCount, uvName = null;

@@ -71,9 +71,11 @@ export function shImage(bands, coeffs, width = 128) {
   return latLongTexture(width, h, rgb);
 }
 
-/** An environment: `light` = { bands, coeffs } as given; `background` prt web's (or null). */
-export function environment(name, light, background) {
-  return { name, source: light, background, coeffs: null, bands: 0, texture: null, shCache: null };
+/** An environment: `light` = { bands, coeffs } as given; `background` prt web's (or null);
+ *  `haarSource` the cube prt web writes for a Haar bake's page ({ resolution, rgbe, sh }: the
+ *  light haar_scene.js turns; null for an SH light). */
+export function environment(name, light, background, haarSource = null) {
+  return { name, source: light, background, coeffs: null, bands: 0, texture: null, shCache: null, haarSource, haarCube: null };
 }
 
 /** Fits environment e to a transfer of `bands` bands (lights.js: cut or padded, with the

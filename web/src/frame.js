@@ -3,7 +3,8 @@
 // (r, g, b, 0), zero past b², and the transfer's per-frame step (draw.js) — or, for a probe
 // bake, the grid relit and the meshes shaded through it (probe_scene.js); then, into a 4×
 // multisampled half-float target, the background (a full-screen triangle) and the relit parts
-// (a matrix transfer drawn through an irradiance encoding: from radiance made on the CPU);
+// (a matrix transfer drawn through an irradiance encoding, a Haar bake (haar_scene.js): from
+// radiance made on the CPU);
 // a second full-screen pass applies 2^exposure, the tone map and the sRGB encode.
 import * as THREE from 'three';
 
@@ -68,6 +69,9 @@ export function createFrame(renderer) {
     if (gpu.probes) {
       // A probe bake: the grid relit on the CPU, the scene and the ball shaded through it.
       gpu.probes.frame({ transfer: t, bands: b, rotation: R, light: env.coeffs, at: state.at, showProbes: state.probes });
+    } else if (gpu.haar) {
+      // A Haar bake: the light turned from the environment's cube, the vertices relit on the CPU.
+      gpu.haar.frame({ transfer: t, env, rotation: R, terms: state.terms });
     } else {
       // A matrix transfer drawn through an irradiance encoding: its radiance per vertex, made
       // on the CPU when the light, its rotation, the bands or the encoding changed.
@@ -88,7 +92,7 @@ export function createFrame(renderer) {
     // Matrix3.set takes rows; the rows of Rᵀ are R's columns.
     bgUniforms.uRotationT.value.set(R[0][0], R[1][0], R[2][0], R[0][1], R[1][1], R[2][1], R[0][2], R[1][2], R[2][2]);
     background.visible = state.background !== 'none';
-    if (background.visible) bgUniforms.uLatLong.value = backgroundTexture(env, state.background, state.bands);
+    if (background.visible) bgUniforms.uLatLong.value = backgroundTexture(env, state.background, gpu.haar ? 1 : state.bands);
 
     const hdr = targets(w, h);
     renderer.setRenderTarget(hdr);

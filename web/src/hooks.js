@@ -23,6 +23,15 @@ export function screenshotHook(page) {
   const t = page.transfer(), c = t.compressed;
   if (page.bake().probes) return report({ ok: true, width: w, height: h, renderer: page.rendererName, mode: t.mode,
                                           layout: t.layout, probes: probeReport(page, w, h), rgb: bytesBase64(rgb) });
+  if (page.bake().haar) {
+    // The light the page made (its terms, as haar::turnedLight makes them) and the frame.
+    const l = page.gpu.haar.light;
+    return report({ ok: true, width: w, height: h, renderer: page.rendererName, mode: t.mode, layout: t.layout,
+                    haar: { resolution: t.haar.resolution, terms: t.haar.terms, lightTerms: l.index.length,
+                            energyKept: l.energyKept, index: Array.from(l.index), value: Array.from(l.value),
+                            unshadowed: Array.from(l.unshadowed), bright: l.bright },
+                    rgb: bytesBase64(rgb) });
+  }
   report({ ok: true, width: w, height: h, renderer: page.rendererName, mode: t.mode, layout: t.layout,
            path: t.path, compressed: c ? `${c.clusters}x${c.basisCount}, ${16 * c.texelsPerVertex} bytes per ${t.perPixel ? 'texel' : 'vertex'}` : 'no',
            perPixel: !!t.perPixel, encoding: shownEncoding(t, page.state.encoding) || 'none', rgb: bytesBase64(rgb) });

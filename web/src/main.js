@@ -16,7 +16,7 @@
 // environments and the view state.
 import * as THREE from 'three';
 
-import { bands as kBands, defaultToneMap, image as kImage } from 'prt:constants';
+import { bands as kBands, defaultToneMap, haar as kHaar, image as kImage } from 'prt:constants';
 import { parseBake } from './bake.js';
 import { rotationEulerXYZ } from './sh.js';
 import { base64Bytes, environment, fitEnvironment } from './environment.js';
@@ -24,6 +24,7 @@ import { pickTransfer } from './transfer.js';
 import { encodingRefusal } from './encoded_diffuse.js';
 import { disposeTransfers, uploadTransfers } from './draw.js';
 import { ballDefaults, disposeProbeScene, uploadProbeScene } from './probe_scene.js';
+import { disposeHaarScene, haarCubeOf, uploadHaarScene } from './haar_scene.js';
 import { pageHost } from './page_host.js';
 import { glossyFromFile } from './glossy.js';
 import { applyView, frameView } from './camera.js';
@@ -50,6 +51,7 @@ function fatal(text) {
  *  first transfer's material. Touches no scene. */
 function uploadBake(b, limits) {
   if (b.probes) return uploadProbeScene(b);
+  if (b.haar) return uploadHaarScene(b);
   const gpu = uploadTransfers(b, limits, pageHost);
   gpu.meshes = b.parts.map((p, i) => {
     const mesh = new THREE.Mesh(p.geometry, gpu.parts[i].materials[b.transfers[0].key]);
@@ -66,6 +68,7 @@ function disposeBake(gpu, scene) {
     m.geometry.dispose();
   }
   if (gpu.probes) disposeProbeScene(gpu);
+  else if (gpu.haar) disposeHaarScene(gpu);
   else disposeTransfers(gpu);
 }
 
@@ -159,12 +162,14 @@ async function main() {
     // whether the probes show as points (?probes).
     at: query.has('at') ? query.get('at').split(',').map(Number) : null,
     probes: query.has('probes'),
+    // A Haar bake (haar_scene.js): the light's wavelet terms (?terms=, prt web --terms).
+    terms: num('terms', view.terms || kHaar.defaultLightTerms),
   };
   const euler = (query.get('rotate') || (view.rotate || [0, 0, 0]).join(',')).split(',').map(Number);
   const page = {
     data, query, renderer, gl, limits, rendererName, state, fixedSize, fixedW, fixedH,
     initialRotation: rotationEulerXYZ(euler[0] || 0, euler[1] || 0, euler[2] || 0),
-    envs: data.environments.map((e) => environment(e.name, { bands: e.bands, coeffs: Float32Array.from(e.coefficients.flat()) }, e.background)),
+    envs: data.environments.map((e) => environment(e.name, { bands: e.bands, coeffs: Float32Array.from(e.coefficients.flat()) }, e.background, e.haar || null)),
     frame: createFrame(renderer),
     gpu: null,       // uploadBake's result for the bake on screen
     controls: null,  // OrbitControls once interactive
@@ -193,7 +198,8 @@ async function main() {
 
   /** Adds an environment fitted to the bake; returns its warnings. */
   page.addEnvironment = (e) => {
-    const warnings = fitEnvironment(e, page.bake().maxBands);
+    if (page.bake().haar) haarCubeOf(e, page.bake().transfers[0].haar.resolution);  // refused: SH only
+    const warnings = fitEnvironment(e, Math.max(page.bake().maxBands, 1));
     page.envs.push(e);
     return warnings;
   };
@@ -207,19 +213,22 @@ async function main() {
       if (t.matrix) t.material = (b.name === data.bake.name && data.glossy && data.glossy[t.mode]) || glossyFromFile(t, b.name);
     // An encoding asked for (?encoding=, prt web --encoding, the panel) refuses a bake whose
     // transfer cannot take it, in one line naming the file, as prt render --encoding does.
-    const refusal = encodingRefusal(b, pickTransfer(b.transfers, state.mode), state.encoding);
+    const refusal = b.haar ? null : encodingRefusal(b, pickTransfer(b.transfers, state.mode), state.encoding);
     if (refusal) throw new Error(refusal);
+    // A Haar bake is relit from the environments' cubes, at its own resolution.
+    if (b.haar) for (const e of page.envs) haarCubeOf(e, b.transfers[0].haar.resolution);
     const gpu = uploadBake(b, limits);
     disposeBake(page.gpu, page.frame.scene);
     page.gpu = gpu;
     for (const m of gpu.meshes) page.frame.scene.add(m);
     const warnings = [];
-    for (const e of page.envs) warnings.push(...fitEnvironment(e, b.maxBands));
+    for (const e of page.envs) warnings.push(...fitEnvironment(e, Math.max(b.maxBands, 1)));
     if (b.probes && !(state.at && state.at.length === 3 && state.at.every(Number.isFinite) && b.name === data.bake.name))
       state.at = ballDefaults(b.grid).centre;
     state.transfer = pickTransfer(b.transfers, state.mode).key;
-    const maxB = page.transfer().bands;
+    const maxB = Math.max(page.transfer().bands, 1);  // (a Haar transfer has none: its background's SH has 1)
     if (!(state.bands >= 1 && state.bands <= maxB)) state.bands = maxB;
+    if (!(Number.isInteger(state.terms) && state.terms >= 1)) state.terms = kHaar.defaultLightTerms;
     return warnings;
   };
 

@@ -12,6 +12,7 @@ import { axisAngle, mul3 } from './sh.js';
 import { describeTransfer } from './draw.js';
 import { encodingNames } from './irradiance_encoding.js';
 import { ballDrag, describeProbes, probeControls } from './probe_ui.js';
+import { describeHaar } from './haar_scene.js';
 import { pointerDrag } from './pointer_drag.js';
 
 const kBackgrounds = ['env', 'sh', 'none'];
@@ -61,6 +62,16 @@ export function startInteractive(page) {
     if (encodingCtl) encodingCtl.destroy();
     if (ballFolder) ballFolder.destroy();
     ballFolder = page.bake().probes ? probeControls(gui, page) : null;
+    if (page.bake().haar) {
+      // A Haar bake: the transfer shown and the light's wavelet terms (no bands, no encoding).
+      const t = page.bake().transfers[0], most = Math.min(6 * t.haar.resolution ** 2, 5000);
+      transferCtl = gui.add(state, 'transfer', page.bake().transfers.map((x) => x.key)).name('transfer')
+        .onChange(() => { state.mode = page.transfer().mode; });
+      state.terms = Math.min(state.terms, most);
+      bandsCtl = gui.add(state, 'terms', 1, most, 1).name('light terms');
+      encodingCtl = null;
+      return;
+    }
     // The transfers in the library's preference order, each named with its layout.
     transferCtl = gui.add(state, 'transfer', page.bake().transfers.map((t) => t.key)).name('transfer').onChange(() => {
       state.mode = page.transfer().mode;
@@ -92,7 +103,7 @@ export function startInteractive(page) {
   window.addEventListener('keydown', (e) => {
     if (e.target && /INPUT|SELECT|TEXTAREA/.test(e.target.tagName)) return;
     if (e.key === '[') state.bands = Math.max(1, state.bands - 1);
-    else if (e.key === ']') state.bands = Math.min(page.transfer().bands, state.bands + 1);
+    else if (e.key === ']') state.bands = Math.min(Math.max(page.transfer().bands, 1), state.bands + 1);
     else if (e.key === 'b' || e.key === 'B') state.background = kBackgrounds[(kBackgrounds.indexOf(state.background) + 1) % kBackgrounds.length];
     else if (e.key === 'Tab') state.env = (state.env + 1) % envs.length;
     else if (e.key === ' ') actions['auto-rotate'] = !actions['auto-rotate'];
@@ -121,6 +132,8 @@ export function startInteractive(page) {
       return warnings;
     }
     throw new Error(`${name}: not a bake (.glb) or an SH light (.json, or the course's light.txt)`);
+    // (An SH light dropped on a Haar bake's page is refused by page.addEnvironment: its light
+    // is turned from an environment's cube, which only prt web writes.)
   }
   async function onDrop(e) {
     e.preventDefault();
@@ -152,8 +165,10 @@ export function startInteractive(page) {
     page.draw(canvas.width, canvas.height, null);
     const b = page.bake(), t = page.transfer();
     hud.textContent = `${b.name}  ${b.triangles} triangles, ${b.vertices} vertices\n` +
-      `${t.mode} ${t.layout}, ${Math.min(state.bands, t.bands)} of ${t.bands} bands, ${t.channels === 3 ? 'RGB' : 'scalar'}\n` +
-      (b.probes ? describeProbes(b, t, state) : describeTransfer(t, state.encoding)).map((l) => l + '\n').join('') +
+      (b.haar ? `${t.mode} ${t.layout}, scalar\n`
+              : `${t.mode} ${t.layout}, ${Math.min(state.bands, t.bands)} of ${t.bands} bands, ${t.channels === 3 ? 'RGB' : 'scalar'}\n`) +
+      (b.probes ? describeProbes(b, t, state) : b.haar ? describeHaar(t, page.gpu.haar)
+                : describeTransfer(t, state.encoding)).map((l) => l + '\n').join('') +
       (smooth > 0 ? `frame ${smooth.toFixed(1)} ms (${(1000 / smooth).toFixed(0)} fps)` : 'frame time: measuring') +
       `\n${page.rendererName}`;
     if (!query.has('test')) requestAnimationFrame(loop);

@@ -22,6 +22,10 @@
 
 namespace prt::haar {
 
+/// The light's terms a viewer relights with unless told otherwise (prt render --terms, prt view,
+/// the page, Python's relight of an environment): Ng et al. 2003 relight with about 200.
+inline constexpr std::size_t kDefaultLightTerms = 200;
+
 /// The brightest texels of the cube (by power L·Ω) that relight the unshadowed part exactly.
 inline constexpr std::size_t kBrightTexels = 16;
 

@@ -56,6 +56,11 @@ struct UnshadowedPart {
 };
 UnshadowedPart unshadowedPart(const envmap::Environment& env, const std::vector<Rgb>& means,
                               int resolution, const Mat3d& rotation = Mat3d::identity());
+/// The same from the environment's SH at kUnshadowedBands, unturned (`environmentSh`: what
+/// envmap::projectEnvironment gives), for a viewer that holds the environment's cube and SH
+/// rather than the environment (haar/turned_cube.hpp).
+UnshadowedPart unshadowedPart(const sh::RgbSh& environmentSh, const std::vector<Rgb>& means,
+                              int resolution, const Mat3d& rotation = Mat3d::identity());
 
 /// cubeMeans, approximate and unshadowedPart: the light a Haar bake is relit with.
 HaarLight projectLight(const envmap::Environment& env, int resolution, std::size_t terms,

@@ -1,5 +1,7 @@
 // node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb PROBES.glb PROBES_CPCA.glb
-// (a 2 x 2 x 2 probe grid, dense and CPCA-compressed): writes the malformed
+// HAAR.glb HAAR_TEXEL.glb HAAR_128.glb (a 2 x 2 x 2 probe grid, dense and CPCA-compressed; Haar
+// transfer per vertex over a 4² cube, per texel, and per vertex over a 128² cube, which the
+// browser viewers do not take): writes the malformed
 // (and a few valid) bakes of the verdict corpus into OUTDIR, each a mutation of a bake prt wrote
 // (run.sh), named accept_* or reject_* after what the library is meant to answer (verdicts.mjs
 // checks that prt does, so a mutation that stops breaking the file fails the test). The GLB is
@@ -7,9 +9,10 @@
 import fs from 'node:fs';
 import path from 'node:path';
 
-const [out, vertexFile, texelFile, cpcaFile, texelCpcaFile, probesFile, probesCpcaFile] = process.argv.slice(2);
-if (!probesCpcaFile) {
-  console.error('usage: node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb PROBES.glb PROBES_CPCA.glb');
+const [out, vertexFile, texelFile, cpcaFile, texelCpcaFile, probesFile, probesCpcaFile, haarFile, haarTexelFile,
+       haar128File] = process.argv.slice(2);
+if (!haar128File) {
+  console.error('usage: node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb PROBES.glb PROBES_CPCA.glb HAAR.glb HAAR_TEXEL.glb HAAR_128.glb');
   process.exit(2);
 }
 const EXT = 'PRTKIT_radiance_transfer';
@@ -32,7 +35,8 @@ function writeGlb({ json, bin }, text = JSON.stringify(json)) {
   return Buffer.concat([head, j, binHead, bin]);
 }
 const bases = { v: readGlb(vertexFile), t: readGlb(texelFile), c: readGlb(cpcaFile), tc: readGlb(texelCpcaFile),
-                p: readGlb(probesFile), pc: readGlb(probesCpcaFile) };
+                p: readGlb(probesFile), pc: readGlb(probesCpcaFile), h: readGlb(haarFile), ht: readGlb(haarTexelFile),
+                h128: readGlb(haar128File) };
 const copy = (g) => ({ json: structuredClone(g.json), bin: Buffer.from(g.bin) });
 
 // Helpers on a copy: the bake object, accessors by index or name, element addresses.
@@ -43,7 +47,7 @@ const cpca = (g) => prt(g).transfers.find((t) => t.compressed);
 const transferAcc = (g, t = 0, k = 0) => prt(g).transfers[t].accessors[k];
 function at(g, index, i, c = 0) {
   const a = g.json.accessors[index], v = g.json.bufferViews[a.bufferView];
-  const size = { 5121: 1, 5123: 2, 5125: 4, 5126: 4 }[a.componentType];
+  const size = { 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4 }[a.componentType];
   const comps = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4 }[a.type];
   const stride = v.byteStride || size * comps;
   return (v.byteOffset || 0) + (a.byteOffset || 0) + i * stride + c * size;
@@ -165,7 +169,60 @@ const cases = {
   reject_probe_without_transfers: ['p', (g) => { prt(g).transfers = []; }],
   reject_probe_cpca_cluster_out_of_range: ['pc', (g) => g.bin.writeUInt16LE(7, at(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'CLUSTER'), 3))],
   reject_probe_cpca_basis_nan: ['pc', (g) => setFloat(g, accIndex(g, cpca(g).compressed.accessorPrefix + 'BASIS'), 5, 0, NaN)],
+  // Haar transfer (format 8): its shape and its four quantised accessors (haar_bake.js; the
+  // library's HaarRowsCodec and haar::checkRow), and what the browser viewers do not relight.
+  accept_haar: ['h', () => {}],
+  accept_haar_resolution_64: ['h', (g) => { prt(g).transfers[0].settings.haar.resolution = 64; }],
+  accept_haar_per_texel: ['ht', () => {}],  // the viewers relight Haar per vertex: prt web refuses
+  accept_haar_cube_past_the_page: ['h128', () => {}],  // a 128² cube: prt web refuses
+  reject_haar_in_version_7: ['h', (g) => { prt(g).formatVersion = 7; }],
+  reject_haar_unknown_basis: ['h', (g) => { prt(g).transfers[0].settings.basis = 'wavelet'; }],
+  reject_haar_resolution_3: ['h', (g) => { prt(g).transfers[0].settings.haar.resolution = 3; }],
+  reject_haar_resolution_missing: ['h', (g) => { delete prt(g).transfers[0].settings.haar; }],
+  reject_haar_terms_past_the_cube: ['h', (g) => { prt(g).transfers[0].settings.haar.terms = 97; }],
+  reject_haar_terms_more_than_stored: ['h', (g) => { prt(g).transfers[0].settings.haar.terms += 1; }],
+  reject_haar_matrix_layout: ['h', (g) => { prt(g).transfers[0].settings.layout = 'matrix'; }],
+  reject_haar_channels_3: ['h', (g) => { prt(g).transfers[0].settings.channels = 3; }],
+  reject_haar_accessor_list_short: ['h', (g) => { prt(g).transfers[0].accessors.pop(); }],
+  reject_haar_kind_2: ['h', (g) => { g.bin.writeUInt8(2, at(g, transferAcc(g, 0, 0), 3)); }],
+  reject_haar_scale_nan: ['h', (g) => setFloat(g, transferAcc(g, 0, 1), 1, 0, NaN)],
+  reject_haar_scale_negative: ['h', (g) => setFloat(g, transferAcc(g, 0, 1), 2, 0, -1)],
+  reject_haar_index_past_the_cube: ['h', (g) => { haarTerm(g, (i, v) => v !== 0, (i) => g.bin.writeUInt16LE(96, i)); }],
+  reject_haar_indices_not_ascending: ['h', (g) => {
+    const row = haarRows(g).find((x) => x.kept >= 2);
+    if (!row) throw new Error('no Haar row keeps two terms');
+    g.bin.writeUInt16LE(g.bin.readUInt16LE(row.index(1)), row.index(0));
+  }],
+  reject_haar_padding_with_an_index: ['h', (g) => {
+    const row = haarRows(g).find((x) => x.kept < x.terms);
+    if (!row) throw new Error('no Haar row has padding');
+    g.bin.writeUInt16LE(5, row.index(row.terms - 1));
+  }],
+  reject_haar_value_off_the_grid: ['h', (g) => { haarTerm(g, (i, v) => v !== 0, (i, v) => g.bin.writeInt16LE(-32768, v)); }],
+  reject_haar_index_floats: ['h', (g) => { g.json.accessors[transferAcc(g, 0, 2)].componentType = 5126; }],
+  reject_haar_values_short: ['h', (g) => { g.json.accessors[transferAcc(g, 0, 3)].count -= 1; }],
 };
+
+/** The Haar rows of transfer 0 of g: per row its terms, how many it keeps (its non-zero values,
+ *  which come first) and the byte offsets of its k-th index and value. */
+function haarRows(g) {
+  const t = prt(g).transfers[0], terms = t.settings.haar.terms, rows = prt(g).vertexCount;
+  const out = [];
+  for (let r = 0; r < rows; ++r) {
+    const index = (k) => at(g, t.accessors[2], r * terms + k), value = (k) => at(g, t.accessors[3], r * terms + k);
+    let kept = 0;
+    for (let k = 0; k < terms; ++k) kept += g.bin.readInt16LE(value(k)) !== 0;
+    out.push({ terms, kept, index, value });
+  }
+  return out;
+}
+/** Applies change(indexAt, valueAt) to the first kept term that pick(indexAt, value) takes. */
+function haarTerm(g, pick, change) {
+  for (const row of haarRows(g))
+    for (let k = 0; k < row.kept; ++k)
+      if (pick(row.index(k), g.bin.readInt16LE(row.value(k)))) return change(row.index(k), row.value(k));
+  throw new Error('no Haar term to change');
+}
 
 fs.mkdirSync(out, { recursive: true });
 for (const [name, [base, mutate]] of Object.entries(cases)) {

@@ -4,7 +4,8 @@
 # prtkit-three's plugin, under node from their sources; verdicts.mjs): the same accept/refuse
 # verdict for every file, every JS refusal one line naming the file. The corpus: the fuzz seeds
 # in CORPUS (fuzz/corpus/bake) and the mutations make_cases.mjs writes of four small bakes made
-# here (vertex and per-texel transfer, dense and CPCA, and a probe grid, dense and CPCA). Exits 77 (skipped, saying why) without node, web/node_modules or the generated constants.
+# here (vertex and per-texel transfer, dense and CPCA, a probe grid, dense and CPCA, and Haar
+# transfer per vertex, per texel and over a cube finer than the viewers take). Exits 77 (skipped, saying why) without node, web/node_modules or the generated constants.
 prt=$1 node=$2 gen=$3 work=$4 corpus=$5
 here=$(cd "$(dirname "$0")" && pwd)
 if [ -z "$node" ] || ! command -v "$node" >/dev/null 2>&1; then
@@ -26,5 +27,11 @@ cd "$work" || exit 1
 "$prt" -q compress texel.glb --clusters 4 --pca 2 -o texel-cpca.glb >/dev/null || exit 1
 "$prt" -q probes 'builtin:cornell?grid=2' --grid 2x2x2 --bands 2 --samples 4 -o probes.glb || exit 1
 "$prt" -q compress probes.glb --clusters 2 --pca 1 -o probes-cpca.glb >/dev/null || exit 1
-"$node" "$here/make_cases.mjs" cases vertex.glb texel.glb cpca.glb texel-cpca.glb probes.glb probes-cpca.glb || exit 1
+"$prt" -q bake 'builtin:cornell?grid=2' --mode shadowed --basis haar --resolution 4 --terms 8 -o haar.glb || exit 1
+"$prt" -q bake 'builtin:cornell?grid=2' --mode shadowed --basis haar --domain texels --resolution 8 \
+  --cube-resolution 4 --terms 8 -o haar-texel.glb || exit 1
+"$prt" -q bake 'builtin:cornell?grid=2' --mode unshadowed --basis haar --resolution 128 --terms 4 \
+  -o haar-128.glb || exit 1
+"$node" "$here/make_cases.mjs" cases vertex.glb texel.glb cpca.glb texel-cpca.glb probes.glb probes-cpca.glb \
+  haar.glb haar-texel.glb haar-128.glb || exit 1
 exec "$node" "$here/verdicts.mjs" "$prt" "$gen" "$work" "$corpus"/*.glb cases/*.glb

@@ -14,7 +14,7 @@ import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import GUI from 'lil-gui';
-import { PRTKitRadianceTransfer, PRTBake, lightToSphericalHarmonics3, parseLight, rotateLight } from 'prtkit-three';
+import { PRTKitRadianceTransfer, PRTBake, haarEnvironment, lightToSphericalHarmonics3, parseLight, rotateLight } from 'prtkit-three';
 
 const encodingNames = PRTBake.encodings;
 
@@ -59,7 +59,9 @@ async function inputs() {
     const p = b.texelPoints;
     const texelPoints = !p ? undefined : new Float32Array(p.base64 ? base64Bytes(p.base64).buffer
                                                                    : await (await fetchOr(`../${p.file}`, 'texel points')).arrayBuffer());
-    return { name: b.name, bytes, texelPoints, lights: page.environments.map((e) => ({ name: e.name, light: parseLight({ bands: e.bands, coefficients: e.coefficients }, e.name) })) };
+    // A Haar bake's page carries each environment's cube too (its HaarLighting turns the light).
+    return { name: b.name, bytes, texelPoints, lights: page.environments.map((e) => ({ name: e.name, light: parseLight({ bands: e.bands, coefficients: e.coefficients }, e.name),
+                                                                                    haar: e.haar ? haarEnvironment(e.haar, e.name) : null })) };
   }
   const bake = query.get('bake') || 'bake.glb', lightName = query.get('light') || 'light.json';
   const bytes = await (await fetchOr(bake, 'bake')).arrayBuffer();
@@ -147,15 +149,24 @@ async function main() {
     }));
     prt.updateLightProbe(probe, ball.position);
   };
+  // A Haar bake (prt.isHaarLighting): its light is the environment's cube, with no bands and no
+  // encoding; the light's wavelet terms instead (?terms=).
+  const haar = !!prt.isHaarLighting;
+  if (haar) settings.terms = Number(query.get('terms') || (page && page.view && page.view.terms) || prt.terms);
   const apply = () => {
-    light = lights.find((l) => l.name === settings.light).light;
-    const warnings = prt.setLight(light);
+    const chosen = lights.find((l) => l.name === settings.light);
+    light = chosen.light;
+    if (haar && !chosen.haar) throw new Error(`${chosen.name}: a Haar bake is relit from an environment's cube (prt web writes one beside each environment of a Haar bake's page)`);
+    const warnings = prt.setLight(haar ? chosen.haar : light);
     document.getElementById('message').textContent = warnings.join('\n');
     prt.exposure = settings.exposure;
-    prt.encoding = 'none';  // (the new transfer may not take the last one)
     prt.mode = settings.mode;
-    prt.bands = settings.bands;
-    prt.encoding = settings.encoding;
+    if (haar) prt.terms = settings.terms;
+    else {
+      prt.encoding = 'none';  // (the new transfer may not take the last one)
+      prt.bands = settings.bands;
+      prt.encoding = settings.encoding;
+    }
     prt.lightRotation.setFromEuler(new THREE.Euler(settings.turnX, settings.turnY, settings.turnZ, 'ZYX'));
     if (grid) placeBall(0);
     else lightToSphericalHarmonics3(rotateLight(light, prt.lightRotation), probe.sh);
@@ -173,7 +184,8 @@ async function main() {
         for (let c = 0; c < 3; ++c) rgb[(y * w + x) * 3 + c] = rgba[((h - 1 - y) * w + x) * 4 + c];
     let s = '';
     for (let i = 0; i < rgb.length; i += 0x8000) s += String.fromCharCode(...rgb.subarray(i, i + 0x8000));
-    report({ ok: true, width: w, height: h, mode: prt.mode, bands: prt.bands, encoding: prt.shownEncoding || prt.encoding, transfers: prt.transfers,
+    report({ ok: true, width: w, height: h, mode: prt.mode, bands: haar ? 0 : prt.bands, terms: haar ? prt.terms : 0,
+             encoding: haar ? 'none' : prt.shownEncoding || prt.encoding, transfers: prt.transfers,
              meshes: prt.meshes.length, rgb: btoa(s) });
     return;
   }
@@ -184,7 +196,8 @@ async function main() {
   gui.add(settings, 'exposure', -8, 8, 0.1).onChange(apply);
   gui.add(settings, 'turnY', -Math.PI, Math.PI, 0.01).name('light turn').onChange(apply);
   gui.add(settings, 'mode', prt.transfers.map((t) => t.mode)).onChange(apply);
-  gui.add(settings, 'bands', 1, prt.bands, 1).onChange(apply);
+  if (haar) gui.add(settings, 'terms', 1, 2000, 1).name('light terms').onChange(apply);
+  else gui.add(settings, 'bands', 1, prt.bands, 1).onChange(apply);
   if (prt.transfers.some((t) => t.layout === 'matrix') && !grid)
     gui.add(settings, 'encoding', ['none', ...encodingNames]).onChange(apply);
   gui.add(settings, 'spin');

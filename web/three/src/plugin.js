@@ -4,7 +4,8 @@
 //   const loader = new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { renderer }));
 //   const gltf = await loader.loadAsync('bunny.glb');
 //   const prt = gltf.userData.prtkit;   // a PRTBake; its meshes already wear prtkit materials
-//                                       // (a probe bake: a ProbeGridLighting)
+//                                       // (a probe bake: a ProbeGridLighting; a Haar bake: a
+//                                       // HaarLighting)
 //
 // An asset that is not a bake loads untouched (userData.prtkit stays undefined) unless
 // options.required; a bake that cannot be shown rejects the load with one line naming the file.
@@ -13,6 +14,7 @@ import { bakeObject, checkParsedBake, readBake } from '../../src/bake.js';
 import { glossyFromFile } from '../../src/glossy.js';
 import { PRTBake } from './prt_bake.js';
 import { ProbeGridLighting } from './probe_grid_lighting.js';
+import { HaarLighting } from './haar_lighting.js';
 
 export class PRTKitRadianceTransfer {
   /**
@@ -55,6 +57,11 @@ export class PRTKitRadianceTransfer {
     // A probe grid (prt probes) lights what moves through it: a ProbeGridLighting.
     if (bake.probes) {
       result.userData.prtkit = new ProbeGridLighting(bake, result.scene);
+      return;
+    }
+    // A Haar bake (prt bake --basis haar) is relit on the CPU: a HaarLighting.
+    if (bake.haar) {
+      result.userData.prtkit = new HaarLighting(bake, result.scene);
       return;
     }
     for (const t of bake.transfers) if (t.matrix) t.material = glossyFromFile(t, name);

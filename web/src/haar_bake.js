@@ -1,0 +1,133 @@
+// Reading a Haar bake (prt bake --basis haar; docs/formats-bake.md, "Haar transfer") in the page
+// and prtkit-three: its settings and its four quantised accessors checked as the library's reader
+// checks them (io/bake_schema.cpp readSettings, transfer_codecs.cpp's HaarRowsCodec and
+// haar::checkRow), then the rows decoded into the form the library holds in memory — per row its
+// kind (0: the occluded part D = U − T, 1: the visible part T) and `terms` (index, value) float
+// pairs — for haar_relight.js. What the browser viewers relight (haar_scene.js, prtkit-three's
+// HaarLighting): per vertex, a cube of at most haar.maxTurnedResolution² a face (the light is
+// turned from the environment's cube 4 times finer), no base-colour texture; as prt web holds
+// a bake to (apps/prt/web.cpp, checkHaarForPage), each refusal one line naming the file.
+import { domains, haar as kHaar, modes } from 'prt:constants';
+import { preferenceOrder } from './transfer.js';
+import { meshParts } from './parts.js';
+import { validResolution } from './haar_light.js';
+
+function fail(name, what) {
+  throw new Error(`${name}: ${what}`);
+}
+
+const kUbyte = 5121, kShort = 5122, kUshort = 5123, kUint = 5125, kFloat = 5126;
+
+/** Whether transfer entry `t` (its JSON) is Haar. */
+export const isHaarEntry = (t) => t && t.settings && t.settings.basis === 'haar';
+
+/**
+ * The Haar part of bake.js's checkTransfers for entry `t` (settings `s`, at `tw`/`sw` in the
+ * JSON), `rows` rows of a bake of format `version`: { resolution, terms } after checking the
+ * shape (haar.resolution a power of two in range, terms 1..6 N², vector layout, one channel,
+ * not probes) and every row of the four accessors (KIND ubyte 0/1, SCALE finite ≥ 0, INDEX
+ * ushort — uint past 6·104² — below 6 N², ascending over the kept terms, 0 in the padding, VALUE
+ * short ≥ −32767). `ar`, `r`: bake.js's accessor reader and schema reader.
+ */
+export function checkHaarTransfer(t, s, tw, sw, version, layout, domain, rows, ar, r) {
+  if (version < kHaar.firstVersion)
+    r.fail(`${sw} is Haar transfer in a version ${version} file (Haar needs version ${kHaar.firstVersion})`);
+  const hw = `${sw}.haar`, h = r.member(s, 'haar', sw);
+  if (h === null || typeof h !== 'object' || Array.isArray(h)) r.fail(`${hw} is not an object`);
+  const n = r.integer(h, 'resolution', hw, kHaar.minResolution, kHaar.maxResolution);
+  const count = 6 * n * n, terms = r.integer(h, 'terms', hw, 1, count);
+  if (!validResolution(n))
+    r.fail(`${sw}: the Haar cube's resolution must be a power of two from ${kHaar.minResolution} to ${kHaar.maxResolution}, got ${n}`);
+  if (layout !== 'vector' || domain === domains[2]) r.fail(`${sw}: Haar transfer is diffuse (vector rows) over vertices or texels`);
+  const channels = r.integer(s, 'channels', sw, 1, 3);
+  if (channels !== 1) r.fail(`${sw}: Haar transfer is scalar (unshadowed or shadowed), got ${channels} channels`);
+  const acc = r.member(t, 'accessors', tw);
+  if (!Array.isArray(acc) || acc.length !== 4) r.fail(`${tw}.accessors must list 4 accessors for the Haar rows (kind, scale, index, value)`);
+  acc.forEach((i, k) => { if (!(Number.isInteger(i) && i >= 0 && i <= 2147483647)) r.fail(`${tw}.accessors[${k}] is not an index`); });
+  const what = `${s.mode} Haar rows`, K = rows * terms;
+  const kind = ar.exact(acc[0], 1, kUbyte, rows, `${what} kinds`);
+  const scale = ar.exact(acc[1], 1, kFloat, rows, `${what} scales`);
+  const index = ar.exact(acc[2], 1, count > 65536 ? kUint : kUshort, K, `${what} indices`);
+  const value = ar.exact(acc[3], 1, kShort, K, `${what} values`);
+  for (let i = 0; i < rows; ++i) {
+    if (!Number.isFinite(scale[i]) || scale[i] < 0) r.fail(`${tw}: Haar row ${i} has scale ${scale[i]} (a finite number >= 0)`);
+    if (kind[i] !== 0 && kind[i] !== 1) r.fail(`${tw}: ${what}: row ${i}: its kind must be 0 (occluded part) or 1 (visible part)`);
+    let last = -1;
+    for (let k = 0; k < terms; ++k) {
+      const q = value[i * terms + k], x = index[i * terms + k];
+      const term = `${tw}: ${what}: row ${i}, term ${k}`;
+      if (q < -kHaar.valueSteps) r.fail(`${tw}: Haar row ${i}, term ${k}: value ${q} is off the grid (-${kHaar.valueSteps}..${kHaar.valueSteps})`);
+      if (x >= count) r.fail(`${term}: the index is not a coefficient of the ${n}² cube`);
+      if (q === 0 || scale[i] === 0) {
+        if (x !== 0) r.fail(`${term}: a padding term (value 0) must have index 0`);
+        continue;
+      }
+      if (x <= last) r.fail(`${term}: the indices of the kept terms must ascend`);
+      last = x;
+    }
+  }
+  return { resolution: n, terms };
+}
+
+/** One Haar transfer's rows as the library holds them: Float32Array(rows × (1 + 2 terms)). */
+async function readRows(gltf, entry, rows, terms, name) {
+  const parts = [];
+  for (const [k, what] of [[0, 'kinds'], [1, 'scales'], [2, 'indices'], [3, 'values']]) {
+    const a = await gltf.parser.getDependency('accessor', entry.accessors[k]);
+    const want = k < 2 ? rows : rows * terms;
+    if (!a || a.itemSize !== 1 || a.array.length !== want) fail(name, `the Haar ${what} hold ${a ? a.array.length : 0} values, ${want} expected`);
+    parts.push(a.array);
+  }
+  const [kind, scale, index, value] = parts, stride = 1 + 2 * terms, out = new Float32Array(rows * stride);
+  for (let i = 0; i < rows; ++i) {
+    out[i * stride] = kind[i];
+    for (let k = 0; k < terms; ++k) {
+      out[i * stride + 1 + 2 * k] = index[i * terms + k];
+      // haar::dequantizeHaarValue: float(scale · q / 32767), in double.
+      out[i * stride + 2 + 2 * k] = (scale[i] * value[i * terms + k]) / kHaar.valueSteps;
+    }
+  }
+  return out;
+}
+
+/**
+ * A checked bake holding Haar transfer (bake.js's readBake, GLTFLoader's `gltf`, the bake's
+ * object `prt`) as the browser viewers relight it: { name, haar: true, transfers (in the
+ * library's preference order: [{ key, mode, layout, bands: 0, channels: 1, haar: { resolution,
+ * terms }, rows, kd (the recipe's kd or null), describe }]), parts (each keeping its positions,
+ * normals and colours), lightmap: null, maxBands: 0, vertices, triangles, centre, radius }.
+ */
+export async function readHaarBake(gltf, prt, name) {
+  const entries = prt.transfers;
+  if (!entries.every(isHaarEntry)) fail(name, 'holds Haar and SH transfer; the viewers relight one basis a file');
+  if (prt.texelRange || prt.lightmap)
+    fail(name, 'holds per-texel Haar transfer; the browser viewers relight Haar transfer per vertex (prt render draws a per-texel one)');
+  const range = prt.vertexRange || {};
+  if (range.first !== 0 || range.count !== prt.vertexCount)
+    fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);
+  const json = gltf.parser.json;
+  const pbr = Array.isArray(json.materials) && json.materials[0] && json.materials[0].pbrMetallicRoughness;
+  if (pbr && pbr.baseColorTexture !== undefined)
+    fail(name, 'holds Haar transfer on a mesh with a base-colour texture, which prt render folds into the vertices\' albedo; the browser viewers do not read a texture\'s pixels (view it with prt view)');
+  const read = [];
+  for (const e of entries) {
+    const s = e.settings, n = s.haar.resolution, terms = s.haar.terms;
+    if (n > kHaar.maxTurnedResolution)
+      fail(name, `holds Haar transfer over a ${n}² cube; the page turns its light from a cube ${kHaar.fineCubeFactor} times finer and takes cubes up to ${kHaar.maxTurnedResolution}² (bake with --resolution ${kHaar.maxTurnedResolution} or less, or view it with prt view)`);
+    const mode = modes.find((m) => m.name === s.mode);
+    const kd = s.material && Array.isArray(s.material.kd) ? s.material.kd : null;
+    read.push({ key: `${mode.name} vector`, mode: mode.name, layout: 'vector', bands: 0, channels: 1, matrix: false,
+                compressed: null, haar: { resolution: n, terms }, kd,
+                rows: await readRows(gltf, e, prt.vertexCount, terms, name),
+                describe: `Haar ${n}² cube, ${terms} terms a vertex, relit on the CPU` });
+  }
+  const transfers = preferenceOrder(read);
+  const mesh = meshParts(gltf, prt, name);
+  for (const p of mesh.parts) {
+    if (!p.geometry.getAttribute('normal')) fail(name, `part '${p.name}' has no normals (a Haar row's unshadowed light is its normal's)`);
+    for (const a of Object.keys(p.geometry.attributes))
+      if (!['position', 'normal', 'color'].includes(a)) p.geometry.deleteAttribute(a);
+  }
+  return { name, haar: true, transfers, parts: mesh.parts, lightmap: null, texelPoints: null, maxBands: 0,
+           vertices: mesh.vertices, triangles: mesh.triangles, centre: mesh.centre, radius: mesh.radius };
+}
