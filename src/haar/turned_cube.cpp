@@ -31,20 +31,6 @@ int faceCoords(const Vec3d& d, double& s, double& t) {
   return d.z > 0 ? 4 : 5;
 }
 
-/// The fine cube at direction d: bilinear between the four nearest texel centres of its face.
-Rgbd lookup(const std::vector<Rgb>& means, int m, const Vec3d& d) {
-  double s = 0, t = 0;
-  const int f = faceCoords(d, s, t);
-  const double u = (s + 1) * 0.5 * m - 0.5, v = (t + 1) * 0.5 * m - 0.5;
-  const double fu = std::floor(u), fv = std::floor(v), wx = u - fu, wy = v - fv;
-  const auto at = [&](double x, double y) {
-    const int xi = std::clamp(int(x), 0, m - 1), yi = std::clamp(int(y), 0, m - 1);
-    return Rgbd(means[std::size_t(f) * m * m + std::size_t(yi) * m + std::size_t(xi)]);
-  };
-  return (at(fu, fv) * (1 - wx) + at(fu + 1, fv) * wx) * (1 - wy) +
-         (at(fu, fv + 1) * (1 - wx) + at(fu + 1, fv + 1) * wx) * wy;
-}
-
 }  // namespace
 
 EnvironmentCube environmentCube(const envmap::Environment& env, int lightResolution) {
@@ -62,31 +48,35 @@ EnvironmentCube environmentCube(const envmap::Environment& env, int lightResolut
 
 std::vector<Rgb> turnCubeMeans(const EnvironmentCube& cube, int n, const Mat3d& rotation) {
   checkResolution(n, "a turned Haar light");
-  const int m = cube.resolution;
+  const int m = cube.resolution, q = kSplatPoints;
   if (m < n || m % n != 0 || cube.means.size() != coefficientCount(m))
     throw Error("a turned Haar light: a cube of " + std::to_string(cube.means.size()) +
                 " texel means at " + std::to_string(m) + "² a face does not refine a " +
                 std::to_string(n) + "² cube");
-  const int sub = m / n;
-  const std::vector<double> omega = envmap::cubeTexelSolidAngles(m);
-  const Mat3d inverse = rotation.transposed();
-  std::vector<Rgb> out(coefficientCount(n));
+  const std::vector<double> fine = envmap::cubeTexelSolidAngles(m),
+                            coarse = envmap::cubeTexelSolidAngles(n);
+  std::vector<Rgbd> power(coefficientCount(n), Rgbd(0.0));
   for (int f = 0; f < 6; ++f)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        Rgbd sum(0.0);
-        double weight = 0;
-        for (int j = 0; j < sub; ++j)
-          for (int i = 0; i < sub; ++i) {
-            const int px = x * sub + i, py = y * sub + j;
-            const double s = 2.0 * (px + 0.5) / m - 1.0, t = 2.0 * (py + 0.5) / m - 1.0;
-            const Vec3d d = inverse * normalize(envmap::cubeFaceDirection(f, s, t));
-            const double w = omega[std::size_t(py) * m + std::size_t(px)];
-            sum += lookup(cube.means, m, d) * w;
-            weight += w;
+    for (int y = 0; y < m; ++y)
+      for (int x = 0; x < m; ++x) {
+        // The fine texel's power, in q² equal parts, each to the coarse texel its point turns to.
+        const Rgbd part =
+            Rgbd(cube.means[std::size_t(f) * m * m + std::size_t(y) * m + std::size_t(x)]) *
+            (fine[std::size_t(y) * m + std::size_t(x)] / (q * q));
+        for (int j = 0; j < q; ++j)
+          for (int i = 0; i < q; ++i) {
+            const double s = 2.0 * (x + (i + 0.5) / q) / m - 1.0;
+            const double t = 2.0 * (y + (j + 0.5) / q) / m - 1.0;
+            const Vec3d d = rotation * normalize(envmap::cubeFaceDirection(f, s, t));
+            double fs = 0, ft = 0;
+            const int face = faceCoords(d, fs, ft);
+            const int cx = std::clamp(int((fs + 1) * 0.5 * n), 0, n - 1);
+            const int cy = std::clamp(int((ft + 1) * 0.5 * n), 0, n - 1);
+            power[std::size_t(face) * n * n + std::size_t(cy) * n + std::size_t(cx)] += part;
           }
-        out[std::size_t(f) * n * n + std::size_t(y) * n + std::size_t(x)] = Rgb(sum / weight);
       }
+  std::vector<Rgb> out(coefficientCount(n));
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = Rgb(power[k] / coarse[k % coarse.size()]);
   return out;
 }
 

@@ -1,6 +1,6 @@
 // The Haar basis through the command line (issue 33): prt bake --basis haar, prt light --basis
-// haar, prt render and prt validate handle it; every other verb refuses it by name; bad
-// options get one line and write nothing.
+// haar, prt render, prt validate and prt web handle it (tests/web/test_haar_web.cpp); every other
+// verb refuses it by name; bad options get one line and write nothing.
 
 #include <gtest/gtest.h>
 
@@ -125,7 +125,6 @@ TEST_F(HaarCli, OtherVerbsRefuseItByName) {
   ASSERT_EQ(prt("-q light builtin:sky --basis haar --resolution 16 -o h16.json").rc, 0);
   expectCleanFailure("compress h.glb -o out/c.glb", "holds Haar-wavelet transfer");
   expectCleanFailure("export h.glb --format games202 -o out/t.txt", "holds Haar-wavelet transfer");
-  expectCleanFailure("web h.glb -o out/page.html", "holds Haar-wavelet transfer");
   expectCleanFailure("render h.glb --light sh.json -o out/x.png", "is an SH light file");
   expectCleanFailure("render h.glb --light h16.json -o out/x.png", "16² cube");
   expectCleanFailure("render h.glb --turntable 3 -o out/x.png", "holds Haar transfer");

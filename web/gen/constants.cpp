@@ -215,6 +215,7 @@ json constants() {
                {"unshadowedBands", haar::kUnshadowedBands},
                {"brightTexels", haar::kBrightTexels},
                {"fineCubeFactor", haar::kFineCubeFactor},
+               {"splatPoints", haar::kSplatPoints},
                {"maxTurnedResolution", haar::kMaxTurnedResolution},
                {"defaultLightTerms", haar::kDefaultLightTerms}};
   c["perTexelMatricesRefusal"] = relight::kPageTexelMatricesRefusal;

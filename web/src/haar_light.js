@@ -8,7 +8,7 @@
 //                     largest area-weighted terms, the 16 brightest texels and the 5-band SH of
 //                     the rest
 //   turning it        haar::turnCubeMeans, turnedLight (haar/turned_cube.hpp): the cube's means
-//                     gathered from the environment's finer cube (prt web's, 4N a side) at each
+//                     splatted from the environment's finer cube (prt web's, 4N a side) at each
 //                     turn R of the light — Haar wavelets do not rotate; the environment is
 //                     resampled
 //   a light file      io::parseHaarLightJson (prt light --basis haar), a light that cannot turn
@@ -255,38 +255,32 @@ export function environmentCube(resolution, rgbeBytes, sh, name, decodeRgbe) {
   return { resolution, means: decodeRgbe(rgbeBytes), sh: flat };
 }
 
-/** haar::turnCubeMeans: the n cube's means of the environment turned by R (rows), gathered from
- *  the fine cube — each sub-texel's value at Rᵀd, bilinear within its face, weighted by its
- *  exact solid angle. Float32Array(6 n² · 3). */
+/** haar::turnCubeMeans: the n cube's means of the environment turned by R (rows), splatted from
+ *  the fine cube — each fine texel's power in kSplatPoints² equal parts, each to the coarse
+ *  texel its point turns to (R d), over the coarse texel's exact solid angle. Power is kept.
+ *  Float32Array(6 n² · 3). */
 export function turnCubeMeans(cube, n, R) {
-  const m = cube.resolution, sub = m / n, omega = cubeTexelSolidAngles(m), L = cube.means;
-  const out = new Float32Array(6 * n * n * 3), fc = [0, 0, 0];
-  const texel = (f, x, y) => 3 * (f * m * m + Math.min(Math.max(y, 0), m - 1) * m + Math.min(Math.max(x, 0), m - 1));
+  const m = cube.resolution, q = kHaar.splatPoints, fine = cubeTexelSolidAngles(m), coarse = cubeTexelSolidAngles(n);
+  const L = cube.means, power = new Float64Array(6 * n * n * 3), fc = [0, 0, 0];
   for (let f = 0; f < 6; ++f)
-    for (let y = 0; y < n; ++y)
-      for (let x = 0; x < n; ++x) {
-        let r = 0, g = 0, b = 0, weight = 0;
-        for (let j = 0; j < sub; ++j)
-          for (let i = 0; i < sub; ++i) {
-            const px = x * sub + i, py = y * sub + j;
-            const d = normalize(cubeFaceDirection(f, (2 * (px + 0.5)) / m - 1, (2 * (py + 0.5)) / m - 1));
-            // Rᵀ d: the direction the turned light at d came from.
-            const dx = R[0][0] * d[0] + R[1][0] * d[1] + R[2][0] * d[2];
-            const dy = R[0][1] * d[0] + R[1][1] * d[1] + R[2][1] * d[2];
-            const dz = R[0][2] * d[0] + R[1][2] * d[1] + R[2][2] * d[2];
-            faceCoords(dx, dy, dz, fc);
-            const u = (fc[1] + 1) * 0.5 * m - 0.5, v = (fc[2] + 1) * 0.5 * m - 0.5;
-            const fu = Math.floor(u), fv = Math.floor(v), wx = u - fu, wy = v - fv;
-            const a = texel(fc[0], fu, fv), bb = texel(fc[0], fu + 1, fv);
-            const c = texel(fc[0], fu, fv + 1), e = texel(fc[0], fu + 1, fv + 1);
-            const w = omega[py * m + px];
-            const mix = (k) => (L[a + k] * (1 - wx) + L[bb + k] * wx) * (1 - wy) + (L[c + k] * (1 - wx) + L[e + k] * wx) * wy;
-            r += mix(0) * w, g += mix(1) * w, b += mix(2) * w;
-            weight += w;
+    for (let y = 0; y < m; ++y)
+      for (let x = 0; x < m; ++x) {
+        const src = 3 * (f * m * m + y * m + x), w = fine[y * m + x] / (q * q);
+        const r = L[src] * w, g = L[src + 1] * w, b = L[src + 2] * w;
+        for (let j = 0; j < q; ++j)
+          for (let i = 0; i < q; ++i) {
+            const d = normalize(cubeFaceDirection(f, (2 * (x + (i + 0.5) / q)) / m - 1, (2 * (y + (j + 0.5) / q)) / m - 1));
+            faceCoords(R[0][0] * d[0] + R[0][1] * d[1] + R[0][2] * d[2], R[1][0] * d[0] + R[1][1] * d[1] + R[1][2] * d[2],
+                       R[2][0] * d[0] + R[2][1] * d[1] + R[2][2] * d[2], fc);
+            const cx = Math.min(Math.max(Math.trunc((fc[1] + 1) * 0.5 * n), 0), n - 1);
+            const cy = Math.min(Math.max(Math.trunc((fc[2] + 1) * 0.5 * n), 0), n - 1);
+            const k = 3 * (fc[0] * n * n + cy * n + cx);
+            power[k] += r, power[k + 1] += g, power[k + 2] += b;
           }
-        const o = 3 * (f * n * n + y * n + x);
-        out[o] = r / weight, out[o + 1] = g / weight, out[o + 2] = b / weight;
       }
+  const out = new Float32Array(6 * n * n * 3);
+  for (let k = 0; k < 6 * n * n; ++k)
+    for (let c = 0; c < 3; ++c) out[3 * k + c] = power[3 * k + c] / coarse[k % (n * n)];
   return out;
 }
 

@@ -1,0 +1,305 @@
+// Haar bakes in the browser (issue 33; docs/haar.md, docs/web.md "Haar bakes", docs/three.md),
+// against the library on the same bake and environment:
+//   * the JavaScript — the page's reader, its light turned from prt web's environment cube
+//     (haar_light.js) and its relighting (haar_relight.js), prtkit-three's HaarLighting — reads
+//     the rows io::decodeBake reads, makes haar::turnedLight's light (the same terms, values to
+//     1e-5) and relights every vertex as relight::relightHaar does, to 1e-5 relative, under the
+//     cube at several turns and under a Haar light file (under node,
+//     tests/web/haar/haar_check.mjs);
+//   * prt web's page draws the bake as prt render draws it, unturned and turned (its light is
+//     turned from the cube, prt render's from the environment), and the frame turned the other
+//     way does not match;
+//   * the three.js example of the same folder draws it;
+//   * prt web refuses, in one line naming the file or option, what the page does not relight.
+// Each test skips, saying why, where node, chromium or the built page is missing.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli/cli_harness.hpp"
+#include "prt/core/json.hpp"
+#include "prt/haar/turned_cube.hpp"
+#include "prt/io/bake_file.hpp"
+#include "prt/io/haar_light_file.hpp"
+#include "prt/relight/relight_haar.hpp"
+#include "web/page_harness.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using prt::Json;
+using prt::testing::Result;
+using namespace web_harness;
+
+Result prt(const std::string& args) {
+  return prt::testing::runPrt(scratch(), args);
+}
+std::string path(const std::string& name) {
+  return (scratch() / name).string();
+}
+
+const fs::path kSource = PRT_SOURCE_DIR;
+const fs::path kGenerated = fs::path(PRT_BINARY_DIR) / "generated" / "web";
+constexpr const char* kScene = "'builtin:sphere-plane?grid=12&subdiv=2'";
+constexpr const char* kCamera = "eye=1.6,2.2,3.4;target=0,0.6,0;up=0,1,0;fov=40";
+
+/// node with the page's dependencies, or "" (and why in `why`).
+std::string node(std::string* why) {
+  const std::string n = which({"node", "nodejs"});
+  if (n.empty())
+    *why = "no node here (apt-get install nodejs)";
+  else if (!fs::exists(kSource / "web/node_modules/three/package.json"))
+    *why = "web/node_modules missing (run scripts/setup.sh)";
+  else if (!fs::exists(kGenerated / "constants.js"))
+    *why = kGenerated.string() + "/constants.js is not built (ninja prt_web_assets)";
+  else
+    return n;
+  return "";
+}
+
+/// A shadowed Haar bake over a 16² cube, its page under builtin:sky (seen from kCamera) and a
+/// Haar light file of the sky, written once; "" or why the page could not be written (its assets
+/// are not built).
+std::string haarPage() {
+  static const std::string why = [] {
+    Result r = prt(std::string("-q bake ") + kScene +
+                   " --mode shadowed --basis haar --resolution 16 --terms 48 --samples 2 -o "
+                   "haar.glb");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    r = prt("-q light builtin:sky --basis haar --resolution 16 --terms 300 -o haar_sky.json");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    r = prt("-q web haar.glb --light builtin:sky --camera '" + std::string(kCamera) +
+            "' -o haar_page");
+    if (r.rc != 0 && r.err.find("assets") != std::string::npos) return r.err;
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return std::string();
+  }();
+  return why;
+}
+
+/// prt-data.js's object.
+Json pageData(const std::string& dir) {
+  const std::string s = prt::testing::slurp(fs::path(dir) / "prt-data.js");
+  const std::size_t a = s.find('=');
+  std::string body = s.substr(a + 1);
+  while (!body.empty() && (body.back() == '\n' || body.back() == ';')) body.pop_back();
+  return Json::parse(body);
+}
+
+/// The environment cube prt web wrote, decoded as the page decodes its RGBE texels
+/// (environment.js decodeRgbe: (m + ½)·2^(e − 136), zero for e = 0).
+prt::haar::EnvironmentCube cubeOf(const Json& haar) {
+  prt::haar::EnvironmentCube c;
+  c.resolution = haar["resolution"];
+  const std::vector<unsigned char> b = unbase64(haar["rgbe"].get<std::string>());
+  c.means.resize(b.size() / 4);
+  for (std::size_t p = 0; p < c.means.size(); ++p) {
+    const int e = b[4 * p + 3];
+    if (e == 0) continue;
+    const double f = std::ldexp(1.0, e - 136);
+    for (int k = 0; k < 3; ++k) c.means[p][std::size_t(k)] = float((b[4 * p + k] + 0.5) * f);
+  }
+  c.sh = prt::sh::RgbSh(prt::haar::kUnshadowedBands);
+  for (std::size_t i = 0; i < c.sh.c.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      c.sh.c[i][std::size_t(k)] = haar["sh"][i][std::size_t(k)].get<float>();
+  return c;
+}
+
+/// max |js − c++| over max |c++|.
+double relativeError(const Json& js, const std::vector<float>& cpp) {
+  EXPECT_EQ(js.size(), cpp.size());
+  double err = 0, scale = 0;
+  for (std::size_t i = 0; i < cpp.size() && i < js.size(); ++i) {
+    err = std::max(err, std::abs(js[i].get<double>() - cpp[i]));
+    scale = std::max(scale, double(std::abs(cpp[i])));
+  }
+  return err / std::max(scale, 1e-30);
+}
+
+std::vector<float> flat(const std::vector<prt::Rgb>& v) {
+  std::vector<float> out;
+  for (const prt::Rgb& c : v)
+    for (int k = 0; k < 3; ++k) out.push_back(c[std::size_t(k)]);
+  return out;
+}
+
+constexpr double kRelative = 1e-5;
+
+TEST(HaarWeb, JavaScriptRelightsAsTheLibrary) {
+  std::string why;
+  const std::string n = node(&why);
+  if (n.empty()) GTEST_SKIP() << why;
+  const std::string page = haarPage();
+  if (!page.empty()) GTEST_SKIP() << page;
+  const std::vector<std::array<double, 3>> turns = {{0, 0, 0}, {20, -35, 10}, {-60, 15, 140}};
+  const int terms = 150;
+  Json rotate = Json::array();
+  for (const auto& t : turns) rotate.push_back({t[0], t[1], t[2]});
+  std::ofstream(path("haar_query.json")) << Json{{"rotate", rotate}, {"terms", terms}}.dump();
+  const Result r =
+      shell("'" + n + "' '" + (kSource / "tests/web/haar/haar_check.mjs").string() + "' '" +
+            kGenerated.string() + "' '" + path("haar.glb") + "' '" + path("haar_page/prt-data.js") +
+            "' '" + path("haar_sky.json") + "' '" + path("haar_query.json") + "'");
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  const Json js = Json::parse(r.out);
+
+  // The rows: exactly io::decodeBake's.
+  const prt::BakeFile bake = prt::readBake(path("haar.glb"));
+  const prt::Transfer& t = bake.transfers[0].transfer;
+  const auto values = t.values();
+  ASSERT_EQ(js["page"]["rows"].size(), values.size());
+  for (std::size_t i = 0; i < values.size(); ++i)
+    ASSERT_EQ(js["page"]["rows"][i].get<float>(), values[i]) << "row value " << i;
+
+  // The light turned from prt web's cube, and every vertex relit under it.
+  const prt::haar::EnvironmentCube cube =
+      cubeOf(pageData(path("haar_page"))["environments"][0]["haar"]);
+  const std::vector<prt::Rgb> albedo = prt::albedoAtVertices(bake.mesh);
+  double worst = 0;
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    SCOPED_TRACE("turn " + std::to_string(k));
+    const prt::Mat3d R = prt::rotationEulerXYZ(turns[k][0], turns[k][1], turns[k][2]);
+    const prt::haar::HaarLight light = prt::haar::turnedLight(cube, 16, terms, R);
+    const Json& l = js["page"]["lights"][k];
+    ASSERT_EQ(l["index"].size(), light.index.size());
+    for (std::size_t i = 0; i < light.index.size(); ++i) ASSERT_EQ(l["index"][i], light.index[i]);
+    EXPECT_LT(relativeError(l["value"], flat(light.value)), kRelative);
+    EXPECT_LT(relativeError(l["unshadowed"], flat(light.unshadowed.c)), kRelative);
+    ASSERT_EQ(l["bright"].size(), light.bright.size());
+    for (std::size_t b = 0; b < light.bright.size(); ++b)
+      EXPECT_EQ(l["bright"][b]["texel"], light.bright[b].texel);
+    EXPECT_NEAR(l["energyKept"].get<double>(), light.energyKept, 1e-6);
+    const std::vector<prt::Rgb> lib =
+        prt::relight::relightHaar(t, light, bake.mesh.normals, albedo);
+    const double e = relativeError(js["page"]["radiance"][k], flat(lib));
+    EXPECT_LT(e, kRelative);
+    worst = std::max(worst, e);
+    if (k == 0) EXPECT_LT(relativeError(js["three"]["radiance"], flat(lib)), kRelative);
+  }
+  // Under a Haar light file.
+  const std::vector<prt::Rgb> file = prt::relight::relightHaar(
+      t, prt::io::readHaarLightJson(path("haar_sky.json")).light, bake.mesh.normals, albedo);
+  EXPECT_LT(relativeError(js["page"]["file"], flat(file)), kRelative);
+  EXPECT_EQ(js["three"]["meshes"], 2);
+  EXPECT_NE(js["three"]["refusal"].get<std::string>().find("cannot be turned"), std::string::npos)
+      << js["three"]["refusal"];
+  std::cout << "JavaScript vs the library, Haar light and relighting: worst relative error "
+            << worst << "\n";
+}
+
+#define PRT_REQUIRE_CHROMIUM()                                                             \
+  do {                                                                                     \
+    if (chromium().empty()) GTEST_SKIP() << "no chromium here (apt-get install chromium)"; \
+  } while (0)
+
+/// The page's ?screenshot frame (320x240) for `query`: its RGB bytes and report.
+std::vector<unsigned char> pageFrame(const std::string& dir, const std::string& query,
+                                     Json* report = nullptr) {
+  std::string log;
+  const std::string json = runPage(dir, "screenshot&size=320x240&" + query, &log);
+  EXPECT_NE(json.find("\"ok\":true"), std::string::npos) << json.substr(0, 400) << "\n" << log;
+  if (json.empty()) return {};
+  const Json j = Json::parse(json);
+  if (report) *report = j;
+  return unbase64(j["rgb"].get<std::string>());
+}
+
+TEST(HaarWeb, PageDrawsTheBakeAsPrtRender) {
+  PRT_REQUIRE_CHROMIUM();
+  const std::string page = haarPage();
+  if (!page.empty()) GTEST_SKIP() << page;
+  const std::string dir = path("haar_page");
+  const std::string settings =
+      "--exposure -3 --tonemap clamp --size 320x240 --camera '" + std::string(kCamera) + "'";
+  double first = 0;
+  for (const std::string rotate : {"0,0,0", "20,-35,10"}) {
+    SCOPED_TRACE(rotate);
+    const Result r = prt("-q render haar.glb --light builtin:sky --rotate " + rotate + " " +
+                         settings + " -o haar_render.png");
+    ASSERT_EQ(r.rc, 0) << r.err;
+    Json report;
+    const std::vector<unsigned char> rgb =
+        pageFrame(dir, "exposure=-3&tonemap=clamp&rotate=" + rotate, &report);
+    ASSERT_TRUE(report.contains("haar")) << report.dump().substr(0, 300);
+    EXPECT_EQ(report["haar"]["resolution"], 16);
+    EXPECT_EQ(report["haar"]["lightTerms"], 200);
+    const double e = displayedRmse(rgb, path("haar_render.png"));
+    std::cout << "page vs prt render, Haar bake turned " << rotate << ": RMSE " << e
+              << ", 90th percentile " << quantile90 << "\n";
+    EXPECT_LT(e, kMatch);
+    if (first == 0) {
+      first = e;
+    } else {
+      // The unturned frame is not the turned render (the comparison can fail).
+      EXPECT_GT(displayedRmse(pageFrame(dir, "exposure=-3&tonemap=clamp&rotate=0,0,0"),
+                              path("haar_render.png")),
+                e + 0.004);
+    }
+  }
+}
+
+TEST(HaarWeb, ThreeExampleDrawsTheBake) {
+  PRT_REQUIRE_CHROMIUM();
+  const std::string page = haarPage();
+  if (!page.empty()) GTEST_SKIP() << page;
+  if (!fs::exists(path("haar_page/three/example.js")))
+    GTEST_SKIP() << "the three.js example is not built (node or web/node_modules missing)";
+  std::string log;
+  const std::string json =
+      runPage(path("haar_page/three"),
+              "screenshot&size=320x240&only&exposure=-3&camera=" + std::string(kCamera) +
+                  "&rotate=20,-35,10",
+              &log);
+  ASSERT_NE(json.find("\"ok\":true"), std::string::npos) << json.substr(0, 400) << "\n" << log;
+  const Json j = Json::parse(json);
+  EXPECT_EQ(j["meshes"], 2);
+  EXPECT_EQ(j["terms"], 200);
+  const Result r = prt(std::string("-q render haar.glb --light builtin:sky --rotate 20,-35,10 ") +
+                       "--exposure -3 --tonemap clamp --background none --size 320x240 --camera '" +
+                       kCamera + "' -o haar_three.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const double e = displayedRmse(unbase64(j["rgb"].get<std::string>()), path("haar_three.png"));
+  std::cout << "three.js module vs prt render, Haar bake: RMSE " << e << "\n";
+  EXPECT_LT(e, kMatch);
+}
+
+TEST(HaarWeb, PrtWebRefusesWhatThePageDoesNotRelight) {
+  const std::string page = haarPage();
+  if (!page.empty()) GTEST_SKIP() << page;
+  const auto refused = [](const std::string& args, const std::string& says) {
+    const Result r = prt("web " + args + " -o haar_refused");
+    EXPECT_EQ(r.rc, 1) << args;
+    EXPECT_NE(r.err.find(says), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(path("haar_refused"))) << args;
+  };
+  ASSERT_EQ(prt(std::string("-q bake ") + kScene +
+                " --mode shadowed --basis haar --domain texels --resolution 16 --cube-resolution "
+                "4 --terms 8 -o haar_texels.glb")
+                .rc,
+            0);
+  refused("haar_texels.glb", "per vertex");
+  ASSERT_EQ(prt(std::string("-q bake ") + kScene +
+                " --mode unshadowed --basis haar --resolution 128 --terms 4 -o haar_128.glb")
+                .rc,
+            0);
+  refused("haar_128.glb", "cubes up to 64²");
+  ASSERT_EQ(prt("-q light builtin:sky --bands 3 -o haar_sh.json").rc, 0);
+  refused("haar.glb --light haar_sh.json", "SH light file");
+  refused("haar.glb --bands 3", "--bands");
+  refused("haar.glb --encoding l1", "--encoding");
+  refused("haar.glb --material phong", "--material");
+  ASSERT_EQ(
+      prt(std::string("-q bake ") + kScene + " --mode shadowed --samples 16 -o haar_sh.glb").rc, 0);
+  refused("haar_sh.glb --terms 100", "--terms");
+}
+
+}  // namespace
