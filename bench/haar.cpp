@@ -7,6 +7,14 @@
 //                                  streaming read of the same rows (vs_stream: how far from
 //                                  memory bound) and the 5-band SH relighting of the same mesh
 //                                  (vs_sh5).
+//     BM_HaarProductOrder/SCENE/TERMS
+//                                  the sparse product Σ_t D̃_t L̃[k_t] alone, on one thread,
+//                                  organised two ways over the same rows and 200-term light:
+//                                  by row (gather from the light laid out densely, as
+//                                  relightHaar does) and by light coefficient (Ng et al. 2003
+//                                  §6: each light term scatters into the rows that keep its
+//                                  coefficient, a column of the transfer built untimed):
+//                                  by_light_vs_by_row, the two's time ratio.
 //     BM_HaarBake/SCENE            the shadowed Haar bake (the default 32² cube, one ray per
 //                                  texel, 64 terms) against raw Embree (rtcOccluded1M, 64-ray
 //                                  streams) on the same rays, ray generation untimed: vs_raw.
@@ -16,7 +24,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -100,6 +110,87 @@ void BM_HaarRelight(benchmark::State& state, const std::string& name) {
   state.counters["threads"] = prt::maxThreads();
 }
 
+void BM_HaarProductOrder(benchmark::State& state, const std::string& name) {
+  Scene* s = scene(name);
+  if (!s) {
+    state.SkipWithError((std::string(kBunny) + " not found: bunny case skipped").c_str());
+    return;
+  }
+  const int terms = static_cast<int>(state.range(0));
+  const int resolution = 32;
+  const prt::Transfer t = prt::bake(s->mesh, *s->occluder, haarSettings(resolution, terms));
+  const prt::haar::HaarLight light =
+      prt::haar::projectLight(prt::envmap::builtinEnvironment("builtin:sky"), resolution, 200);
+  const std::size_t cube = 6u * resolution * resolution, rows = t.rowCount();
+  auto indexAt = [](const float* row, int k) { return static_cast<std::uint32_t>(row[1 + 2 * k]); };
+  // By row: the light dense, zeros where no term is kept.
+  std::vector<prt::Rgb> dense(cube, prt::Rgb(0.0f));
+  for (std::size_t i = 0; i < light.index.size(); ++i) dense[light.index[i]] = light.value[i];
+  // By light coefficient: the transfer's columns (compressed sparse columns over the cube).
+  std::vector<std::uint32_t> start(cube + 1, 0), colRow;
+  std::vector<float> colValue;
+  for (std::size_t r = 0; r < rows; ++r)
+    for (int k = 0; k < terms; ++k)
+      if (t.row(r)[2 + 2 * k] != 0.0f) ++start[indexAt(t.row(r), k) + 1];
+  for (std::size_t j = 0; j < cube; ++j) start[j + 1] += start[j];
+  colRow.resize(start[cube]);
+  colValue.resize(start[cube]);
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t r = 0; r < rows; ++r)
+    for (int k = 0; k < terms; ++k)
+      if (const float v = t.row(r)[2 + 2 * k]; v != 0.0f) {
+        const std::uint32_t e = fill[indexAt(t.row(r), k)]++;
+        colRow[e] = static_cast<std::uint32_t>(r);
+        colValue[e] = v;
+      }
+  std::vector<prt::Rgb> byRow(rows), byLight(rows);
+  double rowSeconds = 0, lightSeconds = 0;
+  int n = 0;
+  for (auto _ : state) {
+    rowSeconds += prt::bench::secondsOf(
+        [&] {
+          for (std::size_t r = 0; r < rows; ++r) {
+            const float* row = t.row(r);
+            prt::Rgb acc(0.0f);
+            for (int k = 0; k < terms; ++k) acc += dense[indexAt(row, k)] * row[2 + 2 * k];
+            byRow[r] = acc;
+          }
+          benchmark::DoNotOptimize(byRow.data());
+        },
+        1);
+    lightSeconds += prt::bench::secondsOf(
+        [&] {
+          std::fill(byLight.begin(), byLight.end(), prt::Rgb(0.0f));
+          for (std::size_t i = 0; i < light.index.size(); ++i) {
+            const prt::Rgb l = light.value[i];
+            const std::uint32_t j = light.index[i];
+            for (std::uint32_t e = start[j]; e < start[j + 1]; ++e)
+              byLight[colRow[e]] += l * colValue[e];
+          }
+          benchmark::DoNotOptimize(byLight.data());
+        },
+        1);
+    state.SetIterationTime(rowSeconds / (n + 1));
+    ++n;
+  }
+  // Both orders sum the same products (in another order): they agree to rounding.
+  double diff = 0, scale = 0;
+  for (std::size_t r = 0; r < rows; ++r)
+    for (int c = 0; c < 3; ++c) {
+      diff = std::max(diff, double(std::abs(byRow[r][c] - byLight[r][c])));
+      scale = std::max(scale, double(std::abs(byRow[r][c])));
+    }
+  if (!(diff <= 1e-4 * scale)) state.SkipWithError("the two orders disagree");
+  state.counters["vertices"] = double(rows);
+  state.counters["by_row_ms"] = 1e3 * rowSeconds / n;
+  state.counters["by_light_ms"] = 1e3 * lightSeconds / n;
+  state.counters["by_light_vs_by_row"] = lightSeconds / rowSeconds;
+  // The share of the stored transfer terms the light's K terms meet: the by-light loop's work.
+  std::size_t met = 0;
+  for (const std::uint32_t j : light.index) met += start[j + 1] - start[j];
+  state.counters["terms_met"] = double(met) / double(std::max<std::size_t>(1, start[cube]));
+}
+
 void BM_HaarBake(benchmark::State& state, const std::string& name) {
   Scene* s = scene(name);
   if (!s) {
@@ -163,6 +254,11 @@ BENCHMARK_CAPTURE(BM_HaarRelight, bunny, std::string("bunny"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_HaarRelight, sphere_plane, std::string("sphere-plane"))
     ->Arg(64)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_HaarProductOrder, bunny, std::string("bunny"))
+    ->Arg(64)
+    ->Arg(16)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_HaarBake, bunny, std::string("bunny"))

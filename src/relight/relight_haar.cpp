@@ -1,6 +1,8 @@
 #include "prt/relight/relight_haar.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
@@ -12,8 +14,33 @@
 namespace prt::relight {
 
 namespace {
+
 constexpr std::size_t kRowGrain = 256;
+
+/// A bright texel as each row meets it: (1/π) ∫_texel max(n·ω, 0) dω is n·Φ/π for a texel wholly
+/// above n's horizon (cube_texels.hpp), nothing for one wholly below, and the clipped polygon only
+/// where the horizon crosses it. A cone about the texel's centre c decides which with one dot
+/// product: every corner lies within the angle α of c, so n·c ≥ sin α puts them all above the
+/// horizon and n·c ≤ −sin α all below (the margin covers float rounding; the rows between take
+/// the exact, clipped integral, as every row once did).
+struct BrightCone {
+  Vec3f centre;
+  float sinHalfAngle = 1;
+  Vec3f momentOverPi;
+  Rgb radiance;
+  haar::TexelGeometry texel;
+};
+
+BrightCone brightCone(const haar::TexelGeometry& g, const Rgb& radiance) {
+  const Vec3d c = normalize(g.corners[0] + g.corners[1] + g.corners[2] + g.corners[3]);
+  double cosAlpha = 1;
+  for (const Vec3d& v : g.corners) cosAlpha = std::min(cosAlpha, dot(c, v));
+  const double sinAlpha = std::sqrt(std::max(0.0, 1 - cosAlpha * cosAlpha));
+  constexpr double kMargin = 1e-5;
+  return {Vec3f(c), float(sinAlpha + kMargin), Vec3f(g.moment / kPi), radiance, g};
 }
+
+}  // namespace
 
 void relightHaar(const Transfer& transfer, const haar::HaarLight& light,
                  std::span<const Vec3f> normals, std::span<const Rgb> albedo, std::span<Rgb> out) {
@@ -41,10 +68,10 @@ void relightHaar(const Transfer& transfer, const haar::HaarLight& light,
   for (int lb = 0; lb < kBands; ++lb)
     for (int i = lb * lb; i < (lb + 1) * (lb + 1); ++i)
       lobe[std::size_t(i)] = light.unshadowed.c[std::size_t(i)] * float(a[std::size_t(lb)] / kPi);
-  // The bright texels' geometry, for their exact share of the unshadowed part.
-  std::vector<haar::TexelGeometry> brightTexels;
+  // The bright texels, for their exact share of the unshadowed part.
+  std::vector<BrightCone> bright;
   for (const haar::BrightTexel& b : light.bright)
-    brightTexels.push_back(haar::texelGeometry(b.texel, light.resolution));
+    bright.push_back(brightCone(haar::texelGeometry(b.texel, light.resolution), b.radiance));
   const std::size_t terms = static_cast<std::size_t>(shape.haar.terms);
   const float* values = transfer.values().data();
   // The indices are checked as they are read (a mapped bake's rows are not checked on loading:
@@ -68,12 +95,15 @@ void relightHaar(const Transfer& transfer, const haar::HaarLight& light,
           g += yr[i] * lobe[std::size_t(i)].y;
           z += yr[i] * lobe[std::size_t(i)].z;
         }
-        const Vec3d nrm(normals[r]);
-        for (std::size_t k = 0; k < brightTexels.size(); ++k) {
-          const float u = float(haar::clampedCosine(brightTexels[k], nrm));
-          x += u * light.bright[k].radiance.x;
-          g += u * light.bright[k].radiance.y;
-          z += u * light.bright[k].radiance.z;
+        const Vec3f& nrm = normals[r];
+        for (const BrightCone& c : bright) {
+          const float side = dot(nrm, c.centre);
+          if (side <= -c.sinHalfAngle) continue;  // wholly below the horizon: nothing
+          const float u = side >= c.sinHalfAngle ? std::max(0.0f, dot(nrm, c.momentOverPi))
+                                                 : float(haar::clampedCosine(c.texel, Vec3d(nrm)));
+          x += u * c.radiance.x;
+          g += u * c.radiance.y;
+          z += u * c.radiance.z;
         }
       }
       const float sign = occluded ? -1.0f : 1.0f;

@@ -11,6 +11,7 @@
 #include "prt/core/parallel.hpp"
 #include "prt/envmap/environment.hpp"
 #include "prt/geometry/builtin.hpp"
+#include "prt/haar/cube_texels.hpp"
 #include "prt/haar/project_light.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight.hpp"
@@ -67,6 +68,47 @@ TEST(BakeHaar, SphereAbovePlaneOccludesRatioSquared) {
   EXPECT_NEAR(out[0].x, 1.0 - (r / h) * (r / h), 3 * stats.stdErrConstMax + 2e-3);
   // Every kept term is a coefficient of the cube, in ascending order.
   EXPECT_NO_THROW(t.check("haar"));
+}
+
+TEST(RelightHaar, BrightTexelsRelightAsTheirExactCosineIntegralsAtEveryNormal) {
+  // A row of padding (kind 0, D = 0) relights to U(n)·L; with all of the light in its bright
+  // texels (no SH, no terms) that is Σ_b L_b U_b(n), each U_b the texel's clamped-cosine
+  // integral (cube_texels.hpp), independently summed here. The normals sweep the sphere finely,
+  // so texels lie wholly above, wholly below and across their horizons (relight_haar.cpp takes
+  // the first two from a cone's dot product, the last from the clipped polygon).
+  const int n = 4;
+  const haar::CubeTexels cube(n);
+  haar::HaarLight light;
+  light.resolution = n;
+  light.unshadowed = sh::RgbSh(haar::kUnshadowedBands);
+  for (std::uint32_t j : {0u, 5u, 21u, 38u, 47u, 60u, 77u, 95u})
+    light.bright.push_back({j, Rgb(1.0f + float(j) / 10, 2.0f, 0.5f)});
+  std::vector<Vec3f> normals;
+  for (int i = 0; i < 4000; ++i) {
+    const double z = 1 - (2 * i + 1) / 4000.0, phi = 2.399963229728653 * i,
+                 s = std::sqrt(1 - z * z);
+    normals.push_back(Vec3f(float(s * std::cos(phi)), float(s * std::sin(phi)), float(z)));
+  }
+  TransferShape shape;
+  shape.basis = TransferBasis::Haar;
+  shape.haar = {n, 3};
+  shape.rows = {0, normals.size()};
+  const std::vector<Rgb> out = relight::relightHaar(Transfer::zeros(shape), light, normals, {});
+  int crossing = 0;
+  double worst = 0;
+  for (std::size_t r = 0; r < normals.size(); ++r) {
+    Rgbd want(0.0);
+    for (const haar::BrightTexel& b : light.bright) {
+      const double u = cube.clampedCosine(b.texel, Vec3d(normals[r]));
+      want += Rgbd(b.radiance) * u;
+      int above = 0;
+      for (const Vec3d& c : cube.corners(b.texel)) above += dot(c, Vec3d(normals[r])) >= 0;
+      crossing += above > 0 && above < 4;
+    }
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(out[r][c]) - want[c]));
+  }
+  EXPECT_GT(crossing, 200);  // the horizon crosses texels often enough to test the clipping
+  EXPECT_LT(worst, 2e-6);
 }
 
 TEST(BakeHaar, EveryRowSeesTheSkyTheShBakeSees) {

@@ -260,28 +260,45 @@ export function environmentCube(resolution, rgbeBytes, sh, name, decodeRgbe) {
  *  texel its point turns to (R d), over the coarse texel's exact solid angle. Power is kept.
  *  Float32Array(6 n² · 3). */
 export function turnCubeMeans(cube, n, R) {
-  const m = cube.resolution, q = kHaar.splatPoints, fine = cubeTexelSolidAngles(m), coarse = cubeTexelSolidAngles(n);
-  const L = cube.means, power = new Float64Array(6 * n * n * 3), fc = [0, 0, 0];
-  for (let f = 0; f < 6; ++f)
-    for (let y = 0; y < m; ++y)
-      for (let x = 0; x < m; ++x) {
-        const src = 3 * (f * m * m + y * m + x), w = fine[y * m + x] / (q * q);
-        const r = L[src] * w, g = L[src + 1] * w, b = L[src + 2] * w;
-        for (let j = 0; j < q; ++j)
-          for (let i = 0; i < q; ++i) {
-            const d = normalize(cubeFaceDirection(f, (2 * (x + (i + 0.5) / q)) / m - 1, (2 * (y + (j + 0.5) / q)) / m - 1));
-            faceCoords(R[0][0] * d[0] + R[0][1] * d[1] + R[0][2] * d[2], R[1][0] * d[0] + R[1][1] * d[1] + R[1][2] * d[2],
-                       R[2][0] * d[0] + R[2][1] * d[1] + R[2][2] * d[2], fc);
-            const cx = Math.min(Math.max(Math.trunc((fc[1] + 1) * 0.5 * n), 0), n - 1);
-            const cy = Math.min(Math.max(Math.trunc((fc[2] + 1) * 0.5 * n), 0), n - 1);
-            const k = 3 * (fc[0] * n * n + cy * n + cx);
-            power[k] += r, power[k + 1] += g, power[k + 2] += b;
-          }
-      }
+  const m = cube.resolution, q = kHaar.splatPoints, coarse = cubeTexelSolidAngles(n);
+  const { directions: d, power: w } = splatPoints(cube);
+  const L = cube.means, power = new Float64Array(6 * n * n * 3), fc = [0, 0, 0], parts = q * q;
+  const [r0, r1, r2] = R;
+  for (let t = 0, p = 0; t < 6 * m * m; ++t) {
+    const r = L[3 * t] * w[t], g = L[3 * t + 1] * w[t], b = L[3 * t + 2] * w[t];
+    for (let i = 0; i < parts; ++i, p += 3) {
+      const x = d[p], y = d[p + 1], z = d[p + 2];
+      faceCoords(r0[0] * x + r0[1] * y + r0[2] * z, r1[0] * x + r1[1] * y + r1[2] * z, r2[0] * x + r2[1] * y + r2[2] * z, fc);
+      const cx = Math.min(Math.max(Math.trunc((fc[1] + 1) * 0.5 * n), 0), n - 1);
+      const cy = Math.min(Math.max(Math.trunc((fc[2] + 1) * 0.5 * n), 0), n - 1);
+      const k = 3 * (fc[0] * n * n + cy * n + cx);
+      power[k] += r, power[k + 1] += g, power[k + 2] += b;
+    }
+  }
   const out = new Float32Array(6 * n * n * 3);
   for (let k = 0; k < 6 * n * n; ++k)
     for (let c = 0; c < 3; ++c) out[3 * k + c] = power[3 * k + c] / coarse[k % (n * n)];
   return out;
+}
+
+/** The fine cube's splat points, made once per cube and kept on it (every turn splats the same
+ *  points, turned): each texel's kSplatPoints² unit directions, in the texel's order, and the
+ *  share of the texel's solid angle each carries. */
+function splatPoints(cube) {
+  if (cube.splat) return cube.splat;
+  const m = cube.resolution, q = kHaar.splatPoints, fine = cubeTexelSolidAngles(m);
+  const directions = new Float64Array(6 * m * m * q * q * 3), power = new Float64Array(6 * m * m);
+  let p = 0;
+  for (let f = 0; f < 6; ++f)
+    for (let y = 0; y < m; ++y)
+      for (let x = 0; x < m; ++x) {
+        power[f * m * m + y * m + x] = fine[y * m + x] / (q * q);
+        for (let j = 0; j < q; ++j)
+          for (let i = 0; i < q; ++i, p += 3)
+            directions.set(normalize(cubeFaceDirection(f, (2 * (x + (i + 0.5) / q)) / m - 1, (2 * (y + (j + 0.5) / q)) / m - 1)), p);
+      }
+  cube.splat = { directions, power };
+  return cube.splat;
 }
 
 /** haar::turnedLight: the light a Haar bake over an n cube is relit with, its environment

@@ -22,6 +22,17 @@ const kLobe = (() => {
   return k.map((x) => x / Math.PI);
 })();
 
+/** relight_haar.cpp's BrightCone: a bright texel as each row meets it — n·Φ/π wholly above n's
+ *  horizon, nothing wholly below, the clipped polygon only where the horizon crosses it; a cone
+ *  about the texel's centre (half-angle α: n·c ≥ sin α puts every corner above, ≤ −sin α below)
+ *  decides which with one dot product. */
+function brightCone(g, radiance) {
+  const s = [0, 1, 2].map((i) => g.corners.reduce((a, v) => a + v[i], 0)), len = Math.hypot(s[0], s[1], s[2]);
+  const c = s.map((v) => v / len);
+  const cosAlpha = Math.min(1, ...g.corners.map((v) => c[0] * v[0] + c[1] * v[1] + c[2] * v[2]));
+  return { g, l: radiance, c, sin: Math.sqrt(Math.max(0, 1 - cosAlpha * cosAlpha)) + 1e-5, m: g.moment.map((v) => v / Math.PI) };
+}
+
 /**
  * Exit radiance of rows first .. first + count − 1 of Haar transfer `t` (haar_bake.js's:
  * t.haar = { resolution, terms }, t.rows = Float32Array of rows × (1 + 2·terms): the kind, then
@@ -39,7 +50,7 @@ export function relightHaar(t, light, normals, albedo, out, first = 0, count = n
   for (let l = 0; l < kBands; ++l)
     for (let i = l * l; i < (l + 1) * (l + 1); ++i)
       for (let c = 0; c < 3; ++c) lobe[3 * i + c] = light.unshadowed[3 * i + c] * kLobe[l];
-  const bright = light.bright.map((b) => ({ g: texelGeometry(b.texel, n), l: b.radiance }));
+  const bright = light.bright.map((b) => brightCone(texelGeometry(b.texel, n), b.radiance));
   const y = new Float64Array(kCoeffs), nrm = [0, 0, 0], rows = t.rows;
   const one = albedo && albedo.length === 3;
   for (let r = 0; r < count; ++r) {
@@ -50,7 +61,9 @@ export function relightHaar(t, light, normals, albedo, out, first = 0, count = n
       shBasis(nrm[0], nrm[1], nrm[2], y);
       for (let i = 0; i < kCoeffs; ++i) x += y[i] * lobe[3 * i], g += y[i] * lobe[3 * i + 1], z += y[i] * lobe[3 * i + 2];
       for (const b of bright) {
-        const u = clampedCosine(b.g, nrm);
+        const side = nrm[0] * b.c[0] + nrm[1] * b.c[1] + nrm[2] * b.c[2];
+        if (side <= -b.sin) continue;  // wholly below the horizon: nothing
+        const u = side >= b.sin ? Math.max(0, nrm[0] * b.m[0] + nrm[1] * b.m[1] + nrm[2] * b.m[2]) : clampedCosine(b.g, nrm);
         x += u * b.l[0], g += u * b.l[1], z += u * b.l[2];
       }
     }

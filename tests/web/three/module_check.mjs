@@ -7,8 +7,8 @@
 import fs from 'node:fs';
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
-import { PRTKitRadianceTransfer, ProbeGridLighting, lightFromSphericalHarmonics3, lightProbeGridAtlas,
-         lightToSphericalHarmonics3, parseLight, rotateLight } from 'prtkit-three';
+import { HaarLighting, PRTKitRadianceTransfer, ProbeGridLighting, lightFromSphericalHarmonics3, lightProbeGridAtlas,
+         lightToSphericalHarmonics3, parseHaarLight, parseLight, rotateLight } from 'prtkit-three';
 
 let failures = 0;
 function check(ok, what) {
@@ -116,12 +116,35 @@ let rejected = '';
 await new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { name: 'plain.glb', required: true }))
   .parseAsync(foreign.buffer, '').catch((e) => { rejected = e.message; });
 check(/^plain\.glb: is a glTF file but not a prtkit bake/.test(rejected), `required: refused by name ("${rejected}")`);
-// A Haar bake (prt bake --basis haar): prt render relights it; this reader refuses it by name, as
-// prt web and the Python module do.
-let haar = '';
-await new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { name: 'haar.glb', required: true }))
-  .parseAsync(new Uint8Array(bytes('haar.glb')).buffer, '').catch((e) => { haar = e.message; });
-check(/^haar\.glb: .*"haar" transfer; this reader relights SH transfer only/.test(haar), `a Haar bake refused by name ("${haar}")`);
+// A Haar bake (prt bake --basis haar) gives a HaarLighting, relit on the CPU under a Haar light
+// file (parseHaarLight; prt light --basis haar). Its numbers against prt render:
+// tests/web/test_haar_web.cpp; here the package's surface.
+const haarGltf = await new GLTFLoader().register((parser) => new PRTKitRadianceTransfer(parser, { name: 'haar.glb', required: true }))
+  .parseAsync(bytes('haar.glb'), '');
+const hl = haarGltf.userData.prtkit;
+check(hl instanceof HaarLighting && hl.isHaarLighting, 'a Haar bake gives a HaarLighting');
+check(hl.transfers.length === 1 && hl.transfers[0].basis === 'haar' && hl.transfers[0].resolution === 4 && hl.mode === 'shadowed',
+      `its transfer (${JSON.stringify(hl.transfers)})`);
+throws(() => hl.update(), /^haar\.glb: no light yet/, 'a Haar relight before setLight');
+const haarSky = parseHaarLight(fs.readFileSync('haar-sky.json', 'utf8'), 'haar-sky.json');
+throws(() => hl.setLight(parseHaarLight(fs.readFileSync('haar-sky8.json', 'utf8'), 'haar-sky8.json')),
+       /^haar\.glb: the Haar light is over a 8² cube, the bake's transfer over 4²/, 'a Haar light over another cube');
+throws(() => hl.setLight(sky), /^haar\.glb: a Haar bake is relit by haarEnvironment/, 'an SH light for a Haar bake');
+throws(() => { hl.terms = 0; }, /terms must be a positive integer/, 'Haar terms 0');
+hl.setLight(haarSky);
+check(hl.update() === true && hl.update() === false, 'update relights once per change');
+const radiance = (g) => { const out = []; g.scene.traverse((o) => { if (o.isMesh) out.push(...o.geometry.getAttribute('radiance').array); }); return out; };
+const lit = radiance(haarGltf);
+check(lit.every(Number.isFinite) && lit.some((x) => x > 0), 'the Haar bake is lit, finitely');
+// Linear in the light: twice the light, twice the radiance.
+const doubled = { ...haarSky, value: haarSky.value.map((v) => 2 * v), unshadowed: haarSky.unshadowed.map((v) => 2 * v),
+                 bright: haarSky.bright.map((b) => ({ texel: b.texel, radiance: b.radiance.map((v) => 2 * v) })) };
+hl.setLight(doubled);
+hl.update();
+check(maxDiff(radiance(haarGltf), lit.map((v) => 2 * v)) < 1e-5 * Math.max(...lit), 'Haar relighting is linear in the light');
+hl.lightRotation.setFromEuler(new THREE.Euler(0, 0.5, 0));
+throws(() => hl.update(), /cannot be turned/, 'a turned Haar light file');
+hl.dispose();
 
 prt.dispose();
 

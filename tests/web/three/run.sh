@@ -33,6 +33,8 @@ cd "$work" || exit 1
 "$prt" -q light builtin:sky --bands 2 -o sky2.json || exit 1
 "$prt" -q bake 'builtin:cornell?grid=6' --mode shadowed --basis haar --resolution 4 --terms 8 \
   -o haar.glb || exit 1
+"$prt" -q light builtin:sky --basis haar --resolution 4 --terms 8 -o haar-sky.json || exit 1
+"$prt" -q light builtin:sky --basis haar --resolution 8 --terms 8 -o haar-sky8.json || exit 1
 "$prt" -q bake 'builtin:cornell?grid=6' --mode interreflected --domain texels --resolution 16 \
   --transfer matrix --bands 3 --samples 16 -o texels.glb || exit 1
 "$prt" -q export texels.glb --format lightmap -o lm.glb || exit 1
