@@ -52,6 +52,23 @@ inline std::string which(const std::vector<std::string>& names) {
   return "";
 }
 
+/// node, where the page's sources can run under it (three.js installed by scripts/setup.sh, the
+/// generated constants.js their 'prt:' imports resolve to built), or "" and why in `why`.
+inline std::string nodeForPageSources(std::string* why) {
+  const fs::path source = PRT_SOURCE_DIR,
+                 generated = fs::path(PRT_BINARY_DIR) / "generated" / "web";
+  const std::string n = which({"node", "nodejs"});
+  if (n.empty())
+    *why = "no node here (apt-get install nodejs)";
+  else if (!fs::exists(source / "web/node_modules/three/package.json"))
+    *why = "web/node_modules missing (run scripts/setup.sh)";
+  else if (!fs::exists(generated / "constants.js"))
+    *why = generated.string() + "/constants.js is not built (ninja prt_web_assets)";
+  else
+    return n;
+  return "";
+}
+
 inline const std::string& chromium() {
   static const std::string c = [] {
     const char* env = std::getenv("PRT_CHROMIUM");

@@ -50,20 +50,6 @@ const fs::path kGenerated = fs::path(PRT_BINARY_DIR) / "generated" / "web";
 constexpr const char* kScene = "'builtin:sphere-plane?grid=12&subdiv=2'";
 constexpr const char* kCamera = "eye=1.6,2.2,3.4;target=0,0.6,0;up=0,1,0;fov=40";
 
-/// node with the page's dependencies, or "" (and why in `why`).
-std::string node(std::string* why) {
-  const std::string n = which({"node", "nodejs"});
-  if (n.empty())
-    *why = "no node here (apt-get install nodejs)";
-  else if (!fs::exists(kSource / "web/node_modules/three/package.json"))
-    *why = "web/node_modules missing (run scripts/setup.sh)";
-  else if (!fs::exists(kGenerated / "constants.js"))
-    *why = kGenerated.string() + "/constants.js is not built (ninja prt_web_assets)";
-  else
-    return n;
-  return "";
-}
-
 /// A shadowed Haar bake over a 16² cube, its page under builtin:sky (seen from kCamera) and a
 /// Haar light file of the sky, written once; "" or why the page could not be written (its assets
 /// are not built).
@@ -135,7 +121,7 @@ constexpr double kRelative = 1e-5;
 
 TEST(HaarWeb, JavaScriptRelightsAsTheLibrary) {
   std::string why;
-  const std::string n = node(&why);
+  const std::string n = nodeForPageSources(&why);
   if (n.empty()) GTEST_SKIP() << why;
   const std::string page = haarPage();
   if (!page.empty()) GTEST_SKIP() << page;

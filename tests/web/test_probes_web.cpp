@@ -55,20 +55,6 @@ std::string path(const std::string& name) {
 const fs::path kSource = PRT_SOURCE_DIR;
 const fs::path kGenerated = fs::path(PRT_BINARY_DIR) / "generated" / "web";
 
-/// node with the page's dependencies, or "" (and why in `why`).
-std::string node(std::string* why) {
-  const std::string n = which({"node", "nodejs"});
-  if (n.empty())
-    *why = "no node here (apt-get install nodejs)";
-  else if (!fs::exists(kSource / "web/node_modules/three/package.json"))
-    *why = "web/node_modules missing (run scripts/setup.sh)";
-  else if (!fs::exists(kGenerated / "constants.js"))
-    *why = kGenerated.string() + "/constants.js is not built (ninja prt_web_assets)";
-  else
-    return n;
-  return "";
-}
-
 /// A 4 x 4 x 4 grid in the Cornell box (inter-reflected, RGB, 3 bands) and the sky as a light
 /// file, written once.
 void probeBake() {
@@ -128,7 +114,7 @@ constexpr double kRelative = 1e-5;
 
 TEST(ProbesWeb, JavaScriptRelightsTheGridAsTheLibrary) {
   std::string why;
-  const std::string n = node(&why);
+  const std::string n = nodeForPageSources(&why);
   if (n.empty()) GTEST_SKIP() << why;
   probeBake();
   const std::array<double, 3> rotate{20, -35, 10};
