@@ -15,12 +15,18 @@
 //                                  §6: each light term scatters into the rows that keep its
 //                                  coefficient, a column of the transfer built untimed):
 //                                  by_light_vs_by_row, the two's time ratio.
+//     BM_HaarTurnLight/ENV         a turned light over a 32² cube (200 terms), as a viewer makes
+//                                  it at each turn: splatted from the environment's 128² cube,
+//                                  made once (haar::turnedLight; the desktop and browser
+//                                  viewers), against projecting the environment itself at each
+//                                  turn (haar::projectLight; prt render): vs_project.
 //     BM_HaarBake/SCENE            the shadowed Haar bake (the default 32² cube, one ray per
 //                                  texel, 64 terms) against raw Embree (rtcOccluded1M, 64-ray
 //                                  streams) on the same rays, ray generation untimed: vs_raw.
 //
 // Scenes: bunny = /usr/share/glmark2/models/bunny.obj (skipped with a message if absent),
-// sphere-plane = builtin:sphere-plane.
+// sphere-plane = builtin:sphere-plane. Environments: builtin:sky, and Poly Haven's courtyard
+// (blender-data; skipped with a message if absent).
 
 #include <benchmark/benchmark.h>
 
@@ -35,11 +41,13 @@
 #include "baselines.hpp"
 #include "prt/core/sampling.hpp"
 #include "prt/envmap/builtin.hpp"
+#include "prt/envmap/load.hpp"
 #include "prt/envmap/project.hpp"
 #include "prt/geometry/builtin.hpp"
 #include "prt/geometry/load.hpp"
 #include "prt/haar/cube_texels.hpp"
 #include "prt/haar/project_light.hpp"
+#include "prt/haar/turned_cube.hpp"
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/relight/relight_haar.hpp"
@@ -191,6 +199,35 @@ void BM_HaarProductOrder(benchmark::State& state, const std::string& name) {
   state.counters["terms_met"] = double(met) / double(std::max<std::size_t>(1, start[cube]));
 }
 
+void BM_HaarTurnLight(benchmark::State& state, const std::string& source) {
+  if (source.rfind("builtin:", 0) != 0 && !std::filesystem::exists(source)) {
+    state.SkipWithError((source + " not found: case skipped").c_str());
+    return;
+  }
+  const prt::envmap::Environment env = prt::envmap::loadEnvironment(source).env;
+  const int n = 32;
+  const std::size_t terms = 200;
+  const prt::haar::EnvironmentCube cube = prt::haar::environmentCube(env, n);
+  double turnedSeconds = 0, projectSeconds = 0;
+  int turn = 0;
+  for (auto _ : state) {
+    const prt::Mat3d r = prt::rotationEulerXYZ(10.0 * turn, 37.0 * turn, 0.0);
+    const double t = prt::bench::secondsOf(
+        [&] { benchmark::DoNotOptimize(prt::haar::turnedLight(cube, n, terms, r).index.data()); },
+        1);
+    state.SetIterationTime(t);
+    turnedSeconds += t;
+    projectSeconds += prt::bench::secondsOf(
+        [&] { benchmark::DoNotOptimize(prt::haar::projectLight(env, n, terms, r).index.data()); },
+        1);
+    ++turn;
+  }
+  state.counters["turned_ms"] = 1e3 * turnedSeconds / turn;
+  state.counters["project_ms"] = 1e3 * projectSeconds / turn;
+  state.counters["vs_project"] = projectSeconds / turnedSeconds;
+  state.counters["threads"] = prt::maxThreads();
+}
+
 void BM_HaarBake(benchmark::State& state, const std::string& name) {
   Scene* s = scene(name);
   if (!s) {
@@ -259,6 +296,15 @@ BENCHMARK_CAPTURE(BM_HaarRelight, sphere_plane, std::string("sphere-plane"))
 BENCHMARK_CAPTURE(BM_HaarProductOrder, bunny, std::string("bunny"))
     ->Arg(64)
     ->Arg(16)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_HaarTurnLight, sky, std::string("builtin:sky"))
+    ->Iterations(12)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_HaarTurnLight, courtyard,
+                  std::string("/usr/share/blender/datafiles/studiolights/world/courtyard.exr"))
+    ->Iterations(12)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_HaarBake, bunny, std::string("bunny"))

@@ -87,7 +87,7 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
         to, "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
   } else if (path == ShaderPath::CpuRadiance) {
     // What the CPU relights: glossy matrices, a probe grid, or Haar transfer.
-    const char* what = t.isHaar()          ? "Haar relighting (CPU haar::projectLight + "
+    const char* what = t.isHaar()          ? "Haar relighting (CPU haar::turnedLight + "
                                              "relight::relightHaar + radiance upload)"
                        : scene.probeBake() ? "probe relighting (CPU relight::relightProbes + "
                                              "shading + radiance upload)"

@@ -8,10 +8,21 @@
 
 namespace prt::viewer {
 
-haar::HaarLight haarViewLight(const envmap::Environment& env, int resolution,
-                              const Mat3d& rotation) {
+haar::HaarLight haarRenderLight(const envmap::Environment& env, int resolution,
+                                const Mat3d& rotation) {
   const std::size_t terms = std::min(kHaarViewLightTerms, haar::coefficientCount(resolution));
   return haar::projectLight(env, resolution, terms, rotation);
+}
+
+HaarViewLight::HaarViewLight(const envmap::Environment& env, int resolution)
+    : env_(&env), resolution_(resolution) {
+  if (resolution <= haar::kMaxTurnedResolution) cube_ = haar::environmentCube(env, resolution);
+}
+
+haar::HaarLight HaarViewLight::at(const Mat3d& rotation) const {
+  if (!cube_) return haarRenderLight(*env_, resolution_, rotation);
+  const std::size_t terms = std::min(kHaarViewLightTerms, haar::coefficientCount(resolution_));
+  return haar::turnedLight(*cube_, resolution_, terms, rotation);
 }
 
 std::vector<Rgb> haarViewRadiance(const Mesh& mesh, const Transfer& transfer,

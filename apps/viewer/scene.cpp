@@ -348,8 +348,11 @@ FrameParams SceneView::prepareHaar(const Scene& scene, const DrawState& now, int
     const Transfer& t = now.transfer->transfer;
     PRT_CHECK(now.environment && now.environment->lighting.image,
               "a Haar bake is relit from an environment image (Scene::addEnvironment)");
-    const haar::HaarLight light =
-        haarViewLight(*now.environment->lighting.image, t.shape().haar.resolution, f.lightRotation);
+    const envmap::Environment& env = *now.environment->lighting.image;
+    const int n = t.shape().haar.resolution;
+    if (!haarLight_ || &haarLight_->environment() != &env || haarLight_->resolution() != n)
+      haarLight_.emplace(env, n);
+    const haar::HaarLight light = haarLight_->at(f.lightRotation);
     shadedRadiance_ = haarViewRadiance(now.bake->mesh, t, now.material, light);
     renderer_.setRadiance(shadedRadiance_);
     haarRotation_ = f.lightRotation;

@@ -29,16 +29,17 @@
 #include <functional>
 #include <memory>
 
+#include "haar_view.hpp"
+#include "moving_object.hpp"
 #include "prt/envmap/environment.hpp"
 #include "prt/image/color.hpp"
 #include "prt/image/image.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/io/lighting.hpp"
-#include "prt/render/relit_view.hpp"
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
+#include "prt/render/relit_view.hpp"
 #include "prt/transfer/material.hpp"
-#include "moving_object.hpp"
 #include "renderer.hpp"
 
 namespace prt::viewer {
@@ -277,6 +278,8 @@ class SceneView {
   /// The radiance the CPU shaded last (a probe scene's or a Haar bake's), and how often.
   std::vector<Rgb> shadedRadiance_;
   int shadedRelights_ = 0;
+  /// A Haar bake's light, kept per environment and cube (its fine cube made once).
+  std::optional<HaarViewLight> haarLight_;
   Mat3d haarRotation_;  ///< the light rotation the Haar radiance (shadedRadiance_) was relit at
   std::size_t haarLightTerms_ = 0;
 };

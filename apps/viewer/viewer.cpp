@@ -124,7 +124,7 @@ Scene loadScene(const Options& o, const Output& out) {
     const EnvironmentEntry& env = scene.environment(std::size_t(scene.environmentIndex()));
     const std::vector<Rgb> radiance = haarViewRadiance(
         mesh, t, scene.material(),
-        haarViewLight(*env.lighting.image, t.shape().haar.resolution, scene.lightRotation()));
+        haarRenderLight(*env.lighting.image, t.shape().haar.resolution, scene.lightRotation()));
     const render::FrameSurvey survey = vertexRadianceSurvey(mesh, radiance, scene.orbit.camera(),
                                                             o.width, o.height, scene.toneMap);
     scene.exposureStops = survey.exposureStops;

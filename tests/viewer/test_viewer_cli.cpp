@@ -450,6 +450,17 @@ TEST(ViewCli, HaarBakeMatchesRenderUnderATurnedLight) {
   expectCleanFailure(view + " --background sh", "holds Haar transfer");
 }
 
+TEST(ViewCli, HaarBakeOverACubeTooFineToTurnProjectsTheEnvironment) {
+  // Past haar::kMaxTurnedResolution (64² a face) the viewer keeps no finer cube to splat: each
+  // turn projects the environment itself (haar_view.hpp), which must still be prt render's.
+  PRT_REQUIRE_HEADLESS_GL();
+  const Result b =
+      prt("-q bake 'builtin:sphere-plane?size=1.5&grid=6&subdiv=1' --mode shadowed "
+          "--basis haar --resolution 128 --terms 32 -o haar128.glb");
+  ASSERT_EQ(b.rc, 0) << b.err;
+  EXPECT_LT(compareWithRender(path("haar128.glb"), "--light builtin:sky --rotate 0,120,0"), kMatch);
+}
+
 TEST(ViewCli, NoDisplayFailsCleanly) {
   // No skip: this needs no OpenGL at all.
   expectCleanFailure("'" + spherePlaneBake() + "'", "no display",
