@@ -261,43 +261,53 @@ export function environmentCube(resolution, rgbeBytes, sh, name, decodeRgbe) {
  *  Float32Array(6 n² · 3). */
 export function turnCubeMeans(cube, n, R) {
   const m = cube.resolution, q = kHaar.splatPoints, coarse = cubeTexelSolidAngles(n);
-  const { directions: d, power: w } = splatPoints(cube);
-  const L = cube.means, power = new Float64Array(6 * n * n * 3), fc = [0, 0, 0], parts = q * q;
+  const { length: len, power: w } = splatPoints(cube);
+  const L = cube.means, power = new Float64Array(6 * n * n * 3), fc = [0, 0, 0];
   const [r0, r1, r2] = R;
-  for (let t = 0, p = 0; t < 6 * m * m; ++t) {
-    const r = L[3 * t] * w[t], g = L[3 * t + 1] * w[t], b = L[3 * t + 2] * w[t];
-    for (let i = 0; i < parts; ++i, p += 3) {
-      const x = d[p], y = d[p + 1], z = d[p + 2];
-      faceCoords(r0[0] * x + r0[1] * y + r0[2] * z, r1[0] * x + r1[1] * y + r1[2] * z, r2[0] * x + r2[1] * y + r2[2] * z, fc);
-      const cx = Math.min(Math.max(Math.trunc((fc[1] + 1) * 0.5 * n), 0), n - 1);
-      const cy = Math.min(Math.max(Math.trunc((fc[2] + 1) * 0.5 * n), 0), n - 1);
-      const k = 3 * (fc[0] * n * n + cy * n + cx);
-      power[k] += r, power[k + 1] += g, power[k + 2] += b;
-    }
-  }
+  for (let f = 0, t = 0, p = 0; f < 6; ++f)
+    for (let y = 0; y < m; ++y)
+      for (let x = 0; x < m; ++x, ++t) {
+        const r = L[3 * t] * w[t], g = L[3 * t + 1] * w[t], b = L[3 * t + 2] * w[t];
+        for (let j = 0; j < q; ++j)
+          for (let i = 0; i < q; ++i, ++p) {
+            // cubeFaceDirection(f, s, t) over its length, without an array per point.
+            const s = (2 * (x + (i + 0.5) / q)) / m - 1, u = (2 * (y + (j + 0.5) / q)) / m - 1, l = len[p];
+            const dx = (f === 0 ? 1 : f === 1 ? -1 : f === 5 ? -s : s) / l;
+            const dy = (f === 2 ? 1 : f === 3 ? -1 : -u) / l;
+            const dz = (f === 0 ? -s : f === 1 ? s : f === 2 ? u : f === 3 ? -u : f === 4 ? 1 : -1) / l;
+            faceCoords(r0[0] * dx + r0[1] * dy + r0[2] * dz, r1[0] * dx + r1[1] * dy + r1[2] * dz, r2[0] * dx + r2[1] * dy + r2[2] * dz, fc);
+            const cx = Math.min(Math.max(Math.trunc((fc[1] + 1) * 0.5 * n), 0), n - 1);
+            const cy = Math.min(Math.max(Math.trunc((fc[2] + 1) * 0.5 * n), 0), n - 1);
+            const k = 3 * (fc[0] * n * n + cy * n + cx);
+            power[k] += r, power[k + 1] += g, power[k + 2] += b;
+          }
+      }
   const out = new Float32Array(6 * n * n * 3);
   for (let k = 0; k < 6 * n * n; ++k)
     for (let c = 0; c < 3; ++c) out[3 * k + c] = power[3 * k + c] / coarse[k % (n * n)];
   return out;
 }
 
-/** The fine cube's splat points, made once per cube and kept on it (every turn splats the same
- *  points, turned): each texel's kSplatPoints² unit directions, in the texel's order, and the
- *  share of the texel's solid angle each carries. */
+/** What every turn of a cube splats alike, made once per cube and kept on it: the length of
+ *  each splat point's cubeFaceDirection (kSplatPoints² a fine texel, in the texel's order; 8
+ *  bytes a point, 12.6 MB at N = 64) and the share of its fine texel's solid angle each point
+ *  carries. */
 function splatPoints(cube) {
   if (cube.splat) return cube.splat;
   const m = cube.resolution, q = kHaar.splatPoints, fine = cubeTexelSolidAngles(m);
-  const directions = new Float64Array(6 * m * m * q * q * 3), power = new Float64Array(6 * m * m);
+  const length = new Float64Array(6 * m * m * q * q), power = new Float64Array(6 * m * m);
   let p = 0;
   for (let f = 0; f < 6; ++f)
     for (let y = 0; y < m; ++y)
       for (let x = 0; x < m; ++x) {
         power[f * m * m + y * m + x] = fine[y * m + x] / (q * q);
         for (let j = 0; j < q; ++j)
-          for (let i = 0; i < q; ++i, p += 3)
-            directions.set(normalize(cubeFaceDirection(f, (2 * (x + (i + 0.5) / q)) / m - 1, (2 * (y + (j + 0.5) / q)) / m - 1)), p);
+          for (let i = 0; i < q; ++i) {
+            const d = cubeFaceDirection(f, (2 * (x + (i + 0.5) / q)) / m - 1, (2 * (y + (j + 0.5) / q)) / m - 1);
+            length[p++] = Math.hypot(d[0], d[1], d[2]);
+          }
       }
-  cube.splat = { directions, power };
+  cube.splat = { length, power };
   return cube.splat;
 }
 
