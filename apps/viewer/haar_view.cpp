@@ -8,10 +8,16 @@
 
 namespace prt::viewer {
 
+namespace {
+/// kHaarViewLightTerms, or all of an N² cube's coefficients where it has fewer.
+std::size_t lightTerms(int resolution) {
+  return std::min(kHaarViewLightTerms, haar::coefficientCount(resolution));
+}
+}  // namespace
+
 haar::HaarLight haarRenderLight(const envmap::Environment& env, int resolution,
                                 const Mat3d& rotation) {
-  const std::size_t terms = std::min(kHaarViewLightTerms, haar::coefficientCount(resolution));
-  return haar::projectLight(env, resolution, terms, rotation);
+  return haar::projectLight(env, resolution, lightTerms(resolution), rotation);
 }
 
 HaarViewLight::HaarViewLight(const envmap::Environment& env, int resolution)
@@ -21,8 +27,7 @@ HaarViewLight::HaarViewLight(const envmap::Environment& env, int resolution)
 
 haar::HaarLight HaarViewLight::at(const Mat3d& rotation) const {
   if (!cube_) return haarRenderLight(*env_, resolution_, rotation);
-  const std::size_t terms = std::min(kHaarViewLightTerms, haar::coefficientCount(resolution_));
-  return haar::turnedLight(*cube_, resolution_, terms, rotation);
+  return haar::turnedLight(*cube_, resolution_, lightTerms(resolution_), rotation);
 }
 
 std::vector<Rgb> haarViewRadiance(const Mesh& mesh, const Transfer& transfer,

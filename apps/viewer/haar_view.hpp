@@ -36,7 +36,6 @@ class HaarViewLight {
   HaarViewLight(const envmap::Environment& env, int resolution);
   /// The light turned by `rotation` (kHaarViewLightTerms terms, or the cube's all if fewer).
   haar::HaarLight at(const Mat3d& rotation) const;
-  const envmap::Environment& environment() const { return *env_; }
   int resolution() const { return resolution_; }
 
  private:

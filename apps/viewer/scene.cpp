@@ -350,8 +350,10 @@ FrameParams SceneView::prepareHaar(const Scene& scene, const DrawState& now, int
               "a Haar bake is relit from an environment image (Scene::addEnvironment)");
     const envmap::Environment& env = *now.environment->lighting.image;
     const int n = t.shape().haar.resolution;
-    if (!haarLight_ || &haarLight_->environment() != &env || haarLight_->resolution() != n)
+    if (!haarLight_ || haarLightFor_ != now.environment || haarLight_->resolution() != n) {
       haarLight_.emplace(env, n);
+      haarLightFor_ = now.environment;  // held: the light keeps a pointer into it
+    }
     const haar::HaarLight light = haarLight_->at(f.lightRotation);
     shadedRadiance_ = haarViewRadiance(now.bake->mesh, t, now.material, light);
     renderer_.setRadiance(shadedRadiance_);

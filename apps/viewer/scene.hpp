@@ -278,8 +278,10 @@ class SceneView {
   /// The radiance the CPU shaded last (a probe scene's or a Haar bake's), and how often.
   std::vector<Rgb> shadedRadiance_;
   int shadedRelights_ = 0;
-  /// A Haar bake's light, kept per environment and cube (its fine cube made once).
+  /// A Haar bake's light, kept per environment and cube (its fine cube made once), and the
+  /// environment it was made of.
   std::optional<HaarViewLight> haarLight_;
+  std::shared_ptr<const EnvironmentEntry> haarLightFor_;
   Mat3d haarRotation_;  ///< the light rotation the Haar radiance (shadedRadiance_) was relit at
   std::size_t haarLightTerms_ = 0;
 };

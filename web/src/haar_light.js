@@ -264,24 +264,26 @@ export function turnCubeMeans(cube, n, R) {
   const { length: len, power: w } = splatPoints(cube);
   const L = cube.means, power = new Float64Array(6 * n * n * 3), fc = [0, 0, 0];
   const [r0, r1, r2] = R;
-  for (let f = 0, t = 0, p = 0; f < 6; ++f)
+  for (let f = 0, t = 0, p = 0; f < 6; ++f) {
+    // cubeFaceDirection(f, s, t) = c + s·a + t·b, each of c, a, b a signed axis (so exactly),
+    // without an array per point.
+    const [c0, c1, c2] = cubeFaceDirection(f, 0, 0), a = cubeFaceDirection(f, 1, 0), b = cubeFaceDirection(f, 0, 1);
+    const a0 = a[0] - c0, a1 = a[1] - c1, a2 = a[2] - c2, b0 = b[0] - c0, b1 = b[1] - c1, b2 = b[2] - c2;
     for (let y = 0; y < m; ++y)
       for (let x = 0; x < m; ++x, ++t) {
-        const r = L[3 * t] * w[t], g = L[3 * t + 1] * w[t], b = L[3 * t + 2] * w[t];
+        const r = L[3 * t] * w[t], g = L[3 * t + 1] * w[t], bl = L[3 * t + 2] * w[t];
         for (let j = 0; j < q; ++j)
           for (let i = 0; i < q; ++i, ++p) {
-            // cubeFaceDirection(f, s, t) over its length, without an array per point.
             const s = (2 * (x + (i + 0.5) / q)) / m - 1, u = (2 * (y + (j + 0.5) / q)) / m - 1, l = len[p];
-            const dx = (f === 0 ? 1 : f === 1 ? -1 : f === 5 ? -s : s) / l;
-            const dy = (f === 2 ? 1 : f === 3 ? -1 : -u) / l;
-            const dz = (f === 0 ? -s : f === 1 ? s : f === 2 ? u : f === 3 ? -u : f === 4 ? 1 : -1) / l;
+            const dx = (c0 + s * a0 + u * b0) / l, dy = (c1 + s * a1 + u * b1) / l, dz = (c2 + s * a2 + u * b2) / l;
             faceCoords(r0[0] * dx + r0[1] * dy + r0[2] * dz, r1[0] * dx + r1[1] * dy + r1[2] * dz, r2[0] * dx + r2[1] * dy + r2[2] * dz, fc);
             const cx = Math.min(Math.max(Math.trunc((fc[1] + 1) * 0.5 * n), 0), n - 1);
             const cy = Math.min(Math.max(Math.trunc((fc[2] + 1) * 0.5 * n), 0), n - 1);
             const k = 3 * (fc[0] * n * n + cy * n + cx);
-            power[k] += r, power[k + 1] += g, power[k + 2] += b;
+            power[k] += r, power[k + 1] += g, power[k + 2] += bl;
           }
       }
+  }
   const out = new Float32Array(6 * n * n * 3);
   for (let k = 0; k < 6 * n * n; ++k)
     for (let c = 0; c < 3; ++c) out[3 * k + c] = power[3 * k + c] / coarse[k % (n * n)];
