@@ -24,7 +24,13 @@ const { environmentCube, turnedLight } = await import('./src/haar_light.js');
 const { relightHaar } = await import('./src/haar_relight.js');
 const { packed } = await import('./src/radiance_mesh.js');
 
+// Bad input: one line naming the file, exit 1 (no stack).
+process.on('uncaughtException', (e) => {
+  console.error(`bench-haar: ${e.message.split('\n')[0]}`);
+  process.exit(1);
+});
 const terms = Number(termsArg || 200);
+if (!(Number.isInteger(terms) && terms >= 1)) throw new Error(`TERMS must be a positive integer, not ${termsArg}`);
 const b = fs.readFileSync(bakeFile);
 const name = path.basename(bakeFile);
 const bake = await parseBake(b.buffer.slice(b.byteOffset, b.byteOffset + b.byteLength), name,
