@@ -132,8 +132,9 @@ std::string bakeSeed(prt::TransferLayout layout, int bands, bool compressed,
 }
 
 /// A Haar bake (format 8: the quantised rows' four accessors) of the sphere over a plane, small:
-/// a 4² cube keeping 8 terms a vertex, both kinds of row.
-std::string haarBakeSeed() {
+/// a 4² cube keeping 8 terms a vertex, both kinds of row; inter-reflected (format 9), each row's
+/// bounce too, in 2 SH bands, RGB, in a fifth accessor.
+std::string haarBakeSeed(bool interreflected = false) {
   prt::BakeFile file;
   file.mesh = prt::builtinScene("builtin:sphere-plane?grid=4&subdiv=0");
   file.generator = "prtkit make_seeds";
@@ -143,6 +144,12 @@ std::string haarBakeSeed() {
   s.basis = prt::TransferBasis::Haar;
   s.haar = {4, 8};
   s.samples = 1;
+  if (interreflected) {
+    s.mode = prt::TransferMode::Interreflected;
+    s.bounces = 1;
+    s.haar.bounceBands = 2;
+    s.material.diffuse = prt::Rgb(0.8f, 0.5f, 0.2f);
+  }
   prt::BakedTransfer t;
   t.recipe = s;
   t.transfer = prt::bake(file.mesh, *occluder, s, &t.stats);
@@ -273,6 +280,7 @@ int main(int argc, char** argv) {
   put("bake", "compressed_matrix.glb", bakeSeed(prt::TransferLayout::Matrix, 2, true));
   put("bake", "texels.glb", texelBakeSeed());
   put("bake", "haar.glb", haarBakeSeed());
+  put("bake", "haar-interreflected.glb", haarBakeSeed(true));
   put("gltf", "bake.glb", bakeSeed(prt::TransferLayout::Vector, 2, false));
   // A base-colour texture: the bake reader's and the glTF loader's image paths.
   put("bake", "textured.glb", bakeSeed(prt::TransferLayout::Vector, 2, false, true));

@@ -54,6 +54,7 @@ for (let f = -5; f < frames; ++f) {  // five frames of warm-up
 }
 const median = (a) => { const b = [...a].sort((x, y) => x - y); return b[b.length >> 1]; };
 const frame = lightMs.map((x, i) => x + relightMs[i]);
-console.log(`${name}: ${bake.vertices} vertices, ${t.haar.terms} terms a vertex over a ${n}² cube; light of ${terms} terms`);
+const bounce = t.haar.bounceBands > 0 ? `, a bounce in ${t.haar.bounceBands} SH bands (${t.channels === 3 ? 'RGB' : 'scalar'})` : '';
+console.log(`${name}: ${bake.vertices} vertices, ${t.haar.terms} terms a vertex over a ${n}² cube${bounce}; light of ${terms} terms`);
 console.log(`turned light ${median(lightMs).toFixed(1)} ms, relight ${median(relightMs).toFixed(1)} ms, ` +
             `frame ${median(frame).toFixed(1)} ms (one thread, median of ${frames}; fastest frame ${Math.min(...frame).toFixed(1)} ms)`);

@@ -134,11 +134,14 @@ void describeBake(const std::string& path, std::ostream& out, Json& j) {
     if (x.isHaar())
       out << fmt::format(
           "  {}: vector (diffuse; each row its occluded or its visible part), Haar wavelets "
-          "over a {}² cube ({} coefficients), the {} largest kept per {}, {} per {} as stored, "
+          "over a {}² cube ({} coefficients), the {} largest kept per {}{}, {} per {} as stored, "
           "{}\n",
           toString(s.mode), x.shape().haar.resolution, x.coeffs(), x.shape().haar.terms, per,
-          bytesText(x.bytes() / std::max<std::size_t>(x.rowCount(), 1)), per,
-          transferStorage(t));
+          x.shape().haar.bounceBands > 0
+              ? fmt::format(", and its bounce in {} SH bands x {} channel(s)",
+                            x.shape().haar.bounceBands, x.channels())
+              : std::string(),
+          bytesText(x.bytes() / std::max<std::size_t>(x.rowCount(), 1)), per, transferStorage(t));
     else if (x.isMatrix())
       out << fmt::format(
           "  {}: matrix ({}), {} bands ({}x{} per {}) x {} channel(s), {} per {}, {}\n",

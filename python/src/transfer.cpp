@@ -159,8 +159,9 @@ long long samplesOf(py::handle samples, const Basis& basis) {
   return samples.cast<long long>();
 }
 
-/// A Haar transfer's rows (1 + 2K floats: kind, then K (index, value) pairs) as numpy columns:
-/// 0 the kinds (rows,) uint8, 1 the indices (rows, K) uint32, 2 the values (rows, K) float32.
+/// A Haar transfer's rows (1 + 2K floats: kind, then K (index, value) pairs, then an
+/// inter-reflected row's bounce) as numpy columns: 0 the kinds (rows,) uint8, 1 the indices
+/// (rows, K) uint32, 2 the values (rows, K) float32, 3 the bounce (rows, B², C) float32.
 py::array haarColumn(const PyTransfer& t, int column) {
   if (!t.transfer.isHaar())
     throw py::value_error(
@@ -184,9 +185,18 @@ py::array haarColumn(const PyTransfer& t, int column) {
         a.mutable_data()[i * k + j] = static_cast<std::uint32_t>(v[i * stride + 1 + 2 * j]);
     return a;
   }
-  py::array_t<float> a({r, kk});
+  if (column == 2) {
+    py::array_t<float> a({r, kk});
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t j = 0; j < k; ++j) a.mutable_data()[i * k + j] = v[i * stride + 2 + 2 * j];
+    return a;
+  }
+  const prt::TransferShape& shape = t.transfer.shape();
+  const std::size_t n = shape.haarBounceFloats(), at = shape.haarBounceOffset();
+  const auto b2 = static_cast<py::ssize_t>(shape.haar.bounceBands * shape.haar.bounceBands);
+  py::array_t<float> a({r, b2, static_cast<py::ssize_t>(shape.channels)});
   for (std::size_t i = 0; i < rows; ++i)
-    for (std::size_t j = 0; j < k; ++j) a.mutable_data()[i * k + j] = v[i * stride + 2 + 2 * j];
+    std::copy_n(v + i * stride + at, n, a.mutable_data() + i * n);
   return a;
 }
 
@@ -300,8 +310,9 @@ target_error: adaptive sampling (prt bake --target-error): 0 off; E > 0 makes sa
     under the unit sky needs to reach E (vector SH bakes, cosine sampling; deterministic).
 basis, cube_resolution, terms: 'sh' (bands) | 'haar' (prt bake --basis haar; docs/haar.md):
     all-frequency Haar wavelets over a cube of cube_resolution² texels a face (a power of two,
-    2..256), each row pruned to its `terms` largest coefficients; unshadowed or shadowed vector
-    transfer, per vertex or per texel (bake_transfer only: the rows are sparse terms).
+    2..256), each row pruned to its `terms` largest coefficients; diffuse (vector) transfer,
+    per vertex or per texel (bake_transfer only: the rows are sparse terms). Inter-reflected,
+    each row also holds its bounce in SH of `bands` bands (1..5; haar_bounce).
 progress: None, True (a tqdm bar, when tqdm is installed) or a callable(fraction) that may
     return False to cancel (prtkit.Cancelled). Ctrl-C cancels within a fraction of a second
     (KeyboardInterrupt).
@@ -468,10 +479,12 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
             py::dict d;
             d["resolution"] = t.transfer.shape().haar.resolution;
             d["terms"] = t.transfer.shape().haar.terms;
+            d["bounce_bands"] = t.transfer.shape().haar.bounceBands;
             return py::object(std::move(d));
           },
           "Haar-wavelet transfer (bake --basis haar; docs/haar.md): {'resolution': N, 'terms': "
-          "K} (an N² cube per face, K terms per row); None for SH transfer.")
+          "K, 'bounce_bands': B} (an N² cube per face, K terms per row, an inter-reflected row's "
+          "bounce in B SH bands, 0 without); None for SH transfer.")
       .def_property_readonly(
           "haar_kinds", [](const PyTransfer& t) { return haarColumn(t, 0); },
           "basis 'haar': (rows,) uint8, what each row holds: 0 its occluded part D = U - T (relit "
@@ -483,6 +496,11 @@ cluster_ids, weights, means and basis instead (also views) and to_dense() recons
       .def_property_readonly(
           "haar_values", [](const PyTransfer& t) { return haarColumn(t, 2); },
           "basis 'haar': (rows, K) float32, their values.")
+      .def_property_readonly(
+          "haar_bounce", [](const PyTransfer& t) { return haarColumn(t, 3); },
+          "basis 'haar': (rows, B², channels) float32, each inter-reflected row's bounce in SH "
+          "(B = haar['bounce_bands']; B = 0 gives (rows, 0, 1)), relit against the light's SH "
+          "inside the albedo.")
       .def_property_readonly(
           "channels", [](const PyTransfer& t) { return t.transfer.channels(); },
           "1 (scalar) or 3 (RGB: coloured inter-reflection).")

@@ -172,29 +172,46 @@ UnshadowedPart unshadowedPart(const sh::RgbSh& environmentSh, const std::vector<
                       const double x = power(a), y = power(b);
                       return x != y ? x > y : a < b;
                     });
-  constexpr int kSub = 16, kCoeffs = kUnshadowedBands * kUnshadowedBands;
-  std::vector<double> y(kCoeffs);
+  constexpr int kCoeffs = kUnshadowedBands * kUnshadowedBands;
   for (std::size_t i = 0; i < keep; ++i) {
     const std::uint32_t j = order[i];
     if (!(power(j) > 0)) break;
     const Rgb l = means[j];
     out.bright.push_back({j, l});
-    // Σ over the texel's 16 × 16 midpoints of Y(d̂) dA/|d|³: its SH as a constant patch.
-    const CubeTexel t = cubeTexel(j, n);
-    const double step = 2.0 / n / kSub;
-    std::vector<double> patch(kCoeffs, 0.0);
-    for (int b = 0; b < kSub; ++b)
-      for (int a = 0; a < kSub; ++a) {
-        const double s = -1.0 + 2.0 * t.x / n + (a + 0.5) * step;
-        const double tt = -1.0 + 2.0 * t.y / n + (b + 0.5) * step;
-        const Vec3d d = envmap::cubeFaceDirection(t.face, s, tt);
-        const double len = length(d);
-        sh::eval(kUnshadowedBands, d / len, y.data());
-        const double w = step * step / (len * len * len);
-        for (int k = 0; k < kCoeffs; ++k) patch[std::size_t(k)] += y[std::size_t(k)] * w;
-      }
+    const std::vector<double> patch = texelPatchSh(j, n);
     for (int k = 0; k < kCoeffs; ++k)
       out.sh.c[std::size_t(k)] -= l * float(patch[std::size_t(k)]);
+  }
+  return out;
+}
+
+std::vector<double> texelPatchSh(std::uint32_t texel, int n) {
+  // Σ over the texel's 16 × 16 midpoints of Y(d̂) dA/|d|³.
+  constexpr int kSub = 16, kCoeffs = kUnshadowedBands * kUnshadowedBands;
+  std::vector<double> y(kCoeffs), patch(kCoeffs, 0.0);
+  const CubeTexel t = cubeTexel(texel, n);
+  const double step = 2.0 / n / kSub;
+  for (int b = 0; b < kSub; ++b)
+    for (int a = 0; a < kSub; ++a) {
+      const double s = -1.0 + 2.0 * t.x / n + (a + 0.5) * step;
+      const double tt = -1.0 + 2.0 * t.y / n + (b + 0.5) * step;
+      const Vec3d d = envmap::cubeFaceDirection(t.face, s, tt);
+      const double len = length(d);
+      sh::eval(kUnshadowedBands, d / len, y.data());
+      const double w = step * step / (len * len * len);
+      for (int k = 0; k < kCoeffs; ++k) patch[std::size_t(k)] += y[std::size_t(k)] * w;
+    }
+  return patch;
+}
+
+sh::RgbSh fullSh(const HaarLight& light) {
+  PRT_CHECK(light.unshadowed.bands == kUnshadowedBands, "the light's SH");
+  sh::RgbSh out = light.unshadowed;
+  constexpr int kCoeffs = kUnshadowedBands * kUnshadowedBands;
+  for (const BrightTexel& b : light.bright) {
+    const std::vector<double> patch = texelPatchSh(b.texel, light.resolution);
+    for (int k = 0; k < kCoeffs; ++k)
+      out.c[std::size_t(k)] += b.radiance * float(patch[std::size_t(k)]);
   }
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
+#include "prt/haar/haar_light.hpp"
 #include "prt/haar/resolution.hpp"
 #include "prt/io/bake_file.hpp"
 #include "prt/sh/convolve.hpp"
@@ -190,6 +191,7 @@ json settingsJson(const TransferShape& shape, const BakeRecipe& recipe) {
     o.erase("bands");
     o["basis"] = toString(shape.basis);
     o["haar"] = {{"resolution", shape.haar.resolution}, {"terms", shape.haar.terms}};
+    if (shape.haar.bounceBands > 0) o["haar"]["bounceBands"] = shape.haar.bounceBands;
   }
   return o;
 }
@@ -232,6 +234,22 @@ void readSettings(const json& o, const std::string& where, int version, const Re
         static_cast<int>(r.integer(h, "resolution", hw, haar::kMinResolution, haar::kMaxResolution));
     shape.haar.terms = static_cast<int>(r.integer(
         h, "terms", hw, 1, static_cast<double>(haar::coefficientCount(shape.haar.resolution))));
+    if (r.has(h, "bounceBands")) {
+      if (version < prt::kFirstHaarBounceVersion)
+        r.fail(hw + " holds a bounce in a version " + std::to_string(version) +
+               " file (inter-reflected Haar needs version " +
+               std::to_string(kFirstHaarBounceVersion) + ")");
+      shape.haar.bounceBands =
+          static_cast<int>(r.integer(h, "bounceBands", hw, 1, haar::kUnshadowedBands));
+    }
+    // A row holds a bounce exactly when its transfer bounced light.
+    if ((shape.haar.bounceBands > 0) != (effectiveBounces(recipe.mode, recipe.bounces) > 0))
+      r.fail(hw + (shape.haar.bounceBands > 0 ? " holds a bounce, but the transfer is " +
+                                                    std::string(toString(recipe.mode)) + " with " +
+                                                    std::to_string(recipe.bounces) + " bounces"
+                                              : ".bounceBands is missing: the transfer is "
+                                                "inter-reflected with " +
+                                                    std::to_string(recipe.bounces) + " bounces"));
     r.within(where, [&] { shape.check(where); });
   } else {
     shape.bands = static_cast<int>(r.integer(o, "bands", where, 1, bands::kMaxLibrary));

@@ -200,6 +200,18 @@ class HaarRowsCodec final : public TransferCodec {
     add("VALUE", rows * terms, kShort, 2, [value](std::ostream& os) {
       os.write(reinterpret_cast<const char*>(value->data()), std::streamsize(value->size() * 2));
     });
+    // Inter-reflected: each row's bounce in SH, as float32, after its pairs (shape.hpp).
+    const std::size_t bounceFloats = t.shape().haarBounceFloats();
+    if (bounceFloats > 0) {
+      auto bounce = std::make_shared<std::vector<float>>(rows * bounceFloats);
+      const std::size_t offset = t.shape().haarBounceOffset();
+      for (std::size_t r = 0; r < rows; ++r)
+        std::copy_n(t.row(r) + offset, bounceFloats, bounce->data() + r * bounceFloats);
+      add("BOUNCE", rows * bounceFloats, kFloat, 4, [bounce](std::ostream& os) {
+        os.write(reinterpret_cast<const char*>(bounce->data()),
+                 std::streamsize(bounce->size() * 4));
+      });
+    }
     entry["haarAccessorPrefix"] = prefix;
     entry["accessors"] = std::move(acc);
     return {};
@@ -208,8 +220,13 @@ class HaarRowsCodec final : public TransferCodec {
   Transfer decode(const json& entry, const std::string& where, const TransferShape& shape,
                   TransferMode mode, const gltf::AccessorReader& a, const schema::Reader& r,
                   const ByteKeeper&) const override {
+    const std::size_t bounceFloats = shape.haarBounceFloats();
     const std::vector<int> acc =
-        accessorList(entry, 4, "the Haar rows (kind, scale, index, value)", where, r);
+        bounceFloats > 0
+            ? accessorList(entry, 5,
+                           "the inter-reflected Haar rows (kind, scale, index, value, bounce)",
+                           where, r)
+            : accessorList(entry, 4, "the Haar rows (kind, scale, index, value)", where, r);
     const std::size_t rows = shape.rows.count, terms = std::size_t(shape.haar.terms);
     const bool wide = haar::coefficientCount(shape.haar.resolution) > 65536;
     const std::string what = std::string(toString(mode)) + " Haar rows";
@@ -226,7 +243,10 @@ class HaarRowsCodec final : public TransferCodec {
     }
     const std::vector<std::int16_t> value =
         a.exact<std::int16_t>(acc[3], 1, kShort, rows * terms, what + " values");
-    const std::size_t stride = haar::haarRowFloats(shape.haar.terms);
+    std::vector<float> bounce;
+    if (bounceFloats > 0)
+      bounce = a.exact<float>(acc[4], 1, kFloat, rows * bounceFloats, what + " bounces");
+    const std::size_t stride = shape.stride(), offset = shape.haarBounceOffset();
     std::vector<float> out(rows * stride);
     for (std::size_t i = 0; i < rows; ++i) {
       if (!std::isfinite(scale[i]) || scale[i] < 0)
@@ -242,6 +262,7 @@ class HaarRowsCodec final : public TransferCodec {
         row[1 + 2 * k] = float(index[i * terms + k]);
         row[2 + 2 * k] = haar::dequantizeHaarValue(scale[i], q);
       }
+      std::copy_n(bounce.data() + i * bounceFloats, bounceFloats, row + offset);
     }
     // Dequantised: always a copy, always checked (index range, order, padding, kind).
     Transfer t = Transfer::dense(shape, FloatArray(std::move(out)));

@@ -7,6 +7,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/haar/cube_texels.hpp"
+#include "prt/haar/project_light.hpp"
 #include "prt/sh/convolve.hpp"
 #include "prt/transfer/albedo.hpp"
 #include "prt/transfer/haar_rows.hpp"
@@ -78,7 +79,17 @@ void relightHaar(const Transfer& transfer, const haar::HaarLight& light,
   // io/bake_file.hpp's mapBake), one compare per term.
   const float count = static_cast<float>(dense.size());
   std::atomic<bool> bad{false};
-  const std::size_t stride = haar::haarRowFloats(shape.haar.terms);
+  const std::size_t stride = shape.stride();
+  // An inter-reflected row's bounce: its SH against the whole light's (haar::fullSh).
+  const auto bounceCoeffs =
+      static_cast<std::size_t>(shape.haar.bounceBands * shape.haar.bounceBands);
+  const std::size_t bounceAt = shape.haarBounceOffset();
+  const bool rgbBounce = shape.channels == 3;
+  std::vector<Rgb> bounceLight;
+  if (bounceCoeffs > 0) {
+    const sh::RgbSh full = haar::fullSh(light);
+    bounceLight.assign(full.c.begin(), full.c.begin() + std::ptrdiff_t(bounceCoeffs));
+  }
   parallelFor(rows, kRowGrain, [&](std::size_t b, std::size_t e) {
     std::vector<float> y((e - b) * kCoeffs);
     sh::evalBatch(kBands, normals.subspan(b, e - b), y.data());
@@ -118,6 +129,14 @@ void relightHaar(const Transfer& transfer, const haar::HaarLight& light,
         x += v * c.x;
         g += v * c.y;
         z += v * c.z;
+      }
+      const float* q = p + bounceAt;
+      for (std::size_t i = 0; i < bounceCoeffs; ++i) {
+        const Rgb& c = bounceLight[i];
+        const float* bi = q + (rgbBounce ? 3 * i : i);
+        x += bi[0] * c.x;
+        g += bi[rgbBounce ? 1 : 0] * c.y;
+        z += bi[rgbBounce ? 2 : 0] * c.z;
       }
       out[r] = kd.at(r) * Rgb(x, g, z);
     }

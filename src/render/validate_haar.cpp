@@ -34,7 +34,7 @@ HaarValidationReport validateHaar(const Mesh& mesh, const Occluder& occluder,
   // precomputed reference's.
   ReferenceSettings rs = settings.reference;
   rs.mode = bake.mode;
-  rs.bounces = 0;
+  rs.bounces = bake.effectiveBounces();
   rs.material = referenceMaterial(bake.material, TransferLayout::Vector);
   rs.bandLimit.reset();
   const std::size_t domainRows = transfer.rowCount();

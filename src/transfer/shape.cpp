@@ -5,6 +5,7 @@
 
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
+#include "prt/haar/haar_light.hpp"
 #include "prt/haar/resolution.hpp"
 #include "prt/transfer/haar_rows.hpp"
 
@@ -72,9 +73,18 @@ int TransferShape::coeffs() const {
 }
 
 std::size_t TransferShape::rowSize() const {
-  if (isHaar()) return haar::haarRowFloats(haar.terms);
+  if (isHaar()) return haarBounceOffset() + haarBounceFloats();
   const std::size_t n = static_cast<std::size_t>(bands) * static_cast<std::size_t>(bands);
   return layout == TransferLayout::Matrix ? n * n : n;
+}
+
+std::size_t TransferShape::haarBounceOffset() const {
+  return haar::haarRowFloats(haar.terms);
+}
+
+std::size_t TransferShape::haarBounceFloats() const {
+  const auto b = static_cast<std::size_t>(haar.bounceBands < 0 ? 0 : haar.bounceBands);
+  return b * b * static_cast<std::size_t>(channels < 1 ? 1 : channels);
 }
 
 std::size_t TransferShape::denseBytes() const {
@@ -104,9 +114,13 @@ void TransferShape::check(const std::string& what) const {
     if (bands != 0) throw Error(what, "a Haar transfer has no bands");
     if (layout != TransferLayout::Vector || domain == TransferDomain::Probes)
       throw Error(what, "Haar transfer is diffuse (vector rows) over vertices or texels");
-    if (channels != 1)
-      throw Error(what, "Haar transfer is scalar (unshadowed or shadowed), got " +
-                            std::to_string(channels) + " channels");
+    if (haar.bounceBands < 0 || haar.bounceBands > haar::kUnshadowedBands)
+      throw Error(what, "a Haar row's bounce has 0 to " + std::to_string(haar::kUnshadowedBands) +
+                            " SH bands, got " + std::to_string(haar.bounceBands));
+    if (channels != 1 && (channels != 3 || haar.bounceBands == 0))
+      throw Error(what,
+                  "Haar transfer is scalar, and RGB only in its inter-reflected bounce, got " +
+                      std::to_string(channels) + " channels");
     return;
   }
   if (bands < 1 || bands > bands::kMaxLibrary)
@@ -125,6 +139,8 @@ std::string TransferShape::describe() const {
   if (isHaar())
     return std::string(toString(layout)) + ", Haar " + std::to_string(haar.resolution) +
            "² cube, " + std::to_string(haar.terms) + " terms, " +
+           (haar.bounceBands > 0 ? "bounce in " + std::to_string(haar.bounceBands) + " SH bands, "
+                                 : std::string()) +
            (channels == 3 ? "RGB" : "scalar") + ", " + std::to_string(rows.count) + " " +
            toString(domain);
   return std::string(toString(layout)) + ", " + std::to_string(bands) + " bands, " +

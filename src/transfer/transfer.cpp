@@ -152,7 +152,8 @@ Transfer Transfer::toDense() const {
 
 std::size_t Transfer::bytes() const {
   if (shape_.isHaar())
-    return rowCount() * haar::storedHaarRowBytes(shape_.haar.resolution, shape_.haar.terms);
+    return rowCount() * (haar::storedHaarRowBytes(shape_.haar.resolution, shape_.haar.terms) +
+                         4 * shape_.haarBounceFloats());
   if (representation_ == Representation::Dense) return shape_.denseBytes();
   const std::size_t id = cpca_.clusters <= 65536 ? 2 : 4;
   const std::size_t N = static_cast<std::size_t>(cpca_.basisCount);
@@ -167,9 +168,16 @@ void Transfer::check(const std::string& what) const {
       throw Error(what, "the transfer holds " + std::to_string(values_.size()) +
                             " values, expected " + std::to_string(rowCount() * stride()));
     if (shape_.isHaar()) {
-      for (std::size_t r = 0; r < rowCount(); ++r)
-        haar::checkRow(values_.data() + r * stride(), shape_.haar.resolution,
-                       static_cast<std::size_t>(shape_.haar.terms), r, what);
+      const std::size_t bounce = shape_.haarBounceOffset(), n = shape_.haarBounceFloats();
+      for (std::size_t r = 0; r < rowCount(); ++r) {
+        const float* row = values_.data() + r * stride();
+        haar::checkRow(row, shape_.haar.resolution, static_cast<std::size_t>(shape_.haar.terms), r,
+                       what);
+        for (std::size_t i = 0; i < n; ++i)
+          if (!std::isfinite(row[bounce + i]))
+            throw Error(what, "row " + std::to_string(r) + ": bounce value " + std::to_string(i) +
+                                  " is not finite");
+      }
       return;
     }
     requireFinite(values_, what, "rows", stride());

@@ -9,6 +9,7 @@
 #include "prt/core/error.hpp"
 #include "prt/core/units.hpp"
 #include "prt/geometry/texel_sampling.hpp"
+#include "prt/haar/haar_light.hpp"
 #include "prt/sh/sh.hpp"
 
 namespace prt::bakedetail {
@@ -31,11 +32,14 @@ void validateBake(const Mesh& mesh, const BakeSettings& s) {
                               std::to_string(i) + " (mesh has " +
                               std::to_string(mesh.vertexCount()) + ")");
   if (s.basis == TransferBasis::Haar) {
-    if (s.mode == TransferMode::Interreflected || s.layout != TransferLayout::Vector ||
-        s.domain == TransferDomain::Probes)
-      throw Error(name,
-                  "a Haar bake is diffuse transfer (vector), unshadowed or shadowed, per "
-                  "vertex or per texel (inter-reflected Haar transfer is not made)");
+    if (s.layout != TransferLayout::Vector || s.domain == TransferDomain::Probes)
+      throw Error(name, "a Haar bake is diffuse transfer (vector), per vertex or per texel");
+    const int bounceBands = s.effectiveBounces() > 0 ? s.haar.bounceBands : 0;
+    if (s.haar.bounceBands != bounceBands ||
+        (s.effectiveBounces() > 0 && (bounceBands < 1 || bounceBands > haar::kUnshadowedBands)))
+      throw Error(name, "an inter-reflected Haar bake holds its bounce in 1 to " +
+                            std::to_string(haar::kUnshadowedBands) +
+                            " SH bands (and only it), got " + std::to_string(s.haar.bounceBands));
     if (s.samples > kMaxHaarRaysPerTexel)
       throw Error(name, "a Haar bake casts 1 to " + std::to_string(kMaxHaarRaysPerTexel) +
                             " rays per cube texel (its samples), got " +
@@ -130,6 +134,17 @@ std::vector<BakeSettings> glossyBounceOrders(const BakeSettings& matrixBake) {
   return orders;
 }
 
+BakeSettings haarBounceSource(const BakeSettings& haarBake) {
+  BakeSettings vs = haarBake;
+  vs.basis = TransferBasis::SphericalHarmonics;
+  vs.haar = {};
+  vs.layout = TransferLayout::Vector;
+  vs.bands = haarBake.haar.bounceBands;
+  vs.samples = haarBake.samples * kHaarBounceSamplesPerTexelRay;
+  vs.rows = {};
+  return vs;
+}
+
 BakePlan planBake(const Mesh& mesh, const BakeSettings& s, bool checkMemory) {
   validateBake(mesh, s);
   BakePlan plan;
@@ -137,6 +152,8 @@ BakePlan planBake(const Mesh& mesh, const BakeSettings& s, bool checkMemory) {
   if (checkMemory) checkFootprint(mesh, s, plan.footprint);
   plan.rows = bakeRows(mesh, s);
   plan.domainRows = domainRows(mesh, s);
+  if (s.basis == TransferBasis::Haar && s.effectiveBounces() > 0)
+    plan.haarBounce = haarBounceSource(s);
   if (s.layout == TransferLayout::Matrix && s.effectiveBounces() > 0) {
     // Probes gather the diffuse light of the surfaces (their lobe would need the direction a
     // probe's light leaves toward an object that is not there yet).
@@ -236,6 +253,17 @@ BakeFootprint bakeFootprint(const Mesh& mesh, const BakeSettings& s) {
   };
   f.bytesPerRow = bytes(s.layout, 1);
   f.transferBytes = bytes(s.layout, count);
+  if (s.basis == TransferBasis::Haar) {
+    // The bounce's SH passes over the whole domain (the sum, the pass read, the pass baked);
+    // per texel the result laid out as the lightmap and the sample points.
+    if (inter) {
+      TransferShape sh{TransferDomain::Vertices, TransferLayout::Vector, s.haar.bounceBands,
+                       f.channels, RowRange{0, n}};
+      f.workingBytes = 3 * sh.denseBytes();
+    }
+    if (s.domain == TransferDomain::Texels) f.workingBytes += bytes(s.layout, n) + n * 40;
+    return f;
+  }
   if (s.domain == TransferDomain::Probes) {
     // The diffuse transfer of one bounce less over the whole mesh, as a matrix bake's (the sum
     // and the pass being baked), and each probe's position and inside flag.

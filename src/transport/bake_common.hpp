@@ -100,9 +100,16 @@ struct BakePlan {
   /// order's channels.
   std::vector<BakeSettings> glossyOrders;
   std::vector<int> glossyChannels;
+  /// Haar, K bounces: the SH vector transfer with K bounces whose bounce passes each row holds
+  /// after its pairs (haarBounceSource).
+  std::optional<BakeSettings> haarBounce;
 };
 /// Checks the mesh and the settings (validateBake) and, when `checkMemory`, the footprint
 /// against this machine's memory (checkFootprint), then plans the bake.
+/// The SH bake an inter-reflected Haar bake takes its bounce from: vector, its bounce bands,
+/// kHaarBounceSamplesPerTexelRay directions per ray a texel, the same bounces, seed and material,
+/// over the whole domain.
+BakeSettings haarBounceSource(const BakeSettings& haarBake);
 BakePlan planBake(const Mesh& mesh, const BakeSettings& s, bool checkMemory);
 
 // The passes' kernels (passes.cpp builds the pass list on them).

@@ -31,6 +31,7 @@
 
 #include "bake_common.hpp"
 #include "bake_haar.hpp"
+#include "prt/core/error.hpp"
 #include "prt/core/hash.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/sampling.hpp"
@@ -172,16 +173,20 @@ double haarRow(const Occluder& occluder, const HaarSetup& setup, const RowPoint&
 
 template <typename PointOf>
 std::uint64_t computeRows(const Occluder& occluder, const HaarSetup& setup, std::size_t rows,
-                          const PointOf& pointOf, float* out, double* variance,
-                          Progress* progress) {
-  const std::size_t stride = haar::haarRowFloats(setup.settings.haar.terms);
+                          const PointOf& pointOf, HaarBounceSource bounce, std::size_t stride,
+                          float* out, double* variance, Progress* progress) {
+  const std::size_t pairs = haar::haarRowFloats(setup.settings.haar.terms);
+  PRT_CHECK(stride == pairs + (bounce.values ? bounce.stride : 0), "a Haar row and its bounce");
   std::atomic<std::uint64_t> rays{0};
   parallelFor(rows, kRowGrain, [&](std::size_t b, std::size_t e) {
     if (progress) progress->check();
     Scratch s;
     std::uint64_t cast = 0;
     for (std::size_t r = b; r < e; ++r) {
-      const double var = haarRow(occluder, setup, pointOf(r), s, out + r * stride, cast);
+      const RowPoint q = pointOf(r);
+      const double var = haarRow(occluder, setup, q, s, out + r * stride, cast);
+      if (bounce.values)
+        std::copy_n(bounce.values + q.id * bounce.stride, bounce.stride, out + r * stride + pairs);
       if (variance) variance[r] = var;
     }
     rays.fetch_add(cast, std::memory_order_relaxed);
@@ -197,22 +202,24 @@ std::shared_ptr<const HaarSetup> makeHaarSetup(const BakeSettings& s) {
 }
 
 std::uint64_t computeHaarRows(const Mesh& mesh, const Occluder& occluder, const HaarSetup& setup,
-                              RowRange rows, float* out, double* variance, Progress* progress) {
+                              RowRange rows, HaarBounceSource bounce, std::size_t stride,
+                              float* out, double* variance, Progress* progress) {
   return computeRows(
       occluder, setup, rows.count,
       [&](std::size_t r) {
         const std::size_t v = rows.first + r;
         return RowPoint{mesh.positions[v], mesh.normals[v], v};
       },
-      out, variance, progress);
+      bounce, stride, out, variance, progress);
 }
 
 std::uint64_t computeHaarTexelRows(const Occluder& occluder, const HaarSetup& setup,
-                                   std::span<const RowPoint> points, float* out, double* variance,
+                                   std::span<const RowPoint> points, HaarBounceSource bounce,
+                                   std::size_t stride, float* out, double* variance,
                                    Progress* progress) {
   return computeRows(
-      occluder, setup, points.size(), [&](std::size_t r) { return points[r]; }, out, variance,
-      progress);
+      occluder, setup, points.size(), [&](std::size_t r) { return points[r]; }, bounce, stride, out,
+      variance, progress);
 }
 
 }  // namespace prt::bakedetail

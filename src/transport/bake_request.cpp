@@ -6,6 +6,7 @@
 #include "prt/core/band_limits.hpp"
 #include "prt/core/error.hpp"
 #include "prt/geometry/texel_sampling.hpp"
+#include "prt/haar/haar_light.hpp"
 #include "prt/haar/resolution.hpp"
 #include "prt/transport/bake.hpp"
 #include "prt/transport/passes.hpp"
@@ -25,11 +26,11 @@ void checkBakeRequest(const BakeRequest& r, OptionSpelling spelling) {
                     toString(r.modes[i]) + " given twice");
   if (r.basis == TransferBasis::Haar) {
     const bool cli = spelling == OptionSpelling::Cli;
+    // Inter-reflected: the bounce each row holds is SH of `bands` bands, relit against the
+    // light's SH (haar_light.hpp holds kUnshadowedBands).
     for (TransferMode m : r.modes)
-      if (m == TransferMode::Interreflected)
-        throw Error(std::string(cli ? "--basis haar" : "basis='haar'") +
-                    " bakes unshadowed and shadowed transfer (inter-reflected Haar transfer is "
-                    "not made yet)");
+      if (effectiveBounces(m, r.bounces) > 0)
+        checkOptionRange(spelling, "bands", r.bands, 1, haar::kUnshadowedBands);
     if (r.layout != TransferLayout::Vector)
       throw Error(std::string(cli ? "--basis haar" : "basis='haar'") +
                   " bakes diffuse transfer (vector): the glossy matrices are SH only");
@@ -175,7 +176,10 @@ BakeSettings bakeSettings(const BakeRequest& r, const Mesh& mesh, TransferMode m
   s.layout = r.layout;
   s.bands = r.bands;
   s.basis = r.basis;
-  if (r.basis == TransferBasis::Haar) s.haar = r.haar;
+  if (r.basis == TransferBasis::Haar) {
+    s.haar = r.haar;
+    s.haar.bounceBands = s.effectiveBounces() > 0 ? r.bands : 0;
+  }
   s.domain = r.domain;
   if (r.domain == TransferDomain::Texels)
     s.lightmap = {r.lightmap.resolution, r.lightmap.resolution, r.lightmap.padding, false};

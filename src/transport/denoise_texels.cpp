@@ -308,7 +308,7 @@ Transfer denoiseTexels(const Mesh& mesh, const Occluder& occluder, const Transfe
 
   // Laid out as the bake lays out its result: the gutter dilated, texels inside geometry refilled.
   std::vector<std::uint8_t> filled;
-  std::vector<float> image = d.layOut(cur.data(), {0, n}, k, filled);
+  std::vector<float> image = d.layOut(cur.data(), {0, n}, k, TexelDilation::Mean, filled);
   if (lm.padding == 0)
     for (std::size_t t = 0; t < n; ++t)
       if (d.samples.sampleOfTexel[t] < 0) std::fill_n(image.begin() + std::ptrdiff_t(t * k), k, 0.0f);

@@ -23,7 +23,7 @@ using namespace bakedetail;
 
 namespace {
 
-enum class StatsKind { Vector, Matrix, MatrixDiffuse, MatrixGlossy };
+enum class StatsKind { Vector, Matrix, MatrixDiffuse, MatrixGlossy, HaarBounces };
 
 RowRange overlap(RowRange a, RowRange b) {
   const std::size_t lo = std::max(a.first, b.first), hi = std::min(a.end(), b.end());
@@ -74,12 +74,15 @@ struct BakePasses::Impl {
                                               : bakedetail::domainRows(mesh, settings);
   }
 
+  /// A pass whose rows are in the basis and bands of `of` (the bake's settings, or those of the
+  /// SH bounce an inter-reflected Haar bake holds).
   void add(std::string name, TransferLayout layout, int channels, RowRange r, PassInput input,
            bool variance, std::shared_ptr<const VectorSetup> v,
-           std::shared_ptr<const MatrixSetup> mx) {
+           std::shared_ptr<const MatrixSetup> mx, const BakeSettings* of = nullptr) {
+    const BakeSettings& basis = of ? *of : settings;
     BakePassInfo p;
     p.name = std::move(name);
-    p.shape = settings.inBasis(TransferShape{passDomain(layout), layout, settings.bands, channels, r});
+    p.shape = basis.inBasis(TransferShape{passDomain(layout), layout, basis.bands, channels, r});
     if (perTexel()) p.shape.lightmap = {texels->width, texels->height, texels->padding, false};
     if (p.shape.domain == TransferDomain::Probes) p.shape.probes = settings.probes;
     p.input = input;
@@ -97,10 +100,10 @@ struct BakePasses::Impl {
     const int bounces = vs.effectiveBounces();
     const int channels = bounces > 0 && !vectorAlbedoGrey(*setup) ? 3 : 1;
     add("direct", TransferLayout::Vector, 1, bounces == 0 ? last : all, PassInput::None, variance,
-        setup, nullptr);
+        setup, nullptr, &vs);
     for (int k = 1; k <= bounces; ++k)
       add("bounce " + std::to_string(k), TransferLayout::Vector, channels,
-          k == bounces ? last : all, PassInput::Previous, variance, setup, nullptr);
+          k == bounces ? last : all, PassInput::Previous, variance, setup, nullptr, &vs);
     sumChannels = bounces > 0 ? channels : 1;
   }
 };
@@ -150,13 +153,23 @@ BakePasses::BakePasses(const Mesh& mesh, const Occluder& occluder, const BakeSet
     last = probe.widen(m.rows);
     m.texels = std::make_unique<TexelDomain>(makeTexelDomain(
         mesh, occluder, uvs, lm.width, lm.height, lm.padding, bounces > 0 ? all : last));
-    m.texels->dilation = rowDilation(settings.basis);
   }
   if (settings.basis == TransferBasis::Haar) {
-    // One pass: the rows' pruned wavelet transfer (planBake refused bounces).
-    m.add("direct", TransferLayout::Vector, 1, last, PassInput::None, true, nullptr, nullptr);
+    // The rows' pruned wavelet transfer; inter-reflected, first their bounce in SH: its direct
+    // pass (read by the first bounce, not summed: the Haar rows hold the direct light) and its
+    // bounces, whose sum the rows read and keep.
+    PassInput input = PassInput::None;
+    if (plan.haarBounce) {
+      m.addVectorPasses(*plan.haarBounce, all, all, true);
+      m.info.front().summed = false;
+      m.info.front().variance = false;
+      m.fullSum = true;
+      input = PassInput::Sum;
+    }
+    m.add(plan.haarBounce ? "Haar rows" : "direct", TransferLayout::Vector, channels, last, input,
+          true, nullptr, nullptr);
     m.haar.back() = makeHaarSetup(settings);
-    m.statsKind = StatsKind::Vector;
+    m.statsKind = plan.haarBounce ? StatsKind::HaarBounces : StatsKind::Vector;
   } else if (settings.layout == TransferLayout::Vector) {
     m.addVectorPasses(settings, all, last, true);
     m.sum = bounces > 0;
@@ -256,8 +269,8 @@ PassSource BakePasses::prepare(int k, const Transfer& input) const {
     return src;
   }
   std::vector<std::uint8_t> filled;
-  src.image_ = std::make_shared<const std::vector<float>>(
-      impl_->texels->layOut(input.values().data(), input.rows(), src.stride_, filled));
+  src.image_ = std::make_shared<const std::vector<float>>(impl_->texels->layOut(
+      input.values().data(), input.rows(), src.stride_, rowDilation(input.shape().basis), filled));
   return src;
 }
 
@@ -280,8 +293,12 @@ std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input,
   }
   if (!m.perTexel()) {
     const Transfer* in = input.transfer_;
-    if (m.haar[k0])
-      return computeHaarRows(m.mesh, m.occluder, *m.haar[k0], rows, out, variance, progress);
+    if (m.haar[k0]) {
+      const HaarBounceSource bounce =
+          in ? HaarBounceSource{in->values().data(), in->stride()} : HaarBounceSource{};
+      return computeHaarRows(m.mesh, m.occluder, *m.haar[k0], rows, bounce, p.shape.stride(), out,
+                             variance, progress);
+    }
     if (m.vector[k0])
       return computeVectorRows(m.mesh, m.occluder, *m.vector[k0], k, rows, in, p.shape.channels,
                                out, variance, progress);
@@ -298,13 +315,16 @@ std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input,
   const TexelImage image =
       input.image_ ? texelImage(d, *input.image_, input.stride_) : TexelImage{};
   const TexelImage* source = input.image_ ? &image : nullptr;
+  // A Haar row reads its own texel of the bounce's sum, laid out as the lightmap.
+  const HaarBounceSource bounce =
+      input.image_ ? HaarBounceSource{input.image_->data(), input.stride_} : HaarBounceSource{};
   const std::uint64_t rays =
-      m.haar[k0]     ? computeHaarTexelRows(m.occluder, *m.haar[k0], points, values.data(),
-                                            var.data(), progress)
+      m.haar[k0]     ? computeHaarTexelRows(m.occluder, *m.haar[k0], points, bounce, stride,
+                                            values.data(), var.data(), progress)
       : m.vector[k0] ? computeTexelRows(m.mesh, m.occluder, *m.vector[k0], k, points, source,
-                                      p.shape.channels, values.data(), var.data(), progress)
-                   : computeMatrixTexelRows(m.mesh, m.occluder, *m.matrix[k0], points, source,
-                                            values.data(), var.data(), progress);
+                                        p.shape.channels, values.data(), var.data(), progress)
+                     : computeMatrixTexelRows(m.mesh, m.occluder, *m.matrix[k0], points, source,
+                                              values.data(), var.data(), progress);
   std::fill_n(out, rows.count * stride, 0.0f);
   if (variance) std::fill_n(variance, rows.count, 0.0);
   const auto& s = d.samples.samples;
@@ -320,15 +340,18 @@ std::uint64_t BakePasses::compute(int k, RowRange rows, const PassSource& input,
 void BakePasses::accumulate(int k, RowRange passRows, const float* values, RowRange sumRows,
                             float* sum) const {
   const BakePassInfo& p = pass(k);
+  PRT_CHECK(p.summed, "the pass is summed");
   const int nc = p.shape.coeffs();
   const int pc = p.shape.channels, sc = impl_->sumChannels;
   PRT_CHECK(pc == 1 || pc == sc, "pass channels fit the sum");
+  int first = 0;  // the first pass summed sets the sum, later ones add
+  while (!pass(first).summed) ++first;
   const std::size_t ps = static_cast<std::size_t>(nc) * pc, ss = static_cast<std::size_t>(nc) * sc;
   const RowRange both = overlap(passRows, sumRows);
   for (std::size_t v = both.first; v < both.end(); ++v) {
     const float* a = values + (v - passRows.first) * ps;
     float* s = sum + (v - sumRows.first) * ss;
-    if (k == 0) {
+    if (k == first) {
       for (int i = 0; i < nc; ++i)
         for (int c = 0; c < sc; ++c) s[i * sc + c] = a[i * pc + (pc == 1 ? 0 : c)];
     } else if (pc == sc) {
@@ -361,7 +384,8 @@ Transfer BakePasses::finish(const Transfer& last, std::vector<std::uint8_t>* fil
   const TexelDomain& d = *m.texels;
   const std::size_t stride = last.stride();
   std::vector<std::uint8_t> mask;
-  std::vector<float> image = d.layOut(last.values().data(), last.rows(), stride, mask);
+  std::vector<float> image =
+      d.layOut(last.values().data(), last.rows(), stride, rowDilation(last.shape().basis), mask);
   if (d.padding == 0)  // the dilation fed the bounces; without padding the gutter stays empty
     for (std::size_t t = 0; t < d.texels(); ++t)
       if (d.samples.sampleOfTexel[t] < 0) {
@@ -393,6 +417,13 @@ BakeStats BakePasses::stats(const std::vector<std::uint64_t>& rays,
   BakeStats st;
   if (m.statsKind == StatsKind::Vector) {
     st = vectorStats(rays, seconds, sampled);
+  } else if (m.statsKind == StatsKind::HaarBounces) {
+    // The direct light: the Haar rows (last) and the bounce's SH direct pass (first).
+    std::vector<std::uint64_t> r{rays.back() + rays.front()};
+    std::vector<double> sec{seconds.back() + seconds.front()};
+    r.insert(r.end(), rays.begin() + 1, rays.end() - 1);
+    sec.insert(sec.end(), seconds.begin() + 1, seconds.end() - 1);
+    st = vectorStats(r, sec, sampled);
   } else {
     st = matrixStats(m.statsKind == StatsKind::MatrixDiffuse  ? MatrixPassKind::DiffuseBounces
                      : m.statsKind == StatsKind::MatrixGlossy ? MatrixPassKind::GlossyBounces
@@ -513,7 +544,7 @@ void runPass(const BakePasses& passes, PassExecutor& executor, PassState& state,
   }
   // The running sum: every pass of a summed bake; the passes before the last of a bake whose
   // last pass reads it.
-  if (!state.sum.empty() && held && (passes.resultIsSum() || !last))
+  if (!state.sum.empty() && held && p.summed && (passes.resultIsSum() || !last))
     passes.accumulate(k, rows, r.values.values().data(), state.sum.rows(),
                       state.sum.mutableValues());
   // From here on the state is of the rows this pass covers here: the sum and the variances

@@ -31,6 +31,7 @@ std::pair<std::size_t, std::size_t> TexelDomain::samplesIn(RowRange rows) const 
 }
 
 std::vector<float> TexelDomain::layOut(const float* values, RowRange rows, std::size_t stride,
+                                       TexelDilation dilation,
                                        std::vector<std::uint8_t>& filled) const {
   std::vector<float> image(texels() * stride, 0.0f);
   filled.assign(texels(), 0);

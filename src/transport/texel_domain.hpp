@@ -16,8 +16,6 @@ namespace prt::bakedetail {
 struct TexelDomain {
   int width = 0, height = 0;
   int padding = 0;  ///< rings of gutter the result is dilated into
-  /// How a gutter texel takes its neighbours' rows (transfer/row_dilation.hpp).
-  TexelDilation dilation = TexelDilation::Mean;
   std::span<const Vec2f> uvs;
   /// The covered texels kept (those the passes compute: all, or a range's widened by the
   /// dilation's reach), in texel order, with their points and inside-geometry flags.
@@ -38,9 +36,10 @@ struct TexelDomain {
   /// `values` (rows `rows` of texels, `stride` floats each) laid out as the whole lightmap:
   /// the texels of points outside geometry set and dilated rings() rings; points inside
   /// geometry that no dilation reached keep their own value. `filled` (W·H) says which texels
-  /// hold a value.
+  /// hold a value. `dilation`: how a gutter texel takes its neighbours' rows, as the rows'
+  /// basis asks (transfer/row_dilation.hpp).
   std::vector<float> layOut(const float* values, RowRange rows, std::size_t stride,
-                            std::vector<std::uint8_t>& filled) const;
+                            TexelDilation dilation, std::vector<std::uint8_t>& filled) const;
 };
 
 /// The lightmap of `width` × `height` texels over `uvs` (checked by checkLightmapUvs), its

@@ -70,6 +70,50 @@ TEST_F(HaarCli, BakeInfoRenderValidate) {
   EXPECT_NE(report.find("\"lightTerms\": 1536"), std::string::npos) << report;  // whole cube
 }
 
+TEST_F(HaarCli, InterreflectedBakeInfoRenderValidate) {
+  // --mode interreflected: each row holds its bounce in --bands SH bands (RGB under a coloured
+  // albedo), and every verb that relights a Haar bake adds it.
+  Result r = prt(std::string("-q bake ") + kScene +
+                 " --mode interreflected --bounces 1 --albedo 0.9,0.6,0.3 --basis haar "
+                 "--resolution 16 --terms 40 --bands 2 -o ir.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const BakeFile b = readBake(path("ir.glb"));
+  EXPECT_EQ(b.transfers[0].transfer.shape().haar, (TransferShape::HaarSize{16, 40, 2}));
+  EXPECT_EQ(b.transfers[0].transfer.channels(), 3);
+  r = prt("info ir.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("its bounce in 2 SH bands x 3 channel(s)"), std::string::npos) << r.out;
+  const std::string common = " --background none --size 48x36 --spp 1 --exposure 0 ";
+  r = prt("-q render ir.glb --light builtin:sky --terms 300" + common + "-o env.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q light builtin:sky --basis haar --resolution 16 --terms 300 -o sky.json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render ir.glb --light sky.json" + common + "-o file.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  // The light file's SH for the bounce is rebuilt from its rest and bright texels.
+  EXPECT_LT(
+      maxRelativeDifference(image::readImage(path("file.exr")), image::readImage(path("env.exr"))),
+      1e-4);
+  r = prt("-q bake " + std::string(kScene) +
+          " --mode shadowed --albedo 0.9,0.6,0.3 --basis haar --resolution 16 --terms 40 -o d.glb");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = prt("-q render d.glb --light builtin:sky --terms 300" + common + "-o direct.exr");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  // The bounce brightens the picture somewhere (the plane under the sphere) and nowhere darkens it.
+  const image::Image withBounce = image::readImage(path("env.exr")),
+                     direct = image::readImage(path("direct.exr"));
+  double brighter = 0, darker = 0;
+  for (std::size_t i = 0; i < direct.pixels.size(); ++i) {
+    brighter = std::max(brighter, double(withBounce.pixels[i][0] - direct.pixels[i][0]));
+    darker = std::max(darker, double(direct.pixels[i][0] - withBounce.pixels[i][0]));
+  }
+  EXPECT_GT(brighter, 0.01);
+  EXPECT_LT(darker, 0.01 * brighter);
+  r = prt("validate ir.glb --light builtin:sky --vertices 200 --reference-samples 256 --terms 300");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE((r.out + r.err).find("mode interreflected"), std::string::npos) << r.out << r.err;
+}
+
 TEST_F(HaarCli, PerTexelBakeInfoRenderValidateMerge) {
   // Per texel: --resolution is the lightmap's side, --cube-resolution the cube's.
   const std::string bake = std::string("-q bake ") + kScene +
@@ -138,7 +182,7 @@ TEST_F(HaarCli, OtherVerbsRefuseItByName) {
 
 TEST_F(HaarCli, BadOptionsWriteNothing) {
   const std::string bake = std::string("bake ") + kScene + " --basis haar ";
-  expectCleanFailure(bake + "--mode interreflected -o out/h.glb", "inter-reflected");
+  expectCleanFailure(bake + "--mode interreflected --bands 6 -o out/h.glb", "--bands");
   expectCleanFailure(bake + "--mode shadowed --transfer matrix -o out/h.glb", "vector");
   expectCleanFailure(bake + "--mode shadowed --domain probes --transfer vector -o out/h.glb",
                      "probe");

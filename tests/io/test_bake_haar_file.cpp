@@ -1,5 +1,6 @@
-// Haar transfer in the bake file (format 8): exact round trip, split bakes merge, broken rows
-// and files claiming an older version refused by name, and SH-only consumers told why.
+// Haar transfer in the bake file (format 8; inter-reflected rows' bounces format 9): exact round
+// trip, split bakes merge, broken rows and files claiming an older version refused by name, and
+// SH-only consumers told why.
 
 #include <gtest/gtest.h>
 
@@ -20,7 +21,7 @@
 namespace prt {
 namespace {
 
-BakeFile haarBake(RowRange rows = {}) {
+BakeFile haarBake(RowRange rows = {}, bool interreflected = false) {
   BakeFile f;
   f.mesh = builtinScene("builtin:sphere-plane?grid=8&subdiv=1");
   const auto occ = makeEmbreeOccluder(f.mesh);
@@ -30,6 +31,12 @@ BakeFile haarBake(RowRange rows = {}) {
   s.haar = {8, 20};
   s.samples = 2;
   s.rows = rows;
+  if (interreflected) {
+    s.mode = TransferMode::Interreflected;
+    s.bounces = 1;
+    s.haar.bounceBands = 3;
+    s.material.diffuse = Rgb(0.9f, 0.5f, 0.3f);
+  }
   BakedTransfer t;
   t.recipe = s;
   t.transfer = bake(f.mesh, *occ, s, &t.stats);
@@ -62,6 +69,51 @@ TEST(BakeFileHaar, RoundTripsExactly) {
   for (std::size_t r = 0; r < c.rowCount(); ++r) ++kinds[c.row(r)[0] == 1.0f];
   EXPECT_GT(kinds[0], 0);
   EXPECT_GT(kinds[1], 0);
+}
+
+TEST(BakeFileHaar, InterreflectedRowsRoundTripWithTheirBounce) {
+  const BakeFile b = haarBake({}, true);
+  const std::string bytes = encodeBake(b);
+  const BakeFile r = decodeBake(bytesOf(bytes), "ir.glb");
+  const Transfer& a = b.transfers[0].transfer;
+  const Transfer& c = r.transfers[0].transfer;
+  EXPECT_EQ(c.shape(), a.shape());
+  EXPECT_EQ(c.shape().haar.bounceBands, 3);
+  EXPECT_EQ(c.channels(), 3);
+  ASSERT_EQ(c.values().size(), a.values().size());
+  EXPECT_EQ(std::memcmp(c.values().data(), a.values().data(), a.values().size() * 4), 0);
+  // As stored: the Haar row, then its bounce as 27 floats.
+  EXPECT_EQ(c.bytes(), c.rowCount() * (5 + 20 * 4 + 27 * 4));
+  // Split pieces merge into the whole, bounces and all.
+  const std::size_t n = b.mesh.vertexCount();
+  std::vector<BakeFile> pieces;
+  pieces.push_back(haarBake({0, n / 2}, true));
+  pieces.push_back(haarBake({n / 2, n - n / 2}, true));
+  const BakeFile merged = mergeBakes(std::move(pieces));
+  const FloatArray& m = merged.transfers[0].transfer.values();
+  ASSERT_EQ(m.size(), a.values().size());
+  EXPECT_EQ(std::memcmp(m.data(), a.values().data(), m.size() * 4), 0);
+
+  // A file claiming version 8 cannot hold a bounce; a bounce without bounces, or bounces without
+  // one, is refused; a non-finite bounce value is refused on writing.
+  const auto edited = [&](const std::string& from, const std::string& to) {
+    std::string e = bytes;
+    const std::size_t at = e.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) e.replace(at, from.size(), to);
+    return testing::errorOf([&] { decodeBake(bytesOf(e), "ir.glb"); });
+  };
+  std::string e = edited("\"formatVersion\":9", "\"formatVersion\":8");
+  EXPECT_NE(e.find("version 8"), std::string::npos) << e;
+  e = edited("\"bounces\":1", "\"bounces\":0");
+  EXPECT_NE(e.find("holds a bounce"), std::string::npos) << e;
+  e = edited("\"bounceBands\":3", "\"bounceBands\":6");
+  EXPECT_NE(e.find("bounceBands"), std::string::npos) << e;
+  BakeFile bad = haarBake({}, true);
+  Transfer& t = bad.transfers[0].transfer;
+  t.mutableValues()[5 * t.stride() + t.shape().haarBounceOffset() + 4] = std::nanf("");
+  e = testing::errorOf([&] { encodeBake(bad); });
+  EXPECT_NE(e.find("row 5: bounce value 4 is not finite"), std::string::npos) << e;
 }
 
 TEST(BakeFileHaar, SplitBakesMergeIntoTheWhole) {

@@ -193,7 +193,7 @@ def test_haar_bakes_read_and_relight_all_frequency(tmp_path, prt_cli):
             "--terms", "96", "--samples", "4", "-o", out)
     f = prtkit.read_bake_file(str(out))
     t = f.transfers[0]
-    assert t.haar == {"resolution": 16, "terms": 96} and t.bands == 0
+    assert t.haar == {"resolution": 16, "terms": 96, "bounce_bands": 0} and t.bands == 0
     kinds, idx, val = t.haar_kinds, t.haar_indices, t.haar_values
     assert kinds.shape == (f.mesh.vertex_count,) and set(np.unique(kinds)) <= {0, 1}
     assert idx.shape == val.shape == (f.mesh.vertex_count, 96)
@@ -259,7 +259,8 @@ def test_haar_bakes_in_python_per_vertex_and_per_texel(tmp_path, prt_cli):
         cli, m = f.transfers[0], f.mesh
         t = prtkit.bake_transfer(m, mode="shadowed", basis="haar", cube_resolution=8, terms=20,
                                  samples=2, **kw)
-        assert t.haar == {"resolution": 8, "terms": 20} and t.domain == domain
+        assert t.haar == {"resolution": 8, "terms": 20, "bounce_bands": 0} and t.domain == domain
+        assert t.haar_bounce.shape == (len(t.haar_kinds), 0, 1)
         assert t.recipe["samples"] == 2
         for column in ("haar_kinds", "haar_indices", "haar_values"):
             assert np.array_equal(getattr(t, column), getattr(cli, column)), (domain, column)
@@ -288,8 +289,46 @@ def test_haar_bakes_in_python_per_vertex_and_per_texel(tmp_path, prt_cli):
             (lambda: prtkit.bake_transfer(m, basis="haar", cube_resolution=12), "cube_resolution"),
             (lambda: prtkit.bake_transfer(m, basis="haar", domain="texels", resolution=16,
                                           denoise=True), "denoise"),
-            (lambda: prtkit.bake_transfer(m, basis="haar", mode="interreflected"),
-             "inter-reflected"),
+            (lambda: prtkit.bake_transfer(m, basis="haar", mode="interreflected", bands=6),
+             "bands"),
             (lambda: prtkit.bake_transfer(m, basis="wavelet"), "basis")]:
         with pytest.raises(ValueError, match=match):
             call()
+
+
+def test_interreflected_haar_rows_hold_their_bounce_in_sh(tmp_path, prt_cli):
+    # bake_transfer(basis='haar', mode='interreflected') is prt bake's, bit for bit: each row
+    # its Haar pairs and its bounce in SH of `bands` bands, RGB under a coloured albedo. The
+    # pairs are the shadowed bake's own (the same rays); the bounce is what the SH bake of the
+    # same bounces adds to its direct light; relit, it adds albedo ⊙ Σ B_i L_i to the rows.
+    scene = "builtin:sphere-plane?grid=8&subdiv=2"
+    out = tmp_path / "ir.glb"
+    prt_cli("bake", scene, "--mode", "interreflected", "--bounces", "1", "--albedo",
+            "0.9,0.5,0.3", "--basis", "haar", "--resolution", "8", "--terms", "20",
+            "--bands", "2", "-o", out)
+    f = prtkit.read_bake_file(str(out))
+    cli, m = f.transfers[0], f.mesh
+    kd = (0.9, 0.5, 0.3)
+    t = prtkit.bake_transfer(m, mode="interreflected", bounces=1, basis="haar",
+                             cube_resolution=8, terms=20, bands=2, albedo=kd)
+    assert t.haar == {"resolution": 8, "terms": 20, "bounce_bands": 2} and t.channels == 3
+    for column in ("haar_kinds", "haar_indices", "haar_values", "haar_bounce"):
+        assert np.array_equal(getattr(t, column), getattr(cli, column)), column
+    rows = len(t.haar_kinds)
+    assert t.haar_bounce.shape == (rows, 4, 3) and np.abs(t.haar_bounce).max() > 0.01
+    shadowed = prtkit.bake_transfer(m, mode="shadowed", basis="haar", cube_resolution=8,
+                                    terms=20)
+    for column in ("haar_kinds", "haar_indices", "haar_values"):
+        assert np.array_equal(getattr(t, column), getattr(shadowed, column)), column
+    # The SH bake's bounce: 1024 directions a row for each ray per cube texel, the same seed.
+    ir = prtkit.bake(m, mode="interreflected", bounces=1, bands=2, samples=1024, albedo=kd)
+    direct = prtkit.bake(m, mode="shadowed", bands=2, samples=1024)
+    bounce = ir.reshape(rows, 4, 3) - direct.reshape(rows, 4, 1)
+    assert np.abs(t.haar_bounce - bounce).max() < 1e-5
+    # Relit: the bounce's share is albedo ⊙ Σ_i B_i L_i under the light's SH (the constant sky:
+    # L_00 = √(4π), the rest 0).
+    const = prtkit.project_haar("builtin:constant", resolution=8, terms=384)
+    kd = np.array(kd, np.float32)
+    added = prtkit.relight(t, const, mesh=m) - prtkit.relight(shadowed, const, mesh=m)
+    expect = kd * t.haar_bounce[:, 0, :] * np.sqrt(4 * np.pi)
+    assert np.abs(added - expect).max() < 1e-4 * max(1.0, np.abs(expect).max())

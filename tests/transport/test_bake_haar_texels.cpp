@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/texel_planes.hpp"
@@ -26,6 +27,7 @@
 #include "prt/transfer/haar_rows.hpp"
 #include "prt/transport/bake.hpp"
 #include "prt/transport/bake_texels.hpp"
+#include "prt/transport/passes.hpp"
 #include "prt/unwrap/unwrap.hpp"
 
 namespace prt {
@@ -154,24 +156,76 @@ TEST(BakeHaarTexels, TheGutterCopiesANeighboursRowAndItsNormal) {
 TEST(BakeHaarTexels, TheSameForAnyThreadCountAndRange) {
   const Mesh mesh = unwrapped("builtin:sphere-plane?grid=8&subdiv=2", 32);
   const auto occ = makeEmbreeOccluder(mesh);
-  BakeSettings s = haarSettings(8, 24, 2);
-  s.domain = TransferDomain::Texels;
-  s.lightmap = {16, 16, 2};
-  const Transfer whole = bake(mesh, *occ, s);
-  Transfer oneThread;
-  {
-    ThreadLimit limit(1);
-    oneThread = bake(mesh, *occ, s);
+  BakeSettings shadowed = haarSettings(8, 24, 2);
+  shadowed.domain = TransferDomain::Texels;
+  shadowed.lightmap = {16, 16, 2};
+  // Inter-reflected: the bounce's SH passes over the whole lightmap, then each row reads its own
+  // texel of their sum.
+  BakeSettings interreflected = shadowed;
+  interreflected.mode = TransferMode::Interreflected;
+  interreflected.bounces = 2;
+  interreflected.haar.bounceBands = 2;
+  for (BakeSettings s : {shadowed, interreflected}) {
+    SCOPED_TRACE(toString(s.mode));
+    const Transfer whole = bake(mesh, *occ, s);
+    Transfer oneThread;
+    {
+      ThreadLimit limit(1);
+      oneThread = bake(mesh, *occ, s);
+    }
+    ASSERT_EQ(whole.values().size(), oneThread.values().size());
+    for (std::size_t k = 0; k < whole.values().size(); ++k)
+      ASSERT_EQ(whole.values()[k], oneThread.values()[k]);
+    s.rows = {70, 90};
+    const Transfer piece = bake(mesh, *occ, s);
+    ASSERT_EQ(piece.rowCount(), 90u);
+    for (std::size_t r = 0; r < 90; ++r)
+      for (std::size_t k = 0; k < whole.stride(); ++k)
+        ASSERT_EQ(piece.row(r)[k], whole.row(70 + r)[k]) << "texel " << 70 + r;
   }
-  ASSERT_EQ(whole.values().size(), oneThread.values().size());
-  for (std::size_t k = 0; k < whole.values().size(); ++k)
-    ASSERT_EQ(whole.values()[k], oneThread.values()[k]);
-  s.rows = {70, 90};
-  const Transfer piece = bake(mesh, *occ, s);
-  ASSERT_EQ(piece.rowCount(), 90u);
-  for (std::size_t r = 0; r < 90; ++r)
-    for (std::size_t k = 0; k < whole.stride(); ++k)
-      ASSERT_EQ(piece.row(r)[k], whole.row(70 + r)[k]) << "texel " << 70 + r;
+}
+
+TEST(BakeHaarTexels, AnInterreflectedTexelHoldsTheShBakesBounceAtIt) {
+  // Each covered texel's bounce is the per-texel SH bake's bounce at that texel (the same
+  // passes: bands, 1024 directions per ray a texel, seed), and its pairs the shadowed rows'.
+  const Mesh mesh = unwrapped("builtin:sphere-plane?grid=8&subdiv=2", 32);
+  const auto occ = makeEmbreeOccluder(mesh);
+  BakeSettings s = haarSettings(8, 24, 1);
+  s.domain = TransferDomain::Texels;
+  s.lightmap = {16, 16, 0};
+  const Transfer direct = bake(mesh, *occ, s);
+  s.mode = TransferMode::Interreflected;
+  s.bounces = 1;
+  s.haar.bounceBands = 2;
+  TexelBakeInfo info;
+  ThreadExecutor threads;
+  const Transfer t = bake(mesh, *occ, s, threads, nullptr, {}, &info);
+  BakeSettings sh = s;
+  sh.basis = TransferBasis::SphericalHarmonics;
+  sh.haar = {};
+  sh.bands = 2;
+  sh.samples = kHaarBounceSamplesPerTexelRay;
+  const Transfer full = bake(mesh, *occ, sh);
+  sh.mode = TransferMode::Shadowed;
+  sh.bounces = 0;
+  const Transfer shDirect = bake(mesh, *occ, sh);
+  ASSERT_EQ(t.stride(), direct.stride() + 4);
+  std::size_t covered = 0;
+  double largest = 0;
+  for (const TexelSample& q : info.samples.samples) {
+    const std::size_t r = q.texel;
+    // A texel inside geometry is refilled: Haar copies a neighbour's row, SH takes a mean.
+    if (std::binary_search(info.inside.begin(), info.inside.end(), std::uint32_t(r))) continue;
+    ++covered;
+    for (std::size_t k = 0; k < direct.stride(); ++k) ASSERT_EQ(t.row(r)[k], direct.row(r)[k]);
+    for (std::size_t i = 0; i < 4; ++i) {
+      const double want = full.row(r)[i] - shDirect.row(r)[i];
+      ASSERT_NEAR(t.row(r)[direct.stride() + i], want, 1e-6) << "texel " << r;
+      largest = std::max(largest, std::abs(want));
+    }
+  }
+  EXPECT_GT(covered, 50u);
+  EXPECT_GT(largest, 0.01);
 }
 
 }  // namespace

@@ -210,6 +210,7 @@ json constants() {
   c["haar"] = {{"minResolution", haar::kMinResolution},
                {"maxResolution", haar::kMaxResolution},
                {"firstVersion", prt::kFirstHaarVersion},
+               {"firstBounceVersion", prt::kFirstHaarBounceVersion},
                {"valueSteps", haar::kHaarValueSteps},
                {"visibleKind", static_cast<int>(haar::HaarRowKind::Visible)},
                {"unshadowedBands", haar::kUnshadowedBands},

@@ -12,9 +12,13 @@
 //                     turn R of the light — Haar wavelets do not rotate; the environment is
 //                     resampled
 //   a light file      io::parseHaarLightJson (prt light --basis haar), a light that cannot turn
+//   its full SH       the environment's SH before the bright texels were taken out of it: the
+//                     rest plus each bright texel's constant patch, what an inter-reflected Haar
+//                     row's bounce (SH) is relit against (haarLightFullSh)
 // A HaarLight here is { resolution, index: Uint32Array(K) ascending, value: Float32Array(3K),
 // unshadowed: Float32Array(25·3) (coefficient-major), bright: [{ texel, radiance: [r, g, b] }],
-// energyKept }. tests/web/test_haar_web.cpp holds every step to the library.
+// fullSh: Float64Array(25·3) (haarLightFullSh, made with the light), energyKept }.
+// tests/web/test_haar_web.cpp holds every step to the library.
 import { haar as kHaar } from 'prt:constants';
 import { rotateLight } from './sh.js';
 
@@ -211,7 +215,8 @@ export function shBasis(x, y, z, out) {
 
 /** haar::unshadowedPart from the environment's SH (25 × 3, unturned): that SH turned by R, less
  *  the constant patch of each of the 16 texels of `means` with the largest luminance power
- *  (each patch's SH integrated 16 × 16 over its texel), and those texels. */
+ *  (each patch's SH integrated 16 × 16 over its texel), and those texels (and their patches,
+ *  texelPatchSh's, for haarLightFullSh). */
 export function unshadowedPart(environmentSh, means, n, R) {
   const sh = Float64Array.from(rotateLight(kBands, R, environmentSh, new Float64Array(kCoeffs * 3)));
   const omega = cubeTexelSolidAngles(n), face = n * n, count = 6 * face;
@@ -219,26 +224,50 @@ export function unshadowedPart(environmentSh, means, n, R) {
   for (let k = 0; k < count; ++k)
     p[k] = (0.2126 * means[3 * k] + 0.7152 * means[3 * k + 1] + 0.0722 * means[3 * k + 2]) * omega[k % face];
   const order = Array.from({ length: count }, (_, k) => k).sort((a, b) => (p[a] !== p[b] ? p[b] - p[a] : a - b));
-  const bright = [], y = new Float64Array(kCoeffs), sub = 16, step = 2 / n / sub;
+  const bright = [], patches = [];
   for (let i = 0; i < Math.min(kHaar.brightTexels, count); ++i) {
     const j = order[i];
     if (!(p[j] > 0)) break;
     const l = [means[3 * j], means[3 * j + 1], means[3 * j + 2]];
     bright.push({ texel: j, radiance: l });
-    const f = Math.floor(j / face), x = j % n, yy = Math.floor((j % face) / n);
-    const patch = new Float64Array(kCoeffs);
-    for (let b = 0; b < sub; ++b)
-      for (let a = 0; a < sub; ++a) {
-        const s = -1 + (2 * x) / n + (a + 0.5) * step, t = -1 + (2 * yy) / n + (b + 0.5) * step;
-        const d = cubeFaceDirection(f, s, t), len = Math.hypot(d[0], d[1], d[2]);
-        shBasis(d[0] / len, d[1] / len, d[2] / len, y);
-        const w = (step * step) / (len * len * len);
-        for (let k = 0; k < kCoeffs; ++k) patch[k] += y[k] * w;
-      }
+    const patch = texelPatchSh(j, n);
+    patches.push(patch);
     for (let k = 0; k < kCoeffs; ++k)
-      for (let ch = 0; ch < 3; ++ch) sh[3 * k + ch] -= l[ch] * Math.fround(patch[k]);
+      for (let ch = 0; ch < 3; ++ch) sh[3 * k + ch] -= l[ch] * patch[k];
   }
-  return { sh: Float32Array.from(sh), bright };
+  return { sh: Float32Array.from(sh), bright, patches };
+}
+
+/** The SH (25) of texel j of an n cube as a constant patch of unit radiance: Σ over its 16 × 16
+ *  midpoints of Y(d̂) dA/|d|³, in float (unshadowedPart's, project_light.cpp's). */
+export function texelPatchSh(j, n) {
+  const face = n * n, f = Math.floor(j / face), x = j % n, yy = Math.floor((j % face) / n);
+  const sub = 16, step = 2 / n / sub, y = new Float64Array(kCoeffs), patch = new Float64Array(kCoeffs);
+  for (let b = 0; b < sub; ++b)
+    for (let a = 0; a < sub; ++a) {
+      const s = -1 + (2 * x) / n + (a + 0.5) * step, t = -1 + (2 * yy) / n + (b + 0.5) * step;
+      const d = cubeFaceDirection(f, s, t), len = Math.hypot(d[0], d[1], d[2]);
+      shBasis(d[0] / len, d[1] / len, d[2] / len, y);
+      const w = (step * step) / (len * len * len);
+      for (let k = 0; k < kCoeffs; ++k) patch[k] += y[k] * w;
+    }
+  return Float32Array.from(patch);
+}
+
+/** The light's full SH (25 × 3, coefficient-major, Float64Array): its environment's SH before
+ *  the bright texels were taken out — the rest (`unshadowed`) plus, for each bright texel b,
+ *  radiance_b times b's constant patch (texelPatchSh; `patches`, one per bright texel, where the
+ *  caller has them). An inter-reflected Haar row's bounce is relit against its first bands
+ *  (haar_relight.js). Made once per light (turnedLight, parseHaarLight keep it as
+ *  light.fullSh), not per vertex. */
+export function haarLightFullSh(light, patches = null) {
+  const full = Float64Array.from(light.unshadowed);
+  for (const [i, b] of light.bright.entries()) {
+    const patch = patches ? patches[i] : texelPatchSh(b.texel, light.resolution), l = b.radiance;
+    for (let k = 0; k < kCoeffs; ++k)
+      for (let ch = 0; ch < 3; ++ch) full[3 * k + ch] += l[ch] * patch[k];
+  }
+  return full;
 }
 
 // ---- Turning it (haar/turned_cube.hpp) --------------------------------------------------------
@@ -321,6 +350,7 @@ export function turnedLight(cube, n, terms, R) {
   const part = unshadowedPart(cube.sh, means, n, R);
   light.unshadowed = part.sh;
   light.bright = part.bright;
+  light.fullSh = haarLightFullSh(light, part.patches);
   return light;
 }
 
@@ -375,5 +405,7 @@ export function parseHaarLight(text, name) {
   bright.forEach((b, i) => { if (bright.slice(0, i).some((c) => c.texel === b.texel)) fail(name, `bright texel ${b.texel} twice`); });
   const energyKept = typeof j.energyKept === 'number' ? j.energyKept : 1;
   if (!(energyKept >= 0 && energyKept <= 1 + 1e-6)) fail(name, 'the energy kept must lie in [0, 1]');
-  return { resolution: n, index, value, unshadowed: sh, bright, energyKept, fixed: true };
+  const light = { resolution: n, index, value, unshadowed: sh, bright, energyKept, fixed: true };
+  light.fullSh = haarLightFullSh(light);
+  return light;
 }

@@ -6,7 +6,11 @@
 // with U(n)·L = Σ_b L_b U_b(n) + Σ_lm (A_l/π) L'_lm Y_lm(n): the light's 16 brightest texels
 // exactly (their clamped-cosine integrals at the row's normal) and the rest in 5-band SH. The
 // light's K terms are laid out densely (6 N² RGB), so each kept transfer term is one gather.
-import { clampedCosine, shBasis, texelGeometry } from './haar_light.js';
+// An inter-reflected row adds its bounce, B² SH coefficients (C = 1: the same for r, g, b; C =
+// 3: one a channel, the bounce albedos folded in) against the light's full SH (the rest and the
+// bright texels' patches: haarLightFullSh) at its first B bands, inside kd:
+//     R += kd ⊙ Σ_{i < B²} B_{i,c} L_{i,c}
+import { clampedCosine, haarLightFullSh, shBasis, texelGeometry } from './haar_light.js';
 
 const kBands = 5, kCoeffs = kBands * kBands;
 
@@ -35,13 +39,16 @@ function brightCone(g, radiance) {
 
 /**
  * Exit radiance of rows first .. first + count − 1 of Haar transfer `t` (haar_bake.js's:
- * t.haar = { resolution, terms }, t.rows = Float32Array of rows × (1 + 2·terms): the kind, then
- * the (index, value) pairs) under `light`, at `normals` (Float32Array, 3 for each of the
- * `count` rows), with `albedo` (Float32Array likewise, [r, g, b] for every row, or null: white),
- * into `out` (Float32Array, 3 for each row): a part's vertices, whose rows start at `first`.
+ * t.haar = { resolution, terms, bounceBands }, t.channels, t.rows = Float32Array of rows × (1 +
+ * 2·terms + bounceBands²·channels): the kind, the (index, value) pairs, then the bounce) under
+ * `light` (its fullSh made with it, else made here), at `normals` (Float32Array, 3 for each of
+ * the `count` rows), with `albedo` (Float32Array likewise, [r, g, b] for every row, or null:
+ * white), into `out` (Float32Array, 3 for each row): a part's vertices, whose rows start at
+ * `first`.
  */
 export function relightHaar(t, light, normals, albedo, out, first = 0, count = normals.length / 3) {
-  const n = t.haar.resolution, terms = t.haar.terms, stride = 1 + 2 * terms;
+  const n = t.haar.resolution, terms = t.haar.terms, pairs = 1 + 2 * terms;
+  const B = t.haar.bounceBands || 0, C = t.channels === 3 ? 3 : 1, stride = pairs + B * B * C;
   if (light.resolution !== n)
     throw new Error(`relight: the light's cube is ${light.resolution}² per face and the transfer's ${n}² (project the light at the transfer's resolution)`);
   const dense = new Float32Array(6 * n * n * 3);
@@ -51,6 +58,8 @@ export function relightHaar(t, light, normals, albedo, out, first = 0, count = n
     for (let i = l * l; i < (l + 1) * (l + 1); ++i)
       for (let c = 0; c < 3; ++c) lobe[3 * i + c] = light.unshadowed[3 * i + c] * kLobe[l];
   const bright = light.bright.map((b) => brightCone(texelGeometry(b.texel, n), b.radiance));
+  // The bounce's light: the full SH's first B² coefficients, RGB each.
+  const full = B > 0 ? light.fullSh || haarLightFullSh(light) : null, shCount = B * B;
   const y = new Float64Array(kCoeffs), nrm = [0, 0, 0], rows = t.rows;
   const one = albedo && albedo.length === 3;
   for (let r = 0; r < count; ++r) {
@@ -71,6 +80,15 @@ export function relightHaar(t, light, normals, albedo, out, first = 0, count = n
     for (let k = 0; k < terms; ++k) {
       const c = 3 * rows[p + 1 + 2 * k], v = sign * rows[p + 2 + 2 * k];
       x += v * dense[c], g += v * dense[c + 1], z += v * dense[c + 2];
+    }
+    if (C === 1) {
+      for (let i = 0, q = p + pairs; i < shCount; ++i) {
+        const v = rows[q + i];
+        x += v * full[3 * i], g += v * full[3 * i + 1], z += v * full[3 * i + 2];
+      }
+    } else {
+      for (let i = 0, q = p + pairs; i < shCount; ++i)
+        x += rows[q + 3 * i] * full[3 * i], g += rows[q + 3 * i + 1] * full[3 * i + 1], z += rows[q + 3 * i + 2] * full[3 * i + 2];
     }
     const a = !albedo ? null : one ? 0 : 3 * r;
     out[3 * r] = a === null ? x : albedo[a] * x;

@@ -3,7 +3,9 @@
 // draw one. When the environment, the light's rotation, its terms or the transfer change, the
 // light is made again — the environment's fine cube (prt web's) turned by R and cut to its K
 // largest terms (haar_light.js, haar::turnedLight) — and every vertex relit from its sparse
-// terms (haar_relight.js, relight::relightHaar), with the recipe's kd, else the vertices' albedo.
+// terms (haar_relight.js, relight::relightHaar) — an inter-reflected row's bounce against the
+// light's full SH (haarLightFullSh, made with the light) — with the recipe's kd, else the
+// vertices' albedo.
 import * as THREE from 'three';
 import radianceVert from 'prt:shaders/radiance.vert';
 import meshFrag from 'prt:shaders/mesh.frag';
@@ -66,7 +68,7 @@ export function disposeHaarScene(gpu) {
 /** The status lines of a Haar bake on screen. */
 export function describeHaar(t, scene) {
   const l = scene.light;
-  return [`Haar ${t.haar.resolution}² cube, ${t.haar.terms} terms a vertex, relit on the CPU`,
+  return [t.describe,
           l ? `light: its ${l.index.length} largest terms (${(100 * l.energyKept).toFixed(3)}% of its energy), made in ` +
               `${(1000 * scene.lightSeconds).toFixed(1)} ms, relit in ${(1000 * scene.seconds).toFixed(1)} ms` : 'light: not yet made'];
 }

@@ -165,7 +165,7 @@ export function startInteractive(page) {
     page.draw(canvas.width, canvas.height, null);
     const b = page.bake(), t = page.transfer();
     hud.textContent = `${b.name}  ${b.triangles} triangles, ${b.vertices} vertices\n` +
-      (b.haar ? `${t.mode} ${t.layout}, scalar\n`
+      (b.haar ? `${t.mode} ${t.layout}, ${t.channels === 3 ? 'RGB' : 'scalar'}\n`
               : `${t.mode} ${t.layout}, ${Math.min(state.bands, t.bands)} of ${t.bands} bands, ${t.channels === 3 ? 'RGB' : 'scalar'}\n`) +
       (b.probes ? describeProbes(b, t, state) : b.haar ? describeHaar(t, page.gpu.haar)
                 : describeTransfer(t, state.encoding)).map((l) => l + '\n').join('') +

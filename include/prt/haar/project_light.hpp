@@ -62,6 +62,15 @@ UnshadowedPart unshadowedPart(const envmap::Environment& env, const std::vector<
 UnshadowedPart unshadowedPart(const sh::RgbSh& environmentSh, const std::vector<Rgb>& means,
                               int resolution, const Mat3d& rotation = Mat3d::identity());
 
+/// The SH (kUnshadowedBands bands) of texel `texel` of the cube as a constant patch of unit
+/// radiance: Σ over its 16 × 16 midpoints of Y(d̂) dA/|d|³ — what unshadowedPart takes away
+/// for each bright texel.
+std::vector<double> texelPatchSh(std::uint32_t texel, int resolution);
+/// The whole light's SH at kUnshadowedBands: the rest's and each bright texel's patch, which is
+/// the environment's SH turned as the light was. An inter-reflected Haar row's bounce is relit
+/// against it (relight/relight_haar.hpp).
+sh::RgbSh fullSh(const HaarLight& light);
+
 /// cubeMeans, approximate and unshadowedPart: the light a Haar bake is relit with.
 HaarLight projectLight(const envmap::Environment& env, int resolution, std::size_t terms,
                        const Mat3d& rotation = Mat3d::identity(),

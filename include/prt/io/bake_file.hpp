@@ -33,8 +33,10 @@
 // PRTKIT_radiance_transfer (declared in extensionsUsed, not required: any glTF viewer still
 // shows the mesh; docs/extensions/PRTKIT_radiance_transfer/), 6 adds per-texel transfer, 7 probe
 // grids, 8 Haar-wavelet transfer (settings.basis "haar" and settings.haar {resolution, terms};
-// its quantised rows in three accessors _PRT_<MODE>_HAAR_{SCALE,INDEX,VALUE}). This
-// prtkit writes 8 and reads 1–8.
+// its quantised rows in accessors _PRT_<MODE>_HAAR_{KIND,SCALE,INDEX,VALUE}), 9 inter-reflected
+// Haar transfer (settings.haar.bounceBands, settings.channels the bounce's, and a fifth
+// accessor _PRT_<MODE>_HAAR_BOUNCE: each row's bounce in SH, float32). This prtkit writes 9 and
+// reads 1–9.
 
 #include <cstddef>
 #include <cstdint>
@@ -52,11 +54,13 @@
 namespace prt {
 
 /// The bake-file format version this prtkit writes and the newest it reads.
-inline constexpr int kBakeFormatVersion = 8;
+inline constexpr int kBakeFormatVersion = 9;
 /// The first version that holds probe grids (issue 32).
 inline constexpr int kFirstProbeVersion = 7;
 /// The first version that holds Haar-wavelet transfer (issue 33).
 inline constexpr int kFirstHaarVersion = 8;
+/// The first version that holds inter-reflected Haar transfer (a bounce in each row).
+inline constexpr int kFirstHaarBounceVersion = 9;
 /// The largest |value| a probe grid's origin and spacing may hold in a file (a float's range,
 /// with room to add them).
 inline constexpr double kMaxProbeGridNumber = 1e30;

@@ -3,6 +3,8 @@
 // 2003, §6): exit radiance per row from its sparse wavelet terms and the light's,
 //     occluded-part row   R(p) = kd(p) ⊙ ( U(n_p)·L − Σ_t D̃_t(p) L̃[k_t(p)] )
 //     visible-part row    R(p) = kd(p) ⊙ Σ_t T̃_t(p) L̃[k_t(p)]
+// (an inter-reflected row adds its bounce in SH against the whole light's SH, haar::fullSh:
+//  kd(p) ⊙ Σ_i B_i(p) L_i, inside the same kd),
 // with U(n)·L = Σ_b L_b U_b(n) + Σ_lm (A_l/π) L'_lm Y_lm(n), the light's brightest texels exactly
 // and the rest in SH (haar/haar_light.hpp), against the light's K terms laid out densely (6 N²
 // RGB values, zeros where no term is kept: 72 KiB at N = 32, resident in cache while every row

@@ -42,6 +42,9 @@ inline constexpr int kMaxBounces = 16;
 /// Rays per cube texel of a Haar bake (its `samples`): at most 64, and 1 when not given.
 inline constexpr int kMaxHaarRaysPerTexel = 64;
 inline constexpr int kDefaultHaarRaysPerTexel = 1;
+/// An inter-reflected Haar bake's bounce is SH (transfer/shape.hpp): its SH passes cast this many
+/// directions per row for each ray per cube texel — the SH bake's default at one ray a texel.
+inline constexpr int kHaarBounceSamplesPerTexelRay = 1024;
 /// Adaptive sampling (BakeRecipe::targetError): the pilot every row casts before it decides how
 /// many more it needs — the first 64 points of its Owen-scrambled Sobol' sequence, a (0,6,2)-net,
 /// so each of 64 equal-measure cells of the cosine-weighted hemisphere holds one of them.

@@ -33,7 +33,12 @@
 // float pairs (prt/transfer/haar_rows.hpp). Relighting (prt/relight/relight_haar.hpp):
 //   R(p) = albedo(p) ⊙ ( U(n)·L − Σ_k D̃_k L̃_k )   or   albedo(p) ⊙ Σ_k T̃_k L̃_k,
 // the unshadowed part U(n)·L from the light in closed form (prt/haar/haar_light.hpp).
-// A Haar shape has no bands (0) and one channel.
+// Inter-reflected Haar transfer adds to each row its bounce — the light that arrives at p
+// after one or more diffuse bounces, B_i(p) = Σ_{k≥1} T^k_i(p) — in SH of `bounceBands` bands
+// (the bounce is smooth; only direct light has a sun's sharp edge), stored after the pairs and
+// relit against the light's SH:  R(p) += albedo(p) ⊙ Σ_i B_i(p) L_i.
+// A Haar shape has no bands (0); its channels (1, or 3 for coloured inter-reflection) are the
+// bounce's, and its direct part is scalar.
 //
 // Memory: 4·B²·C bytes per row for vectors, 4·B⁴·C for matrices (9 bands, 1M vertices, RGB
 // matrices: 79 GB); denseBytes() states it before anything is allocated.
@@ -107,11 +112,13 @@ struct TransferShape {
   };
   LightmapSize lightmap{};
   TransferBasis basis = TransferBasis::SphericalHarmonics;
-  /// Haar: the cube's resolution N (a power of two, haar/resolution.hpp) and the coefficients
-  /// kept per row (1 ≤ terms ≤ 6 N²).
+  /// Haar: the cube's resolution N (a power of two, haar/resolution.hpp), the coefficients
+  /// kept per row (1 ≤ terms ≤ 6 N²) and the SH bands of the bounce each row holds after them
+  /// (0: none, the direct transfer alone; inter-reflected: 1..haar::kUnshadowedBands).
   struct HaarSize {
     int resolution = 0;
     int terms = 0;
+    int bounceBands = 0;
     bool operator==(const HaarSize&) const = default;
   };
   HaarSize haar{};
@@ -129,10 +136,17 @@ struct TransferShape {
   /// Coefficients of the basis: B² (SH) or 6 N² (Haar).
   int coeffs() const;
   bool isMatrix() const { return layout == TransferLayout::Matrix; }
-  /// Values per row per channel: B² (vector), B⁴ (matrix) or 1 + 2 · terms (Haar).
+  /// Values per row per channel: B² (vector), B⁴ (matrix); Haar: all of a row, 1 + 2 · terms
+  /// and the bounce's bounceBands² · channels.
   std::size_t rowSize() const;
   /// Floats per row, all channels.
-  std::size_t stride() const { return rowSize() * static_cast<std::size_t>(channels); }
+  std::size_t stride() const {
+    return isHaar() ? rowSize() : rowSize() * static_cast<std::size_t>(channels);
+  }
+  /// Haar: the floats of a row before its bounce (haar::haarRowFloats(terms)), and the bounce's
+  /// bounceBands² · channels after them.
+  std::size_t haarBounceOffset() const;
+  std::size_t haarBounceFloats() const;
   std::size_t rowCount() const { return rows.count; }
   /// Bytes of the dense rows (4 · rows · stride); saturates at SIZE_MAX instead of overflowing.
   std::size_t denseBytes() const;

@@ -76,8 +76,9 @@ class Transfer {
   /// The dense transfer (the reconstruction of compressed rows; a dense one unchanged).
   Transfer toDense() const;
   /// Bytes as stored: dense 4 · rows · stride; Haar as its file holds it (transfer/haar_rows.hpp:
-  /// 4 + 4 · terms a row, 6 · terms past 6·104² coefficients); CPCA a uint16 (K ≤ 65536) or uint32 id and N
-  /// floats per row, plus K(N + 1) vectors of stride floats.
+  /// 4 + 4 · terms a row, 6 · terms past 6·104² coefficients, and 4 bytes a float of an
+  /// inter-reflected row's bounce); CPCA a uint16 (K ≤ 65536) or uint32 id and N floats per row,
+  /// plus K(N + 1) vectors of stride floats.
   std::size_t bytes() const;
   /// Throws prt::Error("WHAT: ...") unless the shape is valid, the arrays fit it, every cluster
   /// id is below K and every value is finite.

@@ -51,7 +51,7 @@ struct ProbeGridRequest {
 struct BakeRequest {
   std::vector<TransferMode> modes;  ///< one transfer per mode, in this order
   TransferLayout layout = TransferLayout::Vector;
-  int bands = 3;
+  int bands = 3;  ///< SH; Haar: the bands of an inter-reflected row's bounce
   /// SH (bands), or Haar wavelets over a cube map (haar: its resolution and the terms kept per
   /// row; samples are then rays per cube texel).
   TransferBasis basis = TransferBasis::SphericalHarmonics;
@@ -74,9 +74,9 @@ struct BakeRequest {
 };
 
 /// The one check of a request before anything is loaded: modes given and distinct, bands (or
-/// the Haar cube and terms: vector, per vertex, not inter-reflected), samples and bounces in
-/// range, the lightmap's resolution and padding, the seam fix only per
-/// texel and of a whole lightmap. Throws prt::Error with one line naming the option as
+/// the Haar cube and terms: vector, per vertex or texel; inter-reflected, its bounce's 1..5
+/// bands), samples and bounces in range, the lightmap's resolution and padding, the seam fix
+/// only per texel and of a whole lightmap. Throws prt::Error with one line naming the option as
 /// `spelling` writes it.
 void checkBakeRequest(const BakeRequest& request, OptionSpelling spelling);
 

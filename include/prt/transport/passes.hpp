@@ -16,6 +16,11 @@
 //                                      domain, then the matrices, which read their sum (Sum)
 //   matrix, K bounces, glossy          P = K+1: the matrices of orders 0 … K, each reading the
 //                                      one before (Previous); the transfer is the last
+//   Haar, unshadowed | shadowed        P = 1: the pruned wavelet rows over the range
+//   Haar, K bounces                    P = K+2: the bounce in SH — its direct pass T⁰ and the
+//                                      bounces T¹ … Tᴷ over the whole domain, each reading the
+//                                      one before, T⁰ not summed — then the Haar rows, which
+//                                      read the sum T¹ + … + Tᴷ and hold it after their pairs
 //
 // The domain is one axis of the list, never a branch in its drivers. Per vertex a row is
 // integrated at the vertex and a bounce reads the pass before interpolated across the hit
@@ -60,6 +65,9 @@ struct BakePassInfo {
   TransferShape shape;  ///< its rows: domain, layout, bands, channels, and which rows it covers
   PassInput input = PassInput::None;
   bool variance = false;  ///< its per-row variances count in the bake's error estimate
+  /// It is added to the running sum (when the bake keeps one): every pass but an inter-reflected
+  /// Haar bake's SH direct pass, which only its first bounce reads.
+  bool summed = true;
 };
 
 /// What pass k reads, prepared once from the whole-domain transfer its PassInput names: that

@@ -1,7 +1,7 @@
 // node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb PROBES.glb PROBES_CPCA.glb
-// HAAR.glb HAAR_TEXEL.glb HAAR_128.glb (a 2 x 2 x 2 probe grid, dense and CPCA-compressed; Haar
-// transfer per vertex over a 4² cube, per texel, and per vertex over a 128² cube, which the
-// browser viewers do not take): writes the malformed
+// HAAR.glb HAAR_TEXEL.glb HAAR_128.glb HAAR_IR.glb (a 2 x 2 x 2 probe grid, dense and
+// CPCA-compressed; Haar transfer per vertex over a 4² cube, per texel, per vertex over a 128²
+// cube, which the browser viewers do not take, and inter-reflected): writes the malformed
 // (and a few valid) bakes of the verdict corpus into OUTDIR, each a mutation of a bake prt wrote
 // (run.sh), named accept_* or reject_* after what the library is meant to answer (verdicts.mjs
 // checks that prt does, so a mutation that stops breaking the file fails the test). The GLB is
@@ -10,9 +10,9 @@ import fs from 'node:fs';
 import path from 'node:path';
 
 const [out, vertexFile, texelFile, cpcaFile, texelCpcaFile, probesFile, probesCpcaFile, haarFile, haarTexelFile,
-       haar128File] = process.argv.slice(2);
-if (!haar128File) {
-  console.error('usage: node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb PROBES.glb PROBES_CPCA.glb HAAR.glb HAAR_TEXEL.glb HAAR_128.glb');
+       haar128File, haarIrFile] = process.argv.slice(2);
+if (!haarIrFile) {
+  console.error('usage: node make_cases.mjs OUTDIR VERTEX.glb TEXEL.glb CPCA.glb TEXEL_CPCA.glb PROBES.glb PROBES_CPCA.glb HAAR.glb HAAR_TEXEL.glb HAAR_128.glb HAAR_IR.glb');
   process.exit(2);
 }
 const EXT = 'PRTKIT_radiance_transfer';
@@ -36,7 +36,7 @@ function writeGlb({ json, bin }, text = JSON.stringify(json)) {
 }
 const bases = { v: readGlb(vertexFile), t: readGlb(texelFile), c: readGlb(cpcaFile), tc: readGlb(texelCpcaFile),
                 p: readGlb(probesFile), pc: readGlb(probesCpcaFile), h: readGlb(haarFile), ht: readGlb(haarTexelFile),
-                h128: readGlb(haar128File) };
+                h128: readGlb(haar128File), hi: readGlb(haarIrFile) };
 const copy = (g) => ({ json: structuredClone(g.json), bin: Buffer.from(g.bin) });
 
 // Helpers on a copy: the bake object, accessors by index or name, element addresses.
@@ -201,6 +201,17 @@ const cases = {
   reject_haar_value_off_the_grid: ['h', (g) => { haarTerm(g, (i, v) => v !== 0, (i, v) => g.bin.writeInt16LE(-32768, v)); }],
   reject_haar_index_floats: ['h', (g) => { g.json.accessors[transferAcc(g, 0, 2)].componentType = 5126; }],
   reject_haar_values_short: ['h', (g) => { g.json.accessors[transferAcc(g, 0, 3)].count -= 1; }],
+  // Inter-reflected Haar transfer (format 9): each row's bounce in SH, a fifth accessor.
+  accept_haar_interreflected: ['hi', () => {}],
+  reject_haar_bounce_in_version_8: ['hi', (g) => { prt(g).formatVersion = 8; }],
+  reject_haar_bounce_without_bounces: ['hi', (g) => { prt(g).transfers[0].settings.bounces = 0; }],
+  reject_haar_bounce_bands_missing: ['hi', (g) => { delete prt(g).transfers[0].settings.haar.bounceBands; }],
+  reject_haar_bounce_bands_6: ['hi', (g) => { prt(g).transfers[0].settings.haar.bounceBands = 6; }],
+  reject_haar_bounce_bands_more_than_stored: ['hi', (g) => { prt(g).transfers[0].settings.haar.bounceBands = 3; }],
+  reject_haar_bounce_on_shadowed: ['h', (g) => { prt(g).transfers[0].settings.haar.bounceBands = 2; }],
+  reject_haar_bounce_nan: ['hi', (g) => setFloat(g, transferAcc(g, 0, 4), 3, 0, NaN)],
+  reject_haar_bounce_short: ['hi', (g) => { g.json.accessors[transferAcc(g, 0, 4)].count -= 1; }],
+  reject_haar_bounce_accessor_missing: ['hi', (g) => { prt(g).transfers[0].accessors.pop(); }],
 };
 
 /** The Haar rows of transfer 0 of g: per row its terms, how many it keeps (its non-zero values,

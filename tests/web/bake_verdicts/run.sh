@@ -5,7 +5,7 @@
 # verdict for every file, every JS refusal one line naming the file. The corpus: the fuzz seeds
 # in CORPUS (fuzz/corpus/bake) and the mutations make_cases.mjs writes of four small bakes made
 # here (vertex and per-texel transfer, dense and CPCA, a probe grid, dense and CPCA, and Haar
-# transfer per vertex, per texel and over a cube finer than the viewers take). Exits 77 (skipped, saying why) without node, web/node_modules or the generated constants.
+# transfer per vertex, per texel, over a cube finer than the viewers take, and inter-reflected). Exits 77 (skipped, saying why) without node, web/node_modules or the generated constants.
 prt=$1 node=$2 gen=$3 work=$4 corpus=$5
 here=$(cd "$(dirname "$0")" && pwd)
 if [ -z "$node" ] || ! command -v "$node" >/dev/null 2>&1; then
@@ -32,6 +32,8 @@ cd "$work" || exit 1
   --cube-resolution 4 --terms 8 -o haar-texel.glb || exit 1
 "$prt" -q bake 'builtin:cornell?grid=2' --mode unshadowed --basis haar --resolution 128 --terms 4 \
   -o haar-128.glb || exit 1
+"$prt" -q bake 'builtin:cornell?grid=2' --mode interreflected --bounces 1 --basis haar --resolution 4 \
+  --terms 8 --bands 2 -o haar-ir.glb || exit 1
 "$node" "$here/make_cases.mjs" cases vertex.glb texel.glb cpca.glb texel-cpca.glb probes.glb probes-cpca.glb \
-  haar.glb haar-texel.glb haar-128.glb || exit 1
+  haar.glb haar-texel.glb haar-128.glb haar-ir.glb || exit 1
 exec "$node" "$here/verdicts.mjs" "$prt" "$gen" "$work" "$corpus"/*.glb cases/*.glb

@@ -2,12 +2,15 @@
 // JavaScript, for tests/web/test_haar_web.cpp to hold to the library (io::decodeBake's rows,
 // haar::turnedLight, relight::relightHaar, io::parseHaarLightJson). QUERY = { rotate: [[X, Y, Z]
 // degrees (prt render --rotate's)...], terms: K }. Prints one JSON object:
-//   rows       the page's reader's rows (web/src/bake.js parseBake, haar_bake.js), flat
+//   rows       the page's reader's rows (web/src/bake.js parseBake, haar_bake.js), flat: per
+//              row the kind, the pairs and, inter-reflected, the bounce
+//   transfer   what the reader made of the transfer: mode, channels, bounceBands
 //   lights     per rotation, the light the page makes from prt web's environment cube
 //              (haar_light.js turnedLight, R from sh.js's rotationEulerXYZ): index, value,
-//              unshadowed, bright, energyKept
+//              unshadowed, bright, energyKept, fullSh (haarLightFullSh: what a bounce is relit
+//              against)
 //   radiance   per rotation, every vertex relit under it (haar_relight.js), in the file's order
-//   file       every vertex relit under LIGHT (parseHaarLight)
+//   file       every vertex relit under LIGHT (parseHaarLight), and that light's fullSh
 //   three      prtkit-three's plugin and HaarLighting under the cube (haarEnvironment), turned by
 //              a THREE.Euler 'ZYX' of the first rotation: every vertex's radiance, and the
 //              refusal of a turned light file
@@ -61,11 +64,13 @@ async function page() {
   for (const r of q.rotate) {
     const light = turnedLight(cube, n, q.terms, rotationEulerXYZ(...r));
     lights.push({ index: Array.from(light.index), value: Array.from(light.value), unshadowed: Array.from(light.unshadowed),
-                  bright: light.bright, energyKept: light.energyKept });
+                  bright: light.bright, energyKept: light.energyKept, fullSh: Array.from(light.fullSh) });
     radiance.push(relightAll(bake, t, light));
   }
-  const file = relightAll(bake, t, parseHaarLight(fs.readFileSync(lightFile, 'utf8'), lightFile));
-  return { rows: Array.from(t.rows), lights, radiance, file };
+  const fileLight = parseHaarLight(fs.readFileSync(lightFile, 'utf8'), lightFile);
+  const file = relightAll(bake, t, fileLight);
+  return { rows: Array.from(t.rows), transfer: { mode: t.mode, channels: t.channels, bounceBands: t.haar.bounceBands },
+           lights, radiance, file, fileFullSh: Array.from(fileLight.fullSh) };
 }
 
 async function module() {

@@ -123,10 +123,12 @@ const haarGltf = await new GLTFLoader().register((parser) => new PRTKitRadianceT
   .parseAsync(bytes('haar.glb'), '');
 const hl = haarGltf.userData.prtkit;
 check(hl instanceof HaarLighting && hl.isHaarLighting, 'a Haar bake gives a HaarLighting');
-check(hl.transfers.length === 1 && hl.transfers[0].basis === 'haar' && hl.transfers[0].resolution === 4 && hl.mode === 'shadowed',
+check(hl.transfers.length === 1 && hl.transfers[0].basis === 'haar' && hl.transfers[0].resolution === 4 && hl.mode === 'shadowed' &&
+      hl.transfers[0].bounceBands === 0 && hl.transfers[0].channels === 1,
       `its transfer (${JSON.stringify(hl.transfers)})`);
 throws(() => hl.update(), /^haar\.glb: no light yet/, 'a Haar relight before setLight');
 const haarSky = parseHaarLight(fs.readFileSync('haar-sky.json', 'utf8'), 'haar-sky.json');
+check(haarSky.fullSh.length === 75 && haarSky.fullSh.every(Number.isFinite), 'a Haar light file carries its full SH (for an inter-reflected bounce)');
 throws(() => hl.setLight(parseHaarLight(fs.readFileSync('haar-sky8.json', 'utf8'), 'haar-sky8.json')),
        /^haar\.glb: the Haar light is over a 8² cube, the bake's transfer over 4²/, 'a Haar light over another cube');
 throws(() => hl.setLight(sky), /^haar\.glb: a Haar bake is relit by haarEnvironment/, 'an SH light for a Haar bake');
@@ -138,7 +140,8 @@ const lit = radiance(haarGltf);
 check(lit.every(Number.isFinite) && lit.some((x) => x > 0), 'the Haar bake is lit, finitely');
 // Linear in the light: twice the light, twice the radiance.
 const doubled = { ...haarSky, value: haarSky.value.map((v) => 2 * v), unshadowed: haarSky.unshadowed.map((v) => 2 * v),
-                 bright: haarSky.bright.map((b) => ({ texel: b.texel, radiance: b.radiance.map((v) => 2 * v) })) };
+                 bright: haarSky.bright.map((b) => ({ texel: b.texel, radiance: b.radiance.map((v) => 2 * v) })),
+                 fullSh: haarSky.fullSh.map((v) => 2 * v) };
 hl.setLight(doubled);
 hl.update();
 check(maxDiff(radiance(haarGltf), lit.map((v) => 2 * v)) < 1e-5 * Math.max(...lit), 'Haar relighting is linear in the light');

@@ -2,8 +2,9 @@
 // loader plugin leaves a HaarLighting in gltf.userData.prtkit, its meshes dressed in materials
 // drawn from per-vertex radiance (the three host's radiance stage). The radiance is made on the
 // CPU, as prt render and the page make it: the light's K largest wavelet terms (web/src/
-// haar_light.js) and each vertex's sparse terms (haar_relight.js), again whenever the light, its
-// rotation (or the bake's placement), the terms or the transfer change.
+// haar_light.js) and each vertex's sparse terms (haar_relight.js) — an inter-reflected
+// transfer's bounce against the light's full SH (haarLightFullSh, made with the light) — again
+// whenever the light, its rotation (or the bake's placement), the terms or the transfer change.
 //
 // The light is either an environment's cube (haarEnvironment: what prt web writes beside each
 // environment of a Haar bake's page), which turns — the environment is resampled at each
@@ -56,11 +57,12 @@ export class HaarLighting {
   /** The transfers the bake holds (in the library's preference order). */
   get transfers() {
     return this._bake.transfers.map((t) => ({ mode: t.mode, layout: t.layout, basis: 'haar', resolution: t.haar.resolution,
-                                              terms: t.haar.terms }));
+                                              terms: t.haar.terms, bounceBands: t.haar.bounceBands, channels: t.channels }));
   }
   /** The bake's meshes (they wear a material drawn from their relit radiance). */
   get meshes() { return this._dressed.map((d) => d.m.mesh); }
-  /** The transfer relit ('unshadowed', 'shadowed'; one the bake lacks gives the library's pick). */
+  /** The transfer relit ('unshadowed', 'shadowed', 'interreflected': the Haar rows and their
+   *  bounce in SH; one the bake lacks gives the library's pick). */
   get mode() { return this._transfer.mode; }
   set mode(mode) { this._transfer = pickTransfer(this._bake.transfers, mode); }
   /** The light's wavelet terms K (default 200), 1 .. 6 N². */
