@@ -128,8 +128,12 @@ TEST_F(Mpi, RgbBouncesAndGlossyMatricesEqualTheSingleProcessFile) {
   const std::string diffuse =
       "bake builtin:cornell --mode interreflected --bounces 1 --transfer matrix --bands 3 "
       "--samples 16";
+  // Inter-reflected Haar: the bounce's SH passes, then the Haar rows that read their sum.
+  const std::string haar =
+      "bake builtin:cornell --mode interreflected --bounces 2 --basis haar --resolution 8 "
+      "--terms 16 --bands 2";
   int ranks = 2;
-  for (const std::string& cmd : {rgb, glossy, diffuse}) {
+  for (const std::string& cmd : {rgb, glossy, diffuse, haar}) {
     ASSERT_EQ(prt(cmd + " -q -o one.glb").rc, 0) << cmd;
     // The matrix bakes as if they did not fit rank 0's memory: it gathers the last pass into a
     // mapped scratch file beside the output, which the writer streams from.
@@ -404,7 +408,10 @@ TEST_F(JobArray, BouncesShardPassByPassAndMergeBitExactly) {
   for (const std::string& bake :
        {std::string("bake builtin:cornell --mode interreflected --bounces 2 --samples 32 -q"),
         std::string("bake builtin:sphere-plane --mode interreflected --bounces 2 --transfer "
-                    "matrix --bands 3 --samples 16 --material 'phong?exponent=8&ks=0.4' -q")}) {
+                    "matrix --bands 3 --samples 16 --material 'phong?exponent=8&ks=0.4' -q"),
+        // Inter-reflected Haar, one bounce: the SH direct pass, the bounce, the Haar rows.
+        std::string("bake builtin:cornell --mode interreflected --bounces 1 --basis haar "
+                    "--resolution 8 --terms 16 --bands 2 -q")}) {
     ASSERT_EQ(prt(bake + " -o one.glb").rc, 0);
     // Pass 0 in 2 shards, pass 1 in 3 reading the merged pass 0, the last in 2.
     for (int i = 0; i < 2; ++i)
