@@ -180,7 +180,8 @@ void addBakeCommand(CLI::App& root) {
       ->allow_extra_args(false)
       ->delimiter(',');
   cmd->add_option("--bands", args->bands,
-                  "SH bands B (B² coefficients; the course's SHOrder 2 = 3 bands)")
+                  "SH bands B (B² coefficients; the course's SHOrder 2 = 3 bands); --basis "
+                  "haar --mode interreflected: the bands of each row's bounce, 1..5")
       ->capture_default_str();
   cmd->add_option("--samples", args->samples,
                   "Directions per vertex (default 1024); --basis haar: rays per cube texel "
