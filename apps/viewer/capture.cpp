@@ -61,9 +61,9 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
   const FrameSummary s = summary();
   std::fprintf(to, "renderer: %s\n", renderer.c_str());
   const Transfer& t = scene.transfer().transfer;
-  std::fprintf(to, "scene: %zu triangles, %zu vertices, %d of %d bands, %s transfer (%s), %s\n",
-               scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(), scene.bands(),
-               scene.bakeBands(), scene.transfer().describe().c_str(),
+  std::fprintf(to, "scene: %zu triangles, %zu vertices, %s, %s transfer (%s), %s\n",
+               scene.bake().mesh.triangleCount(), scene.bake().mesh.vertexCount(),
+               scene.basisText().c_str(), scene.transfer().describe().c_str(),
                t.channels() == 3 ? "RGB" : "scalar", scene.material().spec().c_str());
   std::fprintf(to, "transfer upload: %s\n", upload.c_str());
   std::fprintf(to, "frames: %zu at %dx%d; first frame %.2f ms (uploads)\n", s.frames, width, height,

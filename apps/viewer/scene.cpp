@@ -475,4 +475,12 @@ std::string SceneView::uploadSummary(const Scene& scene) const {
   }
 }
 
+std::string Scene::basisText() const {
+  const Transfer& t = transfer().transfer;
+  if (t.isHaar())
+    return fmt::format("Haar {}² cube, {} terms a row", t.shape().haar.resolution,
+                       t.shape().haar.terms);
+  return fmt::format("{} of {} bands", bands_, bakeBands_);
+}
+
 }  // namespace prt::viewer

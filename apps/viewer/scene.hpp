@@ -134,6 +134,9 @@ class Scene {
   int environmentIndex() const { return env_; }
   int bakeBands() const { return bakeBands_; }
   int bands() const { return bands_; }
+  /// The basis the transfer is relit in, for messages: "3 of 5 bands", or a Haar bake's
+  /// "Haar 32² cube, 64 terms a row".
+  std::string basisText() const;
 
   /// Selects transfer k of the panel's list; its material comes with it unless
   /// overrideMaterial was called.

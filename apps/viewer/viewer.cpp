@@ -180,9 +180,8 @@ void runHeadless(Scene& scene, const Options& o, const Output& out) {
     throw Error(fmt::format("OpenGL error 0x{:x} while rendering", e));
   if (!o.screenshot.empty()) {
     writeScreenshot(o.screenshot, target.readEncoded(), view.renderer().readLinear());
-    out.info(fmt::format("wrote {} ({}x{}, {} bands, {} transfer, {})", o.screenshot, o.width,
-                         o.height, scene.bands(), scene.transfer().describe(),
-                         scene.material().spec()));
+    out.info(fmt::format("wrote {} ({}x{}, {}, {} transfer, {})", o.screenshot, o.width, o.height,
+                         scene.basisText(), scene.transfer().describe(), scene.material().spec()));
   }
   stats.path = view.path();
   if (o.stats)
