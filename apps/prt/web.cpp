@@ -571,8 +571,10 @@ Json writeWebViewer(const WebOptions& a) {
                                   formatJson(data, 0) + ";\n");
   folder.commit();
   const std::string shown = a.reportAs.empty() ? a.output : a.reportAs;
-  info(fmt::format("wrote {} (open {} in a browser; {} environment(s), {} bands{})", shown,
-                   (fs::path(shown) / "index.html").string(), envs.size(), bands,
+  const std::string basis = haarResolution > 0 ? fmt::format("a Haar {}² cube", haarResolution)
+                                               : fmt::format("{} bands", bands);
+  info(fmt::format("wrote {} (open {} in a browser; {} environment(s), {}{})", shown,
+                   (fs::path(shown) / "index.html").string(), envs.size(), basis,
                    embed ? ""
                          : fmt::format("; the bake, {:.0f} MB, is beside it as {}: serve the "
                                        "folder over http, e.g. python3 -m http.server -d {}",
