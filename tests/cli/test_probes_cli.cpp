@@ -201,8 +201,12 @@ TEST_F(ProbesCli, ProbeGridExportsAreTheRelitGridInEachEnginesConvention) {
         const int i = 4 * t + c;  // of the 27 floats and a trailing 0
         const float want = i < 27 ? three["probes"][p * 27 + i].get<float>() : 0.0f;
         EXPECT_FLOAT_EQ(texel(x, y, t * block + 1 + z, c), want) << p << " t " << t;
-        if (z == 0) EXPECT_FLOAT_EQ(texel(x, y, t * block, c), want);
-        if (z == nz - 1) EXPECT_FLOAT_EQ(texel(x, y, t * block + nz + 1, c), want);
+        if (z == 0) {
+          EXPECT_FLOAT_EQ(texel(x, y, t * block, c), want);
+        }
+        if (z == nz - 1) {
+          EXPECT_FLOAT_EQ(texel(x, y, t * block + nz + 1, c), want);
+        }
       }
   }
   const Vec3f dirs[] = {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {0.6f, 0.0f, -0.8f},

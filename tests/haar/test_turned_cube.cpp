@@ -139,7 +139,9 @@ TEST(TurnedCube, RelightsAsTheLightProjectedFromTheEnvironment) {
     // Turned the other way, the sun's shadow falls elsewhere.
     const std::vector<Rgb> wrong = relight::relightHaar(
         t, turnedLight(cube, 16, kDefaultLightTerms, r.transposed()), mesh.normals, {});
-    if (!(r == Mat3d::identity())) EXPECT_GT(rel(wrong, exact), 10 * e + 0.02);
+    if (!(r == Mat3d::identity())) {
+      EXPECT_GT(rel(wrong, exact), 10 * e + 0.02);
+    }
   }
   std::cout << "the turned light against projectLight's, relit (sphere over a plane, builtin:sky, "
                "16² cube): worst rel. RMSE "

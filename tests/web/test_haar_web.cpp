@@ -192,7 +192,9 @@ Json checkJavaScript(const std::string& node, const std::string& name) {
     const double e = relativeError(js["page"]["radiance"][k], flat(lib));
     EXPECT_LT(e, kRelative);
     worst = std::max(worst, e);
-    if (k == 0) EXPECT_LT(relativeError(js["three"]["radiance"], flat(lib)), kRelative);
+    if (k == 0) {
+      EXPECT_LT(relativeError(js["three"]["radiance"], flat(lib)), kRelative);
+    }
   }
   // Under a Haar light file.
   const std::vector<prt::Rgb> file = prt::relight::relightHaar(
