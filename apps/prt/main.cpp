@@ -6,7 +6,6 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <iostream>
 #include <mutex>
 
 #include <unistd.h>
@@ -18,6 +17,7 @@
 #include "prt/core/limits.hpp"
 #include "prt/core/parallel.hpp"
 #include "prt/core/version.hpp"
+#include "stderr_line.hpp"
 
 namespace prt::cli {
 
@@ -27,12 +27,12 @@ Globals& globals() {
 }
 
 void info(const std::string& line) {
-  if (!globals().quiet) std::cerr << line << '\n';
+  if (!globals().quiet) printLine(line);
 }
 
 void warn(const std::string& line) {
   if (globals().silent) return;
-  std::cerr << "prt: warning: " << oneLine(line) << '\n';
+  printLine("prt: warning: " + oneLine(line));
 }
 
 namespace {
@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
   // What the writers did besides writing (a stale temporary of a killed run removed): always
   // said, as it touched the disk.
   prt::setFileNoteHandler(
-      [](const std::string& line) { std::cerr << "prt: note: " << oneLine(line) << '\n'; });
+      [](const std::string& line) { printLine("prt: note: " + oneLine(line)); });
   std::unique_ptr<prt::ThreadLimit> limit;
   app.parse_complete_callback([&] { limit = std::make_unique<prt::ThreadLimit>(g.threads); });
 
@@ -206,17 +206,16 @@ int main(int argc, char** argv) {
         std::string verbs;
         for (const CLI::App* sub : app.get_subcommands({}))
           verbs += (verbs.empty() ? "" : ", ") + sub->get_name();
-        std::cerr << "prt: error: unknown verb '" << oneLine(a, 60) << "' (one of: " << verbs
-                  << ")\n";
+        printLine("prt: error: unknown verb '" + oneLine(a, 60) + "' (one of: " + verbs + ")");
         return e.get_exit_code();
       }
     }
-    std::cerr << verb << ": error: " << oneLine(e.what()) << " (see " << verb << " --help)\n";
+    printLine(verb + ": error: " + oneLine(e.what()) + " (see " + verb + " --help)");
     return e.get_exit_code();
   } catch (const QuietFailure&) {
     return 1;
   } catch (const prt::Cancelled&) {
-    std::cerr << "\nprt: cancelled\n";
+    printLine("\nprt: cancelled");
     return 130;
   } catch (const std::bad_alloc&) {
     // No allocation may be left to build a message with: fixed text only.
@@ -227,7 +226,7 @@ int main(int argc, char** argv) {
                  verb.c_str(), activity(verb));
     return 1;
   } catch (const prt::Error& e) {
-    std::cerr << verbName(app) << ": error: " << oneLine(e.what()) << '\n';
+    printLine(verbName(app) + ": error: " + oneLine(e.what()));
     return 1;
   } catch (const std::exception& e) {
     // Not one of our messages (std::stoull's "stoull", a filesystem_error, ...): say what kind
@@ -237,8 +236,8 @@ int main(int argc, char** argv) {
                        : dynamic_cast<const std::invalid_argument*>(&e) ? "a value is malformed"
                        : dynamic_cast<const std::length_error*>(&e)     ? "a size is too large"
                                                                         : "unexpected failure";
-    std::cerr << verb << ": error: " << kind << " while " << activity(verb) << " ("
-              << oneLine(e.what(), 200) << ")\n";
+    printLine(verb + ": error: " + kind + " while " + activity(verb) + " (" +
+              oneLine(e.what(), 200) + ")");
     return 1;
   }
   return 0;

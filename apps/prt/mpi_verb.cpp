@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <iostream>
 
 #if PRT_HAVE_MPI
 #include <signal.h>
@@ -16,6 +15,7 @@
 
 #include "cli.hpp"
 #include "prt/core/error.hpp"
+#include "stderr_line.hpp"
 
 namespace prt::cli {
 
@@ -109,8 +109,7 @@ MpiVerb::MpiVerb(const std::string& verb, bool refuseCopies) {
   // be computing: so _exit, not exit (no static destructors or atexit handlers, MPI's among
   // them, racing that thread); the runtime then ends the other ranks.
   session_ = std::make_unique<distributed::Session>(verb, [verb](const std::string& line) {
-    std::cerr << verb << ": error: " << line << std::endl;
-    std::fflush(stderr);
+    printLine(verb + ": error: " + line);
     ::_exit(kExitRankDied);
   });
   if (session_->root()) {
