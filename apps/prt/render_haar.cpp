@@ -9,10 +9,9 @@
 #include "prt/io/haar_light_file.hpp"
 #include "prt/io/lighting.hpp"
 #include "prt/raytrace/occluder.hpp"
-#include "prt/relight/relight_haar.hpp"
 #include "prt/render/exposure.hpp"
+#include "prt/render/haar_shader.hpp"
 #include "prt/render/primary.hpp"
-#include "prt/render/texel_points.hpp"
 
 namespace prt::cli {
 
@@ -43,27 +42,11 @@ void renderHaarBake(const BakeFile& bake, const BakedTransfer& baked, const Mate
                                "folder or builtin:NAME) or a Haar light (prt light --basis haar)");
     light = haar::projectLight(*lighting->image, n, std::size_t(a.lightTerms), a.rotation);
   }
-  // Per vertex: the rows relit with the albedo at the vertices, blended across triangles. Per
-  // texel: relit white at the texels' normals and fetched bilinearly, the albedo multiplied per
-  // pixel (render::texelRelight, as for SH).
+  // Drawn as prt view draws it (render/haar_shader.hpp).
   const auto occluder = makeEmbreeOccluder(bake.mesh);
   std::vector<Rgb> radiance;
-  render::ShadeFn shade;
-  if (transfer.domain() == TransferDomain::Texels) {
-    const render::TexelRelight texels =
-        render::texelRelight(bake.mesh, *occluder, transfer, material);
-    radiance = relight::relightHaar(transfer, light, texels.points.normals, material.diffuseOr({}));
-    render::checkFiniteRadiance(radiance, a.bake, "texel");
-    const auto& lm = transfer.shape().lightmap;
-    shade =
-        render::texelRadianceShader(bake.mesh, radiance, lm.width, lm.height, texels.pixelAlbedo);
-  } else {
-    const std::vector<Rgb> albedoAtRows = albedoAtVertices(bake.mesh);
-    radiance =
-        relight::relightHaar(transfer, light, bake.mesh.normals, material.diffuseOr(albedoAtRows));
-    render::checkFiniteRadiance(radiance, a.bake);
-    shade = render::vertexRadianceShader(bake.mesh, radiance);
-  }
+  const render::ShadeFn shade =
+      render::haarShader(bake.mesh, *occluder, transfer, material, light, radiance, a.bake);
   render::Camera camera = render::frameMesh(bake.mesh, a.frame.width, a.frame.height);
   if (!a.camera.empty()) camera = render::parseCamera(a.camera, camera);
   image::WriteOptions write = a.write;

@@ -216,7 +216,7 @@ std::optional<sh::IrradianceEncoding> openingEncoding(const WebOptions& a, const
 void checkHaarForPage(const WebOptions& a, const BakeFile& bake) {
   bake.requireComplete(a.bake);
   bake.requireVertices(a.bake,
-                       "the page relights Haar transfer per vertex (prt render draws a "
+                       "the page relights Haar transfer per vertex (prt render and prt view draw a "
                        "per-texel one)");
   const int n = bake.transfers.front().transfer.shape().haar.resolution;
   if (n > haar::kMaxTurnedResolution)

@@ -72,10 +72,13 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
                s.minMs);
   const bool table = path == ShaderPath::CpcaVector || path == ShaderPath::CpcaMatrix;
   const bool perPixel = relight::drawnPerPixel(t);
+  // Relit on the CPU: glossy matrices, a probe grid, Haar transfer (per texel drawn through the
+  // dense per-pixel path, its relit lightmap uploaded as the rows).
+  const bool cpuRelit = path == ShaderPath::CpuRadiance || t.isHaar();
   std::fprintf(to, "CPU per frame (light rotation + packing%s): median %.4f ms\n",
-               table                             ? " + cluster projections"
-               : path == ShaderPath::CpuRadiance ? " + CPU relighting"
-                                                 : "",
+               table      ? " + cluster projections"
+               : cpuRelit ? " + CPU relighting"
+                          : "",
                s.cpuMedianMs);
   if (path == ShaderPath::CpcaMatrix && perPixel) {
     std::fprintf(
@@ -85,8 +88,7 @@ void FrameStats::print(const std::string& renderer, const Scene& scene, int widt
   } else if (path == ShaderPath::DenseMatrix || path == ShaderPath::CpcaMatrix) {
     std::fprintf(
         to, "glossy relighting: in the vertex shader (--glossy-on gpu), inside the frame time\n");
-  } else if (path == ShaderPath::CpuRadiance) {
-    // What the CPU relights: glossy matrices, a probe grid, or Haar transfer.
+  } else if (cpuRelit) {
     const char* what = t.isHaar()          ? "Haar relighting (CPU haar::turnedLight + "
                                              "relight::relightHaar + radiance upload)"
                        : scene.probeBake() ? "probe relighting (CPU relight::relightProbes + "

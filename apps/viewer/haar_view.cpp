@@ -4,7 +4,8 @@
 
 #include "prt/haar/project_light.hpp"
 #include "prt/haar/resolution.hpp"
-#include "prt/relight/relight_haar.hpp"
+#include "prt/raytrace/occluder.hpp"
+#include "prt/render/texel_points.hpp"
 
 namespace prt::viewer {
 
@@ -30,10 +31,9 @@ haar::HaarLight HaarViewLight::at(const Mat3d& rotation) const {
   return haar::turnedLight(*cube_, resolution_, lightTerms(resolution_), rotation);
 }
 
-std::vector<Rgb> haarViewRadiance(const Mesh& mesh, const Transfer& transfer,
-                                  const Material& material, const haar::HaarLight& light) {
-  const std::vector<Rgb> albedo = albedoAtVertices(mesh);
-  return relight::relightHaar(transfer, light, mesh.normals, material.diffuseOr(albedo));
+std::vector<Vec3f> haarTexelNormals(const Mesh& mesh, const Transfer& transfer) {
+  const auto occluder = makeEmbreeOccluder(mesh);
+  return render::texelRelight(mesh, *occluder, transfer, Material{}).points.normals;
 }
 
 }  // namespace prt::viewer

@@ -1,13 +1,16 @@
 #pragma once
-// What prt view draws of a Haar bake (issue 33; docs/haar.md): each vertex relit on the CPU as
-// prt render relights it — the environment's kHaarViewLightTerms largest area-weighted wavelet
-// terms over the transfer's cube against the rows' sparse terms (relight::relightHaar) —
-// uploaded as exit radiance (the CpuRadiance path: the shader interpolates it). A turned light
-// is the environment resampled turned, not a rotation in the basis: HaarViewLight keeps the
-// environment's cube four times finer than the transfer's (haar/turned_cube.hpp, as the browser
-// viewers do) and splats it at each turn, 1.7–3.9× faster than projecting the environment again
-// (bench BM_HaarTurnLight) and relit to 0.05% of it; a cube past haar::kMaxTurnedResolution
-// projects the environment at each turn (haar::projectLight). Nothing is re-baked.
+// What prt view draws of a Haar bake (issue 33; docs/haar.md): each row relit on the CPU as
+// prt render relights it (render::haarRadiance, render/haar_shader.hpp) under the environment's
+// kHaarViewLightTerms largest area-weighted wavelet terms over the transfer's cube. Per vertex
+// the radiance is uploaded as exit radiance (the CpuRadiance path: the shader interpolates it);
+// per texel as a one-band lightmap against the light's first coefficient, drawn per pixel as SH
+// lightmaps are (relight::packRadianceLightmap: prt render's bilinear fetch, the albedo and the
+// base-colour texture per pixel). A turned light is the environment resampled turned, not a
+// rotation in the basis: HaarViewLight keeps the environment's cube four times finer than the
+// transfer's (haar/turned_cube.hpp, as the browser viewers do) and splats it at each turn,
+// 1.7–3.9× faster than projecting the environment again (bench BM_HaarTurnLight) and relit to
+// 0.05% of it; a cube past haar::kMaxTurnedResolution projects the environment at each turn
+// (haar::projectLight). Nothing is re-baked.
 
 #include <cstddef>
 #include <optional>
@@ -44,10 +47,10 @@ class HaarViewLight {
   std::optional<haar::EnvironmentCube> cube_;
 };
 
-/// The exit radiance of each of `mesh`'s vertices: the Haar transfer relit under `light` with
-/// the material's kd, else the mesh's albedo at its vertices (its texture folded in), as prt
-/// render draws it.
-std::vector<Rgb> haarViewRadiance(const Mesh& mesh, const Transfer& transfer,
-                                  const Material& material, const haar::HaarLight& light);
+/// A per-texel Haar bake's texels, as prt render relights them (render::texelRelight): each
+/// row's normal — a covered texel's own, a gutter texel its neighbour's, whose row it copies —
+/// since an occluded-part row adds the unshadowed light at its normal. Traces the
+/// inside-geometry probe that places the texels (once per bake).
+std::vector<Vec3f> haarTexelNormals(const Mesh& mesh, const Transfer& transfer);
 
 }  // namespace prt::viewer

@@ -19,6 +19,7 @@
 #include "prt/raytrace/occluder.hpp"
 #include "prt/relight/relight.hpp"
 #include "prt/render/base_colour.hpp"
+#include "prt/render/haar_shader.hpp"
 #include "prt/render/texel_points.hpp"
 
 namespace prt::viewer {
@@ -74,8 +75,7 @@ BakeFile Scene::readCheckedBake(const std::string& path) {
     throw Error(path, "the bake holds no transfer (bake it with prt bake --mode ...)");
   bake.requireComplete(path);
   if (bake.transfers.front().transfer.isHaar()) {
-    // Relit on the CPU (haar_view.hpp); a file holds one basis.
-    bake.requireVertices(path, "prt view relights Haar transfer per vertex");
+    // Relit on the CPU, per vertex or per texel (haar_view.hpp); a file holds one basis.
     return bake;
   }
   for (const BakedTransfer& t : bake.transfers) {
@@ -334,18 +334,41 @@ void SceneView::useCpuRadiance(std::size_t vertices) {
 
 FrameParams SceneView::prepareHaar(const Scene& scene, const DrawState& now, int width,
                                    int height) {
-  const bool newMesh = now.bake != drawn_.bake;
+  const Mesh& mesh = now.bake->mesh;
+  const Transfer& t = now.transfer->transfer;
+  const bool perTexel = relight::drawnPerPixel(t);
+  // Per texel the albedo multiplies per pixel unless the material's kd replaces it (then kd is
+  // in the relit radiance, and the mesh is drawn white: render::texelAlbedo's rule).
+  const bool white = perTexel && now.material.diffuse && !mesh.albedo.empty();
+  const bool newMesh = now.bake != drawn_.bake || white != haarWhiteMesh_;
   const bool newTransfer = newMesh || now.transfer != drawn_.transfer;
   const bool newLight = now.environment != drawn_.environment || !(now.material == drawn_.material);
-  if (newMesh) renderer_.setMesh(now.bake->mesh);
-  if (newTransfer) useCpuRadiance(now.bake->mesh.vertexCount());
+  if (newMesh) {
+    if (white) {
+      Mesh shown = mesh;
+      shown.albedo.clear();
+      renderer_.setMesh(shown);
+    } else {
+      renderer_.setMesh(mesh);
+    }
+    haarWhiteMesh_ = white;
+  }
+  if (newTransfer) {
+    if (perTexel) {
+      haarTexelNormals_ = haarTexelNormals(mesh, t);
+      path_ = relight::ShaderPath::DenseVector;  // each relight uploads its radiance lightmap
+      cpuView_.reset();
+    } else {
+      haarTexelNormals_.clear();
+      useCpuRadiance(mesh.vertexCount());
+    }
+  }
   uploadEnvironment(scene, now);
   drawn_ = now;
 
   const auto t0 = std::chrono::steady_clock::now();
   FrameParams f = beginFrame(scene, now, width, height);
   if (newTransfer || newLight || !(f.lightRotation == haarRotation_)) {
-    const Transfer& t = now.transfer->transfer;
     PRT_CHECK(now.environment && now.environment->lighting.image,
               "a Haar bake is relit from an environment image (Scene::addEnvironment)");
     const envmap::Environment& env = *now.environment->lighting.image;
@@ -355,15 +378,25 @@ FrameParams SceneView::prepareHaar(const Scene& scene, const DrawState& now, int
       haarLightFor_ = now.environment;  // held: the light keeps a pointer into it
     }
     const haar::HaarLight light = haarLight_->at(f.lightRotation);
-    shadedRadiance_ = haarViewRadiance(now.bake->mesh, t, now.material, light);
-    renderer_.setRadiance(shadedRadiance_);
+    if (perTexel) {
+      const TransferShape::LightmapSize& lm = t.shape().lightmap;
+      shadedRadiance_ = render::haarRadiance(mesh, t, now.material, light, haarTexelNormals_);
+      renderer_.setTransfer(
+          relight::packRadianceLightmap(shadedRadiance_, lm, packer_.rotated()[0]),
+          relight::radianceLightmapShape(lm));
+    } else {
+      shadedRadiance_ = render::haarRadiance(mesh, t, now.material, light);
+      renderer_.setRadiance(shadedRadiance_);
+    }
     haarRotation_ = f.lightRotation;
     haarLightTerms_ = light.terms();
     ++shadedRelights_;
     relightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   lightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  f.baseColour = false;  // folded into the vertices' albedo, as prt render draws a Haar bake
+  // Per vertex the base-colour texture is folded into the vertices' albedo, as prt render draws
+  // a Haar bake; per texel it multiplies per pixel.
+  f.baseColour = perTexel && render::pixelTexture(mesh, now.material) != nullptr;
   return f;
 }
 
@@ -425,6 +458,8 @@ std::size_t SceneView::lightUploadBytes() const {
     case relight::ShaderPath::CpuRadiance:
       return sizeof(Rgb) * (cpuView_ ? cpuView_->radiance().size() : shadedRadiance_.size());
     default:
+      // A per-texel Haar bake's relit lightmap, one (r, g, b, 0) texel each.
+      if (!haarTexelNormals_.empty()) return 16 * haarTexelNormals_.size() + packer_.bytes();
       return packer_.bytes();
   }
 }
@@ -445,10 +480,12 @@ std::string SceneView::uploadSummary(const Scene& scene) const {
   const std::string upload = bytesText(t.rowCount() * renderer_.bytesPerVertex());
   if (t.isHaar())
     return fmt::format(
-        "Haar transfer ({}² cube, {} terms a vertex, {} B stored) relit on the CPU under the "
-        "light's {} largest terms: {} bytes of radiance per vertex per relit frame",
-        t.shape().haar.resolution, t.shape().haar.terms,
-        t.rowCount() ? t.bytes() / t.rowCount() : 0, haarLightTerms_, sizeof(Rgb));
+        "Haar transfer ({}² cube, {} terms a {}, {} B stored) relit on the CPU under the "
+        "light's {} largest terms: {} bytes of radiance per {} per relit frame{}",
+        t.shape().haar.resolution, t.shape().haar.terms, row,
+        t.rowCount() ? t.bytes() / t.rowCount() : 0, haarLightTerms_,
+        relight::drawnPerPixel(t) ? 16 : sizeof(Rgb), row,
+        relight::drawnPerPixel(t) ? ", drawn" + where : std::string());
   if (t.domain() == TransferDomain::Probes)
     return fmt::format(
         "{} relit on the CPU, then the scene, the object and the markers shaded through them: "

@@ -287,6 +287,10 @@ class SceneView {
   std::shared_ptr<const EnvironmentEntry> haarLightFor_;
   Mat3d haarRotation_;  ///< the light rotation the Haar radiance (shadedRadiance_) was relit at
   std::size_t haarLightTerms_ = 0;
+  /// A per-texel Haar bake: the normals its rows are relit at (haarTexelNormals), and whether
+  /// the mesh was uploaded white (a kd replaces its albedo per pixel).
+  std::vector<Vec3f> haarTexelNormals_;
+  bool haarWhiteMesh_ = false;
 };
 
 }  // namespace prt::viewer

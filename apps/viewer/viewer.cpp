@@ -20,7 +20,9 @@
 #include "prt/geometry/load.hpp"
 #include "prt/image/image.hpp"
 #include "prt/image/image_io.hpp"
+#include "prt/raytrace/occluder.hpp"
 #include "prt/render/exposure.hpp"
+#include "prt/render/haar_shader.hpp"
 #include "prt/sh/rotate.hpp"
 #include "prt/sh/sh.hpp"
 #include "scene.hpp"
@@ -122,11 +124,14 @@ Scene loadScene(const Options& o, const Output& out) {
     const Mesh& mesh = scene.bake().mesh;
     const Transfer& t = scene.transfer().transfer;
     const EnvironmentEntry& env = scene.environment(std::size_t(scene.environmentIndex()));
-    const std::vector<Rgb> radiance = haarViewRadiance(
-        mesh, t, scene.material(),
-        haarRenderLight(*env.lighting.image, t.shape().haar.resolution, scene.lightRotation()));
-    const render::FrameSurvey survey = vertexRadianceSurvey(mesh, radiance, scene.orbit.camera(),
-                                                            o.width, o.height, scene.toneMap);
+    const auto occluder = makeEmbreeOccluder(mesh);
+    std::vector<Rgb> radiance;
+    const render::ShadeFn shade = render::haarShader(
+        mesh, *occluder, t, scene.material(),
+        haarRenderLight(*env.lighting.image, t.shape().haar.resolution, scene.lightRotation()),
+        radiance, o.bake);
+    const render::FrameSurvey survey = render::surveyFrame(*occluder, shade, scene.orbit.camera(),
+                                                           o.width, o.height, scene.toneMap);
     scene.exposureStops = survey.exposureStops;
     const std::string ringing = render::negativeRadianceWarning(survey.negativeShare);
     if (!ringing.empty()) out.warn(ringing + " (the first view)");

@@ -177,6 +177,39 @@ void evalPackedRow(const ShaderRows& rows, const std::vector<float>& table, int 
   }
 }
 
+ShaderRows packRadianceLightmap(std::span<const Rgb> radiance,
+                                const TransferShape::LightmapSize& lightmap, const Rgb& lightDc) {
+  if (radiance.size() != lightmap.texels())
+    throw Error(std::to_string(radiance.size()) + " radiance values for a " +
+                std::to_string(lightmap.width) + " x " + std::to_string(lightmap.height) +
+                " lightmap");
+  ShaderRows out;
+  out.path = ShaderPath::DenseVector;
+  out.texelsPerRow = 1;  // RGB at one band: one (r, g, b, 0) texel
+  out.channels = 3;
+  out.perPixel = true;
+  out.lightmap = lightmap;
+  const auto inverse = [](float l) { return l != 0.0f ? 1.0f / l : 0.0f; };
+  const Rgb scale(inverse(lightDc.x), inverse(lightDc.y), inverse(lightDc.z));
+  out.rgba.assign(4 * radiance.size(), 0.0f);
+  for (std::size_t r = 0; r < radiance.size(); ++r) {
+    const Rgb t = radiance[r] * scale;
+    float* dst = out.rgba.data() + 4 * r;
+    dst[0] = t.x, dst[1] = t.y, dst[2] = t.z;
+  }
+  return out;
+}
+
+TransferShape radianceLightmapShape(const TransferShape::LightmapSize& lightmap) {
+  TransferShape shape;
+  shape.domain = TransferDomain::Texels;
+  shape.bands = 1;
+  shape.channels = 3;
+  shape.rows = {0, lightmap.texels()};
+  shape.lightmap = lightmap;
+  return shape;
+}
+
 Rgb evalPerPixel(const ShaderRows& rows, std::span<const float> light, int bands,
                  const std::vector<float>& table, Vec2f uv) {
   PRT_CHECK(rows.perPixel, "evalPerPixel of per-vertex rows");

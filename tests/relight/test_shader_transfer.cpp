@@ -261,5 +261,44 @@ TEST(ShaderTransfer, PerTexelRowsRelitPerPixelAreTheBilinearFetchOfTheRelitTexel
   }
 }
 
+TEST(ShaderTransfer, RadianceLightmapDrawnAgainstTheLightsFirstCoefficientIsTheRadiance) {
+  // A per-texel Haar bake is relit on the CPU into one radiance a texel; the viewer draws it
+  // through the dense per-pixel path as a one-band transfer R / L'_00 against the turned light:
+  // at any turn what the stage computes is the bilinear fetch of R (render's).
+  const TransferShape::LightmapSize lm{6, 4, 0};
+  Pcg32 rng(17);
+  std::vector<Rgb> radiance(lm.texels());
+  for (Rgb& r : radiance) r = Rgb(rng.uniform() * 3.0f, rng.uniform(), rng.uniform() - 0.1f);
+  sh::RgbSh light = randomLight(3, 5);
+  light.c[0] = Rgb(2.5f, 0.75f, 0.0f);  // a black channel: its radiance is zero too
+  for (std::size_t i = 0; i < radiance.size(); ++i) radiance[i].z = 0.0f;
+  const TransferShape shape = relight::radianceLightmapShape(lm);
+  EXPECT_EQ(shape.rowCount(), lm.texels());
+  EXPECT_EQ(shape.bands, 1);
+  EXPECT_EQ(shape.channels, 3);
+  for (const Mat3d& turn : {Mat3d::identity(), rotationEulerXYZ(20, 130, -40)}) {
+    relight::LightPacker packer;
+    packer.setLight(light);
+    packer.pack(turn, 1);
+    const relight::ShaderRows rows =
+        relight::packRadianceLightmap(radiance, lm, packer.rotated()[0]);
+    ASSERT_TRUE(rows.perPixel);
+    EXPECT_EQ(rows.path, ShaderPath::DenseVector);
+    EXPECT_EQ(rows.texelsPerRow, 1);
+    const std::span<const float> packed(packer.data(), packer.bytes() / sizeof(float));
+    double worst = 0;
+    for (int k = 0; k < 200; ++k) {
+      const Vec2f uv(rng.uniform() * 1.2f - 0.1f, rng.uniform() * 1.2f - 0.1f);
+      const TexelTaps taps = bilinearTaps(uv, lm.width, lm.height);
+      Rgb want(0.0f);
+      for (int q = 0; q < 4; ++q) want += radiance[taps.texel[q]] * taps.weight[q];
+      const Rgb got = relight::evalPerPixel(rows, packed, 1, {}, uv);
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(got[c]) - want[c]));
+    }
+    EXPECT_LT(worst, 1e-5);
+  }
+  EXPECT_THROW(relight::packRadianceLightmap(std::vector<Rgb>(5), lm, Rgb(1.0f)), Error);
+}
+
 }  // namespace
 }  // namespace prt

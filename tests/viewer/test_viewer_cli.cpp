@@ -277,7 +277,11 @@ TEST(ViewCli, BaseColourTextureMultipliesPerPixelInEveryPath) {
            "-q bake '" + obj + "' --mode shadowed --bands 3 --samples 64 " + texels + " -o ttv.glb",
            "-q bake '" + obj + "' --mode shadowed --transfer matrix --bands 3 --samples 64 " +
                texels + " " + lobe + " -o ttg.glb",
-           "-q compress ttg.glb --clusters 4 --pca 3 -o ttgc.glb"}) {
+           "-q compress ttg.glb --clusters 4 --pca 3 -o ttgc.glb",
+           "-q bake '" + obj + "' --mode shadowed --basis haar --cube-resolution 8 --terms 32 " +
+               texels + " -o tth.glb",
+           "-q bake '" + plain + "' --mode shadowed --basis haar --cube-resolution 8 --terms 32 " +
+               texels + " -o tph.glb"}) {
     const Result r = prt(bake);
     ASSERT_EQ(r.rc, 0) << bake << "\n" << r.err;
   }
@@ -288,7 +292,7 @@ TEST(ViewCli, BaseColourTextureMultipliesPerPixelInEveryPath) {
   };
   for (const Case& c :
        {Case{"tv.glb", ""}, Case{"tg.glb", "--glossy-on cpu"}, Case{"tg.glb", "--glossy-on gpu"},
-        Case{"tgc.glb", ""}, Case{"ttv.glb", ""}, Case{"ttgc.glb", ""}}) {
+        Case{"tgc.glb", ""}, Case{"ttv.glb", ""}, Case{"ttgc.glb", ""}, Case{"tth.glb", ""}}) {
     const double e = compareWithRender(path(c.bake), close, c.view);
     std::printf("textured %s %s, view vs render: RMSE %.4f\n", c.bake.c_str(), c.view.c_str(), e);
     EXPECT_LT(e, kMatch) << c.bake << " " << c.view;
@@ -309,6 +313,15 @@ TEST(ViewCli, BaseColourTextureMultipliesPerPixelInEveryPath) {
   const double off = displayedRmse(path("textured.png"), path("plain.png"));
   std::printf("the texture left out: RMSE %.4f\n", off);
   EXPECT_GT(off, 4 * kMatch);
+  // And per-texel Haar transfer: prt render multiplies the texture per pixel too.
+  for (const char* haar : {"tth", "tph"})
+    ASSERT_EQ(prt("-q render '" + path(std::string(haar) + ".glb") + "' " + std::string(kSize) +
+                  " " + close + " -o " + haar + ".png")
+                  .rc,
+              0);
+  const double haarOff = displayedRmse(path("tth.png"), path("tph.png"));
+  std::printf("per-texel Haar, the texture left out: RMSE %.4f\n", haarOff);
+  EXPECT_GT(haarOff, 4 * kMatch);
 }
 
 // Compressed glossy matrices: on the CPU by relight::Relighter (the default), or in the
@@ -448,6 +461,42 @@ TEST(ViewCli, HaarBakeMatchesRenderUnderATurnedLight) {
   expectCleanFailure(view + " --light sky3.json", "sky3.json: is an SH light file");
   expectCleanFailure(view + " --bands 2", "holds Haar transfer");
   expectCleanFailure(view + " --background sh", "holds Haar transfer");
+}
+
+TEST(ViewCli, PerTexelHaarBakeRelitPerPixelMatchesRender) {
+  // A per-texel Haar bake: every texel relit on the CPU at its normal (a gutter texel at its
+  // neighbour's), uploaded as a one-band lightmap against the light's first coefficient and
+  // fetched per pixel as an SH lightmap is, the Cornell box's wall colours multiplied per pixel
+  // — prt render's image (render/haar_shader.hpp), under turned lights, bounces and a kd that
+  // replaces the walls' colours.
+  PRT_REQUIRE_HEADLESS_GL();
+  const Result b =
+      prt("-q bake 'builtin:cornell?grid=8' --mode shadowed --mode interreflected --bounces 1 "
+          "--basis haar --domain texels --resolution 64 --cube-resolution 16 --terms 48 "
+          "-o haar-texels.glb");
+  ASSERT_EQ(b.rc, 0) << b.err;
+  const std::string bake = path("haar-texels.glb");
+  EXPECT_LT(compareWithRender(bake, "--mode shadowed --light builtin:sky"), kMatch);
+  EXPECT_LT(compareWithRender(bake, "--mode shadowed --light builtin:sky --rotate 20,150,0"),
+            kMatch);
+  EXPECT_LT(compareWithRender(bake, "--mode interreflected --light builtin:studio"), kMatch);
+  EXPECT_LT(compareWithRender(bake,
+                              "--mode shadowed --light builtin:sky --material "
+                              "'lambert?kd=0.2,0.6,0.9'"),
+            kMatch);
+  // The comparison can fail: the unturned view against render's image of the turned light.
+  const Result r = prt("-q render '" + bake + "' " + std::string(kSize) +
+                       " --mode shadowed --light builtin:sky --rotate 0,120,0 -o render.png");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const Result v = prt("view '" + bake + "' --headless " + std::string(kSize) +
+                       " --mode shadowed --light builtin:sky --stats --screenshot unturned.png");
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_GT(displayedRmse(path("unturned.png"), path("render.png")), 2 * kMatch);
+  // --stats says what the CPU uploads at each relight: a 16-byte texel a lightmap texel.
+  EXPECT_NE(v.out.find("16 bytes of radiance per texel per relit frame, drawn per pixel from a "
+                       "64 x 64 lightmap"),
+            std::string::npos)
+      << v.out;
 }
 
 TEST(ViewCli, HaarBakeOverACubeTooFineToTurnProjectsTheEnvironment) {

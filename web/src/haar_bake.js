@@ -131,7 +131,7 @@ export async function readHaarBake(gltf, prt, name) {
   const entries = prt.transfers;
   if (!entries.every(isHaarEntry)) fail(name, 'holds Haar and SH transfer; the viewers relight one basis a file');
   if (prt.texelRange || prt.lightmap)
-    fail(name, 'holds per-texel Haar transfer; the browser viewers relight Haar transfer per vertex (prt render draws a per-texel one)');
+    fail(name, 'holds per-texel Haar transfer; the browser viewers relight Haar transfer per vertex (prt render and prt view draw a per-texel one)');
   const range = prt.vertexRange || {};
   if (range.first !== 0 || range.count !== prt.vertexCount)
     fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);

@@ -123,6 +123,20 @@ inline constexpr int kMaxShaderClusters = 1 << 24;
 int shaderTexelsPerRow(const Transfer& t, ShaderPath path);
 /// Packs the rows for `path` (checked against the transfer as shaderPath does).
 ShaderRows packShaderRows(const Transfer& t, ShaderPath path);
+/// Exit radiance relit on the CPU per lightmap texel (a per-texel Haar bake,
+/// relight/relight_haar.hpp), packed for the per-pixel dense path: a one-band RGB transfer
+///     T_c = R_c / L'_00,c
+/// against the drawn light's first coefficient `lightDc` (LightPacker::rotated()[0]), which no
+/// turn changes (band 0 is rotation-invariant), so the stage's T·L' is R itself, blended over
+/// prt render's four bilinear taps and times the albedo per pixel, exactly as prt render fetches
+/// its relit lightmap. A channel whose L_00 is zero carries no light (a non-negative
+/// environment's mean is zero only where it is black), so R is zero there and so is T. Draw
+/// it at one band with radianceLightmapShape.
+ShaderRows packRadianceLightmap(std::span<const Rgb> radiance,
+                                const TransferShape::LightmapSize& lightmap, const Rgb& lightDc);
+/// The shape packRadianceLightmap's rows are drawn with: per texel, one band, RGB, every texel.
+TransferShape radianceLightmapShape(const TransferShape::LightmapSize& lightmap);
+
 /// What the per-pixel stage computes at lightmap UV `uv` before albedo, on the CPU: the four
 /// taps of bilinearTaps, each relit from the packed rows — dense against the packed light
 /// (LightPacker::data(), `bands` shown), compressed from the cluster table — and blended. The
