@@ -48,6 +48,7 @@
 #include "prt/relight/shader_transfer.hpp"
 #include "prt/render/camera.hpp"
 #include "prt/render/exposure.hpp"
+#include "prt/render/haar_shader.hpp"
 #include "prt/render/probe_shading.hpp"
 #include "prt/render/relit_view.hpp"
 #include "prt/render/texel_points.hpp"
@@ -208,16 +209,14 @@ std::optional<sh::IrradianceEncoding> openingEncoding(const WebOptions& a, const
   return std::nullopt;
 }
 
-/// A Haar bake (docs/haar.md), relit by the page on the CPU per vertex under a light it turns
-/// from each environment's finer cube (haar/turned_cube.hpp, web/src/haar_light.js): complete,
-/// per vertex, over a cube of at most kMaxTurnedResolution² a face, without a base-colour
-/// texture (prt render folds it into the vertices' albedo, which the page cannot: it does not
-/// read a texture's pixels), and without the options that shape SH transfer.
+/// A Haar bake (docs/haar.md), relit by the page on the CPU under a light it turns from each
+/// environment's finer cube (haar/turned_cube.hpp, web/src/haar_light.js) — per vertex, or per
+/// texel at the texels' normals prt web ships beside it (texelPointsFor): complete, over a cube
+/// of at most kMaxTurnedResolution² a face, without a base-colour texture (prt render folds it
+/// into the vertices' albedo, which the page cannot: it does not read a texture's pixels), and
+/// without the options that shape SH transfer.
 void checkHaarForPage(const WebOptions& a, const BakeFile& bake) {
   bake.requireComplete(a.bake);
-  bake.requireVertices(a.bake,
-                       "the page relights Haar transfer per vertex (prt render and prt view draw a "
-                       "per-texel one)");
   const int n = bake.transfers.front().transfer.shape().haar.resolution;
   if (n > haar::kMaxTurnedResolution)
     throw Error(a.bake, fmt::format("holds Haar transfer over a {0}² cube; the page turns its "
@@ -228,8 +227,8 @@ void checkHaarForPage(const WebOptions& a, const BakeFile& bake) {
   if (bake.mesh.baseColour)
     throw Error(a.bake,
                 "holds Haar transfer on a mesh with a base-colour texture, which prt "
-                "render folds into the vertices' albedo; the page does not read a "
-                "texture's pixels (view it with prt view)");
+                "render folds into the vertices' albedo (per texel, multiplies per pixel); the "
+                "page does not read a texture's pixels for Haar bakes (view it with prt view)");
   if (!a.encoding.empty() && a.encoding != "none")
     throw Error(a.bake,
                 "holds Haar transfer: --encoding draws a matrix transfer through an "
@@ -318,17 +317,23 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
   return glb;
 }
 
-/// Per-texel glossy matrices are shaded at each texel's own sample point, normal and albedo
-/// (render::texelRelight, what prt render and prt view relight them at), which the page cannot
-/// compute (the inside-geometry probe traces rays): prt web ships them beside the bake as
-/// render::packTexelPoints' texels, three RGBA32F texels a lightmap texel. Empty when no
-/// transfer needs them. Their albedo leaves the base-colour texture out: the page multiplies
-/// it per pixel.
+/// Per-texel glossy matrices are shaded at each texel's own sample point, normal and albedo,
+/// and per-texel Haar rows relit at each texel's normal (render::texelRelight, what prt render
+/// and prt view relight them at), which the page cannot compute (the inside-geometry probe
+/// traces rays): prt web ships them beside the bake as render::packTexelPoints' texels, three
+/// RGBA32F texels a lightmap texel. Empty when no transfer needs them. Their albedo leaves the
+/// base-colour texture out: the page multiplies it per pixel.
 std::vector<float> texelPointsFor(const BakeFile& bake) {
-  for (const BakedTransfer& t : bake.transfers)
+  for (const BakedTransfer& t : bake.transfers) {
+    if (t.transfer.isHaar() && t.transfer.domain() == TransferDomain::Texels) {
+      const auto occluder = makeEmbreeOccluder(bake.mesh);
+      return render::packTexelPoints(
+          render::texelRelight(bake.mesh, *occluder, t.transfer, t.recipe.material).points);
+    }
     if (std::vector<float> points = render::shadingPoints(bake.mesh, t.transfer, t.recipe.material);
         !points.empty())
       return points;
+  }
   return {};
 }
 
@@ -376,16 +381,15 @@ float initialExposure(const WebOptions& a, const BakeFile& bake, const WebEnviro
   if (!a.camera.empty()) c = render::parseCamera(a.camera, c);
   const image::ToneMap op = image::parseToneMap(a.toneMap);
   if (t.transfer.isHaar()) {
-    // The light the page turns from the environment's cube, relit per vertex as prt render
-    // relights a Haar bake.
+    // The light the page turns from the environment's cube, relit as prt render relights a Haar
+    // bake (render/haar_shader.hpp).
     const haar::HaarLight l = haar::turnedLight(*env.haar, t.transfer.shape().haar.resolution,
                                                 haarLightTerms(a), parseRotation(a.rotate));
-    const std::vector<Rgb> radiance = relight::relightHaar(
-        t.transfer, l, bake.mesh.normals, material.diffuseOr(albedoAtVertices(bake.mesh)));
     const auto occluder = makeEmbreeOccluder(bake.mesh);
-    return render::surveyFrame(*occluder, render::vertexRadianceShader(bake.mesh, radiance), c, 640,
-                               480, op)
-        .exposureStops;
+    std::vector<Rgb> radiance;
+    const render::ShadeFn shade =
+        render::haarShader(bake.mesh, *occluder, t.transfer, material, l, radiance, a.bake);
+    return render::surveyFrame(*occluder, shade, c, 640, 480, op).exposureStops;
   }
   // A probe grid: the scene lit through its relit probes (what the page draws around the ball).
   const std::optional<sh::IrradianceEncoding> encoding = openingEncoding(a, t.transfer);

@@ -546,8 +546,9 @@ async function readCheckedBake(gltf, name, limits, extras) {
   if (entries.length === 0) fail(name, 'the bake holds no transfer (bake it with prt bake --mode ...)');
   // A probe grid: the light arriving at points in space, relit on the CPU (probe_bake.js).
   if (prt.probeGrid) return readProbeBake(gltf, prt, name);
-  // Haar wavelets: relit on the CPU per vertex under a light turned from the environment's cube.
-  if (entries.some(isHaarEntry)) return readHaarBake(gltf, prt, name);
+  // Haar wavelets: relit on the CPU (per vertex, or per texel) under a light turned from the
+  // environment's cube.
+  if (entries.some(isHaarEntry)) return readHaarBake(gltf, prt, name, extras);
   // The domain: the vertices, or the texels of one lightmap over the mesh's lightmap UVs (format
   // 6; relit per pixel). Either must be complete.
   let lightmap = null, rowCount = prt.vertexCount, uvName = null;

@@ -96,6 +96,13 @@ kDrawPerPixel.CpcaMatrix = {
 /** How t is drawn: by its path, per pixel for per-texel transfer. */
 const drawOf = (t) => (t.perPixel ? kDrawPerPixel : kDraw)[t.path];
 
+/** Sets the uniforms of `material` (transferMaterial's for t) that draw t from `f` = { bands,
+ *  rows (the rows' texture), table, eye, points }: what setTransferUniforms sets for a bake's
+ *  own transfer, for a drawing made outside uploadTransfers (haar_texels.js). */
+export function setRowUniforms(material, t, f) {
+  drawOf(t).set(material.uniforms, t, f);
+}
+
 const kDraw = {
   DenseVector: {
     stage: 'mesh.vert',

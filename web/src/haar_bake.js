@@ -5,14 +5,16 @@
 // the rows decoded into the form the library holds in memory — per row its kind (0: the occluded
 // part D = U − T, 1: the visible part T), `terms` (index, value) float pairs and, inter-reflected,
 // its bounce (B² SH coefficients × C channels, channels innermost) — for haar_relight.js. What
-// the browser viewers relight (haar_scene.js, prtkit-three's HaarLighting): per vertex, a cube
-// of at most haar.maxTurnedResolution² a face (the light is turned from the environment's cube 4
-// times finer), no base-colour texture; as prt web holds a bake to (apps/prt/web.cpp,
+// the browser viewers relight (haar_scene.js, prtkit-three's HaarLighting): per vertex, or per
+// texel with the texel points prt web ships beside its bake (haar_texels.js), a cube of at most
+// haar.maxTurnedResolution² a face (the light is turned from the environment's cube 4 times
+// finer), no base-colour texture; as prt web holds a bake to (apps/prt/web.cpp,
 // checkHaarForPage), each refusal one line naming the file.
-import { domains, haar as kHaar, modes } from 'prt:constants';
+import { domains, haar as kHaar, maxLightmapSide as kMaxLightmapSide, modes } from 'prt:constants';
 import { preferenceOrder } from './transfer.js';
 import { meshParts } from './parts.js';
 import { validResolution } from './haar_light.js';
+import { texelNormalsOf } from './haar_texels.js';
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
@@ -127,14 +129,31 @@ async function readRows(gltf, entry, rows, terms, bounce, name) {
  * (readRows'), kd (the recipe's kd or null), describe }]), parts (each keeping its positions,
  * normals and colours), lightmap: null, maxBands: 0, vertices, triangles, centre, radius }.
  */
-export async function readHaarBake(gltf, prt, name) {
+export async function readHaarBake(gltf, prt, name, extras = {}) {
   const entries = prt.transfers;
   if (!entries.every(isHaarEntry)) fail(name, 'holds Haar and SH transfer; the viewers relight one basis a file');
-  if (prt.texelRange || prt.lightmap)
-    fail(name, 'holds per-texel Haar transfer; the browser viewers relight Haar transfer per vertex (prt render and prt view draw a per-texel one)');
-  const range = prt.vertexRange || {};
-  if (range.first !== 0 || range.count !== prt.vertexCount)
-    fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);
+  // The domain: the vertices, or the texels of one lightmap, relit at the texels' normals prt
+  // web ships beside its bake (haar_texels.js).
+  let lightmap = null, rowCount = prt.vertexCount, uvName = null, texelNormals = null;
+  if (prt.texelRange || prt.lightmap) {
+    const lm = prt.lightmap || {}, range = prt.texelRange || {};
+    if (!(Number.isInteger(lm.width) && Number.isInteger(lm.height) && lm.width >= 1 && lm.height >= 1 && lm.width <= kMaxLightmapSide && lm.height <= kMaxLightmapSide))
+      fail(name, `holds per-texel transfer over a lightmap of ${lm.width} x ${lm.height} texels (1..${kMaxLightmapSide} a side expected)`);
+    lightmap = { width: lm.width, height: lm.height };
+    rowCount = lm.width * lm.height;
+    if (range.first !== 0 || range.count !== rowCount)
+      fail(name, `holds transfer for texels ${range.first}..${range.first + range.count} of ${rowCount} only (merge the pieces with prt merge first)`);
+    const set = prt.lightmapTexCoord;
+    if (!(Number.isInteger(set) && set >= 0 && set <= 3))
+      fail(name, 'holds per-texel transfer but names no lightmapTexCoord (0..3) it is over');
+    uvName = set === 0 ? 'uv' : `uv${set}`;  // GLTFLoader's names of TEXCOORD_n
+    if (!extras.texelPoints) fail(name, kPageHaarTexelsRefusal);
+    texelNormals = texelNormalsOf(extras.texelPoints, rowCount, name);
+  } else {
+    const range = prt.vertexRange || {};
+    if (range.first !== 0 || range.count !== prt.vertexCount)
+      fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);
+  }
   const json = gltf.parser.json;
   const pbr = Array.isArray(json.materials) && json.materials[0] && json.materials[0].pbrMetallicRoughness;
   if (pbr && pbr.baseColorTexture !== undefined)
@@ -148,24 +167,37 @@ export async function readHaarBake(gltf, prt, name) {
     const mode = modes.find((m) => m.name === s.mode);
     const kd = s.material && Array.isArray(s.material.kd) ? s.material.kd : null;
     read.push({ key: `${mode.name} vector`, mode: mode.name, layout: 'vector', bands: 0, channels, matrix: false,
-                compressed: null, haar: h, kd,
-                rows: await readRows(gltf, e, prt.vertexCount, terms, bounceBands * bounceBands * channels, name),
-                describe: describeHaarTransfer(h, channels) });
+                compressed: null, haar: h, kd, perPixel: !!lightmap, lightmap,
+                rows: await readRows(gltf, e, rowCount, terms, bounceBands * bounceBands * channels, name),
+                describe: describeHaarTransfer(h, channels, lightmap) });
   }
   const transfers = preferenceOrder(read);
   const mesh = meshParts(gltf, prt, name);
   for (const p of mesh.parts) {
-    if (!p.geometry.getAttribute('normal')) fail(name, `part '${p.name}' has no normals (a Haar row's unshadowed light is its normal's)`);
-    for (const a of Object.keys(p.geometry.attributes))
-      if (!['position', 'normal', 'color'].includes(a)) p.geometry.deleteAttribute(a);
+    const g = p.geometry;
+    if (!g.getAttribute('normal')) fail(name, `part '${p.name}' has no normals (a Haar row's unshadowed light is its normal's)`);
+    // Per texel: the lightmap UVs, under the name the lightmap stage reads.
+    if (lightmap) {
+      const uv = g.getAttribute(uvName);
+      if (!uv || uv.itemSize !== 2 || uv.count !== p.vertices)
+        fail(name, `part '${p.name}' has no lightmap UVs (TEXCOORD_${prt.lightmapTexCoord}), which its per-texel transfer is over`);
+      g.setAttribute('prtLightmapUv', uv);
+    }
+    for (const a of Object.keys(g.attributes))
+      if (!['position', 'normal', 'color', 'prtLightmapUv'].includes(a)) g.deleteAttribute(a);
   }
-  return { name, haar: true, transfers, parts: mesh.parts, lightmap: null, texelPoints: null, maxBands: 0,
+  return { name, haar: true, transfers, parts: mesh.parts, lightmap, texelNormals, texelPoints: null, maxBands: 0,
            vertices: mesh.vertices, triangles: mesh.triangles, centre: mesh.centre, radius: mesh.radius };
 }
 
+/** Why the browser viewers refuse a per-texel Haar bake without its texel points. */
+export const kPageHaarTexelsRefusal =
+  'holds per-texel Haar transfer, relit at its texels\' normals, which prt web writes beside its own bake (write a page for this file with prt web; prt view and prt render draw it)';
+
 /** A Haar transfer in one phrase (TransferShape::describe's words): its cube, its terms and, when
  *  inter-reflected, its bounce. */
-export function describeHaarTransfer(h, channels) {
+export function describeHaarTransfer(h, channels, lightmap = null) {
   const bounce = h.bounceBands > 0 ? `, bounce in ${h.bounceBands} SH bands (${channels === 3 ? 'RGB' : 'scalar'})` : '';
-  return `Haar ${h.resolution}² cube, ${h.terms} terms a vertex${bounce}, relit on the CPU`;
+  const where = lightmap ? `, drawn per pixel from a ${lightmap.width} x ${lightmap.height} lightmap` : '';
+  return `Haar ${h.resolution}² cube, ${h.terms} terms a ${lightmap ? 'texel' : 'vertex'}${bounce}, relit on the CPU${where}`;
 }

@@ -1,6 +1,6 @@
 // The page's Haar mode (docs/haar.md, docs/web.md "Haar bakes"): a Haar bake's parts drawn from
-// radiance made on the CPU (shaders/stages/radiance.vert, mesh.frag), as prt render and prt view
-// draw one. When the environment, the light's rotation, its terms or the transfer change, the
+// radiance made on the CPU (shaders/stages/radiance.vert, mesh.frag) — per texel a relit
+// lightmap drawn per pixel (haar_texels.js) — as prt render and prt view draw one. When the environment, the light's rotation, its terms or the transfer change, the
 // light is made again — the environment's fine cube (prt web's) turned by R and cut to its K
 // largest terms (haar_light.js, haar::turnedLight) — and every vertex relit from its sparse
 // terms (haar_relight.js, relight::relightHaar) — an inter-reflected row's bounce against the
@@ -14,6 +14,8 @@ import { base64Bytes, decodeRgbe } from './environment.js';
 import { environmentCube, turnedLight } from './haar_light.js';
 import { relightHaar } from './haar_relight.js';
 import { radianceMesh } from './radiance_mesh.js';
+import { haarTexelDrawing } from './haar_texels.js';
+import { pageHost } from './page_host.js';
 
 function pageRadianceMaterial() {
   return new THREE.RawShaderMaterial({ glslVersion: THREE.GLSL3, vertexShader: radianceVert, fragmentShader: meshFrag,
@@ -37,8 +39,15 @@ export function haarCubeOf(e, n) {
  * seconds } }. frame(f) brings it up to date for f = { transfer, env, rotation (rows), terms }:
  * the light and the relighting only when one of them changed.
  */
-export function uploadHaarScene(b) {
-  const parts = b.parts.map((p) => ({ part: p, m: radianceMesh(p.geometry, pageRadianceMaterial()) }));
+export function uploadHaarScene(b, limits) {
+  // Per texel: the relit lightmap drawn per pixel (haar_texels.js); per vertex: radiance.
+  const texels = b.lightmap ? haarTexelDrawing(b, limits, pageHost) : null;
+  const parts = b.parts.map((p, i) => {
+    if (!texels) return { part: p, m: radianceMesh(p.geometry, pageRadianceMaterial()) };
+    const mesh = new THREE.Mesh(p.geometry, texels.material(i, b.transfers[0]));
+    mesh.frustumCulled = false;
+    return { part: p, m: { mesh } };
+  });
   const scene = { light: null, seconds: 0, lightSeconds: 0 };
   let last = null;
   scene.frame = (f) => {
@@ -48,21 +57,28 @@ export function uploadHaarScene(b) {
     const t0 = performance.now();
     scene.light = turnedLight(haarCubeOf(f.env, n), n, f.terms, f.rotation);
     const t1 = performance.now();
-    for (const { part, m } of parts) {
-      relightHaar(t, scene.light, m.normals, t.kd || m.albedo, m.radiance.array, part.first, part.vertices);
-      m.radiance.needsUpdate = true;
+    if (texels) {
+      texels.relight(t, scene.light);
+      parts.forEach(({ m }, i) => { m.mesh.material = texels.material(i, t); });
+    } else {
+      for (const { part, m } of parts) {
+        relightHaar(t, scene.light, m.normals, t.kd || m.albedo, m.radiance.array, part.first, part.vertices);
+        m.radiance.needsUpdate = true;
+      }
     }
     scene.lightSeconds = (t1 - t0) / 1000;
     scene.seconds = (performance.now() - t1) / 1000;
     last = key;
     return true;
   };
-  return { bake: b, meshes: parts.map(({ m }) => m.mesh), haar: scene };
+  return { bake: b, meshes: parts.map(({ m }) => m.mesh), haar: scene, texels };
 }
 
-/** Frees the materials uploadHaarScene made (the geometries are the meshes' to free). */
+/** Frees the materials (and a per-texel bake's lightmap) uploadHaarScene made (the geometries
+ *  are the meshes' to free). */
 export function disposeHaarScene(gpu) {
-  for (const m of gpu.meshes) m.material.dispose();
+  if (gpu.texels) gpu.texels.dispose();
+  else for (const m of gpu.meshes) m.material.dispose();
 }
 
 /** The status lines of a Haar bake on screen. */

@@ -51,7 +51,7 @@ function fatal(text) {
  *  first transfer's material. Touches no scene. */
 function uploadBake(b, limits) {
   if (b.probes) return uploadProbeScene(b);
-  if (b.haar) return uploadHaarScene(b);
+  if (b.haar) return uploadHaarScene(b, limits);
   const gpu = uploadTransfers(b, limits, pageHost);
   gpu.meshes = b.parts.map((p, i) => {
     const mesh = new THREE.Mesh(p.geometry, gpu.parts[i].materials[b.transfers[0].key]);

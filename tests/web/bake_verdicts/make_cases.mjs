@@ -173,7 +173,7 @@ const cases = {
   // library's HaarRowsCodec and haar::checkRow), and what the browser viewers do not relight.
   accept_haar: ['h', () => {}],
   accept_haar_resolution_64: ['h', (g) => { prt(g).transfers[0].settings.haar.resolution = 64; }],
-  accept_haar_per_texel: ['ht', () => {}],  // the viewers relight Haar per vertex: prt web refuses
+  accept_haar_per_texel: ['ht', () => {}],  // relit at the texel points prt web ships beside it
   accept_haar_cube_past_the_page: ['h128', () => {}],  // a 128² cube: prt web refuses
   reject_haar_in_version_7: ['h', (g) => { prt(g).formatVersion = 7; }],
   reject_haar_unknown_basis: ['h', (g) => { prt(g).transfers[0].settings.basis = 'wavelet'; }],

@@ -1,6 +1,8 @@
 // A Haar bake in three.js (prt bake --basis haar; docs/haar.md, docs/three.md "Haar bakes"): the
 // loader plugin leaves a HaarLighting in gltf.userData.prtkit, its meshes dressed in materials
-// drawn from per-vertex radiance (the three host's radiance stage). The radiance is made on the
+// drawn from per-vertex radiance (the three host's radiance stage), or per texel from a relit
+// lightmap fetched per pixel (web/src/haar_texels.js; the texel points prt web writes beside
+// its bake come as the plugin's texelPoints option). The radiance is made on the
 // CPU, as prt render and the page make it: the light's K largest wavelet terms (web/src/
 // haar_light.js) and each vertex's sparse terms (haar_relight.js) — an inter-reflected
 // transfer's bounce against the light's full SH (haarLightFullSh, made with the light) — again
@@ -19,6 +21,7 @@ import { base64Bytes, decodeRgbe } from '../../src/environment.js';
 import { environmentCube, parseHaarLight, turnedLight } from '../../src/haar_light.js';
 import { relightHaar } from '../../src/haar_relight.js';
 import { radianceMesh } from '../../src/radiance_mesh.js';
+import { haarTexelDrawing } from '../../src/haar_texels.js';
 import { threeHost } from './three_host.js';
 import { rotationRows } from './rotation.js';
 
@@ -38,7 +41,7 @@ export { parseHaarLight };
 export class HaarLighting {
   /** (Made by the loader plugin.) bake: web/src/haar_bake.js's readHaarBake result; root: the
    *  glTF scene. */
-  constructor(bake, root) {
+  constructor(bake, root, limits = { maxTextureSize: 4096 }) {
     /** Type test: a Haar bake's lighting (an SH bake gives a PRTBake). */
     this.isHaarLighting = true;
     this.name = bake.name;
@@ -51,6 +54,8 @@ export class HaarLighting {
     this._source = null;
     this._made = null;  // { key, light }
     this._exposure = { value: 1 };
+    // Per texel: the relit lightmap drawn per pixel (web/src/haar_texels.js).
+    this._texels = bake.lightmap ? haarTexelDrawing(bake, limits, threeHost(this._exposure)) : null;
     this._dressed = this._dress();
   }
 
@@ -110,9 +115,14 @@ export class HaarLighting {
     } else if (R.some((row, i) => row.some((x, j) => Math.abs(x - identity[i][j]) > 1e-12))) {
       throw new Error(`${this.name}: a Haar light file cannot be turned (the environment is resampled at each rotation: give haarEnvironment(...))`);
     }
-    for (const d of this._dressed) {
-      relightHaar(t, light, d.m.normals, t.kd || d.m.albedo, d.m.radiance.array, d.part.first, d.part.vertices);
-      d.m.radiance.needsUpdate = true;
+    if (this._texels) {
+      this._texels.relight(t, light);
+      this._dressed.forEach((d, i) => { d.m.mesh.material = this._texels.material(i, t); });
+    } else {
+      for (const d of this._dressed) {
+        relightHaar(t, light, d.m.normals, t.kd || d.m.albedo, d.m.radiance.array, d.part.first, d.part.vertices);
+        d.m.radiance.needsUpdate = true;
+      }
     }
     this._made = { key, light };
     return true;
@@ -122,14 +132,23 @@ export class HaarLighting {
   dispose() {
     for (const d of this._dressed) {
       d.m.mesh.onBeforeRender = () => {};
-      d.m.mesh.material.dispose();
+      if (!this._texels) d.m.mesh.material.dispose();
     }
+    if (this._texels) this._texels.dispose();
   }
 
-  /** The bake's parts in materials drawn from their per-vertex radiance. */
+  /** The bake's parts in materials drawn from their per-vertex radiance, or per texel from the
+   *  relit lightmap. */
   _dress() {
     const host = threeHost(this._exposure);
-    return this._bake.parts.map((part) => {
+    return this._bake.parts.map((part, i) => {
+      if (this._texels) {
+        const mesh = part.mesh;
+        mesh.material = this._texels.material(i, this._transfer);
+        mesh.frustumCulled = false;
+        mesh.onBeforeRender = () => { if (this._source) this.update(); };
+        return { part, m: { mesh } };
+      }
       const material = host.material({ vertexShader: host.stages['radiance.vert'], fragmentShader: host.stages.fragment,
                                        defines: {}, uniforms: { uExposureScale: this._exposure }, hasAlbedo: false });
       const m = radianceMesh(part.geometry, material, null, part.mesh);

@@ -20,8 +20,8 @@ export class PRTKitRadianceTransfer {
   /**
    * options: { name: the file's name in messages, renderer: a WebGLRenderer whose limits apply
    * (else WebGL2's guaranteed ones), required: reject an asset that is not a bake, texelPoints:
-   * per-texel glossy matrices' points (a Float32Array, what prt web writes beside its bake:
-   * data.bake.texelPoints; such matrices are refused without them) }.
+   * the texel points of per-texel glossy matrices and Haar rows (a Float32Array, what prt web
+   * writes beside its bake: data.bake.texelPoints; such bakes are refused without them) }.
    */
   constructor(parser, options = {}) {
     this.parser = parser;
@@ -61,7 +61,7 @@ export class PRTKitRadianceTransfer {
     }
     // A Haar bake (prt bake --basis haar) is relit on the CPU: a HaarLighting.
     if (bake.haar) {
-      result.userData.prtkit = new HaarLighting(bake, result.scene);
+      result.userData.prtkit = new HaarLighting(bake, result.scene, limits);
       return;
     }
     for (const t of bake.transfers) if (t.matrix) t.material = glossyFromFile(t, name);
