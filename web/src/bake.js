@@ -14,6 +14,7 @@ import { textureShape } from './texels.js';
 import { checkProbeGridDocument, probeCount, readProbeBake } from './probe_bake.js';
 import { meshParts } from './parts.js';
 import { checkHaarTransfer, isHaarEntry, readHaarBake } from './haar_bake.js';
+import { rowDomain, useLightmapUvs } from './row_domain.js';
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
@@ -549,26 +550,8 @@ async function readCheckedBake(gltf, name, limits, extras) {
   // Haar wavelets: relit on the CPU (per vertex, or per texel) under a light turned from the
   // environment's cube.
   if (entries.some(isHaarEntry)) return readHaarBake(gltf, prt, name, extras);
-  // The domain: the vertices, or the texels of one lightmap over the mesh's lightmap UVs (format
-  // 6; relit per pixel). Either must be complete.
-  let lightmap = null, rowCount = prt.vertexCount, uvName = null;
-  if (prt.texelRange || prt.lightmap) {
-    const lm = prt.lightmap || {}, range = prt.texelRange || {};
-    if (!(Number.isInteger(lm.width) && Number.isInteger(lm.height) && lm.width >= 1 && lm.height >= 1 && lm.width <= maxLightmapSide && lm.height <= maxLightmapSide))
-      fail(name, `holds per-texel transfer over a lightmap of ${lm.width} x ${lm.height} texels (1..${maxLightmapSide} a side expected)`);
-    lightmap = { width: lm.width, height: lm.height };
-    rowCount = lm.width * lm.height;
-    if (range.first !== 0 || range.count !== rowCount)
-      fail(name, `holds transfer for texels ${range.first}..${range.first + range.count} of ${rowCount} only (merge the pieces with prt merge first)`);
-    const set = prt.lightmapTexCoord;
-    if (!(Number.isInteger(set) && set >= 0 && set <= 3))
-      fail(name, `holds per-texel transfer but names no lightmapTexCoord (0..3) it is over`);
-    uvName = set === 0 ? 'uv' : `uv${set}`;  // GLTFLoader's names of TEXCOORD_n
-  } else {
-    const range = prt.vertexRange || {};
-    if (range.first !== 0 || range.count !== prt.vertexCount)
-      fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);
-  }
+  // The domain: the vertices, or the texels of one lightmap (relit per pixel); whole.
+  const domain = rowDomain(prt, name), { lightmap, rowCount } = domain;
 
   const points = lightmap && extras.texelPoints ? texelPointsImage(extras.texelPoints, rowCount, limits, name) : null;
   const read = [];
@@ -587,12 +570,7 @@ async function readCheckedBake(gltf, name, limits, extras) {
     const part = { ...p, baseColour: baseColourTexture(m, g, name), texels: {} };
     for (const t of transfers) part.texels[t.key] = packRows(t, part, limits, name);
     // Per-texel transfer: the lightmap UVs, under the name the lightmap stage reads.
-    if (lightmap) {
-      const uv = g.getAttribute(uvName);
-      if (!uv || uv.itemSize !== 2 || uv.count !== p.vertices)
-        fail(name, `part '${m.name}' has no lightmap UVs (TEXCOORD_${prt.lightmapTexCoord}), which its per-texel transfer is over`);
-      g.setAttribute('prtLightmapUv', uv);
-    }
+    useLightmapUvs(p, domain, prt, name);
     // Normals stay for glossy matrices (the lobe about the reflected view), the lightmap UVs for
     // per-texel transfer; the rest goes.
     const keep = ['position', 'color'].concat(glossy ? ['normal'] : [], lightmap ? ['prtLightmapUv'] : [],

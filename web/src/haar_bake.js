@@ -10,11 +10,12 @@
 // haar.maxTurnedResolution² a face (the light is turned from the environment's cube 4 times
 // finer), no base-colour texture; as prt web holds a bake to (apps/prt/web.cpp,
 // checkHaarForPage), each refusal one line naming the file.
-import { domains, haar as kHaar, maxLightmapSide as kMaxLightmapSide, modes } from 'prt:constants';
+import { domains, haar as kHaar, modes } from 'prt:constants';
 import { preferenceOrder } from './transfer.js';
 import { meshParts } from './parts.js';
 import { validResolution } from './haar_light.js';
 import { texelNormalsOf } from './haar_texels.js';
+import { rowDomain, useLightmapUvs } from './row_domain.js';
 
 function fail(name, what) {
   throw new Error(`${name}: ${what}`);
@@ -126,34 +127,21 @@ async function readRows(gltf, entry, rows, terms, bounce, name) {
  * object `prt`) as the browser viewers relight it: { name, haar: true, transfers (in the
  * library's preference order: [{ key, mode, layout, bands: 0, channels (the bounce's: 1, or 3
  * for coloured inter-reflection), haar: { resolution, terms, bounceBands (0: no bounce) }, rows
- * (readRows'), kd (the recipe's kd or null), describe }]), parts (each keeping its positions,
- * normals and colours), lightmap: null, maxBands: 0, vertices, triangles, centre, radius }.
+ * (readRows'), kd (the recipe's kd or null), perPixel, lightmap, describe }]), parts (each keeping
+ * its positions, normals and colours, and per texel its lightmap UVs as prtLightmapUv), lightmap
+ * ({ width, height } per texel, else null), texelNormals (per texel: extras.texelPoints' normals,
+ * three floats a texel; else null), maxBands: 0, vertices, triangles, centre, radius }.
+ * extras.texelPoints: what prt web writes beside a per-texel bake (render::packTexelPoints' twelve
+ * floats a texel); without them a per-texel bake is refused.
  */
 export async function readHaarBake(gltf, prt, name, extras = {}) {
   const entries = prt.transfers;
   if (!entries.every(isHaarEntry)) fail(name, 'holds Haar and SH transfer; the viewers relight one basis a file');
   // The domain: the vertices, or the texels of one lightmap, relit at the texels' normals prt
-  // web ships beside its bake (haar_texels.js).
-  let lightmap = null, rowCount = prt.vertexCount, uvName = null, texelNormals = null;
-  if (prt.texelRange || prt.lightmap) {
-    const lm = prt.lightmap || {}, range = prt.texelRange || {};
-    if (!(Number.isInteger(lm.width) && Number.isInteger(lm.height) && lm.width >= 1 && lm.height >= 1 && lm.width <= kMaxLightmapSide && lm.height <= kMaxLightmapSide))
-      fail(name, `holds per-texel transfer over a lightmap of ${lm.width} x ${lm.height} texels (1..${kMaxLightmapSide} a side expected)`);
-    lightmap = { width: lm.width, height: lm.height };
-    rowCount = lm.width * lm.height;
-    if (range.first !== 0 || range.count !== rowCount)
-      fail(name, `holds transfer for texels ${range.first}..${range.first + range.count} of ${rowCount} only (merge the pieces with prt merge first)`);
-    const set = prt.lightmapTexCoord;
-    if (!(Number.isInteger(set) && set >= 0 && set <= 3))
-      fail(name, 'holds per-texel transfer but names no lightmapTexCoord (0..3) it is over');
-    uvName = set === 0 ? 'uv' : `uv${set}`;  // GLTFLoader's names of TEXCOORD_n
-    if (!extras.texelPoints) fail(name, kPageHaarTexelsRefusal);
-    texelNormals = texelNormalsOf(extras.texelPoints, rowCount, name);
-  } else {
-    const range = prt.vertexRange || {};
-    if (range.first !== 0 || range.count !== prt.vertexCount)
-      fail(name, `holds transfer for vertices ${range.first}..${range.first + range.count} of ${prt.vertexCount} only (merge the pieces with prt merge first)`);
-  }
+  // web ships beside its bake (haar_texels.js); whole.
+  const domain = rowDomain(prt, name), { lightmap, rowCount } = domain;
+  if (lightmap && !extras.texelPoints) fail(name, kPageHaarTexelsRefusal);
+  const texelNormals = lightmap ? texelNormalsOf(extras.texelPoints, rowCount, name) : null;
   const json = gltf.parser.json;
   const pbr = Array.isArray(json.materials) && json.materials[0] && json.materials[0].pbrMetallicRoughness;
   if (pbr && pbr.baseColorTexture !== undefined)
@@ -176,13 +164,7 @@ export async function readHaarBake(gltf, prt, name, extras = {}) {
   for (const p of mesh.parts) {
     const g = p.geometry;
     if (!g.getAttribute('normal')) fail(name, `part '${p.name}' has no normals (a Haar row's unshadowed light is its normal's)`);
-    // Per texel: the lightmap UVs, under the name the lightmap stage reads.
-    if (lightmap) {
-      const uv = g.getAttribute(uvName);
-      if (!uv || uv.itemSize !== 2 || uv.count !== p.vertices)
-        fail(name, `part '${p.name}' has no lightmap UVs (TEXCOORD_${prt.lightmapTexCoord}), which its per-texel transfer is over`);
-      g.setAttribute('prtLightmapUv', uv);
-    }
+    useLightmapUvs(p, domain, prt, name);  // per texel, where the lightmap stage reads them
     for (const a of Object.keys(g.attributes))
       if (!['position', 'normal', 'color', 'prtLightmapUv'].includes(a)) g.deleteAttribute(a);
   }
