@@ -324,16 +324,10 @@ std::vector<unsigned char> readBakeForPage(const WebOptions& a, BakeFile& bake) 
 /// RGBA32F texels a lightmap texel. Empty when no transfer needs them. Their albedo leaves the
 /// base-colour texture out: the page multiplies it per pixel.
 std::vector<float> texelPointsFor(const BakeFile& bake) {
-  for (const BakedTransfer& t : bake.transfers) {
-    if (t.transfer.isHaar() && t.transfer.domain() == TransferDomain::Texels) {
-      const auto occluder = makeEmbreeOccluder(bake.mesh);
-      return render::packTexelPoints(
-          render::texelRelight(bake.mesh, *occluder, t.transfer, t.recipe.material).points);
-    }
+  for (const BakedTransfer& t : bake.transfers)
     if (std::vector<float> points = render::shadingPoints(bake.mesh, t.transfer, t.recipe.material);
         !points.empty())
       return points;
-  }
   return {};
 }
 

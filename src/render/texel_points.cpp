@@ -181,7 +181,8 @@ void requireWholeDomain(const Mesh& mesh, const Transfer& transfer, const std::s
 
 std::vector<float> shadingPoints(const Mesh& mesh, const Transfer& transfer,
                                  const Material& material, const Occluder* occluder) {
-  if (transfer.domain() != TransferDomain::Texels || !transfer.isMatrix()) return {};
+  if (transfer.domain() != TransferDomain::Texels || (!transfer.isMatrix() && !transfer.isHaar()))
+    return {};
   std::unique_ptr<Occluder> own;
   if (!occluder) occluder = (own = makeEmbreeOccluder(mesh)).get();
   return packTexelPoints(texelRelight(mesh, *occluder, transfer, material).points);

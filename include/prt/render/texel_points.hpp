@@ -59,8 +59,9 @@ RowPoints texelSamplePoints(const Mesh& mesh, const Occluder& occluder,
 void requireWholeDomain(const Mesh& mesh, const Transfer& transfer, const std::string& verb);
 
 /// The texels' shading points a GPU viewer needs beside `transfer` (packTexelPoints of
-/// texelRelight's points: per-texel matrices are shaded at each texel's own point), or empty
-/// when it needs none (vectors, per-vertex rows). `occluder` is built from `mesh` when null.
+/// texelRelight's points: per-texel matrices are shaded at each texel's own point, Haar rows
+/// relit at its normal), or empty when it needs none (SH vectors, per-vertex rows). `occluder`
+/// is built from `mesh` when null.
 std::vector<float> shadingPoints(const Mesh& mesh, const Transfer& transfer,
                                  const Material& material, const Occluder* occluder = nullptr);
 
